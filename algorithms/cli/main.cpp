@@ -1,0 +1,206 @@
+// cgview: the command line.  `cgview info`, `cgview convert`, `cgview samples`.
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "core/errors.h"
+#include "core/mesh_report.h"
+#include "io/mesh_io.h"
+#include "io/samples.h"
+#include "mesh_report_json.h"
+
+namespace {
+
+using namespace cgview;
+
+constexpr const char* kVersion = "0.1.0";
+
+struct Usage : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+const char* kMainHelp =
+    "usage: cgview COMMAND [ARGS]\n"
+    "\n"
+    "CGView's command line: mesh reports and conversions, on the same library as the server.\n"
+    "\n"
+    "commands:\n"
+    "  info MESH [--json]     counts, bounding box, topology and defects of a mesh\n"
+    "  convert IN OUT         convert between formats (from the file extensions)\n"
+    "  samples                list the sample meshes (usable by name: cgview info elephant)\n"
+    "\n"
+    "options:\n"
+    "  -h, --help             this help (also: cgview COMMAND --help)\n"
+    "  --version              the version\n"
+    "\n"
+    "MESH is a file or the name of a sample mesh.\n";
+
+const char* kInfoHelp =
+    "usage: cgview info MESH [--json]\n"
+    "\n"
+    "Prints the report of a mesh: vertices, faces, edges, bounding box, connected\n"
+    "components, boundary loops, genus, manifoldness, degenerate and duplicate faces.\n"
+    "\n"
+    "  --json     one JSON object (keys: vertices, faces, edges, bbox, components,\n"
+    "             boundary_loops, genus, manifold, degenerate_faces, and details)\n"
+    "\n"
+    "MESH is a file or the name of a sample mesh (see cgview samples).\n";
+
+std::string convert_help() {
+  return "usage: cgview convert IN OUT [--ascii] [--bits N] [--no-weld]\n"
+         "\n"
+         "Reads IN and writes OUT, each format from its extension.\n"
+         "  reads:  " + readable_formats() + "\n"
+         "  writes: " + writable_formats() + "\n"
+         "\n"
+         "  --ascii      write PLY and STL as text (default: binary)\n"
+         "  --bits N     Draco position quantization in bits (default 14)\n"
+         "  --no-weld    keep STL corners apart instead of merging equal ones\n";
+}
+
+const char* kSamplesHelp =
+    "usage: cgview samples [--json]\n"
+    "\n"
+    "Lists the sample meshes (CGAL's data set from Debian's libcgal-demo) and where\n"
+    "they are; any of them can be named instead of a path: cgview info elephant.\n";
+
+bool wants_help(const std::vector<std::string>& args) {
+  for (const auto& a : args)
+    if (a == "-h" || a == "--help") return true;
+  return false;
+}
+
+std::filesystem::path need_mesh(const std::string& arg) {
+  auto p = resolve_mesh_path(arg);
+  if (!p) throw IoError(arg + ": no such file, and no sample mesh of that name (see cgview samples)");
+  return *p;
+}
+
+void print_warnings(const ReadResult& r) {
+  for (const auto& w : r.warnings) std::fprintf(stderr, "cgview: warning: %s\n", w.c_str());
+}
+
+int cmd_info(const std::vector<std::string>& args) {
+  if (wants_help(args)) { std::fputs(kInfoHelp, stdout); return 0; }
+  bool json = false;
+  std::string path;
+  for (const auto& a : args) {
+    if (a == "--json") json = true;
+    else if (a.starts_with("-")) throw Usage("info: unknown option " + a);
+    else if (path.empty()) path = a;
+    else throw Usage("info: one mesh at a time");
+  }
+  if (path.empty()) throw Usage("info: which mesh?");
+  const auto file = need_mesh(path);
+  const ReadResult r = read_mesh_file(file);
+  print_warnings(r);
+  const MeshReport rep = mesh_report(r.mesh);
+  if (json) {
+    nlohmann::json j = protocol::to_json(rep);
+    j["file"] = file.string();
+    j["format"] = to_string(r.format);
+    j["warnings"] = r.warnings;
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+  auto yes = [](bool b) { return b ? "yes" : "no"; };
+  std::printf("file              %s (%s)\n", file.c_str(), to_string(r.format));
+  std::printf("vertices          %llu\n", (unsigned long long)rep.vertices);
+  std::printf("faces             %llu\n", (unsigned long long)rep.faces);
+  std::printf("edges             %llu\n", (unsigned long long)rep.edges);
+  if (!rep.bbox.empty())
+    std::printf("bounding box      [%g %g %g] .. [%g %g %g] (size %g x %g x %g)\n", rep.bbox.min.x, rep.bbox.min.y,
+                rep.bbox.min.z, rep.bbox.max.x, rep.bbox.max.y, rep.bbox.max.z, rep.bbox.size().x,
+                rep.bbox.size().y, rep.bbox.size().z);
+  std::printf("components        %llu\n", (unsigned long long)rep.components);
+  std::printf("boundary loops    %llu\n", (unsigned long long)rep.boundary_loops);
+  if (rep.genus) std::printf("genus             %lld\n", (long long)*rep.genus);
+  else std::printf("genus             n/a (not a manifold, consistently oriented mesh)\n");
+  std::printf("manifold          %s", yes(rep.manifold));
+  if (!rep.manifold)
+    std::printf(" (%llu non-manifold edges, %llu non-manifold vertices)", (unsigned long long)rep.non_manifold_edges,
+                (unsigned long long)rep.non_manifold_vertices);
+  std::printf("\nclosed            %s\n", yes(rep.closed));
+  std::printf("oriented          %s\n", yes(rep.oriented));
+  std::printf("degenerate faces  %llu\n", (unsigned long long)rep.degenerate_faces);
+  std::printf("duplicate faces   %llu\n", (unsigned long long)rep.duplicate_faces);
+  std::printf("isolated vertices %llu\n", (unsigned long long)rep.isolated_vertices);
+  std::printf("area              %g\n", rep.area);
+  if (rep.volume) std::printf("volume            %g\n", *rep.volume);
+  return 0;
+}
+
+int cmd_convert(const std::vector<std::string>& args) {
+  if (wants_help(args)) { std::fputs(convert_help().c_str(), stdout); return 0; }
+  std::vector<std::string> paths;
+  WriteOptions wo;
+  ReadOptions ro;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const auto& a = args[i];
+    if (a == "--ascii") wo.binary = false;
+    else if (a == "--no-weld") ro.weld_stl = false;
+    else if (a == "--bits") {
+      if (i + 1 >= args.size()) throw Usage("convert: --bits needs a number");
+      try {
+        std::size_t used = 0;
+        wo.position_bits = std::stoi(args[++i], &used);
+        if (used != args[i].size()) throw std::invalid_argument("");
+      } catch (const std::logic_error&) {
+        throw Usage("convert: --bits needs a number, got '" + args[i] + "'");
+      }
+    } else if (a.starts_with("-")) throw Usage("convert: unknown option " + a);
+    else paths.push_back(a);
+  }
+  if (paths.size() != 2) throw Usage("convert: needs IN and OUT");
+  const MeshFormat out_format = format_from_name(paths[1]);
+  if (!can_write(out_format))
+    throw UnsupportedFormat(std::string("cannot write ") + to_string(out_format) + " (writable: " + writable_formats() + ")");
+  const auto in = need_mesh(paths[0]);
+  const ReadResult r = read_mesh_file(in, ro);
+  print_warnings(r);
+  write_mesh(r.mesh, paths[1], wo);
+  return 0;
+}
+
+int cmd_samples(const std::vector<std::string>& args) {
+  if (wants_help(args)) { std::fputs(kSamplesHelp, stdout); return 0; }
+  const bool json = !args.empty() && args[0] == "--json";
+  const auto dir = samples_dir();
+  if (!dir) throw IoError("no sample meshes found: install Debian's libcgal-demo and rebuild, or set CGVIEW_SAMPLES");
+  const auto files = list_samples();
+  if (json) {
+    nlohmann::json j = nlohmann::json::array();
+    for (const auto& f : files) j.push_back({{"name", f.stem().string()}, {"path", f.string()}});
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+  std::printf("%zu sample meshes in %s:\n", files.size(), dir->c_str());
+  for (const auto& f : files) std::printf("  %s\n", f.filename().c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  try {
+    if (args.empty()) throw Usage("a command is needed");
+    const std::string cmd = args[0];
+    std::vector<std::string> rest(args.begin() + 1, args.end());
+    if (cmd == "-h" || cmd == "--help" || cmd == "help") { std::fputs(kMainHelp, stdout); return 0; }
+    if (cmd == "--version") { std::printf("cgview %s\n", kVersion); return 0; }
+    if (cmd == "info") return cmd_info(rest);
+    if (cmd == "convert") return cmd_convert(rest);
+    if (cmd == "samples") return cmd_samples(rest);
+    throw Usage("unknown command '" + cmd + "'");
+  } catch (const Usage& e) {
+    std::fprintf(stderr, "cgview: %s (see cgview --help)\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "cgview: error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,295 @@
+#include "core/mesh.h"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+
+#include "core/errors.h"
+
+namespace cgview {
+
+namespace {
+constexpr Index kNone = std::numeric_limits<Index>::max();
+
+void check_index_triangles(const std::vector<Tri>& tris, std::size_t count, const char* what) {
+  for (std::size_t f = 0; f < tris.size(); ++f)
+    for (Index i : tris[f])
+      if (i >= count)
+        throw InvalidInput("face " + std::to_string(f) + " refers to " + what + " " +
+                           std::to_string(i) + " but there are only " + std::to_string(count));
+}
+
+// Builds a CSR list from (key, value) pairs whose keys are < n, by counting sort.
+template <class Pairs>
+Adjacency bucket(std::size_t n, std::size_t m, Pairs&& for_each_pair) {
+  Adjacency a;
+  a.offsets.assign(n + 1, 0);
+  for_each_pair([&](std::uint32_t k, std::uint32_t) { ++a.offsets[k + 1]; });
+  std::partial_sum(a.offsets.begin(), a.offsets.end(), a.offsets.begin());
+  a.items.resize(m);
+  std::vector<std::uint32_t> fill(a.offsets.begin(), a.offsets.end() - 1);
+  for_each_pair([&](std::uint32_t k, std::uint32_t v) { a.items[fill[k]++] = v; });
+  return a;
+}
+
+double corner_angle(Vec3 a, Vec3 b, Vec3 c) {  // angle at a
+  Vec3 u = b - a, v = c - a;
+  return std::atan2(norm(cross(u, v)), dot(u, v));
+}
+}  // namespace
+
+void Mesh::validate() const {
+  for (std::size_t v = 0; v < positions.size(); ++v)
+    if (!is_finite(positions[v]))
+      throw InvalidInput("vertex " + std::to_string(v) + " has a non-finite coordinate");
+  check_index_triangles(faces, positions.size(), "vertex");
+  if (!colors.empty() && colors.size() != positions.size())
+    throw InvalidInput("there are " + std::to_string(colors.size()) + " colours for " +
+                       std::to_string(positions.size()) + " vertices");
+  auto check_attr = [&](std::size_t n, const std::vector<Tri>& idx, const char* what) {
+    if (n == 0) return;
+    if (idx.empty()) {
+      if (n != positions.size())
+        throw InvalidInput(std::string("there are ") + std::to_string(n) + " " + what + "s for " +
+                           std::to_string(positions.size()) + " vertices");
+    } else {
+      if (idx.size() != faces.size())
+        throw InvalidInput(std::string(what) + " index triangles do not match the faces");
+      check_index_triangles(idx, n, what);
+    }
+  };
+  check_attr(normals.size(), normal_faces, "normal");
+  check_attr(uvs.size(), uv_faces, "uv");
+}
+
+BBox bounding_box(const Mesh& mesh) {
+  BBox box;
+  for (const Vec3& p : mesh.positions) box.add(p);
+  return box;
+}
+
+std::vector<double> face_areas(const Mesh& mesh) {
+  std::vector<double> out(mesh.faces.size());
+  const auto& P = mesh.positions;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Tri& t = mesh.faces[f];
+    out[f] = 0.5 * norm(cross(P[t[1]] - P[t[0]], P[t[2]] - P[t[0]]));
+  }
+  return out;
+}
+
+std::vector<Vec3> face_normals(const Mesh& mesh) {
+  std::vector<Vec3> out(mesh.faces.size());
+  const auto& P = mesh.positions;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Tri& t = mesh.faces[f];
+    out[f] = normalized(cross(P[t[1]] - P[t[0]], P[t[2]] - P[t[0]]));
+  }
+  return out;
+}
+
+std::vector<Vec3> vertex_normals(const Mesh& mesh, NormalWeighting w) {
+  std::vector<Vec3> out(mesh.positions.size());
+  const auto& P = mesh.positions;
+  for (const Tri& t : mesh.faces) {
+    Vec3 n2 = cross(P[t[1]] - P[t[0]], P[t[2]] - P[t[0]]);  // length: twice the area
+    Vec3 n = normalized(n2);
+    for (int k = 0; k < 3; ++k) {
+      double weight = 1.0;
+      if (w == NormalWeighting::area) weight = 0.5 * norm(n2);
+      else if (w == NormalWeighting::angle)
+        weight = corner_angle(P[t[k]], P[t[(k + 1) % 3]], P[t[(k + 2) % 3]]);
+      out[t[k]] += n * weight;
+    }
+  }
+  for (Vec3& n : out) n = normalized(n);
+  return out;
+}
+
+Adjacency vertex_faces(const Mesh& mesh) {
+  const auto& F = mesh.faces;
+  return bucket(mesh.positions.size(), 3 * F.size(), [&](auto&& emit) {
+    for (std::uint32_t f = 0; f < F.size(); ++f)
+      for (Index v : F[f]) emit(v, f);
+  });
+}
+
+Adjacency vertex_neighbors(const Mesh& mesh) {
+  const auto& F = mesh.faces;
+  Adjacency a = bucket(mesh.positions.size(), 6 * F.size(), [&](auto&& emit) {
+    for (const Tri& t : F)
+      for (int k = 0; k < 3; ++k) {
+        emit(t[k], t[(k + 1) % 3]);
+        emit(t[(k + 1) % 3], t[k]);
+      }
+  });
+  // Sort and deduplicate each list in place, compacting the CSR arrays.
+  std::uint32_t out = 0;
+  std::uint32_t begin = 0;
+  for (std::size_t v = 0; v + 1 < a.offsets.size(); ++v) {
+    std::uint32_t end = a.offsets[v + 1];
+    auto first = a.items.begin() + begin, last = a.items.begin() + end;
+    std::sort(first, last);
+    last = std::unique(first, last);
+    a.offsets[v] = out;
+    for (auto it = first; it != last; ++it)
+      if (*it != v) a.items[out++] = *it;
+    begin = end;
+  }
+  a.offsets.back() = out;
+  a.items.resize(out);
+  return a;
+}
+
+EdgeTopology edge_topology(const Mesh& mesh) {
+  const auto& F = mesh.faces;
+  const std::size_t nv = mesh.positions.size();
+  // Face sides bucketed by their smaller end, then sorted by the larger one.
+  struct Side { Index other; std::uint32_t face_corner; };  // face*3 + k
+  std::vector<std::uint32_t> offsets(nv + 1, 0);
+  for (const Tri& t : F)
+    for (int k = 0; k < 3; ++k) {
+      Index a = t[k], b = t[(k + 1) % 3];
+      if (a != b) ++offsets[std::min(a, b) + 1];
+    }
+  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+  std::vector<Side> sides(offsets.back());
+  std::vector<std::uint32_t> fill(offsets.begin(), offsets.end() - 1);
+  for (std::uint32_t f = 0; f < F.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      Index a = F[f][k], b = F[f][(k + 1) % 3];
+      if (a != b) sides[fill[std::min(a, b)]++] = {std::max(a, b), f * 3 + std::uint32_t(k)};
+    }
+
+  EdgeTopology topo;
+  topo.face_edges.assign(F.size(), {kNone, kNone, kNone});
+  topo.edge_faces.offsets.push_back(0);
+  topo.edge_faces.items.reserve(sides.size());
+  for (std::size_t v = 0; v < nv; ++v) {
+    auto first = sides.begin() + offsets[v], last = sides.begin() + offsets[v + 1];
+    std::sort(first, last, [](const Side& x, const Side& y) {
+      return x.other != y.other ? x.other < y.other : x.face_corner < y.face_corner;
+    });
+    for (auto it = first; it != last;) {
+      auto run = it;
+      const Index e = Index(topo.edges.size());
+      topo.edges.push_back({Index(v), it->other});
+      for (; run != last && run->other == it->other; ++run) {
+        topo.face_edges[run->face_corner / 3][run->face_corner % 3] = e;
+        topo.edge_faces.items.push_back(run->face_corner / 3);
+      }
+      topo.edge_faces.offsets.push_back(std::uint32_t(topo.edge_faces.items.size()));
+      it = run;
+    }
+  }
+  return topo;
+}
+
+Adjacency face_neighbors(const Mesh& mesh, const EdgeTopology& topo) {
+  Adjacency a;
+  a.offsets.assign(mesh.faces.size() + 1, 0);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    std::uint32_t n = 0;
+    for (Index e : topo.face_edges[f])
+      if (e != kNone) n += std::uint32_t(topo.edge_faces.degree(e) - 1);
+    a.offsets[f + 1] = a.offsets[f] + n;
+  }
+  a.items.resize(a.offsets.back());
+  for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
+    std::uint32_t o = a.offsets[f];
+    for (Index e : topo.face_edges[f]) {
+      if (e == kNone) continue;
+      for (auto g = topo.edge_faces.begin(e); g != topo.edge_faces.end(e); ++g)
+        if (*g != f) a.items[o++] = *g;
+    }
+  }
+  return a;
+}
+
+std::uint32_t vertex_components(const Mesh& mesh, std::vector<std::uint32_t>& component) {
+  const std::size_t n = mesh.positions.size();
+  std::vector<std::uint32_t> parent(n);
+  std::iota(parent.begin(), parent.end(), 0u);
+  auto find = [&](std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (const Tri& t : mesh.faces)
+    for (int k = 1; k < 3; ++k) {
+      std::uint32_t a = find(t[0]), b = find(t[k]);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  component.assign(n, 0);
+  std::vector<std::uint32_t> label(n, kNone);
+  std::uint32_t count = 0;
+  for (std::uint32_t v = 0; v < n; ++v) {
+    std::uint32_t r = find(v);
+    if (label[r] == kNone) label[r] = count++;
+    component[v] = label[r];
+  }
+  return count;
+}
+
+Mesh with_per_vertex_attributes(const Mesh& mesh) {
+  if (mesh.attributes_per_vertex()) return mesh;
+  Mesh out;
+  out.faces.resize(mesh.faces.size());
+  // A new vertex for each distinct (position, normal, uv) corner.
+  struct Key {
+    Index p, n, t;
+    bool operator==(const Key&) const = default;
+  };
+  struct Hash {
+    std::size_t operator()(const Key& k) const {
+      return (std::size_t(k.p) * 0x9E3779B97F4A7C15ull) ^ (std::size_t(k.n) * 0xC2B2AE3D27D4EB4Full) ^
+             (std::size_t(k.t) * 0x165667B19E3779F9ull);
+    }
+  };
+  std::unordered_map<Key, Index, Hash> ids;
+  ids.reserve(mesh.positions.size() * 2);
+  const bool has_n = mesh.has_normals(), has_t = mesh.has_uvs();
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      Index p = mesh.faces[f][k];
+      Index n = !has_n ? kNone : (mesh.normal_faces.empty() ? p : mesh.normal_faces[f][k]);
+      Index t = !has_t ? kNone : (mesh.uv_faces.empty() ? p : mesh.uv_faces[f][k]);
+      auto [it, fresh] = ids.try_emplace(Key{p, n, t}, Index(out.positions.size()));
+      if (fresh) {
+        out.positions.push_back(mesh.positions[p]);
+        if (has_n) out.normals.push_back(mesh.normals[n]);
+        if (has_t) out.uvs.push_back(mesh.uvs[t]);
+        if (mesh.has_colors()) out.colors.push_back(mesh.colors[p]);
+      }
+      out.faces[f][k] = it->second;
+    }
+  return out;
+}
+
+Mesh subdivide_midpoint(const Mesh& mesh) {
+  EdgeTopology topo = edge_topology(mesh);
+  Mesh out;
+  const Index nv = Index(mesh.positions.size());
+  out.positions = mesh.positions;
+  out.positions.reserve(nv + topo.edges.size());
+  for (const auto& e : topo.edges)
+    out.positions.push_back((mesh.positions[e[0]] + mesh.positions[e[1]]) * 0.5);
+  out.faces.reserve(mesh.faces.size() * 4);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Tri& t = mesh.faces[f];
+    const auto& fe = topo.face_edges[f];
+    if (fe[0] == kNone || fe[1] == kNone || fe[2] == kNone) {  // degenerate: keep as is
+      out.faces.push_back(t);
+      continue;
+    }
+    Index m01 = nv + fe[0], m12 = nv + fe[1], m20 = nv + fe[2];
+    out.faces.push_back({t[0], m01, m20});
+    out.faces.push_back({t[1], m12, m01});
+    out.faces.push_back({t[2], m20, m12});
+    out.faces.push_back({m01, m12, m20});
+  }
+  return out;
+}
+
+}  // namespace cgview

@@ -1,0 +1,144 @@
+#include "io/mesh_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+
+#include "core/errors.h"
+#include "io/readers.h"
+
+namespace cgview {
+
+namespace {
+constexpr MeshFormat kAll[] = {MeshFormat::off, MeshFormat::obj, MeshFormat::ply, MeshFormat::stl,
+                               MeshFormat::drc, MeshFormat::glb, MeshFormat::gltf};
+
+std::string join_formats(bool writable) {
+  std::string s;
+  for (MeshFormat f : kAll)
+    if (writable ? can_write(f) : can_read(f)) s += (s.empty() ? "" : ", ") + std::string(to_string(f));
+  return s;
+}
+}  // namespace
+
+const char* to_string(MeshFormat f) {
+  switch (f) {
+    case MeshFormat::off: return "off";
+    case MeshFormat::obj: return "obj";
+    case MeshFormat::ply: return "ply";
+    case MeshFormat::stl: return "stl";
+    case MeshFormat::drc: return "drc";
+    case MeshFormat::glb: return "glb";
+    case MeshFormat::gltf: return "gltf";
+  }
+  return "?";
+}
+
+bool can_read(MeshFormat) { return true; }
+bool can_write(MeshFormat f) { return f != MeshFormat::gltf; }
+std::string writable_formats() { return join_formats(true); }
+std::string readable_formats() { return join_formats(false); }
+
+MeshFormat format_from_name(const std::string& path_or_name) {
+  std::string ext = path_or_name;
+  const auto dot = ext.find_last_of('.');
+  const auto slash = ext.find_last_of("/\\");
+  if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) ext = ext.substr(dot + 1);
+  else if (slash != std::string::npos || ext.empty())
+    throw UnsupportedFormat("'" + path_or_name + "' has no extension to tell its format (one of " + readable_formats() + ")");
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  for (MeshFormat f : kAll)
+    if (ext == to_string(f)) return f;
+  throw UnsupportedFormat("unknown mesh format '." + ext + "' of '" + path_or_name + "' (known: " + readable_formats() + ")");
+}
+
+std::string read_file_bytes(const std::filesystem::path& path, std::uint64_t max_bytes) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw IoError(path.string() + ": is a directory, not a file");
+  std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!f) throw IoError(path.string() + ": cannot open: " + std::strerror(errno));
+  std::fseek(f.get(), 0, SEEK_END);
+  const long size = std::ftell(f.get());
+  std::fseek(f.get(), 0, SEEK_SET);
+  if (size < 0) throw IoError(path.string() + ": cannot tell its size");
+  if (std::uint64_t(size) > max_bytes)
+    throw InvalidInput(path.string() + ": the file has " + std::to_string(size) + " bytes, over the limit of " +
+                       std::to_string(max_bytes));
+  std::string bytes(std::size_t(size), '\0');
+  if (size > 0 && std::fread(bytes.data(), 1, bytes.size(), f.get()) != bytes.size())
+    throw IoError(path.string() + ": read error");
+  return bytes;
+}
+
+ReadResult read_mesh_bytes(std::string_view bytes, MeshFormat format, const std::string& name, const ReadOptions& options) {
+  if (bytes.size() > options.max_bytes)
+    throw InvalidInput(name + ": " + std::to_string(bytes.size()) + " bytes, over the limit of " + std::to_string(options.max_bytes));
+  ReadResult r;
+  r.format = format;
+  switch (format) {
+    case MeshFormat::off: detail::read_off(bytes, name, r); break;
+    case MeshFormat::obj: detail::read_obj(bytes, name, r); break;
+    case MeshFormat::ply: detail::read_ply(bytes, name, r); break;
+    case MeshFormat::stl: detail::read_stl(bytes, name, options, r); break;
+    case MeshFormat::drc: detail::read_draco(bytes, name, r); break;
+    case MeshFormat::glb: detail::read_gltf(bytes, name, true, r); break;
+    case MeshFormat::gltf: detail::read_gltf(bytes, name, false, r); break;
+  }
+  try {
+    r.mesh.validate();
+  } catch (const InvalidInput& e) {
+    throw ParseError(name, e.what(), std::nullopt, std::nullopt);
+  }
+  return r;
+}
+
+ReadResult read_mesh_file(const std::filesystem::path& path, const ReadOptions& options) {
+  const MeshFormat format = format_from_name(path.string());
+  const std::string bytes = read_file_bytes(path, options.max_bytes);
+  return read_mesh_bytes(bytes, format, path.string(), options);
+}
+
+Mesh read_mesh(const std::filesystem::path& path) { return read_mesh_file(path).mesh; }
+
+std::string write_mesh_bytes(const Mesh& mesh, MeshFormat format, const WriteOptions& options) {
+  mesh.validate();
+  if (options.position_bits < 1 || options.position_bits > 30)
+    throw InvalidInput("position quantization must be 1..30 bits, got " + std::to_string(options.position_bits));
+  switch (format) {
+    case MeshFormat::off: return detail::write_off(mesh);
+    case MeshFormat::obj: return detail::write_obj(mesh);
+    case MeshFormat::ply: return detail::write_ply(mesh, options.binary);
+    case MeshFormat::stl: return detail::write_stl(mesh, options.binary);
+    case MeshFormat::drc: return detail::write_draco(mesh, options);
+    case MeshFormat::glb: return detail::write_glb(mesh);
+    case MeshFormat::gltf: break;
+  }
+  throw UnsupportedFormat(std::string("cannot write ") + to_string(format) + " (writable: " + writable_formats() + ")");
+}
+
+void write_mesh(const Mesh& mesh, const std::filesystem::path& path, const WriteOptions& options) {
+  const MeshFormat format = format_from_name(path.string());
+  const std::string bytes = write_mesh_bytes(mesh, format, options);
+  // Write beside the target and rename, so that a failure leaves no half file.
+  const std::filesystem::path tmp = path.string() + ".part";
+  {
+    std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(tmp.c_str(), "wb"), &std::fclose);
+    if (!f) throw IoError(path.string() + ": cannot create: " + std::strerror(errno));
+    if (std::fwrite(bytes.data(), 1, bytes.size(), f.get()) != bytes.size() || std::fflush(f.get()) != 0) {
+      f.reset();
+      std::filesystem::remove(tmp);
+      throw IoError(path.string() + ": write error");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::filesystem::remove(tmp);
+    throw IoError(path.string() + ": cannot write: " + ec.message());
+  }
+}
+
+}  // namespace cgview

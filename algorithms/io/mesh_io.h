@@ -1,0 +1,77 @@
+// Reading and writing triangle meshes.
+//
+// Reads OFF, OBJ, PLY (ascii and binary), STL (ascii and binary), Draco
+// (.drc) and glTF (.glb, .gltf); writes OFF, OBJ, PLY, STL, glTF binary (.glb)
+// and Draco (.drc).  Polygons are fan-triangulated; STL's repeated corners
+// are welded into shared vertices; OBJ's vt/vn keep their own indices.
+//
+// Every reader works on bytes in memory, so a server can parse an upload
+// without a file; the path-taking overloads read the file first.  A malformed
+// input throws ParseError naming the file and the line (text) or byte offset
+// (binary); counts claimed by a header are checked against the bytes present
+// before anything is allocated, so a lying header costs nothing.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/mesh.h"
+
+namespace cgview {
+
+enum class MeshFormat { off, obj, ply, stl, drc, glb, gltf };
+
+// "off", "obj", ... as in file extensions.
+const char* to_string(MeshFormat f);
+// The format named by a path's extension (case-insensitive) or by a bare
+// name ("ply").  Throws UnsupportedFormat listing the known ones.
+MeshFormat format_from_name(const std::string& path_or_name);
+bool can_read(MeshFormat f);
+bool can_write(MeshFormat f);  // all but gltf (text glTF needs side files)
+// Formats as a user reads them: "off, obj, ply, stl, drc, glb".
+std::string writable_formats();
+std::string readable_formats();
+
+struct ReadOptions {
+  // Files larger than this are refused before being read (InvalidInput).
+  std::uint64_t max_bytes = std::uint64_t(4) << 30;
+  // Merge STL corners with identical coordinates into shared vertices.
+  bool weld_stl = true;
+};
+
+struct ReadResult {
+  Mesh mesh;
+  MeshFormat format = MeshFormat::off;
+  std::vector<std::string> warnings;  // what was repaired or dropped, for the user
+};
+
+// Reads a file; the format comes from its extension.
+ReadResult read_mesh_file(const std::filesystem::path& path, const ReadOptions& options = {});
+// Reads bytes in a known format; `name` appears in error messages.
+ReadResult read_mesh_bytes(std::string_view bytes, MeshFormat format, const std::string& name,
+                           const ReadOptions& options = {});
+// Shorthand for read_mesh_file(path).mesh.
+Mesh read_mesh(const std::filesystem::path& path);
+
+struct WriteOptions {
+  bool binary = true;            // PLY and STL: binary (default) or ascii
+  int position_bits = 14;        // Draco: position quantization
+  int normal_bits = 10;          // Draco
+  int uv_bits = 12;              // Draco
+  int draco_speed = 5;           // Draco: 0 (best compression) .. 10 (fastest)
+};
+
+// Writes a mesh in the format named by the path's extension.
+void write_mesh(const Mesh& mesh, const std::filesystem::path& path, const WriteOptions& options = {});
+// The bytes of a mesh in a format.
+std::string write_mesh_bytes(const Mesh& mesh, MeshFormat format, const WriteOptions& options = {});
+
+// Reads a whole file into memory; throws IoError (cannot open) or
+// InvalidInput (over max_bytes).
+std::string read_file_bytes(const std::filesystem::path& path, std::uint64_t max_bytes);
+
+}  // namespace cgview

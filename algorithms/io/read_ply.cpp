@@ -1,0 +1,369 @@
+// PLY (Stanford polygon file), ascii and binary of either byte order: the
+// vertex element's x y z, normals (nx ny nz), colours (red green blue
+// [alpha], bytes or 0..1 floats, with or without a diffuse_ prefix) and
+// texture coordinates (s t, u v, texture_u texture_v); the face element's
+// vertex_indices (or vertex_index) list and a per-corner texcoord list, as
+// MeshLab writes it.  Other elements and properties are skipped.
+#include <bit>
+#include <cmath>
+#include <cstring>
+
+#include "io/readers.h"
+#include "io/text_scanner.h"
+
+namespace cgview::detail {
+
+namespace {
+
+enum class Type { i8, u8, i16, u16, i32, u32, f32, f64 };
+
+int type_size(Type t) {
+  switch (t) {
+    case Type::i8: case Type::u8: return 1;
+    case Type::i16: case Type::u16: return 2;
+    case Type::i32: case Type::u32: case Type::f32: return 4;
+    case Type::f64: return 8;
+  }
+  return 0;
+}
+
+bool parse_type(std::string_view s, Type& t) {
+  if (s == "char" || s == "int8") t = Type::i8;
+  else if (s == "uchar" || s == "uint8") t = Type::u8;
+  else if (s == "short" || s == "int16") t = Type::i16;
+  else if (s == "ushort" || s == "uint16") t = Type::u16;
+  else if (s == "int" || s == "int32") t = Type::i32;
+  else if (s == "uint" || s == "uint32") t = Type::u32;
+  else if (s == "float" || s == "float32") t = Type::f32;
+  else if (s == "double" || s == "float64") t = Type::f64;
+  else return false;
+  return true;
+}
+
+struct Property {
+  std::string name;
+  Type type = Type::f32;
+  bool is_list = false;
+  Type count_type = Type::u8;
+};
+
+struct Element {
+  std::string name;
+  std::uint64_t count = 0;
+  std::vector<Property> props;
+};
+
+enum class Encoding { ascii, little, big };
+
+// Reads binary values, checking the bytes left and swapping as the file says.
+class BinaryReader {
+ public:
+  BinaryReader(const char* p, const char* end, const char* begin, Encoding enc, const std::string& name)
+      : p_(p), end_(end), begin_(begin), swap_(enc == Encoding::big ? std::endian::native == std::endian::little
+                                                                    : std::endian::native == std::endian::big),
+        name_(name) {}
+  double read(Type t) {
+    const int n = type_size(t);
+    if (end_ - p_ < n) fail("the file ends inside the data (truncated?)");
+    unsigned char b[8];
+    std::memcpy(b, p_, std::size_t(n));
+    if (swap_) std::reverse(b, b + n);
+    p_ += n;
+    switch (t) {
+      case Type::i8: return double(static_cast<std::int8_t>(b[0]));
+      case Type::u8: return double(b[0]);
+      case Type::i16: { std::int16_t v; std::memcpy(&v, b, 2); return v; }
+      case Type::u16: { std::uint16_t v; std::memcpy(&v, b, 2); return v; }
+      case Type::i32: { std::int32_t v; std::memcpy(&v, b, 4); return v; }
+      case Type::u32: { std::uint32_t v; std::memcpy(&v, b, 4); return v; }
+      case Type::f32: { float v; std::memcpy(&v, b, 4); return v; }
+      case Type::f64: { double v; std::memcpy(&v, b, 8); return v; }
+    }
+    return 0;
+  }
+  std::uint64_t offset() const { return std::uint64_t(p_ - begin_); }
+  std::uint64_t remaining() const { return std::uint64_t(end_ - p_); }
+  const char* pos() const { return p_; }
+  void skip(std::uint64_t n) { p_ += n; }
+  bool swap() const { return swap_; }
+  [[noreturn]] void fail(const std::string& problem) const {
+    throw ParseError(name_, problem, std::nullopt, offset());
+  }
+
+ private:
+  const char* p_;
+  const char* end_;
+  const char* begin_;
+  bool swap_;
+  const std::string& name_;
+};
+
+// Where each vertex property goes.
+enum class Slot { none, x, y, z, nx, ny, nz, r, g, b, a, u, v };
+
+Slot vertex_slot(const std::string& n) {
+  if (n == "x") return Slot::x;
+  if (n == "y") return Slot::y;
+  if (n == "z") return Slot::z;
+  if (n == "nx") return Slot::nx;
+  if (n == "ny") return Slot::ny;
+  if (n == "nz") return Slot::nz;
+  if (n == "red" || n == "diffuse_red" || n == "r") return Slot::r;
+  if (n == "green" || n == "diffuse_green" || n == "g") return Slot::g;
+  if (n == "blue" || n == "diffuse_blue" || n == "b") return Slot::b;
+  if (n == "alpha" || n == "diffuse_alpha" || n == "a") return Slot::a;
+  if (n == "s" || n == "u" || n == "texture_u" || n == "texture_s") return Slot::u;
+  if (n == "t" || n == "v" || n == "texture_v" || n == "texture_t") return Slot::v;
+  return Slot::none;
+}
+
+std::uint8_t colour_byte(double c, Type t) {
+  double v = (t == Type::f32 || t == Type::f64) ? c * 255.0 : c;
+  return std::uint8_t(std::clamp(std::lround(v), 0L, 255L));
+}
+
+}  // namespace
+
+void read_ply(std::string_view bytes, const std::string& name, ReadResult& result) {
+  TextScanner in(bytes, name);
+  if (bytes.empty()) in.fail("the file is empty");
+  if (!bytes.starts_with("ply\n") && !bytes.starts_with("ply\r\n"))
+    in.fail("not a PLY file: it does not start with the line 'ply'");
+  in.skip_line();
+
+  // The header.
+  Encoding enc = Encoding::ascii;
+  bool have_format = false;
+  std::vector<Element> elements;
+  for (;;) {
+    if (in.at_end()) in.fail("the header has no end_header line");
+    const char* line = in.pos();
+    std::string_view key = in.word();
+    if (key == "end_header") {
+      in.skip_line();
+      break;
+    }
+    if (key == "format") {
+      std::string_view f = in.word();
+      if (f == "ascii") enc = Encoding::ascii;
+      else if (f == "binary_little_endian") enc = Encoding::little;
+      else if (f == "binary_big_endian") enc = Encoding::big;
+      else in.fail_at(line, "unknown PLY format '" + std::string(f.substr(0, 32)) + "'");
+      have_format = true;
+    } else if (key == "element") {
+      Element e;
+      e.name = std::string(in.word());
+      std::int64_t n = in.need_int("an element count");
+      if (n < 0) in.fail_at(line, "negative element count");
+      e.count = std::uint64_t(n);
+      elements.push_back(std::move(e));
+    } else if (key == "property") {
+      if (elements.empty()) in.fail_at(line, "a property before any element");
+      Property p;
+      std::string_view t = in.word();
+      if (t == "list") {
+        p.is_list = true;
+        if (!parse_type(in.word(), p.count_type)) in.fail_at(line, "unknown list count type");
+        if (!parse_type(in.word(), p.type)) in.fail_at(line, "unknown list item type");
+      } else if (!parse_type(t, p.type)) {
+        in.fail_at(line, "unknown property type '" + std::string(t.substr(0, 32)) + "'");
+      }
+      p.name = std::string(in.word());
+      if (p.name.empty()) in.fail_at(line, "a property has no name");
+      elements.back().props.push_back(std::move(p));
+    } else if (key == "comment" || key == "obj_info" || key.empty()) {
+    } else {
+      in.fail_at(line, "unknown header line '" + std::string(key.substr(0, 32)) + "'");
+    }
+    in.skip_line();
+  }
+  if (!have_format) in.fail("the header has no format line");
+
+  Mesh& mesh = result.mesh;
+  const char* data = in.pos();
+  const std::uint64_t data_bytes = std::uint64_t(bytes.data() + bytes.size() - data);
+  const std::uint64_t header_line = in.line_at(data) - 1;
+
+  // Minimal bytes per item of each element, to refuse lying counts up front.
+  for (const Element& e : elements) {
+    std::uint64_t min_bytes = 0;
+    for (const Property& p : e.props)
+      min_bytes += enc == Encoding::ascii ? 2 : std::uint64_t(p.is_list ? type_size(p.count_type) : type_size(p.type));
+    check_claim(e.count, std::max<std::uint64_t>(min_bytes, enc == Encoding::ascii ? 1 : 0), data_bytes,
+                (e.name + " elements").c_str(), name, header_line);
+  }
+
+  BinaryReader bin(data, bytes.data() + bytes.size(), bytes.data(), enc, name);
+  std::uint64_t polygons = 0, vertex_count = 0;
+  bool have_vertices = false, have_faces = false;
+  std::vector<double> list;
+  std::vector<Index> poly;
+  std::vector<Vec2f> wedge_uv;
+
+  auto read_value = [&](Type t) -> double {
+    if (enc != Encoding::ascii) return bin.read(t);
+    in.skip_space(false);
+    return in.need_double("a number");
+  };
+  auto read_list = [&](const Property& p, std::vector<double>& out) {
+    const double n = read_value(p.count_type);
+    if (!(n >= 0) || n != std::floor(n)) {
+      if (enc == Encoding::ascii) in.fail("a bad list length");
+      bin.fail("a bad list length " + std::to_string(n));
+    }
+    const std::uint64_t need = std::uint64_t(n) * (enc == Encoding::ascii ? 2 : std::uint64_t(type_size(p.type)));
+    if (need > (enc == Encoding::ascii ? in.remaining() : bin.remaining())) {
+      if (enc == Encoding::ascii) in.fail("a list claims " + std::to_string(std::uint64_t(n)) + " items, more than the file holds");
+      bin.fail("a list claims " + std::to_string(std::uint64_t(n)) + " items, more than the file holds");
+    }
+    out.resize(std::size_t(n));
+    for (double& x : out) x = read_value(p.type);
+  };
+  auto fail_here = [&](const std::string& problem) {
+    if (enc == Encoding::ascii) in.fail(problem);
+    bin.fail(problem);
+  };
+
+  for (const Element& e : elements) {
+    if (e.name == "vertex" && !have_vertices) {
+      have_vertices = true;
+      vertex_count = e.count;
+      if (e.count > UINT32_MAX - 1) fail_here("over 4 billion vertices");
+      std::vector<Slot> slots;
+      bool has[13] = {};
+      for (const Property& p : e.props) {
+        Slot s = p.is_list ? Slot::none : vertex_slot(p.name);
+        if (has[int(s)] && s != Slot::none) s = Slot::none;  // first of a name wins
+        has[int(s)] = true;
+        slots.push_back(s);
+      }
+      if (!has[int(Slot::x)] || !has[int(Slot::y)] || !has[int(Slot::z)])
+        throw ParseError(name, "the vertex element has no x, y and z properties", header_line, std::nullopt);
+      const bool has_n = has[int(Slot::nx)] && has[int(Slot::ny)] && has[int(Slot::nz)];
+      const bool has_c = has[int(Slot::r)] && has[int(Slot::g)] && has[int(Slot::b)];
+      const bool has_t = has[int(Slot::u)] && has[int(Slot::v)];
+      mesh.positions.resize(e.count);
+      if (has_n) mesh.normals.resize(e.count);
+      if (has_c) mesh.colors.resize(e.count);
+      if (has_t) mesh.uvs.resize(e.count);
+
+      // Fast path: binary, no lists, native order, x y z leading as floats.
+      bool fixed = enc != Encoding::ascii && !bin.swap();
+      std::uint64_t stride = 0;
+      for (const Property& p : e.props) {
+        fixed &= !p.is_list;
+        stride += std::uint64_t(type_size(p.type));
+      }
+      const bool xyz_float = e.props.size() >= 3 && slots[0] == Slot::x && slots[1] == Slot::y &&
+                             slots[2] == Slot::z && e.props[0].type == Type::f32 &&
+                             e.props[1].type == Type::f32 && e.props[2].type == Type::f32;
+      if (fixed && xyz_float && !has_n && !has_c && !has_t) {
+        if (stride * e.count > bin.remaining()) bin.fail("the file ends inside the vertex data (truncated?)");
+        const char* base = bin.pos();
+        for (std::uint64_t v = 0; v < e.count; ++v) {
+          float xyz[3];
+          std::memcpy(xyz, base + v * stride, 12);
+          mesh.positions[v] = {xyz[0], xyz[1], xyz[2]};
+        }
+        bin.skip(stride * e.count);
+      } else {
+        for (std::uint64_t v = 0; v < e.count; ++v) {
+          for (std::size_t i = 0; i < e.props.size(); ++i) {
+            const Property& p = e.props[i];
+            if (p.is_list) {
+              read_list(p, list);
+              continue;
+            }
+            const double x = read_value(p.type);
+            switch (slots[i]) {
+              case Slot::x: mesh.positions[v].x = x; break;
+              case Slot::y: mesh.positions[v].y = x; break;
+              case Slot::z: mesh.positions[v].z = x; break;
+              case Slot::nx: if (has_n) mesh.normals[v].x = float(x); break;
+              case Slot::ny: if (has_n) mesh.normals[v].y = float(x); break;
+              case Slot::nz: if (has_n) mesh.normals[v].z = float(x); break;
+              case Slot::r: if (has_c) mesh.colors[v].r = colour_byte(x, p.type); break;
+              case Slot::g: if (has_c) mesh.colors[v].g = colour_byte(x, p.type); break;
+              case Slot::b: if (has_c) mesh.colors[v].b = colour_byte(x, p.type); break;
+              case Slot::a: if (has_c) mesh.colors[v].a = colour_byte(x, p.type); break;
+              case Slot::u: if (has_t) mesh.uvs[v].u = float(x); break;
+              case Slot::v: if (has_t) mesh.uvs[v].v = float(x); break;
+              case Slot::none: break;
+            }
+          }
+        }
+      }
+      for (std::uint64_t v = 0; v < e.count; ++v)
+        if (!is_finite(mesh.positions[v]))
+          throw ParseError(name, "vertex " + std::to_string(v) + " has a non-finite coordinate",
+                           enc == Encoding::ascii ? std::optional<std::uint64_t>(header_line + 1 + v) : std::nullopt,
+                           enc == Encoding::ascii ? std::nullopt : std::optional<std::uint64_t>(std::uint64_t(data - bytes.data())));
+    } else if (e.name == "face" && !have_faces) {
+      have_faces = true;
+      if (!have_vertices) fail_here("the face element comes before the vertex element");
+      int idx_prop = -1, uv_prop = -1;
+      for (std::size_t i = 0; i < e.props.size(); ++i) {
+        const Property& p = e.props[i];
+        if (p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index") && idx_prop < 0) idx_prop = int(i);
+        if (p.is_list && p.name == "texcoord" && uv_prop < 0) uv_prop = int(i);
+      }
+      if (idx_prop < 0)
+        throw ParseError(name, "the face element has no vertex_indices list", header_line, std::nullopt);
+      mesh.faces.reserve(std::size_t(std::min<std::uint64_t>(e.count, data_bytes / 4)));
+      const bool wedges = uv_prop >= 0 && mesh.uvs.empty();
+      bool wedges_ok = wedges;
+      for (std::uint64_t f = 0; f < e.count; ++f) {
+        poly.clear();
+        wedge_uv.clear();
+        for (std::size_t i = 0; i < e.props.size(); ++i) {
+          const Property& p = e.props[i];
+          if (!p.is_list) {
+            read_value(p.type);
+            continue;
+          }
+          read_list(p, list);
+          if (int(i) == idx_prop) {
+            for (double x : list) {
+              if (!(x >= 0) || x >= double(vertex_count))
+                fail_here("face " + std::to_string(f) + " refers to vertex " + std::to_string(std::int64_t(x)) +
+                          " but there are " + std::to_string(vertex_count) + " vertices");
+              poly.push_back(Index(x));
+            }
+          } else if (int(i) == uv_prop && wedges) {
+            for (std::size_t k = 0; k + 1 < list.size(); k += 2) wedge_uv.push_back({float(list[k]), float(list[k + 1])});
+          }
+        }
+        if (poly.size() < 3) fail_here("face " + std::to_string(f) + " has " + std::to_string(poly.size()) + " corners (at least 3 needed)");
+        if (poly.size() > 3) ++polygons;
+        if (wedges_ok && wedge_uv.size() != poly.size()) wedges_ok = false;
+        for (std::size_t i = 1; i + 1 < poly.size(); ++i) {
+          mesh.faces.push_back({poly[0], poly[i], poly[i + 1]});
+          if (wedges_ok) {
+            const Index base = Index(mesh.uvs.size());
+            mesh.uvs.push_back(wedge_uv[0]);
+            mesh.uvs.push_back(wedge_uv[i]);
+            mesh.uvs.push_back(wedge_uv[i + 1]);
+            mesh.uv_faces.push_back({base, base + 1, base + 2});
+          }
+        }
+      }
+      if (wedges && !wedges_ok) {
+        mesh.uvs.clear();
+        mesh.uv_faces.clear();
+        result.warnings.push_back("per-corner texture coordinates dropped: their count does not match the corners");
+      }
+    } else {
+      // Skip another element (edges, materials, ...) item by item.
+      for (std::uint64_t n = 0; n < e.count; ++n)
+        for (const Property& p : e.props) {
+          if (p.is_list) read_list(p, list);
+          else read_value(p.type);
+        }
+      if (e.count) result.warnings.push_back("skipped " + std::to_string(e.count) + " '" + e.name + "' elements");
+    }
+  }
+  if (!have_vertices) throw ParseError(name, "the file has no vertex element", header_line, std::nullopt);
+  if (polygons) result.warnings.push_back(std::to_string(polygons) + " polygons were split into triangles");
+}
+
+}  // namespace cgview::detail

@@ -1,0 +1,26 @@
+// Internal: one reader and writer per format, used by mesh_io.cpp.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "io/mesh_io.h"
+
+namespace cgview::detail {
+
+// Each reader fills result.mesh (validated by the caller) and its warnings.
+void read_off(std::string_view bytes, const std::string& name, ReadResult& result);
+void read_obj(std::string_view bytes, const std::string& name, ReadResult& result);
+void read_ply(std::string_view bytes, const std::string& name, ReadResult& result);
+void read_stl(std::string_view bytes, const std::string& name, const ReadOptions& options, ReadResult& result);
+void read_draco(std::string_view bytes, const std::string& name, ReadResult& result);
+void read_gltf(std::string_view bytes, const std::string& name, bool binary, ReadResult& result);
+
+std::string write_off(const Mesh& mesh);
+std::string write_obj(const Mesh& mesh);
+std::string write_ply(const Mesh& mesh, bool binary);
+std::string write_stl(const Mesh& mesh, bool binary);
+std::string write_draco(const Mesh& mesh, const WriteOptions& options);
+std::string write_glb(const Mesh& mesh);
+
+}  // namespace cgview::detail

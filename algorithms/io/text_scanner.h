@@ -1,0 +1,135 @@
+// Internal: a fast cursor over the text of a mesh file.  Numbers are parsed
+// with std::from_chars (no locale, no allocation); the line number of an
+// error is counted only when an error is raised.
+#pragma once
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "core/errors.h"
+
+namespace cgview::detail {
+
+class TextScanner {
+ public:
+  TextScanner(std::string_view text, const std::string& name)
+      : begin_(text.data()), p_(text.data()), end_(text.data() + text.size()), name_(name) {}
+
+  bool at_end() const { return p_ >= end_; }
+  const char* pos() const { return p_; }
+  const char* end() const { return end_; }
+  std::size_t remaining() const { return std::size_t(end_ - p_); }
+
+  // Skips spaces and tabs (and \r), staying on the line.
+  void skip_blanks() {
+    while (p_ < end_ && (*p_ == ' ' || *p_ == '\t' || *p_ == '\r' || *p_ == '\f' || *p_ == '\v')) ++p_;
+  }
+  // Skips whitespace across lines, and '#' comments when `comments` is set.
+  void skip_space(bool comments = true) {
+    for (;;) {
+      while (p_ < end_ && is_space(*p_)) ++p_;
+      if (comments && p_ < end_ && *p_ == '#') skip_line();
+      else return;
+    }
+  }
+  // At the end of a line (or a '#' comment, or the text).
+  bool at_eol() {
+    skip_blanks();
+    return p_ >= end_ || *p_ == '\n' || *p_ == '#';
+  }
+  // Moves past the next newline.
+  void skip_line() {
+    const char* nl = static_cast<const char*>(std::memchr(p_, '\n', std::size_t(end_ - p_)));
+    p_ = nl ? nl + 1 : end_;
+  }
+  // The next run of non-space characters on this line.
+  std::string_view word() {
+    skip_blanks();
+    const char* s = p_;
+    while (p_ < end_ && !is_space(*p_)) ++p_;
+    return {s, std::size_t(p_ - s)};
+  }
+  bool try_double(double& out) {
+    skip_blanks();
+    const char* s = p_;
+    if (s < end_ && *s == '+') ++s;
+    auto [ptr, ec] = std::from_chars(s, end_, out);
+    if (ec != std::errc() || (ptr < end_ && !is_space(*ptr) && *ptr != '#')) {
+      if (ec == std::errc::result_out_of_range) {  // overflow: keep it as inf, reject later
+        out = HUGE_VAL;
+        p_ = ptr;
+        return true;
+      }
+      return false;
+    }
+    p_ = ptr;
+    return true;
+  }
+  double need_double(const char* what) {
+    double v;
+    if (!try_double(v)) fail(std::string("expected ") + what + ", found " + describe_here());
+    return v;
+  }
+  bool try_int(std::int64_t& out) {
+    skip_blanks();
+    const char* s = p_;
+    if (s < end_ && *s == '+') ++s;
+    auto [ptr, ec] = std::from_chars(s, end_, out);
+    if (ec != std::errc() || (ptr < end_ && !is_space(*ptr) && *ptr != '#')) return false;
+    p_ = ptr;
+    return true;
+  }
+  std::int64_t need_int(const char* what) {
+    std::int64_t v;
+    if (!try_int(v)) fail(std::string("expected ") + what + ", found " + describe_here());
+    return v;
+  }
+
+  // What is at the cursor, for an error message.
+  std::string describe_here() const {
+    const char* s = p_;
+    while (s < end_ && (*s == ' ' || *s == '\t' || *s == '\r')) ++s;
+    if (s >= end_) return "the end of the file";
+    if (*s == '\n') return "the end of the line";
+    const char* e = s;
+    while (e < end_ && !is_space(*e) && e - s < 24) ++e;
+    std::string tok(s, e);
+    for (char& c : tok)
+      if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
+    return "'" + tok + "'";
+  }
+  std::uint64_t line_at(const char* where) const {
+    return 1 + std::uint64_t(std::count(begin_, std::min(where, end_), '\n'));
+  }
+  [[noreturn]] void fail(const std::string& problem) const { fail_at(p_, problem); }
+  [[noreturn]] void fail_at(const char* where, const std::string& problem) const {
+    throw ParseError(name_, problem, line_at(where), std::nullopt);
+  }
+  void set_pos(const char* p) { p_ = p; }
+
+  static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+
+ private:
+  const char* begin_;
+  const char* p_;
+  const char* end_;
+  const std::string& name_;
+};
+
+// Refuses a count that the remaining bytes cannot hold, before any allocation.
+inline void check_claim(std::uint64_t claimed, std::uint64_t min_bytes_each, std::uint64_t bytes_left,
+                        const char* what, const std::string& name, std::uint64_t line) {
+  if (min_bytes_each > 0 && claimed > bytes_left / min_bytes_each)
+    throw ParseError(name,
+                     "the header claims " + std::to_string(claimed) + " " + what + ", but only " +
+                         std::to_string(bytes_left) + " bytes follow (at least " +
+                         std::to_string(min_bytes_each) + " bytes each)",
+                     line, std::nullopt);
+}
+
+}  // namespace cgview::detail

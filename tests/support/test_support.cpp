@@ -1,0 +1,120 @@
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace cgview::test {
+
+namespace fs = std::filesystem;
+
+Mesh box(Vec3 a, Vec3 b) {
+  Mesh m;
+  for (int k = 0; k < 8; ++k) m.positions.push_back({(k & 1) ? b.x : a.x, (k & 2) ? b.y : a.y, (k & 4) ? b.z : a.z});
+  m.faces = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+             {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  return m;
+}
+
+Mesh uv_sphere(double r, int rings, int segments) {
+  Mesh m;
+  const double pi = std::numbers::pi;
+  m.positions.push_back({0, 0, r});
+  for (int i = 1; i < rings; ++i) {
+    const double th = pi * i / rings;
+    for (int j = 0; j < segments; ++j) {
+      const double ph = 2 * pi * j / segments;
+      m.positions.push_back({r * std::sin(th) * std::cos(ph), r * std::sin(th) * std::sin(ph), r * std::cos(th)});
+    }
+  }
+  m.positions.push_back({0, 0, -r});
+  const Index south = Index(m.positions.size() - 1);
+  auto ring = [&](int i, int j) { return Index(1 + (i - 1) * segments + (j % segments)); };
+  for (int j = 0; j < segments; ++j) m.faces.push_back({0, ring(1, j), ring(1, j + 1)});
+  for (int i = 1; i + 1 < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      m.faces.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
+      m.faces.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
+    }
+  for (int j = 0; j < segments; ++j) m.faces.push_back({south, ring(rings - 1, j + 1), ring(rings - 1, j)});
+  return m;
+}
+
+Mesh torus(double R, double r, int rings, int segments) {
+  Mesh m;
+  const double pi = std::numbers::pi;
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      const double u = 2 * pi * i / rings, v = 2 * pi * j / segments;
+      m.positions.push_back({(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
+    }
+  auto id = [&](int i, int j) { return Index((i % rings) * segments + (j % segments)); };
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      m.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+
+Mesh grid(int n) {
+  Mesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) m.positions.push_back({double(i), double(j), 0});
+  auto id = [&](int i, int j) { return Index(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+
+fs::path sample(const std::string& file_name) {
+  const fs::path p = fs::path(CGVIEW_SAMPLES_DIR) / file_name;
+  EXPECT_TRUE(fs::exists(p)) << "missing sample mesh " << p << " (install libcgal-demo and re-run cmake)";
+  return p;
+}
+
+std::vector<fs::path> sample_family() {
+  std::vector<fs::path> out;
+  for (const char* n : {"elephant.off", "camel.off", "armadillo.off", "bunny00.off", "man.off", "cube.off",
+                        "sphere.off", "cube-ouvert.off", "double-torus-example.off", "colored_tetra.ply"})
+    out.push_back(sample(n));
+  return out;
+}
+
+fs::path temp_dir(const std::string& tag) {
+  const fs::path base = fs::temp_directory_path() / ("cgview-test-" + std::to_string(::getpid()));
+  const fs::path p = base / tag;
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+
+void write_text(const fs::path& p, const std::string& bytes) {
+  std::ofstream f(p, std::ios::binary);
+  f << bytes;
+}
+
+int run(const std::string& command, std::string* output) {
+  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return -1;
+  std::array<char, 4096> buf;
+  std::string out;
+  std::size_t n;
+  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
+  const int status = ::pclose(pipe);
+  if (output) *output = out;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string bin(const std::string& name) { return std::string(CGVIEW_BIN_DIR) + "/" + name; }
+
+}  // namespace cgview::test
