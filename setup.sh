@@ -1,0 +1,107 @@
+#!/usr/bin/env bash
+# CGView set-up on Debian bookworm.  Each command is idempotent: it installs
+# what is missing (Debian and npm packages), builds in Release into build/,
+# then does its job.
+#
+#   ./setup.sh start   install, build, and run CGView on the sample meshes
+#   ./setup.sh test    install, build, and run every test
+#   ./setup.sh build   install and build only
+#
+# Run as root, or as a user who may sudo (for apt-get).
+set -euo pipefail
+
+cd "$(dirname "$0")"
+ROOT=$(pwd)
+BUILD_DIR=${CGVIEW_BUILD_DIR:-$ROOT/build}
+JOBS=${CGVIEW_JOBS:-$(nproc)}
+
+say() { printf '\033[1m==> %s\033[0m\n' "$*"; }
+die() { printf 'setup.sh: error: %s\n' "$*" >&2; exit 1; }
+
+# Debian packages: build tools, libraries, sample data, test tools.
+APT_PACKAGES=(
+  build-essential cmake ninja-build ccache pkg-config git
+  libboost-dev nlohmann-json3-dev libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev
+  libdraco-dev draco libtinygltf-dev
+  libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
+  libsqlite3-dev
+  libgtest-dev libgmock-dev
+  libcgal-demo assimp-testmodels assimp-utils
+  nodejs npm
+)
+
+as_root() {
+  if [ "$(id -u)" -eq 0 ]; then "$@"
+  elif command -v sudo >/dev/null; then sudo "$@"
+  else die "installing packages needs root: run as root or install sudo"; fi
+}
+
+install_debian_packages() {
+  local missing=()
+  for p in "${APT_PACKAGES[@]}"; do
+    # nodejs and npm may come from elsewhere (a newer Node): keep that one.
+    if [ "$p" = nodejs ] && command -v node >/dev/null; then continue; fi
+    if [ "$p" = npm ] && command -v npm >/dev/null; then continue; fi
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+  done
+  if [ ${#missing[@]} -eq 0 ]; then
+    say "Debian packages: all ${#APT_PACKAGES[@]} present"
+    return
+  fi
+  say "Debian packages: installing ${missing[*]}"
+  as_root env DEBIAN_FRONTEND=noninteractive apt-get update -q || die "apt-get update failed"
+  as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}" \
+    || die "apt-get could not install: ${missing[*]}"
+}
+
+check_tools() {
+  local t
+  for t in cmake ninja g++ ccache node npm draco_decoder assimp; do
+    command -v "$t" >/dev/null || die "'$t' is missing after the install (see the apt-get output above)"
+  done
+  [ -f /usr/share/doc/libcgal-dev/data.tar.gz ] || die "CGAL's sample data is missing: the Debian package libcgal-demo did not install it"
+}
+
+install_npm_packages() {
+  say "npm packages for web-client/ (npm ci)"
+  (cd "$ROOT/web-client" && npm ci --no-audit --no-fund --loglevel=error) || die "npm could not install web-client's packages"
+}
+
+build() {
+  say "Building (Release) into $BUILD_DIR with $JOBS jobs"
+  cmake -S "$ROOT" -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release || die "cmake configure failed"
+  cmake --build "$BUILD_DIR" -j "$JOBS" || die "the build failed"
+}
+
+setup() {
+  install_debian_packages
+  check_tools
+  install_npm_packages
+  build
+}
+
+start() {
+  local cli="$BUILD_DIR/bin/cgview"
+  say "CGView is built: $cli"
+  "$cli" samples | head -n 1
+  say "cgview info elephant (a sample mesh, by name)"
+  "$cli" info elephant
+  say "cgview convert elephant elephant.drc, then the Draco file's report"
+  local out="$BUILD_DIR/elephant.drc"
+  "$cli" convert elephant "$out"
+  "$cli" info "$out" | sed -n '1,4p'
+  say "Done. Try: $cli --help"
+}
+
+run_tests() {
+  say "Running every test (ctest)"
+  ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS"
+}
+
+case "${1:-}" in
+  start) setup; start ;;
+  test) setup; run_tests ;;
+  build) setup ;;
+  -h|--help|"") sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; [ -n "${1:-}" ] ;;
+  *) die "unknown command '$1' (start, test or build)" ;;
+esac
