@@ -192,8 +192,11 @@ Adjacency face_neighbors(const Mesh& mesh, const EdgeTopology& topo) {
   a.offsets.assign(mesh.faces.size() + 1, 0);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     std::uint32_t n = 0;
+    // Count the entries written below (a face listed twice on one edge, as
+    // one with a collapsed side is, must not leave empty slots).
     for (Index e : topo.face_edges[f])
-      if (e != kNone) n += std::uint32_t(topo.edge_faces.degree(e) - 1);
+      if (e != kNone)
+        for (auto g = topo.edge_faces.begin(e); g != topo.edge_faces.end(e); ++g) n += *g != f;
     a.offsets[f + 1] = a.offsets[f] + n;
   }
   a.items.resize(a.offsets.back());

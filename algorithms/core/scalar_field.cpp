@@ -32,7 +32,7 @@ void ScalarField::check_matches(const Mesh& mesh) const {
   if (values.size() != want)
     throw InvalidInput("scalar field '" + name + "' has " + std::to_string(values.size()) +
                        " values but the mesh has " + std::to_string(want) + " " +
-                       to_string(location) + (want == 1 ? "" : "s"));
+                       (want == 1 ? to_string(location) : location == Location::vertex ? "vertices" : "faces"));
 }
 
 ScalarField face_to_vertex(const Mesh& mesh, const ScalarField& per_face) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "core/errors.h"
@@ -16,18 +17,27 @@ VoxelGrid::VoxelGrid(std::array<int, 3> dims, Vec3 origin, double voxel_size, Vo
   if (!(voxel_size > 0) || !std::isfinite(voxel_size))
     throw InvalidInput("voxel size must be positive and finite");
   if (!is_finite(origin)) throw InvalidInput("voxel grid origin must be finite");
-  const std::uint64_t n = std::uint64_t(dims[0]) * std::uint64_t(dims[1]) * std::uint64_t(dims[2]);
-  if (n > max_voxels)
+  // x * y < 2^62 cannot overflow; the product with z can, so compare by division.
+  const std::uint64_t xy = std::uint64_t(dims[0]) * std::uint64_t(dims[1]), z = std::uint64_t(dims[2]);
+  if (xy > max_voxels / z) {
+    const bool fits = xy <= UINT64_MAX / z;
     throw InvalidInput("a " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
-                       std::to_string(dims[2]) + " grid has " + std::to_string(n) +
+                       std::to_string(dims[2]) + " grid has " + (fits ? std::to_string(xy * z) : "over 2^64") +
                        " voxels, over the limit of " + std::to_string(max_voxels));
+  }
+  const std::uint64_t n = xy * z;
   if (type == VoxelType::float32) floats_.assign(n, 0.f);
   else bytes_.assign(n, 0);
 }
 
 VoxelIndex VoxelGrid::locate(Vec3 p) const {
   Vec3 q = (p - origin_) / voxel_size_;
-  return {int(std::floor(q.x)), int(std::floor(q.y)), int(std::floor(q.z))};
+  // Out of int's range (or NaN) the cast would be undefined: clamp far outside.
+  auto cell = [](double t) {
+    t = std::floor(t);
+    return t >= -2e9 && t <= 2e9 ? int(t) : (t > 0 ? std::numeric_limits<int>::max() : std::numeric_limits<int>::min());
+  };
+  return {cell(q.x), cell(q.y), cell(q.z)};
 }
 
 float VoxelGrid::get(VoxelIndex v) const {

@@ -9,7 +9,9 @@
 // without a file; the path-taking overloads read the file first.  A malformed
 // input throws ParseError naming the file and the line (text) or byte offset
 // (binary); counts claimed by a header are checked against the bytes present
-// before anything is allocated, so a lying header costs nothing.
+// before anything is allocated, so a lying header costs nothing.  glTF
+// buffers must be embedded (a .glb's BIN chunk, or data: URIs): no reader
+// opens a file that the input names.
 #pragma once
 
 #include <cstdint>

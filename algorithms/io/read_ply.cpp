@@ -6,6 +6,7 @@
 // MeshLab writes it.  Other elements and properties are skipped.
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "io/readers.h"
@@ -203,18 +204,23 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
   auto read_value = [&](Type t) -> double {
     if (enc != Encoding::ascii) return bin.read(t);
     in.skip_space(false);
-    return in.need_double("a number");
+    const double x = in.need_double("a number");
+    // A float property holds a float, as in a binary file ("0.1" is not 0.1f).
+    return t == Type::f32 && std::isfinite(x) ? double(float(x)) : x;
   };
   auto read_list = [&](const Property& p, std::vector<double>& out) {
     const double n = read_value(p.count_type);
-    if (!(n >= 0) || n != std::floor(n)) {
+    if (!(n >= 0) || n != std::floor(n) || std::isinf(n)) {
       if (enc == Encoding::ascii) in.fail("a bad list length");
       bin.fail("a bad list length " + std::to_string(n));
     }
-    const std::uint64_t need = std::uint64_t(n) * (enc == Encoding::ascii ? 2 : std::uint64_t(type_size(p.type)));
-    if (need > (enc == Encoding::ascii ? in.remaining() : bin.remaining())) {
-      if (enc == Encoding::ascii) in.fail("a list claims " + std::to_string(std::uint64_t(n)) + " items, more than the file holds");
-      bin.fail("a list claims " + std::to_string(std::uint64_t(n)) + " items, more than the file holds");
+    // Compared as doubles: a length over 2^64 (an ascii "1e30") has no integer.
+    const double each = enc == Encoding::ascii ? 2.0 : double(type_size(p.type));
+    if (n * each > double(enc == Encoding::ascii ? in.remaining() : bin.remaining())) {
+      char count[32];
+      std::snprintf(count, sizeof count, n < 1e18 ? "%.0f" : "%g", n);
+      if (enc == Encoding::ascii) in.fail("a list claims " + std::string(count) + " items, more than the file holds");
+      bin.fail("a list claims " + std::string(count) + " items, more than the file holds");
     }
     out.resize(std::size_t(n));
     for (double& x : out) x = read_value(p.type);
@@ -264,10 +270,16 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
           float xyz[3];
           std::memcpy(xyz, base + v * stride, 12);
           mesh.positions[v] = {xyz[0], xyz[1], xyz[2]};
+          if (!is_finite(mesh.positions[v]))
+            throw ParseError(name, "vertex " + std::to_string(v) + " has a non-finite coordinate", std::nullopt,
+                             std::uint64_t(base - bytes.data()) + v * stride);
         }
         bin.skip(stride * e.count);
       } else {
         for (std::uint64_t v = 0; v < e.count; ++v) {
+          // Where the vertex starts, for an error message.
+          if (enc == Encoding::ascii) in.skip_space(false);
+          const char* vertex_pos = enc == Encoding::ascii ? in.pos() : bin.pos();
           for (std::size_t i = 0; i < e.props.size(); ++i) {
             const Property& p = e.props[i];
             if (p.is_list) {
@@ -291,13 +303,13 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
               case Slot::none: break;
             }
           }
+          if (!is_finite(mesh.positions[v])) {
+            const std::string problem = "vertex " + std::to_string(v) + " has a non-finite coordinate";
+            if (enc == Encoding::ascii) in.fail_at(vertex_pos, problem);
+            throw ParseError(name, problem, std::nullopt, std::uint64_t(vertex_pos - bytes.data()));
+          }
         }
       }
-      for (std::uint64_t v = 0; v < e.count; ++v)
-        if (!is_finite(mesh.positions[v]))
-          throw ParseError(name, "vertex " + std::to_string(v) + " has a non-finite coordinate",
-                           enc == Encoding::ascii ? std::optional<std::uint64_t>(header_line + 1 + v) : std::nullopt,
-                           enc == Encoding::ascii ? std::nullopt : std::optional<std::uint64_t>(std::uint64_t(data - bytes.data())));
     } else if (e.name == "face" && !have_faces) {
       have_faces = true;
       if (!have_vertices) fail_here("the face element comes before the vertex element");
@@ -353,8 +365,9 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
         result.warnings.push_back("per-corner texture coordinates dropped: their count does not match the corners");
       }
     } else {
-      // Skip another element (edges, materials, ...) item by item.
-      for (std::uint64_t n = 0; n < e.count; ++n)
+      // Skip another element (edges, materials, ...) item by item; one
+      // without properties has nothing to skip (and its count costs no bytes).
+      for (std::uint64_t n = 0; n < e.count && !e.props.empty(); ++n)
         for (const Property& p : e.props) {
           if (p.is_list) read_list(p, list);
           else read_value(p.type);

@@ -61,7 +61,7 @@ class TextScanner {
     auto [ptr, ec] = std::from_chars(s, end_, out);
     if (ec != std::errc() || (ptr < end_ && !is_space(*ptr) && *ptr != '#')) {
       if (ec == std::errc::result_out_of_range) {  // overflow: keep it as inf, reject later
-        out = HUGE_VAL;
+        out = out_of_range_value(s, ptr);            // underflow ("1e-400"): zero
         p_ = ptr;
         return true;
       }
@@ -113,6 +113,29 @@ class TextScanner {
   void set_pos(const char* p) { p_ = p; }
 
   static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+
+  // The value of a decimal number in [s, e) that from_chars found out of a
+  // double's range: +-HUGE_VAL when it overflows, +-0 when it underflows.
+  static double out_of_range_value(const char* s, const char* e) {
+    const bool negative = s < e && *s == '-';
+    std::int64_t lead = 0;  // decimal exponent of the first non-zero digit, before any "e.."
+    bool seen_point = false, seen_digit = false;
+    const char* p = negative ? s + 1 : s;
+    for (; p < e && *p != 'e' && *p != 'E'; ++p) {
+      if (*p == '.') { seen_point = true; continue; }
+      if (!seen_digit && *p == '0') { if (seen_point) --lead; continue; }
+      if (!seen_digit) { seen_digit = true; if (seen_point) --lead; continue; }
+      if (!seen_point) ++lead;
+    }
+    std::int64_t exp = 0;
+    if (p < e) {
+      const char* q = p + 1;
+      if (q < e && *q == '+') ++q;
+      if (std::from_chars(q, e, exp).ec == std::errc::result_out_of_range) exp = (*q == '-') ? INT32_MIN : INT32_MAX;
+    }
+    const double v = lead + exp < 0 ? 0.0 : HUGE_VAL;
+    return negative ? -v : v;
+  }
 
  private:
   const char* begin_;

@@ -59,13 +59,19 @@ float unit(std::uint8_t c) { return float(c) / 255.f; }
 std::string write_off(const Mesh& mesh) {
   Out o(mesh.num_vertices() * 40 + mesh.num_faces() * 24 + 64);
   const bool c = mesh.has_colors();
+  // OFF readers tell 0..1 float colours from 0..255 integer ones by their
+  // values: colours whose components are all 0 or 1 are written as floats, so
+  // that they read back as written rather than as white.
+  bool unit_floats = c;
+  for (const Color& k : mesh.colors) unit_floats &= k.r <= 1 && k.g <= 1 && k.b <= 1;
   o.str(c ? "COFF\n" : "OFF\n").num(std::uint64_t(mesh.num_vertices())).ch(' ').num(std::uint64_t(mesh.num_faces())).str(" 0\n");
   for (std::size_t v = 0; v < mesh.num_vertices(); ++v) {
     const Vec3& p = mesh.positions[v];
     o.num(p.x).ch(' ').num(p.y).ch(' ').num(p.z);
     if (c) {
       const Color& k = mesh.colors[v];
-      o.ch(' ').num(int(k.r)).ch(' ').num(int(k.g)).ch(' ').num(int(k.b)).ch(' ').num(int(k.a));
+      if (unit_floats) o.ch(' ').num(unit(k.r)).ch(' ').num(unit(k.g)).ch(' ').num(unit(k.b)).ch(' ').num(unit(k.a));
+      else o.ch(' ').num(int(k.r)).ch(' ').num(int(k.g)).ch(' ').num(int(k.b)).ch(' ').num(int(k.a));
     }
     o.ch('\n');
   }

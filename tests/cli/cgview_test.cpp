@@ -1,0 +1,293 @@
+// The `cgview` command line, run as a real program: help, reports (text and
+// JSON), conversion, and one-line error messages with a non-zero status.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "test_support.h"
+
+namespace cgview {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string quote(const std::string& s) { return "'" + s + "'"; }
+std::string cgview_cmd(const std::string& args) { return quote(test::bin("cgview")) + " " + args; }
+
+struct Result {
+  int status;
+  std::string out;  // stdout and stderr together
+};
+Result cgview(const std::string& args) {
+  Result r;
+  r.status = test::run(cgview_cmd(args), &r.out);
+  return r;
+}
+// Runs with stderr thrown away: what comes back is stdout alone.
+Result cgview_stdout(const std::string& args) {
+  Result r;
+  r.status = test::run("{ " + cgview_cmd(args) + " 2>/dev/null; }", &r.out);
+  return r;
+}
+// Runs with stdout thrown away: what comes back is stderr alone.
+Result cgview_stderr(const std::string& args) {
+  Result r;
+  r.status = test::run("{ " + cgview_cmd(args) + " 2>&1 >/dev/null; }", &r.out);
+  return r;
+}
+
+std::vector<std::string> lines(const std::string& s) {
+  std::vector<std::string> out;
+  std::istringstream in(s);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+// A failure: non-zero status and exactly one line on stderr, "cgview: ...".
+void expect_one_line_error(const std::string& args, const std::string& mention = "") {
+  SCOPED_TRACE("cgview " + args);
+  const Result r = cgview_stderr(args);
+  EXPECT_NE(r.status, 0);
+  const auto l = lines(r.out);
+  ASSERT_EQ(l.size(), 1u) << "stderr was:\n" << r.out;
+  EXPECT_EQ(l[0].rfind("cgview:", 0), 0u) << l[0];
+  EXPECT_FALSE(r.out.empty() || r.out.back() != '\n') << "no newline at the end";
+  if (!mention.empty()) {
+    EXPECT_NE(l[0].find(mention), std::string::npos) << l[0];
+  }
+  // And nothing on stdout.
+  const Result all = cgview_stdout(args);
+  EXPECT_EQ(all.out, "");
+}
+
+json info_json(const std::string& mesh) {
+  const Result r = cgview_stdout("info " + quote(mesh) + " --json");
+  EXPECT_EQ(r.status, 0) << r.out;
+  try {
+    return json::parse(r.out);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "not JSON (" << e.what() << "):\n" << r.out;
+    return json::object();
+  }
+}
+
+void expect_elephant(const json& j) {
+  for (const char* key : {"vertices", "faces", "edges", "bbox", "components", "boundary_loops", "genus",
+                          "manifold", "degenerate_faces"})
+    EXPECT_TRUE(j.contains(key)) << "missing key " << key;
+  EXPECT_EQ(j.value("vertices", 0), 2775);
+  EXPECT_EQ(j.value("faces", 0), 5558);
+  EXPECT_EQ(j.value("edges", 0), 8337);
+  EXPECT_EQ(j.value("components", 0), 1);
+  EXPECT_EQ(j.value("boundary_loops", -1), 0);
+  ASSERT_TRUE(j.contains("genus") && j["genus"].is_number_integer());
+  EXPECT_EQ(j["genus"].get<int>(), 3);
+  EXPECT_EQ(j.value("manifold", false), true);
+  EXPECT_EQ(j.value("degenerate_faces", -1), 0);
+  ASSERT_TRUE(j.contains("bbox") && j["bbox"].is_object());
+  const json& b = j["bbox"];
+  ASSERT_TRUE(b.contains("min") && b.contains("max"));
+  ASSERT_EQ(b["min"].size(), 3u);
+  ASSERT_EQ(b["max"].size(), 3u);
+  for (int k = 0; k < 3; ++k) EXPECT_LT(b["min"][k].get<double>(), b["max"][k].get<double>());
+}
+
+TEST(CliTest, Help) {
+  for (const char* flag : {"--help", "-h", "help"}) {
+    const Result r = cgview(flag);
+    EXPECT_EQ(r.status, 0) << flag;
+    EXPECT_NE(r.out.find("usage: cgview"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("info"), std::string::npos);
+    EXPECT_NE(r.out.find("convert"), std::string::npos);
+    EXPECT_NE(r.out.find("samples"), std::string::npos);
+  }
+}
+
+TEST(CliTest, CommandHelp) {
+  Result r = cgview("info --help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("usage: cgview info"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--json"), std::string::npos);
+
+  r = cgview("convert --help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("usage: cgview convert"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("reads:"), std::string::npos);
+  EXPECT_NE(r.out.find("ply"), std::string::npos);
+
+  r = cgview("samples -h");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("usage: cgview samples"), std::string::npos) << r.out;
+}
+
+TEST(CliTest, Version) {
+  const Result r = cgview("--version");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out.rfind("cgview ", 0), 0u) << r.out;
+}
+
+TEST(CliTest, InfoJsonOfElephantFile) {
+  const json j = info_json(test::sample("elephant.off").string());
+  expect_elephant(j);
+  EXPECT_EQ(j.value("format", ""), "off");
+  EXPECT_EQ(j.value("closed", false), true);
+  EXPECT_EQ(j.value("oriented", false), true);
+  EXPECT_EQ(j.value("euler_characteristic", 0), -4);
+}
+
+TEST(CliTest, InfoBySampleName) {
+  const json j = info_json("elephant");
+  expect_elephant(j);
+  EXPECT_EQ(fs::path(j.value("file", "")).filename(), "elephant.off");
+  expect_elephant(info_json("elephant.off"));
+}
+
+TEST(CliTest, InfoText) {
+  const Result r = cgview("info elephant");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("vertices          2775\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("faces             5558\n"), std::string::npos);
+  EXPECT_NE(r.out.find("edges             8337\n"), std::string::npos);
+  EXPECT_NE(r.out.find("genus             3\n"), std::string::npos);
+  EXPECT_NE(r.out.find("manifold          yes\n"), std::string::npos);
+  EXPECT_NE(r.out.find("closed            yes\n"), std::string::npos);
+}
+
+TEST(CliTest, InfoOfNonManifoldMesh) {
+  const fs::path dir = test::temp_dir("cli-nonmanifold");
+  const fs::path p = dir / "fin.off";
+  test::write_text(p, "OFF\n5 3 0\n0 0 0\n1 0 0\n0.5 1 0\n0.5 -1 0\n0.5 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n");
+  const json j = info_json(p.string());
+  EXPECT_EQ(j.value("faces", 0), 3);
+  EXPECT_EQ(j.value("manifold", true), false);
+  EXPECT_EQ(j.value("non_manifold_edges", 0), 1);
+  EXPECT_TRUE(j.contains("genus") && j["genus"].is_null());
+  const Result r = cgview("info " + quote(p.string()));
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("genus             n/a"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("manifold          no (1 non-manifold edges"), std::string::npos) << r.out;
+}
+
+TEST(CliTest, WarningsGoToStderrOnly) {
+  // The double torus has polygons that are split: a warning, on stderr; the
+  // JSON on stdout stays clean.
+  const json j = info_json("double-torus-example");
+  EXPECT_EQ(j.value("genus", -1), 2);
+  EXPECT_EQ(j.value("faces", 0), 466);
+  ASSERT_TRUE(j.contains("warnings") && j["warnings"].is_array());
+  EXPECT_FALSE(j["warnings"].empty());
+  const Result err = cgview_stderr("info double-torus-example --json");
+  EXPECT_EQ(err.status, 0);
+  const auto l = lines(err.out);
+  ASSERT_FALSE(l.empty());
+  for (const auto& line : l) EXPECT_EQ(line.rfind("cgview: warning: ", 0), 0u) << line;
+}
+
+TEST(CliTest, ConvertToPlyKeepsCounts) {
+  const fs::path dir = test::temp_dir("cli-convert");
+  for (const char* ext : {"ply", "obj", "off"}) {
+    SCOPED_TRACE(ext);
+    const fs::path out = dir / (std::string("elephant.") + ext);
+    const Result r = cgview("convert elephant " + quote(out.string()));
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_EQ(r.out, "");  // quiet on success
+    ASSERT_TRUE(fs::exists(out));
+    EXPECT_GT(fs::file_size(out), 0u);
+    const json j = info_json(out.string());
+    expect_elephant(j);
+    EXPECT_EQ(j.value("format", ""), ext);
+  }
+}
+
+TEST(CliTest, ConvertAsciiPly) {
+  const fs::path dir = test::temp_dir("cli-convert-ascii");
+  const fs::path out = dir / "e.ply";
+  ASSERT_EQ(cgview("convert " + quote(test::sample("elephant.off").string()) + " " + quote(out.string()) +
+                   " --ascii").status, 0);
+  std::ifstream f(out);
+  std::string first, second;
+  std::getline(f, first);
+  std::getline(f, second);
+  EXPECT_EQ(first, "ply");
+  EXPECT_EQ(second.rfind("format ascii", 0), 0u) << second;
+  expect_elephant(info_json(out.string()));
+}
+
+TEST(CliTest, ErrorMissingFile) {
+  expect_one_line_error("info /nonexistent/dir/mesh.off", "/nonexistent/dir/mesh.off");
+  expect_one_line_error("info no_such_sample_name_xyz", "no_such_sample_name_xyz");
+  expect_one_line_error("convert /nonexistent/in.off " + quote((test::temp_dir("cli-missing") / "o.ply").string()));
+}
+
+TEST(CliTest, ErrorUnknownExtension) {
+  const fs::path dir = test::temp_dir("cli-ext");
+  const fs::path p = dir / "mesh.xyz";
+  test::write_text(p, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  expect_one_line_error("info " + quote(p.string()), "xyz");
+  expect_one_line_error("convert elephant " + quote((dir / "out.abc").string()), "abc");
+  EXPECT_FALSE(fs::exists(dir / "out.abc"));
+}
+
+TEST(CliTest, ErrorUnknownCommandAndUsage) {
+  expect_one_line_error("frobnicate", "frobnicate");
+  expect_one_line_error("");
+  expect_one_line_error("info");
+  expect_one_line_error("info elephant --bogus", "--bogus");
+  expect_one_line_error("info elephant elephant");
+  expect_one_line_error("convert elephant");
+  expect_one_line_error("convert elephant out.ply --bits", "--bits");
+  expect_one_line_error("convert elephant out.ply --bits x12", "x12");
+  // Usage errors exit with 2, other errors with 1.
+  EXPECT_EQ(cgview("frobnicate").status, 2);
+  EXPECT_EQ(cgview("info /nonexistent.off").status, 1);
+}
+
+TEST(CliTest, ErrorMalformedFile) {
+  const fs::path dir = test::temp_dir("cli-malformed");
+  const fs::path bad_index = dir / "bad_index.off";
+  test::write_text(bad_index, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
+  expect_one_line_error("info " + quote(bad_index.string()), "bad_index.off");
+
+  const fs::path garbage = dir / "garbage.off";
+  test::write_text(garbage, "this is not\nan OFF file\n");
+  expect_one_line_error("info " + quote(garbage.string()), "garbage.off");
+
+  const fs::path truncated = dir / "truncated.off";
+  test::write_text(truncated, "OFF\n4 2 0\n0 0 0\n1 0 0\n");
+  expect_one_line_error("info " + quote(truncated.string()), "truncated.off");
+
+  const fs::path bad_ply = dir / "bad.ply";
+  test::write_text(bad_ply, "ply\nformat binary_little_endian 1.0\nelement vertex 1000000\n"
+                            "property float x\nproperty float y\nproperty float z\nend_header\n\x01\x02");
+  expect_one_line_error("info " + quote(bad_ply.string()), "bad.ply");
+
+  expect_one_line_error("convert " + quote(garbage.string()) + " " + quote((dir / "o.ply").string()));
+  EXPECT_FALSE(fs::exists(dir / "o.ply"));
+}
+
+TEST(CliTest, Samples) {
+  Result r = cgview("samples");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("elephant.off"), std::string::npos);
+  r = cgview_stdout("samples --json");
+  ASSERT_EQ(r.status, 0);
+  const json j = json::parse(r.out);
+  ASSERT_TRUE(j.is_array());
+  bool found = false;
+  for (const auto& e : j)
+    if (e.value("name", "") == "elephant") {
+      found = true;
+      EXPECT_TRUE(fs::exists(e.value("path", "")));
+    }
+  EXPECT_TRUE(found);
+}
+
+}  // namespace
+}  // namespace cgview

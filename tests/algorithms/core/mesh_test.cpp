@@ -227,6 +227,20 @@ TEST(MeshTest, VertexNeighborsOnGridAndBox) {
   }
   EXPECT_EQ(sum, 36u);
   EXPECT_EQ(bn.items.size(), 36u);
+  // Box vertex 0 (a corner with no diagonal) has 3 neighbours, vertex 1 has 5.
+  EXPECT_EQ(std::vector<std::uint32_t>(bn.begin(0), bn.end(0)), (std::vector<std::uint32_t>{1, 2, 4}));
+  EXPECT_EQ(bn.degree(1), 5u);
+}
+
+TEST(MeshTest, ClosedManifoldHasAsManyFacesAsNeighborsPerVertex) {
+  for (const Mesh& m : {box(), torus(), uv_sphere(1.0, 6, 10)}) {
+    const Adjacency vf = vertex_faces(m), vn = vertex_neighbors(m);
+    for (std::size_t v = 0; v < m.num_vertices(); ++v) EXPECT_EQ(vf.degree(v), vn.degree(v)) << "vertex " << v;
+  }
+  const Adjacency bf = vertex_faces(box());
+  EXPECT_EQ(bf.degree(0), 3u);
+  EXPECT_EQ(std::vector<std::uint32_t>(bf.begin(0), bf.end(0)), (std::vector<std::uint32_t>{0, 4, 8}));
+  EXPECT_EQ(bf.degree(1), 5u);
 }
 
 TEST(MeshTest, VertexNeighborsSkipsRepeatedCorner) {
@@ -322,6 +336,20 @@ TEST(MeshTest, FaceNeighborsOnGrid) {
   std::size_t total = 0;
   for (std::size_t f = 0; f < gn.size(); ++f) total += gn.degree(f);
   EXPECT_EQ(total, 2u * 40u);  // twice the interior edges
+}
+
+TEST(MeshTest, FaceNeighborsWithCollapsedSide) {
+  // Face 0 has a collapsed side; its other two sides are both the edge 1-2,
+  // which face 1 shares.  Every listed neighbour must be a real one.
+  Mesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  m.faces = {{1, 1, 2}, {0, 1, 2}};
+  const Adjacency fn = face_neighbors(m, edge_topology(m));
+  ASSERT_EQ(fn.size(), 2u);
+  ASSERT_GE(fn.degree(0), 1u);
+  for (auto g = fn.begin(0); g != fn.end(0); ++g) EXPECT_EQ(*g, 1u);
+  ASSERT_GE(fn.degree(1), 1u);
+  for (auto g = fn.begin(1); g != fn.end(1); ++g) EXPECT_EQ(*g, 0u);
 }
 
 TEST(MeshTest, VertexComponents) {
