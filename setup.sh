@@ -15,7 +15,7 @@ ROOT=$(pwd)
 BUILD_DIR=${CGVIEW_BUILD_DIR:-$ROOT/build}
 JOBS=${CGVIEW_JOBS:-$(nproc)}
 
-say() { printf '\033[1m==> %s\033[0m\n' "$*"; }
+say() { if [ -t 1 ]; then printf '\033[1m==> %s\033[0m\n' "$*"; else printf '==> %s\n' "$*"; fi; }
 die() { printf 'setup.sh: error: %s\n' "$*" >&2; exit 1; }
 
 # Debian packages: build tools, libraries, sample data, test tools.
@@ -83,7 +83,7 @@ setup() {
 start() {
   local cli="$BUILD_DIR/bin/cgview"
   say "CGView is built: $cli"
-  "$cli" samples | head -n 1
+  "$cli" samples | sed -n 1p
   say "cgview info elephant (a sample mesh, by name)"
   "$cli" info elephant
   say "cgview convert elephant elephant.drc, then the Draco file's report"

@@ -76,6 +76,14 @@ Mesh grid(int n) {
   return m;
 }
 
+Mesh merged(const Mesh& a, const Mesh& b) {
+  Mesh m = a;
+  const Index off = Index(a.positions.size());
+  m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
+  for (Tri t : b.faces) m.faces.push_back({t[0] + off, t[1] + off, t[2] + off});
+  return m;
+}
+
 fs::path sample(const std::string& file_name) {
   const fs::path p = fs::path(CGVIEW_SAMPLES_DIR) / file_name;
   EXPECT_TRUE(fs::exists(p)) << "missing sample mesh " << p << " (install libcgal-demo and re-run cmake)";

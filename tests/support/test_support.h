@@ -19,6 +19,9 @@ Mesh torus(double R = 2.0, double r = 0.5, int rings = 24, int segments = 12);
 // A flat n x n grid of squares in the z = 0 plane: one boundary loop, genus 0.
 Mesh grid(int n = 4);
 
+// a and b side by side as one mesh (b's indices shifted).
+Mesh merged(const Mesh& a, const Mesh& b);
+
 // The path of a sample mesh (build/samples); the test fails if it is missing.
 std::filesystem::path sample(const std::string& file_name);
 // A few real sample meshes of different kinds, for invariants over a family.

@@ -25,13 +25,7 @@ using test::grid;
 using test::torus;
 using test::uv_sphere;
 
-Mesh merged(const Mesh& a, const Mesh& b) {
-  Mesh m = a;
-  const Index off = Index(a.positions.size());
-  m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
-  for (Tri t : b.faces) m.faces.push_back({t[0] + off, t[1] + off, t[2] + off});
-  return m;
-}
+using test::merged;
 
 // The defining formulas of the report, which every result must satisfy.
 void expect_consistent(const MeshReport& r, const std::string& what) {

@@ -25,14 +25,7 @@ using test::uv_sphere;
 
 constexpr Index kNone = std::numeric_limits<Index>::max();
 
-// a and b side by side as one mesh (b's indices shifted).
-Mesh merged(const Mesh& a, const Mesh& b) {
-  Mesh m = a;
-  const Index off = Index(a.positions.size());
-  m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
-  for (Tri t : b.faces) m.faces.push_back({t[0] + off, t[1] + off, t[2] + off});
-  return m;
-}
+using test::merged;
 
 double angle_between(Vec3 a, Vec3 b) {
   return std::atan2(norm(cross(a, b)), dot(a, b));

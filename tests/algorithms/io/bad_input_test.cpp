@@ -22,6 +22,7 @@
 #include "core/mesh.h"
 #include "core/mesh_report.h"
 #include "io/mesh_io.h"
+#include "format_variants.h"
 #include "test_support.h"
 
 namespace cgview {
@@ -31,23 +32,8 @@ namespace fs = std::filesystem;
 using test::box;
 using test::uv_sphere;
 
-// A format as written: PLY and STL come in ascii and binary.
-struct Variant {
-  std::string label;
-  MeshFormat format;
-  bool binary;
-  std::string ext;
-  bool text() const { return !binary; }
-};
-
-const std::vector<Variant>& variants() {
-  static const std::vector<Variant> v = {
-      {"off", MeshFormat::off, false, "off"},          {"obj", MeshFormat::obj, false, "obj"},
-      {"ply_ascii", MeshFormat::ply, false, "ply"},    {"ply_binary", MeshFormat::ply, true, "ply"},
-      {"stl_ascii", MeshFormat::stl, false, "stl"},    {"stl_binary", MeshFormat::stl, true, "stl"},
-      {"drc", MeshFormat::drc, true, "drc"},           {"glb", MeshFormat::glb, true, "glb"}};
-  return v;
-}
+using test::Variant;
+using test::variants;
 
 const Variant& variant(const std::string& label) {
   for (const Variant& v : variants())

@@ -27,6 +27,7 @@
 #include "core/mesh_report.h"
 #include "core/surface_mesh.h"
 #include "io/mesh_io.h"
+#include "format_variants.h"
 #include "test_support.h"
 
 namespace cgview {
@@ -34,21 +35,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Variant {
-  std::string label;
-  MeshFormat format;
-  bool binary;
-  std::string ext;
-};
-
-const std::vector<Variant>& variants() {
-  static const std::vector<Variant> v = {
-      {"off", MeshFormat::off, false, "off"},          {"obj", MeshFormat::obj, false, "obj"},
-      {"ply_binary", MeshFormat::ply, true, "ply"},    {"ply_ascii", MeshFormat::ply, false, "ply"},
-      {"stl_binary", MeshFormat::stl, true, "stl"},    {"stl_ascii", MeshFormat::stl, false, "stl"},
-      {"drc", MeshFormat::drc, true, "drc"},           {"glb", MeshFormat::glb, true, "glb"}};
-  return v;
-}
+using test::Variant;
+using test::variants;
 
 const fs::path& dir() {
   static const fs::path d = test::temp_dir("round_trip");
