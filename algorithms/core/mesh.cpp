@@ -72,21 +72,13 @@ BBox bounding_box(const Mesh& mesh) {
 
 std::vector<double> face_areas(const Mesh& mesh) {
   std::vector<double> out(mesh.faces.size());
-  const auto& P = mesh.positions;
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const Tri& t = mesh.faces[f];
-    out[f] = 0.5 * norm(cross(P[t[1]] - P[t[0]], P[t[2]] - P[t[0]]));
-  }
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) out[f] = 0.5 * norm(face_cross(mesh, f));
   return out;
 }
 
 std::vector<Vec3> face_normals(const Mesh& mesh) {
   std::vector<Vec3> out(mesh.faces.size());
-  const auto& P = mesh.positions;
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const Tri& t = mesh.faces[f];
-    out[f] = normalized(cross(P[t[1]] - P[t[0]], P[t[2]] - P[t[0]]));
-  }
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) out[f] = normalized(face_cross(mesh, f));
   return out;
 }
 

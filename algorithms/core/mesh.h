@@ -48,9 +48,17 @@ struct Mesh {
 
 BBox bounding_box(const Mesh& mesh);
 
+// cross(b - a, c - a) of face f = (a, b, c): its direction is the face
+// normal, its length twice the face's area.
+inline Vec3 face_cross(const Mesh& mesh, std::size_t f) {
+  const Tri& t = mesh.faces[f];
+  const auto& P = mesh.positions;
+  return cross(P[t[1]] - P[t[0]], P[t[2]] - P[t[0]]);
+}
+
 // Unit normal of each face (zero for a degenerate face).  One per face.
 std::vector<Vec3> face_normals(const Mesh& mesh);
-// Twice the area vector is cross(b - a, c - a); this returns the area.  One per face.
+// The area of each face.  One per face.
 std::vector<double> face_areas(const Mesh& mesh);
 
 enum class NormalWeighting { uniform, area, angle };

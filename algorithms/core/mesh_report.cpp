@@ -40,7 +40,7 @@ MeshReport mesh_report(const Mesh& mesh) {
   std::vector<Tri> sorted(F.size());
   for (std::size_t f = 0; f < F.size(); ++f) {
     const Tri& t = F[f];
-    const double a = 0.5 * norm(cross(P[t[1]] - P[t[0]], P[t[2]] - P[t[0]]));
+    const double a = 0.5 * norm(face_cross(mesh, f));
     r.area += a;
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || a <= area_eps) ++r.degenerate_faces;
     sorted[f] = t;
