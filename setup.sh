@@ -21,12 +21,13 @@ die() { printf 'setup.sh: error: %s\n' "$*" >&2; exit 1; }
 # Debian packages: build tools, libraries, sample data, test tools.
 APT_PACKAGES=(
   build-essential cmake ninja-build ccache pkg-config git
-  libboost-dev nlohmann-json3-dev libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev
+  libboost-dev libboost-system-dev nlohmann-json3-dev libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev
   libdraco-dev draco libtinygltf-dev
   libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
   libsqlite3-dev
   libgtest-dev libgmock-dev
   libcgal-demo assimp-testmodels assimp-utils
+  chromium wrk
   nodejs npm
 )
 

@@ -1,0 +1,100 @@
+// cgview-server: the REST and WebSocket server with the browser viewer.
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "io/samples.h"
+#include "mesh_service.h"
+#include "server.h"
+
+namespace {
+
+const char* kHelp =
+    "usage: cgview-server [--host 127.0.0.1] [--port 8080] [--data-dir DIR] [options]\n"
+    "\n"
+    "Serves the CGView viewer at / and the API under /api/v1 (REST and WebSocket).\n"
+    "\n"
+    "  --host ADDR          address to listen on (default 127.0.0.1)\n"
+    "  --port N             port (default 8080; 0 picks a free one)\n"
+    "  --data-dir DIR       where meshes are stored (default ./cgview-data)\n"
+    "  --static-dir DIR     the built web client (default: web-client/dist of the source tree)\n"
+    "  --samples SET        sample meshes to load at start: default, all or none (default: default)\n"
+    "  --max-upload-mb N    largest accepted upload (default 256)\n"
+    "  --workers N          worker threads for geometry (default 2)\n"
+    "  -h, --help           this help\n";
+
+// A few sample meshes of different kinds (the whole set is 143 files).
+const std::vector<std::string> kDefaultSamples = {"elephant.off", "bunny00.off", "armadillo.off", "camel.off",
+                                                   "man.off",      "kitten.off",  "double-torus-example.off",
+                                                   "colored_tetra.ply", "sphere.off"};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace cgview;
+  server::ServerConfig config;
+#ifdef CGVIEW_WEB_DIST
+  config.static_dir = CGVIEW_WEB_DIST;
+#endif
+  std::string samples = "default";
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      auto value = [&]() -> std::string {
+        if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+        return argv[++i];
+      };
+      auto number = [&](long lo, long hi) {
+        const std::string v = value();
+        char* end = nullptr;
+        const long n = std::strtol(v.c_str(), &end, 10);
+        if (v.empty() || *end || n < lo || n > hi)
+          throw std::invalid_argument(a + " needs a number " + std::to_string(lo) + ".." + std::to_string(hi) + ", got '" + v + "'");
+        return n;
+      };
+      if (a == "-h" || a == "--help") {
+        std::fputs(kHelp, stdout);
+        return 0;
+      } else if (a == "--host") config.host = value();
+      else if (a == "--port") config.port = static_cast<unsigned short>(number(0, 65535));
+      else if (a == "--data-dir") config.data_dir = value();
+      else if (a == "--static-dir") config.static_dir = value();
+      else if (a == "--samples") {
+        samples = value();
+        if (samples != "default" && samples != "all" && samples != "none")
+          throw std::invalid_argument("--samples is default, all or none");
+      } else if (a == "--max-upload-mb") config.max_upload_bytes = std::size_t(number(1, 1 << 20)) << 20;
+      else if (a == "--workers") config.workers = int(number(1, 256));
+      else throw std::invalid_argument("unknown option " + a);
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "cgview-server: %s (see --help)\n", e.what());
+    return 2;
+  }
+  try {
+    server::Server srv(config);
+    if (samples != "none") {
+      if (const auto dir = samples_dir()) {
+        const std::filesystem::path tmp = config.data_dir / "samples-import";
+        if (samples == "all") srv.meshes().import_samples(*dir, config.max_upload_bytes);
+        else {
+          std::filesystem::create_directories(tmp);
+          for (const auto& n : kDefaultSamples)
+            if (std::filesystem::exists(*dir / n))
+              std::filesystem::copy_file(*dir / n, tmp / n, std::filesystem::copy_options::overwrite_existing);
+          srv.meshes().import_samples(tmp, config.max_upload_bytes);
+          std::filesystem::remove_all(tmp);
+        }
+      }
+    }
+    std::printf("CGView serving http://%s:%u/ (data in %s, %zu meshes)\n", config.host.c_str(), unsigned(srv.port()),
+                config.data_dir.c_str(), srv.meshes().store().count());
+    std::fflush(stdout);
+    srv.run();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "cgview-server: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

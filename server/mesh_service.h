@@ -1,0 +1,70 @@
+// What the server does with meshes, independent of HTTP and WebSocket:
+// parse and report uploads, store them, and produce their bytes in other
+// formats, with the Draco encodings cached by content (a second fetch of
+// the same mesh at the same quantization costs no encoding, and concurrent
+// requests for one encoding share a single computation).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <future>
+#include <list>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json_fwd.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "core/mesh.h"
+#include "store.h"
+
+namespace cgview::server {
+
+struct EncodedMesh {
+  std::string bytes;  // the Draco bitstream
+  std::uint64_t vertices = 0, faces = 0;
+  bool has_normals = false, has_colors = false;
+};
+
+class MeshService {
+ public:
+  explicit MeshService(Store& store, std::size_t cache_bytes = std::size_t(512) << 20);
+
+  // Parses the bytes (format given, or from the name's extension), computes
+  // the report and stores it.  Throws InvalidInput (bad name, format or file).
+  MeshRecord upload(const std::string& name, const std::string& format, std::string_view bytes);
+  // The mesh, parsed from its stored bytes (the last few are kept in memory).
+  std::shared_ptr<const Mesh> mesh(const MeshRecord& record);
+  // The Draco encoding at a position quantization (1..30 bits).
+  std::shared_ptr<const EncodedMesh> draco(const MeshRecord& record, int position_bits);
+  // The mesh in a writable format ("obj", "ply", ...): the stored bytes
+  // when the format is the uploaded one, else a conversion.
+  std::string download(const MeshRecord& record, const std::string& format);
+  // Uploads every sample mesh in `dir` that is not stored yet (by content);
+  // returns how many were added.
+  int import_samples(const std::filesystem::path& dir, std::size_t max_bytes_each);
+
+  Store& store() { return store_; }
+  std::uint64_t encodings_computed() const { return encodings_computed_; }
+
+ private:
+  Store& store_;
+  std::mutex mutex_;
+  // Draco encodings by (sha256, bits), least recently used first.
+  struct CacheEntry {
+    std::shared_future<std::shared_ptr<const EncodedMesh>> value;
+    std::size_t bytes = 0;
+  };
+  std::map<std::string, CacheEntry> encodings_;
+  std::list<std::string> lru_;
+  std::size_t cache_bytes_, used_bytes_ = 0;
+  std::list<std::pair<std::string, std::shared_ptr<const Mesh>>> meshes_;  // by sha256, newest first
+  std::uint64_t encodings_computed_ = 0;
+};
+
+// The JSON object of a stored mesh (API.md's Mesh).
+nlohmann::json mesh_json(const MeshRecord& record);
+
+}  // namespace cgview::server

@@ -1,0 +1,258 @@
+#include "router.h"
+
+#include <chrono>
+#include <fstream>
+
+#include "core/errors.h"
+#include "io/mesh_io.h"
+
+namespace cgview::server {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+int hex_value(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+std::string percent_decode(std::string_view s, bool plus_is_space) {
+  std::string out;
+  out.reserve(s.size());
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '%' && i + 2 < s.size() && hex_value(s[i + 1]) >= 0 && hex_value(s[i + 2]) >= 0) {
+      out.push_back(char(hex_value(s[i + 1]) * 16 + hex_value(s[i + 2])));
+      i += 2;
+    } else if (s[i] == '+' && plus_is_space) {
+      out.push_back(' ');
+    } else {
+      out.push_back(s[i]);
+    }
+  }
+  return out;
+}
+
+// Matches "/api/v1/meshes/{id}" against a path, filling the named parts.
+bool match(const std::string& pattern, const std::string& path, std::map<std::string, std::string>& params) {
+  std::size_t p = 0, q = 0;
+  while (p < pattern.size() && q <= path.size()) {
+    if (pattern[p] == '{') {
+      const std::size_t close = pattern.find('}', p);
+      const std::string name = pattern.substr(p + 1, close - p - 1);
+      const std::size_t end = path.find('/', q);
+      const std::string value = path.substr(q, end == std::string::npos ? std::string::npos : end - q);
+      if (value.empty()) return false;
+      params[name] = value;
+      p = close + 1;
+      q = end == std::string::npos ? path.size() : end;
+    } else {
+      if (q >= path.size() || pattern[p] != path[q]) return false;
+      ++p;
+      ++q;
+    }
+  }
+  return p == pattern.size() && q == path.size();
+}
+
+HttpResponse json_response(int status, const json& body) {
+  HttpResponse r;
+  r.status = status;
+  r.body = body.dump();
+  return r;
+}
+
+const char* content_type_of(const std::string& ext) {
+  static const std::map<std::string, const char*> types = {
+      {".html", "text/html; charset=utf-8"}, {".js", "text/javascript"},      {".mjs", "text/javascript"},
+      {".css", "text/css"},                  {".json", "application/json"},   {".wasm", "application/wasm"},
+      {".svg", "image/svg+xml"},             {".png", "image/png"},           {".ico", "image/x-icon"},
+      {".txt", "text/plain; charset=utf-8"}, {".map", "application/json"},
+      {".obj", "model/obj"},                 {".stl", "model/stl"},           {".glb", "model/gltf-binary"}};
+  const auto it = types.find(ext);
+  return it == types.end() ? "application/octet-stream" : it->second;
+}
+
+}  // namespace
+
+HttpResponse error_response(int status, const std::string& code, const std::string& detail) {
+  return json_response(status, json{{"error", code}, {"detail", detail}});
+}
+
+std::pair<std::string, std::map<std::string, std::string>> split_target(const std::string& target) {
+  const std::size_t qm = target.find('?');
+  std::string path = percent_decode(target.substr(0, qm), false);
+  std::map<std::string, std::string> query;
+  if (qm != std::string::npos) {
+    std::string_view rest(target);
+    rest.remove_prefix(qm + 1);
+    while (!rest.empty()) {
+      const std::size_t amp = rest.find('&');
+      const std::string_view pair = rest.substr(0, amp);
+      const std::size_t eq = pair.find('=');
+      if (!pair.empty())
+        query[percent_decode(pair.substr(0, eq), true)] =
+            eq == std::string_view::npos ? "" : percent_decode(pair.substr(eq + 1), true);
+      if (amp == std::string_view::npos) break;
+      rest.remove_prefix(amp + 1);
+    }
+  }
+  return {path, query};
+}
+
+Router::Router(MeshService& meshes, RouterConfig config) : meshes_(meshes), config_(std::move(config)) {
+  using Params = std::map<std::string, std::string>;
+  auto find = [this](const Params& p) {
+    auto rec = meshes_.store().get_mesh(p.at("id"));
+    if (!rec) throw std::out_of_range("no mesh with id '" + p.at("id") + "'");
+    return *rec;
+  };
+  routes_.push_back({"GET", "/api/v1/health", "Server health: status, version, mesh count, uptime", {},
+                     [this](const Params&, const HttpRequest&) {
+                       const double up = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+                       return json_response(200, {{"status", "ok"}, {"version", config_.version},
+                                                  {"meshes", meshes_.store().count()}, {"uptime_s", up}});
+                     }});
+  routes_.push_back({"GET", "/api/v1/meshes", "List the stored meshes with their reports", {},
+                     [this](const Params&, const HttpRequest&) {
+                       json list = json::array();
+                       for (const auto& r : meshes_.store().list_meshes()) list.push_back(mesh_json(r));
+                       return json_response(200, {{"meshes", list}});
+                     }});
+  routes_.push_back({"POST", "/api/v1/meshes", "Upload a mesh: the file's bytes as the raw body",
+                     {{"name", "the file name, e.g. bunny.ply (required)"},
+                      {"format", "off, obj, ply, stl, drc, glb or gltf (default: from the name's extension)"}},
+                     [this](const Params&, const HttpRequest& req) {
+                       const auto [path, q] = split_target(req.target);
+                       const auto name = q.find("name");
+                       if (name == q.end()) return error_response(400, "bad_request", "the query needs ?name=FILE.EXT");
+                       const auto format = q.find("format");
+                       const MeshRecord rec = meshes_.upload(name->second, format == q.end() ? "" : format->second, req.body);
+                       json j = mesh_json(rec);
+                       if (on_event) on_event({{"type", "mesh_added"}, {"mesh", j}});
+                       HttpResponse r = json_response(201, j);
+                       r.headers.push_back({"Location", "/api/v1/meshes/" + rec.id});
+                       return r;
+                     }});
+  routes_.push_back({"GET", "/api/v1/meshes/{id}", "One mesh's metadata and report", {},
+                     [find](const Params& p, const HttpRequest&) { return json_response(200, mesh_json(find(p))); }});
+  routes_.push_back({"DELETE", "/api/v1/meshes/{id}", "Delete a mesh", {},
+                     [this, find](const Params& p, const HttpRequest&) {
+                       const MeshRecord rec = find(p);
+                       meshes_.store().remove_mesh(rec.id);
+                       if (on_event) on_event({{"type", "mesh_deleted"}, {"mesh_id", rec.id}});
+                       HttpResponse r;
+                       r.status = 204;
+                       r.content_type.clear();
+                       return r;
+                     }});
+  routes_.push_back({"GET", "/api/v1/meshes/{id}/download", "Download a mesh in a format",
+                     {{"format", "obj, off, ply, stl, glb or drc (default: the uploaded format)"}},
+                     [this, find](const Params& p, const HttpRequest& req) {
+                       const MeshRecord rec = find(p);
+                       const auto q = split_target(req.target).second;
+                       const auto f = q.find("format");
+                       const std::string format = f == q.end() ? rec.format : f->second;
+                       HttpResponse r;
+                       r.body = meshes_.download(rec, format);
+                       r.content_type = content_type_of("." + format);
+                       std::string stem = rec.name.substr(0, rec.name.find_last_of('.'));
+                       for (char& c : stem)
+                         if (c == '"' || c == '\\') c = '_';
+                       r.headers.push_back({"Content-Disposition", "attachment; filename=\"" + stem + "." + format + "\""});
+                       return r;
+                     }});
+  routes_.push_back({"GET", "/api/v1/openapi.json", "This API's OpenAPI 3 document", {},
+                     [this](const Params&, const HttpRequest&) { return json_response(200, openapi()); }});
+}
+
+HttpResponse Router::handle(const HttpRequest& req) const {
+  const auto [path, query] = split_target(req.target);
+  bool path_known = false;
+  for (const Route& r : routes_) {
+    std::map<std::string, std::string> params;
+    if (!match(r.pattern, path, params)) continue;
+    path_known = true;
+    if (r.method != req.method) continue;
+    try {
+      return r.handler(params, req);
+    } catch (const UnsupportedFormat& e) {
+      return error_response(400, "unsupported_format", e.what());
+    } catch (const InvalidInput& e) {
+      return error_response(400, "invalid_mesh", e.what());
+    } catch (const std::out_of_range& e) {
+      return error_response(404, "not_found", e.what());
+    } catch (const std::exception& e) {
+      return error_response(500, "internal", e.what());
+    }
+  }
+  if (path_known) return error_response(405, "method_not_allowed", req.method + " is not allowed on " + path);
+  if (path.starts_with("/api/")) return error_response(404, "not_found", "no route " + req.method + " " + path);
+  if (req.method != "GET" && req.method != "HEAD") return error_response(405, "method_not_allowed", "only GET serves files");
+  return serve_static(path);
+}
+
+HttpResponse Router::serve_static(const std::string& path) const {
+  if (config_.static_dir.empty()) return error_response(404, "not_found", "no web client is served (--static-dir)");
+  if (path.find("..") != std::string::npos || path.find('\0') != std::string::npos || path.empty() || path[0] != '/')
+    return error_response(400, "bad_request", "bad path");
+  fs::path file = config_.static_dir / path.substr(1);
+  std::error_code ec;
+  if (path == "/" || fs::is_directory(file, ec)) file /= "index.html";
+  std::ifstream f(file, std::ios::binary);
+  if (!f) return error_response(404, "not_found", "no file " + path);
+  HttpResponse r;
+  r.body.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+  r.content_type = content_type_of(file.extension().string());
+  if (path.starts_with("/assets/")) r.headers.push_back({"Cache-Control", "public, max-age=31536000, immutable"});
+  return r;
+}
+
+json Router::openapi() const {
+  json paths = json::object();
+  for (const Route& r : routes_) {
+    json op{{"summary", r.summary}, {"responses", json::object()}};
+    json params = json::array();
+    for (std::size_t p = r.pattern.find('{'); p != std::string::npos; p = r.pattern.find('{', p + 1)) {
+      const std::string name = r.pattern.substr(p + 1, r.pattern.find('}', p) - p - 1);
+      params.push_back({{"name", name}, {"in", "path"}, {"required", true}, {"schema", {{"type", "string"}}}});
+    }
+    for (const auto& [name, help] : r.query)
+      params.push_back({{"name", name}, {"in", "query"}, {"description", help}, {"schema", {{"type", "string"}}}});
+    if (!params.empty()) op["parameters"] = params;
+    const json error_ref = {{"description", "error"},
+                            {"content", {{"application/json", {{"schema", {{"$ref", "#/components/schemas/Error"}}}}}}}};
+    op["responses"]["200"] = {{"description", "success"}};
+    if (r.method == "POST") {
+      op["requestBody"] = {{"content", {{"application/octet-stream", {{"schema", {{"type", "string"}, {"format", "binary"}}}}}}}};
+      op["responses"].erase("200");
+      op["responses"]["201"] = {{"description", "created"}};
+      op["responses"]["413"] = error_ref;
+    }
+    if (r.method == "DELETE") {
+      op["responses"].erase("200");
+      op["responses"]["204"] = {{"description", "deleted"}};
+    }
+    op["responses"]["400"] = error_ref;
+    if (r.pattern.find('{') != std::string::npos) op["responses"]["404"] = error_ref;
+    std::string method = r.method;
+    for (char& c : method) c = char(std::tolower(static_cast<unsigned char>(c)));
+    paths[r.pattern][method] = op;
+  }
+  paths["/api/v1/ws"]["get"] = {{"summary", "WebSocket: JSON requests and events, binary mesh frames (protocol/API.md)"},
+                                {"responses", {{"101", {{"description", "switching protocols"}}}}}};
+  json error_schema = {{"type", "object"},
+                       {"properties", {{"error", {{"type", "string"}}}, {"detail", {{"type", "string"}}}}},
+                       {"required", {"error", "detail"}}};
+  json doc;
+  doc["openapi"] = "3.0.3";
+  doc["info"] = {{"title", "CGView API"}, {"version", config_.version}};
+  doc["paths"] = paths;
+  doc["components"]["schemas"]["Error"] = error_schema;
+  return doc;
+}
+
+}  // namespace cgview::server

@@ -1,0 +1,68 @@
+// The HTTP router: a request in, a response out, no sockets (Beast's
+// advanced_server handle_request).  Tests call it directly; the HTTP session
+// calls it on a worker thread.  Every route is declared once in a table,
+// from which the OpenAPI document is generated.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mesh_service.h"
+
+namespace cgview::server {
+
+struct HttpRequest {
+  std::string method;  // "GET"
+  std::string target;  // "/api/v1/meshes?name=x.off"
+  std::string body;
+};
+
+struct HttpResponse {
+  int status = 200;
+  std::string content_type = "application/json";
+  std::string body;
+  std::vector<std::pair<std::string, std::string>> headers;
+};
+
+// An error response: {"error": code, "detail": detail}.
+HttpResponse error_response(int status, const std::string& code, const std::string& detail);
+
+struct RouterConfig {
+  std::filesystem::path static_dir;  // the built web client; empty: none
+  std::string version = "0.1.0";
+};
+
+class Router {
+ public:
+  struct Route {
+    std::string method, pattern;  // "/api/v1/meshes/{id}"
+    std::string summary;
+    std::vector<std::pair<std::string, std::string>> query;  // name, description
+    std::function<HttpResponse(const std::map<std::string, std::string>& params, const HttpRequest&)> handler;
+  };
+
+  Router(MeshService& meshes, RouterConfig config);
+  HttpResponse handle(const HttpRequest& request) const;
+  const std::vector<Route>& routes() const { return routes_; }
+  // The OpenAPI 3 document of every route.
+  nlohmann::json openapi() const;
+  // Called with each event for WebSocket clients (mesh_added, mesh_deleted).
+  std::function<void(const nlohmann::json&)> on_event;
+
+ private:
+  HttpResponse serve_static(const std::string& path) const;
+  MeshService& meshes_;
+  RouterConfig config_;
+  std::vector<Route> routes_;
+  std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
+};
+
+// Splits "/a/b?x=1&y=%20" into its path and decoded query parameters.
+std::pair<std::string, std::map<std::string, std::string>> split_target(const std::string& target);
+
+}  // namespace cgview::server

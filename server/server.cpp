@@ -1,0 +1,340 @@
+#include "server.h"
+
+#include <utility>  // Boost 1.74's asio/awaitable.hpp uses std::exchange without it
+
+#include <boost/asio.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
+
+#include <deque>
+#include <iostream>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <thread>
+#include <unordered_map>
+
+#include "core/errors.h"
+#include "frames.h"
+#include "mesh_service.h"
+#include "router.h"
+#include "store.h"
+
+namespace cgview::server {
+
+namespace net = boost::asio;
+namespace beast = boost::beast;
+namespace http = beast::http;
+namespace websocket = beast::websocket;
+using tcp = net::ip::tcp;
+using nlohmann::json;
+
+namespace {
+
+class WebSocketSession;
+
+// What every session shares.
+struct Shared {
+  explicit Shared(const ServerConfig& c)
+      : config(c), store(c.data_dir), meshes(store), router(meshes, {c.static_dir, "0.1.0"}), workers(std::size_t(std::max(1, c.workers))) {}
+  ServerConfig config;
+  Store store;
+  MeshService meshes;
+  Router router;
+  net::thread_pool workers;
+  std::mutex sessions_mutex;
+  std::unordered_map<WebSocketSession*, std::weak_ptr<WebSocketSession>> sessions;
+  void broadcast(const json& event);
+};
+
+// A message queued for a WebSocket: text, or a binary frame header followed
+// by a view into a shared payload (the cached Draco bytes are never copied).
+struct Outgoing {
+  std::string head;
+  std::shared_ptr<const void> keep;
+  std::string_view body;
+  bool binary = false;
+  std::size_t size() const { return head.size() + body.size(); }
+};
+
+class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
+ public:
+  WebSocketSession(tcp::socket&& socket, std::shared_ptr<Shared> shared)
+      : ws_(std::move(socket)), shared_(std::move(shared)) {}
+  ~WebSocketSession() {
+    std::lock_guard lock(shared_->sessions_mutex);
+    shared_->sessions.erase(this);
+  }
+
+  void run(http::request<http::string_body> req) {
+    ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
+    ws_.read_message_max(shared_->config.max_ws_message_bytes);
+    ws_.async_accept(req, beast::bind_front_handler(&WebSocketSession::on_accept, shared_from_this()));
+  }
+
+  // Thread-safe: queues a message on this session's strand.
+  void send(Outgoing out) {
+    net::post(ws_.get_executor(), [self = shared_from_this(), out = std::move(out)]() mutable { self->enqueue(std::move(out)); });
+  }
+  void send_json(const json& j) { send({j.dump(), nullptr, {}, false}); }
+
+ private:
+  void on_accept(beast::error_code ec) {
+    if (ec) return;
+    {
+      std::lock_guard lock(shared_->sessions_mutex);
+      shared_->sessions[this] = weak_from_this();
+    }
+    do_read();
+  }
+
+  void do_read() {
+    ws_.async_read(buffer_, beast::bind_front_handler(&WebSocketSession::on_read, shared_from_this()));
+  }
+
+  void on_read(beast::error_code ec, std::size_t) {
+    if (ec == websocket::error::message_too_big) {
+      send_json({{"type", "error"}, {"request_id", nullptr}, {"error", "payload_too_large"},
+                 {"detail", "messages to the server are limited to " + std::to_string(shared_->config.max_ws_message_bytes) + " bytes"}});
+      return;  // Beast closes the stream after this error
+    }
+    if (ec) return;  // closed, timed out or broken: the session ends
+    const bool binary = ws_.got_binary();
+    const std::string text = beast::buffers_to_string(buffer_.data());
+    buffer_.consume(buffer_.size());
+    if (binary) error(nullptr, "bad_request", "binary messages are not accepted; send JSON text");
+    else handle(text);
+    do_read();
+  }
+
+  void error(const json& request_id, const std::string& code, const std::string& detail) {
+    send_json({{"type", "error"}, {"request_id", request_id}, {"error", code}, {"detail", detail}});
+  }
+
+  void handle(const std::string& text) {
+    json msg;
+    try {
+      msg = json::parse(text);
+    } catch (const json::exception&) {
+      return error(nullptr, "bad_request", "the message is not JSON");
+    }
+    if (!msg.is_object()) return error(nullptr, "bad_request", "the message must be a JSON object");
+    json id = msg.contains("request_id") ? msg["request_id"] : json(nullptr);
+    if (!id.is_null() && !id.is_number_unsigned()) return error(nullptr, "bad_request", "request_id must be a non-negative integer");
+    if (!msg.contains("type") || !msg["type"].is_string()) return error(id, "bad_request", "the message has no \"type\"");
+    const std::string type = msg["type"];
+    if (type == "ping") return send_json({{"type", "pong"}, {"request_id", id}});
+    if (type == "list_meshes" || type == "get_mesh") {
+      net::post(shared_->workers, [self = shared_from_this(), msg = std::move(msg), id, type] { self->work(type, msg, id); });
+      return;
+    }
+    error(id, "bad_request", "unknown message type '" + type + "'");
+  }
+
+  // On a worker thread.
+  void work(const std::string& type, const json& msg, const json& id) {
+    try {
+      if (type == "list_meshes") {
+        json list = json::array();
+        for (const auto& r : shared_->store.list_meshes()) list.push_back(mesh_json(r));
+        return send_json({{"type", "meshes"}, {"request_id", id}, {"meshes", list}});
+      }
+      if (id.is_null()) return error(id, "bad_request", "get_mesh needs a request_id");
+      if (!msg.contains("mesh_id") || !msg["mesh_id"].is_string()) return error(id, "bad_request", "get_mesh needs a \"mesh_id\" string");
+      int bits = 14;
+      if (msg.contains("quantization")) {
+        if (!msg["quantization"].is_number_integer()) return error(id, "bad_request", "quantization must be an integer 1..30");
+        bits = msg["quantization"];
+      }
+      const auto rec = shared_->store.get_mesh(msg["mesh_id"]);
+      if (!rec) return error(id, "not_found", "no mesh with id '" + msg["mesh_id"].get<std::string>() + "'");
+      const std::shared_ptr<const EncodedMesh> enc = shared_->meshes.draco(*rec, bits);
+      const std::uint32_t rid = std::uint32_t(id.get<std::uint64_t>());
+      const std::size_t chunk = shared_->config.chunk_bytes;
+      const std::size_t total = enc->bytes.size();
+      const std::size_t count = total == 0 ? 1 : (total + chunk - 1) / chunk;
+      send_json({{"type", "mesh_begin"}, {"request_id", id}, {"mesh_id", rec->id}, {"encoding", "draco"},
+                 {"bytes", total}, {"chunks", count}, {"vertices", enc->vertices}, {"faces", enc->faces},
+                 {"has_normals", enc->has_normals}, {"has_colors", enc->has_colors}});
+      for (std::size_t i = 0; i < count; ++i) {
+        const std::string_view part = std::string_view(enc->bytes).substr(i * chunk, chunk);
+        send({protocol::encode_frame_header({protocol::FrameKind::draco_mesh, rid, std::uint32_t(i), std::uint32_t(count), total}),
+              enc, part, true});
+      }
+      send_json({{"type", "mesh_end"}, {"request_id", id}});
+    } catch (const InvalidInput& e) {
+      error(id, "bad_request", e.what());
+    } catch (const std::exception& e) {
+      error(id, "internal", e.what());
+    }
+  }
+
+  void enqueue(Outgoing out) {
+    if (closing_) return;
+    if (queued_bytes_ + out.size() > shared_->config.max_write_queue_bytes) {
+      // A client that does not read is dropped rather than left to grow memory.
+      closing_ = true;
+      ws_.async_close(websocket::close_code::policy_error, [self = shared_from_this()](beast::error_code) {});
+      return;
+    }
+    queued_bytes_ += out.size();
+    queue_.push_back(std::move(out));
+    if (queue_.size() == 1) do_write();
+  }
+
+  void do_write() {
+    const Outgoing& out = queue_.front();
+    ws_.binary(out.binary);
+    const std::array<net::const_buffer, 2> buffers{net::buffer(out.head), net::buffer(out.body.data(), out.body.size())};
+    ws_.async_write(buffers, beast::bind_front_handler(&WebSocketSession::on_write, shared_from_this()));
+  }
+
+  void on_write(beast::error_code ec, std::size_t) {
+    if (ec) {
+      queue_.clear();
+      queued_bytes_ = 0;
+      return;
+    }
+    queued_bytes_ -= queue_.front().size();
+    queue_.pop_front();
+    if (!queue_.empty()) do_write();
+  }
+
+  websocket::stream<beast::tcp_stream> ws_;
+  beast::flat_buffer buffer_;
+  std::shared_ptr<Shared> shared_;
+  std::deque<Outgoing> queue_;
+  std::size_t queued_bytes_ = 0;
+  bool closing_ = false;
+};
+
+void Shared::broadcast(const json& event) {
+  std::vector<std::shared_ptr<WebSocketSession>> live;
+  {
+    std::lock_guard lock(sessions_mutex);
+    for (auto& [p, w] : sessions)
+      if (auto s = w.lock()) live.push_back(std::move(s));
+  }
+  for (auto& s : live) s->send_json(event);
+}
+
+class HttpSession : public std::enable_shared_from_this<HttpSession> {
+ public:
+  HttpSession(tcp::socket&& socket, std::shared_ptr<Shared> shared) : stream_(std::move(socket)), shared_(std::move(shared)) {}
+  void run() { net::dispatch(stream_.get_executor(), beast::bind_front_handler(&HttpSession::do_read, shared_from_this())); }
+
+ private:
+  void do_read() {
+    parser_.emplace();
+    parser_->body_limit(shared_->config.max_upload_bytes);
+    parser_->header_limit(64 * 1024);
+    stream_.expires_after(std::chrono::seconds(60));
+    http::async_read(stream_, buffer_, *parser_, beast::bind_front_handler(&HttpSession::on_read, shared_from_this()));
+  }
+
+  void on_read(beast::error_code ec, std::size_t) {
+    if (ec == http::error::end_of_stream) return close();
+    if (ec == http::error::body_limit) {
+      return write(error_response(413, "payload_too_large",
+                                  "the body is over the limit of " + std::to_string(shared_->config.max_upload_bytes) + " bytes"),
+                   false);
+    }
+    if (ec == beast::error::timeout || ec == net::error::operation_aborted || ec == net::error::connection_reset ||
+        ec == net::error::eof)
+      return;
+    if (ec) return write(error_response(400, "bad_request", "malformed HTTP request: " + ec.message()), false);
+
+    http::request<http::string_body>& req = parser_->get();
+    if (websocket::is_upgrade(req)) {
+      if (split_target(std::string(req.target())).first != "/api/v1/ws")
+        return write(error_response(404, "not_found", "WebSockets are served at /api/v1/ws"), false);
+      stream_.expires_never();
+      std::make_shared<WebSocketSession>(stream_.release_socket(), shared_)->run(parser_->release());
+      return;
+    }
+    keep_alive_ = req.keep_alive();
+    HttpRequest r{std::string(req.method_string()), std::string(req.target()), std::move(req.body())};
+    const bool head = r.method == "HEAD";
+    if (head) r.method = "GET";
+    // The router runs on a worker; its response comes back on this strand.
+    net::post(shared_->workers, [self = shared_from_this(), r = std::move(r), head]() mutable {
+      HttpResponse res = self->shared_->router.handle(r);
+      if (head) res.body.clear();
+      net::post(self->stream_.get_executor(), [self, res = std::move(res)]() mutable { self->write(std::move(res), self->keep_alive_); });
+    });
+  }
+
+  void write(HttpResponse r, bool keep_alive) {
+    auto res = std::make_shared<http::response<http::string_body>>(http::status(r.status), 11);
+    res->set(http::field::server, "cgview");
+    if (!r.content_type.empty()) res->set(http::field::content_type, r.content_type);
+    for (const auto& [k, v] : r.headers) res->set(k, v);
+    res->body() = std::move(r.body);
+    res->keep_alive(keep_alive);
+    res->prepare_payload();
+    stream_.expires_after(std::chrono::seconds(120));
+    http::async_write(stream_, *res, [self = shared_from_this(), res](beast::error_code ec, std::size_t) {
+      if (ec) return;
+      if (!res->keep_alive()) return self->close();
+      self->do_read();
+    });
+  }
+
+  void close() {
+    beast::error_code ec;
+    stream_.socket().shutdown(tcp::socket::shutdown_send, ec);
+  }
+
+  beast::tcp_stream stream_;
+  beast::flat_buffer buffer_;
+  std::shared_ptr<Shared> shared_;
+  std::optional<http::request_parser<http::string_body>> parser_;
+  bool keep_alive_ = true;
+};
+
+}  // namespace
+
+struct Server::Impl {
+  explicit Impl(const ServerConfig& c) : shared(std::make_shared<Shared>(c)), acceptor(ioc) {
+    shared->router.on_event = [s = shared.get()](const json& e) { s->broadcast(e); };
+    const tcp::endpoint ep(net::ip::make_address(c.host), c.port);
+    acceptor.open(ep.protocol());
+    acceptor.set_option(net::socket_base::reuse_address(true));
+    acceptor.bind(ep);
+    acceptor.listen(net::socket_base::max_listen_connections);
+  }
+  void accept() {
+    acceptor.async_accept(net::make_strand(ioc), [this](beast::error_code ec, tcp::socket socket) {
+      if (!ec) std::make_shared<HttpSession>(std::move(socket), shared)->run();
+      if (acceptor.is_open()) accept();
+    });
+  }
+  net::io_context ioc{1};
+  std::shared_ptr<Shared> shared;
+  tcp::acceptor acceptor;
+};
+
+Server::Server(const ServerConfig& config) : impl_(std::make_unique<Impl>(config)) {}
+Server::~Server() {
+  stop();
+  impl_->shared->workers.join();
+}
+unsigned short Server::port() const { return impl_->acceptor.local_endpoint().port(); }
+MeshService& Server::meshes() { return impl_->shared->meshes; }
+
+void Server::run() {
+  net::signal_set signals(impl_->ioc, SIGINT, SIGTERM);
+  signals.async_wait([this](beast::error_code, int) { stop(); });
+  impl_->accept();
+  impl_->ioc.run();
+}
+
+void Server::stop() {
+  net::post(impl_->ioc, [this] {
+    beast::error_code ec;
+    impl_->acceptor.close(ec);
+    impl_->ioc.stop();
+  });
+}
+
+}  // namespace cgview::server

@@ -1,0 +1,226 @@
+#include "store.h"
+
+#include <openssl/evp.h>
+#include <sqlite3.h>
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <random>
+
+#include "core/errors.h"
+
+namespace cgview::server {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A prepared statement, finalized on scope exit.
+class Stmt {
+ public:
+  Stmt(sqlite3* db, const char* sql) : db_(db) {
+    if (sqlite3_prepare_v2(db, sql, -1, &s_, nullptr) != SQLITE_OK)
+      throw IoError(std::string("store: cannot prepare a query: ") + sqlite3_errmsg(db));
+  }
+  ~Stmt() { sqlite3_finalize(s_); }
+  Stmt& bind(int i, const std::string& v) {
+    sqlite3_bind_text(s_, i, v.data(), int(v.size()), SQLITE_TRANSIENT);
+    return *this;
+  }
+  Stmt& bind(int i, std::int64_t v) {
+    sqlite3_bind_int64(s_, i, v);
+    return *this;
+  }
+  bool step() {
+    const int rc = sqlite3_step(s_);
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    throw IoError(std::string("store: ") + sqlite3_errmsg(db_));
+  }
+  std::string text(int col) const {
+    const auto* p = sqlite3_column_text(s_, col);
+    return p ? std::string(reinterpret_cast<const char*>(p), std::size_t(sqlite3_column_bytes(s_, col))) : std::string();
+  }
+  std::int64_t integer(int col) const { return sqlite3_column_int64(s_, col); }
+
+ private:
+  sqlite3* db_;
+  sqlite3_stmt* s_ = nullptr;
+};
+
+void exec(sqlite3* db, const char* sql) {
+  char* err = nullptr;
+  if (sqlite3_exec(db, sql, nullptr, nullptr, &err) != SQLITE_OK) {
+    std::string msg = err ? err : "unknown error";
+    sqlite3_free(err);
+    throw IoError("store: " + msg);
+  }
+}
+
+constexpr const char* kColumns = "id, name, format, bytes, sha256, created, report, warnings";
+
+MeshRecord row(const Stmt& s) {
+  return {s.text(0), s.text(1), s.text(2), std::uint64_t(s.integer(3)), s.text(4), s.text(5), s.text(6), s.text(7)};
+}
+
+std::string new_id() {
+  static std::mutex m;
+  static std::mt19937_64 rng{std::random_device{}()};
+  std::lock_guard lock(m);
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(rng()));
+  return buf;
+}
+
+std::string now_iso8601() {
+  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+bool safe_ext(const std::string& f) {
+  if (f.empty() || f.size() > 8) return false;
+  for (char c : f)
+    if (!std::isalnum(static_cast<unsigned char>(c))) return false;
+  return true;
+}
+
+}  // namespace
+
+std::string sha256_hex(std::string_view bytes) {
+  unsigned char md[EVP_MAX_MD_SIZE];
+  unsigned int n = 0;
+  if (!EVP_Digest(bytes.data(), bytes.size(), md, &n, EVP_sha256(), nullptr)) throw Error("SHA-256 failed");
+  static const char* hex = "0123456789abcdef";
+  std::string out;
+  out.reserve(2 * n);
+  for (unsigned i = 0; i < n; ++i) {
+    out.push_back(hex[md[i] >> 4]);
+    out.push_back(hex[md[i] & 15]);
+  }
+  return out;
+}
+
+Store::Store(const fs::path& data_dir) : dir_(data_dir) {
+  std::error_code ec;
+  fs::create_directories(dir_ / "blobs", ec);
+  if (ec) throw IoError(dir_.string() + ": cannot create the data directory: " + ec.message());
+  const fs::path db = dir_ / "cgview.db";
+  if (sqlite3_open_v2(db.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX, nullptr) !=
+      SQLITE_OK) {
+    std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    throw IoError(db.string() + ": cannot open: " + msg);
+  }
+  sqlite3_busy_timeout(db_, 5000);
+  exec(db_, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL; PRAGMA foreign_keys=ON;");
+  exec(db_,
+       "CREATE TABLE IF NOT EXISTS meshes ("
+       " id TEXT PRIMARY KEY, name TEXT NOT NULL, format TEXT NOT NULL, bytes INTEGER NOT NULL,"
+       " sha256 TEXT NOT NULL, created TEXT NOT NULL, report TEXT NOT NULL, warnings TEXT NOT NULL,"
+       " seq INTEGER);"
+       "CREATE INDEX IF NOT EXISTS meshes_sha ON meshes(sha256);");
+  // Blobs left by a crash between file write and row insert are orphans.
+  for (const auto& e : fs::directory_iterator(dir_ / "blobs", ec))
+    if (e.path().extension() == ".part") fs::remove(e.path(), ec);
+}
+
+Store::~Store() { sqlite3_close(db_); }
+
+fs::path Store::blob_path(const MeshRecord& r) const { return dir_ / "blobs" / (r.id + "." + r.format); }
+
+MeshRecord Store::add_mesh(MeshRecord r, std::string_view bytes) {
+  if (!safe_ext(r.format)) throw InvalidInput("bad format name '" + r.format + "'");
+  r.id = new_id();
+  r.created = now_iso8601();
+  r.bytes = bytes.size();
+  const fs::path final_path = blob_path(r), tmp = final_path.string() + ".part";
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    f.write(bytes.data(), std::streamsize(bytes.size()));
+    f.flush();
+    if (!f) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw IoError("store: cannot write " + tmp.string());
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, final_path, ec);
+  if (ec) throw IoError("store: cannot write " + final_path.string() + ": " + ec.message());
+  std::lock_guard lock(mutex_);
+  try {
+    Stmt s(db_,
+           "INSERT INTO meshes (id, name, format, bytes, sha256, created, report, warnings, seq)"
+           " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, (SELECT IFNULL(MAX(seq), 0) + 1 FROM meshes))");
+    s.bind(1, r.id).bind(2, r.name).bind(3, r.format).bind(4, std::int64_t(r.bytes)).bind(5, r.sha256);
+    s.bind(6, r.created).bind(7, r.report_json).bind(8, r.warnings_json);
+    s.step();
+  } catch (...) {
+    fs::remove(final_path, ec);
+    throw;
+  }
+  return r;
+}
+
+std::vector<MeshRecord> Store::list_meshes() const {
+  std::lock_guard lock(mutex_);
+  Stmt s(db_, (std::string("SELECT ") + kColumns + " FROM meshes ORDER BY seq").c_str());
+  std::vector<MeshRecord> out;
+  while (s.step()) out.push_back(row(s));
+  return out;
+}
+
+std::optional<MeshRecord> Store::get_mesh(const std::string& id) const {
+  std::lock_guard lock(mutex_);
+  Stmt s(db_, (std::string("SELECT ") + kColumns + " FROM meshes WHERE id = ?1").c_str());
+  s.bind(1, id);
+  if (!s.step()) return std::nullopt;
+  return row(s);
+}
+
+std::optional<MeshRecord> Store::find_by_sha256(const std::string& sha) const {
+  std::lock_guard lock(mutex_);
+  Stmt s(db_, (std::string("SELECT ") + kColumns + " FROM meshes WHERE sha256 = ?1 ORDER BY seq LIMIT 1").c_str());
+  s.bind(1, sha);
+  if (!s.step()) return std::nullopt;
+  return row(s);
+}
+
+bool Store::remove_mesh(const std::string& id) {
+  std::optional<MeshRecord> r = get_mesh(id);
+  if (!r) return false;
+  {
+    std::lock_guard lock(mutex_);
+    Stmt s(db_, "DELETE FROM meshes WHERE id = ?1");
+    s.bind(1, id);
+    s.step();
+    if (sqlite3_changes(db_) == 0) return false;
+  }
+  std::error_code ec;
+  fs::remove(blob_path(*r), ec);
+  return true;
+}
+
+std::string Store::read_blob(const MeshRecord& r) const {
+  std::ifstream f(blob_path(r), std::ios::binary);
+  if (!f) throw IoError("store: the file of mesh " + r.id + " is missing");
+  std::string bytes(r.bytes, '\0');
+  f.read(bytes.data(), std::streamsize(bytes.size()));
+  if (std::uint64_t(f.gcount()) != r.bytes) throw IoError("store: the file of mesh " + r.id + " is truncated");
+  return bytes;
+}
+
+std::size_t Store::count() const {
+  std::lock_guard lock(mutex_);
+  Stmt s(db_, "SELECT COUNT(*) FROM meshes");
+  s.step();
+  return std::size_t(s.integer(0));
+}
+
+}  // namespace cgview::server

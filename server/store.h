@@ -1,0 +1,64 @@
+// The server's store: mesh metadata in SQLite, mesh files as blobs on disk,
+// both under one data directory:
+//   DATA/cgview.db            SQLite (WAL): one row per mesh
+//   DATA/blobs/ID.EXT         the uploaded bytes, as uploaded
+// A blob is written (to a temporary name, then renamed) before its row is
+// committed, and removed after its row is deleted, so a crash at any point
+// leaves no row without its file.  Thread-safe.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+struct sqlite3;
+
+namespace cgview::server {
+
+struct MeshRecord {
+  std::string id;       // 16 hex digits
+  std::string name;     // as uploaded ("elephant.off")
+  std::string format;   // "off", "ply", ...
+  std::uint64_t bytes = 0;
+  std::string sha256;   // of the uploaded bytes
+  std::string created;  // ISO 8601 UTC
+  std::string report_json;    // protocol::to_json(MeshReport), serialized
+  std::string warnings_json;  // JSON array of strings
+};
+
+class Store {
+ public:
+  // Opens (creating if needed) the store in data_dir; throws IoError.
+  explicit Store(const std::filesystem::path& data_dir);
+  ~Store();
+  Store(const Store&) = delete;
+  Store& operator=(const Store&) = delete;
+
+  // Saves the bytes and the record; assigns id and created.
+  MeshRecord add_mesh(MeshRecord record, std::string_view bytes);
+  std::vector<MeshRecord> list_meshes() const;
+  std::optional<MeshRecord> get_mesh(const std::string& id) const;
+  std::optional<MeshRecord> find_by_sha256(const std::string& sha256) const;
+  // False when there was no such mesh.
+  bool remove_mesh(const std::string& id);
+  // The uploaded bytes of a mesh; throws IoError when the blob is missing.
+  std::string read_blob(const MeshRecord& record) const;
+  std::size_t count() const;
+  const std::filesystem::path& data_dir() const { return dir_; }
+
+ private:
+  std::filesystem::path blob_path(const MeshRecord& r) const;
+  std::filesystem::path dir_;
+  sqlite3* db_ = nullptr;
+  mutable std::mutex mutex_;
+};
+
+// Lowercase hex SHA-256 of bytes.
+std::string sha256_hex(std::string_view bytes);
+
+}  // namespace cgview::server
