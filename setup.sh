@@ -24,7 +24,7 @@ APT_PACKAGES=(
   libboost-dev libboost-system-dev nlohmann-json3-dev libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev
   libdraco-dev draco libtinygltf-dev
   libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
-  libsqlite3-dev
+  libsqlite3-dev libssl-dev zlib1g-dev
   libgtest-dev libgmock-dev
   libcgal-demo assimp-testmodels assimp-utils
   chromium wrk

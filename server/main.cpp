@@ -22,6 +22,7 @@ const char* kHelp =
     "  --samples SET        sample meshes to load at start: default, all or none (default: default)\n"
     "  --max-upload-mb N    largest accepted upload (default 256)\n"
     "  --workers N          worker threads for geometry (default 2)\n"
+    "  --ws-chunk-kb N      largest binary WebSocket chunk (default 4096)\n"
     "  -h, --help           this help\n";
 
 // A few sample meshes of different kinds (the whole set is 143 files).
@@ -66,6 +67,7 @@ int main(int argc, char** argv) {
           throw std::invalid_argument("--samples is default, all or none");
       } else if (a == "--max-upload-mb") config.max_upload_bytes = std::size_t(number(1, 1 << 20)) << 20;
       else if (a == "--workers") config.workers = int(number(1, 256));
+      else if (a == "--ws-chunk-kb") config.chunk_bytes = std::size_t(number(1, 16 * 1024 - 1)) << 10;
       else throw std::invalid_argument("unknown option " + a);
     }
   } catch (const std::exception& e) {

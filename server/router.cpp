@@ -115,7 +115,8 @@ Router::Router(MeshService& meshes, RouterConfig config) : meshes_(meshes), conf
                        const double up = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
                        return json_response(200, {{"status", "ok"}, {"version", config_.version},
                                                   {"meshes", meshes_.store().count()}, {"uptime_s", up}});
-                     }});
+                     },
+                     false});
   routes_.push_back({"GET", "/api/v1/meshes", "List the stored meshes with their reports", {},
                      [this](const Params&, const HttpRequest&) {
                        json list = json::array();
@@ -138,7 +139,8 @@ Router::Router(MeshService& meshes, RouterConfig config) : meshes_(meshes), conf
                        return r;
                      }});
   routes_.push_back({"GET", "/api/v1/meshes/{id}", "One mesh's metadata and report", {},
-                     [find](const Params& p, const HttpRequest&) { return json_response(200, mesh_json(find(p))); }});
+                     [find](const Params& p, const HttpRequest&) { return json_response(200, mesh_json(find(p))); },
+                     false});
   routes_.push_back({"DELETE", "/api/v1/meshes/{id}", "Delete a mesh", {},
                      [this, find](const Params& p, const HttpRequest&) {
                        const MeshRecord rec = find(p);
@@ -166,7 +168,16 @@ Router::Router(MeshService& meshes, RouterConfig config) : meshes_(meshes), conf
                        return r;
                      }});
   routes_.push_back({"GET", "/api/v1/openapi.json", "This API's OpenAPI 3 document", {},
-                     [this](const Params&, const HttpRequest&) { return json_response(200, openapi()); }});
+                     [this](const Params&, const HttpRequest&) { return json_response(200, openapi()); },
+                     false});
+}
+
+bool Router::is_heavy(const HttpRequest& req) const {
+  const std::string path = split_target(req.target).first;
+  std::map<std::string, std::string> params;
+  for (const Route& r : routes_)
+    if (r.method == req.method && match(r.pattern, path, params)) return r.heavy;
+  return true;
 }
 
 HttpResponse Router::handle(const HttpRequest& req) const {

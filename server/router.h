@@ -44,10 +44,15 @@ class Router {
     std::string summary;
     std::vector<std::pair<std::string, std::string>> query;  // name, description
     std::function<HttpResponse(const std::map<std::string, std::string>& params, const HttpRequest&)> handler;
+    // Heavy routes (parsing, encoding, file I/O) run on a worker; light ones
+    // (a lookup, a small JSON) may run on the I/O thread, saving two hops.
+    bool heavy = true;
   };
 
   Router(MeshService& meshes, RouterConfig config);
   HttpResponse handle(const HttpRequest& request) const;
+  // True unless the request matches a light route.
+  bool is_heavy(const HttpRequest& request) const;
   const std::vector<Route>& routes() const { return routes_; }
   // The OpenAPI 3 document of every route.
   nlohmann::json openapi() const;

@@ -256,7 +256,12 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     HttpRequest r{std::string(req.method_string()), std::string(req.target()), std::move(req.body())};
     const bool head = r.method == "HEAD";
     if (head) r.method = "GET";
-    // The router runs on a worker; its response comes back on this strand.
+    if (!shared_->router.is_heavy(r)) {
+      HttpResponse res = shared_->router.handle(r);
+      if (head) res.body.clear();
+      return write(std::move(res), keep_alive_);
+    }
+    // Heavy routes run on a worker; the response comes back on this strand.
     net::post(shared_->workers, [self = shared_from_this(), r = std::move(r), head]() mutable {
       HttpResponse res = self->shared_->router.handle(r);
       if (head) res.body.clear();
