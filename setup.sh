@@ -3,7 +3,8 @@
 # what is missing (Debian and npm packages), builds in Release into build/,
 # then does its job.
 #
-#   ./setup.sh start   install, build, and run CGView on the sample meshes
+#   ./setup.sh start   install, build, and serve the viewer with the sample meshes
+#                      (http://127.0.0.1:8080/; CGVIEW_PORT, CGVIEW_DATA change port and data dir)
 #   ./setup.sh test    install, build, and run every test
 #   ./setup.sh build   install and build only
 #
@@ -64,8 +65,17 @@ check_tools() {
 }
 
 install_npm_packages() {
+  if [ -d "$ROOT/web-client/node_modules" ] && [ "$ROOT/web-client/node_modules/.package-lock.json" -nt "$ROOT/web-client/package-lock.json" ]; then
+    say "npm packages for web-client/: present"
+    return
+  fi
   say "npm packages for web-client/ (npm ci)"
   (cd "$ROOT/web-client" && npm ci --no-audit --no-fund --loglevel=error) || die "npm could not install web-client's packages"
+}
+
+build_web_client() {
+  say "Building the web client (TypeScript, Vite) into web-client/dist"
+  (cd "$ROOT/web-client" && npm run --silent build) || die "the web client's build failed"
 }
 
 build() {
@@ -78,20 +88,15 @@ setup() {
   install_debian_packages
   check_tools
   install_npm_packages
+  build_web_client
   build
 }
 
 start() {
-  local cli="$BUILD_DIR/bin/cgview"
-  say "CGView is built: $cli"
-  "$cli" samples | sed -n 1p
-  say "cgview info elephant (a sample mesh, by name)"
-  "$cli" info elephant
-  say "cgview convert elephant elephant.drc, then the Draco file's report"
-  local out="$BUILD_DIR/elephant.drc"
-  "$cli" convert elephant "$out"
-  "$cli" info "$out" | sed -n '1,4p'
-  say "Done. Try: $cli --help"
+  local port=${CGVIEW_PORT:-8080} data=${CGVIEW_DATA:-$ROOT/cgview-data}
+  say "Starting cgview-server with the sample meshes: open http://127.0.0.1:$port/ (Ctrl-C stops it)"
+  exec "$BUILD_DIR/bin/cgview-server" --host 127.0.0.1 --port "$port" --data-dir "$data" \
+    --static-dir "$ROOT/web-client/dist" --samples default
 }
 
 run_tests() {
