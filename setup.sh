@@ -61,6 +61,9 @@ check_tools() {
   for t in cmake ninja g++ ccache node npm draco_decoder assimp; do
     command -v "$t" >/dev/null || die "'$t' is missing after the install (see the apt-get output above)"
   done
+  local node_major
+  node_major=$(node -p 'process.versions.node.split(".")[0]')
+  [ "$node_major" -ge 20 ] || die "Node.js $(node --version) is too old: Vite 8 needs Node 20.19 or newer (install Node 20, e.g. from NodeSource's Debian packages, then re-run)"
   [ -f /usr/share/doc/libcgal-dev/data.tar.gz ] || die "CGAL's sample data is missing: the Debian package libcgal-demo did not install it"
 }
 

@@ -1,0 +1,293 @@
+// The WebSocket half of protocol/API.md (`/api/v1/ws`): JSON requests with a
+// client-chosen request_id, get_mesh answered by mesh_begin, K binary chunk
+// frames and mesh_end, and the server's mesh_added / mesh_deleted events.
+// Reconnects by itself; requests in flight when the connection drops fail.
+import { ChunkAssembler, FrameError, FrameKind, decodeFrame } from './frames.ts';
+import type { Mesh, MeshBegin, ServerEvent } from './types.ts';
+
+/** An `{"type":"error"}` answer: the server's code and detail. */
+export class ServerError extends Error {
+  readonly code: string;
+  readonly detail: string;
+
+  constructor(code: string, detail: string) {
+    super(detail ? `${detail} (${code})` : code);
+    this.name = 'ServerError';
+    this.code = code;
+    this.detail = detail;
+  }
+}
+
+export interface MeshTransfer {
+  begin: MeshBegin;
+  /** The whole Draco bitstream, chunks joined in order. */
+  payload: Uint8Array;
+}
+
+export interface GetMeshOptions {
+  /** Position quantization bits, 1..30 (the server's default is 14). */
+  quantization?: number;
+  /** Called as chunks arrive: payload bytes received so far and the total. */
+  onProgress?: (received: number, total: number) => void;
+  /** Aborting forgets the request; chunks still arriving for it are dropped. */
+  signal?: AbortSignal;
+}
+
+type Pending =
+  | { kind: 'reply'; expect: string; resolve: (msg: Record<string, unknown>) => void; reject: (e: Error) => void }
+  | {
+      kind: 'mesh';
+      begin: MeshBegin | null;
+      assembler: ChunkAssembler;
+      options: GetMeshOptions;
+      resolve: (t: MeshTransfer) => void;
+      reject: (e: Error) => void;
+    };
+
+type EventHandler = (event: ServerEvent) => void;
+type StatusHandler = (connected: boolean) => void;
+
+export function defaultSocketUrl(): string {
+  const scheme = location.protocol === 'https:' ? 'wss:' : 'ws:';
+  return `${scheme}//${location.host}/api/v1/ws`;
+}
+
+export class CgviewSocket {
+  private readonly url: string;
+  private socket: WebSocket | null = null;
+  private opened: Promise<void> | null = null;
+  private nextId = 1;
+  private readonly pending = new Map<number, Pending>();
+  private readonly eventHandlers = new Set<EventHandler>();
+  private readonly statusHandlers = new Set<StatusHandler>();
+  private retryMs = 500;
+  private closedByUser = false;
+
+  constructor(url: string = defaultSocketUrl()) {
+    this.url = url;
+  }
+
+  /** mesh_added / mesh_deleted events. Returns a function that unsubscribes. */
+  onEvent(handler: EventHandler): () => void {
+    this.eventHandlers.add(handler);
+    return () => this.eventHandlers.delete(handler);
+  }
+
+  /** Connection state changes (true on every (re)connect). */
+  onStatus(handler: StatusHandler): () => void {
+    this.statusHandlers.add(handler);
+    return () => this.statusHandlers.delete(handler);
+  }
+
+  get connected(): boolean {
+    return this.socket !== null && this.socket.readyState === WebSocket.OPEN;
+  }
+
+  /** Opens the connection (once); resolves when it is open. */
+  connect(): Promise<void> {
+    if (this.opened) return this.opened;
+    this.closedByUser = false;
+    this.opened = new Promise<void>((resolve, reject) => {
+      const ws = new WebSocket(this.url);
+      ws.binaryType = 'arraybuffer';
+      this.socket = ws;
+      let didOpen = false;
+      ws.onopen = () => {
+        didOpen = true;
+        this.retryMs = 500;
+        resolve();
+        for (const h of this.statusHandlers) h(true);
+      };
+      ws.onmessage = (ev: MessageEvent) => this.receive(ev.data);
+      ws.onerror = () => {
+        // onclose follows and does the work.
+      };
+      ws.onclose = () => {
+        this.socket = null;
+        this.opened = null;
+        reject(new Error(`cannot connect to ${this.url}`));
+        this.failAll(new Error('the connection to the server was closed'));
+        if (didOpen) for (const h of this.statusHandlers) h(false);
+        if (!this.closedByUser) {
+          const delay = this.retryMs;
+          this.retryMs = Math.min(this.retryMs * 2, 5000);
+          setTimeout(() => {
+            if (!this.closedByUser && !this.opened) this.connect().catch(() => {});
+          }, delay);
+        }
+      };
+    });
+    return this.opened;
+  }
+
+  close(): void {
+    this.closedByUser = true;
+    this.socket?.close();
+  }
+
+  listMeshes(): Promise<Mesh[]> {
+    return this.call({ type: 'list_meshes' }, 'meshes').then((m) => m.meshes as Mesh[]);
+  }
+
+  ping(): Promise<void> {
+    return this.call({ type: 'ping' }, 'pong').then(() => undefined);
+  }
+
+  /** Streams a mesh as Draco: resolves with mesh_begin's fields and the joined payload. */
+  async getMesh(meshId: string, options: GetMeshOptions = {}): Promise<MeshTransfer> {
+    await this.connect();
+    const id = this.takeId();
+    const request: Record<string, unknown> = { type: 'get_mesh', request_id: id, mesh_id: meshId };
+    if (options.quantization !== undefined) request.quantization = options.quantization;
+    return new Promise<MeshTransfer>((resolve, reject) => {
+      const signal = options.signal;
+      if (signal?.aborted) {
+        reject(new DOMException('aborted', 'AbortError'));
+        return;
+      }
+      signal?.addEventListener(
+        'abort',
+        () => {
+          if (this.pending.delete(id)) reject(new DOMException('aborted', 'AbortError'));
+        },
+        { once: true },
+      );
+      this.pending.set(id, { kind: 'mesh', begin: null, assembler: new ChunkAssembler(id), options, resolve, reject });
+      this.send(request);
+    });
+  }
+
+  private takeId(): number {
+    const id = this.nextId;
+    this.nextId = this.nextId >= 0xffffffff ? 1 : this.nextId + 1;
+    return id;
+  }
+
+  private async call(body: Record<string, unknown>, expect: string): Promise<Record<string, unknown>> {
+    await this.connect();
+    const id = this.takeId();
+    return new Promise((resolve, reject) => {
+      this.pending.set(id, { kind: 'reply', expect, resolve, reject });
+      this.send({ ...body, request_id: id });
+    });
+  }
+
+  private send(message: Record<string, unknown>): void {
+    if (!this.socket || this.socket.readyState !== WebSocket.OPEN) {
+      const id = message.request_id as number;
+      const p = this.pending.get(id);
+      this.pending.delete(id);
+      p?.reject(new Error('not connected to the server'));
+      return;
+    }
+    this.socket.send(JSON.stringify(message));
+  }
+
+  private failAll(error: Error): void {
+    const all = [...this.pending.values()];
+    this.pending.clear();
+    for (const p of all) p.reject(error);
+  }
+
+  private fail(id: number, error: Error): void {
+    const p = this.pending.get(id);
+    if (!p) return;
+    this.pending.delete(id);
+    p.reject(error);
+  }
+
+  private receive(data: unknown): void {
+    if (data instanceof ArrayBuffer) {
+      this.receiveBinary(data);
+      return;
+    }
+    let msg: Record<string, unknown>;
+    try {
+      msg = JSON.parse(String(data)) as Record<string, unknown>;
+    } catch {
+      console.warn('cgview: a text frame that is not JSON', data);
+      return;
+    }
+    const type = msg.type;
+    const id = typeof msg.request_id === 'number' ? msg.request_id : null;
+
+    if (type === 'mesh_added' || type === 'mesh_deleted') {
+      for (const h of this.eventHandlers) h(msg as unknown as ServerEvent);
+      return;
+    }
+    if (id === null) {
+      if (type === 'error') console.warn('cgview: server error without a request', msg);
+      return;
+    }
+    const p = this.pending.get(id);
+    if (!p) return; // aborted or unknown: drop
+
+    if (type === 'error') {
+      this.fail(id, new ServerError(String(msg.error ?? 'error'), String(msg.detail ?? '')));
+      return;
+    }
+    if (p.kind === 'reply') {
+      if (type === p.expect) {
+        this.pending.delete(id);
+        p.resolve(msg);
+      }
+      return;
+    }
+    if (type === 'mesh_begin') {
+      const begin = msg as unknown as MeshBegin;
+      if (begin.encoding !== 'draco') {
+        this.fail(id, new Error(`unsupported mesh encoding "${begin.encoding}"`));
+        return;
+      }
+      p.begin = begin;
+      p.options.onProgress?.(p.assembler.bytesReceived, begin.bytes);
+    } else if (type === 'mesh_end') {
+      this.pending.delete(id);
+      try {
+        if (!p.begin) throw new Error('mesh_end without mesh_begin');
+        let payload: Uint8Array;
+        if (p.begin.bytes === 0 && p.assembler.total === null) {
+          payload = new Uint8Array(0);
+        } else {
+          payload = p.assembler.result();
+        }
+        if (payload.byteLength !== p.begin.bytes) {
+          throw new FrameError(`received ${payload.byteLength} bytes, mesh_begin announced ${p.begin.bytes}`);
+        }
+        p.resolve({ begin: p.begin, payload });
+      } catch (e) {
+        p.reject(e as Error);
+      }
+    }
+  }
+
+  private receiveBinary(data: ArrayBuffer): void {
+    let frame;
+    try {
+      frame = decodeFrame(data);
+    } catch (e) {
+      // Without a readable header we cannot tell whose chunk this is.
+      console.warn('cgview: unreadable binary frame', e);
+      return;
+    }
+    const id = frame.header.request_id;
+    const p = this.pending.get(id);
+    if (!p) return; // aborted request: drop its chunks
+    if (p.kind !== 'mesh') {
+      this.fail(id, new FrameError(`binary frame for request ${id}, which expects "${p.expect}"`));
+      return;
+    }
+    try {
+      if (frame.header.kind !== FrameKind.DracoMesh) {
+        throw new FrameError(`frame kind ${frame.header.kind}, expected ${FrameKind.DracoMesh} (Draco mesh)`);
+      }
+      if (p.begin && frame.header.total !== p.begin.bytes) {
+        throw new FrameError(`frame says ${frame.header.total} bytes, mesh_begin said ${p.begin.bytes}`);
+      }
+      p.assembler.add(frame);
+      p.options.onProgress?.(p.assembler.bytesReceived, frame.header.total);
+    } catch (e) {
+      this.fail(id, e as Error);
+    }
+  }
+}

@@ -1,0 +1,56 @@
+// The list of stored meshes: name, vertex and face counts; a click shows the
+// mesh, the delete button removes it from the server.
+import type { Mesh } from '../api/types.ts';
+import { el } from './dom.ts';
+
+export interface MeshListActions {
+  select(id: string): void;
+  remove(id: string): void;
+}
+
+export class MeshListPanel {
+  private readonly root: HTMLElement;
+  private readonly actions: MeshListActions;
+
+  constructor(root: HTMLElement, actions: MeshListActions) {
+    this.root = root;
+    this.actions = actions;
+  }
+
+  render(meshes: readonly Mesh[], selectedId: string | null): void {
+    if (meshes.length === 0) {
+      this.root.replaceChildren(el('p', { class: 'empty' }, 'No meshes yet. Upload one, or drop a file on the page.'));
+      return;
+    }
+    const items = meshes.map((mesh) => {
+      const counts = `${mesh.report.vertices} V · ${mesh.report.faces} F`;
+      const remove = el('button', { class: 'delete', type: 'button', title: `Delete ${mesh.name}`, 'aria-label': `Delete ${mesh.name}` }, '✕');
+      remove.addEventListener('click', (ev) => {
+        ev.stopPropagation();
+        this.actions.remove(mesh.id);
+      });
+      const item = el(
+        'li',
+        {
+          class: mesh.id === selectedId ? 'mesh selected' : 'mesh',
+          'data-mesh-id': mesh.id,
+          tabindex: '0',
+          role: 'button',
+          title: `${mesh.name} (${mesh.format})`,
+        },
+        el('span', { class: 'mesh-name' }, mesh.name),
+        el('span', { class: 'mesh-counts' }, counts),
+        remove,
+      );
+      item.addEventListener('click', () => this.actions.select(mesh.id));
+      item.addEventListener('keydown', (ev) => {
+        if (ev.key === 'Enter' || ev.key === ' ') {
+          ev.preventDefault();
+          this.actions.select(mesh.id);
+        }
+      });
+      return item;
+    });
+    this.root.replaceChildren(el('ul', { class: 'mesh-list' }, ...items));
+  }
+}

@@ -1,0 +1,90 @@
+// The report of the shown mesh: every key the server sends, in its order,
+// then the mesh's metadata, warnings and download links.
+import { downloadUrl } from '../api/rest.ts';
+import type { Mesh } from '../api/types.ts';
+import { el, formatBytes } from './dom.ts';
+
+const DOWNLOAD_FORMATS = ['obj', 'off', 'ply', 'stl', 'glb', 'drc'];
+
+function label(key: string): string {
+  return key.replace(/_/g, ' ');
+}
+
+function formatNumber(n: number): string {
+  if (Number.isInteger(n)) return String(n);
+  return Number(n.toPrecision(6)).toString();
+}
+
+function formatValue(value: unknown): string {
+  if (value === null || value === undefined) return '—';
+  if (typeof value === 'boolean') return value ? 'yes' : 'no';
+  if (typeof value === 'number') return formatNumber(value);
+  if (typeof value === 'string') return value;
+  if (Array.isArray(value)) {
+    return value.every((v) => typeof v === 'number') ? `(${value.map(formatNumber).join(', ')})` : value.map(formatValue).join(', ');
+  }
+  return JSON.stringify(value);
+}
+
+// The keys protocol/API.md names come first, in its order; then the rest as sent.
+const FIRST = ['vertices', 'faces', 'edges', 'bbox', 'components', 'boundary_loops', 'genus', 'manifold', 'degenerate_faces'];
+
+function ordered(report: Record<string, unknown>): Array<[string, unknown]> {
+  const entries = Object.entries(report);
+  const rank = (key: string) => {
+    const i = FIRST.indexOf(key);
+    return i < 0 ? FIRST.length : i;
+  };
+  return entries.map((e, i) => ({ e, i })).sort((a, b) => rank(a.e[0]) - rank(b.e[0]) || a.i - b.i).map(({ e }) => e);
+}
+
+function rows(report: Record<string, unknown>, prefix = ''): HTMLTableRowElement[] {
+  const out: HTMLTableRowElement[] = [];
+  for (const [key, value] of prefix ? Object.entries(report) : ordered(report)) {
+    const name = prefix ? `${prefix} ${label(key)}` : label(key);
+    if (value && typeof value === 'object' && !Array.isArray(value)) {
+      out.push(...rows(value as Record<string, unknown>, name));
+      continue;
+    }
+    const cls = typeof value === 'boolean' ? (value ? 'yes' : 'no') : '';
+    out.push(el('tr', { 'data-key': prefix ? undefined : key }, el('th', { scope: 'row', title: key }, name), el('td', { class: cls }, formatValue(value))));
+  }
+  return out;
+}
+
+export class ReportPanel {
+  private readonly root: HTMLElement;
+
+  constructor(root: HTMLElement) {
+    this.root = root;
+  }
+
+  render(mesh: Mesh | null): void {
+    if (!mesh) {
+      this.root.replaceChildren(el('p', { class: 'empty' }, 'Choose a mesh to see its report.'));
+      return;
+    }
+    const meta = el(
+      'table',
+      { class: 'kv meta' },
+      el('tr', {}, el('th', { scope: 'row' }, 'name'), el('td', {}, mesh.name)),
+      el('tr', {}, el('th', { scope: 'row' }, 'format'), el('td', {}, mesh.format)),
+      el('tr', {}, el('th', { scope: 'row' }, 'size'), el('td', { title: `${mesh.bytes} bytes` }, formatBytes(mesh.bytes))),
+      el('tr', {}, el('th', { scope: 'row' }, 'uploaded'), el('td', {}, mesh.created)),
+      mesh.sha256 ? el('tr', {}, el('th', { scope: 'row' }, 'sha256'), el('td', { class: 'hash', title: mesh.sha256 }, mesh.sha256.slice(0, 16) + '…')) : null,
+    );
+    const warnings = mesh.warnings?.length
+      ? el('ul', { class: 'warnings' }, ...mesh.warnings.map((w) => el('li', {}, w)))
+      : null;
+    const downloads = el(
+      'p',
+      { class: 'downloads' },
+      'Download: ',
+      ...DOWNLOAD_FORMATS.flatMap((f, i) => [i ? ' ' : '', el('a', { href: downloadUrl(mesh.id, f), download: '' }, f)]),
+    );
+    const parts: Node[] = [el('h3', {}, mesh.name), el('table', { class: 'kv report' }, ...rows(mesh.report as Record<string, unknown>))];
+    if (warnings) parts.push(el('h4', {}, 'Warnings'), warnings);
+    parts.push(el('h4', {}, 'File'), meta, downloads);
+    this.root.replaceChildren(...parts);
+  }
+}

@@ -1,0 +1,59 @@
+// The parts of draco3d's emscripten decoder module that the worker uses.
+// draco3d ships no TypeScript declarations.
+declare module 'draco3d/draco_decoder_nodejs.js' {
+  export interface DracoStatus {
+    ok(): boolean;
+    error_msg(): string;
+  }
+  export interface DracoAttribute {
+    num_components(): number;
+    data_type(): number;
+    normalized(): boolean;
+  }
+  export interface DracoMesh {
+    ptr: number;
+    num_points(): number;
+    num_faces(): number;
+  }
+  export interface DracoDecoder {
+    GetEncodedGeometryType(array: Int8Array): number;
+    DecodeArrayToMesh(array: Int8Array, byteLength: number, mesh: DracoMesh): DracoStatus;
+    GetAttributeId(mesh: DracoMesh, type: number): number;
+    GetAttribute(mesh: DracoMesh, id: number): DracoAttribute;
+    GetAttributeDataArrayForAllPoints(
+      mesh: DracoMesh,
+      attribute: DracoAttribute,
+      dataType: number,
+      byteLength: number,
+      ptr: number,
+    ): boolean;
+    GetTrianglesUInt32Array(mesh: DracoMesh, byteLength: number, ptr: number): boolean;
+  }
+  export interface DracoDecoderModule {
+    Decoder: new () => DracoDecoder;
+    Mesh: new () => DracoMesh;
+    destroy(object: unknown): void;
+    _malloc(bytes: number): number;
+    _free(ptr: number): void;
+    HEAPF32: Float32Array;
+    TRIANGULAR_MESH: number;
+    POINT_CLOUD: number;
+    POSITION: number;
+    NORMAL: number;
+    COLOR: number;
+    DT_INT8: number;
+    DT_UINT8: number;
+    DT_INT16: number;
+    DT_UINT16: number;
+    DT_INT32: number;
+    DT_UINT32: number;
+    DT_FLOAT32: number;
+  }
+  export interface DracoDecoderModuleOptions {
+    wasmBinary?: ArrayBuffer;
+    locateFile?: (path: string, prefix: string) => string;
+    onModuleLoaded?: (module: DracoDecoderModule) => void;
+  }
+  const createDecoderModule: (options?: DracoDecoderModuleOptions) => Promise<DracoDecoderModule>;
+  export default createDecoderModule;
+}

@@ -1,0 +1,31 @@
+// What the Draco worker hands back to the main thread: plain typed arrays,
+// transferred (not copied) with postMessage.
+
+export interface DecodedColors {
+  array: Float32Array | Uint8Array | Uint16Array;
+  /** 3 (RGB) or 4 (RGBA). */
+  itemSize: number;
+  /** True for integer colours meant as 0..1 (Uint8 / Uint16). */
+  normalized: boolean;
+}
+
+export interface DecodedMesh {
+  /** xyz per vertex. */
+  positions: Float32Array;
+  /** Three vertex indices per triangle. */
+  indices: Uint32Array;
+  /** xyz per vertex, or null when the payload has none. */
+  normals: Float32Array | null;
+  colors: DecodedColors | null;
+  vertices: number;
+  faces: number;
+}
+
+export interface DecodeRequest {
+  id: number;
+  payload: ArrayBuffer;
+}
+
+export type DecodeResponse =
+  | { id: number; ok: true; mesh: DecodedMesh }
+  | { id: number; ok: false; error: string };

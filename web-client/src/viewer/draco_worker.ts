@@ -1,0 +1,139 @@
+// A Web Worker that decodes Draco bitstreams with draco3d's WASM decoder, so
+// that decoding a large mesh never blocks the page. In: {id, payload}; out:
+// {id, ok, mesh | error}, the mesh's arrays transferred back.
+import createDecoderModule from 'draco3d/draco_decoder_nodejs.js';
+import type { DracoAttribute, DracoDecoder, DracoDecoderModule, DracoMesh } from 'draco3d/draco_decoder_nodejs.js';
+import wasmUrl from 'draco3d/draco_decoder.wasm?url';
+import type { DecodeRequest, DecodeResponse, DecodedColors, DecodedMesh } from './decoded_mesh.ts';
+
+interface WorkerScope {
+  onmessage: ((ev: MessageEvent<DecodeRequest>) => void) | null;
+  postMessage(message: DecodeResponse, transfer: Transferable[]): void;
+}
+const scope = self as unknown as WorkerScope;
+
+let modulePromise: Promise<DracoDecoderModule> | null = null;
+
+function loadModule(): Promise<DracoDecoderModule> {
+  if (!modulePromise) {
+    modulePromise = fetch(wasmUrl)
+      .then((r) => {
+        if (!r.ok) throw new Error(`cannot load the Draco decoder (${wasmUrl}: HTTP ${r.status})`);
+        return r.arrayBuffer();
+      })
+      .then(
+        (wasmBinary) =>
+          new Promise<DracoDecoderModule>((resolve) => {
+            // The emscripten module is promise-like; resolve from the callback
+            // with a wrapper-free value rather than chaining on it.
+            void createDecoderModule({
+              wasmBinary,
+              locateFile: () => wasmUrl,
+              onModuleLoaded: (m) => resolve(m),
+            });
+          }),
+      );
+    modulePromise.catch(() => {
+      modulePromise = null; // let a later request try again
+    });
+  }
+  return modulePromise;
+}
+
+function readFloat32(draco: DracoDecoderModule, decoder: DracoDecoder, mesh: DracoMesh, attr: DracoAttribute): Float32Array {
+  const n = mesh.num_points() * attr.num_components();
+  const bytes = n * 4;
+  const ptr = draco._malloc(bytes);
+  try {
+    if (!decoder.GetAttributeDataArrayForAllPoints(mesh, attr, draco.DT_FLOAT32, bytes, ptr)) {
+      throw new Error('Draco: cannot read an attribute as float32');
+    }
+    return new Float32Array(draco.HEAPF32.buffer, ptr, n).slice();
+  } finally {
+    draco._free(ptr);
+  }
+}
+
+function readColors(draco: DracoDecoderModule, decoder: DracoDecoder, mesh: DracoMesh, attr: DracoAttribute): DecodedColors {
+  const itemSize = attr.num_components();
+  const n = mesh.num_points() * itemSize;
+  const type = attr.data_type();
+  if (type === draco.DT_UINT8 || type === draco.DT_UINT16) {
+    const wide = type === draco.DT_UINT16;
+    const bytes = n * (wide ? 2 : 1);
+    const ptr = draco._malloc(bytes);
+    try {
+      if (!decoder.GetAttributeDataArrayForAllPoints(mesh, attr, type, bytes, ptr)) {
+        throw new Error('Draco: cannot read the colours');
+      }
+      const heap = draco.HEAPF32.buffer;
+      const array = wide ? new Uint16Array(heap, ptr, n).slice() : new Uint8Array(heap, ptr, n).slice();
+      return { array, itemSize, normalized: true };
+    } finally {
+      draco._free(ptr);
+    }
+  }
+  return { array: readFloat32(draco, decoder, mesh, attr), itemSize, normalized: false };
+}
+
+function decode(draco: DracoDecoderModule, payload: ArrayBuffer): DecodedMesh {
+  const data = new Int8Array(payload);
+  const decoder = new draco.Decoder();
+  const mesh = new draco.Mesh();
+  try {
+    if (decoder.GetEncodedGeometryType(data) !== draco.TRIANGULAR_MESH) {
+      throw new Error('Draco: the payload is not a triangle mesh');
+    }
+    const status = decoder.DecodeArrayToMesh(data, data.byteLength, mesh);
+    if (!status.ok() || mesh.ptr === 0) throw new Error(`Draco: ${status.error_msg()}`);
+
+    const positionId = decoder.GetAttributeId(mesh, draco.POSITION);
+    if (positionId < 0) throw new Error('Draco: the mesh has no positions');
+    const positionAttr = decoder.GetAttribute(mesh, positionId);
+    if (positionAttr.num_components() !== 3) throw new Error('Draco: positions are not 3D');
+    const positions = readFloat32(draco, decoder, mesh, positionAttr);
+
+    const faces = mesh.num_faces();
+    const indexBytes = faces * 3 * 4;
+    const ptr = draco._malloc(indexBytes);
+    let indices: Uint32Array;
+    try {
+      decoder.GetTrianglesUInt32Array(mesh, indexBytes, ptr);
+      indices = new Uint32Array(draco.HEAPF32.buffer, ptr, faces * 3).slice();
+    } finally {
+      draco._free(ptr);
+    }
+
+    let normals: Float32Array | null = null;
+    const normalId = decoder.GetAttributeId(mesh, draco.NORMAL);
+    if (normalId >= 0) {
+      const attr = decoder.GetAttribute(mesh, normalId);
+      if (attr.num_components() === 3) normals = readFloat32(draco, decoder, mesh, attr);
+    }
+    let colors: DecodedColors | null = null;
+    const colorId = decoder.GetAttributeId(mesh, draco.COLOR);
+    if (colorId >= 0) {
+      const attr = decoder.GetAttribute(mesh, colorId);
+      if (attr.num_components() === 3 || attr.num_components() === 4) colors = readColors(draco, decoder, mesh, attr);
+    }
+    return { positions, indices, normals, colors, vertices: mesh.num_points(), faces };
+  } finally {
+    draco.destroy(mesh);
+    draco.destroy(decoder);
+  }
+}
+
+scope.onmessage = (ev) => {
+  const { id, payload } = ev.data;
+  loadModule()
+    .then((draco) => {
+      const mesh = decode(draco, payload);
+      const transfer: Transferable[] = [mesh.positions.buffer, mesh.indices.buffer];
+      if (mesh.normals) transfer.push(mesh.normals.buffer);
+      if (mesh.colors) transfer.push(mesh.colors.array.buffer);
+      scope.postMessage({ id, ok: true, mesh }, transfer);
+    })
+    .catch((e: unknown) => {
+      scope.postMessage({ id, ok: false, error: e instanceof Error ? e.message : String(e) }, []);
+    });
+};

@@ -1,0 +1,160 @@
+// The one three.js scene: renderer, camera, lights, orbit controls, resize
+// handling and fit-to-view. It holds at most one shown object at a time and
+// disposes of it when another replaces it (three-gltf-viewer's clear()).
+// Frames are rendered on demand (after a change), not continuously.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+
+export const BACKGROUND = '#1b1d22';
+
+export interface ViewerOptions {
+  /** Called after every rendered frame. */
+  onFrame?: () => void;
+}
+
+export class Viewer {
+  readonly renderer: THREE.WebGLRenderer;
+  readonly scene = new THREE.Scene();
+  readonly camera = new THREE.PerspectiveCamera(40, 1, 0.01, 100);
+  readonly controls: OrbitControls;
+  private readonly container: HTMLElement;
+  private readonly options: ViewerOptions;
+  private readonly resizeObserver: ResizeObserver;
+  private shown: THREE.Object3D | null = null;
+  private frameRequested = false;
+  private afterFrame: Array<() => void> = [];
+
+  constructor(container: HTMLElement, options: ViewerOptions = {}) {
+    this.container = container;
+    this.options = options;
+
+    this.renderer = new THREE.WebGLRenderer({ antialias: true });
+    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
+    this.renderer.domElement.classList.add('viewer-canvas');
+    container.appendChild(this.renderer.domElement);
+
+    this.scene.background = new THREE.Color(BACKGROUND);
+
+    // Soft sky/ground fill, plus a key and a rim light that follow the camera
+    // so the surface reads well from every side.
+    this.scene.add(new THREE.HemisphereLight(0xf2f4ff, 0x2a2622, 0.8));
+    const key = new THREE.DirectionalLight(0xffffff, 2.4);
+    key.position.set(-1, 1.5, 1.2);
+    const fill = new THREE.DirectionalLight(0xffffff, 0.5);
+    fill.position.set(1.5, -0.2, 0.8);
+    const rim = new THREE.DirectionalLight(0xcfd8ff, 0.6);
+    rim.position.set(0.5, 0.8, -1.5);
+    this.camera.add(key, fill, rim);
+    this.scene.add(this.camera);
+
+    this.camera.position.set(0, 0, 3);
+    this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    this.controls.enableDamping = true;
+    this.controls.dampingFactor = 0.12;
+    this.controls.addEventListener('change', () => this.requestRender());
+
+    this.resizeObserver = new ResizeObserver(() => this.resize());
+    this.resizeObserver.observe(container);
+    this.resize();
+  }
+
+  /** The object now shown, or null. */
+  get object(): THREE.Object3D | null {
+    return this.shown;
+  }
+
+  /**
+   * Shows `object` in place of the previous one (which is disposed), frames
+   * the camera on its bounding sphere, and calls `onShown` after the first
+   * frame with it has been rendered.
+   */
+  show(object: THREE.Object3D, onShown?: () => void): void {
+    this.clear();
+    this.shown = object;
+    this.scene.add(object);
+    this.fitToView();
+    if (onShown) this.afterFrame.push(onShown);
+    this.requestRender();
+  }
+
+  /** Removes and disposes of the shown object. */
+  clear(): void {
+    if (!this.shown) return;
+    this.scene.remove(this.shown);
+    disposeObject(this.shown);
+    this.shown = null;
+    this.requestRender();
+  }
+
+  /** Frames the camera on the shown object's bounding sphere, looking from the front-right-above. */
+  fitToView(): void {
+    if (!this.shown) return;
+    const box = new THREE.Box3().setFromObject(this.shown);
+    if (box.isEmpty()) return;
+    const sphere = box.getBoundingSphere(new THREE.Sphere());
+    const radius = Math.max(sphere.radius, 1e-6);
+
+    // Distance at which the sphere fits both the vertical and horizontal field of view.
+    const vFov = THREE.MathUtils.degToRad(this.camera.fov);
+    const hFov = 2 * Math.atan(Math.tan(vFov / 2) * this.camera.aspect);
+    const distance = (radius / Math.sin(Math.min(vFov, hFov) / 2)) * 1.05;
+
+    const direction = new THREE.Vector3(0.55, 0.35, 1).normalize();
+    this.camera.position.copy(sphere.center).addScaledVector(direction, distance);
+    this.camera.near = Math.max(distance - radius * 2, distance / 1000);
+    this.camera.far = distance + radius * 4;
+    this.camera.updateProjectionMatrix();
+    this.controls.target.copy(sphere.center);
+    this.controls.minDistance = radius * 0.05;
+    this.controls.maxDistance = radius * 50;
+    this.controls.update();
+    this.requestRender();
+  }
+
+  /** Renders one frame at the next animation frame (several requests make one frame). */
+  requestRender(): void {
+    if (this.frameRequested) return;
+    this.frameRequested = true;
+    requestAnimationFrame(() => this.frame());
+  }
+
+  dispose(): void {
+    this.clear();
+    this.resizeObserver.disconnect();
+    this.controls.dispose();
+    this.renderer.dispose();
+    this.renderer.domElement.remove();
+  }
+
+  private resize(): void {
+    const width = Math.max(1, this.container.clientWidth);
+    const height = Math.max(1, this.container.clientHeight);
+    this.renderer.setSize(width, height, false);
+    this.camera.aspect = width / height;
+    this.camera.updateProjectionMatrix();
+    this.requestRender();
+  }
+
+  private frame(): void {
+    this.frameRequested = false;
+    // With damping, update() keeps moving the camera for a few frames after
+    // the pointer stops; it fires 'change', which asks for the next frame.
+    this.controls.update();
+    this.renderer.render(this.scene, this.camera);
+    this.options.onFrame?.();
+    const callbacks = this.afterFrame;
+    this.afterFrame = [];
+    for (const cb of callbacks) cb();
+  }
+}
+
+/** Frees the GPU resources of an object and its children. */
+export function disposeObject(root: THREE.Object3D): void {
+  root.traverse((node) => {
+    const mesh = node as THREE.Mesh;
+    if (mesh.geometry) mesh.geometry.dispose();
+    const material = mesh.material as THREE.Material | THREE.Material[] | undefined;
+    if (Array.isArray(material)) material.forEach((m) => m.dispose());
+    else material?.dispose();
+  });
+}

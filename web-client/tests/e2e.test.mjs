@@ -1,0 +1,335 @@
+// End-to-end test of the viewer against the real server, run with node's own
+// test runner: `npm run test:e2e` (which builds web-client/dist first).
+//
+// Starts build/bin/cgview-server on a free port with an empty data directory
+// and the built client, drives Debian's chromium (software WebGL through
+// SwiftShader) with playwright-core, uploads build/samples/elephant.off through
+// the page's file input, and checks that the mesh is listed, reported and drawn.
+// The canvas screenshot is kept in build/test-artifacts/e2e-elephant.png.
+//
+// Environment: CGVIEW_SERVER (default build/bin/cgview-server),
+// CHROMIUM (default /usr/bin/chromium).
+import { after, before, test } from 'node:test';
+import assert from 'node:assert/strict';
+import { spawn } from 'node:child_process';
+import fs from 'node:fs';
+import net from 'node:net';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const webClient = path.resolve(here, '..');
+const repo = path.resolve(webClient, '..');
+const serverBin = process.env.CGVIEW_SERVER ?? path.join(repo, 'build', 'bin', 'cgview-server');
+const chromiumBin = process.env.CHROMIUM ?? '/usr/bin/chromium';
+const dist = path.join(webClient, 'dist');
+const elephant = path.join(repo, 'build', 'samples', 'elephant.off');
+const artifacts = path.join(repo, 'build', 'test-artifacts');
+
+const ELEPHANT = { vertices: 2775, faces: 5558 };
+const BACKGROUND = [0x1b, 0x1d, 0x22]; // src/viewer/viewer.ts
+const CHROMIUM_ARGS = [
+  '--use-angle=swiftshader',
+  '--enable-unsafe-swiftshader',
+  '--no-sandbox',
+  '--disable-background-networking',
+  '--disable-component-update',
+  '--disable-sync',
+  '--no-first-run',
+  '--headless=new',
+];
+
+let server = null;
+let serverLog = '';
+let dataDir = null;
+let browser = null;
+let page = null;
+let baseUrl = null;
+const pageProblems = [];
+let elephantId = null;
+
+function freePort() {
+  return new Promise((resolve, reject) => {
+    const s = net.createServer();
+    s.unref();
+    s.on('error', reject);
+    s.listen(0, '127.0.0.1', () => {
+      const { port } = s.address();
+      s.close(() => resolve(port));
+    });
+  });
+}
+
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
+async function waitForHealth(url, timeoutMs) {
+  const deadline = Date.now() + timeoutMs;
+  let last = '';
+  while (Date.now() < deadline) {
+    if (server.exitCode !== null || server.signalCode !== null) {
+      throw new Error(`cgview-server exited (${server.exitCode ?? server.signalCode}) before it was healthy:\n${serverLog}`);
+    }
+    try {
+      const r = await fetch(`${url}/api/v1/health`);
+      const body = await r.json();
+      if (r.status === 200 && body.status === 'ok') return body;
+      last = `HTTP ${r.status} ${JSON.stringify(body)}`;
+    } catch (e) {
+      last = e.message;
+    }
+    await sleep(100);
+  }
+  throw new Error(`GET /api/v1/health did not answer ok within ${timeoutMs} ms (last: ${last}):\n${serverLog}`);
+}
+
+function stopServer() {
+  if (!server || server.exitCode !== null || server.signalCode !== null) return Promise.resolve();
+  const proc = server;
+  return new Promise((resolve) => {
+    const killer = setTimeout(() => proc.kill('SIGKILL'), 5000);
+    proc.once('exit', () => {
+      clearTimeout(killer);
+      resolve();
+    });
+    proc.kill('SIGTERM');
+  });
+}
+
+// Even if the runner dies on an uncaught error, do not leave the server behind.
+process.on('exit', () => {
+  if (server && server.exitCode === null && server.signalCode === null) server.kill('SIGKILL');
+});
+
+function describeProblems() {
+  return pageProblems.length ? `\npage problems:\n${pageProblems.join('\n')}` : '';
+}
+
+before(async () => {
+  for (const [what, file, hint] of [
+    ['the server', serverBin, 'build it with `cmake --build build`'],
+    ['the built web client', path.join(dist, 'index.html'), 'run `npm run build` in web-client/'],
+    ['the elephant sample', elephant, 'run ./setup.sh, which copies the samples into build/samples/'],
+    ['chromium', chromiumBin, 'apt-get install chromium'],
+  ]) {
+    assert.ok(fs.existsSync(file), `${what} is missing: ${file} (${hint})`);
+  }
+  fs.mkdirSync(artifacts, { recursive: true });
+  dataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'cgview-e2e-'));
+
+  const port = await freePort();
+  baseUrl = `http://127.0.0.1:${port}`;
+  server = spawn(
+    serverBin,
+    ['--host', '127.0.0.1', '--port', String(port), '--data-dir', dataDir, '--static-dir', dist],
+    { cwd: repo, stdio: ['ignore', 'pipe', 'pipe'] },
+  );
+  const log = (chunk) => {
+    serverLog += chunk.toString();
+    if (serverLog.length > 20000) serverLog = serverLog.slice(-20000);
+  };
+  server.stdout.on('data', log);
+  server.stderr.on('data', log);
+  await waitForHealth(baseUrl, 30000);
+
+  browser = await chromium.launch({ executablePath: chromiumBin, args: CHROMIUM_ARGS, headless: true });
+  page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+  page.on('pageerror', (e) => pageProblems.push(`pageerror: ${e.message}`));
+  page.on('console', (m) => {
+    if (m.type() === 'error') pageProblems.push(`console.error: ${m.text()}`);
+  });
+  page.on('response', (r) => {
+    if (r.status() >= 400) pageProblems.push(`HTTP ${r.status()}: ${r.request().method()} ${r.url()}`);
+  });
+  page.on('requestfailed', (r) => pageProblems.push(`request failed: ${r.url()} ${r.failure()?.errorText ?? ''}`));
+
+  await page.goto(baseUrl + '/');
+  await page.waitForFunction(() => window.__cgview?.ready === true, null, { timeout: 30000 });
+});
+
+after(async () => {
+  try {
+    if (browser) await browser.close();
+  } finally {
+    await stopServer();
+    if (dataDir) fs.rmSync(dataDir, { recursive: true, force: true });
+  }
+});
+
+// Counts mesh-coloured and background pixels of a PNG, decoded by the page's
+// own image decoder into a 2D canvas.
+async function analyse(png) {
+  return page.evaluate(
+    async ({ b64, background }) => {
+      const img = new Image();
+      img.src = `data:image/png;base64,${b64}`;
+      await img.decode();
+      const c = document.createElement('canvas');
+      c.width = img.naturalWidth;
+      c.height = img.naturalHeight;
+      const ctx = c.getContext('2d', { willReadFrequently: true });
+      ctx.drawImage(img, 0, 0);
+      const { data, width, height } = ctx.getImageData(0, 0, c.width, c.height);
+
+      // The surface colour #e07a1f (hue 28°) under white light: an orange hue,
+      // clearly saturated, not too dark. Highlights whiten and do not count.
+      const isMesh = (r, g, b) => {
+        const max = Math.max(r, g, b);
+        const min = Math.min(r, g, b);
+        if (max < 40 || max - min < 0.35 * max || r !== max) return false;
+        const hue = (60 * (g - b)) / (max - min);
+        return hue >= 12 && hue <= 45;
+      };
+      const isBackground = (r, g, b) =>
+        Math.abs(r - background[0]) <= 6 && Math.abs(g - background[1]) <= 6 && Math.abs(b - background[2]) <= 6;
+
+      function region(x0, y0, x1, y1) {
+        let mesh = 0;
+        let bg = 0;
+        let n = 0;
+        for (let y = Math.floor(y0); y < Math.floor(y1); ++y) {
+          for (let x = Math.floor(x0); x < Math.floor(x1); ++x) {
+            const i = (y * width + x) * 4;
+            const [r, g, b] = [data[i], data[i + 1], data[i + 2]];
+            if (isMesh(r, g, b)) ++mesh;
+            if (isBackground(r, g, b)) ++bg;
+            ++n;
+          }
+        }
+        return { mesh: mesh / n, background: bg / n };
+      }
+      // Corner patches, 2 px in from the edges (a page border may graze the edge row).
+      const k = Math.max(4, Math.round(Math.min(width, height) * 0.03));
+      const m = 2;
+      return {
+        width,
+        height,
+        whole: region(0, 0, width, height),
+        centre: region(width * 0.25, height * 0.25, width * 0.75, height * 0.75),
+        corners: [
+          region(m, m, m + k, m + k),
+          region(width - m - k, m, width - m, m + k),
+          region(m, height - m - k, m + k, height - m),
+          region(width - m - k, height - m - k, width - m, height - m),
+        ],
+      };
+    },
+    { b64: png.toString('base64'), background: BACKGROUND },
+  );
+}
+
+test('uploading the elephant through the page lists, reports and draws it', async () => {
+  // Record the progress indicator's stages as they come and go.
+  await page.evaluate(() => {
+    const stages = (window.__stages = []);
+    const root = document.getElementById('progress');
+    new MutationObserver(() => {
+      const stage = root.hidden ? null : root.dataset.stage;
+      if (stage && stages.at(-1) !== stage) stages.push(stage);
+    }).observe(root, { attributes: true, childList: true, subtree: true, characterData: true });
+  });
+  await page.setInputFiles('#file-input', elephant);
+
+  await page
+    .waitForFunction(() => window.__cgview.lastLoaded !== null, null, { timeout: 60000 })
+    .catch(async (e) => {
+      const error = await page.evaluate(() => window.__cgview.lastError);
+      throw new Error(`the elephant never showed (page error: ${error}): ${e.message}${describeProblems()}\n${serverLog}`);
+    });
+  const state = await page.evaluate(() => window.__cgview);
+  elephantId = state.lastLoaded.id;
+  assert.equal(state.lastLoaded.vertices, ELEPHANT.vertices, 'vertices decoded from the Draco stream');
+  assert.equal(state.lastLoaded.faces, ELEPHANT.faces, 'faces decoded from the Draco stream');
+  assert.ok(state.frames > 0, 'frames rendered');
+  assert.equal(state.lastError, null, 'no error shown');
+
+  // The list entry (the server may have loaded sample meshes of its own, an
+  // elephant among them: find ours by id) and the report panel.
+  const item = page.locator(`#mesh-list li.mesh[data-mesh-id="${elephantId}"]`);
+  await item.waitFor();
+  assert.match(await item.innerText(), /elephant\.off/);
+  assert.match(await item.innerText(), /2775 V · 5558 F/);
+  assert.match(await item.getAttribute('class'), /selected/);
+  assert.equal(await page.locator('#mesh-list li.mesh.selected').count(), 1);
+  assert.equal((await page.locator('#report tr[data-key="vertices"] td').innerText()).trim(), '2775');
+  assert.equal((await page.locator('#report tr[data-key="faces"] td').innerText()).trim(), '5558');
+  const report = await page.locator('#report').innerText();
+  for (const key of ['vertices', 'faces', 'edges', 'bbox min', 'bbox max', 'components', 'boundary loops', 'genus', 'manifold']) {
+    assert.ok(report.includes(key), `the report panel shows "${key}":\n${report}`);
+  }
+  assert.ok(await page.locator('#progress').isHidden(), 'the progress indicator is gone once shown');
+  assert.deepEqual(await page.evaluate(() => window.__stages), ['uploading', 'downloading', 'decoding']);
+
+  // The canvas: orange mesh in the middle, background in the corners.
+  const canvas = page.locator('#viewport canvas');
+  const png = await canvas.screenshot({ path: path.join(artifacts, 'e2e-elephant.png') });
+  const px = await analyse(png);
+  const summary = JSON.stringify(px);
+  assert.ok(px.width > 200 && px.height > 200, `canvas size ${px.width}x${px.height}`);
+  assert.ok(px.centre.mesh > 0.02, `mesh-coloured fraction of the centre: ${px.centre.mesh} (${summary})`);
+  for (const [i, corner] of px.corners.entries()) {
+    assert.ok(corner.background > 0.98, `corner ${i} is background: ${summary}`);
+    assert.equal(corner.mesh, 0, `corner ${i} has no mesh pixels: ${summary}`);
+  }
+  assert.deepEqual(pageProblems, [], describeProblems());
+});
+
+test('a bad upload shows the server\'s error detail in the page', async () => {
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'cgview-e2e-bad-'));
+  try {
+    const bad = path.join(dir, 'bad.off');
+    fs.writeFileSync(bad, 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 9\n');
+    // What the server says about it, asked directly.
+    const direct = await fetch(`${baseUrl}/api/v1/meshes?name=probe.off`, { method: 'POST', body: fs.readFileSync(bad) });
+    assert.equal(direct.status, 400, 'the server rejects a face with a missing vertex');
+    const body = await direct.json();
+    assert.equal(body.error, 'invalid_mesh');
+    assert.ok(body.detail, 'the error has a detail');
+
+    await page.setInputFiles('#file-input', bad);
+    const message = page.locator('#messages .message.error', { hasText: 'bad.off' });
+    await message.waitFor({ timeout: 15000 });
+    const text = await message.innerText();
+    assert.match(text, /Upload of bad\.off failed/);
+    // The detail names the uploaded file, so compare the part after it.
+    const tail = body.detail.replace(/^.*probe\.off:?\s*/, '');
+    assert.ok(text.includes(tail), `the page shows the server's detail "${tail}":\n${text}`);
+    await message.locator('button.close').click();
+    await message.waitFor({ state: 'detached' });
+    // The elephant stays shown.
+    assert.notEqual(await page.evaluate(() => window.__cgview.lastLoaded), null);
+  } finally {
+    fs.rmSync(dir, { recursive: true, force: true });
+    pageProblems.length = 0; // the 400 is logged by chromium as a failed resource
+  }
+});
+
+test('mesh_added and mesh_deleted events from other clients update the list', async () => {
+  // Another client uploads over REST: the page learns of it over the WebSocket.
+  const cube = 'OFF\n8 6 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n' +
+    '4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n';
+  const r = await fetch(`${baseUrl}/api/v1/meshes?name=cube.off`, { method: 'POST', body: cube });
+  assert.equal(r.status, 201, await r.clone().text());
+  const mesh = await r.json();
+  const item = page.locator(`#mesh-list li[data-mesh-id="${mesh.id}"]`);
+  await item.waitFor({ timeout: 10000 });
+  assert.match(await item.innerText(), /cube\.off/);
+
+  const del = await fetch(`${baseUrl}/api/v1/meshes/${mesh.id}`, { method: 'DELETE' });
+  assert.equal(del.status, 204);
+  await item.waitFor({ state: 'detached', timeout: 10000 });
+});
+
+test('the delete button removes the shown mesh and clears the view', async () => {
+  assert.ok(elephantId, 'the first test uploaded the elephant');
+  const id = elephantId;
+  const item = page.locator(`#mesh-list li.mesh[data-mesh-id="${id}"]`);
+  await item.locator('button.delete').click();
+  await item.waitFor({ state: 'detached', timeout: 10000 });
+  await page.waitForFunction(() => window.__cgview.lastLoaded === null);
+  assert.match(await page.locator('#report').innerText(), /Choose a mesh/);
+  const list = await (await fetch(`${baseUrl}/api/v1/meshes`)).json();
+  assert.ok(!list.meshes.some((m) => m.id === id), 'the server no longer has it');
+  assert.deepEqual(pageProblems, [], describeProblems());
+});
