@@ -3,7 +3,7 @@
 // and 50 WebSocket clients fetching the same mesh at once (total time, the
 // server's peak memory).  Starts the real cgview-server on a free port.
 //
-//   build/bin/ws_bench [--clients 50] [--server build/bin/cgview-server]
+//   build/bin/ws_bench [--clients 50] [--server build/bin/cgview-server] [--save-mesh FILE.ply]
 #include <utility>  // before Boost 1.74's asio (std::exchange)
 
 #include <boost/asio.hpp>
@@ -140,12 +140,14 @@ std::size_t gzip_size(const std::string& raw) {
 int main(int argc, char** argv) {
   int clients = 50;
   std::string exe = (fs::path(argv[0]).parent_path() / "cgview-server").string();
+  std::string save;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--clients" && i + 1 < argc) clients = std::max(1, std::atoi(argv[++i]));
+    if (a == "--clients" && i + 1 < argc) clients = std::max(0, std::atoi(argv[++i]));
     else if (a == "--server" && i + 1 < argc) exe = argv[++i];
+    else if (a == "--save-mesh" && i + 1 < argc) save = argv[++i];
     else {
-      std::fprintf(stderr, "usage: ws_bench [--clients N] [--server PATH]\n");
+      std::fprintf(stderr, "usage: ws_bench [--clients N] [--server PATH] [--save-mesh FILE.ply]\n");
       return 2;
     }
   }
@@ -157,6 +159,10 @@ int main(int argc, char** argv) {
   }
   const Mesh mesh = subdivide_midpoint(subdivide_midpoint(read_mesh(*base)));
   const std::string ply = write_mesh_bytes(mesh, MeshFormat::ply);
+  if (!save.empty()) {
+    std::ofstream(save, std::ios::binary) << ply;  // the same mesh, for bench/browser_bench.mjs
+    if (clients == 0) return 0;
+  }
 
   // Raw buffers as a viewer would receive them: float32 positions, uint32 indices.
   std::string raw;
