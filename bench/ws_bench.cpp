@@ -161,8 +161,8 @@ int main(int argc, char** argv) {
   const std::string ply = write_mesh_bytes(mesh, MeshFormat::ply);
   if (!save.empty()) {
     std::ofstream(save, std::ios::binary) << ply;  // the same mesh, for bench/browser_bench.mjs
-    if (clients == 0) return 0;
   }
+  if (clients == 0) return 0;  // --clients 0: only save the mesh
 
   // Raw buffers as a viewer would receive them: float32 positions, uint32 indices.
   std::string raw;
