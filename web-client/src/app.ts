@@ -12,14 +12,23 @@ import { UploadControl } from './panels/upload.ts';
 import { byId } from './panels/dom.ts';
 import { DracoDecoder } from './viewer/draco_decoder.ts';
 import { buildSurface } from './viewer/surface_renderer.ts';
+import { LoadTimer, type LoadTimings } from './viewer/timings.ts';
 import { Viewer } from './viewer/viewer.ts';
 
 /** What tests read (window.__cgview). */
 export interface TestHooks {
   /** True once the page is set up and the first mesh list has been asked for. */
   ready: boolean;
-  /** The mesh in the viewer, set after the first frame showing it has rendered. */
-  lastLoaded: { id: string; vertices: number; faces: number } | null;
+  /**
+   * The mesh in the viewer, set after the first frame showing it has rendered;
+   * bytes: the Draco payload received for it.
+   */
+  lastLoaded: { id: string; vertices: number; faces: number; bytes: number } | null;
+  /**
+   * The durations of the load of lastLoaded (see viewer/timings.ts): null
+   * when lastLoaded changes, set once the GPU has finished its first frame.
+   */
+  timings: LoadTimings | null;
   /** Frames rendered so far. */
   frames: number;
   /** The last error message shown in the page, or null. */
@@ -47,7 +56,7 @@ export class App {
   private selectedId: string | null = null;
   private load: { id: string; controller: AbortController } | null = null;
 
-  private readonly hooks: TestHooks = { ready: false, lastLoaded: null, frames: 0, lastError: null };
+  private readonly hooks: TestHooks = { ready: false, lastLoaded: null, timings: null, frames: 0, lastError: null };
   private readonly socket = new CgviewSocket();
   private readonly decoder = new DracoDecoder();
   private readonly viewer: Viewer;
@@ -147,22 +156,37 @@ export class App {
     const load = { id: mesh.id, controller: new AbortController() };
     this.load = load;
     const current = () => this.load === load;
+    const timer = new LoadTimer();
     try {
       this.progress.show('downloading', 0, mesh.name);
       const transfer = await this.socket.getMesh(mesh.id, {
         signal: load.controller.signal,
+        onSent: () => timer.mark('request'),
+        onBegin: () => timer.mark('first-byte'),
         onProgress: (received, total) => {
+          if (received > 0) timer.mark('first-chunk');
+          if (received >= total) timer.mark('last-chunk');
           if (current()) this.progress.show('downloading', total > 0 ? received / total : 0, mesh.name);
         },
       });
       if (!current()) return;
       this.progress.show('decoding', null, mesh.name);
+      const bytes = transfer.payload.byteLength; // before the worker takes the buffer
+      timer.mark('decode-start');
       const decoded = await this.decoder.decode(transfer.payload);
       if (!current()) return;
+      timer.mark('decode-end');
+      timer.setWorkerTiming(decoded.timing);
       const object = buildSurface(decoded);
+      timer.mark('geometry-built');
       this.viewer.show(object, () => {
         if (this.viewer.object !== object) return;
-        this.hooks.lastLoaded = { id: mesh.id, vertices: decoded.vertices, faces: decoded.faces };
+        timer.mark('first-frame');
+        this.hooks.timings = null;
+        this.hooks.lastLoaded = { id: mesh.id, vertices: decoded.vertices, faces: decoded.faces, bytes };
+        void timer.markGpuDone(this.viewer.renderer.getContext()).then(() => {
+          if (this.viewer.object === object) this.hooks.timings = timer.finish();
+        });
       });
       this.progress.hide();
     } catch (e) {
@@ -194,6 +218,7 @@ export class App {
       }
       this.viewer.clear();
       this.hooks.lastLoaded = null;
+      this.hooks.timings = null;
       this.report.render(null);
     }
     this.renderList();

@@ -29,6 +29,10 @@ export interface GetMeshOptions {
   quantization?: number;
   /** Called as chunks arrive: payload bytes received so far and the total. */
   onProgress?: (received: number, total: number) => void;
+  /** Called when the get_mesh request has been sent. */
+  onSent?: () => void;
+  /** Called when mesh_begin arrives. */
+  onBegin?: (begin: MeshBegin) => void;
   /** Aborting forgets the request; chunks still arriving for it are dropped. */
   signal?: AbortSignal;
 }
@@ -154,6 +158,7 @@ export class CgviewSocket {
       );
       this.pending.set(id, { kind: 'mesh', begin: null, assembler: new ChunkAssembler(id), options, resolve, reject });
       this.send(request);
+      if (this.pending.has(id)) options.onSent?.();
     });
   }
 
@@ -240,6 +245,7 @@ export class CgviewSocket {
         return;
       }
       p.begin = begin;
+      p.options.onBegin?.(begin);
       p.options.onProgress?.(p.assembler.bytesReceived, begin.bytes);
     } else if (type === 'mesh_end') {
       this.pending.delete(id);

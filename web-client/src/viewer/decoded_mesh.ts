@@ -1,5 +1,6 @@
 // What the Draco worker hands back to the main thread: plain typed arrays,
 // transferred (not copied) with postMessage.
+import type { WorkerTiming } from './timings.ts';
 
 export interface DecodedColors {
   array: Float32Array | Uint8Array | Uint16Array;
@@ -19,6 +20,8 @@ export interface DecodedMesh {
   colors: DecodedColors | null;
   vertices: number;
   faces: number;
+  /** How long the worker took, measured inside it. */
+  timing: WorkerTiming;
 }
 
 export interface DecodeRequest {

@@ -76,7 +76,7 @@ function readColors(draco: DracoDecoderModule, decoder: DracoDecoder, mesh: Drac
   return { array: readFloat32(draco, decoder, mesh, attr), itemSize, normalized: false };
 }
 
-function decode(draco: DracoDecoderModule, payload: ArrayBuffer): DecodedMesh {
+function decode(draco: DracoDecoderModule, payload: ArrayBuffer): Omit<DecodedMesh, 'timing'> {
   const data = new Int8Array(payload);
   const decoder = new draco.Decoder();
   const mesh = new draco.Mesh();
@@ -125,9 +125,15 @@ function decode(draco: DracoDecoderModule, payload: ArrayBuffer): DecodedMesh {
 
 scope.onmessage = (ev) => {
   const { id, payload } = ev.data;
+  const received = performance.now();
   loadModule()
     .then((draco) => {
-      const mesh = decode(draco, payload);
+      const start = performance.now();
+      const decoded = decode(draco, payload);
+      const end = performance.now();
+      performance.clearMeasures('cgview:worker-decode'); // keep the latest only
+      performance.measure('cgview:worker-decode', { start, end });
+      const mesh: DecodedMesh = { ...decoded, timing: { initMs: start - received, decodeMs: end - start } };
       const transfer: Transferable[] = [mesh.positions.buffer, mesh.indices.buffer];
       if (mesh.normals) transfer.push(mesh.normals.buffer);
       if (mesh.colors) transfer.push(mesh.colors.array.buffer);
