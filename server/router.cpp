@@ -210,7 +210,11 @@ HttpResponse Router::serve_static(const std::string& path) const {
   if (config_.static_dir.empty()) return error_response(404, "not_found", "no web client is served (--static-dir)");
   if (path.find("..") != std::string::npos || path.find('\0') != std::string::npos || path.empty() || path[0] != '/')
     return error_response(400, "bad_request", "bad path");
-  fs::path file = config_.static_dir / path.substr(1);
+  // "//etc/passwd" (or "/%2Fetc...") leaves an absolute path after the first
+  // '/', and dir / absolute is the absolute path itself: refuse it.
+  const fs::path relative = path.substr(1);
+  if (relative.has_root_path()) return error_response(400, "bad_request", "bad path");
+  fs::path file = config_.static_dir / relative;
   std::error_code ec;
   if (path == "/" || fs::is_directory(file, ec)) file /= "index.html";
   std::ifstream f(file, std::ios::binary);

@@ -310,7 +310,13 @@ struct Server::Impl {
   }
   void accept() {
     acceptor.async_accept(net::make_strand(ioc), [this](beast::error_code ec, tcp::socket socket) {
-      if (!ec) std::make_shared<HttpSession>(std::move(socket), shared)->run();
+      if (!ec) {
+        // Small messages (JSON replies, a stream's last chunk) go out at
+        // once instead of waiting up to 40 ms for the client's delayed ACK.
+        beast::error_code ignored;
+        socket.set_option(tcp::no_delay(true), ignored);
+        std::make_shared<HttpSession>(std::move(socket), shared)->run();
+      }
       if (acceptor.is_open()) accept();
     });
   }
