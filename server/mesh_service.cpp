@@ -137,10 +137,23 @@ int MeshService::import_samples(const std::filesystem::path& dir, std::size_t ma
   return added;
 }
 
+namespace {
+nlohmann::json mesh_head(const MeshRecord& r) {
+  return {{"id", r.id}, {"name", r.name}, {"format", r.format}, {"bytes", r.bytes}, {"created", r.created}, {"sha256", r.sha256}};
+}
+}  // namespace
+
 nlohmann::json mesh_json(const MeshRecord& r) {
-  return {{"id", r.id},         {"name", r.name},         {"format", r.format},
-          {"bytes", r.bytes},   {"created", r.created},   {"sha256", r.sha256},
-          {"report", nlohmann::json::parse(r.report_json)}, {"warnings", nlohmann::json::parse(r.warnings_json)}};
+  nlohmann::json j = mesh_head(r);
+  j["report"] = nlohmann::json::parse(r.report_json);
+  j["warnings"] = nlohmann::json::parse(r.warnings_json);
+  return j;
+}
+
+std::string mesh_json_text(const MeshRecord& r) {
+  std::string s = mesh_head(r).dump();
+  s.pop_back();  // the closing brace
+  return s + ",\"report\":" + r.report_json + ",\"warnings\":" + r.warnings_json + "}";
 }
 
 }  // namespace cgview::server

@@ -66,5 +66,7 @@ class MeshService {
 
 // The JSON object of a stored mesh (API.md's Mesh).
 nlohmann::json mesh_json(const MeshRecord& record);
+// The same, serialized, without parsing the stored report again.
+std::string mesh_json_text(const MeshRecord& record);
 
 }  // namespace cgview::server

@@ -139,7 +139,11 @@ Router::Router(MeshService& meshes, RouterConfig config) : meshes_(meshes), conf
                        return r;
                      }});
   routes_.push_back({"GET", "/api/v1/meshes/{id}", "One mesh's metadata and report", {},
-                     [find](const Params& p, const HttpRequest&) { return json_response(200, mesh_json(find(p))); },
+                     [find](const Params& p, const HttpRequest&) {
+                       HttpResponse r;
+                       r.body = mesh_json_text(find(p));
+                       return r;
+                     },
                      false});
   routes_.push_back({"DELETE", "/api/v1/meshes/{id}", "Delete a mesh", {},
                      [this, find](const Params& p, const HttpRequest&) {

@@ -229,6 +229,28 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     parser_->body_limit(shared_->config.max_upload_bytes);
     parser_->header_limit(64 * 1024);
     stream_.expires_after(std::chrono::seconds(60));
+    http::async_read_header(stream_, buffer_, *parser_, beast::bind_front_handler(&HttpSession::on_header, shared_from_this()));
+  }
+
+  // The header alone: refuse a body that is announced too large before it
+  // is sent, and answer "Expect: 100-continue" (curl sends it for uploads).
+  void on_header(beast::error_code ec, std::size_t n) {
+    if (ec) return on_read(ec, n);
+    const auto& req = parser_->get();
+    if (parser_->content_length() && *parser_->content_length() > shared_->config.max_upload_bytes)
+      return on_read(http::error::body_limit, n);
+    if (beast::iequals(req[http::field::expect], "100-continue")) {
+      auto cont = std::make_shared<http::response<http::empty_body>>(http::status::continue_, 11);
+      http::async_write(stream_, *cont, [self = shared_from_this(), cont](beast::error_code ec, std::size_t) {
+        if (ec) return;
+        self->read_body();
+      });
+      return;
+    }
+    read_body();
+  }
+
+  void read_body() {
     http::async_read(stream_, buffer_, *parser_, beast::bind_front_handler(&HttpSession::on_read, shared_from_this()));
   }
 

@@ -125,6 +125,11 @@ Store::Store(const fs::path& data_dir) : dir_(data_dir) {
        " sha256 TEXT NOT NULL, created TEXT NOT NULL, report TEXT NOT NULL, warnings TEXT NOT NULL,"
        " seq INTEGER);"
        "CREATE INDEX IF NOT EXISTS meshes_sha ON meshes(sha256);");
+  {
+    Stmt s(db_, "SELECT COUNT(*) FROM meshes");
+    s.step();
+    count_ = std::size_t(s.integer(0));
+  }
   // Blobs left by a crash between file write and row insert are orphans.
   for (const auto& e : fs::directory_iterator(dir_ / "blobs", ec))
     if (e.path().extension() == ".part") fs::remove(e.path(), ec);
@@ -161,6 +166,7 @@ MeshRecord Store::add_mesh(MeshRecord r, std::string_view bytes) {
     s.bind(1, r.id).bind(2, r.name).bind(3, r.format).bind(4, std::int64_t(r.bytes)).bind(5, r.sha256);
     s.bind(6, r.created).bind(7, r.report_json).bind(8, r.warnings_json);
     s.step();
+    ++count_;
   } catch (...) {
     fs::remove(final_path, ec);
     throw;
@@ -201,6 +207,7 @@ bool Store::remove_mesh(const std::string& id) {
     s.bind(1, id);
     s.step();
     if (sqlite3_changes(db_) == 0) return false;
+    --count_;
   }
   std::error_code ec;
   fs::remove(blob_path(*r), ec);
@@ -216,11 +223,5 @@ std::string Store::read_blob(const MeshRecord& r) const {
   return bytes;
 }
 
-std::size_t Store::count() const {
-  std::lock_guard lock(mutex_);
-  Stmt s(db_, "SELECT COUNT(*) FROM meshes");
-  s.step();
-  return std::size_t(s.integer(0));
-}
 
 }  // namespace cgview::server

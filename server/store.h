@@ -7,6 +7,7 @@
 // leaves no row without its file.  Thread-safe.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -48,7 +49,7 @@ class Store {
   bool remove_mesh(const std::string& id);
   // The uploaded bytes of a mesh; throws IoError when the blob is missing.
   std::string read_blob(const MeshRecord& record) const;
-  std::size_t count() const;
+  std::size_t count() const { return count_; }
   const std::filesystem::path& data_dir() const { return dir_; }
 
  private:
@@ -56,6 +57,7 @@ class Store {
   std::filesystem::path dir_;
   sqlite3* db_ = nullptr;
   mutable std::mutex mutex_;
+  std::atomic<std::size_t> count_{0};  // rows, kept by add and remove (health asks it often)
 };
 
 // Lowercase hex SHA-256 of bytes.
