@@ -18,32 +18,14 @@
 // Needs: build/bin/cgview-server and ws_bench (cmake --build build), the
 // built client (cd web-client && npm run build), /usr/bin/chromium.
 // Environment: CGVIEW_SERVER, CGVIEW_WS_BENCH, CHROMIUM override the paths.
-import { spawn, spawnSync } from 'node:child_process';
+import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
-import { createRequire } from 'node:module';
 import os from 'node:os';
 import path from 'node:path';
-import { fileURLToPath } from 'node:url';
+import { chromiumBin, dist, launchBrowser, repo, serverBin, startServer } from '../web-client/tests/harness.mjs';
 
-const repo = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
-const webClient = path.join(repo, 'web-client');
-const { chromium } = createRequire(path.join(webClient, 'package.json'))('playwright-core');
-
-const serverBin = process.env.CGVIEW_SERVER ?? path.join(repo, 'build', 'bin', 'cgview-server');
 const wsBenchBin = process.env.CGVIEW_WS_BENCH ?? path.join(repo, 'build', 'bin', 'ws_bench');
-const chromiumBin = process.env.CHROMIUM ?? '/usr/bin/chromium';
-const dist = path.join(webClient, 'dist');
 const DEFAULT_MESH = '/tmp/cgview_bunny_1m.ply';
-const CHROMIUM_ARGS = [
-  '--use-angle=swiftshader',
-  '--enable-unsafe-swiftshader',
-  '--no-sandbox',
-  '--disable-background-networking',
-  '--disable-component-update',
-  '--disable-sync',
-  '--no-first-run',
-  '--headless=new',
-];
 const LOAD_TIMEOUT_MS = 300_000;
 
 function usage(message) {
@@ -69,38 +51,17 @@ function parseArgs(argv) {
 
 // ---- the things to clean up, whatever happens ----
 let server = null;
-let serverLog = '';
 let browser = null;
-let dataDir = null;
-
-function stopServer() {
-  if (!server || server.exitCode !== null || server.signalCode !== null) return Promise.resolve();
-  const proc = server;
-  return new Promise((resolve) => {
-    const killer = setTimeout(() => proc.kill('SIGKILL'), 5000);
-    proc.once('exit', () => {
-      clearTimeout(killer);
-      resolve();
-    });
-    proc.kill('SIGTERM');
-  });
-}
 
 async function cleanup() {
   try {
     if (browser) await browser.close().catch(() => {});
   } finally {
     browser = null;
-    await stopServer();
-    if (dataDir) fs.rmSync(dataDir, { recursive: true, force: true });
-    dataDir = null;
+    if (server) await server.stop();
   }
 }
 
-process.on('exit', () => {
-  if (server && server.exitCode === null && server.signalCode === null) server.kill('SIGKILL');
-  if (dataDir) fs.rmSync(dataDir, { recursive: true, force: true });
-});
 for (const signal of ['SIGINT', 'SIGTERM']) {
   process.on(signal, () => {
     void cleanup().finally(() => process.exit(130));
@@ -119,37 +80,6 @@ function prepareMesh(file) {
     throw new Error(`ws_bench --save-mesh failed (${r.status ?? r.signal}): ${r.stderr}`);
   }
   return DEFAULT_MESH;
-}
-
-function startServer() {
-  dataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'cgview-browser-bench-'));
-  server = spawn(
-    serverBin,
-    ['--host', '127.0.0.1', '--port', '0', '--data-dir', dataDir, '--static-dir', dist, '--samples', 'none'],
-    { cwd: repo, stdio: ['ignore', 'pipe', 'pipe'] },
-  );
-  return new Promise((resolve, reject) => {
-    const timer = setTimeout(() => reject(new Error(`cgview-server did not say where it serves within 30 s:\n${serverLog}`)), 30_000);
-    const log = (chunk) => {
-      serverLog += chunk.toString();
-      if (serverLog.length > 20000) serverLog = serverLog.slice(-20000);
-      const m = /CGView serving (http:\/\/[^/\s]+)\//.exec(serverLog);
-      if (m) {
-        clearTimeout(timer);
-        resolve(m[1]);
-      }
-    };
-    server.stdout.on('data', log);
-    server.stderr.on('data', log);
-    server.once('error', (e) => {
-      clearTimeout(timer);
-      reject(e);
-    });
-    server.once('exit', (code, signal) => {
-      clearTimeout(timer);
-      reject(new Error(`cgview-server exited (${code ?? signal}):\n${serverLog}`));
-    });
-  });
 }
 
 async function upload(baseUrl, file) {
@@ -320,10 +250,11 @@ async function main() {
     if (!fs.existsSync(file)) throw new Error(`${what} is missing: ${file} (${hint})`);
   }
   const meshFile = prepareMesh(args.mesh);
-  const baseUrl = await startServer();
+  server = await startServer({ tmpPrefix: 'cgview-browser-bench-', extraArgs: ['--samples', 'none'] });
+  const baseUrl = server.url;
   const { mesh, fileBytes, uploadMs } = await upload(baseUrl, meshFile);
 
-  browser = await chromium.launch({ executablePath: chromiumBin, args: CHROMIUM_ARGS, headless: true });
+  browser = await launchBrowser();
   const version = browser.version();
   const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
   const problems = [];

@@ -11,96 +11,23 @@
 // CHROMIUM (default /usr/bin/chromium).
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawn } from 'node:child_process';
 import fs from 'node:fs';
-import net from 'node:net';
 import os from 'node:os';
 import path from 'node:path';
-import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { chromiumBin, dist, launchBrowser, repo, serverBin, startServer } from './harness.mjs';
 
-const here = path.dirname(fileURLToPath(import.meta.url));
-const webClient = path.resolve(here, '..');
-const repo = path.resolve(webClient, '..');
-const serverBin = process.env.CGVIEW_SERVER ?? path.join(repo, 'build', 'bin', 'cgview-server');
-const chromiumBin = process.env.CHROMIUM ?? '/usr/bin/chromium';
-const dist = path.join(webClient, 'dist');
 const elephant = path.join(repo, 'build', 'samples', 'elephant.off');
 const artifacts = path.join(repo, 'build', 'test-artifacts');
 
 const ELEPHANT = { vertices: 2775, faces: 5558 };
 const BACKGROUND = [0x1b, 0x1d, 0x22]; // src/viewer/viewer.ts
-const CHROMIUM_ARGS = [
-  '--use-angle=swiftshader',
-  '--enable-unsafe-swiftshader',
-  '--no-sandbox',
-  '--disable-background-networking',
-  '--disable-component-update',
-  '--disable-sync',
-  '--no-first-run',
-  '--headless=new',
-];
 
 let server = null;
-let serverLog = '';
-let dataDir = null;
 let browser = null;
 let page = null;
 let baseUrl = null;
 const pageProblems = [];
 let elephantId = null;
-
-function freePort() {
-  return new Promise((resolve, reject) => {
-    const s = net.createServer();
-    s.unref();
-    s.on('error', reject);
-    s.listen(0, '127.0.0.1', () => {
-      const { port } = s.address();
-      s.close(() => resolve(port));
-    });
-  });
-}
-
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-
-async function waitForHealth(url, timeoutMs) {
-  const deadline = Date.now() + timeoutMs;
-  let last = '';
-  while (Date.now() < deadline) {
-    if (server.exitCode !== null || server.signalCode !== null) {
-      throw new Error(`cgview-server exited (${server.exitCode ?? server.signalCode}) before it was healthy:\n${serverLog}`);
-    }
-    try {
-      const r = await fetch(`${url}/api/v1/health`);
-      const body = await r.json();
-      if (r.status === 200 && body.status === 'ok') return body;
-      last = `HTTP ${r.status} ${JSON.stringify(body)}`;
-    } catch (e) {
-      last = e.message;
-    }
-    await sleep(100);
-  }
-  throw new Error(`GET /api/v1/health did not answer ok within ${timeoutMs} ms (last: ${last}):\n${serverLog}`);
-}
-
-function stopServer() {
-  if (!server || server.exitCode !== null || server.signalCode !== null) return Promise.resolve();
-  const proc = server;
-  return new Promise((resolve) => {
-    const killer = setTimeout(() => proc.kill('SIGKILL'), 5000);
-    proc.once('exit', () => {
-      clearTimeout(killer);
-      resolve();
-    });
-    proc.kill('SIGTERM');
-  });
-}
-
-// Even if the runner dies on an uncaught error, do not leave the server behind.
-process.on('exit', () => {
-  if (server && server.exitCode === null && server.signalCode === null) server.kill('SIGKILL');
-});
 
 function describeProblems() {
   return pageProblems.length ? `\npage problems:\n${pageProblems.join('\n')}` : '';
@@ -116,24 +43,10 @@ before(async () => {
     assert.ok(fs.existsSync(file), `${what} is missing: ${file} (${hint})`);
   }
   fs.mkdirSync(artifacts, { recursive: true });
-  dataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'cgview-e2e-'));
+  server = await startServer({ tmpPrefix: 'cgview-e2e-' });
+  baseUrl = server.url;
 
-  const port = await freePort();
-  baseUrl = `http://127.0.0.1:${port}`;
-  server = spawn(
-    serverBin,
-    ['--host', '127.0.0.1', '--port', String(port), '--data-dir', dataDir, '--static-dir', dist],
-    { cwd: repo, stdio: ['ignore', 'pipe', 'pipe'] },
-  );
-  const log = (chunk) => {
-    serverLog += chunk.toString();
-    if (serverLog.length > 20000) serverLog = serverLog.slice(-20000);
-  };
-  server.stdout.on('data', log);
-  server.stderr.on('data', log);
-  await waitForHealth(baseUrl, 30000);
-
-  browser = await chromium.launch({ executablePath: chromiumBin, args: CHROMIUM_ARGS, headless: true });
+  browser = await launchBrowser();
   page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
   page.on('pageerror', (e) => pageProblems.push(`pageerror: ${e.message}`));
   page.on('console', (m) => {
@@ -152,8 +65,7 @@ after(async () => {
   try {
     if (browser) await browser.close();
   } finally {
-    await stopServer();
-    if (dataDir) fs.rmSync(dataDir, { recursive: true, force: true });
+    if (server) await server.stop();
   }
 });
 
@@ -235,7 +147,7 @@ test('uploading the elephant through the page lists, reports and draws it', asyn
     .waitForFunction(() => window.__cgview.lastLoaded !== null, null, { timeout: 60000 })
     .catch(async (e) => {
       const error = await page.evaluate(() => window.__cgview.lastError);
-      throw new Error(`the elephant never showed (page error: ${error}): ${e.message}${describeProblems()}\n${serverLog}`);
+      throw new Error(`the elephant never showed (page error: ${error}): ${e.message}${describeProblems()}\n${server.log()}`);
     });
   const state = await page.evaluate(() => window.__cgview);
   elephantId = state.lastLoaded.id;
