@@ -1,4 +1,5 @@
 // cgview-server: the REST and WebSocket server with the browser viewer.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -77,18 +78,11 @@ int main(int argc, char** argv) {
   try {
     server::Server srv(config);
     if (samples != "none") {
-      if (const auto dir = samples_dir()) {
-        const std::filesystem::path tmp = config.data_dir / "samples-import";
-        if (samples == "all") srv.meshes().import_samples(*dir, config.max_upload_bytes);
-        else {
-          std::filesystem::create_directories(tmp);
-          for (const auto& n : kDefaultSamples)
-            if (std::filesystem::exists(*dir / n))
-              std::filesystem::copy_file(*dir / n, tmp / n, std::filesystem::copy_options::overwrite_existing);
-          srv.meshes().import_samples(tmp, config.max_upload_bytes);
-          std::filesystem::remove_all(tmp);
-        }
-      }
+      std::vector<std::filesystem::path> files;
+      for (const auto& f : list_samples())
+        if (samples == "all" || std::find(kDefaultSamples.begin(), kDefaultSamples.end(), f.filename()) != kDefaultSamples.end())
+          files.push_back(f);
+      srv.meshes().import_samples(files, config.max_upload_bytes);
     }
     std::printf("CGView serving http://%s:%u/ (data in %s, %zu meshes)\n", config.host.c_str(), unsigned(srv.port()),
                 config.data_dir.c_str(), srv.meshes().store().count());

@@ -116,16 +116,10 @@ std::string MeshService::download(const MeshRecord& rec, const std::string& form
   return write_mesh_bytes(*mesh(rec), f);
 }
 
-int MeshService::import_samples(const std::filesystem::path& dir, std::size_t max_bytes_each) {
+int MeshService::import_samples(const std::vector<std::filesystem::path>& files, std::size_t max_bytes_each) {
   int added = 0;
-  std::error_code ec;
-  std::vector<std::filesystem::path> files;
-  for (const auto& e : std::filesystem::directory_iterator(dir, ec))
-    if (e.is_regular_file()) files.push_back(e.path());
-  std::sort(files.begin(), files.end());
   for (const auto& p : files) {
     try {
-      format_from_name(p.string());
       const std::string bytes = read_file_bytes(p, max_bytes_each);
       if (store_.find_by_sha256(sha256_hex(bytes))) continue;
       upload(p.filename().string(), "", bytes);

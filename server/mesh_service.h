@@ -16,6 +16,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/mesh.h"
 #include "store.h"
@@ -42,9 +43,9 @@ class MeshService {
   // The mesh in a writable format ("obj", "ply", ...): the stored bytes
   // when the format is the uploaded one, else a conversion.
   std::string download(const MeshRecord& record, const std::string& format);
-  // Uploads every sample mesh in `dir` that is not stored yet (by content);
-  // returns how many were added.
-  int import_samples(const std::filesystem::path& dir, std::size_t max_bytes_each);
+  // Uploads each mesh file that is not stored yet (by content), skipping
+  // files it cannot read; returns how many were added.
+  int import_samples(const std::vector<std::filesystem::path>& files, std::size_t max_bytes_each);
 
   Store& store() { return store_; }
   std::uint64_t encodings_computed() const { return encodings_computed_; }
