@@ -9,8 +9,15 @@
 #include "core/errors.h"
 #include "core/mesh_report.h"
 #include "io/mesh_io.h"
+#include "algorithm_json.h"
 #include "io/samples.h"
 #include "mesh_report_json.h"
+#include "registry/artifact_io.h"
+#include "registry/registry.h"
+
+#include <chrono>
+#include <cmath>
+#include <unistd.h>
 
 namespace {
 
@@ -31,6 +38,9 @@ const char* kMainHelp =
     "  info MESH [--json]     counts, bounding box, topology and defects of a mesh\n"
     "  convert IN OUT         convert between formats (from the file extensions)\n"
     "  samples                list the sample meshes (usable by name: cgview info elephant)\n"
+    "  list [--json]          the registered algorithms and their parameters\n"
+    "  run ALGO MESH [--PARAM VALUE]... [-o OUT]\n"
+    "                         run an algorithm (cgview run ALGO --help lists its parameters)\n"
     "\n"
     "options:\n"
     "  -h, --help             this help (also: cgview COMMAND --help)\n"
@@ -182,6 +192,134 @@ int cmd_samples(const std::vector<std::string>& args) {
   return 0;
 }
 
+std::string param_line(const ParamSpec& p) {
+  std::string s = "  --" + p.name + " " + to_string(p.type);
+  if (s.size() < 30) s.resize(30, ' ');
+  s += p.info.label + " (default " + to_string(p.default_value);
+  if (p.info.min) s += ", min " + to_string(ParamValue(*p.info.min));
+  if (p.info.max) s += ", max " + to_string(ParamValue(*p.info.max));
+  if (!p.info.choices.empty()) {
+    s += ", one of";
+    for (const auto& c : p.info.choices) s += " " + c;
+  }
+  s += ")";
+  if (!p.info.help.empty()) s += ": " + p.info.help;
+  return s + "\n";
+}
+
+int cmd_list(const std::vector<std::string>& args) {
+  if (wants_help(args)) {
+    std::fputs("usage: cgview list [--json]\n\nThe registered algorithms, with their parameters (--json: with JSON Schemas).\n", stdout);
+    return 0;
+  }
+  if (!args.empty() && args[0] == "--json") {
+    nlohmann::json j = nlohmann::json::array();
+    for (const auto& [name, a] : algorithms()) j.push_back(protocol::to_json(a));
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+  if (!args.empty()) throw Usage("list: unknown option " + args[0]);
+  for (const auto& [name, a] : algorithms()) {
+    std::printf("%-24s %s\n", name.c_str(), a.info.title.c_str());
+    for (const auto& p : a.params) std::fputs(param_line(p).c_str(), stdout);
+  }
+  return 0;
+}
+
+// A progress bar on a terminal, plain lines (every 10% or new stage) otherwise.
+class ProgressPrinter {
+ public:
+  ProgressPrinter() : tty_(::isatty(2)) {}
+  ~ProgressPrinter() {
+    if (tty_ && drawn_) std::fputc('\n', stderr);
+  }
+  void operator()(double f, std::string_view stage) {
+    f = std::clamp(f, 0.0, 1.0);
+    const int pct = int(std::lround(f * 100));
+    if (tty_) {
+      const auto now = std::chrono::steady_clock::now();
+      if (pct != 100 && now - last_ < std::chrono::milliseconds(100) && stage == stage_) return;
+      last_ = now;
+      std::string bar(30, ' ');
+      for (int i = 0; i < int(f * 30); ++i) bar[std::size_t(i)] = '=';
+      std::fprintf(stderr, "\r[%s] %3d%% %-24.*s", bar.c_str(), pct, int(stage.size()), stage.data());
+      drawn_ = true;
+    } else if (stage != stage_ || pct / 10 != last_pct_ / 10) {
+      std::fprintf(stderr, "progress %3d%% %.*s\n", pct, int(stage.size()), stage.data());
+    }
+    stage_ = stage;
+    last_pct_ = pct;
+  }
+
+ private:
+  bool tty_, drawn_ = false;
+  std::string stage_;
+  int last_pct_ = -100;
+  std::chrono::steady_clock::time_point last_{};
+};
+
+int cmd_run(const std::vector<std::string>& args) {
+  if (args.empty() || args[0] == "-h" || args[0] == "--help") {
+    std::fputs("usage: cgview run ALGO MESH [--PARAM VALUE]... [-o OUT]\n\n"
+               "Runs a registered algorithm on a mesh and saves its results. With several results,\n"
+               "OUT names the first and the others are saved beside it as OUTSTEM-NAME.EXT.\n"
+               "A scalar field saves as .txt, .csv or .ply; see cgview list for the algorithms.\n", stdout);
+    return 0;
+  }
+  const Algorithm* algo;
+  try {
+    algo = &find_algorithm(args[0]);
+  } catch (const std::out_of_range& e) {
+    throw Usage(std::string("run: ") + e.what() + " (see cgview list)");
+  }
+  if (wants_help(args)) {
+    std::printf("usage: cgview run %s MESH [--PARAM VALUE]... [-o OUT]\n\n%s: %s\n\nparameters:\n", args[0].c_str(),
+                algo->info.title.c_str(), algo->info.description.c_str());
+    for (const auto& p : algo->params) std::fputs(param_line(p).c_str(), stdout);
+    std::printf("\noutputs:\n");
+    for (const auto& [name, kind] : algo->info.outputs) std::printf("  %s (%s)\n", name.c_str(), to_string(kind));
+    return 0;
+  }
+  std::string mesh_arg, out;
+  std::map<std::string, ParamValue> values;
+  for (std::size_t i = 1; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "-o" || a == "--output") {
+      if (i + 1 >= args.size()) throw Usage("run: -o needs a file");
+      out = args[++i];
+    } else if (a.starts_with("--")) {
+      const std::string name = a.substr(2);
+      const ParamSpec* spec = nullptr;
+      for (const auto& p : algo->params)
+        if (p.name == name) spec = &p;
+      if (!spec) throw Usage("run: " + args[0] + " has no parameter --" + name + " (see cgview run " + args[0] + " --help)");
+      if (i + 1 >= args.size()) throw Usage("run: --" + name + " needs a value");
+      values[name] = parse_param(*spec, args[++i]);
+    } else if (mesh_arg.empty()) mesh_arg = a;
+    else throw Usage("run: unexpected argument '" + a + "'");
+  }
+  if (mesh_arg.empty()) throw Usage("run: which mesh?");
+  const ReadResult r = read_mesh_file(need_mesh(mesh_arg));
+  print_warnings(r);
+  ProgressPrinter printer;
+  Context ctx([&](double f, std::string_view stage) { printer(f, stage); }, nullptr);
+  const AlgorithmResult result = algo->run(r.mesh, values, ctx);
+  for (const auto& w : result.warnings) std::fprintf(stderr, "cgview: warning: %s\n", w.c_str());
+  for (std::size_t k = 0; k < result.artifacts.size(); ++k) {
+    const Artifact& art = result.artifacts[k];
+    std::filesystem::path path;
+    if (out.empty()) path = std::filesystem::path(mesh_arg).stem().string() + "-" + art.name + default_extension(art);
+    else if (k == 0) path = out;
+    else {
+      const std::filesystem::path o(out);
+      path = o.parent_path() / (o.stem().string() + "-" + art.name + default_extension(art));
+    }
+    write_artifact(art, r.mesh, path);
+    std::printf("%s: %s\n", art.name.c_str(), path.c_str());
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -195,6 +333,8 @@ int main(int argc, char** argv) {
     if (cmd == "info") return cmd_info(rest);
     if (cmd == "convert") return cmd_convert(rest);
     if (cmd == "samples") return cmd_samples(rest);
+    if (cmd == "list") return cmd_list(rest);
+    if (cmd == "run") return cmd_run(rest);
     throw Usage("unknown command '" + cmd + "'");
   } catch (const Usage& e) {
     std::fprintf(stderr, "cgview: %s (see cgview --help)\n", e.what());

@@ -119,9 +119,16 @@ std::string write_mesh_bytes(const Mesh& mesh, MeshFormat format, const WriteOpt
   throw UnsupportedFormat(std::string("cannot write ") + to_string(format) + " (writable: " + writable_formats() + ")");
 }
 
+std::string write_ply_with_field(const Mesh& mesh, const ScalarField& field, bool binary) {
+  mesh.validate();
+  return detail::write_ply(mesh, binary, &field);
+}
+
 void write_mesh(const Mesh& mesh, const std::filesystem::path& path, const WriteOptions& options) {
-  const MeshFormat format = format_from_name(path.string());
-  const std::string bytes = write_mesh_bytes(mesh, format, options);
+  write_file_bytes(path, write_mesh_bytes(mesh, format_from_name(path.string()), options));
+}
+
+void write_file_bytes(const std::filesystem::path& path, std::string_view bytes) {
   // Write beside the target and rename, so that a failure leaves no half file.
   const std::filesystem::path tmp = path.string() + ".part";
   {

@@ -72,6 +72,14 @@ void write_mesh(const Mesh& mesh, const std::filesystem::path& path, const Write
 // The bytes of a mesh in a format.
 std::string write_mesh_bytes(const Mesh& mesh, MeshFormat format, const WriteOptions& options = {});
 
+// A PLY of the mesh with a scalar field as a float property of its vertices
+// or faces, named after the field (MeshLab and ParaView read it).
+std::string write_ply_with_field(const Mesh& mesh, const struct ScalarField& field, bool binary = true);
+
+// Writes bytes to a file through a temporary name, so that a failure leaves
+// no half-written file; throws IoError.
+void write_file_bytes(const std::filesystem::path& path, std::string_view bytes);
+
 // Reads a whole file into memory; throws IoError (cannot open) or
 // InvalidInput (over max_bytes).
 std::string read_file_bytes(const std::filesystem::path& path, std::uint64_t max_bytes);

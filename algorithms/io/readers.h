@@ -4,6 +4,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/scalar_field.h"
 #include "io/mesh_io.h"
 
 namespace cgview::detail {
@@ -18,7 +19,7 @@ void read_gltf(std::string_view bytes, const std::string& name, bool binary, Rea
 
 std::string write_off(const Mesh& mesh);
 std::string write_obj(const Mesh& mesh);
-std::string write_ply(const Mesh& mesh, bool binary);
+std::string write_ply(const Mesh& mesh, bool binary, const ScalarField* field = nullptr);
 std::string write_stl(const Mesh& mesh, bool binary);
 std::string write_draco(const Mesh& mesh, const WriteOptions& options);
 std::string write_glb(const Mesh& mesh);

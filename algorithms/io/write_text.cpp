@@ -5,6 +5,9 @@
 #include <charconv>
 #include <cstring>
 
+#include <cctype>
+
+#include "core/scalar_field.h"
 #include "io/readers.h"
 
 namespace cgview::detail {
@@ -110,8 +113,22 @@ std::string write_obj(const Mesh& mesh) {
   return o.take();
 }
 
-std::string write_ply(const Mesh& input, bool binary) {
-  const Mesh mesh = with_per_vertex_attributes(input);
+std::string write_ply(const Mesh& input, bool binary, const ScalarField* field) {
+  // A per-vertex field needs the vertices as they are: keep only what is
+  // per vertex already (positions, colours) rather than splitting seams.
+  Mesh plain;
+  if (field) {
+    field->check_matches(input);
+    plain.positions = input.positions;
+    plain.faces = input.faces;
+    plain.colors = input.colors;
+  }
+  const Mesh mesh = field ? std::move(plain) : with_per_vertex_attributes(input);
+  const bool vf = field && field->location == Location::vertex, ff = field && field->location == Location::face;
+  std::string prop = field ? field->name : "";
+  for (char& ch : prop)
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_') ch = '_';
+  if (prop.empty()) prop = "value";
   const bool n = mesh.has_normals(), c = mesh.has_colors(), t = mesh.has_uvs();
   Out o(mesh.num_vertices() * (binary ? 40 : 80) + mesh.num_faces() * (binary ? 13 : 30) + 512);
   o.str("ply\nformat ").str(binary ? "binary_little_endian" : "ascii").str(" 1.0\ncomment written by CGView\n");
@@ -119,7 +136,10 @@ std::string write_ply(const Mesh& input, bool binary) {
   if (n) o.str("property float nx\nproperty float ny\nproperty float nz\n");
   if (c) o.str("property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\n");
   if (t) o.str("property float s\nproperty float t\n");
-  o.str("element face ").num(std::uint64_t(mesh.num_faces())).str("\nproperty list uchar int vertex_indices\nend_header\n");
+  if (vf) o.str("property float ").str(prop).ch('\n');
+  o.str("element face ").num(std::uint64_t(mesh.num_faces())).str("\nproperty list uchar int vertex_indices\n");
+  if (ff) o.str("property float ").str(prop).ch('\n');
+  o.str("end_header\n");
   for (std::size_t v = 0; v < mesh.num_vertices(); ++v) {
     const Vec3f p = to_float(mesh.positions[v]);
     if (binary) {
@@ -127,17 +147,26 @@ std::string write_ply(const Mesh& input, bool binary) {
       if (n) o.raw(mesh.normals[v].x).raw(mesh.normals[v].y).raw(mesh.normals[v].z);
       if (c) o.raw(mesh.colors[v].r).raw(mesh.colors[v].g).raw(mesh.colors[v].b).raw(mesh.colors[v].a);
       if (t) o.raw(mesh.uvs[v].u).raw(mesh.uvs[v].v);
+      if (vf) o.raw(field->values[v]);
     } else {
       o.num(p.x).ch(' ').num(p.y).ch(' ').num(p.z);
       if (n) o.ch(' ').num(mesh.normals[v].x).ch(' ').num(mesh.normals[v].y).ch(' ').num(mesh.normals[v].z);
       if (c) o.ch(' ').num(int(mesh.colors[v].r)).ch(' ').num(int(mesh.colors[v].g)).ch(' ').num(int(mesh.colors[v].b)).ch(' ').num(int(mesh.colors[v].a));
       if (t) o.ch(' ').num(mesh.uvs[v].u).ch(' ').num(mesh.uvs[v].v);
+      if (vf) o.ch(' ').num(field->values[v]);
       o.ch('\n');
     }
   }
-  for (const Tri& f : mesh.faces) {
-    if (binary) o.raw(std::uint8_t(3)).raw(std::int32_t(f[0])).raw(std::int32_t(f[1])).raw(std::int32_t(f[2]));
-    else o.str("3 ").num(f[0]).ch(' ').num(f[1]).ch(' ').num(f[2]).ch('\n');
+  for (std::size_t i = 0; i < mesh.num_faces(); ++i) {
+    const Tri& f = mesh.faces[i];
+    if (binary) {
+      o.raw(std::uint8_t(3)).raw(std::int32_t(f[0])).raw(std::int32_t(f[1])).raw(std::int32_t(f[2]));
+      if (ff) o.raw(field->values[i]);
+    } else {
+      o.str("3 ").num(f[0]).ch(' ').num(f[1]).ch(' ').num(f[2]);
+      if (ff) o.ch(' ').num(field->values[i]);
+      o.ch('\n');
+    }
   }
   return o.take();
 }

@@ -1,0 +1,122 @@
+#include "registry/artifact_io.h"
+
+#include <charconv>
+#include <cstdio>
+
+#include "io/mesh_io.h"
+
+namespace cgview {
+
+namespace {
+
+std::string ext_of(const std::filesystem::path& p) {
+  std::string e = p.extension().string();
+  for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+void append_number(std::string& s, double v) {
+  char buf[32];
+  const auto [p, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  s.append(buf, std::size_t(p - buf));
+}
+
+std::string metrics_json(const Metrics& m) {
+  std::string s = "{";
+  for (const auto& [k, v] : m) {
+    if (s.size() > 1) s += ", ";
+    s += "\"" + k + "\": ";
+    append_number(s, v);
+  }
+  return s + "}\n";
+}
+
+[[noreturn]] void unsupported(const char* kind, const std::string& ext, const char* known) {
+  throw UnsupportedFormat(std::string("a ") + kind + " cannot be saved as '" + ext + "' (use " + known + ")");
+}
+
+}  // namespace
+
+std::string default_extension(const Artifact& a) {
+  switch (a.value.index()) {
+    case 0: return ".ply";
+    case 1: return ".txt";
+    case 2: return ".vtk";
+    case 3: return ".obj";
+    default: return ".json";
+  }
+}
+
+void write_artifact(const Artifact& a, const Mesh& input, const std::filesystem::path& path) {
+  const std::string ext = ext_of(path);
+  std::string out;
+  if (const auto* mesh = std::get_if<Mesh>(&a.value)) {
+    write_mesh(*mesh, path);
+    return;
+  } else if (const auto* f = std::get_if<ScalarField>(&a.value)) {
+    if (ext == ".ply") {
+      out = write_ply_with_field(input, *f);
+    } else if (ext == ".txt" || ext == ".csv") {
+      const bool csv = ext == ".csv";
+      if (csv) out = std::string(to_string(f->location)) + "," + f->name + "\n";
+      for (std::size_t i = 0; i < f->values.size(); ++i) {
+        if (csv) out += std::to_string(i) + ",";
+        append_number(out, f->values[i]);
+        out += '\n';
+      }
+    } else {
+      unsupported("scalar field", ext, ".txt, .csv or .ply");
+    }
+  } else if (const auto* g = std::get_if<VoxelGrid>(&a.value)) {
+    if (ext != ".vtk") unsupported("voxel grid", ext, ".vtk");
+    const auto d = g->dims();
+    const Vec3 o = g->origin();
+    char head[512];
+    std::snprintf(head, sizeof head,
+                  "# vtk DataFile Version 3.0\n%s\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS %d %d %d\n"
+                  "ORIGIN %.17g %.17g %.17g\nSPACING %.17g %.17g %.17g\nPOINT_DATA %zu\nSCALARS %s float 1\nLOOKUP_TABLE default\n",
+                  a.name.c_str(), d[0], d[1], d[2], o.x + g->voxel_size() / 2, o.y + g->voxel_size() / 2,
+                  o.z + g->voxel_size() / 2, g->voxel_size(), g->voxel_size(), g->voxel_size(), g->size(), "value");
+    out = head;
+    for (std::size_t n = 0; n < g->size(); ++n) {
+      append_number(out, g->get(g->unlinear(n)));
+      out += '\n';
+    }
+  } else if (const auto* s = std::get_if<Skeleton>(&a.value)) {
+    if (ext == ".obj") {
+      for (const Vec3& p : s->nodes) {
+        out += "v ";
+        append_number(out, p.x);
+        out += ' ';
+        append_number(out, p.y);
+        out += ' ';
+        append_number(out, p.z);
+        out += '\n';
+      }
+      for (const auto& e : s->edges) out += "l " + std::to_string(e[0] + 1) + " " + std::to_string(e[1] + 1) + "\n";
+    } else if (ext == ".json") {
+      out = "{\"nodes\": [";
+      for (std::size_t i = 0; i < s->nodes.size(); ++i) {
+        out += i ? ", [" : "[";
+        append_number(out, s->nodes[i].x);
+        out += ", ";
+        append_number(out, s->nodes[i].y);
+        out += ", ";
+        append_number(out, s->nodes[i].z);
+        out += "]";
+      }
+      out += "], \"edges\": [";
+      for (std::size_t i = 0; i < s->edges.size(); ++i)
+        out += (i ? ", [" : "[") + std::to_string(s->edges[i][0]) + ", " + std::to_string(s->edges[i][1]) + "]";
+      out += "]}\n";
+    } else {
+      unsupported("skeleton", ext, ".obj or .json");
+    }
+  } else if (const auto* m = std::get_if<Metrics>(&a.value)) {
+    if (ext != ".json") unsupported("metrics table", ext, ".json");
+    out = metrics_json(*m);
+  }
+  write_file_bytes(path, out);
+}
+
+}  // namespace cgview

@@ -1,0 +1,25 @@
+// Saving an algorithm's artifacts in formats that common tools read.
+//   mesh          any writable mesh format (.off .obj .ply .stl .glb .drc)
+//   scalar field  .txt (one value per line, in vertex or face order), .csv
+//                 (index,value), .ply (the input mesh with the values as a
+//                 float property, for MeshLab and ParaView)
+//   skeleton      .obj (v and l records), .json
+//   voxel grid    .vtk (legacy STRUCTURED_POINTS, for ParaView)
+//   metrics       .json
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "registry/registry.h"
+
+namespace cgview {
+
+// The extension used when the caller names none (".ply", ".txt", ...).
+std::string default_extension(const Artifact& artifact);
+// Writes the artifact; `input` is the mesh the algorithm ran on (for a
+// field saved as .ply).  Throws UnsupportedFormat for an extension the
+// artifact's kind cannot be saved as.
+void write_artifact(const Artifact& artifact, const Mesh& input, const std::filesystem::path& path);
+
+}  // namespace cgview

@@ -1,0 +1,164 @@
+#include "registry/registry.h"
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+namespace cgview {
+
+namespace {
+std::map<std::string, Algorithm>& table() {
+  static std::map<std::string, Algorithm> t;  // filled during static initialization
+  return t;
+}
+
+std::string number_text(double d) {
+  std::ostringstream s;
+  s << d;
+  return s.str();
+}
+
+[[noreturn]] void bad(const ParamSpec& spec, const std::string& rule) {
+  throw InvalidInput("parameter '" + spec.name + "': " + rule);
+}
+}  // namespace
+
+const std::map<std::string, Algorithm>& algorithms() { return table(); }
+
+const Algorithm& find_algorithm(const std::string& name) {
+  const auto it = table().find(name);
+  if (it == table().end()) throw std::out_of_range("no algorithm named '" + name + "'");
+  return it->second;
+}
+
+void register_algorithm(Algorithm a) {
+  const std::string name = a.info.name;
+  if (!table().emplace(name, std::move(a)).second) throw std::logic_error("two algorithms are named '" + name + "'");
+}
+
+const char* to_string(ParamType t) {
+  switch (t) {
+    case ParamType::integer: return "integer";
+    case ParamType::number: return "number";
+    case ParamType::boolean: return "boolean";
+    case ParamType::choice: return "choice";
+    case ParamType::text: return "text";
+  }
+  return "?";
+}
+
+const char* to_string(OutputKind k) {
+  switch (k) {
+    case OutputKind::mesh: return "mesh";
+    case OutputKind::scalar_field: return "scalar_field";
+    case OutputKind::voxel_grid: return "voxel_grid";
+    case OutputKind::skeleton: return "skeleton";
+    case OutputKind::metrics: return "metrics";
+  }
+  return "?";
+}
+
+std::string to_string(const ParamValue& v) {
+  return std::visit(
+      [](const auto& x) -> std::string {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, bool>) return x ? "true" : "false";
+        else if constexpr (std::is_same_v<T, std::string>) return x;
+        else if constexpr (std::is_same_v<T, double>) return number_text(x);
+        else return std::to_string(x);
+      },
+      v);
+}
+
+ParamValue check_param(const ParamSpec& spec, const ParamValue& value) {
+  const ParamInfo& i = spec.info;
+  auto check_range = [&](double x) {
+    if (i.min && x < *i.min) bad(spec, to_string(value) + " is under the minimum " + number_text(*i.min));
+    if (i.max && x > *i.max) bad(spec, to_string(value) + " is over the maximum " + number_text(*i.max));
+  };
+  switch (spec.type) {
+    case ParamType::integer: {
+      long long n;
+      if (const auto* p = std::get_if<long long>(&value)) n = *p;
+      else if (const auto* d = std::get_if<double>(&value); d && std::isfinite(*d) && *d == std::floor(*d) && std::fabs(*d) < 9e15) n = (long long)*d;
+      else bad(spec, "must be an integer, got " + to_string(value));
+      check_range(double(n));
+      return n;
+    }
+    case ParamType::number: {
+      double d;
+      if (const auto* p = std::get_if<double>(&value)) d = *p;
+      else if (const auto* n = std::get_if<long long>(&value)) d = double(*n);
+      else bad(spec, "must be a number, got " + to_string(value));
+      if (!std::isfinite(d)) bad(spec, "must be a finite number");
+      check_range(d);
+      return d;
+    }
+    case ParamType::boolean:
+      if (!std::holds_alternative<bool>(value)) bad(spec, "must be true or false, got " + to_string(value));
+      return value;
+    case ParamType::choice: {
+      const auto* s = std::get_if<std::string>(&value);
+      if (!s) bad(spec, "must be one of its choices, got " + to_string(value));
+      for (const auto& c : i.choices)
+        if (c == *s) return value;
+      std::string list;
+      for (const auto& c : i.choices) list += (list.empty() ? "" : ", ") + c;
+      bad(spec, "'" + *s + "' is not one of " + list);
+    }
+    case ParamType::text:
+      if (!std::holds_alternative<std::string>(value)) bad(spec, "must be text, got " + to_string(value));
+      return value;
+  }
+  return value;
+}
+
+ParamValue parse_param(const ParamSpec& spec, const std::string& text) {
+  switch (spec.type) {
+    case ParamType::integer: {
+      long long n = 0;
+      const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+      if (ec != std::errc() || p != text.data() + text.size()) bad(spec, "must be an integer, got '" + text + "'");
+      return check_param(spec, n);
+    }
+    case ParamType::number: {
+      double d = 0;
+      const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), d);
+      if (ec != std::errc() || p != text.data() + text.size()) bad(spec, "must be a number, got '" + text + "'");
+      return check_param(spec, d);
+    }
+    case ParamType::boolean:
+      if (text == "true" || text == "1" || text == "yes" || text == "on") return true;
+      if (text == "false" || text == "0" || text == "no" || text == "off") return false;
+      bad(spec, "must be true or false, got '" + text + "'");
+    case ParamType::choice:
+    case ParamType::text:
+      return check_param(spec, text);
+  }
+  return text;
+}
+
+namespace detail {
+
+const ParamSpec& ValueAssigner::spec(const char* n) const {
+  for (const auto& s : specs)
+    if (s.name == n) return s;
+  throw std::logic_error(std::string("no spec for parameter ") + n);
+}
+
+void check_names(const std::string& algorithm, const std::map<std::string, ParamValue>& values,
+                 const std::vector<ParamSpec>& specs) {
+  for (const auto& [name, v] : values) {
+    bool known = false;
+    for (const auto& s : specs) known |= s.name == name;
+    if (!known) {
+      std::string list;
+      for (const auto& s : specs) list += (list.empty() ? "" : ", ") + s.name;
+      throw InvalidInput("algorithm '" + algorithm + "' has no parameter '" + name + "'" +
+                         (list.empty() ? " (it takes none)" : " (it takes: " + list + ")"));
+    }
+  }
+}
+
+}  // namespace detail
+}  // namespace cgview

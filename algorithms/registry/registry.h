@@ -1,0 +1,201 @@
+// The algorithm registry: every algorithm described once (name, title,
+// parameters with their types, defaults, ranges and help, outputs), so that
+// the REST API, `cgview run` and the viewer's forms are generated from it.
+//
+// An algorithm is one .cpp file (see algorithms/examples/centroid_distance.cpp):
+//
+//   struct Params {
+//     double scale = 1.0;                                // the default, once
+//     template <class V> void describe(V& v) {
+//       v.number("scale", scale, {.label = "Scale", .min = 0, .max = 10, .help = "..."});
+//     }
+//   };
+//   AlgorithmResult run(const Mesh&, const Params&, Context&);
+//   CGVIEW_REGISTER_ALGORITHM(my_algorithm, Params, run, {.title = "...", ...});
+//
+// The visitor pattern keeps each parameter's label, range and help beside
+// its field and its default in the field's initializer, and nowhere else.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "core/errors.h"
+#include "core/mesh.h"
+#include "core/scalar_field.h"
+#include "core/skeleton.h"
+#include "core/voxel_grid.h"
+
+namespace cgview {
+
+// A job was cancelled: thrown by Context::check_cancelled().
+class Cancelled : public Error {
+ public:
+  Cancelled() : Error("cancelled") {}
+};
+
+enum class ParamType { integer, number, boolean, choice, text };
+using ParamValue = std::variant<long long, double, bool, std::string>;
+
+struct ParamInfo {
+  std::string label;  // for forms; defaults to the name
+  std::optional<double> min, max;
+  std::string help;
+  std::vector<std::string> choices;  // for choice parameters
+};
+
+struct ParamSpec {
+  std::string name;
+  ParamType type = ParamType::number;
+  ParamValue default_value;
+  ParamInfo info;
+};
+
+// One result of an algorithm, named ("sdf", "skeleton", "metrics").
+using Metrics = std::map<std::string, double>;
+struct Artifact {
+  std::string name;
+  std::variant<Mesh, ScalarField, VoxelGrid, Skeleton, Metrics> value;
+};
+
+struct AlgorithmResult {
+  std::vector<Artifact> artifacts;
+  std::vector<std::string> warnings;
+};
+
+// What a running algorithm may ask: report progress, check for cancellation.
+class Context {
+ public:
+  using ProgressFn = std::function<void(double fraction, std::string_view stage)>;
+  Context() = default;
+  Context(ProgressFn progress, std::function<bool()> cancelled)
+      : progress_(std::move(progress)), cancelled_(std::move(cancelled)) {}
+  // fraction in [0, 1] of the whole run; stage names the current step.
+  void progress(double fraction, std::string_view stage) const {
+    if (progress_) progress_(fraction, stage);
+  }
+  bool cancelled() const { return cancelled_ && cancelled_(); }
+  // Throws Cancelled when the job was cancelled; call it in long loops.
+  void check_cancelled() const {
+    if (cancelled()) throw Cancelled();
+  }
+
+ private:
+  ProgressFn progress_;
+  std::function<bool()> cancelled_;
+};
+
+// The kinds of output an algorithm declares.
+enum class OutputKind { mesh, scalar_field, voxel_grid, skeleton, metrics };
+
+struct AlgorithmInfo {
+  std::string name;  // snake_case, unique
+  std::string title;
+  std::string description;
+  std::string area;  // "examples", "sdf", ...
+  std::vector<std::pair<std::string, OutputKind>> outputs;
+};
+
+struct Algorithm {
+  AlgorithmInfo info;
+  std::vector<ParamSpec> params;
+  // Checks and converts the values (missing ones take their defaults), then
+  // runs.  Throws InvalidInput naming the bad parameter and the rule broken.
+  std::function<AlgorithmResult(const Mesh&, const std::map<std::string, ParamValue>&, Context&)> run;
+};
+
+// Every registered algorithm, by name.
+const std::map<std::string, Algorithm>& algorithms();
+// The algorithm of that name; throws std::out_of_range naming it.
+const Algorithm& find_algorithm(const std::string& name);
+void register_algorithm(Algorithm algorithm);
+
+// Converts text (a CLI argument) to a parameter's type; throws InvalidInput.
+ParamValue parse_param(const ParamSpec& spec, const std::string& text);
+// Checks a value against its spec (type, range, choices); returns it
+// normalized (an integer given for a number becomes a double); throws
+// InvalidInput "parameter 'rays': 500 is over the maximum 100".
+ParamValue check_param(const ParamSpec& spec, const ParamValue& value);
+std::string to_string(const ParamValue& v);
+const char* to_string(ParamType t);
+const char* to_string(OutputKind k);
+
+namespace detail {
+
+// Collects the specs of a Params struct (defaults from a default instance).
+struct SpecCollector {
+  std::vector<ParamSpec> specs;
+  void integer(const char* n, long long& v, ParamInfo i = {}) { add(n, ParamType::integer, v, i); }
+  void integer(const char* n, int& v, ParamInfo i = {}) { add(n, ParamType::integer, (long long)v, i); }
+  void number(const char* n, double& v, ParamInfo i = {}) { add(n, ParamType::number, v, i); }
+  void boolean(const char* n, bool& v, ParamInfo i = {}) { add(n, ParamType::boolean, v, i); }
+  void choice(const char* n, std::string& v, ParamInfo i) { add(n, ParamType::choice, v, i); }
+  void text(const char* n, std::string& v, ParamInfo i = {}) { add(n, ParamType::text, v, i); }
+  void add(const char* n, ParamType t, ParamValue v, ParamInfo i) {
+    if (i.label.empty()) i.label = n;
+    specs.push_back({n, t, std::move(v), std::move(i)});
+  }
+};
+
+// Assigns checked values to a Params struct's fields.
+struct ValueAssigner {
+  const std::map<std::string, ParamValue>& values;
+  const std::vector<ParamSpec>& specs;
+  const ParamSpec& spec(const char* n) const;
+  template <class T>
+  void set(const char* n, T& field) {
+    auto it = values.find(n);
+    if (it == values.end()) return;
+    const ParamValue v = check_param(spec(n), it->second);
+    if constexpr (std::is_same_v<T, int>) field = int(std::get<long long>(v));
+    else field = std::get<T>(v);
+  }
+  void integer(const char* n, long long& v, const ParamInfo& = {}) { set(n, v); }
+  void integer(const char* n, int& v, const ParamInfo& = {}) { set(n, v); }
+  void number(const char* n, double& v, const ParamInfo& = {}) { set(n, v); }
+  void boolean(const char* n, bool& v, const ParamInfo& = {}) { set(n, v); }
+  void choice(const char* n, std::string& v, const ParamInfo&) { set(n, v); }
+  void text(const char* n, std::string& v, const ParamInfo& = {}) { set(n, v); }
+};
+
+void check_names(const std::string& algorithm, const std::map<std::string, ParamValue>& values,
+                 const std::vector<ParamSpec>& specs);
+
+template <class Params, class Fn>
+Algorithm make_algorithm(std::string name, AlgorithmInfo info, Fn fn) {
+  info.name = std::move(name);
+  Params defaults;
+  SpecCollector collect;
+  defaults.describe(collect);
+  Algorithm a;
+  a.info = std::move(info);
+  a.params = collect.specs;
+  a.run = [fn, specs = collect.specs, algo = a.info.name](const Mesh& mesh, const std::map<std::string, ParamValue>& values,
+                                                          Context& ctx) {
+    check_names(algo, values, specs);
+    Params p;
+    ValueAssigner assign{values, specs};
+    p.describe(assign);
+    return fn(mesh, p, ctx);
+  };
+  return a;
+}
+
+struct Registrar {
+  explicit Registrar(Algorithm a) { register_algorithm(std::move(a)); }
+};
+
+}  // namespace detail
+}  // namespace cgview
+
+// Registers an algorithm at program start.  NAME: snake_case identifier.
+#define CGVIEW_REGISTER_ALGORITHM(NAME, PARAMS, FN, ...)                                        \
+  namespace {                                                                                  \
+  const ::cgview::detail::Registrar cgview_registrar_##NAME{                                   \
+      ::cgview::detail::make_algorithm<PARAMS>(#NAME, ::cgview::AlgorithmInfo __VA_ARGS__, FN)}; \
+  }
