@@ -24,6 +24,11 @@ const char* kHelp =
     "  --max-upload-mb N    largest accepted upload (default 256)\n"
     "  --workers N          worker threads for geometry (default 2)\n"
     "  --ws-chunk-kb N      largest binary WebSocket chunk (default 4096)\n"
+    "  --worker PATH        the job worker executable (default: cgview-worker beside this program)\n"
+    "  --job-workers N      jobs run at once, each in its own process (default: the number of cores)\n"
+    "  --job-timeout-s N    time limit of a job in seconds (default 3600; 0: none)\n"
+    "  --job-memory-mb N    address-space limit of a job's process in MB (default 8192; 0: none)\n"
+    "  --on-restart WHAT    jobs left queued or running by a previous run: requeue (default) or interrupt\n"
     "  -h, --help           this help\n";
 
 // A few sample meshes of different kinds (the whole set is 143 files).
@@ -68,12 +73,25 @@ int main(int argc, char** argv) {
           throw std::invalid_argument("--samples is default, all or none");
       } else if (a == "--max-upload-mb") config.max_upload_bytes = std::size_t(number(1, 1 << 20)) << 20;
       else if (a == "--workers") config.workers = int(number(1, 256));
-      else if (a == "--ws-chunk-kb") config.chunk_bytes = std::size_t(number(1, 16 * 1024 - 1)) << 10;
+      else if (a == "--worker") config.jobs.worker = value();
+      else if (a == "--job-workers") config.jobs.max_workers = int(number(1, 1024));
+      else if (a == "--job-timeout-s") config.jobs.timeout_s = double(number(0, 100000000));
+      else if (a == "--job-memory-mb") config.jobs.memory_mb = std::size_t(number(0, 1 << 24));
+      else if (a == "--on-restart") {
+        const std::string v = value();
+        if (v != "requeue" && v != "interrupt") throw std::invalid_argument("--on-restart is requeue or interrupt");
+        config.jobs.requeue_on_restart = v == "requeue";
+      } else if (a == "--ws-chunk-kb") config.chunk_bytes = std::size_t(number(1, 16 * 1024 - 1)) << 10;
       else throw std::invalid_argument("unknown option " + a);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "cgview-server: %s (see --help)\n", e.what());
     return 2;
+  }
+  if (config.jobs.worker.empty()) {
+    std::error_code ec;
+    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    config.jobs.worker = (ec ? std::filesystem::path(argv[0]) : self).parent_path() / "cgview-worker";
   }
   try {
     server::Server srv(config);

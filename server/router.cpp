@@ -5,6 +5,7 @@
 
 #include "core/errors.h"
 #include "io/mesh_io.h"
+#include "jobs.h"
 
 namespace cgview::server {
 
@@ -171,6 +172,63 @@ Router::Router(MeshService& meshes, RouterConfig config) : meshes_(meshes), conf
                        r.headers.push_back({"Content-Disposition", "attachment; filename=\"" + stem + "." + format + "\""});
                        return r;
                      }});
+  // Algorithms and jobs (protocol/API.md): run in worker processes by the JobScheduler.
+  auto jobs = [this]() -> JobScheduler& {
+    if (!config_.jobs) throw std::runtime_error("this server runs no jobs");
+    return *config_.jobs;
+  };
+  routes_.push_back({"GET", "/api/v1/algorithms", "The algorithms a job may run, with a JSON Schema of their parameters", {},
+                     [jobs](const Params&, const HttpRequest&) { return json_response(200, jobs().algorithms_json()); },
+                     false});
+  routes_.push_back({"POST", "/api/v1/jobs", "Submit a job: {\"algorithm\",\"inputs\":{\"mesh\":id},\"params\":{...}}", {},
+                     [this, jobs](const Params&, const HttpRequest& req) {
+                       const json body = json::parse(req.body, nullptr, false);
+                       if (body.is_discarded()) return error_response(400, "bad_request", "the body is not JSON");
+                       json job;
+                       try {
+                         job = jobs().submit(body);
+                       } catch (const InvalidInput& e) {
+                         return error_response(400, "bad_request", e.what());
+                       }
+                       HttpResponse r = json_response(201, job);
+                       r.headers.push_back({"Location", "/api/v1/jobs/" + job["id"].get<std::string>()});
+                       return r;
+                     },
+                     false});
+  routes_.push_back({"GET", "/api/v1/jobs", "List the jobs, oldest first", {},
+                     [jobs](const Params&, const HttpRequest&) { return json_response(200, jobs().list()); },
+                     false});
+  routes_.push_back({"GET", "/api/v1/jobs/{id}", "One job: state, progress, artifacts", {},
+                     [jobs](const Params& p, const HttpRequest&) {
+                       const auto job = jobs().get(p.at("id"));
+                       if (!job) return error_response(404, "not_found", "no job with id '" + p.at("id") + "'");
+                       return json_response(200, *job);
+                     },
+                     false});
+  routes_.push_back({"DELETE", "/api/v1/jobs/{id}", "Cancel a queued or running job; answers the job", {},
+                     [jobs](const Params& p, const HttpRequest&) {
+                       const auto job = jobs().cancel(p.at("id"));
+                       if (!job) return error_response(404, "not_found", "no job with id '" + p.at("id") + "'");
+                       return json_response(200, *job);
+                     },
+                     false});
+  routes_.push_back({"GET", "/api/v1/jobs/{id}/artifacts/{name}", "An artifact of a done job in a format",
+                     {{"format", "scalar field: json (default), f32, txt, csv, ply; mesh: ply (default) or any writable mesh format; metrics: json"}},
+                     [jobs](const Params& p, const HttpRequest& req) {
+                       const auto q = split_target(req.target).second;
+                       const auto f = q.find("format");
+                       ArtifactBytes a;
+                       try {
+                         a = jobs().artifact(p.at("id"), p.at("name"), f == q.end() ? "" : f->second);
+                       } catch (const InvalidInput& e) {
+                         return error_response(400, "bad_request", e.what());
+                       }
+                       HttpResponse r;
+                       r.body = std::move(a.bytes);
+                       r.content_type = a.content_type;
+                       r.headers.push_back({"Content-Disposition", "attachment; filename=\"" + a.file_name + "\""});
+                       return r;
+                     }});
   routes_.push_back({"GET", "/api/v1/openapi.json", "This API's OpenAPI 3 document", {},
                      [this](const Params&, const HttpRequest&) { return json_response(200, openapi()); },
                      false});
@@ -245,18 +303,23 @@ json Router::openapi() const {
     const json error_ref = {{"description", "error"},
                             {"content", {{"application/json", {{"schema", {{"$ref", "#/components/schemas/Error"}}}}}}}};
     op["responses"]["200"] = {{"description", "success"}};
-    if (r.method == "POST") {
+    const bool is_job = r.pattern.starts_with("/api/v1/jobs");
+    if (r.method == "POST" && is_job) {
+      op["requestBody"] = {{"content", {{"application/json", {{"schema", {{"type", "object"}}}}}}}};
+      op["responses"].erase("200");
+      op["responses"]["201"] = {{"description", "created"}};
+    } else if (r.method == "POST") {
       op["requestBody"] = {{"content", {{"application/octet-stream", {{"schema", {{"type", "string"}, {"format", "binary"}}}}}}}};
       op["responses"].erase("200");
       op["responses"]["201"] = {{"description", "created"}};
       op["responses"]["413"] = error_ref;
     }
-    if (r.method == "DELETE") {
+    if (r.method == "DELETE" && !is_job) {
       op["responses"].erase("200");
       op["responses"]["204"] = {{"description", "deleted"}};
     }
     op["responses"]["400"] = error_ref;
-    if (r.pattern.find('{') != std::string::npos) op["responses"]["404"] = error_ref;
+    if (r.pattern.find('{') != std::string::npos || (is_job && r.method == "POST")) op["responses"]["404"] = error_ref;
     std::string method = r.method;
     for (char& c : method) c = char(std::tolower(static_cast<unsigned char>(c)));
     paths[r.pattern][method] = op;

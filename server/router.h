@@ -32,9 +32,12 @@ struct HttpResponse {
 // An error response: {"error": code, "detail": detail}.
 HttpResponse error_response(int status, const std::string& code, const std::string& detail);
 
+class JobScheduler;
+
 struct RouterConfig {
   std::filesystem::path static_dir;  // the built web client; empty: none
   std::string version = "0.1.0";
+  JobScheduler* jobs = nullptr;  // the algorithm and job routes answer 503 without one
 };
 
 class Router {

@@ -36,10 +36,21 @@ class WebSocketSession;
 // What every session shares.
 struct Shared {
   explicit Shared(const ServerConfig& c)
-      : config(c), store(c.data_dir), meshes(store), router(meshes, {c.static_dir, "0.1.0"}), workers(std::size_t(std::max(1, c.workers))) {}
+      : config(c),
+        store(c.data_dir),
+        meshes(store),
+        jobs(std::make_unique<JobScheduler>(meshes, c.jobs)),
+        router(meshes, {c.static_dir, "0.1.0", jobs.get()}),
+        workers(std::size_t(std::max(1, c.workers))) {
+    jobs->on_event = [r = &router](const json& e) {
+      if (r->on_event) r->on_event(e);
+    };
+  }
+  ~Shared() { jobs.reset(); }  // its thread sends events through the router
   ServerConfig config;
   Store store;
   MeshService meshes;
+  std::unique_ptr<JobScheduler> jobs;
   Router router;
   net::thread_pool workers;
   std::mutex sessions_mutex;
@@ -324,6 +335,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
 struct Server::Impl {
   explicit Impl(const ServerConfig& c) : shared(std::make_shared<Shared>(c)), acceptor(ioc) {
     shared->router.on_event = [s = shared.get()](const json& e) { s->broadcast(e); };
+    shared->jobs->start();
     const tcp::endpoint ep(net::ip::make_address(c.host), c.port);
     acceptor.open(ep.protocol());
     acceptor.set_option(net::socket_base::reuse_address(true));
@@ -354,6 +366,7 @@ Server::~Server() {
 }
 unsigned short Server::port() const { return impl_->acceptor.local_endpoint().port(); }
 MeshService& Server::meshes() { return impl_->shared->meshes; }
+JobScheduler& Server::jobs() { return *impl_->shared->jobs; }
 
 void Server::run() {
   net::signal_set signals(impl_->ioc, SIGINT, SIGTERM);

@@ -10,6 +10,8 @@
 #include <memory>
 #include <string>
 
+#include "jobs.h"
+
 namespace cgview::server {
 
 struct ServerConfig {
@@ -22,6 +24,7 @@ struct ServerConfig {
   std::size_t max_ws_message_bytes = std::size_t(1) << 20;  // client messages are small JSON
   std::size_t max_write_queue_bytes = std::size_t(1) << 30; // per WebSocket, then the client is dropped
   int workers = 2;
+  JobConfig jobs;  // the worker executable, pool size, limits
 };
 
 class Server {
@@ -30,6 +33,7 @@ class Server {
   ~Server();
   unsigned short port() const;  // the bound port
   class MeshService& meshes();
+  JobScheduler& jobs();
   void run();   // serves until stop(); returns then
   void stop();  // thread-safe
 

@@ -49,6 +49,8 @@ class Store {
   bool remove_mesh(const std::string& id);
   // The uploaded bytes of a mesh; throws IoError when the blob is missing.
   std::string read_blob(const MeshRecord& record) const;
+  // The path of a mesh's stored file (for a worker process to read).
+  std::filesystem::path blob_file(const MeshRecord& record) const { return blob_path(record); }
   std::size_t count() const { return count_; }
   const std::filesystem::path& data_dir() const { return dir_; }
 

@@ -299,6 +299,7 @@ int cmd_run(const std::vector<std::string>& args) {
     else throw Usage("run: unexpected argument '" + a + "'");
   }
   if (mesh_arg.empty()) throw Usage("run: which mesh?");
+  if (!out.empty() && !algo->info.outputs.empty()) check_artifact_extension(algo->info.outputs[0].second, out);
   const ReadResult r = read_mesh_file(need_mesh(mesh_arg));
   print_warnings(r);
   ProgressPrinter printer;

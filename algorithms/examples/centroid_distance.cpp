@@ -1,6 +1,9 @@
 // centroid_distance: the distance of each vertex from the mesh's centroid.
 // The template to copy for a new algorithm: one file, registered below,
 // and it appears in `cgview list`, GET /api/v1/algorithms and the viewer.
+#include <algorithm>
+#include <cmath>
+
 #include "registry/registry.h"
 
 namespace cgview {
@@ -30,7 +33,13 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
     }
     field.values[i] = float(std::pow(norm(mesh.positions[i] - c), p.exponent));
   }
-  if (p.normalize) field.values = field.normalized();
+  if (p.normalize) {
+    // As the help says, over the largest distance: a sphere gives all 1, not
+    // the min-max stretch of ScalarField::normalized().
+    const float largest = *std::max_element(field.values.begin(), field.values.end());
+    if (largest > 0)
+      for (float& v : field.values) v /= largest;
+  }
   ctx.progress(1.0, "done");
   return {{{"distance", field}}, {}};
 }

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
 #include "io/mesh_io.h"
 
@@ -21,15 +22,9 @@ void append_number(std::string& s, double v) {
   s.append(buf, std::size_t(p - buf));
 }
 
-std::string metrics_json(const Metrics& m) {
-  std::string s = "{";
-  for (const auto& [k, v] : m) {
-    if (s.size() > 1) s += ", ";
-    s += "\"" + k + "\": ";
-    append_number(s, v);
-  }
-  return s + "}\n";
-}
+// Through nlohmann so that names are escaped and a NaN or infinity, which
+// JSON cannot hold, becomes null.
+std::string metrics_json(const Metrics& m) { return nlohmann::json(m).dump() + "\n"; }
 
 [[noreturn]] void unsupported(const char* kind, const std::string& ext, const char* known) {
   throw UnsupportedFormat(std::string("a ") + kind + " cannot be saved as '" + ext + "' (use " + known + ")");
@@ -44,6 +39,28 @@ std::string default_extension(const Artifact& a) {
     case 2: return ".vtk";
     case 3: return ".obj";
     default: return ".json";
+  }
+}
+
+void check_artifact_extension(OutputKind kind, const std::filesystem::path& path) {
+  const std::string ext = ext_of(path);
+  switch (kind) {
+    case OutputKind::mesh:
+      if (!can_write(format_from_name(path.string())))
+        throw UnsupportedFormat("a mesh cannot be saved as '" + ext + "' (use " + writable_formats() + ")");
+      return;
+    case OutputKind::scalar_field:
+      if (ext != ".txt" && ext != ".csv" && ext != ".ply") unsupported("scalar field", ext, ".txt, .csv or .ply");
+      return;
+    case OutputKind::voxel_grid:
+      if (ext != ".vtk") unsupported("voxel grid", ext, ".vtk");
+      return;
+    case OutputKind::skeleton:
+      if (ext != ".obj" && ext != ".json") unsupported("skeleton", ext, ".obj or .json");
+      return;
+    case OutputKind::metrics:
+      if (ext != ".json") unsupported("metrics table", ext, ".json");
+      return;
   }
 }
 

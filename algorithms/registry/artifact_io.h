@@ -21,5 +21,9 @@ std::string default_extension(const Artifact& artifact);
 // field saved as .ply).  Throws UnsupportedFormat for an extension the
 // artifact's kind cannot be saved as.
 void write_artifact(const Artifact& artifact, const Mesh& input, const std::filesystem::path& path);
+// Throws UnsupportedFormat, as write_artifact would, unless an artifact of
+// that kind can be saved under path's extension: `cgview run` checks its -o
+// before a long run rather than after.
+void check_artifact_extension(OutputKind kind, const std::filesystem::path& path);
 
 }  // namespace cgview

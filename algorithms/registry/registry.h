@@ -42,11 +42,13 @@ class Cancelled : public Error {
 enum class ParamType { integer, number, boolean, choice, text };
 using ParamValue = std::variant<long long, double, bool, std::string>;
 
+// Every member has an initializer so that a designated initializer naming
+// only some ({.label = ..., .help = ...}) draws no -Wmissing-field-initializers.
 struct ParamInfo {
-  std::string label;  // for forms; defaults to the name
-  std::optional<double> min, max;
-  std::string help;
-  std::vector<std::string> choices;  // for choice parameters
+  std::string label{};  // for forms; defaults to the name
+  std::optional<double> min{}, max{};
+  std::string help{};
+  std::vector<std::string> choices{};  // for choice parameters
 };
 
 struct ParamSpec {
@@ -93,12 +95,12 @@ class Context {
 // The kinds of output an algorithm declares.
 enum class OutputKind { mesh, scalar_field, voxel_grid, skeleton, metrics };
 
-struct AlgorithmInfo {
-  std::string name;  // snake_case, unique
-  std::string title;
-  std::string description;
-  std::string area;  // "examples", "sdf", ...
-  std::vector<std::pair<std::string, OutputKind>> outputs;
+struct AlgorithmInfo {  // initializers as in ParamInfo
+  std::string name{};  // snake_case, unique
+  std::string title{};
+  std::string description{};
+  std::string area{};  // "examples", "sdf", ...
+  std::vector<std::pair<std::string, OutputKind>> outputs{};
 };
 
 struct Algorithm {

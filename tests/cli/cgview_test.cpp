@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -287,6 +288,125 @@ TEST(CliTest, Samples) {
       EXPECT_TRUE(fs::exists(e.value("path", "")));
     }
   EXPECT_TRUE(found);
+}
+
+// ---------------------------------------------------------------- algorithms
+
+TEST(CliTest, ListShowsCentroidDistance) {
+  const Result r = cgview_stdout("list");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("centroid_distance"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--exponent number"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--normalize boolean"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("max 4"), std::string::npos) << r.out;
+}
+
+TEST(CliTest, ListJsonHasTheSchemas) {
+  const Result r = cgview_stdout("list --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  json j;
+  ASSERT_NO_THROW(j = json::parse(r.out)) << r.out;
+  ASSERT_TRUE(j.is_array());
+  const json* cd = nullptr;
+  for (const auto& a : j)
+    if (a.value("name", "") == "centroid_distance") cd = &a;
+  ASSERT_NE(cd, nullptr) << r.out;
+  const json& e = (*cd)["params"]["properties"]["exponent"];
+  EXPECT_EQ(e["maximum"], 4);
+  EXPECT_EQ(e["minimum"], 0.1);
+  EXPECT_EQ(e["default"], 1.0);
+  EXPECT_EQ(e["type"], "number");
+  EXPECT_EQ((*cd)["params"]["properties"]["normalize"]["type"], "boolean");
+  EXPECT_EQ((*cd)["outputs"][0]["kind"], "scalar_field");
+  expect_one_line_error("list --bogus", "--bogus");
+}
+
+TEST(CliTest, RunCentroidDistanceWritesOneValuePerVertex) {
+  const fs::path dir = test::temp_dir("cli-run");
+  const fs::path out = dir / "d.txt";
+  const Result r = cgview_stdout("run centroid_distance " + quote(test::sample("elephant.off").string()) + " -o " +
+                                 quote(out.string()));
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.out, "distance: " + out.string() + "\n");
+  std::ifstream in(out);
+  std::vector<double> values;
+  for (std::string l; std::getline(in, l);) values.push_back(std::stod(l));
+  ASSERT_EQ(values.size(), 2775u);
+  for (double v : values) EXPECT_GE(v, 0.0);
+
+  // --normalize: the largest becomes 1; --exponent 2 squares each distance.
+  const fs::path norm = dir / "n.csv", squared = dir / "s.txt";
+  ASSERT_EQ(cgview("run centroid_distance elephant --normalize true -o " + quote(norm.string())).status, 0);
+  std::ifstream nin(norm);
+  std::string header, row;
+  std::getline(nin, header);
+  EXPECT_EQ(header, "vertex,centroid_distance");
+  double largest = 0;
+  std::size_t rows = 0;
+  while (std::getline(nin, row)) {
+    largest = std::max(largest, std::stod(row.substr(row.find(',') + 1)));
+    ++rows;
+  }
+  EXPECT_EQ(rows, 2775u);
+  EXPECT_NEAR(largest, 1.0, 1e-6);
+  ASSERT_EQ(cgview("run centroid_distance elephant --exponent 2 -o " + quote(squared.string())).status, 0);
+  std::ifstream sin(squared);
+  std::string l;
+  for (std::size_t i = 0; i < values.size() && std::getline(sin, l); ++i)
+    EXPECT_NEAR(std::stod(l), values[i] * values[i], 1e-5 * (1 + values[i] * values[i]));
+}
+
+TEST(CliTest, RunSavesPlyWithTheField) {
+  const fs::path out = test::temp_dir("cli-run-ply") / "d.ply";
+  ASSERT_EQ(cgview("run centroid_distance elephant -o " + quote(out.string())).status, 0);
+  std::ifstream in(out, std::ios::binary);
+  std::string header;
+  for (std::string l; std::getline(in, l) && l != "end_header";) header += l + "\n";
+  EXPECT_NE(header.find("property float centroid_distance"), std::string::npos) << header;
+  expect_elephant(info_json(out.string()));
+}
+
+TEST(CliTest, RunBadParameterIsOneLineNamingIt) {
+  expect_one_line_error("run centroid_distance elephant --exponent 9", "parameter 'exponent': 9 is over the maximum 4");
+  EXPECT_EQ(cgview("run centroid_distance elephant --exponent 9").status, 1);
+  expect_one_line_error("run centroid_distance elephant --exponent two", "parameter 'exponent'");
+  expect_one_line_error("run centroid_distance elephant --normalize maybe", "parameter 'normalize'");
+  expect_one_line_error("run centroid_distance elephant --bogus 1", "--bogus");
+  expect_one_line_error("run centroid_distance elephant --exponent", "--exponent");
+  expect_one_line_error("run centroid_distance", "which mesh");
+  expect_one_line_error("run centroid_distance elephant -o " + quote((test::temp_dir("cli-run-ext") / "d.vtk").string()),
+                        "vtk");
+}
+
+TEST(CliTest, RunUnknownAlgorithmHints) {
+  expect_one_line_error("run no_such_algo elephant", "no_such_algo");
+  const Result r = cgview_stderr("run no_such_algo elephant");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("cgview list"), std::string::npos) << r.out;
+}
+
+TEST(CliTest, RunHelpListsTheParameters) {
+  Result r = cgview_stdout("run centroid_distance --help");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("usage: cgview run centroid_distance"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--exponent"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--normalize"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Exponent (default 1, min 0.1, max 4)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("distance (scalar_field)"), std::string::npos) << r.out;
+  r = cgview_stdout("run --help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("usage: cgview run ALGO"), std::string::npos) << r.out;
+}
+
+TEST(CliTest, RunReportsProgressOnStderrWhenNotATerminal) {
+  const fs::path out = test::temp_dir("cli-run-progress") / "d.txt";
+  const Result r = cgview_stderr("run centroid_distance elephant -o " + quote(out.string()));
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto l = lines(r.out);
+  ASSERT_FALSE(l.empty());
+  for (const auto& line : l) EXPECT_EQ(line.rfind("progress ", 0), 0u) << line;  // plain lines, no \r bar
+  EXPECT_EQ(r.out.find('\r'), std::string::npos);
+  EXPECT_NE(l.back().find("100%"), std::string::npos) << r.out;
 }
 
 }  // namespace

@@ -1,9 +1,26 @@
 // The one place that owns the view state: the list of meshes, the chosen
 // mesh, the load in progress and what the viewer shows. Panels render from
 // it and call its actions; nothing else changes it.
-import { ApiError, deleteMesh, listMeshes, uploadMesh } from './api/rest.ts';
-import type { Mesh } from './api/types.ts';
+import type * as THREE from 'three';
+import {
+  ApiError,
+  cancelJob,
+  deleteMesh,
+  fetchArtifactBytes,
+  fetchArtifactF32,
+  fetchArtifactJson,
+  fetchMeshBytes,
+  getJob,
+  listAlgorithms,
+  listJobs,
+  listMeshes,
+  submitJob,
+  uploadMesh,
+} from './api/rest.ts';
+import type { Job, JobProgress, Mesh, ServerEvent } from './api/types.ts';
 import { CgviewSocket, ServerError } from './api/ws.ts';
+import { AlgorithmsPanel } from './panels/algorithms.ts';
+import { JobsPanel } from './panels/jobs.ts';
 import { MeshListPanel } from './panels/mesh_list.ts';
 import { MessagesPanel } from './panels/messages.ts';
 import { ProgressPanel } from './panels/progress.ts';
@@ -11,7 +28,11 @@ import { ReportPanel } from './panels/report.ts';
 import { UploadControl } from './panels/upload.ts';
 import { byId } from './panels/dom.ts';
 import { DracoDecoder } from './viewer/draco_decoder.ts';
-import { buildSurface } from './viewer/surface_renderer.ts';
+import { defaultMapFor } from './viewer/colormaps.ts';
+import { Legend } from './viewer/legend.ts';
+import { parsePly, type PlyMesh } from './viewer/ply.ts';
+import { buildScalarSurface, colourGeometry, finiteRange, type ScalarField } from './viewer/scalar_field_renderer.ts';
+import { buildPlainSurface, buildSurface } from './viewer/surface_renderer.ts';
 import { LoadTimer, type LoadTimings } from './viewer/timings.ts';
 import { Viewer } from './viewer/viewer.ts';
 
@@ -33,6 +54,15 @@ export interface TestHooks {
   frames: number;
   /** The last error message shown in the page, or null. */
   lastError: string | null;
+  /**
+   * The scalar field drawn on the mesh, set after the first frame showing it
+   * (and again after a colour-map change); null when none is drawn.
+   */
+  lastField: { jobId: string; artifact: string; meshId: string; location: string; count: number; range: [number, number]; map: string } | null;
+  /** Whether the server answered GET /api/v1/algorithms (null until asked). */
+  algorithmsApi: boolean | null;
+  /** The last mesh artifact added to the view, set after the first frame with it. */
+  lastExtra: { jobId: string; artifact: string; vertices: number; faces: number } | null;
 }
 
 declare global {
@@ -55,8 +85,34 @@ export class App {
   private meshes: Mesh[] = [];
   private selectedId: string | null = null;
   private load: { id: string; controller: AbortController } | null = null;
+  /** The latest show(): a field to draw waits for its mesh. */
+  private showing: Promise<void> = Promise.resolve();
 
-  private readonly hooks: TestHooks = { ready: false, lastLoaded: null, timings: null, frames: 0, lastError: null };
+  // Algorithms and jobs.
+  private jobs = new Map<string, Job>();
+  /** Jobs this page submitted: their scalar field is shown when they finish. */
+  private readonly autoShow = new Set<string>();
+  private readonly metrics = new Map<string, unknown>();
+  /** Jobs asked for with GET /jobs/{id} (progress of a job not seen yet). */
+  private readonly asking = new Set<string>();
+  /** Mesh artifacts in the view (`${jobId}/${name}`), beside the selected mesh. */
+  private readonly added = new Set<string>();
+  /** The scalar field drawn now (or being prepared: token). */
+  private field: { jobId: string; artifact: string; meshId: string; data: ScalarField; object: THREE.Mesh } | null = null;
+  private fieldToken = 0;
+  private mapName: string | null = null; // null: the field's hint chooses
+  private readonly plyCache = new Map<string, Promise<PlyMesh>>();
+
+  private readonly hooks: TestHooks = {
+    ready: false,
+    lastLoaded: null,
+    timings: null,
+    frames: 0,
+    lastError: null,
+    lastField: null,
+    algorithmsApi: null,
+    lastExtra: null,
+  };
   private readonly socket = new CgviewSocket();
   private readonly decoder = new DracoDecoder();
   private readonly viewer: Viewer;
@@ -64,6 +120,9 @@ export class App {
   private readonly report: ReportPanel;
   private readonly progress: ProgressPanel;
   private readonly messages: MessagesPanel;
+  private readonly algorithmsPanel: AlgorithmsPanel;
+  private readonly jobsPanel: JobsPanel;
+  private readonly legend: Legend;
   private readonly status: HTMLElement;
 
   constructor() {
@@ -77,27 +136,287 @@ export class App {
     this.progress = new ProgressPanel(byId('progress'));
     this.messages = new MessagesPanel(byId('messages'));
     this.status = byId('connection');
+    this.algorithmsPanel = new AlgorithmsPanel(byId('algorithms'), {
+      run: (algorithm, params) => this.runJob(algorithm, params),
+    });
+    this.jobsPanel = new JobsPanel(byId('jobs'), {
+      cancel: (id) => void this.cancel(id),
+      showField: (jobId, artifact) => void this.showField(jobId, artifact),
+      addMesh: (jobId, artifact) => void this.addMeshArtifact(jobId, artifact),
+    });
+    this.legend = new Legend(byId('viewport'), (name) => this.setColorMap(name));
     new UploadControl(byId<HTMLInputElement>('file-input'), document.body, (files) => void this.upload(files));
     byId('fit').addEventListener('click', () => this.viewer.fitToView());
   }
 
   async start(): Promise<void> {
     this.report.render(null);
-    this.socket.onEvent((ev) => {
-      if (ev.type === 'mesh_added') this.upsert(ev.mesh);
-      else this.forget(ev.mesh_id);
-    });
+    this.algorithmsPanel.setMesh(null);
+    this.renderJobs();
+    this.socket.onEvent((ev) => this.onServerEvent(ev));
     let connectedBefore = false;
     this.socket.onStatus((connected) => {
       this.status.dataset.state = connected ? 'connected' : 'disconnected';
       this.status.title = connected ? 'Connected to the server' : 'Not connected; retrying';
       // Events may have been missed while disconnected.
-      if (connected && connectedBefore) void this.refresh();
+      if (connected && connectedBefore) {
+        void this.refresh();
+        void this.refreshJobs();
+      }
       if (connected) connectedBefore = true;
     });
     this.socket.connect().catch(() => this.error('Cannot open the WebSocket to the server; retrying.'));
-    await this.refresh();
+    await Promise.all([this.refresh(), this.loadAlgorithms()]);
     this.hooks.ready = true;
+  }
+
+  private onServerEvent(ev: ServerEvent): void {
+    switch (ev.type) {
+      case 'mesh_added':
+        this.upsert(ev.mesh);
+        break;
+      case 'mesh_deleted':
+        this.forget(ev.mesh_id);
+        break;
+      case 'job_progress':
+        this.progressJob(ev.job);
+        break;
+      case 'job_done':
+      case 'job_failed':
+      case 'job_cancelled':
+        this.upsertJob(ev.job);
+        break;
+    }
+  }
+
+  /** Asks for the algorithm menu; a 404 means this server has no algorithms API. */
+  async loadAlgorithms(): Promise<void> {
+    try {
+      const algorithms = await listAlgorithms();
+      this.hooks.algorithmsApi = true;
+      this.algorithmsPanel.render(algorithms);
+      this.algorithmsPanel.setMesh(this.selectedMesh()?.name ?? null);
+      await this.refreshJobs();
+    } catch (e) {
+      this.hooks.algorithmsApi = false;
+      if (e instanceof ApiError && e.status === 404) {
+        this.algorithmsPanel.unavailable('This server has no algorithms API (GET /api/v1/algorithms: 404).');
+      } else {
+        this.algorithmsPanel.unavailable(`Cannot list algorithms: ${describe(e)}`);
+      }
+    }
+  }
+
+  /** Reloads the job list (after a reconnect, events may have been missed). */
+  async refreshJobs(): Promise<void> {
+    if (this.hooks.algorithmsApi !== true) return;
+    try {
+      const jobs = await listJobs();
+      for (const job of jobs) this.upsertJob(job, false);
+      this.renderJobs();
+    } catch (e) {
+      this.error(`Cannot list jobs: ${describe(e)}`);
+    }
+  }
+
+  /** Submits a job on the selected mesh; rejects with the server's detail (shown beside the form). */
+  async runJob(algorithm: string, params: Record<string, unknown>): Promise<void> {
+    const mesh = this.selectedMesh();
+    if (!mesh) throw new Error('Choose a mesh first.');
+    let job: Job;
+    try {
+      job = await submitJob(algorithm, { mesh: mesh.id }, params);
+    } catch (e) {
+      throw new Error(describe(e));
+    }
+    this.autoShow.add(job.id);
+    // A job_done event may have come before this answer: upsertJob keeps the later state.
+    this.upsertJob(job);
+  }
+
+  async cancel(id: string): Promise<void> {
+    try {
+      this.upsertJob(await cancelJob(id));
+    } catch (e) {
+      this.error(`Cannot cancel the job: ${describe(e)}`);
+      void getJob(id).then((j) => this.upsertJob(j), () => {});
+    }
+  }
+
+  private static readonly FINAL = new Set(['done', 'failed', 'cancelled', 'interrupted']);
+
+  /** Merges a Job in; a finished job never goes back to queued or running (events and answers may cross). */
+  private upsertJob(job: Job, render = true): void {
+    const old = this.jobs.get(job.id);
+    if (old && App.FINAL.has(old.state) && !App.FINAL.has(job.state)) return;
+    this.jobs.set(job.id, { ...old, ...job });
+    const merged = this.jobs.get(job.id)!;
+    if (merged.state === 'done') {
+      this.loadMetrics(merged);
+      if (this.autoShow.has(merged.id)) {
+        this.autoShow.delete(merged.id);
+        const field = merged.artifacts?.find((a) => a.kind === 'scalar_field');
+        if (field) void this.showField(merged.id, field.name);
+      }
+    } else if (merged.state === 'failed' && this.autoShow.has(merged.id)) {
+      this.autoShow.delete(merged.id);
+      this.error(`${merged.algorithm} failed: ${merged.error ?? 'no reason given'}`);
+    } else if (App.FINAL.has(merged.state)) {
+      this.autoShow.delete(merged.id);
+    }
+    if (render) this.renderJobs();
+  }
+
+  private progressJob(p: JobProgress): void {
+    const old = this.jobs.get(p.id);
+    if (!old) {
+      // A job from another client that this page has not seen yet: ask for it once.
+      if (this.asking.has(p.id)) return;
+      this.asking.add(p.id);
+      void getJob(p.id)
+        .then((j) => this.upsertJob(j), () => {})
+        .finally(() => this.asking.delete(p.id));
+      return;
+    }
+    if (App.FINAL.has(old.state)) return;
+    this.jobs.set(p.id, { ...old, state: p.state, progress: p.progress, stage: p.stage });
+    this.renderJobs();
+  }
+
+  private loadMetrics(job: Job): void {
+    for (const a of job.artifacts ?? []) {
+      if (a.kind !== 'metrics') continue;
+      const key = `${job.id}/${a.name}`;
+      if (this.metrics.has(key)) continue;
+      this.metrics.set(key, undefined);
+      fetchArtifactJson(job.id, a.name).then(
+        (data) => {
+          this.metrics.set(key, data);
+          this.renderJobs();
+        },
+        (e) => {
+          this.metrics.set(key, `Cannot fetch ${a.name}: ${describe(e)}`);
+          this.renderJobs();
+        },
+      );
+    }
+  }
+
+  private renderJobs(): void {
+    const jobs = [...this.jobs.values()].sort((a, b) => String(a.created ?? '').localeCompare(String(b.created ?? '')));
+    this.jobsPanel.render({
+      jobs,
+      meshName: (id) => this.meshes.find((m) => m.id === id)?.name ?? null,
+      shown: this.field ? { jobId: this.field.jobId, artifact: this.field.artifact } : null,
+      added: this.added,
+      metrics: this.metrics,
+    });
+  }
+
+  private meshPly(meshId: string): Promise<PlyMesh> {
+    let p = this.plyCache.get(meshId);
+    if (!p) {
+      p = fetchMeshBytes(meshId, 'ply').then(parsePly);
+      p.catch(() => this.plyCache.delete(meshId));
+      this.plyCache.set(meshId, p);
+    }
+    return p;
+  }
+
+  /**
+   * Draws a job's scalar_field artifact on its mesh (selecting that mesh first
+   * when another one is shown): the values as f32, the range and location
+   * from the Job, the mesh in the server's vertex order (viewer/ply.ts).
+   */
+  async showField(jobId: string, artifactName: string): Promise<void> {
+    const job = this.jobs.get(jobId);
+    const artifact = job?.artifacts?.find((a) => a.name === artifactName);
+    const meshId = job?.inputs?.mesh;
+    if (!job || !artifact || !meshId) return;
+    if (this.selectedId !== meshId) {
+      if (!this.meshes.some((m) => m.id === meshId)) {
+        this.error(`Cannot show ${artifactName} of ${job.algorithm}: its mesh no longer exists`);
+        return;
+      }
+      this.select(meshId); // drops the field shown now
+    }
+    const token = ++this.fieldToken;
+    try {
+      const [values, ply] = await Promise.all([fetchArtifactF32(jobId, artifactName), this.meshPly(meshId), this.showing]);
+      if (token !== this.fieldToken || this.selectedId !== meshId) return;
+      const location =
+        artifact.location ?? (values.length === ply.faces && values.length !== ply.vertices ? 'face' : 'vertex');
+      let range: [number, number] =
+        artifact.range && artifact.range.length === 2 && artifact.range.every(Number.isFinite) ? artifact.range : finiteRange(values);
+      if (artifact.hint === 'symmetric') {
+        const m = Math.max(Math.abs(range[0]), Math.abs(range[1]));
+        range = [-m, m];
+      }
+      const data: ScalarField = { name: artifactName, location, values, range };
+      const mapName = this.mapName ?? defaultMapFor(artifact.hint);
+      const object = buildScalarSurface(ply, data, mapName);
+      this.field = { jobId, artifact: artifactName, meshId, data, object };
+      this.hooks.lastField = null;
+      this.viewer.replace(object, () => {
+        if (this.viewer.object === object) this.hooks.lastField = this.fieldHook(mapName);
+      });
+      this.legend.show(`${job.algorithm} · ${artifactName}`, range, mapName);
+      this.renderJobs();
+    } catch (e) {
+      if (token !== this.fieldToken) return;
+      this.error(`Cannot show ${artifactName} of ${job.algorithm}: ${describe(e)}`);
+    }
+  }
+
+  /** Adds a job's mesh artifact (fetched as binary PLY) to the view, beside its input mesh. */
+  async addMeshArtifact(jobId: string, artifactName: string): Promise<void> {
+    const job = this.jobs.get(jobId);
+    const meshId = job?.inputs?.mesh;
+    if (!job) return;
+    if (meshId && this.selectedId !== meshId && this.meshes.some((m) => m.id === meshId)) this.select(meshId);
+    const selected = this.selectedId;
+    try {
+      const [bytes] = await Promise.all([fetchArtifactBytes(jobId, artifactName, 'ply'), this.showing]);
+      if (this.selectedId !== selected) return;
+      const ply = parsePly(bytes);
+      const object = buildPlainSurface(ply.positions, ply.indices);
+      const key = `${jobId}/${artifactName}`;
+      this.viewer.addExtra(object, () => {
+        this.hooks.lastExtra = { jobId, artifact: artifactName, vertices: ply.vertices, faces: ply.faces };
+      });
+      this.added.add(key);
+      this.renderJobs();
+    } catch (e) {
+      this.error(`Cannot add ${artifactName} of ${job.algorithm}: ${describe(e)}`);
+    }
+  }
+
+  private fieldHook(map: string): TestHooks['lastField'] {
+    const f = this.field!;
+    return { jobId: f.jobId, artifact: f.artifact, meshId: f.meshId, location: f.data.location, count: f.data.values.length, range: f.data.range, map };
+  }
+
+  private setColorMap(name: string): void {
+    this.mapName = name;
+    const f = this.field;
+    if (!f) return;
+    colourGeometry(f.object.geometry, f.data, name);
+    this.legend.show(`${this.jobs.get(f.jobId)?.algorithm ?? ''} · ${f.artifact}`, f.data.range, name);
+    this.viewer.redraw(() => {
+      if (this.field === f) this.hooks.lastField = this.fieldHook(name);
+    });
+  }
+
+  /** Stops drawing a scalar field (the next mesh shown is plain). */
+  private dropField(): void {
+    ++this.fieldToken;
+    this.field = null;
+    this.hooks.lastField = null;
+    this.legend.hide();
+  }
+
+  private selectedMesh(): Mesh | null {
+    return this.meshes.find((m) => m.id === this.selectedId) ?? null;
   }
 
   /** Reloads the mesh list from the server. */
@@ -137,7 +456,8 @@ export class App {
     this.selectedId = id;
     this.renderList();
     this.report.render(mesh);
-    void this.show(mesh);
+    this.algorithmsPanel.setMesh(mesh.name);
+    this.showing = this.show(mesh);
   }
 
   async remove(id: string): Promise<void> {
@@ -153,6 +473,12 @@ export class App {
   /** Downloads the mesh over the WebSocket, decodes it in the worker and shows it. */
   private async show(mesh: Mesh): Promise<void> {
     this.load?.controller.abort();
+    if (this.field || this.added.size) {
+      this.dropField();
+      this.added.clear(); // show() below clears the viewer's extras
+      this.hooks.lastExtra = null;
+      this.renderJobs();
+    }
     const load = { id: mesh.id, controller: new AbortController() };
     this.load = load;
     const current = () => this.load === load;
@@ -199,6 +525,7 @@ export class App {
   }
 
   private upsert(mesh: Mesh): void {
+    this.plyCache.delete(mesh.id);
     const i = this.meshes.findIndex((m) => m.id === mesh.id);
     if (i >= 0) this.meshes[i] = mesh;
     else this.meshes.push(mesh);
@@ -209,14 +536,19 @@ export class App {
   /** Drops a mesh that no longer exists on the server; clears the view if it was shown. */
   private forget(id: string): void {
     this.meshes = this.meshes.filter((m) => m.id !== id);
+    this.plyCache.delete(id);
     if (this.selectedId === id) {
       this.selectedId = null;
+      this.algorithmsPanel.setMesh(null);
+      if (this.field) this.dropField();
       if (this.load?.id === id) {
         this.load.controller.abort();
         this.load = null;
         this.progress.hide();
       }
-      this.viewer.clear();
+      this.viewer.clearAll();
+      this.added.clear();
+      this.hooks.lastExtra = null;
       this.hooks.lastLoaded = null;
       this.hooks.timings = null;
       this.report.render(null);
@@ -226,6 +558,7 @@ export class App {
 
   private renderList(): void {
     this.list.render(this.meshes, this.selectedId);
+    if (this.jobs.size) this.renderJobs(); // mesh names in the job panel
   }
 
   private error(text: string): void {

@@ -1,5 +1,6 @@
-// The REST half of protocol/API.md: list, upload, get, delete meshes.
-import type { ErrorBody, Health, Mesh } from './types.ts';
+// The REST half of protocol/API.md: list, upload, get, delete meshes; list
+// algorithms; submit, list, get and cancel jobs; fetch their artifacts.
+import type { Algorithm, ErrorBody, Health, Job, Mesh } from './types.ts';
 
 const BASE = '/api/v1';
 
@@ -78,4 +79,81 @@ export function deleteMesh(id: string): Promise<void> {
 /** The URL that downloads a mesh converted to `format` (obj, off, ply, stl, glb, drc). */
 export function downloadUrl(id: string, format: string): string {
   return `${BASE}/meshes/${encodeURIComponent(id)}/download?format=${encodeURIComponent(format)}`;
+}
+
+// Algorithms and jobs (API.md "Algorithms and jobs").
+
+/** Every registered algorithm, each with its params JSON Schema. */
+export async function listAlgorithms(): Promise<Algorithm[]> {
+  const body = await request<{ algorithms: Algorithm[] }>('/algorithms');
+  return body.algorithms;
+}
+
+/** Submits a job: 201 with the Job (already `done`, `cached: true`, when the result is stored). */
+export function submitJob(algorithm: string, inputs: Record<string, string>, params: Record<string, unknown>): Promise<Job> {
+  return request<Job>('/jobs', {
+    method: 'POST',
+    headers: { 'Content-Type': 'application/json' },
+    body: JSON.stringify({ algorithm, inputs, params }),
+  });
+}
+
+export async function listJobs(): Promise<Job[]> {
+  const body = await request<{ jobs: Job[] }>('/jobs');
+  return body.jobs;
+}
+
+export function getJob(id: string): Promise<Job> {
+  return request<Job>(`/jobs/${encodeURIComponent(id)}`);
+}
+
+/** Cancels a queued or running job; answers the Job, state `cancelled`. */
+export function cancelJob(id: string): Promise<Job> {
+  return request<Job>(`/jobs/${encodeURIComponent(id)}`, { method: 'DELETE' });
+}
+
+/** The URL of a job's artifact in `format` (txt, csv, ply, json, f32 for scalar fields; mesh formats; json for metrics). */
+export function artifactUrl(jobId: string, name: string, format: string): string {
+  return `${BASE}/jobs/${encodeURIComponent(jobId)}/artifacts/${encodeURIComponent(name)}?format=${encodeURIComponent(format)}`;
+}
+
+async function fetchOk(url: string, signal?: AbortSignal): Promise<Response> {
+  let response: Response;
+  try {
+    response = await fetch(url, { signal });
+  } catch (e) {
+    if (e instanceof DOMException && e.name === 'AbortError') throw e;
+    throw new ApiError(0, 'network', `cannot reach the server: ${(e as Error).message}`);
+  }
+  if (!response.ok) throw await failure(response);
+  return response;
+}
+
+/** A scalar field artifact as raw little-endian float32 values (`format=f32`). */
+export async function fetchArtifactF32(jobId: string, name: string, signal?: AbortSignal): Promise<Float32Array> {
+  const response = await fetchOk(artifactUrl(jobId, name, 'f32'), signal);
+  const buffer = await response.arrayBuffer();
+  if (buffer.byteLength % 4 !== 0) throw new ApiError(200, 'bad_artifact', `f32 artifact of ${buffer.byteLength} bytes`);
+  const view = new DataView(buffer);
+  const out = new Float32Array(buffer.byteLength / 4);
+  for (let i = 0; i < out.length; ++i) out[i] = view.getFloat32(i * 4, true);
+  return out;
+}
+
+/** An artifact as JSON (`format=json`): scalar fields, metrics. */
+export async function fetchArtifactJson<T = unknown>(jobId: string, name: string, signal?: AbortSignal): Promise<T> {
+  const response = await fetchOk(artifactUrl(jobId, name, 'json'), signal);
+  return (await response.json()) as T;
+}
+
+/** An artifact's bytes in `format` (a mesh artifact as ply, say). */
+export async function fetchArtifactBytes(jobId: string, name: string, format: string, signal?: AbortSignal): Promise<ArrayBuffer> {
+  const response = await fetchOk(artifactUrl(jobId, name, format), signal);
+  return response.arrayBuffer();
+}
+
+/** A mesh downloaded in `format` as bytes (the scalar-field renderer reads binary PLY: the server's vertex order). */
+export async function fetchMeshBytes(id: string, format: string, signal?: AbortSignal): Promise<ArrayBuffer> {
+  const response = await fetchOk(downloadUrl(id, format), signal);
+  return response.arrayBuffer();
 }

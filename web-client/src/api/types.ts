@@ -52,7 +52,91 @@ export interface MeshBegin {
   has_colors: boolean;
 }
 
+/** One parameter of an algorithm: a JSON Schema property (API.md "Algorithms and jobs"). */
+export interface ParamSchema {
+  type: 'integer' | 'number' | 'boolean' | 'string' | string;
+  title?: string;
+  description?: string;
+  default?: unknown;
+  minimum?: number;
+  maximum?: number;
+  enum?: unknown[];
+  [key: string]: unknown;
+}
+
+/** `params` of an Algorithm: a JSON Schema object. */
+export interface ParamsSchema {
+  type?: 'object';
+  properties?: Record<string, ParamSchema>;
+  required?: string[];
+  additionalProperties?: boolean;
+  [key: string]: unknown;
+}
+
+export interface Algorithm {
+  name: string;
+  title: string;
+  description: string;
+  area: string;
+  inputs: Array<{ name: string; kind: string }>;
+  outputs: Array<{ name: string; kind: string }>;
+  params: ParamsSchema;
+}
+
+export type JobState = 'queued' | 'running' | 'done' | 'failed' | 'cancelled' | 'interrupted';
+
+/** A job's artifact as the Job lists it; `location` and `range` for scalar fields, `count` where it applies. */
+export interface ArtifactInfo {
+  name: string;
+  kind: 'scalar_field' | 'mesh' | 'metrics' | string;
+  location?: 'vertex' | 'face';
+  range?: [number, number];
+  count?: number;
+  hint?: string;
+}
+
+export interface Job {
+  id: string;
+  algorithm: string;
+  inputs: Record<string, string>;
+  params: Record<string, unknown>;
+  state: JobState;
+  progress: number;
+  stage: string;
+  error: string | null;
+  cached: boolean;
+  created: string | null;
+  started: string | null;
+  finished: string | null;
+  artifacts: ArtifactInfo[];
+}
+
+/** What a job_progress event carries. */
+export type JobProgress = Pick<Job, 'id' | 'state' | 'progress' | 'stage'>;
+
+/** A scalar field artifact fetched as `format=json`. */
+export interface ScalarFieldJson {
+  name: string;
+  location: 'vertex' | 'face';
+  hint?: string;
+  range: [number, number];
+  values: number[];
+}
+
 /** Server-to-client events (no request_id). */
 export type ServerEvent =
   | { type: 'mesh_added'; mesh: Mesh }
-  | { type: 'mesh_deleted'; mesh_id: string };
+  | { type: 'mesh_deleted'; mesh_id: string }
+  | { type: 'job_progress'; job: JobProgress }
+  | { type: 'job_done'; job: Job }
+  | { type: 'job_failed'; job: Job }
+  | { type: 'job_cancelled'; job: Job };
+
+export const SERVER_EVENT_TYPES: ReadonlySet<string> = new Set([
+  'mesh_added',
+  'mesh_deleted',
+  'job_progress',
+  'job_done',
+  'job_failed',
+  'job_cancelled',
+]);

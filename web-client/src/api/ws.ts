@@ -1,9 +1,10 @@
 // The WebSocket half of protocol/API.md (`/api/v1/ws`): JSON requests with a
 // client-chosen request_id, get_mesh answered by mesh_begin, K binary chunk
-// frames and mesh_end, and the server's mesh_added / mesh_deleted events.
+// frames and mesh_end, and the server's events: mesh_added / mesh_deleted and
+// job_progress / job_done / job_failed / job_cancelled.
 // Reconnects by itself; requests in flight when the connection drops fail.
 import { ChunkAssembler, FrameError, FrameKind, decodeFrame } from './frames.ts';
-import type { Mesh, MeshBegin, ServerEvent } from './types.ts';
+import { SERVER_EVENT_TYPES, type Mesh, type MeshBegin, type ServerEvent } from './types.ts';
 
 /** An `{"type":"error"}` answer: the server's code and detail. */
 export class ServerError extends Error {
@@ -71,7 +72,7 @@ export class CgviewSocket {
     this.url = url;
   }
 
-  /** mesh_added / mesh_deleted events. Returns a function that unsubscribes. */
+  /** Server events (mesh_* and job_*). Returns a function that unsubscribes. */
   onEvent(handler: EventHandler): () => void {
     this.eventHandlers.add(handler);
     return () => this.eventHandlers.delete(handler);
@@ -216,7 +217,7 @@ export class CgviewSocket {
     const type = msg.type;
     const id = typeof msg.request_id === 'number' ? msg.request_id : null;
 
-    if (type === 'mesh_added' || type === 'mesh_deleted') {
+    if (typeof type === 'string' && SERVER_EVENT_TYPES.has(type) && id === null) {
       for (const h of this.eventHandlers) h(msg as unknown as ServerEvent);
       return;
     }

@@ -52,3 +52,20 @@ export function buildSurface(decoded: DecodedMesh): THREE.Mesh {
   mesh.name = 'surface';
   return mesh;
 }
+
+/** The colour of meshes that jobs made, shown beside the input mesh. */
+export const ARTIFACT_COLOR = '#6fa8dc';
+
+/** A plain smooth-shaded surface from positions and triangle indices (a job's mesh artifact). */
+export function buildPlainSurface(positions: Float32Array, indices: Uint32Array, color: string = ARTIFACT_COLOR): THREE.Mesh {
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+  geometry.setIndex(new THREE.BufferAttribute(indices, 1));
+  geometry.computeVertexNormals();
+  geometry.computeBoundingBox();
+  geometry.computeBoundingSphere();
+  const material = new THREE.MeshStandardMaterial({ color, roughness: 0.6, metalness: 0.0, side: THREE.DoubleSide });
+  const mesh = new THREE.Mesh(geometry, material);
+  mesh.name = 'artifact';
+  return mesh;
+}

@@ -21,6 +21,8 @@ export class Viewer {
   private readonly options: ViewerOptions;
   private readonly resizeObserver: ResizeObserver;
   private shown: THREE.Object3D | null = null;
+  /** Objects shown beside the main one (mesh artifacts of jobs); cleared by show(). */
+  private readonly extras = new THREE.Group();
   private frameRequested = false;
   private afterFrame: Array<() => void> = [];
 
@@ -46,6 +48,7 @@ export class Viewer {
     rim.position.set(0.5, 0.8, -1.5);
     this.camera.add(key, fill, rim);
     this.scene.add(this.camera);
+    this.scene.add(this.extras);
 
     this.camera.position.set(0, 0, 3);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
@@ -70,10 +73,49 @@ export class Viewer {
    */
   show(object: THREE.Object3D, onShown?: () => void): void {
     this.clear();
+    this.clearExtras();
     this.shown = object;
     this.scene.add(object);
     this.fitToView();
     if (onShown) this.afterFrame.push(onShown);
+    this.requestRender();
+  }
+
+  /**
+   * Shows `object` in place of the previous one (disposed) without moving the
+   * camera: the same surface drawn another way (a scalar field on it).
+   */
+  replace(object: THREE.Object3D, onShown?: () => void): void {
+    if (!this.shown) {
+      this.show(object, onShown);
+      return;
+    }
+    this.clear();
+    this.shown = object;
+    this.scene.add(object);
+    if (onShown) this.afterFrame.push(onShown);
+    this.requestRender();
+  }
+
+  /** Adds an object beside the shown one (kept until the next show()); the camera stays. */
+  addExtra(object: THREE.Object3D, onShown?: () => void): void {
+    this.extras.add(object);
+    if (onShown) this.afterFrame.push(onShown);
+    this.requestRender();
+  }
+
+  /** Removes and disposes of the objects added with addExtra(). */
+  clearExtras(): void {
+    for (const child of [...this.extras.children]) {
+      this.extras.remove(child);
+      disposeObject(child);
+    }
+    this.requestRender();
+  }
+
+  /** Draws a frame (after a change to the shown object), then calls `onDrawn`. */
+  redraw(onDrawn?: () => void): void {
+    if (onDrawn) this.afterFrame.push(onDrawn);
     this.requestRender();
   }
 
@@ -84,6 +126,12 @@ export class Viewer {
     disposeObject(this.shown);
     this.shown = null;
     this.requestRender();
+  }
+
+  /** Removes the shown object and everything beside it. */
+  clearAll(): void {
+    this.clear();
+    this.clearExtras();
   }
 
   /** Frames the camera on the shown object's bounding sphere, looking from the front-right-above. */

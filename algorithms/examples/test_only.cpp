@@ -1,0 +1,67 @@
+// Algorithms that misbehave on purpose, for the job scheduler's tests.
+// Linked only into cgview-worker-test (area "test"), never into the server,
+// the CLI or the normal worker.
+#include <chrono>
+#include <csignal>
+#include <cstring>
+#include <thread>
+#include <vector>
+
+#include "registry/registry.h"
+
+namespace cgview {
+namespace {
+
+struct NoParams {
+  template <class V>
+  void describe(V&) {}
+};
+
+AlgorithmResult segfault(const Mesh&, const NoParams&, Context&) {
+  std::raise(SIGSEGV);
+  return {};
+}
+
+AlgorithmResult memory_hog(const Mesh&, const NoParams&, Context& ctx) {
+  std::vector<char*> blocks;
+  for (;;) {
+    char* p = new char[64 << 20];
+    std::memset(p, 1, 64 << 20);  // touch it, so it counts
+    blocks.push_back(p);
+    ctx.progress(0.5, "allocating");
+  }
+}
+
+struct SleepParams {
+  double seconds = 30;
+  template <class V>
+  void describe(V& v) {
+    v.number("seconds", seconds, {.label = "Seconds", .min = 0, .max = 3600, .help = "how long to run"});
+  }
+};
+
+AlgorithmResult sleeper(const Mesh& mesh, const SleepParams& p, Context& ctx) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto total = std::chrono::duration<double>(p.seconds);
+  for (;;) {
+    const auto done = std::chrono::steady_clock::now() - start;
+    if (done >= total) break;
+    ctx.check_cancelled();
+    ctx.progress(std::chrono::duration<double>(done) / total, "sleeping");
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ScalarField f{"index", Location::vertex, ColorHint::standard, {}};
+  for (std::size_t i = 0; i < mesh.num_vertices(); ++i) f.values.push_back(float(i));
+  return {{{"index", f}}, {}};
+}
+
+CGVIEW_REGISTER_ALGORITHM(test_segfault, NoParams, segfault,
+                          {.title = "Crash (test)", .description = "raises SIGSEGV", .area = "test", .outputs = {}})
+CGVIEW_REGISTER_ALGORITHM(test_memory_hog, NoParams, memory_hog,
+                          {.title = "Memory hog (test)", .description = "allocates without bound", .area = "test", .outputs = {}})
+CGVIEW_REGISTER_ALGORITHM(test_sleep, SleepParams, sleeper,
+                          {.title = "Sleep (test)", .description = "runs for a while, checking for cancellation",
+                           .area = "test", .outputs = {{"index", OutputKind::scalar_field}}})
+
+}  // namespace
+}  // namespace cgview

@@ -1,0 +1,704 @@
+#include "jobs.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sqlite3.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "algorithm_json.h"
+#include "core/errors.h"
+#include "io/mesh_io.h"
+#include "registry/artifact_io.h"
+#include "registry/registry.h"
+
+namespace cgview::server {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+struct JobScheduler::Job {
+  std::string id, owner, algorithm, mesh_id, mesh_sha, params = "{}", cache_key;
+  std::string state = "queued", stage, error, created, started, finished, artifacts = "[]", files;
+  double progress = 0;
+  bool cached = false;
+  std::int64_t seq = 0;
+  // while running
+  pid_t pid = -1;
+  int out_fd = -1;
+  std::string out_buf;
+  Clock::time_point launched, last_event, term_sent;
+  bool cancelled = false, timed_out = false;
+};
+
+namespace {
+
+std::string now_iso8601() {
+  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+std::string new_id() {
+  static std::mutex m;
+  static std::mt19937_64 rng{std::random_device{}()};
+  std::lock_guard lock(m);
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(rng()));
+  return buf;
+}
+
+void exec_sql(sqlite3* db, const char* sql) {
+  char* err = nullptr;
+  if (sqlite3_exec(db, sql, nullptr, nullptr, &err) != SQLITE_OK) {
+    std::string msg = err ? err : "unknown error";
+    sqlite3_free(err);
+    throw IoError("jobs: " + msg);
+  }
+}
+
+std::string read_file(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+std::string signal_name(int sig) {
+  switch (sig) {
+    case SIGSEGV: return "SIGSEGV";
+    case SIGABRT: return "SIGABRT";
+    case SIGKILL: return "SIGKILL";
+    case SIGTERM: return "SIGTERM";
+    case SIGBUS: return "SIGBUS";
+    case SIGFPE: return "SIGFPE";
+    case SIGILL: return "SIGILL";
+    default: return "signal " + std::to_string(sig);
+  }
+}
+
+json value_json(const ParamValue& v) {
+  return std::visit([](const auto& x) { return json(x); }, v);
+}
+
+std::string trim(std::string s) {
+  while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
+  return s;
+}
+
+}  // namespace
+
+JobScheduler::JobScheduler(MeshService& meshes, JobConfig config) : meshes_(meshes), config_(std::move(config)) {
+  if (config_.max_workers <= 0) config_.max_workers = int(std::max(1u, std::thread::hardware_concurrency()));
+  // What the worker can run (the test worker has a few more, hidden).
+  {
+    const std::string cmd = "'" + config_.worker.string() + "' --list";
+    std::string text;
+    if (FILE* p = ::popen(cmd.c_str(), "r")) {
+      char buf[4096];
+      for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) text.append(buf, n);
+      ::pclose(p);
+    }
+    const json list = json::parse(text, nullptr, false);
+    if (list.is_array()) {
+      for (const auto& a : list)
+        if (a.is_object() && a.contains("name")) worker_algorithms_[a["name"].get<std::string>()] = a;
+    } else {
+      // Serve meshes anyway; jobs will fail with the reason.
+      std::fprintf(stderr, "cgview-server: warning: cannot run the job worker %s (--worker); jobs will fail\n",
+                   config_.worker.c_str());
+      for (const auto& [name, a] : algorithms()) worker_algorithms_[name] = protocol::to_json(a);
+    }
+  }
+  const fs::path dir = meshes_.store().data_dir();
+  std::error_code ec;
+  fs::create_directories(dir / "jobs", ec);
+  const fs::path db = dir / "cgview.db";
+  if (sqlite3_open_v2(db.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX, nullptr) != SQLITE_OK) {
+    std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    throw IoError(db.string() + ": cannot open: " + msg);
+  }
+  sqlite3_busy_timeout(db_, 5000);
+  exec_sql(db_, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;");
+  exec_sql(db_,
+           "CREATE TABLE IF NOT EXISTS jobs ("
+           " id TEXT PRIMARY KEY, seq INTEGER NOT NULL, owner TEXT NOT NULL, algorithm TEXT NOT NULL,"
+           " mesh_id TEXT NOT NULL, mesh_sha TEXT NOT NULL, params TEXT NOT NULL, cache_key TEXT NOT NULL,"
+           " state TEXT NOT NULL, stage TEXT NOT NULL, progress REAL NOT NULL, error TEXT NOT NULL,"
+           " cached INTEGER NOT NULL, created TEXT NOT NULL, started TEXT NOT NULL, finished TEXT NOT NULL,"
+           " artifacts TEXT NOT NULL, files TEXT NOT NULL);"
+           "CREATE INDEX IF NOT EXISTS jobs_cache ON jobs(cache_key);");
+  load();
+  if (::pipe2(wake_pipe_, O_CLOEXEC | O_NONBLOCK) != 0) throw IoError("jobs: pipe failed");
+}
+
+void JobScheduler::start() {
+  if (!thread_.joinable()) thread_ = std::thread([this] { loop(); });
+}
+
+JobScheduler::~JobScheduler() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  wake();
+  if (thread_.joinable()) thread_.join();
+  ::close(wake_pipe_[0]);
+  ::close(wake_pipe_[1]);
+  sqlite3_close(db_);
+}
+
+fs::path JobScheduler::job_dir(const std::string& id) const { return meshes_.store().data_dir() / "jobs" / id; }
+
+void JobScheduler::wake() {
+  const char c = 1;
+  [[maybe_unused]] auto n = ::write(wake_pipe_[1], &c, 1);
+}
+
+void JobScheduler::load() {
+  sqlite3_stmt* s = nullptr;
+  sqlite3_prepare_v2(db_,
+                     "SELECT id, seq, owner, algorithm, mesh_id, mesh_sha, params, cache_key, state, stage, progress,"
+                     " error, cached, created, started, finished, artifacts, files FROM jobs ORDER BY seq",
+                     -1, &s, nullptr);
+  auto text = [&](int c) {
+    const auto* p = sqlite3_column_text(s, c);
+    return p ? std::string(reinterpret_cast<const char*>(p)) : std::string();
+  };
+  std::vector<std::shared_ptr<Job>> restart;
+  while (sqlite3_step(s) == SQLITE_ROW) {
+    auto j = std::make_shared<Job>();
+    j->id = text(0);
+    j->seq = sqlite3_column_int64(s, 1);
+    j->owner = text(2);
+    j->algorithm = text(3);
+    j->mesh_id = text(4);
+    j->mesh_sha = text(5);
+    j->params = text(6);
+    j->cache_key = text(7);
+    j->state = text(8);
+    j->stage = text(9);
+    j->progress = sqlite3_column_double(s, 10);
+    j->error = text(11);
+    j->cached = sqlite3_column_int(s, 12) != 0;
+    j->created = text(13);
+    j->started = text(14);
+    j->finished = text(15);
+    j->artifacts = text(16);
+    j->files = text(17);
+    seq_ = std::max(seq_, j->seq);
+    jobs_[j->id] = j;
+    order_.push_back(j->id);
+    if (j->state == "queued" || j->state == "running") restart.push_back(j);
+    if (j->state == "done" && !j->cached) cache_[j->cache_key] = j->id;
+  }
+  sqlite3_finalize(s);
+  for (auto& j : restart) {
+    j->progress = 0;
+    j->stage.clear();
+    j->started.clear();
+    if (config_.requeue_on_restart) {
+      j->state = "queued";
+      queues_[j->owner].push_back(j->id);
+    } else {
+      j->error = "the server stopped while the job was " + j->state;
+      j->state = "interrupted";
+      j->finished = now_iso8601();
+    }
+    persist(*j);
+  }
+}
+
+void JobScheduler::persist(const Job& j) {
+  sqlite3_stmt* s = nullptr;
+  if (sqlite3_prepare_v2(db_,
+                         "INSERT OR REPLACE INTO jobs (id, seq, owner, algorithm, mesh_id, mesh_sha, params, cache_key,"
+                         " state, stage, progress, error, cached, created, started, finished, artifacts, files)"
+                         " VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18)",
+                         -1, &s, nullptr) != SQLITE_OK)
+    throw IoError(std::string("jobs: ") + sqlite3_errmsg(db_));
+  int i = 0;
+  auto t = [&](const std::string& v) { sqlite3_bind_text(s, ++i, v.data(), int(v.size()), SQLITE_TRANSIENT); };
+  t(j.id);
+  sqlite3_bind_int64(s, ++i, j.seq);
+  t(j.owner), t(j.algorithm), t(j.mesh_id), t(j.mesh_sha), t(j.params), t(j.cache_key), t(j.state), t(j.stage);
+  sqlite3_bind_double(s, ++i, j.progress);
+  t(j.error);
+  sqlite3_bind_int(s, ++i, j.cached ? 1 : 0);
+  t(j.created), t(j.started), t(j.finished), t(j.artifacts), t(j.files);
+  const int rc = sqlite3_step(s);
+  sqlite3_finalize(s);
+  if (rc != SQLITE_DONE) throw IoError(std::string("jobs: ") + sqlite3_errmsg(db_));
+}
+
+json JobScheduler::job_json(const Job& j) const {
+  auto opt = [](const std::string& s) { return s.empty() ? json(nullptr) : json(s); };
+  json artifacts = json::parse(j.artifacts, nullptr, false);
+  if (!artifacts.is_array()) artifacts = json::array();
+  for (auto& a : artifacts) a.erase("file");
+  return {{"id", j.id},
+          {"algorithm", j.algorithm},
+          {"inputs", {{"mesh", j.mesh_id}}},
+          {"params", json::parse(j.params, nullptr, false)},
+          {"state", j.state},
+          {"progress", j.progress},
+          {"stage", j.stage},
+          {"error", opt(j.error)},
+          {"cached", j.cached},
+          {"created", j.created},
+          {"started", opt(j.started)},
+          {"finished", opt(j.finished)},
+          {"artifacts", artifacts}};
+}
+
+json JobScheduler::algorithms_json() const {
+  json list = json::array();
+  for (const auto& [name, a] : worker_algorithms_)
+    if (a.value("area", "") != "test") list.push_back(a);
+  return {{"algorithms", list}};
+}
+
+json JobScheduler::submit(const json& req, const std::string& owner) {
+  if (!req.is_object()) throw InvalidInput("the body must be a JSON object");
+  if (!req.contains("algorithm") || !req["algorithm"].is_string()) throw InvalidInput("\"algorithm\" must be a string");
+  const std::string algorithm = req["algorithm"].get<std::string>();
+  if (!worker_algorithms_.count(algorithm)) throw std::out_of_range("no algorithm '" + algorithm + "'");
+  const json inputs = req.value("inputs", json::object());
+  if (!inputs.is_object() || !inputs.contains("mesh") || !inputs["mesh"].is_string())
+    throw InvalidInput("\"inputs\" must be {\"mesh\": \"<mesh id>\"}");
+  const std::string mesh_id = inputs["mesh"].get<std::string>();
+  const auto mesh = meshes_.store().get_mesh(mesh_id);
+  if (!mesh) throw std::out_of_range("no mesh with id '" + mesh_id + "'");
+  const json params_in = req.contains("params") ? req["params"] : json::object();
+  // Canonical parameters: checked, every one present (defaults filled in).
+  json canonical = json::object();
+  const auto& registry = algorithms();
+  if (const auto it = registry.find(algorithm); it != registry.end()) {
+    const auto values = protocol::params_from_json(it->second, params_in);
+    for (const ParamSpec& p : it->second.params) {
+      const auto v = values.find(p.name);
+      canonical[p.name] = value_json(v == values.end() ? p.default_value : v->second);
+    }
+  } else {
+    // Only the worker knows it (a test algorithm): the worker checks.
+    if (!params_in.is_null() && !params_in.is_object()) throw InvalidInput("\"params\" must be a JSON object");
+    if (params_in.is_object()) canonical = params_in;
+  }
+  auto j = std::make_shared<Job>();
+  j->id = new_id();
+  j->owner = owner;
+  j->algorithm = algorithm;
+  j->mesh_id = mesh_id;
+  j->mesh_sha = mesh->sha256;
+  j->params = canonical.dump();
+  j->cache_key = sha256_hex(mesh->sha256 + "\n" + algorithm + "\n" + j->params);
+  j->created = now_iso8601();
+  json out, event;
+  {
+    std::lock_guard lock(mutex_);
+    j->seq = ++seq_;
+    if (const auto hit = cache_.find(j->cache_key); hit != cache_.end()) {
+      const Job& o = *jobs_.at(hit->second);
+      if (o.state == "done" && fs::exists(job_dir(o.files) / "result.json")) {
+        j->state = "done";
+        j->cached = true;
+        j->progress = 1;
+        j->stage = "done";
+        j->started = j->finished = j->created;
+        j->artifacts = o.artifacts;
+        j->files = o.files;
+      }
+    }
+    persist(*j);
+    jobs_[j->id] = j;
+    order_.push_back(j->id);
+    if (!j->cached) queues_[owner].push_back(j->id);
+    out = job_json(*j);
+  }
+  if (j->cached) {
+    if (on_event) on_event({{"type", "job_done"}, {"job", out}});
+  } else {
+    wake();
+  }
+  return out;
+}
+
+json JobScheduler::list() const {
+  std::lock_guard lock(mutex_);
+  json list = json::array();
+  for (const auto& id : order_) list.push_back(job_json(*jobs_.at(id)));
+  return {{"jobs", list}};
+}
+
+std::optional<json> JobScheduler::get(const std::string& id) const {
+  std::lock_guard lock(mutex_);
+  const auto it = jobs_.find(id);
+  if (it == jobs_.end()) return std::nullopt;
+  return job_json(*it->second);
+}
+
+std::optional<json> JobScheduler::cancel(const std::string& id) {
+  json out;
+  bool changed = false;
+  {
+    std::lock_guard lock(mutex_);
+    const auto it = jobs_.find(id);
+    if (it == jobs_.end()) return std::nullopt;
+    Job& j = *it->second;
+    if (j.state == "queued") {
+      auto& q = queues_[j.owner];
+      q.erase(std::remove(q.begin(), q.end(), id), q.end());
+      changed = true;
+    } else if (j.state == "running") {
+      j.cancelled = true;
+      if (j.pid > 0) {
+        ::kill(j.pid, SIGTERM);
+        j.term_sent = Clock::now();
+      }
+      changed = true;
+    }
+    if (changed) {
+      j.state = "cancelled";
+      j.finished = now_iso8601();
+      persist(j);
+    }
+    out = job_json(j);
+  }
+  if (changed) {
+    wake();
+    if (on_event) on_event({{"type", "job_cancelled"}, {"job", out}});
+  }
+  return out;
+}
+
+ArtifactBytes JobScheduler::artifact(const std::string& id, const std::string& name, const std::string& format_in) {
+  json entry;
+  std::string files, mesh_id;
+  {
+    std::lock_guard lock(mutex_);
+    const auto it = jobs_.find(id);
+    if (it == jobs_.end()) throw std::out_of_range("no job with id '" + id + "'");
+    const Job& j = *it->second;
+    if (j.state != "done") throw InvalidInput("job " + id + " is " + j.state + ", not done: it has no artifacts");
+    for (const auto& a : json::parse(j.artifacts, nullptr, false))
+      if (a.value("name", "") == name) entry = a;
+    files = j.files;
+    mesh_id = j.mesh_id;
+  }
+  if (entry.is_null()) throw std::out_of_range("job " + id + " has no artifact '" + name + "'");
+  const fs::path dir = job_dir(files);
+  const std::string kind = entry.value("kind", "");
+  const std::string file = entry.value("file", "");
+  std::string format = format_in;
+  for (char& c : format) c = char(std::tolower(static_cast<unsigned char>(c)));
+  ArtifactBytes out;
+  out.content_type = "application/octet-stream";
+  if (kind == "scalar_field") {
+    if (format.empty()) format = "json";
+    const std::string raw = read_file(dir / file);
+    if (format == "f32") {
+      out.bytes = raw;
+    } else {
+      ScalarField field;
+      field.name = name;
+      const json side = json::parse(read_file(dir / (name + ".field.json")), nullptr, false);
+      if (side.is_object()) field.name = side.value("name", name);
+      field.location = entry.value("location", "vertex") == "face" ? Location::face : Location::vertex;
+      const std::string hint = entry.value("hint", "standard");
+      field.hint = hint == "symmetric" ? ColorHint::symmetric : hint == "magnitude" ? ColorHint::magnitude
+                   : hint == "categorical" ? ColorHint::categorical : ColorHint::standard;
+      field.values.resize(raw.size() / sizeof(float));
+      std::memcpy(field.values.data(), raw.data(), field.values.size() * sizeof(float));
+      if (format == "json") {
+        const auto [lo, hi] = field.range();
+        json values = json::array();
+        for (float v : field.values) values.push_back(v);
+        out.bytes = json{{"name", field.name}, {"location", to_string(field.location)}, {"hint", to_string(field.hint)},
+                         {"range", {lo, hi}}, {"values", values}}.dump();
+        out.content_type = "application/json";
+      } else if (format == "txt" || format == "csv" || format == "ply") {
+        Mesh input;
+        if (format == "ply") {
+          const auto rec = meshes_.store().get_mesh(mesh_id);
+          if (!rec) throw std::out_of_range("the mesh " + mesh_id + " of job " + id + " was deleted");
+          input = *meshes_.mesh(*rec);
+        }
+        const fs::path tmp = dir / ("tmp-" + new_id() + "." + format);
+        try {
+          write_artifact(Artifact{name, field}, input, tmp);
+          out.bytes = read_file(tmp);
+        } catch (...) {
+          std::error_code ec;
+          fs::remove(tmp, ec);
+          throw;
+        }
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        if (format != "ply") out.content_type = format == "csv" ? "text/csv" : "text/plain; charset=utf-8";
+      } else {
+        throw UnsupportedFormat("a scalar field is served as txt, csv, ply, json or f32, not '" + format + "'");
+      }
+    }
+  } else if (kind == "mesh") {
+    if (format.empty() || format == "ply") {
+      out.bytes = read_file(dir / file);
+      format = "ply";
+    } else {
+      const MeshFormat f = format_from_name("x." + format);
+      if (!can_write(f)) throw UnsupportedFormat("a mesh cannot be served as '" + format + "'");
+      out.bytes = write_mesh_bytes(read_mesh_file(dir / file).mesh, f);
+    }
+  } else if (kind == "metrics") {
+    if (!format.empty() && format != "json") throw UnsupportedFormat("metrics are served as json, not '" + format + "'");
+    format = "json";
+    out.bytes = read_file(dir / file);
+    out.content_type = "application/json";
+  } else {
+    const std::string ext = fs::path(file).extension().string().substr(1);
+    if (!format.empty() && format != ext) throw UnsupportedFormat("a " + kind + " is served as " + ext + ", not '" + format + "'");
+    format = ext;
+    out.bytes = read_file(dir / file);
+  }
+  out.file_name = name + "." + format;
+  return out;
+}
+
+bool JobScheduler::launch(Job& j) {
+  const fs::path dir = job_dir(j.id);
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  fs::create_directories(dir, ec);
+  const auto mesh = meshes_.store().get_mesh(j.mesh_id);
+  if (!mesh) {
+    j.error = "the mesh " + j.mesh_id + " was deleted";
+    return false;
+  }
+  {
+    std::ofstream f(dir / "job.json");
+    f << json{{"algorithm", j.algorithm}, {"params", json::parse(j.params)},
+              {"mesh", meshes_.store().blob_file(*mesh).string()}, {"out", dir.string()}}
+             .dump();
+    if (!f) {
+      j.error = "cannot write " + (dir / "job.json").string();
+      return false;
+    }
+  }
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0) {
+    j.error = "pipe failed";
+    return false;
+  }
+  std::string worker = config_.worker.string(), spec = (dir / "job.json").string(), err = (dir / "stderr.txt").string();
+  char* argv[] = {worker.data(), spec.data(), nullptr};
+  const rlim_t limit = rlim_t(config_.memory_mb) << 20;
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    j.error = "fork failed";
+    return false;
+  }
+  if (pid == 0) {
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // a killed server leaves no worker behind
+    ::setpgid(0, 0);
+    if (limit > 0) {
+      struct rlimit rl{limit, limit};
+      ::setrlimit(RLIMIT_AS, &rl);
+    }
+    struct rlimit core{0, 0};
+    ::setrlimit(RLIMIT_CORE, &core);
+    ::dup2(fds[1], 1);
+    const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (e >= 0) ::dup2(e, 2);
+    ::execv(argv[0], argv);
+    ::_exit(127);
+  }
+  ::close(fds[1]);
+  ::fcntl(fds[0], F_SETFL, O_NONBLOCK);
+  ++workers_started_;
+  j.pid = pid;
+  j.out_fd = fds[0];
+  j.launched = Clock::now();
+  j.state = "running";
+  j.started = now_iso8601();
+  j.stage = "starting";
+  return true;
+}
+
+void JobScheduler::reap(Job& j, int status, std::vector<json>& events) {
+  if (j.out_fd >= 0) ::close(j.out_fd);
+  j.out_fd = -1;
+  j.pid = -1;
+  if (j.cancelled) return;  // already cancelled (state, event)
+  const fs::path dir = job_dir(j.id);
+  std::string state = "failed";
+  if (j.timed_out) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", config_.timeout_s);
+    j.error = std::string("exceeded its time limit of ") + buf + " s";
+  } else if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(dir / "result.json")) {
+    const json result = json::parse(read_file(dir / "result.json"), nullptr, false);
+    if (result.is_object()) {
+      state = "done";
+      j.artifacts = result.value("artifacts", json::array()).dump();
+      j.files = j.id;
+      cache_[j.cache_key] = j.id;
+      j.progress = 1;
+      j.stage = "done";
+    } else {
+      j.error = "the worker wrote an unreadable result";
+    }
+  } else {
+    std::string text = trim(read_file(dir / "error.txt"));
+    if (text.empty()) text = trim(read_file(dir / "stderr.txt"));
+    const bool oom = (WIFEXITED(status) && WEXITSTATUS(status) == 3) || text.find("bad_alloc") != std::string::npos;
+    if (oom && config_.memory_mb > 0) j.error = "exceeded its memory limit of " + std::to_string(config_.memory_mb) + " MB";
+    else if (WIFSIGNALED(status)) j.error = "killed by signal " + signal_name(WTERMSIG(status));
+    else if (WIFEXITED(status) && WEXITSTATUS(status) == 127 && text.empty()) j.error = "the worker could not be started";
+    else j.error = text.empty() ? "the worker exited with status " + std::to_string(WEXITSTATUS(status)) : text;
+  }
+  j.state = state;
+  j.finished = now_iso8601();
+  persist(j);
+  events.push_back({{"type", state == "done" ? "job_done" : "job_failed"}, {"job", job_json(j)}});
+}
+
+void JobScheduler::loop() {
+  std::vector<json> pending;  // events gathered under the lock, sent outside it
+  for (;;) {
+    std::vector<json> events = std::move(pending);
+    pending.clear();
+    std::vector<pollfd> fds;
+    {
+      std::unique_lock lock(mutex_);
+      if (stopping_) break;
+      // Start queued jobs, round-robin over owners.
+      while (int(running_ids_.size()) < config_.max_workers) {
+        auto it = queues_.upper_bound(last_owner_);
+        for (std::size_t k = 0; k <= queues_.size(); ++k) {
+          if (it == queues_.end()) it = queues_.begin();
+          if (it == queues_.end() || !it->second.empty()) break;
+          ++it;
+        }
+        if (it == queues_.end() || it->second.empty()) break;
+        last_owner_ = it->first;
+        const std::string id = it->second.front();
+        it->second.pop_front();
+        Job& j = *jobs_.at(id);
+        if (launch(j)) {
+          running_ids_.push_back(id);
+          j.last_event = Clock::now();
+          persist(j);
+          events.push_back({{"type", "job_progress"}, {"job", {{"id", j.id}, {"state", j.state}, {"progress", 0.0}, {"stage", j.stage}}}});
+        } else {
+          j.state = "failed";
+          j.finished = now_iso8601();
+          persist(j);
+          events.push_back({{"type", "job_failed"}, {"job", job_json(j)}});
+        }
+      }
+      // Limits, cancellation, exits.
+      const auto now = Clock::now();
+      for (std::size_t k = 0; k < running_ids_.size();) {
+        Job& j = *jobs_.at(running_ids_[k]);
+        if (!j.cancelled && !j.timed_out && config_.timeout_s > 0 &&
+            now - j.launched > std::chrono::duration<double>(config_.timeout_s)) {
+          j.timed_out = true;
+          ::kill(j.pid, SIGKILL);
+        }
+        if (j.cancelled && now - j.term_sent > std::chrono::seconds(1)) ::kill(j.pid, SIGKILL);
+        int status = 0;
+        if (j.out_fd < 0 && ::waitpid(j.pid, &status, WNOHANG) == j.pid) {
+          reap(j, status, events);
+          running_ids_.erase(running_ids_.begin() + long(k));
+          continue;
+        }
+        if (j.out_fd >= 0) fds.push_back({j.out_fd, POLLIN, 0});
+        ++k;
+      }
+    }
+    for (auto& e : events)
+      if (on_event) on_event(e);
+    events.clear();
+    // Wait for output, an exit (EOF on the pipe) or a wake-up.
+    fds.push_back({wake_pipe_[0], POLLIN, 0});
+    bool any_closed_fd_waiting = false;
+    {
+      std::lock_guard lock(mutex_);
+      for (const auto& id : running_ids_) any_closed_fd_waiting |= jobs_.at(id)->out_fd < 0;
+    }
+    ::poll(fds.data(), fds.size(), any_closed_fd_waiting ? 5 : 100);
+    if (fds.back().revents) {
+      char buf[256];
+      while (::read(wake_pipe_[0], buf, sizeof buf) > 0) {
+      }
+    }
+    std::lock_guard lock(mutex_);
+    for (std::size_t k = 0; k + 1 < fds.size(); ++k) {
+      if (!fds[k].revents) continue;
+      Job* jp = nullptr;
+      for (const auto& id : running_ids_)
+        if (jobs_.at(id)->out_fd == fds[k].fd) jp = jobs_.at(id).get();
+      if (!jp) continue;
+      Job& j = *jp;
+      char buf[4096];
+      ssize_t n;
+      bool eof = false;
+      while ((n = ::read(j.out_fd, buf, sizeof buf)) > 0) j.out_buf.append(buf, std::size_t(n));
+      if (n == 0) eof = true;
+      bool updated = false;
+      for (std::size_t nl; (nl = j.out_buf.find('\n')) != std::string::npos;) {
+        const std::string line = j.out_buf.substr(0, nl);
+        j.out_buf.erase(0, nl + 1);
+        if (line.rfind("progress ", 0) == 0) {
+          char* end = nullptr;
+          const double f = std::strtod(line.c_str() + 9, &end);
+          if (end != line.c_str() + 9) {
+            j.progress = std::clamp(f, 0.0, 1.0);
+            j.stage = *end == ' ' ? std::string(end + 1) : std::string();
+            updated = true;
+          }
+        }
+      }
+      if (j.out_buf.size() > 65536) j.out_buf.clear();
+      if (updated && !j.cancelled && Clock::now() - j.last_event >= std::chrono::milliseconds(100)) {
+        j.last_event = Clock::now();
+        events.push_back({{"type", "job_progress"}, {"job", {{"id", j.id}, {"state", j.state}, {"progress", j.progress}, {"stage", j.stage}}}});
+      }
+      if (eof) {
+        ::close(j.out_fd);
+        j.out_fd = -1;
+      }
+    }
+    pending = std::move(events);  // sent at the top of the next turn, outside the lock
+  }
+  // Stopping: kill the workers; their jobs stay "running" and run again at the next start.
+  std::lock_guard lock(mutex_);
+  for (const auto& id : running_ids_) {
+    Job& j = *jobs_.at(id);
+    if (j.pid > 0) {
+      ::kill(j.pid, SIGKILL);
+      ::waitpid(j.pid, nullptr, 0);
+    }
+    if (j.out_fd >= 0) ::close(j.out_fd);
+  }
+}
+
+}  // namespace cgview::server

@@ -1,0 +1,106 @@
+// The job scheduler: runs algorithms in worker processes (cgview-worker),
+// one process per job, from a bounded pool, fair across owners (round-robin
+// over the owners with queued jobs).  Each job has a time and a memory
+// limit (setrlimit(RLIMIT_AS) in the child before exec, and a timer that
+// kills); a crash or a limit fails that job alone.  Cancellation sends
+// SIGTERM, then SIGKILL a second later.  Progress comes from the worker's
+// stdout ("progress FRACTION STAGE").
+//
+// Jobs persist in the store's SQLite database (table jobs) and their
+// artifacts under DATA/jobs/ID/; on start, jobs left queued or running by a
+// previous run are queued again (or marked interrupted).  Results are
+// cached by (mesh sha256, algorithm, canonical parameters): an identical
+// job is answered done, cached, without running.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "mesh_service.h"
+
+struct sqlite3;
+
+namespace cgview::server {
+
+struct JobConfig {
+  std::filesystem::path worker;  // the cgview-worker executable
+  int max_workers = 0;           // 0: the number of cores
+  double timeout_s = 3600;       // per job; 0: none
+  std::size_t memory_mb = 8192;  // address-space limit per job; 0: none
+  bool requeue_on_restart = true;  // else: jobs of a previous run are marked interrupted
+};
+
+struct ArtifactBytes {
+  std::string bytes, content_type, file_name;
+};
+
+class JobScheduler {
+ public:
+  JobScheduler(MeshService& meshes, JobConfig config);
+  ~JobScheduler();  // kills running workers; their jobs stay "running" in the store and run again at the next start
+  JobScheduler(const JobScheduler&) = delete;
+  JobScheduler& operator=(const JobScheduler&) = delete;
+
+  // Starts running queued jobs (set on_event first).
+  void start();
+  // Called (from the scheduler's thread) with job_progress, job_done, job_failed
+  // and job_cancelled events.
+  std::function<void(const nlohmann::json&)> on_event;
+
+  // GET /api/v1/algorithms: the algorithms a client may run (test ones hidden).
+  nlohmann::json algorithms_json() const;
+  // Throws std::out_of_range (unknown algorithm or mesh) or InvalidInput
+  // (bad parameters, naming the parameter and the rule broken).
+  nlohmann::json submit(const nlohmann::json& request, const std::string& owner = "local");
+  nlohmann::json list() const;
+  std::optional<nlohmann::json> get(const std::string& id) const;
+  // Cancels a queued or running job; the job (unchanged when it had ended).
+  std::optional<nlohmann::json> cancel(const std::string& id);
+  // An artifact of a done job in a format; throws std::out_of_range (no such
+  // job or artifact), InvalidInput (job not done), UnsupportedFormat.
+  ArtifactBytes artifact(const std::string& id, const std::string& name, const std::string& format);
+
+  std::uint64_t workers_started() const { return workers_started_; }
+
+ private:
+  struct Job;
+  void load();
+  void persist(const Job& job);
+  nlohmann::json job_json(const Job& job) const;
+  void loop();
+  bool launch(Job& job);  // under mutex_
+  void reap(Job& job, int status, std::vector<nlohmann::json>& events);  // under mutex_
+  void wake();
+  std::filesystem::path job_dir(const std::string& id) const;
+
+  MeshService& meshes_;
+  JobConfig config_;
+  sqlite3* db_ = nullptr;
+  std::map<std::string, nlohmann::json> worker_algorithms_;  // from cgview-worker --list
+  mutable std::mutex mutex_;
+  std::condition_variable cv_;
+  std::map<std::string, std::shared_ptr<Job>> jobs_;
+  std::vector<std::string> order_;                            // ids, oldest first
+  std::map<std::string, std::deque<std::string>> queues_;      // by owner
+  std::string last_owner_;
+  std::map<std::string, std::string> cache_;  // cache key -> the done job whose files hold the result
+  bool stopping_ = false;
+  std::int64_t seq_ = 0;
+  std::atomic<std::uint64_t> workers_started_{0};
+  std::vector<std::string> running_ids_;
+  int wake_pipe_[2] = {-1, -1};
+  std::thread thread_;
+};
+
+}  // namespace cgview::server

@@ -1,0 +1,178 @@
+// The job panel: every job, newest first, with its algorithm and mesh, state,
+// stage and a live progress bar (updated from the WebSocket's job_* events),
+// a cancel button while it is queued or running, and for a finished job its
+// artifacts: scalar fields can be shown on the mesh, metrics are a table,
+// meshes can be added to the view beside their input, and downloaded.
+import { artifactUrl } from '../api/rest.ts';
+import type { ArtifactInfo, Job } from '../api/types.ts';
+import { el } from './dom.ts';
+
+export interface JobsActions {
+  cancel(id: string): void;
+  /** Shows a scalar_field artifact on its mesh. */
+  showField(jobId: string, artifact: string): void;
+  /** Adds a mesh artifact to the view, beside its input mesh. */
+  addMesh(jobId: string, artifact: string): void;
+}
+
+export interface JobsView {
+  jobs: readonly Job[];
+  /** Mesh names by id (a job's input may have been deleted since). */
+  meshName(id: string): string | null;
+  /** The field shown now: job id and artifact name. */
+  shown: { jobId: string; artifact: string } | null;
+  /** Mesh artifacts in the view, as `${jobId}/${name}`. */
+  added: ReadonlySet<string>;
+  /** Fetched metrics artifacts, by `${jobId}/${name}`: the JSON, or an error sentence. */
+  metrics: ReadonlyMap<string, unknown>;
+}
+
+const ACTIVE = new Set(['queued', 'running']);
+
+function formatMetric(value: unknown): string {
+  if (typeof value === 'number') return Number.isInteger(value) ? String(value) : Number(value.toPrecision(6)).toString();
+  if (typeof value === 'boolean') return value ? 'yes' : 'no';
+  if (value === null || value === undefined) return '—';
+  if (typeof value === 'string') return value;
+  return JSON.stringify(value);
+}
+
+function metricsTable(data: unknown): HTMLElement {
+  if (typeof data === 'string') return el('p', { class: 'form-error' }, data);
+  const rows: HTMLTableRowElement[] = [];
+  const add = (prefix: string, value: unknown) => {
+    if (value && typeof value === 'object' && !Array.isArray(value)) {
+      for (const [k, v] of Object.entries(value as Record<string, unknown>)) add(prefix ? `${prefix} ${k}` : k, v);
+    } else {
+      rows.push(el('tr', {}, el('th', { scope: 'row' }, prefix.replace(/_/g, ' ')), el('td', {}, formatMetric(value))));
+    }
+  };
+  add('', data);
+  return el('table', { class: 'kv metrics' }, ...rows);
+}
+
+export class JobsPanel {
+  private readonly root: HTMLElement;
+  private readonly actions: JobsActions;
+
+  constructor(root: HTMLElement, actions: JobsActions) {
+    this.root = root;
+    this.actions = actions;
+  }
+
+  // Items by job id with what they were built from: progress events (up to
+  // about 10 a second per job) only update the bar and the texts of an item,
+  // so that its buttons stay the same elements under the pointer.
+  private readonly items = new Map<string, { signature: string; li: HTMLElement }>();
+  private list: HTMLUListElement | null = null;
+  private order = '';
+
+  render(view: JobsView): void {
+    if (view.jobs.length === 0) {
+      this.items.clear();
+      this.list = null;
+      this.order = '';
+      this.root.replaceChildren(el('p', { class: 'empty' }, 'No jobs yet.'));
+      return;
+    }
+    const jobs = [...view.jobs].reverse();
+    const seen = new Set<string>();
+    const lis = jobs.map((job) => {
+      seen.add(job.id);
+      const signature = this.signature(job, view);
+      const old = this.items.get(job.id);
+      if (old && old.signature === signature) {
+        this.update(old.li, job);
+        return old.li;
+      }
+      const li = this.item(job, view);
+      if (old) old.li.replaceWith(li);
+      this.items.set(job.id, { signature, li });
+      return li;
+    });
+    for (const id of [...this.items.keys()]) if (!seen.has(id)) this.items.delete(id);
+    const order = jobs.map((j) => j.id).join(' ');
+    if (!this.list || order !== this.order || !this.root.contains(this.list)) {
+      this.list = el('ul', { class: 'job-list' }, ...lis);
+      this.root.replaceChildren(this.list);
+      this.order = order;
+    }
+  }
+
+  private signature(job: Job, view: JobsView): string {
+    const mesh = job.inputs?.mesh ? view.meshName(job.inputs.mesh) : null;
+    const shown = view.shown?.jobId === job.id ? view.shown.artifact : '';
+    const metrics = (job.artifacts ?? []).map((a) => (view.metrics.get(`${job.id}/${a.name}`) === undefined ? 0 : 1)).join('');
+    const added = (job.artifacts ?? []).map((a) => (view.added.has(`${job.id}/${a.name}`) ? 1 : 0)).join('');
+    return JSON.stringify([job.state, job.cached, job.error, mesh, shown, metrics, added, job.artifacts?.length ?? 0]);
+  }
+
+  /** The parts that progress events change. */
+  private update(li: HTMLElement, job: Job): void {
+    const fraction = Math.min(1, Math.max(0, job.state === 'done' ? 1 : job.progress || 0));
+    const bar = li.querySelector<HTMLProgressElement>('progress.job-progress');
+    if (bar) bar.value = fraction;
+    const stage = li.querySelector('.job-stage');
+    if (stage) stage.textContent = job.stage || '';
+    const percent = li.querySelector('.job-percent');
+    if (percent) percent.textContent = `${Math.floor(fraction * 100)}%`;
+  }
+
+  private item(job: Job, view: JobsView): HTMLElement {
+    const mesh = job.inputs?.mesh ? view.meshName(job.inputs.mesh) ?? job.inputs.mesh.slice(0, 8) : '';
+    const fraction = Math.min(1, Math.max(0, job.state === 'done' ? 1 : job.progress || 0));
+    const bar = el('progress', { max: '1', class: 'job-progress' });
+    bar.value = fraction;
+    const head = el(
+      'div',
+      { class: 'job-head' },
+      el('span', { class: 'job-title', title: `${job.algorithm} ${JSON.stringify(job.params ?? {})}` }, job.algorithm),
+      el('span', { class: `job-state state-${job.state}` }, job.cached ? `${job.state} (cached)` : job.state),
+    );
+    const status = el(
+      'div',
+      { class: 'job-status' },
+      el('span', { class: 'job-mesh' }, mesh),
+      el('span', { class: 'job-stage' }, job.stage || ''),
+      el('span', { class: 'job-percent' }, `${Math.floor(fraction * 100)}%`),
+    );
+    const li = el('li', { class: 'job', 'data-job-id': job.id, 'data-state': job.state }, head, status, bar);
+    if (ACTIVE.has(job.state)) {
+      const cancel = el('button', { type: 'button', class: 'button small cancel', title: 'Cancel this job' }, 'Cancel');
+      cancel.addEventListener('click', () => {
+        cancel.disabled = true;
+        this.actions.cancel(job.id);
+      });
+      li.append(el('div', { class: 'job-actions' }, cancel));
+    }
+    if (job.error) li.append(el('p', { class: 'job-error' }, job.error));
+    if (job.state === 'done') {
+      for (const a of job.artifacts ?? []) li.append(this.artifact(job, a, view));
+    }
+    return li;
+  }
+
+  private artifact(job: Job, a: ArtifactInfo, view: JobsView): HTMLElement {
+    const row = el('div', { class: `artifact artifact-${a.kind}`, 'data-artifact': a.name });
+    const label = el('span', { class: 'artifact-name', title: a.kind }, a.name);
+    if (a.kind === 'scalar_field') {
+      const shown = view.shown?.jobId === job.id && view.shown.artifact === a.name;
+      const show = el('button', { type: 'button', class: shown ? 'button small show active' : 'button small show' }, shown ? 'Shown' : 'Show');
+      show.addEventListener('click', () => this.actions.showField(job.id, a.name));
+      row.append(label, show, el('a', { href: artifactUrl(job.id, a.name, 'csv'), download: '' }, 'csv'));
+    } else if (a.kind === 'mesh') {
+      const added = view.added.has(`${job.id}/${a.name}`);
+      const add = el('button', { type: 'button', class: added ? 'button small add active' : 'button small add' }, added ? 'Added' : 'Add to view');
+      add.disabled = added;
+      add.addEventListener('click', () => this.actions.addMesh(job.id, a.name));
+      row.append(label, add, ' ', el('a', { href: artifactUrl(job.id, a.name, 'ply'), download: '' }, 'ply'), ' ', el('a', { href: artifactUrl(job.id, a.name, 'obj'), download: '' }, 'obj'));
+    } else if (a.kind === 'metrics') {
+      row.append(label);
+      const data = view.metrics.get(`${job.id}/${a.name}`);
+      row.append(data === undefined ? el('p', { class: 'empty' }, 'loading…') : metricsTable(data));
+    } else {
+      row.append(label, ' ', el('a', { href: artifactUrl(job.id, a.name, 'json'), download: '' }, 'json'));
+    }
+    return row;
+  }
+}

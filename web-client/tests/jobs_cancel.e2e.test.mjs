@@ -1,0 +1,110 @@
+// End-to-end test of a long job in the viewer: progress arriving over the
+// WebSocket, and the Cancel button (DELETE /api/v1/jobs/{id}). It needs a slow
+// algorithm, so it runs the server with the test worker (cgview-worker-test
+// beside the server binary, whose test_sleep runs for a given time; the
+// server keeps test algorithms out of GET /api/v1/algorithms, so the test
+// submits it over REST, as another client would).
+//
+// Skips, saying why, when GET /api/v1/algorithms answers 404 (no jobs API) or
+// when cgview-worker-test is not built beside the server.
+import { after, before, test } from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { dist, launchBrowser, repo, serverBin, startServer } from './harness.mjs';
+
+const elephant = path.join(repo, 'build', 'samples', 'elephant.off');
+const testWorker = path.join(path.dirname(serverBin), 'cgview-worker-test');
+const artifacts = path.join(repo, 'build', 'test-artifacts');
+
+let server = null;
+let browser = null;
+let page = null;
+let skipReason = null;
+const pageProblems = [];
+
+before(async () => {
+  assert.ok(fs.existsSync(path.join(dist, 'index.html')), 'the built web client');
+  if (!fs.existsSync(testWorker)) {
+    skipReason = `the test worker is not built: ${testWorker}`;
+    return;
+  }
+  server = await startServer({ tmpPrefix: 'cgview-e2e-cancel-', extraArgs: ['--samples', 'none', '--worker', testWorker] });
+  const status = (await fetch(`${server.url}/api/v1/algorithms`)).status;
+  if (status === 404) {
+    skipReason = `the server (${serverBin}) has no jobs API yet: GET /api/v1/algorithms answered 404`;
+    return;
+  }
+  browser = await launchBrowser();
+  page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+  page.on('pageerror', (e) => pageProblems.push(`pageerror: ${e.message}`));
+  page.on('console', (m) => {
+    if (m.type() === 'error') pageProblems.push(`console.error: ${m.text()} (${m.location().url})`);
+  });
+  await page.goto(server.url + '/');
+  await page.waitForFunction(() => window.__cgview?.ready === true, null, { timeout: 30000 });
+});
+
+after(async () => {
+  try {
+    if (browser) await browser.close();
+  } finally {
+    if (server) await server.stop();
+  }
+});
+
+test('a long job shows its progress live and the Cancel button cancels it', async (t) => {
+  if (skipReason) {
+    t.skip(skipReason);
+    return;
+  }
+  const r = await fetch(`${server.url}/api/v1/meshes?name=elephant.off`, { method: 'POST', body: fs.readFileSync(elephant) });
+  assert.equal(r.status, 201, await r.clone().text());
+  const meshId = (await r.json()).id;
+  await page.locator(`#mesh-list li.mesh[data-mesh-id="${meshId}"]`).click();
+  await page.waitForFunction((id) => window.__cgview.lastLoaded?.id === id, meshId, { timeout: 60000 });
+
+  // test_sleep is hidden from the menu (area "test"), so another client submits
+  // it; the page learns of it from the job_* events.
+  const menu = page.locator('#algorithm-menu');
+  const names = await menu.locator('option').evaluateAll((os) => os.map((o) => o.value));
+  assert.ok(!names.includes('test_sleep'), `test algorithms stay out of the menu: ${names}`);
+  const submitted = await fetch(`${server.url}/api/v1/jobs`, {
+    method: 'POST',
+    headers: { 'Content-Type': 'application/json' },
+    body: JSON.stringify({ algorithm: 'test_sleep', inputs: { mesh: meshId }, params: { seconds: 30 } }),
+  });
+  assert.equal(submitted.status, 201, await submitted.clone().text());
+
+  // Running, with the bar moving (job_progress events over the WebSocket).
+  const job = page.locator('#jobs li.job[data-state="running"]').first();
+  await job.waitFor({ timeout: 20000 });
+  const id = await job.getAttribute('data-job-id');
+  const item = page.locator(`#jobs li.job[data-job-id="${id}"]`);
+  await page.waitForFunction(
+    (jobId) => {
+      const li = document.querySelector(`#jobs li.job[data-job-id="${jobId}"]`);
+      return li && li.querySelector('progress').value > 0.02;
+    },
+    id,
+    { timeout: 20000 },
+  );
+  const first = await item.locator('progress').evaluate((p) => p.value);
+  assert.match(await item.locator('.job-stage').innerText(), /\S/, 'a stage name is shown');
+  await page.waitForFunction(
+    ({ jobId, v }) => document.querySelector(`#jobs li.job[data-job-id="${jobId}"] progress`).value > v,
+    { jobId: id, v: first },
+    { timeout: 20000 },
+  );
+
+  fs.mkdirSync(artifacts, { recursive: true });
+  await page.screenshot({ path: path.join(artifacts, 'e2e-jobs-running.png') });
+  await item.locator('button.cancel').click();
+  await page.locator(`#jobs li.job[data-job-id="${id}"][data-state="cancelled"]`).waitFor({ timeout: 15000 });
+  assert.equal(await page.locator(`#jobs li.job[data-job-id="${id}"] button.cancel`).count(), 0, 'no Cancel once cancelled');
+  const body = await (await fetch(`${server.url}/api/v1/jobs/${id}`)).json();
+  assert.equal(body.state, 'cancelled');
+  assert.equal(await page.evaluate(() => window.__cgview.lastField), null, 'no field drawn');
+  assert.ok(await page.locator('#legend').isHidden(), 'no legend');
+  assert.deepEqual(pageProblems, [], pageProblems.join('\n'));
+});
