@@ -30,6 +30,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "bench_server.h"
 #include "io/mesh_io.h"
 #include "io/samples.h"
 #include "registry/registry.h"
@@ -43,41 +44,11 @@ using nlohmann::json;
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
+using cgview::bench::ServerProcess;
+
 namespace {
 
 double ms(Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); }
-
-struct ServerProcess {
-  pid_t pid = -1;
-  unsigned short port = 0;
-  ServerProcess(const std::string& exe, const fs::path& data, const std::string& job_workers) {
-    int out[2];
-    if (pipe(out) != 0) throw std::runtime_error("pipe");
-    pid = fork();
-    if (pid == 0) {
-      dup2(out[1], 1);
-      close(out[0]);
-      if (job_workers.empty())
-        execl(exe.c_str(), exe.c_str(), "--port", "0", "--data-dir", data.c_str(), "--samples", "none", nullptr);
-      else
-        execl(exe.c_str(), exe.c_str(), "--port", "0", "--data-dir", data.c_str(), "--samples", "none", "--job-workers",
-              job_workers.c_str(), nullptr);
-      _exit(127);
-    }
-    close(out[1]);
-    std::string line;
-    char c;
-    while (read(out[0], &c, 1) == 1 && c != '\n') line += c;
-    close(out[0]);
-    const auto colon = line.find(':', line.find("127.0.0.1"));
-    if (colon == std::string::npos) throw std::runtime_error("the server did not start: " + line);
-    port = static_cast<unsigned short>(std::stoi(line.substr(colon + 1)));
-  }
-  ~ServerProcess() {
-    kill(pid, SIGTERM);
-    waitpid(pid, nullptr, 0);
-  }
-};
 
 // One keep-alive HTTP connection.
 class Http {
@@ -153,11 +124,9 @@ int main(int argc, char** argv) {
   fs::remove_all(data);
   int rc = 0;
   {
-    ServerProcess srv(server, data, job_workers);
+    ServerProcess srv(server, data, job_workers.empty() ? std::vector<std::string>{} : std::vector<std::string>{"--job-workers", job_workers});
     Http client(srv.port);
-    const auto up = client.call(http::verb::post, "/api/v1/meshes?name=" + mesh_file.filename().string(), mesh_bytes.str());
-    if (up.result_int() != 201) throw std::runtime_error("upload failed: " + up.body());
-    const std::string mesh_id = json::parse(up.body())["id"];
+    const std::string mesh_id = cgview::bench::upload(srv.port, mesh_file.filename().string(), mesh_bytes.str());
 
     // WebSocket: the time each job_done arrives.
     std::mutex m;

@@ -25,6 +25,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "bench_server.h"
 #include "frames.h"
 #include "io/mesh_io.h"
 #include "io/samples.h"
@@ -38,65 +39,12 @@ using nlohmann::json;
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
+using cgview::bench::ServerProcess;
+using cgview::bench::upload;
+
 namespace {
 
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-struct ServerProcess {
-  pid_t pid = -1;
-  unsigned short port = 0;
-  ServerProcess(const std::string& exe, const fs::path& data) {
-    int out[2];
-    if (pipe(out) != 0) throw std::runtime_error("pipe");
-    pid = fork();
-    if (pid == 0) {
-      dup2(out[1], 1);
-      close(out[0]);
-      execl(exe.c_str(), exe.c_str(), "--port", "0", "--data-dir", data.c_str(), "--samples", "none", nullptr);
-      _exit(127);
-    }
-    close(out[1]);
-    std::string line;
-    char c;
-    while (read(out[0], &c, 1) == 1 && c != '\n') line += c;
-    close(out[0]);
-    const auto colon = line.find(':', line.find("127.0.0.1"));
-    if (colon == std::string::npos) throw std::runtime_error("the server did not start: " + line);
-    port = static_cast<unsigned short>(std::stoi(line.substr(colon + 1)));
-  }
-  ~ServerProcess() {
-    kill(pid, SIGTERM);
-    waitpid(pid, nullptr, 0);
-  }
-  long peak_rss_kb() const {
-    std::ifstream f("/proc/" + std::to_string(pid) + "/status");
-    std::string k;
-    long v = 0;
-    while (f >> k)
-      if (k == "VmHWM:") {
-        f >> v;
-        return v;
-      }
-    return -1;
-  }
-};
-
-std::string upload(unsigned short port, const std::string& name, const std::string& bytes) {
-  net::io_context ioc;
-  beast::tcp_stream s(ioc);
-  s.connect(tcp::endpoint(net::ip::make_address("127.0.0.1"), port));
-  http::request<http::string_body> req(http::verb::post, "/api/v1/meshes?name=" + name, 11);
-  req.set(http::field::host, "127.0.0.1");
-  req.body() = bytes;
-  req.prepare_payload();
-  http::write(s, req);
-  beast::flat_buffer buf;
-  http::response_parser<http::string_body> p;
-  p.body_limit(1 << 30);
-  http::read(s, buf, p);
-  if (p.get().result_int() != 201) throw std::runtime_error("upload failed: " + p.get().body());
-  return json::parse(p.get().body())["id"];
-}
 
 // Fetches a mesh over a WebSocket; returns the reassembled payload size.
 std::size_t fetch(unsigned short port, const std::string& id, double* seconds) {

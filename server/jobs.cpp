@@ -46,33 +46,6 @@ struct JobScheduler::Job {
 
 namespace {
 
-std::string now_iso8601() {
-  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
-std::string new_id() {
-  static std::mutex m;
-  static std::mt19937_64 rng{std::random_device{}()};
-  std::lock_guard lock(m);
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(rng()));
-  return buf;
-}
-
-void exec_sql(sqlite3* db, const char* sql) {
-  char* err = nullptr;
-  if (sqlite3_exec(db, sql, nullptr, nullptr, &err) != SQLITE_OK) {
-    std::string msg = err ? err : "unknown error";
-    sqlite3_free(err);
-    throw IoError("jobs: " + msg);
-  }
-}
-
 std::string read_file(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);
   std::ostringstream s;
@@ -136,7 +109,7 @@ JobScheduler::JobScheduler(MeshService& meshes, JobConfig config) : meshes_(mesh
     throw IoError(db.string() + ": cannot open: " + msg);
   }
   sqlite3_busy_timeout(db_, 5000);
-  exec_sql(db_, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;");
+  exec_sql(db_, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;", "jobs");
   exec_sql(db_,
            "CREATE TABLE IF NOT EXISTS jobs ("
            " id TEXT PRIMARY KEY, seq INTEGER NOT NULL, owner TEXT NOT NULL, algorithm TEXT NOT NULL,"
@@ -144,7 +117,8 @@ JobScheduler::JobScheduler(MeshService& meshes, JobConfig config) : meshes_(mesh
            " state TEXT NOT NULL, stage TEXT NOT NULL, progress REAL NOT NULL, error TEXT NOT NULL,"
            " cached INTEGER NOT NULL, created TEXT NOT NULL, started TEXT NOT NULL, finished TEXT NOT NULL,"
            " artifacts TEXT NOT NULL, files TEXT NOT NULL);"
-           "CREATE INDEX IF NOT EXISTS jobs_cache ON jobs(cache_key);");
+           "CREATE INDEX IF NOT EXISTS jobs_cache ON jobs(cache_key);",
+           "jobs");
   load();
   if (::pipe2(wake_pipe_, O_CLOEXEC | O_NONBLOCK) != 0) throw IoError("jobs: pipe failed");
 }

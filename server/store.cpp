@@ -50,20 +50,20 @@ class Stmt {
   sqlite3_stmt* s_ = nullptr;
 };
 
-void exec(sqlite3* db, const char* sql) {
-  char* err = nullptr;
-  if (sqlite3_exec(db, sql, nullptr, nullptr, &err) != SQLITE_OK) {
-    std::string msg = err ? err : "unknown error";
-    sqlite3_free(err);
-    throw IoError("store: " + msg);
-  }
-}
-
 constexpr const char* kColumns = "id, name, format, bytes, sha256, created, report, warnings";
 
 MeshRecord row(const Stmt& s) {
   return {s.text(0), s.text(1), s.text(2), std::uint64_t(s.integer(3)), s.text(4), s.text(5), s.text(6), s.text(7)};
 }
+
+bool safe_ext(const std::string& f) {
+  if (f.empty() || f.size() > 8) return false;
+  for (char c : f)
+    if (!std::isalnum(static_cast<unsigned char>(c))) return false;
+  return true;
+}
+
+}  // namespace
 
 std::string new_id() {
   static std::mutex m;
@@ -83,14 +83,14 @@ std::string now_iso8601() {
   return buf;
 }
 
-bool safe_ext(const std::string& f) {
-  if (f.empty() || f.size() > 8) return false;
-  for (char c : f)
-    if (!std::isalnum(static_cast<unsigned char>(c))) return false;
-  return true;
+void exec_sql(sqlite3* db, const char* sql, const char* who) {
+  char* err = nullptr;
+  if (sqlite3_exec(db, sql, nullptr, nullptr, &err) != SQLITE_OK) {
+    std::string msg = err ? err : "unknown error";
+    sqlite3_free(err);
+    throw IoError(std::string(who) + ": " + msg);
+  }
 }
-
-}  // namespace
 
 std::string sha256_hex(std::string_view bytes) {
   unsigned char md[EVP_MAX_MD_SIZE];
@@ -118,13 +118,14 @@ Store::Store(const fs::path& data_dir) : dir_(data_dir) {
     throw IoError(db.string() + ": cannot open: " + msg);
   }
   sqlite3_busy_timeout(db_, 5000);
-  exec(db_, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL; PRAGMA foreign_keys=ON;");
-  exec(db_,
+  exec_sql(db_, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL; PRAGMA foreign_keys=ON;", "store");
+  exec_sql(db_,
        "CREATE TABLE IF NOT EXISTS meshes ("
        " id TEXT PRIMARY KEY, name TEXT NOT NULL, format TEXT NOT NULL, bytes INTEGER NOT NULL,"
        " sha256 TEXT NOT NULL, created TEXT NOT NULL, report TEXT NOT NULL, warnings TEXT NOT NULL,"
        " seq INTEGER);"
-       "CREATE INDEX IF NOT EXISTS meshes_sha ON meshes(sha256);");
+       "CREATE INDEX IF NOT EXISTS meshes_sha ON meshes(sha256);",
+           "store");
   {
     Stmt s(db_, "SELECT COUNT(*) FROM meshes");
     s.step();

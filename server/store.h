@@ -64,5 +64,11 @@ class Store {
 
 // Lowercase hex SHA-256 of bytes.
 std::string sha256_hex(std::string_view bytes);
+// A new random id: 16 hex digits.
+std::string new_id();
+// The current time, ISO 8601 UTC ("2026-11-21T12:00:00Z").
+std::string now_iso8601();
+// Runs SQL statements; throws IoError("WHO: message") on failure.
+void exec_sql(sqlite3* db, const char* sql, const char* who);
 
 }  // namespace cgview::server

@@ -1,0 +1,31 @@
+// The real cgview-server started on a free port for a benchmark, and a mesh
+// upload to it; shared by ws_bench and jobs_bench.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <sys/types.h>
+
+namespace cgview::bench {
+
+// cgview-server --port 0 --data-dir DATA --samples none EXTRA..., its port
+// read from the first line it prints; SIGTERM and waited for on destruction.
+// Throws when the server does not start.
+struct ServerProcess {
+  pid_t pid = -1;
+  unsigned short port = 0;
+  ServerProcess(const std::string& exe, const std::filesystem::path& data, const std::vector<std::string>& extra = {});
+  ~ServerProcess();
+  ServerProcess(const ServerProcess&) = delete;
+  ServerProcess& operator=(const ServerProcess&) = delete;
+  // Peak resident memory in kB (VmHWM), or -1.
+  long peak_rss_kb() const;
+};
+
+// POST /api/v1/meshes?name=NAME on its own connection; the new mesh's id.
+// Throws "upload failed: BODY" unless the answer is 201.
+std::string upload(unsigned short port, const std::string& name, const std::string& bytes);
+
+}  // namespace cgview::bench

@@ -1,0 +1,152 @@
+// The real cgview-server as a child process, and timed HTTP and WebSocket
+// clients for it, shared by the server's integration suites
+// (server_integration_test, jobs_test).  Boost.Beast stays in the .cpp:
+// results are plain strings, ints and std::error_code.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include <sys/types.h>
+
+namespace cgview::test {
+
+// The whole file, binary.
+std::string read_bytes(const std::filesystem::path& p);
+
+// ---------------------------------------------------------------- the server
+
+// One cgview-server child process; killed when this goes out of scope.
+class ServerProcess {
+ public:
+  ServerProcess() = default;
+  ServerProcess(const ServerProcess&) = delete;
+  ServerProcess& operator=(const ServerProcess&) = delete;
+  ~ServerProcess() { kill_now(); }
+
+  // Starts the binary (--host 127.0.0.1 --port 0 --data-dir DATA_DIR
+  // --samples none, then EXTRA; stdout and stderr to files in LOG_DIR) and
+  // waits for its "CGView serving http://HOST:PORT/" line; false (with a
+  // failure added) if it does not come.
+  bool start(const std::filesystem::path& data_dir, const std::vector<std::string>& extra,
+             const std::filesystem::path& log_dir);
+
+  // Sends a signal and waits for the exit; the exit status (128 + signal when
+  // killed by one), or -1 (killed after the time limit).
+  int stop(int sig, std::chrono::milliseconds limit = std::chrono::seconds(10));
+
+  void kill_now();
+  bool alive();
+
+  // Resident memory in kB (VmRSS), or -1.
+  long rss_kb() const;
+
+  unsigned short port() const { return port_; }
+  pid_t pid() const { return pid_; }
+  std::string stderr_text() const;
+
+ private:
+  pid_t pid_ = -1;
+  unsigned short port_ = 0;
+  int starts_ = 0;
+  std::filesystem::path out_, err_;
+};
+
+// ---------------------------------------------------------------- HTTP
+
+enum class Method { get, head, post, put, delete_ };
+
+struct HttpResult {
+  std::error_code ec;      // of the read; set when no response came
+  bool timed_out = false;  // no response within the limit (ec is set too)
+  unsigned status = 0;
+  std::string body;
+  std::map<std::string, std::string> headers;  // names in lower case
+  bool keep_alive = false;
+
+  // A header's value by its name (any case); empty when absent.
+  std::string header(const std::string& name) const;
+  nlohmann::json body_json() const { return nlohmann::json::parse(body, nullptr, false); }
+};
+
+// One request on its own connection (Connection: close).  The body is
+// written while the response is read, as a client must to see an early
+// answer (413) to a large upload.
+HttpResult http_call(unsigned short port, Method method, const std::string& target, std::string body = "",
+                     std::chrono::milliseconds limit = std::chrono::seconds(30));
+HttpResult http_get(unsigned short port, const std::string& target);
+
+// Raw bytes (not necessarily HTTP) written on a new connection, then one
+// HTTP response read.
+HttpResult http_raw(unsigned short port, const std::string& bytes,
+                    std::chrono::milliseconds limit = std::chrono::seconds(10));
+
+// One keep-alive connection for several GET requests.
+class HttpConnection {
+ public:
+  HttpConnection();
+  ~HttpConnection();
+  HttpConnection(const HttpConnection&) = delete;
+  HttpConnection& operator=(const HttpConnection&) = delete;
+
+  std::error_code connect(unsigned short port);
+  // GET with Connection: keep-alive.
+  HttpResult get(const std::string& target, std::chrono::milliseconds limit = std::chrono::seconds(10));
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// ---------------------------------------------------------------- WebSocket
+
+// A WebSocket client on its own io_context, every operation bounded in time.
+class WsClient {
+ public:
+  WsClient();
+  ~WsClient();
+  WsClient(const WsClient&) = delete;
+  WsClient& operator=(const WsClient&) = delete;
+
+  std::error_code connect(unsigned short port, const std::string& target = "/api/v1/ws");
+
+  std::error_code send(const nlohmann::json& j);
+  std::error_code send_text(const std::string& text);
+  std::error_code send_binary(const std::string& bytes);
+
+  struct Message {
+    bool binary = false;
+    std::string data;
+  };
+  // The next message; nullopt on an error (last_error() says which).
+  std::optional<Message> read(std::chrono::milliseconds limit = std::chrono::seconds(30));
+  // The next text message that is not an event (mesh_added, mesh_deleted),
+  // parsed; events are kept in events().
+  nlohmann::json reply(std::chrono::milliseconds limit = std::chrono::seconds(30));
+
+  bool ping(std::uint64_t request_id);
+
+  std::error_code close();
+  // Drops the TCP connection with a reset, no close handshake.
+  void abort();
+
+  std::error_code last_error() const { return last_; }
+  std::vector<nlohmann::json>& events() { return events_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::error_code last_;
+  std::vector<nlohmann::json> events_;
+};
+
+}  // namespace cgview::test
