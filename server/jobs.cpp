@@ -255,9 +255,22 @@ json JobScheduler::submit(const json& req, const std::string& owner) {
   const std::string algorithm = req["algorithm"].get<std::string>();
   if (!worker_algorithms_.count(algorithm)) throw std::out_of_range("no algorithm '" + algorithm + "'");
   const json inputs = req.value("inputs", json::object());
-  if (!inputs.is_object() || !inputs.contains("mesh") || !inputs["mesh"].is_string())
-    throw InvalidInput("\"inputs\" must be {\"mesh\": \"<mesh id>\"}");
-  const std::string mesh_id = inputs["mesh"].get<std::string>();
+  const char* shape = "\"inputs\" must be {\"mesh\": \"<mesh id>\"} or {\"mesh\": {\"job\": \"<job id>\", \"artifact\": \"<name>\"}}";
+  if (!inputs.is_object() || !inputs.contains("mesh")) throw InvalidInput(shape);
+  std::string mesh_id;
+  if (inputs["mesh"].is_string()) {
+    mesh_id = inputs["mesh"].get<std::string>();
+  } else if (inputs["mesh"].is_object() && inputs["mesh"].value("job", json()).is_string() &&
+             inputs["mesh"].value("artifact", json()).is_string()) {
+    // A chain: an earlier job's output mesh becomes a stored mesh (once, by
+    // content) and the new job runs on it like on any other.
+    const std::string from = inputs["mesh"]["job"], name = inputs["mesh"]["artifact"];
+    const ArtifactBytes ply = artifact(from, name, "ply");
+    if (const auto known = meshes_.store().find_by_sha256(sha256_hex(ply.bytes))) mesh_id = known->id;
+    else mesh_id = meshes_.upload(from + "-" + name + ".ply", "ply", ply.bytes).id;
+  } else {
+    throw InvalidInput(shape);
+  }
   const auto mesh = meshes_.store().get_mesh(mesh_id);
   if (!mesh) throw std::out_of_range("no mesh with id '" + mesh_id + "'");
   const json params_in = req.contains("params") ? req["params"] : json::object();

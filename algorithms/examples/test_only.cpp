@@ -55,6 +55,18 @@ AlgorithmResult sleeper(const Mesh& mesh, const SleepParams& p, Context& ctx) {
   return {{{"index", f}}, {}};
 }
 
+// The input moved by +1 along x: a mesh output, for chained jobs.
+AlgorithmResult translate(const Mesh& mesh, const NoParams&, Context&) {
+  Mesh out;
+  out.positions = mesh.positions;
+  out.faces = mesh.faces;
+  for (Vec3& p : out.positions) p.x += 1.0;
+  return {{{"mesh", out}}, {}};
+}
+
+CGVIEW_REGISTER_ALGORITHM(test_translate, NoParams, translate,
+                          {.title = "Translate (test)", .description = "moves the mesh by +1 in x", .area = "test",
+                           .outputs = {{"mesh", OutputKind::mesh}}})
 CGVIEW_REGISTER_ALGORITHM(test_segfault, NoParams, segfault,
                           {.title = "Crash (test)", .description = "raises SIGSEGV", .area = "test", .outputs = {}})
 CGVIEW_REGISTER_ALGORITHM(test_memory_hog, NoParams, memory_hog,

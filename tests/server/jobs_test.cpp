@@ -185,6 +185,39 @@ TEST_F(JobsTest, CentroidDistanceArtifactsMatchAnInProcessRun) {
   EXPECT_GE(list["jobs"].size(), 3u);
 }
 
+TEST_F(JobsTest, AJobRunsOnAnEarlierJobsOutputMesh) {
+  const json first = wait_end(submit("test_translate", json::object())["id"]);
+  ASSERT_EQ(first["state"], "done") << first.dump();
+  const json body = {{"algorithm", "centroid_distance"},
+                     {"inputs", {{"mesh", {{"job", first["id"]}, {"artifact", "mesh"}}}}},
+                     {"params", json::object()}};
+  const auto r = http_call(server_.port(), Method::post, "/api/v1/jobs", body.dump());
+  ASSERT_EQ(r.status, 201) << r.body;
+  const json second = wait_end(r.body_json()["id"]);
+  ASSERT_EQ(second["state"], "done") << second.dump();
+  // It ran on the translated mesh, stored as a mesh of its own.
+  const std::string chained_mesh = second["inputs"]["mesh"];
+  EXPECT_NE(chained_mesh, mesh_id_);
+  const json m = http_get(server_.port(), "/api/v1/meshes/" + chained_mesh).body_json();
+  const json original = http_get(server_.port(), "/api/v1/meshes/" + mesh_id_).body_json();
+  EXPECT_EQ(m["report"]["vertices"], original["report"]["vertices"]);
+  EXPECT_NEAR(m["report"]["bbox"]["min"][0].get<double>(), original["report"]["bbox"]["min"][0].get<double>() + 1.0, 1e-5);
+  // Distances from the centroid do not change under a translation.
+  const std::string moved = artifact(second["id"], "distance", "f32");
+  const json direct = wait_end(submit("centroid_distance", json::object())["id"]);
+  const std::string here = artifact(direct["id"], "distance", "f32");
+  ASSERT_EQ(moved.size(), here.size());
+  for (std::size_t i = 0; i < here.size() / 4; ++i) {
+    float a, b;
+    std::memcpy(&a, moved.data() + 4 * i, 4);
+    std::memcpy(&b, here.data() + 4 * i, 4);
+    EXPECT_NEAR(a, b, 1e-5) << i;
+  }
+  // An unknown job or artifact as input: 404.
+  const json bad = {{"algorithm", "centroid_distance"}, {"inputs", {{"mesh", {{"job", "nope"}, {"artifact", "mesh"}}}}}};
+  EXPECT_EQ(http_call(server_.port(), Method::post, "/api/v1/jobs", bad.dump()).status, 404);
+}
+
 TEST_F(JobsTest, BadRequests) {
   json e = submit("centroid_distance", {{"exponent", 9}}, 400);
   EXPECT_EQ(e["error"], "bad_request");
