@@ -1,0 +1,90 @@
+// geodesic_distance: approximate geodesic distance from source vertices by the
+// heat method (Crane, Weischedel and Wardetzky 2013), CGAL's Heat_method_3 with
+// intrinsic Delaunay refinement.  CGAL_EIGEN3_ENABLED is set for this file by
+// CMake: the method solves two sparse systems with Eigen.
+#include <CGAL/Heat_method_3/Surface_mesh_geodesic_distances_3.h>
+
+#include <charconv>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/surface_mesh.h"
+#include "registry/registry.h"
+
+namespace cgview {
+namespace {
+
+struct Params {
+  std::string sources = "0";
+  template <class V>
+  void describe(V& v) {
+    v.text("sources", sources,
+           {.label = "Source vertices", .help = "comma-separated vertex indices the distance is measured from"});
+  }
+};
+
+std::vector<std::size_t> parse_sources(const std::string& text, std::size_t num_vertices) {
+  std::vector<std::size_t> out;
+  std::string_view rest = text;
+  while (true) {
+    const std::size_t comma = rest.find(',');
+    std::string_view item = rest.substr(0, comma);
+    while (!item.empty() && (item.front() == ' ' || item.front() == '\t')) item.remove_prefix(1);
+    while (!item.empty() && (item.back() == ' ' || item.back() == '\t')) item.remove_suffix(1);
+    unsigned long long v = 0;
+    const auto [ptr, ec] = std::from_chars(item.data(), item.data() + item.size(), v);
+    if (item.empty() || ec != std::errc() || ptr != item.data() + item.size())
+      throw InvalidInput("parameter 'sources': '" + std::string(item) +
+                         "' is not a vertex index (expected comma-separated indices such as \"0,12\")");
+    if (v >= num_vertices)
+      throw InvalidInput("parameter 'sources': vertex " + std::to_string(v) + " is out of range (the mesh has " +
+                         std::to_string(num_vertices) + " vertices)");
+    out.push_back(std::size_t(v));
+    if (comma == std::string_view::npos) break;
+    rest.remove_prefix(comma + 1);
+  }
+  return out;
+}
+
+AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
+  if (mesh.num_faces() == 0) throw InvalidInput("geodesic_distance needs a mesh with faces");
+  const std::vector<std::size_t> sources = parse_sources(p.sources, mesh.num_vertices());
+  ctx.progress(0, "converting");
+  SurfaceMeshResult r = to_surface_mesh(mesh);
+  if (r.skipped_faces > 0)
+    throw InvalidInput("geodesic_distance needs a manifold mesh: " + std::to_string(r.skipped_faces) +
+                       " faces are non-manifold or degenerate");
+  SurfaceMesh& sm = r.mesh;
+  using Vertex = SurfaceMesh::Vertex_index;
+  for (std::size_t s : sources)
+    if (sm.is_isolated(Vertex(SurfaceMesh::size_type(s))))
+      throw InvalidInput("parameter 'sources': vertex " + std::to_string(s) + " is used by no face");
+  auto dist = sm.add_property_map<Vertex, double>("v:geodesic_distance", 0.0).first;
+  ctx.progress(0.1, "factoring");
+  CGAL::Heat_method_3::Surface_mesh_geodesic_distances_3<SurfaceMesh, CGAL::Heat_method_3::Intrinsic_Delaunay>
+      hm(sm);
+  ctx.check_cancelled();
+  for (std::size_t s : sources) hm.add_source(Vertex(SurfaceMesh::size_type(s)));
+  ctx.progress(0.6, "solving");
+  hm.estimate_geodesic_distances(dist);
+  ScalarField f{"distance", Location::vertex, ColorHint::magnitude, {}};
+  f.values.resize(mesh.num_vertices(), 0.0f);
+  for (Vertex v : sm.vertices())
+    if (!sm.is_isolated(v)) f.values[std::size_t(v)] = float(dist[v]);
+  AlgorithmResult result;
+  result.artifacts.push_back({"distance", std::move(f)});
+  ctx.progress(1.0, "done");
+  return result;
+}
+
+CGVIEW_REGISTER_ALGORITHM(geodesic_distance, Params, run,
+                          {.title = "Geodesic distance (heat method)",
+                           .description = "Approximate geodesic distance on a manifold triangle mesh from one or "
+                                          "more source vertices, by the heat method on an intrinsic Delaunay "
+                                          "triangulation.",
+                           .area = "filters",
+                           .outputs = {{"distance", OutputKind::scalar_field}}})
+
+}  // namespace
+}  // namespace cgview

@@ -1,0 +1,201 @@
+// Everyday filters on CGAL, group C: repair and geodesic_distance, run
+// through the registry on shapes with known answers.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "core/errors.h"
+#include "core/mesh_report.h"
+#include "registry/registry.h"
+#include "test_support.h"
+
+namespace cgview {
+namespace {
+
+using Values = std::map<std::string, ParamValue>;
+
+AlgorithmResult run(const std::string& name, const Mesh& mesh, const Values& values = {}) {
+  Context ctx;
+  return find_algorithm(name).run(mesh, values, ctx);
+}
+
+template <class T>
+const T& artifact(const AlgorithmResult& r, const std::string& name) {
+  for (const Artifact& a : r.artifacts)
+    if (a.name == name) return std::get<T>(a.value);
+  throw std::runtime_error("no artifact " + name);
+}
+
+// Three triangles on one edge.
+Mesh three_on_an_edge() {
+  Mesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
+  m.faces = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  return m;
+}
+
+// Two triangles that share only a vertex.
+Mesh bowtie() {
+  Mesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}};
+  m.faces = {{0, 1, 2}, {0, 3, 4}};
+  return m;
+}
+
+TEST(RepairTest, ThreeFacesOnAnEdgeBecomeManifold) {
+  const Mesh in = three_on_an_edge();
+  ASSERT_FALSE(mesh_report(in).manifold);
+  const AlgorithmResult r = run("repair", in);
+  const Mesh& out = artifact<Mesh>(r, "mesh");
+  const MeshReport rep = mesh_report(out);
+  EXPECT_TRUE(rep.manifold);
+  EXPECT_TRUE(rep.oriented);
+  EXPECT_EQ(out.num_faces(), 3u);
+  const Metrics& m = artifact<Metrics>(r, "metrics");
+  EXPECT_EQ(m.at("manifold_before"), 0);
+  EXPECT_EQ(m.at("manifold_after"), 1);
+  EXPECT_GE(m.at("vertices_duplicated"), 2);
+}
+
+TEST(RepairTest, BowtieBecomesManifold) {
+  const Mesh in = bowtie();
+  ASSERT_FALSE(mesh_report(in).manifold);
+  const AlgorithmResult r = run("repair", in);
+  const Mesh& out = artifact<Mesh>(r, "mesh");
+  const MeshReport rep = mesh_report(out);
+  EXPECT_TRUE(rep.manifold);
+  EXPECT_EQ(out.num_faces(), 2u);
+  EXPECT_EQ(out.num_vertices(), 6u);
+  const Metrics& m = artifact<Metrics>(r, "metrics");
+  EXPECT_EQ(m.at("vertices_duplicated"), 1);
+  EXPECT_EQ(m.at("manifold_before"), 0);
+  EXPECT_EQ(m.at("manifold_after"), 1);
+}
+
+TEST(RepairTest, DuplicateAndDegenerateFacesAreRemoved) {
+  Mesh in = test::box();
+  const std::size_t faces = in.num_faces();
+  in.faces.push_back(in.faces[0]);                             // the same face again
+  in.faces.push_back({in.faces[1][1], in.faces[1][2], in.faces[1][0]});  // rotated copy
+  in.faces.push_back({0, 0, 1});                               // a repeated vertex
+  in.positions.push_back({0.5, 0, 0});                         // collinear with 0 and 1
+  in.faces.push_back({0, 1, Index(in.positions.size() - 1)});  // zero area
+  in.positions.push_back({5, 5, 5});                           // used by no face
+  ASSERT_GT(mesh_report(in).duplicate_faces + mesh_report(in).degenerate_faces, 0u);
+  const AlgorithmResult r = run("repair", in);
+  const Mesh& out = artifact<Mesh>(r, "mesh");
+  EXPECT_EQ(out.num_faces(), faces);
+  EXPECT_EQ(out.num_vertices(), 8u);
+  const MeshReport rep = mesh_report(out);
+  EXPECT_EQ(rep.duplicate_faces, 0u);
+  EXPECT_EQ(rep.degenerate_faces, 0u);
+  EXPECT_TRUE(rep.closed);
+  EXPECT_TRUE(rep.oriented);
+  const Metrics& m = artifact<Metrics>(r, "metrics");
+  EXPECT_EQ(m.at("faces_removed"), 4);
+  EXPECT_EQ(m.at("closed_after"), 1);
+}
+
+TEST(RepairTest, SplitBoxIsWeldedAndClosed) {
+  const Mesh box = test::box();
+  Mesh in;
+  for (const Tri& f : box.faces) {
+    const Index base = Index(in.positions.size());
+    for (Index v : f) in.positions.push_back(box.positions[v]);
+    in.faces.push_back({base, base + 1, base + 2});
+  }
+  ASSERT_EQ(in.num_vertices(), 36u);
+  ASSERT_FALSE(mesh_report(in).closed);
+  const AlgorithmResult r = run("repair", in);
+  const Mesh& out = artifact<Mesh>(r, "mesh");
+  EXPECT_EQ(out.num_vertices(), 8u);
+  EXPECT_EQ(out.num_faces(), 12u);
+  const MeshReport rep = mesh_report(out);
+  EXPECT_TRUE(rep.closed);
+  EXPECT_TRUE(rep.oriented);
+  EXPECT_EQ(rep.genus, 0);
+  ASSERT_TRUE(rep.volume.has_value());
+  EXPECT_NEAR(*rep.volume, 1.0, 1e-9);
+  const Metrics& m = artifact<Metrics>(r, "metrics");
+  EXPECT_EQ(m.at("vertices_merged"), 28);
+  EXPECT_EQ(m.at("closed_before"), 0);
+  EXPECT_EQ(m.at("closed_after"), 1);
+}
+
+TEST(RepairTest, ManifoldInputIsUnchanged) {
+  const Mesh in = test::torus();
+  const AlgorithmResult r = run("repair", in);
+  const Mesh& out = artifact<Mesh>(r, "mesh");
+  EXPECT_EQ(out.num_vertices(), in.num_vertices());
+  EXPECT_EQ(out.num_faces(), in.num_faces());
+  const Metrics& m = artifact<Metrics>(r, "metrics");
+  EXPECT_EQ(m.at("faces_removed"), 0);
+  EXPECT_EQ(m.at("vertices_merged"), 0);
+  EXPECT_EQ(m.at("vertices_duplicated"), 0);
+}
+
+double percentile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  return v[std::size_t(q * double(v.size() - 1))];
+}
+
+TEST(GeodesicDistanceTest, SphereFromNorthPoleMatchesGreatCircle) {
+  const Mesh sphere = test::uv_sphere(1.0, 64, 128);
+  const AlgorithmResult r = run("geodesic_distance", sphere, {{"sources", std::string("0")}});
+  const ScalarField& f = artifact<ScalarField>(r, "distance");
+  ASSERT_EQ(f.values.size(), sphere.num_vertices());
+  EXPECT_EQ(f.location, Location::vertex);
+  EXPECT_EQ(f.hint, ColorHint::magnitude);
+  EXPECT_NEAR(f.values[0], 0.0, 1e-3);
+  std::vector<double> errors;
+  for (std::size_t i = 0; i < sphere.num_vertices(); ++i) {
+    const double exact = std::acos(std::clamp(sphere.positions[i].z, -1.0, 1.0));
+    if (exact > 0.3) errors.push_back(std::abs(double(f.values[i]) - exact) / exact);
+  }
+  ASSERT_GT(errors.size(), 1000u);
+  EXPECT_LT(percentile(errors, 0.5), 0.05);
+  EXPECT_LT(percentile(errors, 0.95), 0.05);
+}
+
+TEST(GeodesicDistanceTest, TwoSourcesTakeTheNearer) {
+  const Mesh sphere = test::uv_sphere(1.0, 32, 64);
+  const Index south = Index(sphere.num_vertices() - 1);
+  const AlgorithmResult r =
+      run("geodesic_distance", sphere, {{"sources", "0, " + std::to_string(south)}});
+  const ScalarField& f = artifact<ScalarField>(r, "distance");
+  EXPECT_NEAR(f.values[0], 0.0, 0.02);
+  EXPECT_NEAR(f.values[south], 0.0, 0.02);
+  // The equator is pi/2 from both poles.
+  const float max = f.range().second;
+  EXPECT_NEAR(max, std::numbers::pi / 2, 0.1);
+}
+
+TEST(GeodesicDistanceTest, BadSourcesAreInvalidInput) {
+  const Mesh sphere = test::uv_sphere();
+  const std::vector<std::string> bads = {"", "x", "1,", "-1", "3.5", std::to_string(sphere.num_vertices())};
+  for (const std::string& bad : bads) {
+    try {
+      run("geodesic_distance", sphere, {{"sources", bad}});
+      ADD_FAILURE() << "no error for sources '" << bad << "'";
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("sources"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(GeodesicDistanceTest, NonManifoldInputIsInvalid) {
+  try {
+    run("geodesic_distance", three_on_an_edge());
+    FAIL() << "no error";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("manifold"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace cgview
