@@ -1,0 +1,209 @@
+// Everyday filters: each filter run through the registry
+// (find_algorithm(name).run, which converts Mesh -> Surface_mesh -> Mesh)
+// against a direct call of the same CGAL function with the same settings on
+// a CGAL::Surface_mesh already in memory (converted once, outside the
+// timing).  Meshes: the largest sample and a 1.2M-triangle mesh (bunny00
+// subdivided twice); fill_holes runs on elephant-with-holes.off.  Prints a
+// Markdown table with the ratio.
+//
+//   build/bin/filters_bench [--repeat N] [--quick]
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_ratio_stop_predicate.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/GarlandHeckbert_policies.h>
+#include <CGAL/Surface_mesh_simplification/edge_collapse.h>
+#pragma GCC diagnostic pop
+#include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/Polygon_mesh_processing/compute_normal.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Polygon_mesh_processing/smooth_shape.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+#include <CGAL/subdivision_method_3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "core/surface_mesh.h"
+#include "io/mesh_io.h"
+#include "io/samples.h"
+#include "registry/registry.h"
+
+using namespace cgview;
+namespace PMP = CGAL::Polygon_mesh_processing;
+namespace SMS = CGAL::Surface_mesh_simplification;
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Best of `repeat` runs of f; setup() runs before each, outside the timing.
+double best_seconds(int repeat, const std::function<void()>& setup, const std::function<void()>& f) {
+  double best = 1e300;
+  for (int i = 0; i < repeat; ++i) {
+    setup();
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    best = std::min(best, seconds_since(t0));
+  }
+  return best;
+}
+
+double mean_edge_length(const SurfaceMesh& sm) {
+  double sum = 0;
+  for (auto e : sm.edges())
+    sum += std::sqrt(CGAL::squared_distance(sm.point(sm.source(sm.halfedge(e))), sm.point(sm.target(sm.halfedge(e)))));
+  return sum / double(sm.number_of_edges());
+}
+
+std::size_t result_faces(const AlgorithmResult& r) {
+  for (const Artifact& a : r.artifacts)
+    if (const Mesh* m = std::get_if<Mesh>(&a.value)) return m->num_faces();
+  return 0;
+}
+
+struct Input {
+  std::string name;
+  Mesh mesh;
+  bool large;
+};
+
+struct Filter {
+  std::string name;
+  std::string settings;
+  std::map<std::string, ParamValue> params;
+  std::function<void(SurfaceMesh&)> direct;
+  bool holes_only = false;  // runs on elephant-with-holes only
+  bool skip_large = false;  // over ~20 s a run on the 1.2M-triangle mesh (measured: smooth 21 s)
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int repeat = 3;
+  bool quick = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--repeat" && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--quick") quick = true;
+    else {
+      std::fprintf(stderr, "usage: filters_bench [--repeat N] [--quick]\n");
+      return 2;
+    }
+  }
+  const auto elephant = resolve_mesh_path("refined_elephant.off");
+  const auto holes = resolve_mesh_path("elephant-with-holes.off");
+  const auto base = resolve_mesh_path("bunny00.off");
+  if (!elephant || !holes || !base) {
+    std::fprintf(stderr, "filters_bench: sample meshes not found (install libcgal-demo, re-run cmake)\n");
+    return 1;
+  }
+  std::vector<Input> inputs;
+  inputs.push_back({"refined_elephant", read_mesh(*elephant), false});
+  if (!quick) inputs.push_back({"bunny00 subdivided twice", subdivide_midpoint(subdivide_midpoint(read_mesh(*base))), true});
+  const Input holes_input{"elephant-with-holes", read_mesh(*holes), false};
+
+  // Each direct call mirrors the CGAL calls of its filter in
+  // algorithms/filters/, with the same settings (the filters' defaults where
+  // the table does not name one).
+  std::vector<Filter> filters;
+  filters.push_back({"simplify", "ratio 0.25", {{"ratio", 0.25}},
+                     [](SurfaceMesh& sm) {
+                       // On a closed triangle mesh an edge ratio of 0.25 is a face ratio of 0.25.
+                       SMS::GarlandHeckbert_plane_policies<SurfaceMesh, Kernel> gh(sm);
+                       SMS::edge_collapse(sm, SMS::Count_ratio_stop_predicate<SurfaceMesh>(0.25),
+                                          CGAL::parameters::get_cost(gh.get_cost()).get_placement(gh.get_placement()));
+                       sm.collect_garbage();
+                     },
+                     false, false});
+  filters.push_back({"remesh", "1 iteration, mean edge length", {{"iterations", 1LL}},
+                     [](SurfaceMesh& sm) {
+                       PMP::isotropic_remeshing(faces(sm), mean_edge_length(sm), sm,
+                                                CGAL::parameters::number_of_iterations(1));
+                       sm.collect_garbage();
+                     },
+                     false, false});
+  filters.push_back({"smooth", "mean_curvature_flow, 1 iteration",
+                     {{"method", std::string("mean_curvature_flow")}, {"iterations", 1LL}},
+                     [](SurfaceMesh& sm) {
+                       PMP::smooth_shape(sm, 1e-4, CGAL::parameters::number_of_iterations(1));
+                       sm.collect_garbage();
+                     },
+                     false, true});
+  filters.push_back({"subdivide", "loop, 1 iteration", {{"method", std::string("loop")}, {"iterations", 1LL}},
+                     [](SurfaceMesh& sm) {
+                       CGAL::Subdivision_method_3::Loop_subdivision(sm, CGAL::parameters::number_of_iterations(1));
+                     },
+                     false, false});
+  filters.push_back({"normals", "", {},
+                     [](SurfaceMesh& sm) {
+                       auto n = sm.add_property_map<SurfaceMesh::Vertex_index, Kernel::Vector_3>("v:bench_normal").first;
+                       PMP::compute_vertex_normals(sm, n);
+                     },
+                     false, false});
+  filters.push_back({"components", "keep_largest", {{"mode", std::string("keep_largest")}},
+                     [](SurfaceMesh& sm) {
+                       auto c = sm.add_property_map<SurfaceMesh::Face_index, std::size_t>("f:bench_component").first;
+                       PMP::connected_components(sm, c);
+                       PMP::keep_largest_connected_components(sm, 1);
+                       sm.collect_garbage();
+                     },
+                     false, false});
+  filters.push_back({"fill_holes", "refine_and_fair, holes up to 1000 edges", {},
+                     [](SurfaceMesh& sm) {
+                       using Halfedge = SurfaceMesh::Halfedge_index;
+                       std::vector<Halfedge> cycles;
+                       PMP::extract_boundary_cycles(sm, std::back_inserter(cycles));
+                       for (Halfedge h : cycles) {
+                         if (CGAL::halfedges_around_face(h, sm).size() > 1000) continue;
+                         std::vector<SurfaceMesh::Face_index> new_faces;
+                         std::vector<SurfaceMesh::Vertex_index> new_vertices;
+                         PMP::triangulate_refine_and_fair_hole(sm, h, std::back_inserter(new_faces),
+                                                               std::back_inserter(new_vertices));
+                       }
+                       sm.collect_garbage();
+                     },
+                     true, false});
+
+  std::printf("| filter | settings | mesh | triangles | registry s | direct CGAL s | registry / direct |\n");
+  std::printf("|---|---|---|---:|---:|---:|---:|\n");
+  std::fflush(stdout);
+  for (const Filter& f : filters) {
+    const Algorithm& algo = find_algorithm(f.name);
+    std::vector<const Input*> runs;
+    if (f.holes_only) runs.push_back(&holes_input);
+    else
+      for (const Input& in : inputs) runs.push_back(&in);
+    for (const Input* in : runs) {
+      if (in->large && f.skip_large) {
+        std::printf("| %s | %s | %s | %zu | skipped (over 20 s a run) | skipped | - |\n", f.name.c_str(),
+                    f.settings.c_str(), in->name.c_str(), in->mesh.num_faces());
+        std::fflush(stdout);
+        continue;
+      }
+      std::map<std::string, ParamValue> params = f.params;
+      const SurfaceMesh converted = to_surface_mesh(in->mesh).mesh;  // once, outside the timing
+      if (f.name == "remesh") params["target_edge_length"] = mean_edge_length(converted);
+      Context ctx;
+      std::size_t reg_faces = 0;
+      const double reg = best_seconds(repeat, [] {}, [&] { reg_faces = result_faces(algo.run(in->mesh, params, ctx)); });
+      SurfaceMesh sm;
+      const double direct = best_seconds(repeat, [&] { sm = converted; }, [&] { f.direct(sm); });
+      if (f.name != "normals" && reg_faces != sm.number_of_faces())
+        std::fprintf(stderr, "note: %s on %s: registry gave %zu faces, direct call %zu\n", f.name.c_str(),
+                     in->name.c_str(), reg_faces, std::size_t(sm.number_of_faces()));
+      std::printf("| %s | %s | %s | %zu | %.3f | %.3f | %.2fx |\n", f.name.c_str(), f.settings.c_str(),
+                  in->name.c_str(), in->mesh.num_faces(), reg, direct, reg / direct);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
