@@ -2,6 +2,8 @@
 
 #include <CGAL/IO/Color.h>
 
+#include "core/errors.h"
+
 namespace cgview {
 
 SurfaceMeshResult to_surface_mesh(const Mesh& mesh) {
@@ -28,6 +30,14 @@ SurfaceMeshResult to_surface_mesh(const Mesh& mesh) {
     }
   }
   return r;
+}
+
+SurfaceMesh manifold_surface_mesh(const Mesh& mesh, const char* who) {
+  SurfaceMeshResult r = to_surface_mesh(mesh);
+  if (r.skipped_faces > 0)
+    throw InvalidInput(std::string(who) + " needs a manifold mesh: " + std::to_string(r.skipped_faces) +
+                       " faces could not be placed in a halfedge structure (non-manifold or degenerate)");
+  return std::move(r.mesh);
 }
 
 Mesh from_surface_mesh(const SurfaceMesh& sm) {

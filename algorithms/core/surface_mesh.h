@@ -21,6 +21,11 @@ struct SurfaceMeshResult {
   std::size_t skipped_faces = 0;
 };
 
+// For algorithms that need halfedges: the Surface_mesh of a mesh that fits
+// one, else InvalidInput "WHO needs a manifold mesh: N faces could not be
+// placed in a halfedge structure (non-manifold or degenerate)".
+SurfaceMesh manifold_surface_mesh(const Mesh& mesh, const char* who);
+
 // Vertices keep their indices; per-vertex normals and colours go into the
 // property maps "v:normal" (Kernel::Vector_3) and "v:color" (CGAL::IO::Color).
 SurfaceMeshResult to_surface_mesh(const Mesh& mesh);

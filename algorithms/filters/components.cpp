@@ -30,11 +30,7 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   if (mesh.num_faces() == 0) throw InvalidInput("components needs a triangle mesh: the mesh has no faces");
   mesh.validate();
   ctx.progress(0.0, "halfedges");
-  SurfaceMeshResult s = to_surface_mesh(mesh);
-  if (s.skipped_faces > 0)
-    throw InvalidInput("components needs a manifold mesh: " + std::to_string(s.skipped_faces) +
-                       " faces could not be placed in a halfedge structure");
-  SurfaceMesh& sm = s.mesh;
+  SurfaceMesh sm = manifold_surface_mesh(mesh, "components");
   ctx.check_cancelled();
   ctx.progress(0.3, "components");
   namespace PMP = CGAL::Polygon_mesh_processing;

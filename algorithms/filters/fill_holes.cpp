@@ -36,11 +36,7 @@ struct Params {
 AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   if (mesh.num_faces() == 0) throw InvalidInput("fill_holes needs a mesh with faces");
   ctx.progress(0, "converting");
-  SurfaceMeshResult r = to_surface_mesh(mesh);
-  if (r.skipped_faces > 0)
-    throw InvalidInput("fill_holes needs a manifold mesh: " + std::to_string(r.skipped_faces) +
-                       " faces are non-manifold or degenerate");
-  SurfaceMesh& sm = r.mesh;
+  SurfaceMesh sm = manifold_surface_mesh(mesh, "fill_holes");
   using Halfedge = SurfaceMesh::Halfedge_index;
   std::vector<Halfedge> cycles;
   PMP::extract_boundary_cycles(sm, std::back_inserter(cycles));

@@ -51,11 +51,7 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   if (mesh.num_faces() == 0) throw InvalidInput("geodesic_distance needs a mesh with faces");
   const std::vector<std::size_t> sources = parse_sources(p.sources, mesh.num_vertices());
   ctx.progress(0, "converting");
-  SurfaceMeshResult r = to_surface_mesh(mesh);
-  if (r.skipped_faces > 0)
-    throw InvalidInput("geodesic_distance needs a manifold mesh: " + std::to_string(r.skipped_faces) +
-                       " faces are non-manifold or degenerate");
-  SurfaceMesh& sm = r.mesh;
+  SurfaceMesh sm = manifold_surface_mesh(mesh, "geodesic_distance");
   using Vertex = SurfaceMesh::Vertex_index;
   for (std::size_t s : sources)
     if (sm.is_isolated(Vertex(SurfaceMesh::size_type(s))))

@@ -29,11 +29,7 @@ struct Params {
 AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   if (mesh.num_faces() == 0) throw InvalidInput("remesh needs a mesh with faces");
   ctx.progress(0, "converting");
-  SurfaceMeshResult r = to_surface_mesh(mesh);
-  if (r.skipped_faces > 0)
-    throw InvalidInput("remesh needs a manifold mesh: " + std::to_string(r.skipped_faces) +
-                       " faces are non-manifold or degenerate");
-  SurfaceMesh& sm = r.mesh;
+  SurfaceMesh sm = manifold_surface_mesh(mesh, "remesh");
   double target = p.target_edge_length;
   if (target == 0) {
     double sum = 0;

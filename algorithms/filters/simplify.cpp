@@ -66,11 +66,7 @@ struct Stop {
 AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   if (mesh.num_faces() == 0) throw InvalidInput("simplify needs a mesh with faces");
   ctx.progress(0, "converting");
-  SurfaceMeshResult r = to_surface_mesh(mesh);
-  if (r.skipped_faces > 0)
-    throw InvalidInput("simplify needs a manifold mesh: " + std::to_string(r.skipped_faces) +
-                       " faces are non-manifold or degenerate");
-  SurfaceMesh& sm = r.mesh;
+  SurfaceMesh sm = manifold_surface_mesh(mesh, "simplify");
   Tracker t;
   t.faces = t.initial = sm.number_of_faces();
   t.target = p.target_faces > 0 ? std::size_t(p.target_faces)

@@ -37,11 +37,7 @@ struct Params {
 AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   if (mesh.num_faces() == 0) throw InvalidInput("smooth needs a mesh with faces");
   ctx.progress(0, "converting");
-  SurfaceMeshResult r = to_surface_mesh(mesh);
-  if (r.skipped_faces > 0)
-    throw InvalidInput("smooth needs a manifold mesh: " + std::to_string(r.skipped_faces) +
-                       " faces are non-manifold or degenerate");
-  SurfaceMesh& sm = r.mesh;
+  SurfaceMesh sm = manifold_surface_mesh(mesh, "smooth");
   for (int i = 0; i < p.iterations; ++i) {
     ctx.check_cancelled();
     ctx.progress(double(i) / double(p.iterations), "iteration " + std::to_string(i + 1));

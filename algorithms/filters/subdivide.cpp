@@ -43,11 +43,7 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
     throw InvalidInput("subdivide would make " + std::to_string(std::llround(expected)) + " faces, over the limit of " +
                        std::to_string(std::llround(max_faces)) + ": use fewer iterations");
   ctx.progress(0.0, "halfedges");
-  SurfaceMeshResult s = to_surface_mesh(mesh);
-  if (s.skipped_faces > 0)
-    throw InvalidInput("subdivide needs a manifold mesh: " + std::to_string(s.skipped_faces) +
-                       " faces could not be placed in a halfedge structure");
-  SurfaceMesh& sm = s.mesh;
+  SurfaceMesh sm = manifold_surface_mesh(mesh, "subdivide");
   namespace SM = CGAL::Subdivision_method_3;
   const auto one_step = CGAL::parameters::number_of_iterations(1);
   for (int i = 0; i < p.iterations; ++i) {
