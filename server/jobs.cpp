@@ -102,14 +102,7 @@ JobScheduler::JobScheduler(MeshService& meshes, JobConfig config) : meshes_(mesh
   const fs::path dir = meshes_.store().data_dir();
   std::error_code ec;
   fs::create_directories(dir / "jobs", ec);
-  const fs::path db = dir / "cgview.db";
-  if (sqlite3_open_v2(db.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX, nullptr) != SQLITE_OK) {
-    std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
-    sqlite3_close(db_);
-    throw IoError(db.string() + ": cannot open: " + msg);
-  }
-  sqlite3_busy_timeout(db_, 5000);
-  exec_sql(db_, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;", "jobs");
+  db_ = open_database(dir / "cgview.db");
   exec_sql(db_,
            "CREATE TABLE IF NOT EXISTS jobs ("
            " id TEXT PRIMARY KEY, seq INTEGER NOT NULL, owner TEXT NOT NULL, algorithm TEXT NOT NULL,"

@@ -83,6 +83,24 @@ std::string now_iso8601() {
   return buf;
 }
 
+sqlite3* open_database(const fs::path& path) {
+  sqlite3* db = nullptr;
+  if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX, nullptr) !=
+      SQLITE_OK) {
+    std::string msg = db ? sqlite3_errmsg(db) : "out of memory";
+    sqlite3_close(db);
+    throw IoError(path.string() + ": cannot open: " + msg);
+  }
+  sqlite3_busy_timeout(db, 5000);
+  try {
+    exec_sql(db, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL;", path.string().c_str());
+  } catch (...) {
+    sqlite3_close(db);
+    throw;
+  }
+  return db;
+}
+
 void exec_sql(sqlite3* db, const char* sql, const char* who) {
   char* err = nullptr;
   if (sqlite3_exec(db, sql, nullptr, nullptr, &err) != SQLITE_OK) {
@@ -110,15 +128,8 @@ Store::Store(const fs::path& data_dir) : dir_(data_dir) {
   std::error_code ec;
   fs::create_directories(dir_ / "blobs", ec);
   if (ec) throw IoError(dir_.string() + ": cannot create the data directory: " + ec.message());
-  const fs::path db = dir_ / "cgview.db";
-  if (sqlite3_open_v2(db.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX, nullptr) !=
-      SQLITE_OK) {
-    std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
-    sqlite3_close(db_);
-    throw IoError(db.string() + ": cannot open: " + msg);
-  }
-  sqlite3_busy_timeout(db_, 5000);
-  exec_sql(db_, "PRAGMA journal_mode=WAL; PRAGMA synchronous=NORMAL; PRAGMA foreign_keys=ON;", "store");
+  db_ = open_database(dir_ / "cgview.db");
+  exec_sql(db_, "PRAGMA foreign_keys=ON;", "store");
   exec_sql(db_,
        "CREATE TABLE IF NOT EXISTS meshes ("
        " id TEXT PRIMARY KEY, name TEXT NOT NULL, format TEXT NOT NULL, bytes INTEGER NOT NULL,"

@@ -68,6 +68,9 @@ std::string sha256_hex(std::string_view bytes);
 std::string new_id();
 // The current time, ISO 8601 UTC ("2026-11-21T12:00:00Z").
 std::string now_iso8601();
+// Opens (creating) the SQLite database at path in WAL mode with a busy
+// timeout, for the store and the job scheduler alike; throws IoError.
+sqlite3* open_database(const std::filesystem::path& path);
 // Runs SQL statements; throws IoError("WHO: message") on failure.
 void exec_sql(sqlite3* db, const char* sql, const char* who);
 
