@@ -22,7 +22,7 @@ import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { chromiumBin, dist, launchBrowser, repo, serverBin, startServer } from '../web-client/tests/harness.mjs';
+import { chromiumBin, dist, isMeshOrange, launchBrowser, pngPixels, repo, serverBin, startServer } from '../web-client/tests/harness.mjs';
 
 const wsBenchBin = process.env.CGVIEW_WS_BENCH ?? path.join(repo, 'build', 'bin', 'ws_bench');
 const DEFAULT_MESH = '/tmp/cgview_bunny_1m.ply';
@@ -150,32 +150,17 @@ function describe(problems) {
 // Mesh-coloured pixels in the middle of the canvas (the surface's orange, as in tests/e2e.test.mjs).
 async function meshPixels(page) {
   const png = await page.locator('#viewport canvas').screenshot();
-  return page.evaluate(async (b64) => {
-    const img = new Image();
-    img.src = `data:image/png;base64,${b64}`;
-    await img.decode();
-    const c = document.createElement('canvas');
-    c.width = img.naturalWidth;
-    c.height = img.naturalHeight;
-    const ctx = c.getContext('2d', { willReadFrequently: true });
-    ctx.drawImage(img, 0, 0);
-    const { data, width, height } = ctx.getImageData(0, 0, c.width, c.height);
-    let mesh = 0;
-    let n = 0;
-    for (let y = Math.floor(height / 4); y < Math.floor((3 * height) / 4); ++y) {
-      for (let x = Math.floor(width / 4); x < Math.floor((3 * width) / 4); ++x) {
-        const i = (y * width + x) * 4;
-        const [r, g, b] = [data[i], data[i + 1], data[i + 2]];
-        const max = Math.max(r, g, b);
-        const min = Math.min(r, g, b);
-        ++n;
-        if (max < 40 || max - min < 0.35 * max || r !== max) continue;
-        const hue = (60 * (g - b)) / (max - min);
-        if (hue >= 12 && hue <= 45) ++mesh;
-      }
+  const { data, width, height } = await pngPixels(page, png);
+  let mesh = 0;
+  let n = 0;
+  for (let y = Math.floor(height / 4); y < Math.floor((3 * height) / 4); ++y) {
+    for (let x = Math.floor(width / 4); x < Math.floor((3 * width) / 4); ++x) {
+      const i = (y * width + x) * 4;
+      ++n;
+      if (isMeshOrange(data[i], data[i + 1], data[i + 2])) ++mesh;
     }
-    return mesh / n;
-  }, png.toString('base64'));
+  }
+  return mesh / n;
 }
 
 // ---- checks and the table ----

@@ -30,13 +30,16 @@ json to_json(const Algorithm& a) {
     if (p.info.max) s["maximum"] = *p.info.max;
     props[p.name] = s;
   }
+  json inputs = json::array();
+  for (const InputSpec& in : a.info.inputs)
+    inputs.push_back({{"name", in.name}, {"kind", to_string(in.kind)}, {"description", in.help}});
   json outputs = json::array();
   for (const auto& [name, kind] : a.info.outputs) outputs.push_back({{"name", name}, {"kind", to_string(kind)}});
   return {{"name", a.info.name},
           {"title", a.info.title},
           {"description", a.info.description},
           {"area", a.info.area},
-          {"inputs", json::array({{{"name", "mesh"}, {"kind", "mesh"}}})},
+          {"inputs", inputs},
           {"outputs", outputs},
           {"params", {{"type", "object"}, {"properties", props}, {"additionalProperties", false}}}};
 }

@@ -32,6 +32,7 @@ using Clock = std::chrono::steady_clock;
 
 struct JobScheduler::Job {
   std::string id, owner, algorithm, mesh_id, mesh_sha, params = "{}", cache_key;
+  std::string inputs = "{}";  // every input by name -> mesh id; mesh_id is the first
   std::string state = "queued", stage, error, created, started, finished, artifacts = "[]", files;
   double progress = 0;
   bool cached = false;
@@ -109,9 +110,14 @@ JobScheduler::JobScheduler(MeshService& meshes, JobConfig config) : meshes_(mesh
            " mesh_id TEXT NOT NULL, mesh_sha TEXT NOT NULL, params TEXT NOT NULL, cache_key TEXT NOT NULL,"
            " state TEXT NOT NULL, stage TEXT NOT NULL, progress REAL NOT NULL, error TEXT NOT NULL,"
            " cached INTEGER NOT NULL, created TEXT NOT NULL, started TEXT NOT NULL, finished TEXT NOT NULL,"
-           " artifacts TEXT NOT NULL, files TEXT NOT NULL);"
+           " artifacts TEXT NOT NULL, files TEXT NOT NULL, inputs TEXT NOT NULL DEFAULT '{}');"
            "CREATE INDEX IF NOT EXISTS jobs_cache ON jobs(cache_key);",
            "jobs");
+  // A database from before algorithms of several inputs lacks the column.
+  sqlite3_stmt* probe = nullptr;
+  const bool has_inputs = sqlite3_prepare_v2(db_, "SELECT inputs FROM jobs LIMIT 0", -1, &probe, nullptr) == SQLITE_OK;
+  sqlite3_finalize(probe);
+  if (!has_inputs) exec_sql(db_, "ALTER TABLE jobs ADD COLUMN inputs TEXT NOT NULL DEFAULT '{}';", "jobs");
   load();
   if (::pipe2(wake_pipe_, O_CLOEXEC | O_NONBLOCK) != 0) throw IoError("jobs: pipe failed");
 }
@@ -143,7 +149,7 @@ void JobScheduler::load() {
   sqlite3_stmt* s = nullptr;
   sqlite3_prepare_v2(db_,
                      "SELECT id, seq, owner, algorithm, mesh_id, mesh_sha, params, cache_key, state, stage, progress,"
-                     " error, cached, created, started, finished, artifacts, files FROM jobs ORDER BY seq",
+                     " error, cached, created, started, finished, artifacts, files, inputs FROM jobs ORDER BY seq",
                      -1, &s, nullptr);
   auto text = [&](int c) {
     const auto* p = sqlite3_column_text(s, c);
@@ -170,6 +176,7 @@ void JobScheduler::load() {
     j->finished = text(15);
     j->artifacts = text(16);
     j->files = text(17);
+    j->inputs = text(18);
     seq_ = std::max(seq_, j->seq);
     jobs_[j->id] = j;
     order_.push_back(j->id);
@@ -197,8 +204,8 @@ void JobScheduler::persist(const Job& j) {
   sqlite3_stmt* s = nullptr;
   if (sqlite3_prepare_v2(db_,
                          "INSERT OR REPLACE INTO jobs (id, seq, owner, algorithm, mesh_id, mesh_sha, params, cache_key,"
-                         " state, stage, progress, error, cached, created, started, finished, artifacts, files)"
-                         " VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18)",
+                         " state, stage, progress, error, cached, created, started, finished, artifacts, files, inputs)"
+                         " VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19)",
                          -1, &s, nullptr) != SQLITE_OK)
     throw IoError(std::string("jobs: ") + sqlite3_errmsg(db_));
   int i = 0;
@@ -209,10 +216,17 @@ void JobScheduler::persist(const Job& j) {
   sqlite3_bind_double(s, ++i, j.progress);
   t(j.error);
   sqlite3_bind_int(s, ++i, j.cached ? 1 : 0);
-  t(j.created), t(j.started), t(j.finished), t(j.artifacts), t(j.files);
+  t(j.created), t(j.started), t(j.finished), t(j.artifacts), t(j.files), t(j.inputs);
   const int rc = sqlite3_step(s);
   sqlite3_finalize(s);
   if (rc != SQLITE_DONE) throw IoError(std::string("jobs: ") + sqlite3_errmsg(db_));
+}
+
+// Every input by name; a job from before several inputs has only "mesh".
+static json job_inputs(const std::string& inputs, const std::string& mesh_id) {
+  json in = json::parse(inputs, nullptr, false);
+  if (!in.is_object() || in.empty()) in = {{"mesh", mesh_id}};
+  return in;
 }
 
 json JobScheduler::job_json(const Job& j) const {
@@ -222,7 +236,7 @@ json JobScheduler::job_json(const Job& j) const {
   for (auto& a : artifacts) a.erase("file");
   return {{"id", j.id},
           {"algorithm", j.algorithm},
-          {"inputs", {{"mesh", j.mesh_id}}},
+          {"inputs", job_inputs(j.inputs, j.mesh_id)},
           {"params", json::parse(j.params, nullptr, false)},
           {"state", j.state},
           {"progress", j.progress},
@@ -242,30 +256,63 @@ json JobScheduler::algorithms_json() const {
   return {{"algorithms", list}};
 }
 
-json JobScheduler::submit(const json& req, const std::string& owner) {
+json JobScheduler::submit(const json& req, const std::string& owner, std::vector<std::string>* new_meshes) {
   if (!req.is_object()) throw InvalidInput("the body must be a JSON object");
   if (!req.contains("algorithm") || !req["algorithm"].is_string()) throw InvalidInput("\"algorithm\" must be a string");
   const std::string algorithm = req["algorithm"].get<std::string>();
   if (!worker_algorithms_.count(algorithm)) throw std::out_of_range("no algorithm '" + algorithm + "'");
+  // Each input the algorithm declares is a stored mesh: its id, or an earlier
+  // job's output mesh {"job": id, "artifact": name}.
   const json inputs = req.value("inputs", json::object());
-  const char* shape = "\"inputs\" must be {\"mesh\": \"<mesh id>\"} or {\"mesh\": {\"job\": \"<job id>\", \"artifact\": \"<name>\"}}";
-  if (!inputs.is_object() || !inputs.contains("mesh")) throw InvalidInput(shape);
-  std::string mesh_id;
-  if (inputs["mesh"].is_string()) {
-    mesh_id = inputs["mesh"].get<std::string>();
-  } else if (inputs["mesh"].is_object() && inputs["mesh"].value("job", json()).is_string() &&
-             inputs["mesh"].value("artifact", json()).is_string()) {
-    // A chain: an earlier job's output mesh becomes a stored mesh (once, by
-    // content) and the new job runs on it like on any other.
-    const std::string from = inputs["mesh"]["job"], name = inputs["mesh"]["artifact"];
-    const ArtifactBytes ply = artifact(from, name, "ply");
-    if (const auto known = meshes_.store().find_by_sha256(sha256_hex(ply.bytes))) mesh_id = known->id;
-    else mesh_id = meshes_.upload(from + "-" + name + ".ply", "ply", ply.bytes).id;
-  } else {
-    throw InvalidInput(shape);
+  json specs = worker_algorithms_.at(algorithm).value("inputs", json::array());
+  if (specs.empty()) specs = json::array({{{"name", "mesh"}, {"kind", "mesh"}}});
+  const auto shape = [](const std::string& name) {
+    return "\"inputs\" must be {\"" + name + "\": \"<mesh id>\"} or {\"" + name +
+           "\": {\"job\": \"<job id>\", \"artifact\": \"<name>\"}}";
+  };
+  if (!inputs.is_object()) throw InvalidInput(shape(specs[0].value("name", "mesh")));
+  std::string names;
+  for (const auto& spec : specs) names += (names.empty() ? "" : ", ") + spec.value("name", "");
+  for (const auto& [name, v] : inputs.items()) {
+    bool known = false;
+    for (const auto& spec : specs) known = known || spec.value("name", "") == name;
+    if (!known) throw InvalidInput("algorithm '" + algorithm + "' has no input '" + name + "' (it takes: " + names + ")");
   }
-  const auto mesh = meshes_.store().get_mesh(mesh_id);
-  if (!mesh) throw std::out_of_range("no mesh with id '" + mesh_id + "'");
+  json resolved = json::object();
+  std::string mesh_id, input_shas;
+  std::optional<MeshRecord> mesh;
+  for (const auto& spec : specs) {
+    const std::string name = spec.value("name", "");
+    if (spec.value("kind", "mesh") != "mesh")
+      throw InvalidInput("input '" + name + "' is a " + spec.value("kind", "") + ", which jobs cannot take yet");
+    if (!inputs.contains(name)) throw InvalidInput("input '" + name + "' is missing: " + shape(name));
+    const json& v = inputs[name];
+    std::string id;
+    if (v.is_string()) {
+      id = v.get<std::string>();
+    } else if (v.is_object() && v.value("job", json()).is_string() && v.value("artifact", json()).is_string()) {
+      // A chain: an earlier job's output mesh becomes a stored mesh (once, by
+      // content) and the new job runs on it like on any other.
+      const std::string from = v["job"], artifact_name = v["artifact"];
+      const ArtifactBytes ply = artifact(from, artifact_name, "ply");
+      if (const auto known = meshes_.store().find_by_sha256(sha256_hex(ply.bytes))) id = known->id;
+      else {
+        id = meshes_.upload(from + "-" + artifact_name + ".ply", "ply", ply.bytes).id;
+        if (new_meshes) new_meshes->push_back(id);
+      }
+    } else {
+      throw InvalidInput(shape(name));
+    }
+    const auto rec = meshes_.store().get_mesh(id);
+    if (!rec) throw std::out_of_range("no mesh with id '" + id + "'");
+    resolved[name] = id;
+    if (!mesh) {
+      mesh = rec;
+      mesh_id = id;
+    } else {
+      input_shas += "\n" + name + "=" + rec->sha256;
+    }
+  }
   const json params_in = req.contains("params") ? req["params"] : json::object();
   // Canonical parameters: checked, every one present (defaults filled in).
   json canonical = json::object();
@@ -287,8 +334,10 @@ json JobScheduler::submit(const json& req, const std::string& owner) {
   j->algorithm = algorithm;
   j->mesh_id = mesh_id;
   j->mesh_sha = mesh->sha256;
+  j->inputs = resolved.dump();
   j->params = canonical.dump();
-  j->cache_key = sha256_hex(mesh->sha256 + "\n" + algorithm + "\n" + j->params);
+  // A one-mesh job keeps the key it always had (its cached results stay valid).
+  j->cache_key = sha256_hex(mesh->sha256 + input_shas + "\n" + algorithm + "\n" + j->params);
   j->created = now_iso8601();
   json out, event;
   {
@@ -470,10 +519,20 @@ bool JobScheduler::launch(Job& j) {
     j.error = "the mesh " + j.mesh_id + " was deleted";
     return false;
   }
+  json files = json::object();
+  const json inputs = job_inputs(j.inputs, j.mesh_id);
+  for (const auto& [name, id] : inputs.items()) {
+    const auto rec = meshes_.store().get_mesh(id.get<std::string>());
+    if (!rec) {
+      j.error = "the mesh " + id.get<std::string>() + " (input '" + name + "') was deleted";
+      return false;
+    }
+    files[name] = meshes_.store().blob_file(*rec).string();
+  }
   {
     std::ofstream f(dir / "job.json");
     f << json{{"algorithm", j.algorithm}, {"params", json::parse(j.params)},
-              {"mesh", meshes_.store().blob_file(*mesh).string()}, {"out", dir.string()}}
+              {"mesh", meshes_.store().blob_file(*mesh).string()}, {"inputs", files}, {"out", dir.string()}}
              .dump();
     if (!f) {
       j.error = "cannot write " + (dir / "job.json").string();

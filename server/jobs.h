@@ -62,7 +62,10 @@ class JobScheduler {
   nlohmann::json algorithms_json() const;
   // Throws std::out_of_range (unknown algorithm or mesh) or InvalidInput
   // (bad parameters, naming the parameter and the rule broken).
-  nlohmann::json submit(const nlohmann::json& request, const std::string& owner = "local");
+  // An input that names an earlier job's output mesh stores that mesh; its id
+  // is appended to `new_meshes` when given (the router announces it).
+  nlohmann::json submit(const nlohmann::json& request, const std::string& owner = "local",
+                        std::vector<std::string>* new_meshes = nullptr);
   nlohmann::json list() const;
   std::optional<nlohmann::json> get(const std::string& id) const;
   // Cancels a queued or running job; the job (unchanged when it had ended).

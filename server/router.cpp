@@ -180,16 +180,21 @@ Router::Router(MeshService& meshes, RouterConfig config) : meshes_(meshes), conf
   routes_.push_back({"GET", "/api/v1/algorithms", "The algorithms a job may run, with a JSON Schema of their parameters", {},
                      [jobs](const Params&, const HttpRequest&) { return json_response(200, jobs().algorithms_json()); },
                      false});
-  routes_.push_back({"POST", "/api/v1/jobs", "Submit a job: {\"algorithm\",\"inputs\":{\"mesh\":id},\"params\":{...}}", {},
+  routes_.push_back({"POST", "/api/v1/jobs", "Submit a job: {\"algorithm\",\"inputs\":{\"mesh\":id or {\"job\":id,\"artifact\":name},...},\"params\":{...}}", {},
                      [this, jobs](const Params&, const HttpRequest& req) {
                        const json body = json::parse(req.body, nullptr, false);
                        if (body.is_discarded()) return error_response(400, "bad_request", "the body is not JSON");
                        json job;
+                       std::vector<std::string> new_meshes;
                        try {
-                         job = jobs().submit(body);
+                         job = jobs().submit(body, "local", &new_meshes);
                        } catch (const InvalidInput& e) {
                          return error_response(400, "bad_request", e.what());
                        }
+                       // A chained job's input mesh is stored: the mesh lists show it.
+                       for (const auto& id : new_meshes)
+                         if (const auto rec = meshes_.store().get_mesh(id); rec && on_event)
+                           on_event({{"type", "mesh_added"}, {"mesh", mesh_json(*rec)}});
                        HttpResponse r = json_response(201, job);
                        r.headers.push_back({"Location", "/api/v1/jobs/" + job["id"].get<std::string>()});
                        return r;

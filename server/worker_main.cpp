@@ -2,7 +2,8 @@
 // runaway allocation or an endless loop takes down only this job.
 //
 //   cgview-worker JOB.json      runs the job the file describes:
-//     {"algorithm": "centroid_distance", "params": {...}, "mesh": "/path/in.off", "out": "/dir"}
+//     {"algorithm": "hausdorff", "params": {...}, "inputs": {"mesh": "/path/a.off", "reference": "/path/b.ply"}, "out": "/dir"}
+//   (an older job file names its one mesh as "mesh": "/path/in.off")
 //   cgview-worker --list        prints every algorithm linked in, as JSON (protocol/algorithm_json)
 //
 // Progress goes to stdout as lines "progress FRACTION STAGE" (at most ~10 a
@@ -18,6 +19,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <new>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -79,7 +81,24 @@ int run_job(const fs::path& spec_path, fs::path& out) {
   out = spec.at("out").get<std::string>();
   const Algorithm& algo = find_algorithm(spec.at("algorithm").get<std::string>());
   const auto values = protocol::params_from_json(algo, spec.value("params", json::object()));
-  const Mesh mesh = read_mesh_file(spec.at("mesh").get<std::string>()).mesh;
+  // Every input is a stored mesh file ("inputs": {"mesh": path, "reference": path}).
+  std::map<std::string, Mesh> meshes;
+  const json files = spec.value("inputs", json::object());
+  for (const auto& [name, path] : files.items())
+    meshes.emplace(name, read_mesh_file(path.get<std::string>()).mesh);
+  if (!meshes.count("mesh") && spec.contains("mesh"))
+    meshes.emplace("mesh", read_mesh_file(spec.at("mesh").get<std::string>()).mesh);
+  Inputs inputs;
+  for (const auto& [name, m] : meshes) inputs.add(name, m);
+  // Per-vertex artifacts are written on the first mesh input.
+  static const Mesh no_mesh;
+  const Mesh* primary = &no_mesh;
+  for (const InputSpec& in : algo.info.inputs)
+    if (in.kind == OutputKind::mesh) {
+      primary = &inputs.mesh(in.name);
+      break;
+    }
+  const Mesh& mesh = *primary;
   using Clock = std::chrono::steady_clock;
   Clock::time_point last{};
   Context ctx(
@@ -91,7 +110,7 @@ int run_job(const fs::path& spec_path, fs::path& out) {
         std::fflush(stdout);
       },
       nullptr);
-  const AlgorithmResult result = algo.run(mesh, values, ctx);
+  const AlgorithmResult result = algo.run(inputs, values, ctx);
   json artifacts = json::array();
   for (const Artifact& a : result.artifacts) artifacts.push_back(save(a, mesh, out));
   const fs::path tmp = out / "result.json.part";

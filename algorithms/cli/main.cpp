@@ -1,4 +1,5 @@
 // cgview: the command line.  `cgview info`, `cgview convert`, `cgview samples`.
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -276,12 +277,18 @@ int cmd_run(const std::vector<std::string>& args) {
     std::printf("usage: cgview run %s MESH [--PARAM VALUE]... [-o OUT]\n\n%s: %s\n\nparameters:\n", args[0].c_str(),
                 algo->info.title.c_str(), algo->info.description.c_str());
     for (const auto& p : algo->params) std::fputs(param_line(p).c_str(), stdout);
+    if (algo->info.inputs.size() > 1) {
+      std::printf("\ninputs (the first is MESH, the others --NAME FILE):\n");
+      for (const auto& in : algo->info.inputs)
+        std::printf("  %-20s %s (%s)\n", in.name.c_str(), in.help.c_str(), to_string(in.kind));
+    }
     std::printf("\noutputs:\n");
     for (const auto& [name, kind] : algo->info.outputs) std::printf("  %s (%s)\n", name.c_str(), to_string(kind));
     return 0;
   }
   std::string mesh_arg, out;
   std::map<std::string, ParamValue> values;
+  std::map<std::string, std::string> more_inputs;  // input name -> file, for all but the first
   for (std::size_t i = 1; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a == "-o" || a == "--output") {
@@ -289,6 +296,13 @@ int cmd_run(const std::vector<std::string>& args) {
       out = args[++i];
     } else if (a.starts_with("--")) {
       const std::string name = a.substr(2);
+      const bool is_input = std::any_of(algo->info.inputs.begin() + (algo->info.inputs.empty() ? 0 : 1),
+                                        algo->info.inputs.end(), [&](const InputSpec& in) { return in.name == name; });
+      if (is_input) {
+        if (i + 1 >= args.size()) throw Usage("run: --" + name + " needs a mesh file");
+        more_inputs[name] = args[++i];
+        continue;
+      }
       const ParamSpec* spec = nullptr;
       for (const auto& p : algo->params)
         if (p.name == name) spec = &p;
@@ -302,9 +316,20 @@ int cmd_run(const std::vector<std::string>& args) {
   if (!out.empty() && !algo->info.outputs.empty()) check_artifact_extension(algo->info.outputs[0].second, out);
   const ReadResult r = read_mesh_file(need_mesh(mesh_arg));
   print_warnings(r);
+  Inputs inputs;
+  inputs.add(algo->info.inputs.empty() ? "mesh" : algo->info.inputs.front().name, r.mesh);
+  std::map<std::string, ReadResult> others;
+  for (const auto& in : algo->info.inputs) {
+    if (in.name == algo->info.inputs.front().name) continue;
+    const auto f = more_inputs.find(in.name);
+    if (f == more_inputs.end()) throw Usage("run: " + args[0] + " needs --" + in.name + " FILE (" + in.help + ")");
+    const ReadResult& o = others.emplace(in.name, read_mesh_file(need_mesh(f->second))).first->second;
+    print_warnings(o);
+    inputs.add(in.name, o.mesh);
+  }
   ProgressPrinter printer;
   Context ctx([&](double f, std::string_view stage) { printer(f, stage); }, nullptr);
-  const AlgorithmResult result = algo->run(r.mesh, values, ctx);
+  const AlgorithmResult result = algo->run(inputs, values, ctx);
   for (const auto& w : result.warnings) std::fprintf(stderr, "cgview: warning: %s\n", w.c_str());
   for (std::size_t k = 0; k < result.artifacts.size(); ++k) {
     const Artifact& art = result.artifacts[k];

@@ -13,6 +13,9 @@
 //   AlgorithmResult run(const Mesh&, const Params&, Context&);
 //   CGVIEW_REGISTER_ALGORITHM(my_algorithm, Params, run, {.title = "...", ...});
 //
+// An algorithm of several inputs (hausdorff: "mesh" and "reference") lists
+// them in `.inputs` and takes `const Inputs&` instead of the mesh.
+//
 // The visitor pattern keeps each parameter's label, range and help beside
 // its field and its default in the field's initializer, and nowhere else.
 #pragma once
@@ -22,6 +25,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -95,12 +99,51 @@ class Context {
 // The kinds of output an algorithm declares.
 enum class OutputKind { mesh, scalar_field, voxel_grid, skeleton, metrics };
 
+// An algorithm's named input ("mesh", "reference", "grid"), of one kind.
+struct InputSpec {  // initializers as in ParamInfo
+  std::string name{};
+  OutputKind kind = OutputKind::mesh;
+  std::string help{};
+};
+
+// The inputs of one run, by name; it refers to values the caller owns.
+// A Mesh converts to {"mesh": mesh}, the input of most algorithms.
+class Inputs {
+ public:
+  Inputs() = default;
+  Inputs(const Mesh& mesh) { add("mesh", mesh); }  // NOLINT: implicit on purpose
+  void add(const std::string& name, const Mesh& v) { values_[name] = &v; }
+  void add(const std::string& name, const ScalarField& v) { values_[name] = &v; }
+  void add(const std::string& name, const VoxelGrid& v) { values_[name] = &v; }
+  void add(const std::string& name, const Skeleton& v) { values_[name] = &v; }
+  bool has(const std::string& name) const { return values_.count(name) != 0; }
+  // The input of that name; throws InvalidInput when it is missing or of
+  // another kind ("input 'reference' is missing").
+  const Mesh& mesh(const std::string& name = "mesh") const { return get<Mesh>(name, "a mesh"); }
+  const ScalarField& scalar_field(const std::string& name) const { return get<ScalarField>(name, "a scalar field"); }
+  const VoxelGrid& voxel_grid(const std::string& name) const { return get<VoxelGrid>(name, "a voxel grid"); }
+  const Skeleton& skeleton(const std::string& name) const { return get<Skeleton>(name, "a skeleton"); }
+
+ private:
+  template <class T>
+  const T& get(const std::string& name, const char* what) const {
+    const auto it = values_.find(name);
+    if (it == values_.end()) throw InvalidInput("input '" + name + "' is missing");
+    const auto* const* v = std::get_if<const T*>(&it->second);
+    if (!v) throw InvalidInput("input '" + name + "' must be " + std::string(what));
+    return **v;
+  }
+  std::map<std::string, std::variant<const Mesh*, const ScalarField*, const VoxelGrid*, const Skeleton*>> values_;
+};
+
 struct AlgorithmInfo {  // initializers as in ParamInfo
   std::string name{};  // snake_case, unique
   std::string title{};
   std::string description{};
   std::string area{};  // "examples", "sdf", ...
   std::vector<std::pair<std::string, OutputKind>> outputs{};
+  // What it takes; the default is one mesh named "mesh".
+  std::vector<InputSpec> inputs{{.name = "mesh", .kind = OutputKind::mesh, .help = "the mesh to process"}};
 };
 
 struct Algorithm {
@@ -108,7 +151,8 @@ struct Algorithm {
   std::vector<ParamSpec> params;
   // Checks and converts the values (missing ones take their defaults), then
   // runs.  Throws InvalidInput naming the bad parameter and the rule broken.
-  std::function<AlgorithmResult(const Mesh&, const std::map<std::string, ParamValue>&, Context&)> run;
+  // Inputs missing from `inputs` throw InvalidInput naming them.
+  std::function<AlgorithmResult(const Inputs&, const std::map<std::string, ParamValue>&, Context&)> run;
 };
 
 // Every registered algorithm, by name.
@@ -177,13 +221,16 @@ Algorithm make_algorithm(std::string name, AlgorithmInfo info, Fn fn) {
   Algorithm a;
   a.info = std::move(info);
   a.params = collect.specs;
-  a.run = [fn, specs = collect.specs, algo = a.info.name](const Mesh& mesh, const std::map<std::string, ParamValue>& values,
+  a.run = [fn, specs = collect.specs, algo = a.info.name](const Inputs& in, const std::map<std::string, ParamValue>& values,
                                                           Context& ctx) {
     check_names(algo, values, specs);
     Params p;
     ValueAssigner assign{values, specs};
     p.describe(assign);
-    return fn(mesh, p, ctx);
+    // Algorithms of several inputs take them all by name; the others take the
+    // mesh (tested in this order: a Mesh converts to Inputs, not back).
+    if constexpr (std::is_invocable_v<Fn, const Inputs&, const Params&, Context&>) return fn(in, p, ctx);
+    else return fn(in.mesh("mesh"), p, ctx);
   };
   return a;
 }

@@ -218,6 +218,51 @@ TEST_F(JobsTest, AJobRunsOnAnEarlierJobsOutputMesh) {
   EXPECT_EQ(http_call(server_.port(), Method::post, "/api/v1/jobs", bad.dump()).status, 404);
 }
 
+TEST_F(JobsTest, AJobOfTwoInputsTakesBothAndNamesAMissingOne) {
+  // hausdorff between the mesh and its translated copy (an earlier job's output).
+  const json moved = wait_end(submit("test_translate", json::object())["id"]);
+  ASSERT_EQ(moved["state"], "done") << moved.dump();
+  const json body = {{"algorithm", "hausdorff"},
+                     {"inputs", {{"mesh", mesh_id_}, {"reference", {{"job", moved["id"]}, {"artifact", "mesh"}}}}}};
+  const auto r = http_call(server_.port(), Method::post, "/api/v1/jobs", body.dump());
+  ASSERT_EQ(r.status, 201) << r.body;
+  const json done = wait_end(r.body_json()["id"]);
+  ASSERT_EQ(done["state"], "done") << done.dump();
+  EXPECT_EQ(done["inputs"]["mesh"], mesh_id_);
+  EXPECT_NE(done["inputs"]["reference"], mesh_id_);
+  // test_translate moves the mesh by 1 along x.
+  const json metrics = json::parse(artifact(done["id"], "metrics", "json"));
+  EXPECT_NEAR(metrics["hausdorff"].get<double>(), 1.0, metrics["error_bound"].get<double>() + 1e-6) << metrics.dump();
+  // The same inputs the other way round are another job, not the cached one.
+  const json swapped = {{"algorithm", "hausdorff"},
+                        {"inputs", {{"reference", mesh_id_}, {"mesh", done["inputs"]["reference"]}}}};
+  const auto r2 = http_call(server_.port(), Method::post, "/api/v1/jobs", swapped.dump());
+  ASSERT_EQ(r2.status, 201) << r2.body;
+  EXPECT_FALSE(r2.body_json()["cached"].get<bool>());
+
+  // A missing input, an unknown one, a bad one: 400 naming it; an unknown mesh: 404.
+  auto post = [&](const json& inputs) {
+    return http_call(server_.port(), Method::post, "/api/v1/jobs", json{{"algorithm", "hausdorff"}, {"inputs", inputs}}.dump());
+  };
+  auto e = post({{"mesh", mesh_id_}});
+  EXPECT_EQ(e.status, 400);
+  EXPECT_NE(e.body.find("input 'reference' is missing"), std::string::npos) << e.body;
+  e = post({{"mesh", mesh_id_}, {"reference", mesh_id_}, {"other", mesh_id_}});
+  EXPECT_EQ(e.status, 400);
+  EXPECT_NE(e.body.find("no input 'other' (it takes: mesh, reference)"), std::string::npos) << e.body;
+  e = post({{"mesh", mesh_id_}, {"reference", 7}});
+  EXPECT_EQ(e.status, 400);
+  EXPECT_NE(e.body.find("reference"), std::string::npos) << e.body;
+  EXPECT_EQ(post({{"mesh", mesh_id_}, {"reference", "0000000000000000"}}).status, 404);
+  // The algorithm lists both inputs.
+  const json algos = http_get(server_.port(), "/api/v1/algorithms").body_json();
+  for (const auto& a : algos["algorithms"])
+    if (a["name"] == "hausdorff") {
+      ASSERT_EQ(a["inputs"].size(), 2u) << a.dump();
+      EXPECT_EQ(a["inputs"][1]["name"], "reference");
+    }
+}
+
 TEST_F(JobsTest, BadRequests) {
   json e = submit("centroid_distance", {{"exponent", 9}}, 400);
   EXPECT_EQ(e["error"], "bad_request");

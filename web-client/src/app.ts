@@ -17,7 +17,7 @@ import {
   submitJob,
   uploadMesh,
 } from './api/rest.ts';
-import type { Job, JobProgress, Mesh, ServerEvent } from './api/types.ts';
+import type { Job, JobInput, JobProgress, Mesh, ServerEvent } from './api/types.ts';
 import { CgviewSocket, ServerError } from './api/ws.ts';
 import { AlgorithmsPanel } from './panels/algorithms.ts';
 import { JobsPanel } from './panels/jobs.ts';
@@ -97,6 +97,8 @@ export class App {
   private readonly asking = new Set<string>();
   /** Mesh artifacts in the view (`${jobId}/${name}`), beside the selected mesh. */
   private readonly added = new Set<string>();
+  /** A job's output mesh that the next job runs on ("Run on this"), instead of the selected mesh. */
+  private runTarget: { jobId: string; artifact: string } | null = null;
   /** The scalar field drawn now (or being prepared: token). */
   private field: { jobId: string; artifact: string; meshId: string; data: ScalarField; object: THREE.Mesh } | null = null;
   private fieldToken = 0;
@@ -137,12 +139,13 @@ export class App {
     this.messages = new MessagesPanel(byId('messages'));
     this.status = byId('connection');
     this.algorithmsPanel = new AlgorithmsPanel(byId('algorithms'), {
-      run: (algorithm, params) => this.runJob(algorithm, params),
+      run: (algorithm, params, inputs) => this.runJob(algorithm, params, inputs),
     });
     this.jobsPanel = new JobsPanel(byId('jobs'), {
       cancel: (id) => void this.cancel(id),
       showField: (jobId, artifact) => void this.showField(jobId, artifact),
       addMesh: (jobId, artifact) => void this.addMeshArtifact(jobId, artifact),
+      runOn: (jobId, artifact) => this.setRunTarget(jobId, artifact),
     });
     this.legend = new Legend(byId('viewport'), (name) => this.setColorMap(name));
     new UploadControl(byId<HTMLInputElement>('file-input'), document.body, (files) => void this.upload(files));
@@ -219,19 +222,42 @@ export class App {
     }
   }
 
-  /** Submits a job on the selected mesh; rejects with the server's detail (shown beside the form). */
-  async runJob(algorithm: string, params: Record<string, unknown>): Promise<void> {
+  /**
+   * Submits a job on the selected mesh, or on the job output chosen with "Run
+   * on this" (a chain: the server stores that output as a mesh of its own and
+   * announces it); `extra` names the meshes of the algorithm's other inputs.
+   * Rejects with the server's detail (shown beside the form).
+   */
+  async runJob(algorithm: string, params: Record<string, unknown>, extra: Record<string, string> = {}): Promise<void> {
+    const target = this.runTarget;
     const mesh = this.selectedMesh();
-    if (!mesh) throw new Error('Choose a mesh first.');
+    if (!target && !mesh) throw new Error('Choose a mesh first.');
+    const inputs: Record<string, JobInput> = { ...extra, mesh: target ? { job: target.jobId, artifact: target.artifact } : mesh!.id };
     let job: Job;
     try {
-      job = await submitJob(algorithm, { mesh: mesh.id }, params);
+      job = await submitJob(algorithm, inputs, params);
     } catch (e) {
       throw new Error(describe(e));
+    }
+    if (target) {
+      // The chained input is a stored mesh now: later runs and fields use it.
+      this.runTarget = null;
+      const stored = job.inputs.mesh;
+      if (stored && !this.meshes.some((m) => m.id === stored)) await this.refresh();
+      if (stored) this.select(stored);
     }
     this.autoShow.add(job.id);
     // A job_done event may have come before this answer: upsertJob keeps the later state.
     this.upsertJob(job);
+  }
+
+  /** "Run on this": the next job's input is this job's output mesh. */
+  setRunTarget(jobId: string, artifact: string): void {
+    const job = this.jobs.get(jobId);
+    if (!job) return;
+    this.runTarget = { jobId, artifact };
+    this.algorithmsPanel.setMesh(`${artifact} of ${job.algorithm}`);
+    this.renderJobs();
   }
 
   async cancel(id: string): Promise<void> {
@@ -309,6 +335,7 @@ export class App {
       meshName: (id) => this.meshes.find((m) => m.id === id)?.name ?? null,
       shown: this.field ? { jobId: this.field.jobId, artifact: this.field.artifact } : null,
       added: this.added,
+      target: this.runTarget ? `${this.runTarget.jobId}/${this.runTarget.artifact}` : null,
       metrics: this.metrics,
     });
   }
@@ -454,6 +481,10 @@ export class App {
     const mesh = this.meshes.find((m) => m.id === id);
     if (!mesh) return;
     this.selectedId = id;
+    if (this.runTarget) {
+      this.runTarget = null;
+      this.renderJobs();
+    }
     this.renderList();
     this.report.render(mesh);
     this.algorithmsPanel.setMesh(mesh.name);
@@ -558,6 +589,7 @@ export class App {
 
   private renderList(): void {
     this.list.render(this.meshes, this.selectedId);
+    this.algorithmsPanel.setMeshes(this.meshes.map((m) => ({ id: m.id, name: m.name })));
     if (this.jobs.size) this.renderJobs(); // mesh names in the job panel
   }
 

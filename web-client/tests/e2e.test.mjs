@@ -14,7 +14,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { chromiumBin, dist, launchBrowser, repo, serverBin, startServer } from './harness.mjs';
+import { chromiumBin, dist, isMeshOrange, launchBrowser, pngPixels, repo, serverBin, startServer } from './harness.mjs';
 
 const elephant = path.join(repo, 'build', 'samples', 'elephant.off');
 const artifacts = path.join(repo, 'build', 'test-artifacts');
@@ -76,66 +76,41 @@ after(async () => {
   }
 });
 
-// Counts mesh-coloured and background pixels of a PNG, decoded by the page's
-// own image decoder into a 2D canvas.
+// Counts mesh-coloured and background pixels of a PNG.
 async function analyse(png) {
-  return page.evaluate(
-    async ({ b64, background }) => {
-      const img = new Image();
-      img.src = `data:image/png;base64,${b64}`;
-      await img.decode();
-      const c = document.createElement('canvas');
-      c.width = img.naturalWidth;
-      c.height = img.naturalHeight;
-      const ctx = c.getContext('2d', { willReadFrequently: true });
-      ctx.drawImage(img, 0, 0);
-      const { data, width, height } = ctx.getImageData(0, 0, c.width, c.height);
-
-      // The surface colour #e07a1f (hue 28°) under white light: an orange hue,
-      // clearly saturated, not too dark. Highlights whiten and do not count.
-      const isMesh = (r, g, b) => {
-        const max = Math.max(r, g, b);
-        const min = Math.min(r, g, b);
-        if (max < 40 || max - min < 0.35 * max || r !== max) return false;
-        const hue = (60 * (g - b)) / (max - min);
-        return hue >= 12 && hue <= 45;
-      };
-      const isBackground = (r, g, b) =>
-        Math.abs(r - background[0]) <= 6 && Math.abs(g - background[1]) <= 6 && Math.abs(b - background[2]) <= 6;
-
-      function region(x0, y0, x1, y1) {
-        let mesh = 0;
-        let bg = 0;
-        let n = 0;
-        for (let y = Math.floor(y0); y < Math.floor(y1); ++y) {
-          for (let x = Math.floor(x0); x < Math.floor(x1); ++x) {
-            const i = (y * width + x) * 4;
-            const [r, g, b] = [data[i], data[i + 1], data[i + 2]];
-            if (isMesh(r, g, b)) ++mesh;
-            if (isBackground(r, g, b)) ++bg;
-            ++n;
-          }
-        }
-        return { mesh: mesh / n, background: bg / n };
+  const { data, width, height } = await pngPixels(page, png);
+  const isBackground = (r, g, b) =>
+    Math.abs(r - BACKGROUND[0]) <= 6 && Math.abs(g - BACKGROUND[1]) <= 6 && Math.abs(b - BACKGROUND[2]) <= 6;
+  function region(x0, y0, x1, y1) {
+    let mesh = 0;
+    let bg = 0;
+    let n = 0;
+    for (let y = Math.floor(y0); y < Math.floor(y1); ++y) {
+      for (let x = Math.floor(x0); x < Math.floor(x1); ++x) {
+        const i = (y * width + x) * 4;
+        const [r, g, b] = [data[i], data[i + 1], data[i + 2]];
+        if (isMeshOrange(r, g, b)) ++mesh;
+        if (isBackground(r, g, b)) ++bg;
+        ++n;
       }
-      // Corner patches, 2 px in from the edges (a page border may graze the edge row).
-      const k = Math.max(4, Math.round(Math.min(width, height) * 0.03));
-      const m = 2;
-      return {
-        width,
-        height,
-        whole: region(0, 0, width, height),
-        centre: region(width * 0.25, height * 0.25, width * 0.75, height * 0.75),
-        corners: [
-          region(m, m, m + k, m + k),
-          region(width - m - k, m, width - m, m + k),
-          region(m, height - m - k, m + k, height - m),
-          region(width - m - k, height - m - k, width - m, height - m),
-        ],
-      };
-    },
-    { b64: png.toString('base64'), background: BACKGROUND },
-  );
+    }
+    return { mesh: mesh / n, background: bg / n };
+  }
+  // Corner patches, 2 px in from the edges (a page border may graze the edge row).
+  const k = Math.max(4, Math.round(Math.min(width, height) * 0.03));
+  const m = 2;
+  return {
+    width,
+    height,
+    whole: region(0, 0, width, height),
+    centre: region(width * 0.25, height * 0.25, width * 0.75, height * 0.75),
+    corners: [
+      region(m, m, m + k, m + k),
+      region(width - m - k, m, width - m, m + k),
+      region(m, height - m - k, m + k, height - m),
+      region(width - m - k, height - m - k, width - m, height - m),
+    ],
+  };
 }
 
 test('uploading the elephant through the page lists, reports and draws it', async () => {

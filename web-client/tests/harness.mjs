@@ -1,6 +1,6 @@
-// What tests/e2e.test.mjs and bench/browser_bench.mjs share: the paths of the
-// server, the built client and chromium, and starting and stopping the real
-// server and a headless chromium.
+// What the end-to-end tests and bench/browser_bench.mjs share: the paths of
+// the server, the built client and chromium, starting and stopping the real
+// server and a headless chromium, and reading a screenshot's pixels.
 //
 // Environment: CGVIEW_SERVER (default build/bin/cgview-server),
 // CHROMIUM (default /usr/bin/chromium).
@@ -129,4 +129,61 @@ async function waitForHealth(url, timeoutMs, exited, log) {
 // Debian's chromium, headless, software WebGL through SwiftShader.
 export function launchBrowser() {
   return chromium.launch({ executablePath: chromiumBin, args: CHROMIUM_ARGS, headless: true });
+}
+
+// The RGBA pixels of a PNG screenshot, decoded by the page's own image
+// decoder (a 2D canvas), as { width, height, data: Uint8Array (4 per pixel) }.
+export async function pngPixels(page, png) {
+  const { width, height, b64 } = await page.evaluate(async (src) => {
+    const img = new Image();
+    img.src = `data:image/png;base64,${src}`;
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.naturalWidth;
+    c.height = img.naturalHeight;
+    const ctx = c.getContext('2d', { willReadFrequently: true });
+    ctx.drawImage(img, 0, 0);
+    const { data } = ctx.getImageData(0, 0, c.width, c.height);
+    const url = await new Promise((resolve) => {
+      const reader = new FileReader();
+      reader.onload = () => resolve(reader.result);
+      reader.readAsDataURL(new Blob([data]));
+    });
+    return { width: c.width, height: c.height, b64: String(url).slice(String(url).indexOf(',') + 1) };
+  }, png.toString('base64'));
+  return { width, height, data: new Uint8Array(Buffer.from(b64, 'base64')) };
+}
+
+// The surface's plain colour (#e07a1f, hue 28°) under white light: an orange
+// hue, clearly saturated, not too dark; highlights whiten and do not count.
+export function isMeshOrange(r, g, b) {
+  const max = Math.max(r, g, b);
+  const min = Math.min(r, g, b);
+  if (max < 40 || max - min < 0.35 * max || r !== max) return false;
+  const hue = (60 * (g - b)) / (max - min);
+  return hue >= 12 && hue <= 45;
+}
+
+// Distinct hues among the saturated pixels of the canvas, in 30° buckets
+// holding at least 1% of them (a colour map shows several), and the share of the plain orange surface.
+export function hueStats({ data }) {
+  const buckets = new Array(12).fill(0);
+  let saturated = 0;
+  let orange = 0;
+  for (let i = 0; i < data.length; i += 4) {
+    const [r, g, b] = [data[i], data[i + 1], data[i + 2]];
+    const max = Math.max(r, g, b);
+    const min = Math.min(r, g, b);
+    if (max < 40 || max - min < 0.25 * max) continue;
+    let h;
+    if (max === r) h = (60 * (g - b)) / (max - min);
+    else if (max === g) h = 120 + (60 * (b - r)) / (max - min);
+    else h = 240 + (60 * (r - g)) / (max - min);
+    h = (h + 360) % 360;
+    ++saturated;
+    ++buckets[Math.floor(h / 30) % 12];
+    if (max === r && h >= 12 && h <= 45 && max - min >= 0.35 * max) ++orange;
+  }
+  const distinct = buckets.filter((n) => n >= 0.01 * saturated).length;
+  return { saturated, distinct, buckets, orange: saturated ? orange / saturated : 0 };
 }

@@ -15,7 +15,7 @@ import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { chromiumBin, dist, launchBrowser, repo, serverBin, startServer } from './harness.mjs';
+import { chromiumBin, dist, hueStats, launchBrowser, pngPixels, repo, serverBin, startServer } from './harness.mjs';
 
 const elephant = path.join(repo, 'build', 'samples', 'elephant.off');
 const artifacts = path.join(repo, 'build', 'test-artifacts');
@@ -123,40 +123,7 @@ test('a parameter out of range shows the server\'s 400 detail beside the form', 
   pageProblems.length = 0; // the 400 is logged by chromium as a failed resource
 });
 
-// Distinct hues among the saturated pixels of the canvas, in 30° buckets
-// holding at least 1% of them, and the share of the plain orange surface.
-async function hues(png) {
-  return page.evaluate(async (b64) => {
-    const img = new Image();
-    img.src = `data:image/png;base64,${b64}`;
-    await img.decode();
-    const c = document.createElement('canvas');
-    c.width = img.naturalWidth;
-    c.height = img.naturalHeight;
-    const ctx = c.getContext('2d', { willReadFrequently: true });
-    ctx.drawImage(img, 0, 0);
-    const { data } = ctx.getImageData(0, 0, c.width, c.height);
-    const buckets = new Array(12).fill(0);
-    let saturated = 0;
-    let orange = 0;
-    for (let i = 0; i < data.length; i += 4) {
-      const [r, g, b] = [data[i], data[i + 1], data[i + 2]];
-      const max = Math.max(r, g, b);
-      const min = Math.min(r, g, b);
-      if (max < 40 || max - min < 0.25 * max) continue;
-      let h;
-      if (max === r) h = (60 * (g - b)) / (max - min);
-      else if (max === g) h = 120 + (60 * (b - r)) / (max - min);
-      else h = 240 + (60 * (r - g)) / (max - min);
-      h = (h + 360) % 360;
-      ++saturated;
-      ++buckets[Math.floor(h / 30) % 12];
-      if (max === r && h >= 12 && h <= 45 && max - min >= 0.35 * max) ++orange;
-    }
-    const distinct = buckets.filter((n) => n >= 0.01 * saturated).length;
-    return { saturated, distinct, buckets, orange: saturated ? orange / saturated : 0 };
-  }, png.toString('base64'));
-}
+const hues = async (png) => hueStats(await pngPixels(page, png));
 
 test('running centroid_distance on the elephant: the job goes to done and the mesh gets a colour map and a legend', async (t) => {
   if (skipWithoutApi(t)) return;

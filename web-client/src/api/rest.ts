@@ -1,6 +1,6 @@
 // The REST half of protocol/API.md: list, upload, get, delete meshes; list
 // algorithms; submit, list, get and cancel jobs; fetch their artifacts.
-import type { Algorithm, ErrorBody, Health, Job, Mesh } from './types.ts';
+import type { Algorithm, ErrorBody, Health, Job, JobInput, Mesh } from './types.ts';
 
 const BASE = '/api/v1';
 
@@ -90,7 +90,7 @@ export async function listAlgorithms(): Promise<Algorithm[]> {
 }
 
 /** Submits a job: 201 with the Job (already `done`, `cached: true`, when the result is stored). */
-export function submitJob(algorithm: string, inputs: Record<string, string>, params: Record<string, unknown>): Promise<Job> {
+export function submitJob(algorithm: string, inputs: Record<string, JobInput>, params: Record<string, unknown>): Promise<Job> {
   return request<Job>('/jobs', {
     method: 'POST',
     headers: { 'Content-Type': 'application/json' },

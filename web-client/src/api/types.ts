@@ -78,7 +78,7 @@ export interface Algorithm {
   title: string;
   description: string;
   area: string;
-  inputs: Array<{ name: string; kind: string }>;
+  inputs: Array<{ name: string; kind: string; description?: string }>;
   outputs: Array<{ name: string; kind: string }>;
   params: ParamsSchema;
 }
@@ -94,6 +94,9 @@ export interface ArtifactInfo {
   count?: number;
   hint?: string;
 }
+
+/** A job's input: a stored mesh's id, or an earlier job's output mesh. */
+export type JobInput = string | { job: string; artifact: string };
 
 export interface Job {
   id: string;

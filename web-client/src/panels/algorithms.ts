@@ -3,14 +3,24 @@
 // number input with min, max, step and the default; boolean → a checkbox;
 // enum → a select; string → a text input. Titles are the labels,
 // descriptions the help text. Run submits a job on the selected mesh; the
-// server's validation errors (400 detail) are shown beside the form. Nothing
-// here knows any algorithm by name: a new one needs no JavaScript.
+// server's validation errors (400 detail) are shown beside the form. An
+// algorithm of several inputs (hausdorff's `reference`) gets a mesh chooser
+// for each input after the first. Nothing here knows any algorithm by name: a
+// new one needs no JavaScript.
 import type { Algorithm, ParamSchema } from '../api/types.ts';
 import { el } from './dom.ts';
 
 export interface AlgorithmsActions {
-  /** Submits a job; resolves when it is submitted, rejects with a sentence to show beside the form. */
-  run(algorithm: string, params: Record<string, unknown>): Promise<void>;
+  /**
+   * Submits a job; `inputs` holds the mesh ids chosen for the inputs after the
+   * first. Resolves when it is submitted, rejects with a sentence to show beside the form.
+   */
+  run(algorithm: string, params: Record<string, unknown>, inputs: Record<string, string>): Promise<void>;
+}
+
+export interface MeshChoice {
+  id: string;
+  name: string;
 }
 
 interface Field {
@@ -79,6 +89,9 @@ export class AlgorithmsPanel {
   private algorithms: Algorithm[] = [];
   private chosen: string | null = null;
   private meshName: string | null = null;
+  private meshes: MeshChoice[] = [];
+  /** The choosers of the chosen algorithm's extra inputs, by input name. */
+  private inputSelects = new Map<string, HTMLSelectElement>();
   private running = false;
   private runButton: HTMLButtonElement | null = null;
   private target: HTMLElement | null = null;
@@ -132,6 +145,18 @@ export class AlgorithmsPanel {
     this.updateRun();
   }
 
+  /** The meshes an extra input may name (the server's mesh list). */
+  setMeshes(meshes: MeshChoice[]): void {
+    this.meshes = meshes;
+    for (const select of this.inputSelects.values()) this.fillChooser(select);
+  }
+
+  private fillChooser(select: HTMLSelectElement): void {
+    const keep = select.value;
+    select.replaceChildren(...this.meshes.map((m) => el('option', { value: m.id }, m.name)));
+    if (this.meshes.some((m) => m.id === keep)) select.value = keep;
+  }
+
   private updateRun(): void {
     if (this.runButton) this.runButton.disabled = this.running || this.meshName === null;
     if (this.target) this.target.textContent = this.meshName ? `on ${this.meshName}` : 'Choose a mesh first.';
@@ -142,6 +167,18 @@ export class AlgorithmsPanel {
     const form = el('form', { class: 'algorithm-form', 'data-algorithm': algorithm.name, novalidate: '' });
     form.append(el('p', { class: 'algorithm-description' }, algorithm.description));
     const fields: Field[] = [];
+    this.inputSelects = new Map();
+    for (const input of (algorithm.inputs ?? []).slice(1)) {
+      if (input.kind !== 'mesh') continue;
+      const id = `input-${algorithm.name}-${input.name}`;
+      const select = el('select', { id, name: input.name, 'data-input': input.name });
+      this.fillChooser(select);
+      this.inputSelects.set(input.name, select);
+      const row = el('div', { class: 'param param-input', 'data-input-row': input.name });
+      row.append(el('label', { for: id, class: 'param-label' }, input.name), select);
+      if (input.description) row.append(el('small', { class: 'param-help' }, input.description));
+      form.append(row);
+    }
     const properties = algorithm.params?.properties ?? {};
     for (const [name, schema] of Object.entries(properties)) {
       const id = `param-${algorithm.name}-${name}`;
@@ -177,8 +214,10 @@ export class AlgorithmsPanel {
       errorBox.textContent = '';
       this.running = true;
       this.updateRun();
+      const inputs: Record<string, string> = {};
+      for (const [name, select] of this.inputSelects) if (select.value) inputs[name] = select.value;
       this.actions
-        .run(algorithm.name, params)
+        .run(algorithm.name, params, inputs)
         .catch((e: unknown) => {
           errorBox.textContent = e instanceof Error ? e.message : String(e);
           errorBox.hidden = false;

@@ -2,7 +2,8 @@
 // stage and a live progress bar (updated from the WebSocket's job_* events),
 // a cancel button while it is queued or running, and for a finished job its
 // artifacts: scalar fields can be shown on the mesh, metrics are a table,
-// meshes can be added to the view beside their input, and downloaded.
+// meshes can be added to the view beside their input, downloaded, or made the
+// input of the next job ("Run on this": a chain, API.md "Jobs chain").
 import { artifactUrl } from '../api/rest.ts';
 import type { ArtifactInfo, Job } from '../api/types.ts';
 import { el } from './dom.ts';
@@ -13,6 +14,8 @@ export interface JobsActions {
   showField(jobId: string, artifact: string): void;
   /** Adds a mesh artifact to the view, beside its input mesh. */
   addMesh(jobId: string, artifact: string): void;
+  /** Makes a mesh artifact the input of the next job (the algorithm form runs on it). */
+  runOn(jobId: string, artifact: string): void;
 }
 
 export interface JobsView {
@@ -23,6 +26,8 @@ export interface JobsView {
   shown: { jobId: string; artifact: string } | null;
   /** Mesh artifacts in the view, as `${jobId}/${name}`. */
   added: ReadonlySet<string>;
+  /** The mesh artifact the next job runs on (`${jobId}/${name}`), if one was chosen. */
+  target: string | null;
   /** Fetched metrics artifacts, by `${jobId}/${name}`: the JSON, or an error sentence. */
   metrics: ReadonlyMap<string, unknown>;
 }
@@ -136,7 +141,7 @@ export class JobsPanel {
       el('span', { class: 'job-stage' }, job.stage || ''),
       el('span', { class: 'job-percent' }, `${Math.floor(fraction * 100)}%`),
     );
-    const li = el('li', { class: 'job', 'data-job-id': job.id, 'data-state': job.state }, head, status, bar);
+    const li = el('li', { class: 'job', 'data-job-id': job.id, 'data-algorithm': job.algorithm, 'data-state': job.state }, head, status, bar);
     if (ACTIVE.has(job.state)) {
       const cancel = el('button', { type: 'button', class: 'button small cancel', title: 'Cancel this job' }, 'Cancel');
       cancel.addEventListener('click', () => {
@@ -165,7 +170,11 @@ export class JobsPanel {
       const add = el('button', { type: 'button', class: added ? 'button small add active' : 'button small add' }, added ? 'Added' : 'Add to view');
       add.disabled = added;
       add.addEventListener('click', () => this.actions.addMesh(job.id, a.name));
-      row.append(label, add, ' ', el('a', { href: artifactUrl(job.id, a.name, 'ply'), download: '' }, 'ply'), ' ', el('a', { href: artifactUrl(job.id, a.name, 'obj'), download: '' }, 'obj'));
+      const targeted = view.target === `${job.id}/${a.name}`;
+      const runOn = el('button', { type: 'button', class: targeted ? 'button small run-on active' : 'button small run-on', title: 'Run the next algorithm on this result' }, targeted ? 'Input of next run' : 'Run on this');
+      runOn.disabled = targeted;
+      runOn.addEventListener('click', () => this.actions.runOn(job.id, a.name));
+      row.append(label, add, ' ', runOn, ' ', el('a', { href: artifactUrl(job.id, a.name, 'ply'), download: '' }, 'ply'), ' ', el('a', { href: artifactUrl(job.id, a.name, 'obj'), download: '' }, 'obj'));
     } else if (a.kind === 'metrics') {
       row.append(label);
       const data = view.metrics.get(`${job.id}/${a.name}`);

@@ -1,0 +1,129 @@
+// hausdorff: the distance between two meshes, with a per-vertex error field.
+//
+// The symmetric Hausdorff distance max(h(A,B), h(B,A)), h(A,B) = max over
+// points a of A of min over points b of B of |a - b|, by CGAL's
+// bounded_error_Hausdorff_distance (Krayer and Müller 2021): exact within
+// `error_bound` times the bounding-box diagonal, over the whole surfaces, not
+// only at vertices.  The field is the distance from each vertex of "mesh" to
+// the surface of "reference" (closest point on an AABB tree of its
+// triangles), for the colour map; its maximum is a lower bound of h(A,B).
+// The kernel first: distance.h calls CGAL::midpoint without including it.
+#include "core/surface_mesh.h"
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Polygon_mesh_processing/distance.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "registry/registry.h"
+
+namespace cgview {
+namespace {
+
+struct Params {
+  double error_bound = 1e-4;
+  template <class V>
+  void describe(V& v) {
+    v.number("error_bound", error_bound,
+             {.label = "Error bound",
+              .min = 1e-7,
+              .max = 0.1,
+              .help = "how far from the exact Hausdorff distance the answer may be, as a fraction of the "
+                      "bounding-box diagonal of both meshes"});
+  }
+};
+
+using Triangle = Kernel::Triangle_3;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle>::const_iterator>>>;
+
+// Both meshes as CGAL needs them; non-manifold faces cannot enter a
+// Surface_mesh, so the bound would leave them out: refuse instead.
+SurfaceMesh halfedge_mesh(const Mesh& m, const char* which) {
+  SurfaceMeshResult r = to_surface_mesh(m);
+  if (r.skipped_faces > 0)
+    throw InvalidInput(std::string("hausdorff needs a manifold ") + which + ": " + std::to_string(r.skipped_faces) +
+                       " faces could not be placed in a halfedge structure (non-manifold or degenerate; run repair "
+                       "first)");
+  return std::move(r.mesh);
+}
+
+AlgorithmResult run(const Inputs& in, const Params& p, Context& ctx) {
+  const Mesh& a = in.mesh("mesh");
+  const Mesh& b = in.mesh("reference");
+  if (a.num_faces() == 0) throw InvalidInput("input 'mesh' has no faces");
+  if (b.num_faces() == 0) throw InvalidInput("input 'reference' has no faces");
+  ctx.progress(0, "converting");
+  BBox box;
+  for (const Vec3& v : a.positions) box.add(v);
+  for (const Vec3& v : b.positions) box.add(v);
+  const double diagonal = box.diagonal();
+  const SurfaceMesh sa = halfedge_mesh(a, "mesh"), sb = halfedge_mesh(b, "reference");
+  ctx.check_cancelled();
+
+  // The per-vertex field: distance from each vertex of A to B's surface.
+  ctx.progress(0.05, "vertex distances");
+  std::vector<Triangle> triangles;
+  triangles.reserve(b.num_faces());
+  auto point = [](const Vec3& v) { return Point3(v.x, v.y, v.z); };
+  for (const auto& f : b.faces) triangles.emplace_back(point(b.positions[f[0]]), point(b.positions[f[1]]), point(b.positions[f[2]]));
+  Tree tree(triangles.begin(), triangles.end());
+  tree.accelerate_distance_queries();
+  ScalarField field{"distance", Location::vertex, ColorHint::magnitude, {}};
+  field.values.resize(a.num_vertices());
+  double sum = 0, sum2 = 0, vmax = 0;
+  for (std::size_t i = 0; i < a.num_vertices(); ++i) {
+    if (i % 4096 == 0) {
+      ctx.check_cancelled();
+      ctx.progress(0.05 + 0.25 * double(i) / double(a.num_vertices()), "vertex distances");
+    }
+    const double d = std::sqrt(CGAL::to_double(tree.squared_distance(point(a.positions[i]))));
+    field.values[i] = float(d);
+    sum += d;
+    sum2 += d * d;
+    vmax = std::max(vmax, d);
+  }
+
+  // The Hausdorff distance over the whole surfaces, in both directions.
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  const double bound = p.error_bound * diagonal;
+  ctx.progress(0.3, "mesh to reference");
+  const double ab = PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(sa, sb, bound);
+  ctx.check_cancelled();
+  ctx.progress(0.65, "reference to mesh");
+  const double ba = PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(sb, sa, bound);
+
+  const double n = double(std::max<std::size_t>(a.num_vertices(), 1));
+  Metrics m;
+  m["hausdorff"] = std::max(ab, ba);
+  m["mesh_to_reference"] = ab;
+  m["reference_to_mesh"] = ba;
+  m["hausdorff_relative"] = diagonal > 0 ? std::max(ab, ba) / diagonal : 0;
+  m["error_bound"] = bound;
+  m["bbox_diagonal"] = diagonal;
+  m["vertex_distance_max"] = vmax;
+  m["vertex_distance_mean"] = sum / n;
+  m["vertex_distance_rms"] = std::sqrt(sum2 / n);
+  AlgorithmResult result;
+  result.artifacts.push_back({"distance", std::move(field)});
+  result.artifacts.push_back({"metrics", std::move(m)});
+  ctx.progress(1.0, "done");
+  return result;
+}
+
+CGVIEW_REGISTER_ALGORITHM(hausdorff, Params, run,
+                          {.title = "Hausdorff distance",
+                           .description = "The symmetric Hausdorff distance between two meshes (exact within a "
+                                          "bound, over the whole surfaces), and each vertex's distance to the "
+                                          "reference as a colour map.",
+                           .area = "filters",
+                           .outputs = {{"distance", OutputKind::scalar_field}, {"metrics", OutputKind::metrics}},
+                           .inputs = {{.name = "mesh", .kind = OutputKind::mesh, .help = "the mesh measured (it carries the colour map)"},
+                                      {.name = "reference", .kind = OutputKind::mesh, .help = "the mesh it is compared with"}}})
+
+}  // namespace
+}  // namespace cgview

@@ -1,0 +1,149 @@
+// End-to-end test of CGAL's filters in the viewer, against the real server:
+// simplify the elephant from the algorithm form, add its output mesh to the
+// view (a second scene object, drawn), then "Run on this": hausdorff on that
+// output against the original elephant, chosen in the form's reference
+// chooser. The chained output becomes a mesh of its own in the list, and the
+// per-vertex distance is drawn on it as a colour map, with the metrics table.
+// The canvas is kept in build/test-artifacts/e2e-filters-*.png.
+//
+// Environment: CGVIEW_SERVER (default build/bin/cgview-server),
+// CHROMIUM (default /usr/bin/chromium).
+import { after, before, test } from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { chromiumBin, dist, hueStats, launchBrowser, pngPixels, repo, serverBin, startServer } from './harness.mjs';
+
+const elephant = path.join(repo, 'build', 'samples', 'elephant.off');
+const artifacts = path.join(repo, 'build', 'test-artifacts');
+const TARGET_FACES = 1000;
+
+let server = null;
+let browser = null;
+let page = null;
+let baseUrl = null;
+let elephantId = null;
+const pageProblems = [];
+
+const describeProblems = () => (pageProblems.length ? `\npage problems:\n${pageProblems.join('\n')}` : '');
+
+before(async () => {
+  for (const [what, file] of [
+    ['the server', serverBin],
+    ['the built web client', path.join(dist, 'index.html')],
+    ['the elephant sample', elephant],
+    ['chromium', chromiumBin],
+  ]) {
+    assert.ok(fs.existsSync(file), `${what} is missing: ${file}`);
+  }
+  fs.mkdirSync(artifacts, { recursive: true });
+  server = await startServer({ tmpPrefix: 'cgview-e2e-filters-' });
+  baseUrl = server.url;
+  browser = await launchBrowser();
+  page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+  page.on('pageerror', (e) => pageProblems.push(`pageerror: ${e.message}`));
+  page.on('console', (m) => {
+    if (m.type() === 'error') pageProblems.push(`console.error: ${m.text()} (${m.location().url})`);
+  });
+  page.on('response', (r) => {
+    if (r.status() >= 400) pageProblems.push(`HTTP ${r.status()}: ${r.request().method()} ${r.url()}`);
+  });
+  await page.goto(baseUrl + '/');
+  await page.waitForFunction(() => window.__cgview?.ready === true, null, { timeout: 30000 });
+  const r = await fetch(`${baseUrl}/api/v1/meshes?name=elephant.off`, { method: 'POST', body: fs.readFileSync(elephant) });
+  assert.equal(r.status, 201, await r.clone().text());
+  elephantId = (await r.json()).id;
+  await page.locator(`#mesh-list li.mesh[data-mesh-id="${elephantId}"]`).click();
+  await page.waitForFunction((id) => window.__cgview.lastLoaded?.id === id, elephantId, { timeout: 60000 });
+});
+
+after(async () => {
+  try {
+    if (browser) await browser.close();
+  } finally {
+    if (server) await server.stop();
+  }
+});
+
+async function waitDone(algorithm) {
+  const li = page.locator(`#jobs li.job[data-algorithm="${algorithm}"][data-state="done"]`).first();
+  await li.waitFor({ timeout: 120000 }).catch(async (e) => {
+    const states = await page.locator('#jobs li.job').evaluateAll((ls) => ls.map((l) => `${l.dataset.algorithm}:${l.dataset.state}:${l.innerText}`));
+    throw new Error(`${algorithm} never showed done: ${e.message}\njobs: ${states.join('\n')}${describeProblems()}\n${server.log()}`);
+  });
+  return li;
+}
+
+async function selectAlgorithm(name) {
+  await page.locator('#algorithm-menu').selectOption(name);
+  const form = page.locator(`form.algorithm-form[data-algorithm="${name}"]`);
+  await form.waitFor();
+  return form;
+}
+
+let simplifyJob = null;
+
+test('simplify from the form: its output mesh is added to the view as a second object', async () => {
+  const form = await selectAlgorithm('simplify');
+  await form.locator('input[data-param="target_faces"]').fill(String(TARGET_FACES));
+  await form.locator('button.run').click();
+  const done = await waitDone('simplify');
+  simplifyJob = await done.getAttribute('data-job-id');
+  const row = done.locator('.artifact-mesh[data-artifact="mesh"]');
+  await row.locator('button.add').click();
+  await page.waitForFunction((id) => window.__cgview.lastExtra?.jobId === id, simplifyJob, { timeout: 30000 });
+  const extra = await page.evaluate(() => window.__cgview.lastExtra);
+  assert.ok(extra.faces <= TARGET_FACES && extra.faces >= 0.9 * TARGET_FACES, `the simplified mesh has about ${TARGET_FACES} faces: ${JSON.stringify(extra)}`);
+  assert.equal(await row.locator('button.add').innerText(), 'Added');
+  const png = await page.locator('#viewport canvas').screenshot({ path: path.join(artifacts, 'e2e-filters-simplified.png') });
+  const h = hueStats(await pngPixels(page, png));
+  assert.ok(h.saturated > 5000, `the meshes are drawn: ${JSON.stringify(h)}`);
+  assert.deepEqual(pageProblems, [], describeProblems());
+});
+
+test('"Run on this" chains: hausdorff of the simplified mesh against the elephant, drawn as a colour map', async () => {
+  assert.ok(simplifyJob, 'the simplify test ran');
+  const meshesBefore = await page.locator('#mesh-list li.mesh').count();
+  const done = page.locator(`#jobs li.job[data-job-id="${simplifyJob}"]`);
+  await done.locator('.artifact-mesh[data-artifact="mesh"] button.run-on').click();
+  const form = await selectAlgorithm('hausdorff');
+  assert.match(await form.locator('.run-target').innerText(), /mesh of simplify/, 'the form runs on the chosen output');
+  // The reference chooser lists the stored meshes; the elephant is the reference.
+  const reference = form.locator('select[data-input="reference"]');
+  const options = await reference.locator('option').evaluateAll((os) => os.map((o) => o.value));
+  assert.ok(options.includes(elephantId), `the reference chooser lists the elephant: ${options}`);
+  await reference.selectOption(elephantId);
+  await form.locator('button.run').click();
+
+  const li = await waitDone('hausdorff');
+  const jobId = await li.getAttribute('data-job-id');
+  const job = await (await fetch(`${baseUrl}/api/v1/jobs/${jobId}`)).json();
+  assert.equal(job.inputs.reference, elephantId);
+  assert.notEqual(job.inputs.mesh, elephantId, 'the input is the stored output of simplify');
+  // The chained output is a mesh of its own in the list, with the simplified counts.
+  await page.waitForFunction((n) => document.querySelectorAll('#mesh-list li.mesh').length > n, meshesBefore, { timeout: 15000 });
+  const stored = await (await fetch(`${baseUrl}/api/v1/meshes/${job.inputs.mesh}`)).json();
+  assert.ok(stored.report.faces <= TARGET_FACES, `the stored input is the simplified mesh: ${JSON.stringify(stored.report)}`);
+
+  // The distance field is drawn on it (one value per vertex), with a legend.
+  await page.waitForFunction((id) => window.__cgview.lastField?.jobId === id, jobId, { timeout: 60000 }).catch(async (e) => {
+    const error = await page.evaluate(() => window.__cgview.lastError);
+    throw new Error(`no field drawn (page error: ${error}): ${e.message}${describeProblems()}`);
+  });
+  const shown = await page.evaluate(() => window.__cgview.lastField);
+  assert.equal(shown.meshId, job.inputs.mesh);
+  assert.equal(shown.count, stored.report.vertices, 'one value per vertex of the simplified mesh');
+  assert.ok(shown.range[0] >= 0 && shown.range[1] > shown.range[0], `distances: ${shown.range}`);
+  const png = await page.locator('#viewport canvas').screenshot({ path: path.join(artifacts, 'e2e-filters-hausdorff.png') });
+  const h = hueStats(await pngPixels(page, png));
+  assert.ok(h.distinct >= 2 && h.orange < 0.5, `a colour map, not the plain surface: ${JSON.stringify(h)}`);
+
+  // The metrics table: the symmetric distance, small against the elephant's size.
+  const table = li.locator('.artifact-metrics table.metrics');
+  await table.waitFor({ timeout: 15000 });
+  const text = await table.innerText();
+  const m = /hausdorff relative\s+([0-9.e-]+)/.exec(text);
+  assert.ok(m, `the table shows the relative distance:\n${text}`);
+  assert.ok(Number(m[1]) > 0 && Number(m[1]) < 0.05, `simplified to ${TARGET_FACES} faces stays within 5% of the diagonal: ${m[1]}`);
+  assert.deepEqual(pageProblems, [], describeProblems());
+});
