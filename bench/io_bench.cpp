@@ -15,6 +15,7 @@
 
 #include "core/surface_mesh.h"
 #include "io/mesh_io.h"
+#include "bench_options.h"
 #include "io/samples.h"
 
 namespace fs = std::filesystem;
@@ -41,17 +42,9 @@ struct Case {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int repeat = 3;
-  bool quick = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--repeat" && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
-    else if (a == "--quick") quick = true;
-    else {
-      std::fprintf(stderr, "usage: io_bench [--repeat N] [--quick]\n");
-      return 2;
-    }
-  }
+  const bench::Options options = bench::parse_options(argc, argv, "io_bench");
+  const int repeat = options.repeat;
+  const bool quick = options.quick;
   const auto largest = resolve_mesh_path("refined_elephant.off");
   const auto base = resolve_mesh_path("bunny00.off");
   if (!largest || !base) {
@@ -76,6 +69,7 @@ int main(int argc, char** argv) {
   std::printf("|---|---:|---|---:|---:|---:|---:|---:|\n");
   for (const Input& in : inputs) {
     for (const Case& c : cases) {
+      if (!options.wants(c.label) && !options.wants(c.ext)) continue;
       const fs::path file = dir / (std::string("mesh_") + c.label[0] + c.label[4] + "." + c.ext);
       WriteOptions wo;
       wo.binary = c.binary;

@@ -7,9 +7,6 @@
 #include <CGAL/boost/graph/Euler_operations.h>
 
 #include <algorithm>
-#include <filesystem>
-#include <string>
-#include <utility>
 #include <tuple>
 #include <vector>
 
@@ -199,63 +196,6 @@ TEST(SurfaceMeshTest, FromSurfaceMeshTriangulatesNothing) {
   EXPECT_EQ(m.num_vertices(), 5u);
   ASSERT_EQ(m.num_faces(), 1u);
   EXPECT_NO_THROW(m.validate());
-}
-
-// The halfedge structure add_face would build, face by face: every face's
-// vertex cycle, the border, and CGAL's own validity check.
-SurfaceMesh by_add_face(const Mesh& m) {
-  SurfaceMesh sm;
-  for (const Vec3& p : m.positions) sm.add_vertex(Point3(p.x, p.y, p.z));
-  for (const Tri& t : m.faces)
-    sm.add_face(SurfaceMesh::Vertex_index(t[0]), SurfaceMesh::Vertex_index(t[1]), SurfaceMesh::Vertex_index(t[2]));
-  return sm;
-}
-
-void expect_same_structure(const SurfaceMesh& got, const SurfaceMesh& want) {
-  ASSERT_TRUE(got.is_valid(false));
-  ASSERT_EQ(got.number_of_vertices(), want.number_of_vertices());
-  ASSERT_EQ(got.number_of_faces(), want.number_of_faces());
-  ASSERT_EQ(got.number_of_edges(), want.number_of_edges());
-  for (auto f : want.faces()) {
-    std::vector<std::uint32_t> a, b;
-    for (auto v : CGAL::vertices_around_face(got.halfedge(f), got)) a.push_back(v.idx());
-    for (auto v : CGAL::vertices_around_face(want.halfedge(f), want)) b.push_back(v.idx());
-    std::rotate(a.begin(), std::min_element(a.begin(), a.end()), a.end());
-    std::rotate(b.begin(), std::min_element(b.begin(), b.end()), b.end());
-    ASSERT_EQ(a, b) << "face " << f.idx();
-  }
-  for (auto v : want.vertices()) {
-    ASSERT_EQ(got.is_border(v), want.is_border(v)) << "vertex " << v.idx();
-    ASSERT_EQ(got.degree(v), want.degree(v)) << "vertex " << v.idx();
-  }
-  std::size_t border_got = 0, border_want = 0;
-  for (auto h : got.halfedges()) border_got += got.is_border(h);
-  for (auto h : want.halfedges()) border_want += want.is_border(h);
-  EXPECT_EQ(border_got, border_want);
-}
-
-TEST(SurfaceMeshTest, DirectBuildMatchesAddFace) {
-  std::vector<std::pair<std::string, Mesh>> meshes = {
-      {"box", test::box()}, {"torus", test::torus()}, {"grid", test::grid(6)}, {"sphere", test::uv_sphere()}};
-  for (const char* name : {"elephant.off", "fandisk.off", "mushroom.off", "blobby_3cc.off", "cube-ouvert.off"}) {
-    const auto path = test::sample(name);
-    if (std::filesystem::exists(path)) meshes.push_back({name, read_mesh_file(path).mesh});
-  }
-  // An isolated vertex, and two open fans that meet at a vertex (add_face takes both).
-  Mesh isolated = test::box();
-  isolated.positions.push_back({5, 5, 5});
-  meshes.push_back({"isolated vertex", isolated});
-  Mesh two_fans;
-  two_fans.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
-  two_fans.faces = {{0, 1, 2}, {0, 3, 4}};
-  meshes.push_back({"two fans at a vertex", two_fans});
-  for (const auto& [name, m] : meshes) {
-    SCOPED_TRACE(name);
-    const SurfaceMeshResult r = to_surface_mesh(m);
-    const SurfaceMesh want = by_add_face(m);
-    EXPECT_EQ(r.skipped_faces, m.num_faces() - want.number_of_faces());
-    expect_same_structure(r.mesh, want);
-  }
 }
 
 }  // namespace
