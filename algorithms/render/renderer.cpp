@@ -94,6 +94,12 @@ void main() {
 }
 )";
 
+// Views for algorithms: depth and face ids only, the cheapest fragment work.
+const char* kCaptureFragment = R"(#version 330 core
+layout(location = 1) out uint o_face;
+void main() { o_face = uint(gl_PrimitiveID); }
+)";
+
 const char* kLineVertex = R"(#version 330 core
 layout(location = 0) in vec3 a_pos;
 uniform mat4 u_mvp;
@@ -178,7 +184,7 @@ void check_image_size(int width, int height) {
 struct Renderer::Impl {
   EglContext context;
   const GlFunctions& gl;
-  GLuint mesh_program = 0, line_program = 0;
+  GLuint mesh_program = 0, line_program = 0, capture_program = 0;
   GLuint fbo = 0, rb_color = 0, rb_face = 0, rb_depth = 0;
   int fbo_w = 0, fbo_h = 0;
   GlObjectCounts counts;
@@ -285,6 +291,7 @@ struct Renderer::Impl {
     Current cur(context);
     mesh_program = link(kMeshVertex, kMeshFragment);
     line_program = link(kLineVertex, kLineFragment);
+    capture_program = link(kLineVertex, kCaptureFragment);
   }
 
   void teardown() {
@@ -292,7 +299,8 @@ struct Renderer::Impl {
     free_framebuffer();
     if (mesh_program) gl.glDeleteProgram(mesh_program), --counts.programs;
     if (line_program) gl.glDeleteProgram(line_program), --counts.programs;
-    mesh_program = line_program = 0;
+    if (capture_program) gl.glDeleteProgram(capture_program), --counts.programs;
+    mesh_program = line_program = capture_program = 0;
   }
 
   void free_framebuffer() {
@@ -666,8 +674,12 @@ std::vector<ViewCapture> Renderer::capture(const Mesh& mesh, const std::vector<C
       // Only the face ids (when asked) and depth are written.
       const GLenum buffers[2] = {GL_NONE, GLenum(face_ids ? GL_COLOR_ATTACHMENT1 : GL_NONE)};
       im.gl.glDrawBuffers(2, buffers);
-      im.draw_mesh(g, cam.view, cam.projection, origin, RenderMode::flat, cam.kind == Projection::orthographic,
-                   Color{}, 0);
+      const Mat4 mvp = cam.projection * cam.view * translation(origin);
+      im.gl.glUseProgram(im.capture_program);
+      im.gl.glUniformMatrix4fv(im.loc(im.capture_program, "u_mvp"), 1, GL_FALSE, to_float(mvp).data());
+      im.gl.glBindVertexArray(g.vao);
+      im.gl.glDrawElements(GL_TRIANGLES, g.index_count, GL_UNSIGNED_INT, nullptr);
+      im.gl.glBindVertexArray(0);
       ViewCapture v;
       v.camera = cam;
       v.depth = im.read_depth(w, h);
