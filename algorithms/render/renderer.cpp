@@ -100,6 +100,10 @@ layout(location = 1) out uint o_face;
 void main() { o_face = uint(gl_PrimitiveID); }
 )";
 
+const char* kDepthFragment = R"(#version 330 core
+void main() {}
+)";
+
 const char* kLineVertex = R"(#version 330 core
 layout(location = 0) in vec3 a_pos;
 uniform mat4 u_mvp;
@@ -184,7 +188,7 @@ void check_image_size(int width, int height) {
 struct Renderer::Impl {
   EglContext context;
   const GlFunctions& gl;
-  GLuint mesh_program = 0, line_program = 0, capture_program = 0;
+  GLuint mesh_program = 0, line_program = 0, capture_program = 0, depth_program = 0;
   GLuint fbo = 0, rb_color = 0, rb_face = 0, rb_depth = 0;
   int fbo_w = 0, fbo_h = 0;
   GlObjectCounts counts;
@@ -292,6 +296,7 @@ struct Renderer::Impl {
     mesh_program = link(kMeshVertex, kMeshFragment);
     line_program = link(kLineVertex, kLineFragment);
     capture_program = link(kLineVertex, kCaptureFragment);
+    depth_program = link(kLineVertex, kDepthFragment);
   }
 
   void teardown() {
@@ -300,7 +305,8 @@ struct Renderer::Impl {
     if (mesh_program) gl.glDeleteProgram(mesh_program), --counts.programs;
     if (line_program) gl.glDeleteProgram(line_program), --counts.programs;
     if (capture_program) gl.glDeleteProgram(capture_program), --counts.programs;
-    mesh_program = line_program = capture_program = 0;
+    if (depth_program) gl.glDeleteProgram(depth_program), --counts.programs;
+    mesh_program = line_program = capture_program = depth_program = 0;
   }
 
   void free_framebuffer() {
@@ -675,8 +681,10 @@ std::vector<ViewCapture> Renderer::capture(const Mesh& mesh, const std::vector<C
       const GLenum buffers[2] = {GL_NONE, GLenum(face_ids ? GL_COLOR_ATTACHMENT1 : GL_NONE)};
       im.gl.glDrawBuffers(2, buffers);
       const Mat4 mvp = cam.projection * cam.view * translation(origin);
-      im.gl.glUseProgram(im.capture_program);
-      im.gl.glUniformMatrix4fv(im.loc(im.capture_program, "u_mvp"), 1, GL_FALSE, to_float(mvp).data());
+      // Without face ids the fragment shader is empty: only depth is written.
+      const GLuint program = face_ids ? im.capture_program : im.depth_program;
+      im.gl.glUseProgram(program);
+      im.gl.glUniformMatrix4fv(im.loc(program, "u_mvp"), 1, GL_FALSE, to_float(mvp).data());
       im.gl.glBindVertexArray(g.vao);
       im.gl.glDrawElements(GL_TRIANGLES, g.index_count, GL_UNSIGNED_INT, nullptr);
       im.gl.glBindVertexArray(0);
