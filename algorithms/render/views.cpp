@@ -1,6 +1,9 @@
 #include "render/views.h"
 
+#include <algorithm>
 #include <cmath>
+#include <exception>
+#include <thread>
 #include <map>
 #include <string>
 #include <utility>
@@ -69,7 +72,42 @@ std::vector<ViewCapture> capture_views(Renderer& renderer, const Mesh& mesh, con
   std::vector<CameraMatrices> cameras;
   cameras.reserve(dirs.size());
   for (const Vec3& d : dirs) cameras.push_back(orthographic_view(d, box, params.width, params.height));
-  return renderer.capture(mesh, cameras, params.face_ids);
+  if (params.contexts < 1 || params.contexts > 64)
+    throw InvalidInput("contexts must be in [1, 64], got " + std::to_string(params.contexts));
+  const int n = std::min<int>(params.contexts, int(cameras.size()));
+  if (n <= 1) return renderer.capture(mesh, cameras, params.face_ids);
+
+  // Contiguous blocks of views, one per context; the first on this thread.
+  const GlPlatform platform = renderer.info().platform == "surfaceless" ? GlPlatform::surfaceless : GlPlatform::device;
+  std::vector<std::vector<ViewCapture>> parts(n);
+  std::vector<std::exception_ptr> errors(n);
+  auto block = [&](int k) {
+    const std::size_t a = cameras.size() * k / n, b = cameras.size() * (k + 1) / n;
+    return std::vector<CameraMatrices>(cameras.begin() + a, cameras.begin() + b);
+  };
+  std::vector<std::thread> threads;
+  for (int k = 1; k < n; ++k)
+    threads.emplace_back([&, k] {
+      try {
+        Renderer extra(platform);
+        parts[k] = extra.capture(mesh, block(k), params.face_ids);
+      } catch (...) {
+        errors[k] = std::current_exception();
+      }
+    });
+  try {
+    parts[0] = renderer.capture(mesh, block(0), params.face_ids);
+  } catch (...) {
+    errors[0] = std::current_exception();
+  }
+  for (auto& t : threads) t.join();
+  for (auto& e : errors)
+    if (e) std::rethrow_exception(e);
+  std::vector<ViewCapture> out;
+  out.reserve(cameras.size());
+  for (auto& p : parts)
+    for (auto& v : p) out.push_back(std::move(v));
+  return out;
 }
 
 }  // namespace cgview::render

@@ -27,10 +27,16 @@ struct ViewsParams {
   SphereSampling sampling = SphereSampling::fibonacci;
   int width = 256, height = 256;
   bool face_ids = false;
+  // Contexts drawing at once, each on its own thread with its own copy of the
+  // mesh (the given renderer is the first).  llvmpipe runs vertex processing
+  // and triangle setup on one thread per context, so on a CPU as many
+  // contexts as cores render large meshes faster; a GPU needs 1.
+  int contexts = 1;
 };
 
 // Orthographic silhouettes and depth of the mesh from each direction; the
 // bounding sphere fills each image (render/camera.h, orthographic_view).
+// Throws InvalidInput for a bad size, view count or contexts < 1.
 std::vector<ViewCapture> capture_views(Renderer& renderer, const Mesh& mesh, const ViewsParams& params = {});
 
 }  // namespace cgview::render

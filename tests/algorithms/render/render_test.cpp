@@ -408,6 +408,25 @@ TEST(RenderResources, ThousandRendersDoNotGrow) {
   std::printf("rss %ld kB -> %ld kB after 1000 renders\n", rss0, rss1);
 }
 
+// Views split over several contexts come back in order, equal to one context's.
+TEST(RenderViews, SeveralContextsGiveTheSameViews) {
+  const Mesh torus = test::torus();
+  ViewsParams p;
+  p.views = 7;
+  p.width = p.height = 48;
+  p.face_ids = true;
+  const auto one = capture_views(shared_renderer(), torus, p);
+  p.contexts = 3;
+  const auto three = capture_views(shared_renderer(), torus, p);
+  ASSERT_EQ(one.size(), three.size());
+  for (std::size_t v = 0; v < one.size(); ++v) {
+    EXPECT_EQ(one[v].depth, three[v].depth) << v;
+    EXPECT_EQ(one[v].face_ids, three[v].face_ids) << v;
+  }
+  p.contexts = 0;
+  EXPECT_THROW(capture_views(shared_renderer(), torus, p), InvalidInput);
+}
+
 // One renderer per thread: every thread gets the same picture as one alone.
 TEST(RenderResources, RenderersOnSeveralThreads) {
   const Mesh torus = test::torus();
