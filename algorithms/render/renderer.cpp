@@ -351,12 +351,13 @@ struct Renderer::Impl {
   // their precision near the object), optional normals and scalars.
   struct GpuMesh {
     GLuint vao = 0, pos = 0, normal = 0, scalar = 0, index = 0, face_buffer = 0, face_texture = 0;
-    GLsizei index_count = 0;
+    GLsizei index_count = 0, vertex_count = 0;
     int field = 0, map = 0;
   };
 
   GpuMesh upload(const Mesh& mesh, Vec3 origin, bool normals, const ScalarField* field) {
     GpuMesh g;
+    g.vertex_count = GLsizei(mesh.positions.size());
     g.vao = gen_array();
     gl.glBindVertexArray(g.vao);
     std::vector<float> buf(mesh.positions.size() * 3);
@@ -371,7 +372,7 @@ struct Renderer::Impl {
     gl.glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(buf.size() * sizeof(float)), buf.data(), GL_STATIC_DRAW);
     gl.glEnableVertexAttribArray(0);
     gl.glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-    if (normals) {
+    if (normals && !mesh.faces.empty()) {
       if (mesh.has_normals() && mesh.attributes_per_vertex() && mesh.normals.size() == mesh.positions.size()) {
         for (std::size_t i = 0; i < mesh.normals.size(); ++i) {
           buf[3 * i] = mesh.normals[i].x;
@@ -419,6 +420,11 @@ struct Renderer::Impl {
       }
     }
     static_assert(sizeof(Tri) == 3 * sizeof(GLuint));
+    if (mesh.faces.empty()) {
+      gl.glBindVertexArray(0);
+      gl.glBindBuffer(GL_ARRAY_BUFFER, 0);
+      return g;
+    }
     g.index = gen_buffer();
     gl.glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g.index);
     gl.glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh.faces.size() * sizeof(Tri)), mesh.faces.data(),
@@ -447,6 +453,9 @@ struct Renderer::Impl {
     gl.glUseProgram(mesh_program);
     gl.glUniformMatrix4fv(loc(mesh_program, "u_mvp"), 1, GL_FALSE, to_float(mvp).data());
     gl.glUniformMatrix4fv(loc(mesh_program, "u_mv"), 1, GL_FALSE, to_float(mv).data());
+    // A mesh with no faces (a point cloud) is drawn as its points, whatever the mode.
+    const bool cloud = g.index_count == 0;
+    if (cloud) mode = RenderMode::points;
     gl.glUniform1i(loc(mesh_program, "u_mode"), int(mode));
     gl.glUniform1i(loc(mesh_program, "u_field"), g.field);
     gl.glUniform1i(loc(mesh_program, "u_map"), g.map);
@@ -459,7 +468,8 @@ struct Renderer::Impl {
     const GLenum polygon = mode == RenderMode::points ? GL_POINT : (mode == RenderMode::wireframe ? GL_LINE : GL_FILL);
     gl.glPolygonMode(GL_FRONT_AND_BACK, polygon);
     gl.glBindVertexArray(g.vao);
-    gl.glDrawElements(GL_TRIANGLES, g.index_count, GL_UNSIGNED_INT, nullptr);
+    if (cloud) gl.glDrawArrays(GL_POINTS, 0, g.vertex_count);
+    else gl.glDrawElements(GL_TRIANGLES, g.index_count, GL_UNSIGNED_INT, nullptr);
     gl.glBindVertexArray(0);
     gl.glBindTexture(GL_TEXTURE_BUFFER, 0);
     gl.glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
@@ -600,8 +610,8 @@ RenderResult Renderer::render(const std::vector<RenderItem>& items, const Render
   if (items.empty()) throw InvalidInput("render: nothing to draw (no meshes)");
   for (std::size_t k = 0; k < items.size(); ++k) {
     const RenderItem& it = items[k];
-    if (!it.mesh || it.mesh->faces.empty())
-      throw InvalidInput("render: mesh " + std::to_string(k) + " has no faces");
+    if (!it.mesh || it.mesh->positions.empty())
+      throw InvalidInput("render: mesh " + std::to_string(k) + " has no vertices");
     it.mesh->validate();
     if (it.field) {
       try {

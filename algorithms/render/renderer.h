@@ -56,6 +56,8 @@ struct RenderResult {
   // Per pixel: the face seen, numbered over all items in order (item k's
   // face f is f + the face counts of items 0..k-1); kNoFace: background.
   // In points and wireframe modes: the face whose point or edge covers the pixel.
+  // A mesh with no faces (a point cloud) is drawn as points in every mode,
+  // and its "face" ids are vertex indices.
   std::vector<std::uint32_t> face_ids;
   std::vector<std::uint8_t> silhouette; // 1 where a surface is seen, else 0
 };
@@ -84,7 +86,7 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   // Draws the items.  Throws InvalidInput naming the problem: size (width,
-  // height), no items or an empty mesh, a field that does not match its mesh
+  // height), no items or a mesh with no vertices, a field that does not match its mesh
   // (field), a skeleton that fails validate() (skeleton).
   RenderResult render(const std::vector<RenderItem>& items, const RenderParams& params);
   RenderResult render(const Mesh& mesh, const RenderParams& params) { return render({RenderItem{&mesh}}, params); }

@@ -352,6 +352,28 @@ TEST(RenderImage, FieldSkeletonAndSeveralMeshes) {
   }
 }
 
+// The same picture from the orbit camera and from its matrices given in full;
+// a point cloud (no faces) is drawn as points.
+TEST(RenderImage, FullMatricesAndPointClouds) {
+  const Mesh torus = test::torus();
+  RenderParams p = reference_params();
+  const RenderResult orbit = shared_renderer().render(torus, p);
+  p.camera.view = orbit.camera.view;
+  p.camera.projection_matrix = orbit.camera.projection;
+  p.camera.azimuth = 123;  // ignored when both matrices are given
+  const RenderResult full = shared_renderer().render(torus, p);
+  EXPECT_EQ(full.color.rgba, orbit.color.rgba);
+
+  Mesh cloud;
+  cloud.positions = torus.positions;
+  RenderParams q = reference_params();
+  q.silhouette = true;
+  const RenderResult points = shared_renderer().render(cloud, q);
+  long inside = 0;
+  for (auto s : points.silhouette) inside += s;
+  EXPECT_GT(inside, 100);
+}
+
 TEST(RenderInput, BadSizesAndModes) {
   const Mesh cube = test::box();
   for (auto [w, h, name] : {std::tuple{0, 10, "width"}, std::tuple{10, 0, "height"}, std::tuple{8193, 10, "width"},
