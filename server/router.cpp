@@ -211,73 +211,7 @@ Router::Router(MeshService& meshes, RouterConfig config)
                       {"elevation", "camera elevation in degrees, -90..90 (default 20)"},
                       {"projection", "perspective (default) or orthographic"},
                       {"field", "a scalar-field artifact to colour by: JOB_ID/NAME, or NAME for the newest done job on this mesh"}},
-                     [this, find](const Params& p, const HttpRequest& req) {
-                       const MeshRecord rec = find(p);
-                       const auto q = split_target(req.target).second;
-                       render::RenderParams params;
-                       std::optional<ScalarField> field;
-                       try {
-                         for (const auto& [name, value] : q)
-                           if (name != "mode" && name != "width" && name != "height" && name != "azimuth" &&
-                               name != "elevation" && name != "projection" && name != "field")
-                             throw BadParameter(name, "unknown parameter '" + name + "'");
-                         if (q.count("mode")) {
-                           try {
-                             params.mode = render::parse_render_mode(q.at("mode"), "parameter 'mode'");
-                           } catch (const InvalidInput& e) {
-                             throw BadParameter("mode", e.what());
-                           }
-                         }
-                         params.width = int_param(q, "width", 800);
-                         params.height = int_param(q, "height", 600);
-                         for (const char* name : {"width", "height"}) {
-                           const int v = std::string(name) == "width" ? params.width : params.height;
-                           if (v < 1 || v > render::kMaxImageSize)
-                             throw BadParameter(name, std::string("parameter '") + name + "': must be in [1, " +
-                                                          std::to_string(render::kMaxImageSize) + "], got " + std::to_string(v));
-                         }
-                         params.camera.azimuth = number_param(q, "azimuth", 30);
-                         params.camera.elevation = number_param(q, "elevation", 20);
-                         if (params.camera.elevation < -90 || params.camera.elevation > 90)
-                           throw BadParameter("elevation", "parameter 'elevation': must be in [-90, 90], got " + q.at("elevation"));
-                         if (q.count("projection")) {
-                           const std::string& v = q.at("projection");
-                           if (v == "orthographic") params.camera.projection = render::Projection::orthographic;
-                           else if (v != "perspective")
-                             throw BadParameter("projection", "parameter 'projection': '" + v + "' is not perspective or orthographic");
-                         }
-                         if (q.count("field")) field = resolve_field(rec, q.at("field"));
-                       } catch (const BadParameter& e) {
-                         HttpResponse r = error_response(400, "bad_request", e.what());
-                         json body = json::parse(r.body);
-                         body["parameter"] = e.parameter;
-                         r.body = body.dump();
-                         return r;
-                       }
-                       const std::shared_ptr<const Mesh> mesh = meshes_.mesh(rec);
-                       if (field) {
-                         try {
-                           field->check_matches(*mesh);
-                         } catch (const InvalidInput& e) {
-                           HttpResponse r = error_response(400, "bad_request", std::string("parameter 'field': ") + e.what());
-                           json body = json::parse(r.body);
-                           body["parameter"] = "field";
-                           r.body = body.dump();
-                           return r;
-                         }
-                       }
-                       HttpResponse r;
-                       try {
-                         r.body = renders_->png(*mesh, field ? &*field : nullptr, params);
-                       } catch (const InvalidInput&) {
-                         throw;
-                       } catch (const Error& e) {
-                         return error_response(503, "render_unavailable", e.what());
-                       }
-                       r.content_type = "image/png";
-                       r.headers.push_back({"Cache-Control", "private, max-age=60"});
-                       return r;
-                     }});
+                     [this, find](const Params& p, const HttpRequest& req) { return render_png(find(p), req); }});
   // Algorithms and jobs (protocol/API.md): run in worker processes by the JobScheduler.
   auto jobs = [this]() -> JobScheduler& {
     if (!config_.jobs) throw std::runtime_error("this server runs no jobs");
@@ -338,6 +272,71 @@ Router::Router(MeshService& meshes, RouterConfig config)
   routes_.push_back({"GET", "/api/v1/openapi.json", "This API's OpenAPI 3 document", {},
                      [this](const Params&, const HttpRequest&) { return json_response(200, openapi()); },
                      false});
+}
+
+namespace {
+
+HttpResponse bad_parameter(const std::string& name, const std::string& detail) {
+  return json_response(400, json{{"error", "bad_request"}, {"detail", detail}, {"parameter", name}});
+}
+
+}  // namespace
+
+HttpResponse Router::render_png(const MeshRecord& rec, const HttpRequest& req) const {
+  const auto q = split_target(req.target).second;
+  render::RenderParams params;
+  std::optional<ScalarField> field;
+  try {
+    for (const auto& [name, value] : q)
+      if (name != "mode" && name != "width" && name != "height" && name != "azimuth" && name != "elevation" &&
+          name != "projection" && name != "field")
+        throw BadParameter(name, "unknown parameter '" + name + "'");
+    if (q.count("mode")) {
+      try {
+        params.mode = render::parse_render_mode(q.at("mode"), "parameter 'mode'");
+      } catch (const InvalidInput& e) {
+        throw BadParameter("mode", e.what());
+      }
+    }
+    params.width = int_param(q, "width", 800);
+    params.height = int_param(q, "height", 600);
+    for (const auto& [name, v] : {std::pair{"width", params.width}, std::pair{"height", params.height}})
+      if (v < 1 || v > render::kMaxImageSize)
+        throw BadParameter(name, std::string("parameter '") + name + "': must be in [1, " +
+                                     std::to_string(render::kMaxImageSize) + "], got " + std::to_string(v));
+    params.camera.azimuth = number_param(q, "azimuth", 30);
+    params.camera.elevation = number_param(q, "elevation", 20);
+    if (params.camera.elevation < -90 || params.camera.elevation > 90)
+      throw BadParameter("elevation", "parameter 'elevation': must be in [-90, 90], got " + q.at("elevation"));
+    if (q.count("projection")) {
+      const std::string& v = q.at("projection");
+      if (v == "orthographic") params.camera.projection = render::Projection::orthographic;
+      else if (v != "perspective")
+        throw BadParameter("projection", "parameter 'projection': '" + v + "' is not perspective or orthographic");
+    }
+    if (q.count("field")) field = resolve_field(rec, q.at("field"));
+  } catch (const BadParameter& e) {
+    return bad_parameter(e.parameter, e.what());
+  }
+  const std::shared_ptr<const Mesh> mesh = meshes_.mesh(rec);
+  if (field) {
+    try {
+      field->check_matches(*mesh);
+    } catch (const InvalidInput& e) {
+      return bad_parameter("field", std::string("parameter 'field': ") + e.what());
+    }
+  }
+  HttpResponse r;
+  try {
+    r.body = renders_->png(*mesh, field ? &*field : nullptr, params);
+  } catch (const InvalidInput&) {
+    throw;
+  } catch (const Error& e) {
+    return error_response(503, "render_unavailable", e.what());
+  }
+  r.content_type = "image/png";
+  r.headers.push_back({"Cache-Control", "private, max-age=60"});
+  return r;
 }
 
 ScalarField Router::resolve_field(const MeshRecord& rec, const std::string& spec) const {

@@ -69,6 +69,8 @@ class Router {
 
  private:
   HttpResponse serve_static(const std::string& path) const;
+  // GET /api/v1/meshes/{id}/render.png: 400 naming a bad parameter ("parameter" in the JSON).
+  HttpResponse render_png(const MeshRecord& rec, const HttpRequest& req) const;
   // The scalar field that render.png's `field` names (JOB_ID/NAME or NAME).
   ScalarField resolve_field(const MeshRecord& rec, const std::string& spec) const;
   MeshService& meshes_;
