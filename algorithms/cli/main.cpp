@@ -341,6 +341,9 @@ const char* kRenderHelp =
     "  --distance D        camera distance from the centre (default: fit the bounding box)\n"
     "  --ortho             orthographic projection (default perspective)\n"
     "  --silhouette        write the binary silhouette (white on black) instead of colours\n"
+    "  --depth FILE        also write the depth buffer: raw float32, rows from the top, window depth\n"
+    "                      in [0, 1] (1: background); not with --views\n"
+    "  --face-ids FILE     also write the face seen at each pixel: raw uint32 (4294967295: none)\n"
     "  --gl-platform P     auto (default: GPU device, else surfaceless llvmpipe), device or surfaceless;\n"
     "                      also the environment variable CGVIEW_GL_PLATFORM\n";
 
@@ -373,6 +376,7 @@ int cmd_render(const std::vector<std::string>& args) {
   bool size_given = false, silhouette = false;
   int views = 0;
   render::GlPlatform platform = render::GlPlatform::automatic;
+  std::string depth_out, ids_out;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&]() -> const std::string& {
@@ -396,6 +400,8 @@ int cmd_render(const std::vector<std::string>& args) {
     else if (a == "--distance") params.camera.distance = parse_double_option(a, value());
     else if (a == "--ortho") params.camera.projection = render::Projection::orthographic;
     else if (a == "--silhouette") silhouette = true;
+    else if (a == "--depth") depth_out = value();
+    else if (a == "--face-ids") ids_out = value();
     else if (a == "--gl-platform") platform = render::parse_gl_platform(value(), "--gl-platform");
     else if (a.starts_with("-")) throw Usage("render: unknown option " + a);
     else if (mesh_arg.empty()) mesh_arg = a;
@@ -404,6 +410,8 @@ int cmd_render(const std::vector<std::string>& args) {
   if (mesh_arg.empty()) throw Usage("render: which mesh?");
   if (out.empty()) throw Usage("render: -o OUT.png is needed");
   if (views > 0 && !size_given) params.width = params.height = 256;
+  if (views > 0 && (!depth_out.empty() || !ids_out.empty()))
+    throw Usage("render: --depth and --face-ids write one view, not --views");
   try {
     render::check_image_size(params.width, params.height);
   } catch (const InvalidInput& e) {
@@ -415,8 +423,16 @@ int cmd_render(const std::vector<std::string>& args) {
   render::Renderer renderer(platform);
   params.silhouette = silhouette;
   params.color = !silhouette;
+  params.depth = !depth_out.empty();
+  params.face_ids = !ids_out.empty();
+  auto write_raw = [](const std::string& path, const void* data, std::size_t bytes) {
+    std::ofstream f(path, std::ios::binary);
+    if (!f.write(static_cast<const char*>(data), std::streamsize(bytes))) throw IoError(path + ": cannot write");
+  };
   auto picture = [&](const render::RenderParams& p) {
     render::RenderResult res = renderer.render(r.mesh, p);
+    if (!depth_out.empty()) write_raw(depth_out, res.depth.data(), res.depth.size() * sizeof(float));
+    if (!ids_out.empty()) write_raw(ids_out, res.face_ids.data(), res.face_ids.size() * sizeof(std::uint32_t));
     return silhouette ? render::mask_image(res.silhouette, p.width, p.height) : std::move(res.color);
   };
   render::Image image;

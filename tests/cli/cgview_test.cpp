@@ -435,6 +435,14 @@ TEST(CliTest, RenderWritesAPng) {
   const fs::path mask = dir / "mask.png";
   ASSERT_EQ(cgview("render elephant --silhouette --ortho -o " + quote(mask.string()) + " --size 32x32").status, 0);
   for (std::uint8_t v : read_png_file(mask).rgba) EXPECT_TRUE(v == 0 || v == 255);
+  // Depth and face ids as raw arrays, one value per pixel.
+  const fs::path depth = dir / "depth.f32", ids = dir / "ids.u32";
+  ASSERT_EQ(cgview("render elephant -o " + quote((dir / "d.png").string()) + " --size 20x10 --depth " +
+                   quote(depth.string()) + " --face-ids " + quote(ids.string()))
+                .status,
+            0);
+  EXPECT_EQ(fs::file_size(depth), 20u * 10u * 4u);
+  EXPECT_EQ(fs::file_size(ids), 20u * 10u * 4u);
   fs::remove_all(dir);
 }
 
