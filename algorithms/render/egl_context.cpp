@@ -19,6 +19,7 @@ namespace {
 
 std::mutex g_mutex;  // guards the log and the display reference counts
 RenderLog g_log;
+std::function<bool(const std::string&)> g_fault;
 std::atomic<bool> g_software_logged{false};
 std::map<EGLDisplay, int> g_display_users;
 
@@ -73,6 +74,11 @@ const char* to_string(GlPlatform p) {
     case GlPlatform::surfaceless: return "surfaceless";
   }
   return "auto";
+}
+
+void set_egl_fault_injection(std::function<bool(const std::string&)> fail) {
+  std::lock_guard lock(g_mutex);
+  g_fault = std::move(fail);
 }
 
 void set_render_log(RenderLog log) {
@@ -137,6 +143,14 @@ struct EglContext::Impl {
     info.gl_renderer = str(GL_RENDERER);
     info.gl_version = str(GL_VERSION);
     if (info.gl_renderer.empty()) return fail("glGetString(GL_RENDERER) gave nothing");
+    {
+      std::function<bool(const std::string&)> fault;
+      {
+        std::lock_guard lock(g_mutex);
+        fault = g_fault;
+      }
+      if (fault && fault(c.name)) return fail("refused by fault injection");
+    }
     info.platform = c.name;
     info.software = c.software || is_software_renderer(info.gl_renderer);
     eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);

@@ -38,6 +38,11 @@ struct EglInfo {
 using RenderLog = std::function<void(const std::string& message)>;
 void set_render_log(RenderLog log);
 
+// For tests of the fallback: a candidate ("device 0", "surfaceless") for
+// which `fail` returns true is abandoned after its context started, as if its
+// driver had failed there.  nullptr (the default) turns it off.
+void set_egl_fault_injection(std::function<bool(const std::string& candidate)> fail);
+
 struct GlFunctions;  // the GL entry points, loaded through eglGetProcAddress (egl_context.cpp)
 
 // One EGL display and context.  A context is current on one thread at a

@@ -122,6 +122,41 @@ TEST(RenderContext, PlatformSetting) {
   }
 }
 
+// A platform that fails to start gives way to the next one; when all fail,
+// the error names each attempt.
+TEST(RenderContext, FallsBackWhenAPlatformFailsToStart) {
+  set_egl_fault_injection([](const std::string& name) { return name == "surfaceless"; });
+  try {
+    Renderer r;
+    EXPECT_NE(r.info().platform, "surfaceless");
+    bool refused = false;
+    for (const auto& a : r.info().attempts) refused |= a.find("surfaceless: refused") == 0;
+    // (On a GPU machine the hardware device comes first and surfaceless is never tried.)
+    if (r.info().software) EXPECT_TRUE(refused);
+    const Mesh cube = test::box();
+    RenderParams p;
+    p.width = p.height = 16;
+    p.silhouette = true;
+    long inside = 0;
+    for (auto s : r.render(cube, p).silhouette) inside += s;
+    EXPECT_GT(inside, 0);
+  } catch (const Error& e) {
+    // No other platform here: the message says why surfaceless was given up.
+    EXPECT_NE(std::string(e.what()).find("surfaceless: refused"), std::string::npos) << e.what();
+  }
+  set_egl_fault_injection([](const std::string&) { return true; });
+  try {
+    Renderer r;
+    ADD_FAILURE() << "started " << r.info().platform << " although every platform fails";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no EGL platform could start"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("refused by fault injection"), std::string::npos) << e.what();
+  }
+  set_egl_fault_injection(nullptr);
+  Renderer again;  // and nothing was left broken
+  EXPECT_FALSE(again.info().gl_renderer.empty());
+}
+
 TEST(RenderCamera, ProjectAndUnprojectInvert) {
   const BBox box = bounding_box(test::torus());
   for (Projection kind : {Projection::perspective, Projection::orthographic}) {
