@@ -23,6 +23,8 @@ const char* kHelp =
     "  --samples SET        sample meshes to load at start: default, all or none (default: default)\n"
     "  --max-upload-mb N    largest accepted upload (default 256)\n"
     "  --workers N          worker threads for geometry (default 2)\n"
+    "  --gl-platform P      EGL platform for render.png: auto (GPU device, else surfaceless llvmpipe),\n"
+    "                       device or surfaceless (default auto; also CGVIEW_GL_PLATFORM)\n"
     "  --ws-chunk-kb N      largest binary WebSocket chunk (default 4096)\n"
     "  --worker PATH        the job worker executable (default: cgview-worker beside this program)\n"
     "  --job-workers N      jobs run at once, each in its own process (default: the number of cores)\n"
@@ -74,6 +76,7 @@ int main(int argc, char** argv) {
       } else if (a == "--max-upload-mb") config.max_upload_bytes = std::size_t(number(1, 1 << 20)) << 20;
       else if (a == "--workers") config.workers = int(number(1, 256));
       else if (a == "--worker") config.jobs.worker = value();
+      else if (a == "--gl-platform") config.gl_platform = render::parse_gl_platform(value(), "--gl-platform");
       else if (a == "--job-workers") config.jobs.max_workers = int(number(1, 1024));
       else if (a == "--job-timeout-s") config.jobs.timeout_s = double(number(0, 100000000));
       else if (a == "--job-memory-mb") config.jobs.memory_mb = std::size_t(number(0, 1 << 24));
@@ -93,6 +96,8 @@ int main(int argc, char** argv) {
     const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
     config.jobs.worker = (ec ? std::filesystem::path(argv[0]) : self).parent_path() / "cgview-worker";
   }
+  // The renderer says once when only a software renderer is there.
+  render::set_render_log([](const std::string& m) { std::fprintf(stderr, "cgview-server: %s\n", m.c_str()); });
   try {
     server::Server srv(config);
     if (samples != "none") {

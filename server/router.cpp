@@ -1,11 +1,13 @@
 #include "router.h"
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
 
 #include "core/errors.h"
 #include "io/mesh_io.h"
 #include "jobs.h"
+#include "render_service.h"
 
 namespace cgview::server {
 
@@ -77,6 +79,31 @@ const char* content_type_of(const std::string& ext) {
   return it == types.end() ? "application/octet-stream" : it->second;
 }
 
+// A 400 naming the query parameter at fault.
+struct BadParameter : std::runtime_error {
+  BadParameter(std::string name, const std::string& detail) : std::runtime_error(detail), parameter(std::move(name)) {}
+  std::string parameter;
+};
+
+double number_param(const std::map<std::string, std::string>& q, const std::string& name, double fallback) {
+  const auto it = q.find(name);
+  if (it == q.end()) return fallback;
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(it->second, &used);
+    if (used == it->second.size() && std::isfinite(v)) return v;
+  } catch (const std::logic_error&) {
+  }
+  throw BadParameter(name, "parameter '" + name + "': '" + it->second + "' is not a number");
+}
+
+int int_param(const std::map<std::string, std::string>& q, const std::string& name, int fallback) {
+  const double v = number_param(q, name, fallback);
+  if (v != std::floor(v) || std::abs(v) > 1e9)
+    throw BadParameter(name, "parameter '" + name + "': '" + q.at(name) + "' is not an integer");
+  return int(v);
+}
+
 }  // namespace
 
 HttpResponse error_response(int status, const std::string& code, const std::string& detail) {
@@ -104,7 +131,10 @@ std::pair<std::string, std::map<std::string, std::string>> split_target(const st
   return {path, query};
 }
 
-Router::Router(MeshService& meshes, RouterConfig config) : meshes_(meshes), config_(std::move(config)) {
+Router::Router(MeshService& meshes, RouterConfig config)
+    : meshes_(meshes),
+      config_(std::move(config)),
+      renders_(std::make_shared<RenderService>(config_.gl_platform, config_.renderers)) {
   using Params = std::map<std::string, std::string>;
   auto find = [this](const Params& p) {
     auto rec = meshes_.store().get_mesh(p.at("id"));
@@ -172,6 +202,16 @@ Router::Router(MeshService& meshes, RouterConfig config) : meshes_(meshes), conf
                        r.headers.push_back({"Content-Disposition", "attachment; filename=\"" + stem + "." + format + "\""});
                        return r;
                      }});
+  // Offscreen renders (algorithms/render): a PNG of one mesh, for scripts and the viewer's thumbnails.
+  routes_.push_back({"GET", "/api/v1/meshes/{id}/render.png", "A picture of the mesh from the EGL offscreen renderer",
+                     {{"mode", "points, wireframe, flat, smooth (default) or toon"},
+                      {"width", "image width in pixels, 1..8192 (default 800)"},
+                      {"height", "image height in pixels, 1..8192 (default 600)"},
+                      {"azimuth", "camera azimuth around +y in degrees (default 30)"},
+                      {"elevation", "camera elevation in degrees, -90..90 (default 20)"},
+                      {"projection", "perspective (default) or orthographic"},
+                      {"field", "a scalar-field artifact to colour by: JOB_ID/NAME, or NAME for the newest done job on this mesh"}},
+                     [this, find](const Params& p, const HttpRequest& req) { return render_png(find(p), req); }});
   // Algorithms and jobs (protocol/API.md): run in worker processes by the JobScheduler.
   auto jobs = [this]() -> JobScheduler& {
     if (!config_.jobs) throw std::runtime_error("this server runs no jobs");
@@ -237,6 +277,113 @@ Router::Router(MeshService& meshes, RouterConfig config) : meshes_(meshes), conf
   routes_.push_back({"GET", "/api/v1/openapi.json", "This API's OpenAPI 3 document", {},
                      [this](const Params&, const HttpRequest&) { return json_response(200, openapi()); },
                      false});
+}
+
+namespace {
+
+HttpResponse bad_parameter(const std::string& name, const std::string& detail) {
+  return json_response(400, json{{"error", "bad_request"}, {"detail", detail}, {"parameter", name}});
+}
+
+}  // namespace
+
+HttpResponse Router::render_png(const MeshRecord& rec, const HttpRequest& req) const {
+  const auto q = split_target(req.target).second;
+  render::RenderParams params;
+  std::optional<ScalarField> field;
+  try {
+    for (const auto& [name, value] : q)
+      if (name != "mode" && name != "width" && name != "height" && name != "azimuth" && name != "elevation" &&
+          name != "projection" && name != "field")
+        throw BadParameter(name, "unknown parameter '" + name + "'");
+    if (q.count("mode")) {
+      try {
+        params.mode = render::parse_render_mode(q.at("mode"), "parameter 'mode'");
+      } catch (const InvalidInput& e) {
+        throw BadParameter("mode", e.what());
+      }
+    }
+    params.width = int_param(q, "width", 800);
+    params.height = int_param(q, "height", 600);
+    for (const auto& [name, v] : {std::pair{"width", params.width}, std::pair{"height", params.height}})
+      if (v < 1 || v > render::kMaxImageSize)
+        throw BadParameter(name, std::string("parameter '") + name + "': must be in [1, " +
+                                     std::to_string(render::kMaxImageSize) + "], got " + std::to_string(v));
+    params.camera.azimuth = number_param(q, "azimuth", 30);
+    params.camera.elevation = number_param(q, "elevation", 20);
+    if (params.camera.elevation < -90 || params.camera.elevation > 90)
+      throw BadParameter("elevation", "parameter 'elevation': must be in [-90, 90], got " + q.at("elevation"));
+    if (q.count("projection")) {
+      const std::string& v = q.at("projection");
+      if (v == "orthographic") params.camera.projection = render::Projection::orthographic;
+      else if (v != "perspective")
+        throw BadParameter("projection", "parameter 'projection': '" + v + "' is not perspective or orthographic");
+    }
+    if (q.count("field")) field = resolve_field(rec, q.at("field"));
+  } catch (const BadParameter& e) {
+    return bad_parameter(e.parameter, e.what());
+  }
+  const std::shared_ptr<const Mesh> mesh = meshes_.mesh(rec);
+  if (field) {
+    try {
+      field->check_matches(*mesh);
+    } catch (const InvalidInput& e) {
+      return bad_parameter("field", std::string("parameter 'field': ") + e.what());
+    }
+  }
+  HttpResponse r;
+  try {
+    r.body = renders_->png(*mesh, field ? &*field : nullptr, params);
+  } catch (const InvalidInput&) {
+    throw;
+  } catch (const Error& e) {
+    return error_response(503, "render_unavailable", e.what());
+  }
+  r.content_type = "image/png";
+  r.headers.push_back({"Cache-Control", "private, max-age=60"});
+  return r;
+}
+
+ScalarField Router::resolve_field(const MeshRecord& rec, const std::string& spec) const {
+  auto bad = [](const std::string& why) { return BadParameter("field", "parameter 'field': " + why); };
+  if (!config_.jobs) throw bad("this server runs no jobs, so it has no fields");
+  std::string job_id, name;
+  if (const std::size_t slash = spec.find('/'); slash != std::string::npos) {
+    job_id = spec.substr(0, slash);
+    name = spec.substr(slash + 1);
+  } else {
+    name = spec;
+    // The newest done job on this mesh with an artifact of that name.
+    const json list = config_.jobs->list();
+    const json& jobs = list.is_object() && list.contains("jobs") ? list["jobs"] : list;
+    for (auto it = jobs.rbegin(); it != jobs.rend(); ++it) {
+      const json& j = *it;
+      if (j.value("state", "") != "done") continue;
+      const json inputs = j.value("inputs", json::object());
+      if (!inputs.contains("mesh") || !inputs["mesh"].is_string() || inputs["mesh"].get<std::string>() != rec.id) continue;
+      for (const auto& a : j.value("artifacts", json::array()))
+        if (a.value("name", "") == name && a.value("kind", "") == "scalar_field") job_id = j.value("id", "");
+      if (!job_id.empty()) break;
+    }
+    if (job_id.empty()) throw bad("no done job on mesh " + rec.id + " has a scalar field '" + name + "'");
+  }
+  if (job_id.empty() || name.empty()) throw bad("'" + spec + "' is not JOB_ID/NAME or NAME");
+  ArtifactBytes a;
+  try {
+    a = config_.jobs->artifact(job_id, name, "json");
+  } catch (const std::exception& e) {
+    throw bad(e.what());
+  }
+  const json j = json::parse(a.bytes, nullptr, false);
+  if (!j.is_object() || !j.contains("values")) throw bad("artifact '" + name + "' of job " + job_id + " is not a scalar field");
+  ScalarField f;
+  f.name = j.value("name", name);
+  f.location = j.value("location", "vertex") == "face" ? Location::face : Location::vertex;
+  const std::string hint = j.value("hint", "standard");
+  f.hint = hint == "symmetric" ? ColorHint::symmetric : hint == "magnitude" ? ColorHint::magnitude
+           : hint == "categorical" ? ColorHint::categorical : ColorHint::standard;
+  for (const auto& v : j["values"]) f.values.push_back(v.is_number() ? v.get<float>() : NAN);
+  return f;
 }
 
 bool Router::is_heavy(const HttpRequest& req) const {

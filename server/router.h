@@ -12,7 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "core/scalar_field.h"
 #include "mesh_service.h"
+#include "render/egl_context.h"
 
 namespace cgview::server {
 
@@ -33,11 +35,14 @@ struct HttpResponse {
 HttpResponse error_response(int status, const std::string& code, const std::string& detail);
 
 class JobScheduler;
+class RenderService;
 
 struct RouterConfig {
   std::filesystem::path static_dir;  // the built web client; empty: none
   std::string version = "0.1.0";
   JobScheduler* jobs = nullptr;  // the algorithm and job routes answer 503 without one
+  render::GlPlatform gl_platform = render::GlPlatform::automatic;  // for render.png
+  int renderers = 2;  // EGL contexts rendering at once (render.png)
 };
 
 class Router {
@@ -64,8 +69,13 @@ class Router {
 
  private:
   HttpResponse serve_static(const std::string& path) const;
+  // GET /api/v1/meshes/{id}/render.png: 400 naming a bad parameter ("parameter" in the JSON).
+  HttpResponse render_png(const MeshRecord& rec, const HttpRequest& req) const;
+  // The scalar field that render.png's `field` names (JOB_ID/NAME or NAME).
+  ScalarField resolve_field(const MeshRecord& rec, const std::string& spec) const;
   MeshService& meshes_;
   RouterConfig config_;
+  std::shared_ptr<RenderService> renders_;
   std::vector<Route> routes_;
   std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
 };

@@ -40,7 +40,7 @@ struct Shared {
         store(c.data_dir),
         meshes(store),
         jobs(std::make_unique<JobScheduler>(meshes, c.jobs)),
-        router(meshes, {c.static_dir, "0.1.0", jobs.get()}),
+        router(meshes, {c.static_dir, "0.1.0", jobs.get(), c.gl_platform, std::max(1, c.workers)}),
         workers(std::size_t(std::max(1, c.workers))) {
     jobs->on_event = [r = &router](const json& e) {
       if (r->on_event) r->on_event(e);

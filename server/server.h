@@ -11,6 +11,7 @@
 #include <string>
 
 #include "jobs.h"
+#include "render/egl_context.h"
 
 namespace cgview::server {
 
@@ -24,6 +25,7 @@ struct ServerConfig {
   std::size_t max_ws_message_bytes = std::size_t(1) << 20;  // client messages are small JSON
   std::size_t max_write_queue_bytes = std::size_t(1) << 30; // per WebSocket, then the client is dropped
   int workers = 2;
+  render::GlPlatform gl_platform = render::GlPlatform::automatic;  // EGL platform of render.png
   JobConfig jobs;  // the worker executable, pool size, limits
 };
 

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -15,6 +16,7 @@
 #include "mesh_report_json.h"
 #include "registry/artifact_io.h"
 #include "registry/registry.h"
+#include "render/renderer.h"
 
 #include <chrono>
 #include <cmath>
@@ -42,6 +44,8 @@ const char* kMainHelp =
     "  list [--json]          the registered algorithms and their parameters\n"
     "  run ALGO MESH [--PARAM VALUE]... [-o OUT]\n"
     "                         run an algorithm (cgview run ALGO --help lists its parameters)\n"
+    "  render MESH -o OUT.png [--mode smooth] [--size 800x600] [--views N]\n"
+    "                         a picture (or a contact sheet of N views) from the EGL renderer\n"
     "\n"
     "options:\n"
     "  -h, --help             this help (also: cgview COMMAND --help)\n"
@@ -346,6 +350,136 @@ int cmd_run(const std::vector<std::string>& args) {
   return 0;
 }
 
+
+const char* kRenderHelp =
+    "usage: cgview render MESH -o OUT.png [options]\n"
+    "\n"
+    "Renders the mesh offscreen (EGL, no window or X server: a GPU when there is one,\n"
+    "else Mesa's llvmpipe) into a PNG.\n"
+    "\n"
+    "  -o FILE             the PNG to write (required)\n"
+    "  --mode M            points, wireframe, flat, smooth (default) or toon\n"
+    "  --size WxH          image size, each in [1, 8192] (default 800x600; 256x256 a view with --views)\n"
+    "  --views N           a contact sheet of N views around the mesh (azimuths 360/N apart)\n"
+    "  --azimuth DEG       camera azimuth around +y (default 30)\n"
+    "  --elevation DEG     camera elevation in [-90, 90] (default 20)\n"
+    "  --distance D        camera distance from the centre (default: fit the bounding box)\n"
+    "  --ortho             orthographic projection (default perspective)\n"
+    "  --silhouette        write the binary silhouette (white on black) instead of colours\n"
+    "  --depth FILE        also write the depth buffer: raw float32, rows from the top, window depth\n"
+    "                      in [0, 1] (1: background); not with --views\n"
+    "  --face-ids FILE     also write the face seen at each pixel: raw uint32 (4294967295: none)\n"
+    "  --gl-platform P     auto (default: GPU device, else surfaceless llvmpipe), device or surfaceless;\n"
+    "                      also the environment variable CGVIEW_GL_PLATFORM\n";
+
+int parse_int_option(const std::string& name, const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const int v = std::stoi(text, &used);
+    if (used != text.size()) throw std::invalid_argument(text);
+    return v;
+  } catch (const std::logic_error&) {
+    throw Usage("render: " + name + " needs an integer, got '" + text + "'");
+  }
+}
+
+double parse_double_option(const std::string& name, const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(text, &used);
+    if (used != text.size() || !std::isfinite(v)) throw std::invalid_argument(text);
+    return v;
+  } catch (const std::logic_error&) {
+    throw Usage("render: " + name + " needs a number, got '" + text + "'");
+  }
+}
+
+int cmd_render(const std::vector<std::string>& args) {
+  if (wants_help(args)) { std::fputs(kRenderHelp, stdout); return 0; }
+  std::string mesh_arg, out;
+  render::RenderParams params;
+  bool size_given = false, silhouette = false;
+  int views = 0;
+  render::GlPlatform platform = render::GlPlatform::automatic;
+  std::string depth_out, ids_out;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> const std::string& {
+      if (i + 1 >= args.size()) throw Usage("render: " + a + " needs a value");
+      return args[++i];
+    };
+    if (a == "-o") out = value();
+    else if (a == "--mode") params.mode = render::parse_render_mode(value(), "--mode");
+    else if (a == "--size") {
+      const std::string& v = value();
+      const std::size_t x = v.find('x');
+      if (x == std::string::npos) throw Usage("render: --size needs WIDTHxHEIGHT, got '" + v + "'");
+      params.width = parse_int_option("--size", v.substr(0, x));
+      params.height = parse_int_option("--size", v.substr(x + 1));
+      size_given = true;
+    } else if (a == "--views") {
+      views = parse_int_option("--views", value());
+      if (views < 1 || views > 1024) throw Usage("render: --views must be in [1, 1024]");
+    } else if (a == "--azimuth") params.camera.azimuth = parse_double_option(a, value());
+    else if (a == "--elevation") params.camera.elevation = parse_double_option(a, value());
+    else if (a == "--distance") params.camera.distance = parse_double_option(a, value());
+    else if (a == "--ortho") params.camera.projection = render::Projection::orthographic;
+    else if (a == "--silhouette") silhouette = true;
+    else if (a == "--depth") depth_out = value();
+    else if (a == "--face-ids") ids_out = value();
+    else if (a == "--gl-platform") platform = render::parse_gl_platform(value(), "--gl-platform");
+    else if (a.starts_with("-")) throw Usage("render: unknown option " + a);
+    else if (mesh_arg.empty()) mesh_arg = a;
+    else throw Usage("render: one mesh at a time");
+  }
+  if (mesh_arg.empty()) throw Usage("render: which mesh?");
+  if (out.empty()) throw Usage("render: -o OUT.png is needed");
+  if (views > 0 && !size_given) params.width = params.height = 256;
+  if (views > 0 && (!depth_out.empty() || !ids_out.empty()))
+    throw Usage("render: --depth and --face-ids write one view, not --views");
+  try {
+    render::check_image_size(params.width, params.height);
+  } catch (const InvalidInput& e) {
+    throw Usage(std::string("render: --size: ") + e.what());
+  }
+  const ReadResult r = read_mesh_file(need_mesh(mesh_arg));
+  print_warnings(r);
+  render::set_render_log([](const std::string& m) { std::fprintf(stderr, "cgview: %s\n", m.c_str()); });
+  render::Renderer renderer(platform);
+  params.silhouette = silhouette;
+  params.color = !silhouette;
+  params.depth = !depth_out.empty();
+  params.face_ids = !ids_out.empty();
+  auto write_raw = [](const std::string& path, const void* data, std::size_t bytes) {
+    std::ofstream f(path, std::ios::binary);
+    if (!f.write(static_cast<const char*>(data), std::streamsize(bytes))) throw IoError(path + ": cannot write");
+  };
+  auto picture = [&](const render::RenderParams& p) {
+    render::RenderResult res = renderer.render(r.mesh, p);
+    if (!depth_out.empty()) write_raw(depth_out, res.depth.data(), res.depth.size() * sizeof(float));
+    if (!ids_out.empty()) write_raw(ids_out, res.face_ids.data(), res.face_ids.size() * sizeof(std::uint32_t));
+    return silhouette ? render::mask_image(res.silhouette, p.width, p.height) : std::move(res.color);
+  };
+  render::Image image;
+  if (views > 0) {
+    std::vector<render::Image> cells;
+    for (int k = 0; k < views; ++k) {
+      render::RenderParams p = params;
+      p.camera.azimuth = params.camera.azimuth + 360.0 * k / views;
+      cells.push_back(picture(p));
+    }
+    image = render::contact_sheet(cells);
+  } else {
+    image = picture(params);
+  }
+  const std::string png = render::encode_png(image);
+  std::ofstream f(out, std::ios::binary);
+  if (!f.write(png.data(), std::streamsize(png.size()))) throw IoError(out + ": cannot write");
+  std::printf("%s: %dx%d, %s, %s\n", out.c_str(), image.width, image.height, to_string(params.mode),
+              renderer.info().gl_renderer.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -361,6 +495,7 @@ int main(int argc, char** argv) {
     if (cmd == "samples") return cmd_samples(rest);
     if (cmd == "list") return cmd_list(rest);
     if (cmd == "run") return cmd_run(rest);
+    if (cmd == "render") return cmd_render(rest);
     throw Usage("unknown command '" + cmd + "'");
   } catch (const Usage& e) {
     std::fprintf(stderr, "cgview: %s (see cgview --help)\n", e.what());

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "render/image.h"
 #include "test_support.h"
 
 namespace cgview {
@@ -407,6 +408,52 @@ TEST(CliTest, RunReportsProgressOnStderrWhenNotATerminal) {
   for (const auto& line : l) EXPECT_EQ(line.rfind("progress ", 0), 0u) << line;  // plain lines, no \r bar
   EXPECT_EQ(r.out.find('\r'), std::string::npos);
   EXPECT_NE(l.back().find("100%"), std::string::npos) << r.out;
+}
+
+render::Image read_png_file(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  return render::decode_png(bytes);
+}
+
+TEST(CliTest, RenderWritesAPng) {
+  const fs::path dir = test::temp_dir("cli_render");
+  const fs::path out = dir / "elephant.png";
+  const Result r = cgview("render elephant -o " + quote(out.string()) + " --mode toon --size 120x90");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const render::Image im = read_png_file(out);
+  EXPECT_EQ(im.width, 120);
+  EXPECT_EQ(im.height, 90);
+  // --views N: a contact sheet of N cells (about square: 3 x 2 for 5).
+  const fs::path sheet = dir / "sheet.png";
+  const Result s = cgview("render elephant -o " + quote(sheet.string()) + " --views 5 --size 40x30");
+  ASSERT_EQ(s.status, 0) << s.out;
+  const render::Image sh = read_png_file(sheet);
+  EXPECT_EQ(sh.width, 3 * 40);
+  EXPECT_EQ(sh.height, 2 * 30);
+  // A silhouette is black and white only.
+  const fs::path mask = dir / "mask.png";
+  ASSERT_EQ(cgview("render elephant --silhouette --ortho -o " + quote(mask.string()) + " --size 32x32").status, 0);
+  for (std::uint8_t v : read_png_file(mask).rgba) EXPECT_TRUE(v == 0 || v == 255);
+  // Depth and face ids as raw arrays, one value per pixel.
+  const fs::path depth = dir / "depth.f32", ids = dir / "ids.u32";
+  ASSERT_EQ(cgview("render elephant -o " + quote((dir / "d.png").string()) + " --size 20x10 --depth " +
+                   quote(depth.string()) + " --face-ids " + quote(ids.string()))
+                .status,
+            0);
+  EXPECT_EQ(fs::file_size(depth), 20u * 10u * 4u);
+  EXPECT_EQ(fs::file_size(ids), 20u * 10u * 4u);
+  fs::remove_all(dir);
+}
+
+TEST(CliTest, RenderBadInput) {
+  expect_one_line_error("render elephant -o x.png --size 0x10", "width");
+  expect_one_line_error("render elephant -o x.png --size 10x9000", "height");
+  expect_one_line_error("render elephant -o x.png --size big", "--size");
+  expect_one_line_error("render elephant -o x.png --mode phong", "mode");
+  expect_one_line_error("render elephant -o x.png --views 0", "--views");
+  expect_one_line_error("render elephant", "-o");
+  expect_one_line_error("render elephant -o x.png --gl-platform x11", "--gl-platform");
 }
 
 }  // namespace

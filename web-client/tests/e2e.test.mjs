@@ -146,6 +146,15 @@ test('uploading the elephant through the page lists, reports and draws it', asyn
   assert.match(await item.innerText(), /2775 V · 5558 F/);
   assert.match(await item.getAttribute('class'), /selected/);
   assert.equal(await page.locator('#mesh-list li.mesh.selected').count(), 1);
+  // Its thumbnail comes from the server's EGL renderer (render.png, 96 px).
+  const thumb = item.locator('img.mesh-thumb');
+  await thumb.waitFor();
+  await page.waitForFunction((id) => {
+    const img = document.querySelector(`#mesh-list li.mesh[data-mesh-id="${id}"] img.mesh-thumb`);
+    return img !== null && img.complete && img.naturalWidth > 0;
+  }, elephantId, { timeout: 30000 });
+  assert.equal(await thumb.evaluate((img) => img.naturalWidth), 96, 'a 96 px thumbnail');
+  assert.match(await thumb.getAttribute('src'), /\/render\.png\?width=96&height=96$/);
   assert.equal((await page.locator('#report tr[data-key="vertices"] td').innerText()).trim(), '2775');
   assert.equal((await page.locator('#report tr[data-key="faces"] td').innerText()).trim(), '5558');
   const report = await page.locator('#report').innerText();

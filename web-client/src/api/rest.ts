@@ -4,6 +4,19 @@ import type { Algorithm, ErrorBody, Health, Job, JobInput, Mesh } from './types.
 
 const BASE = '/api/v1';
 
+/** The URL of a server-side render of a mesh (GET /meshes/{id}/render.png), e.g. a thumbnail. */
+export function renderUrl(
+  id: string,
+  params: { width?: number; height?: number; mode?: string; azimuth?: number; elevation?: number; field?: string } = {},
+): string {
+  const query = new URLSearchParams();
+  for (const [key, value] of Object.entries(params)) {
+    if (value !== undefined) query.set(key, String(value));
+  }
+  const q = query.toString();
+  return `${BASE}/meshes/${encodeURIComponent(id)}/render.png${q ? `?${q}` : ''}`;
+}
+
 /** A failed request: the HTTP status and the server's error code and detail. */
 export class ApiError extends Error {
   readonly status: number;

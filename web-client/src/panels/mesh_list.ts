@@ -1,7 +1,12 @@
-// The list of stored meshes: name, vertex and face counts; a click shows the
-// mesh, the delete button removes it from the server.
+// The list of stored meshes: a thumbnail rendered by the server (render.png),
+// name, vertex and face counts; a click shows the mesh, the delete button
+// removes it from the server.
+import { renderUrl } from '../api/rest.ts';
 import type { Mesh } from '../api/types.ts';
 import { el } from './dom.ts';
+
+/** Thumbnails are rendered at 96 px and shown at 48 CSS px (sharp on high-DPI screens). */
+const THUMBNAIL_PX = 96;
 
 export interface MeshListActions {
   select(id: string): void;
@@ -29,6 +34,17 @@ export class MeshListPanel {
         ev.stopPropagation();
         this.actions.remove(mesh.id);
       });
+      const thumb = el('img', {
+        class: 'mesh-thumb',
+        src: renderUrl(mesh.id, { width: THUMBNAIL_PX, height: THUMBNAIL_PX }),
+        alt: '',
+        loading: 'lazy',
+        decoding: 'async',
+        width: '48',
+        height: '48',
+      });
+      // A server that cannot render (no EGL) leaves the list as it was.
+      thumb.addEventListener('error', () => thumb.remove());
       const item = el(
         'li',
         {
@@ -38,6 +54,7 @@ export class MeshListPanel {
           role: 'button',
           title: `${mesh.name} (${mesh.format})`,
         },
+        thumb,
         el('span', { class: 'mesh-name' }, mesh.name),
         el('span', { class: 'mesh-counts' }, counts),
         remove,

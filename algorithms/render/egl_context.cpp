@@ -1,0 +1,251 @@
+#include "render/egl_context.h"
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <mutex>
+
+#include "core/errors.h"
+#include "render/gl_functions.h"
+
+namespace cgview::render {
+
+namespace {
+
+std::mutex g_mutex;  // guards the log and the display reference counts
+RenderLog g_log;
+std::function<bool(const std::string&)> g_fault;
+std::atomic<bool> g_software_logged{false};
+std::map<EGLDisplay, int> g_display_users;
+
+void log_message(const std::string& m) {
+  RenderLog log;
+  {
+    std::lock_guard lock(g_mutex);
+    log = g_log;
+  }
+  if (log) log(m);
+}
+
+std::string egl_error() {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "EGL error 0x%04X", unsigned(eglGetError()));
+  return buf;
+}
+
+bool has_extension(const char* list, const char* name) {
+  if (!list) return false;
+  const std::size_t n = std::strlen(name);
+  for (const char* p = std::strstr(list, name); p; p = std::strstr(p + 1, name))
+    if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
+  return false;
+}
+
+bool is_software_renderer(const std::string& r) {
+  return r.find("llvmpipe") != std::string::npos || r.find("softpipe") != std::string::npos ||
+         r.find("SwiftShader") != std::string::npos || r.find("swrast") != std::string::npos;
+}
+
+struct Candidate {
+  std::string name;
+  EGLenum platform;
+  void* native;
+  bool software;
+};
+
+}  // namespace
+
+GlPlatform parse_gl_platform(const std::string& text, const char* what) {
+  if (text == "auto" || text == "automatic") return GlPlatform::automatic;
+  if (text == "device") return GlPlatform::device;
+  if (text == "surfaceless") return GlPlatform::surfaceless;
+  throw InvalidInput(std::string(what) + ": unknown platform '" + text + "' (auto, device or surfaceless)");
+}
+
+const char* to_string(GlPlatform p) {
+  switch (p) {
+    case GlPlatform::automatic: return "auto";
+    case GlPlatform::device: return "device";
+    case GlPlatform::surfaceless: return "surfaceless";
+  }
+  return "auto";
+}
+
+void set_egl_fault_injection(std::function<bool(const std::string&)> fail) {
+  std::lock_guard lock(g_mutex);
+  g_fault = std::move(fail);
+}
+
+void set_render_log(RenderLog log) {
+  std::lock_guard lock(g_mutex);
+  g_log = std::move(log);
+}
+
+struct EglContext::Impl {
+  EGLDisplay display = EGL_NO_DISPLAY;
+  EGLContext context = EGL_NO_CONTEXT;
+  EglInfo info;
+  GlFunctions gl;
+
+  // Tries one candidate; on failure returns the reason and leaves nothing behind.
+  std::string try_start(const Candidate& c, PFNEGLGETPLATFORMDISPLAYEXTPROC get_display) {
+    EGLDisplay d = get_display(c.platform, c.native, nullptr);
+    if (d == EGL_NO_DISPLAY) return "no display (" + egl_error() + ")";
+    EGLint major = 0, minor = 0;
+    if (!eglInitialize(d, &major, &minor)) return "eglInitialize failed (" + egl_error() + ")";
+    {
+      std::lock_guard lock(g_mutex);
+      ++g_display_users[d];
+    }
+    display = d;
+    auto fail = [&](std::string why) {
+      if (context != EGL_NO_CONTEXT) {
+        eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        eglDestroyContext(display, context);
+      }
+      context = EGL_NO_CONTEXT;
+      drop_display();
+      return why;
+    };
+    if (!has_extension(eglQueryString(d, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context"))
+      return fail("no EGL_KHR_surfaceless_context");
+    if (!eglBindAPI(EGL_OPENGL_API)) return fail("eglBindAPI(OpenGL) failed (" + egl_error() + ")");
+    EGLConfig config = nullptr;
+    EGLint count = 0;
+    for (EGLint surface : {EGLint(EGL_PBUFFER_BIT), EGLint(0)}) {
+      const EGLint attrs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, surface, EGL_NONE};
+      if (eglChooseConfig(d, attrs, &config, 1, &count) && count > 0) break;
+    }
+    if (count <= 0) return fail("no OpenGL config");
+    const EGLint ctx_attrs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+                                EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    context = eglCreateContext(d, config, EGL_NO_CONTEXT, ctx_attrs);
+    if (context == EGL_NO_CONTEXT) return fail("no OpenGL 3.3 core context (" + egl_error() + ")");
+    if (!eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
+      return fail("eglMakeCurrent failed (" + egl_error() + ")");
+#define CGVIEW_GL_LOAD(type, name) gl.name = reinterpret_cast<type>(eglGetProcAddress(#name));
+    CGVIEW_GL_FUNCTIONS(CGVIEW_GL_LOAD)
+#undef CGVIEW_GL_LOAD
+#define CGVIEW_GL_CHECK(type, name) \
+  if (!gl.name) return fail("no " #name);
+    CGVIEW_GL_FUNCTIONS(CGVIEW_GL_CHECK)
+#undef CGVIEW_GL_CHECK
+    auto str = [&](GLenum e) {
+      const GLubyte* s = gl.glGetString(e);
+      return s ? std::string(reinterpret_cast<const char*>(s)) : std::string();
+    };
+    info.gl_vendor = str(GL_VENDOR);
+    info.gl_renderer = str(GL_RENDERER);
+    info.gl_version = str(GL_VERSION);
+    if (info.gl_renderer.empty()) return fail("glGetString(GL_RENDERER) gave nothing");
+    {
+      std::function<bool(const std::string&)> fault;
+      {
+        std::lock_guard lock(g_mutex);
+        fault = g_fault;
+      }
+      if (fault && fault(c.name)) return fail("refused by fault injection");
+    }
+    info.platform = c.name;
+    info.software = c.software || is_software_renderer(info.gl_renderer);
+    eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    return {};
+  }
+
+  void drop_display() {
+    if (display == EGL_NO_DISPLAY) return;
+    bool last = false;
+    {
+      std::lock_guard lock(g_mutex);
+      last = --g_display_users[display] == 0;
+      if (last) g_display_users.erase(display);
+    }
+    // Displays are shared by every context on the same device: terminate
+    // only when the last one goes.
+    if (last) eglTerminate(display);
+    display = EGL_NO_DISPLAY;
+  }
+};
+
+EglContext::EglContext(GlPlatform platform) : impl_(std::make_unique<Impl>()) {
+  if (platform == GlPlatform::automatic)
+    if (const char* env = std::getenv("CGVIEW_GL_PLATFORM"); env && *env)
+      platform = parse_gl_platform(env, "CGVIEW_GL_PLATFORM");
+
+  const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+  auto get_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  if (!client || !get_display)
+    throw Error("render: EGL has no client extensions or no eglGetPlatformDisplayEXT: cannot render without a window");
+
+  std::vector<Candidate> hardware, software_devices, surfaceless;
+  if (platform != GlPlatform::surfaceless && has_extension(client, "EGL_EXT_platform_device")) {
+    auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+    auto query_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+    EGLint n = 0;
+    if (query_devices && query_devices(0, nullptr, &n) && n > 0) {
+      std::vector<EGLDeviceEXT> devices(n);
+      query_devices(n, devices.data(), &n);
+      for (EGLint i = 0; i < n; ++i) {
+        const char* ext = query_string ? query_string(devices[i], EGL_EXTENSIONS) : nullptr;
+        const bool sw = has_extension(ext, "EGL_MESA_device_software");
+        Candidate c{"device " + std::to_string(i), EGL_PLATFORM_DEVICE_EXT, devices[i], sw};
+        (sw ? software_devices : hardware).push_back(c);
+      }
+    }
+  }
+  if (platform != GlPlatform::device && has_extension(client, "EGL_MESA_platform_surfaceless"))
+    surfaceless.push_back({"surfaceless", EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, true});
+
+  std::vector<Candidate> order = hardware;
+  order.insert(order.end(), surfaceless.begin(), surfaceless.end());
+  order.insert(order.end(), software_devices.begin(), software_devices.end());
+
+  std::string reasons;
+  for (const Candidate& c : order) {
+    const std::string why = impl_->try_start(c, get_display);
+    if (why.empty()) break;
+    impl_->info.attempts.push_back(c.name + ": " + why);
+    reasons += (reasons.empty() ? "" : "; ") + c.name + ": " + why;
+  }
+  if (impl_->context == EGL_NO_CONTEXT)
+    throw Error(std::string("render: no EGL platform could start an OpenGL 3.3 core context (setting: ") +
+                to_string(platform) + ")" + (reasons.empty() ? ": none available" : ": " + reasons));
+  impl_->info.attempts.push_back(impl_->info.platform + ": started");
+
+  if (impl_->info.software && !g_software_logged.exchange(true))
+    log_message("render: software renderer only (" + impl_->info.gl_renderer + " on the " + impl_->info.platform +
+                " platform" + (hardware.empty() ? ", no GPU EGL device found" : ", the GPU devices failed to start") +
+                "): renders are slower");
+}
+
+EglContext::~EglContext() {
+  if (impl_->context != EGL_NO_CONTEXT) {
+    if (eglGetCurrentContext() == impl_->context)
+      eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(impl_->display, impl_->context);
+  }
+  impl_->drop_display();
+}
+
+void EglContext::make_current() {
+  if (eglGetCurrentContext() == impl_->context) return;
+  // The bound API is per thread, and eglMakeCurrent uses it.
+  eglBindAPI(EGL_OPENGL_API);
+  if (!eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, impl_->context))
+    throw Error("render: eglMakeCurrent failed (" + egl_error() + "): is the context current on another thread?");
+}
+
+void EglContext::release() {
+  if (eglGetCurrentContext() == impl_->context)
+    eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+}
+
+const EglInfo& EglContext::info() const { return impl_->info; }
+const GlFunctions& EglContext::gl() const { return impl_->gl; }
+
+}  // namespace cgview::render

@@ -1,0 +1,70 @@
+// An OpenGL 3.3 core context with no window and no X server, through EGL.
+//
+// Platform selection (docs/DESIGN.md, "Headless rendering"): with
+// GlPlatform::automatic, the EGL devices are enumerated
+// (EGL_EXT_device_enumeration) and tried hardware first; then Mesa's
+// surfaceless platform (llvmpipe); then software EGL devices.  The first that
+// initialises, gives a 3.3 core context and makes it current wins; the
+// reasons the others failed are kept in EglInfo::attempts.  The setting
+// (GlPlatform, or the environment variable CGVIEW_GL_PLATFORM=auto|device|
+// surfaceless when the option is automatic) restricts the candidates.
+//
+// EGL and GL headers stay in the .cpp: this header is plain C++.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace cgview::render {
+
+enum class GlPlatform { automatic, device, surfaceless };
+
+// "auto", "device", "surfaceless"; throws InvalidInput naming `what` otherwise.
+GlPlatform parse_gl_platform(const std::string& text, const char* what = "gl platform");
+const char* to_string(GlPlatform p);
+
+struct EglInfo {
+  std::string platform;     // "device 0", "surfaceless"
+  std::string gl_vendor, gl_renderer, gl_version;
+  bool software = false;    // llvmpipe, softpipe, SwiftShader, or an EGL_MESA_device_software device
+  std::vector<std::string> attempts;  // "device 1 (NVIDIA): eglInitialize failed", ... in order tried
+};
+
+// Where library messages go (library code never prints).  The CLI and the
+// server install one that prints; the default drops them.  The "software
+// renderer only" message is sent once per process.
+using RenderLog = std::function<void(const std::string& message)>;
+void set_render_log(RenderLog log);
+
+// For tests of the fallback: a candidate ("device 0", "surfaceless") for
+// which `fail` returns true is abandoned after its context started, as if its
+// driver had failed there.  nullptr (the default) turns it off.
+void set_egl_fault_injection(std::function<bool(const std::string& candidate)> fail);
+
+struct GlFunctions;  // the GL entry points, loaded through eglGetProcAddress (egl_context.cpp)
+
+// One EGL display and context.  A context is current on one thread at a
+// time: call make_current() on the thread that renders (Renderer does).
+class EglContext {
+ public:
+  explicit EglContext(GlPlatform platform = GlPlatform::automatic);
+  ~EglContext();
+  EglContext(const EglContext&) = delete;
+  EglContext& operator=(const EglContext&) = delete;
+
+  // Binds the context to the calling thread (no surface).  Throws Error.
+  void make_current();
+  // Unbinds it from the calling thread.
+  void release();
+
+  const EglInfo& info() const;
+  const GlFunctions& gl() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace cgview::render

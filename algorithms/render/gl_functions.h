@@ -1,0 +1,96 @@
+// Internal to algorithms/render: the OpenGL 3.3 core entry points the
+// renderer uses, loaded once per context through eglGetProcAddress (no GLEW,
+// no link to libGL/libOpenGL: EGL 1.5 returns core functions too).  Only
+// egl_context.cpp and renderer.cpp include this.
+#pragma once
+
+#include <GL/glcorearb.h>
+
+#define CGVIEW_GL_FUNCTIONS(X)                                                                           \
+  X(PFNGLGETSTRINGPROC, glGetString)                                                                     \
+  X(PFNGLGETERRORPROC, glGetError)                                                                       \
+  X(PFNGLGETINTEGERVPROC, glGetIntegerv)                                                                 \
+  X(PFNGLVIEWPORTPROC, glViewport)                                                                       \
+  X(PFNGLCLEARPROC, glClear)                                                                             \
+  X(PFNGLCLEARCOLORPROC, glClearColor)                                                                   \
+  X(PFNGLCLEARDEPTHPROC, glClearDepth)                                                                   \
+  X(PFNGLCLEARBUFFERUIVPROC, glClearBufferuiv)                                                           \
+  X(PFNGLCLEARBUFFERFVPROC, glClearBufferfv)                                                             \
+  X(PFNGLCLEARBUFFERFIPROC, glClearBufferfi)                                                             \
+  X(PFNGLENABLEPROC, glEnable)                                                                           \
+  X(PFNGLDISABLEPROC, glDisable)                                                                         \
+  X(PFNGLDEPTHFUNCPROC, glDepthFunc)                                                                     \
+  X(PFNGLDEPTHMASKPROC, glDepthMask)                                                                     \
+  X(PFNGLPOLYGONMODEPROC, glPolygonMode)                                                                 \
+  X(PFNGLPOLYGONOFFSETPROC, glPolygonOffset)                                                             \
+  X(PFNGLPOINTSIZEPROC, glPointSize)                                                                     \
+  X(PFNGLLINEWIDTHPROC, glLineWidth)                                                                     \
+  X(PFNGLREADPIXELSPROC, glReadPixels)                                                                   \
+  X(PFNGLREADBUFFERPROC, glReadBuffer)                                                                   \
+  X(PFNGLDRAWBUFFERSPROC, glDrawBuffers)                                                                 \
+  X(PFNGLPIXELSTOREIPROC, glPixelStorei)                                                                 \
+  X(PFNGLFINISHPROC, glFinish)                                                                           \
+  X(PFNGLGENBUFFERSPROC, glGenBuffers)                                                                   \
+  X(PFNGLDELETEBUFFERSPROC, glDeleteBuffers)                                                             \
+  X(PFNGLBINDBUFFERPROC, glBindBuffer)                                                                   \
+  X(PFNGLBUFFERDATAPROC, glBufferData)                                                                   \
+  X(PFNGLISBUFFERPROC, glIsBuffer)                                                                       \
+  X(PFNGLGENVERTEXARRAYSPROC, glGenVertexArrays)                                                         \
+  X(PFNGLDELETEVERTEXARRAYSPROC, glDeleteVertexArrays)                                                   \
+  X(PFNGLBINDVERTEXARRAYPROC, glBindVertexArray)                                                         \
+  X(PFNGLISVERTEXARRAYPROC, glIsVertexArray)                                                             \
+  X(PFNGLENABLEVERTEXATTRIBARRAYPROC, glEnableVertexAttribArray)                                         \
+  X(PFNGLDISABLEVERTEXATTRIBARRAYPROC, glDisableVertexAttribArray)                                       \
+  X(PFNGLVERTEXATTRIBPOINTERPROC, glVertexAttribPointer)                                                 \
+  X(PFNGLVERTEXATTRIB1FPROC, glVertexAttrib1f)                                                           \
+  X(PFNGLVERTEXATTRIB3FPROC, glVertexAttrib3f)                                                           \
+  X(PFNGLGENTEXTURESPROC, glGenTextures)                                                                 \
+  X(PFNGLDELETETEXTURESPROC, glDeleteTextures)                                                           \
+  X(PFNGLBINDTEXTUREPROC, glBindTexture)                                                                 \
+  X(PFNGLACTIVETEXTUREPROC, glActiveTexture)                                                             \
+  X(PFNGLTEXBUFFERPROC, glTexBuffer)                                                                     \
+  X(PFNGLISTEXTUREPROC, glIsTexture)                                                                     \
+  X(PFNGLGENFRAMEBUFFERSPROC, glGenFramebuffers)                                                         \
+  X(PFNGLDELETEFRAMEBUFFERSPROC, glDeleteFramebuffers)                                                   \
+  X(PFNGLBINDFRAMEBUFFERPROC, glBindFramebuffer)                                                         \
+  X(PFNGLISFRAMEBUFFERPROC, glIsFramebuffer)                                                             \
+  X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, glFramebufferRenderbuffer)                                         \
+  X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, glCheckFramebufferStatus)                                           \
+  X(PFNGLGENRENDERBUFFERSPROC, glGenRenderbuffers)                                                       \
+  X(PFNGLDELETERENDERBUFFERSPROC, glDeleteRenderbuffers)                                                 \
+  X(PFNGLBINDRENDERBUFFERPROC, glBindRenderbuffer)                                                       \
+  X(PFNGLRENDERBUFFERSTORAGEPROC, glRenderbufferStorage)                                                 \
+  X(PFNGLISRENDERBUFFERPROC, glIsRenderbuffer)                                                           \
+  X(PFNGLCREATESHADERPROC, glCreateShader)                                                               \
+  X(PFNGLSHADERSOURCEPROC, glShaderSource)                                                               \
+  X(PFNGLCOMPILESHADERPROC, glCompileShader)                                                             \
+  X(PFNGLGETSHADERIVPROC, glGetShaderiv)                                                                 \
+  X(PFNGLGETSHADERINFOLOGPROC, glGetShaderInfoLog)                                                       \
+  X(PFNGLDELETESHADERPROC, glDeleteShader)                                                               \
+  X(PFNGLCREATEPROGRAMPROC, glCreateProgram)                                                             \
+  X(PFNGLATTACHSHADERPROC, glAttachShader)                                                               \
+  X(PFNGLLINKPROGRAMPROC, glLinkProgram)                                                                 \
+  X(PFNGLGETPROGRAMIVPROC, glGetProgramiv)                                                               \
+  X(PFNGLGETPROGRAMINFOLOGPROC, glGetProgramInfoLog)                                                     \
+  X(PFNGLDELETEPROGRAMPROC, glDeleteProgram)                                                             \
+  X(PFNGLISPROGRAMPROC, glIsProgram)                                                                     \
+  X(PFNGLUSEPROGRAMPROC, glUseProgram)                                                                   \
+  X(PFNGLGETUNIFORMLOCATIONPROC, glGetUniformLocation)                                                   \
+  X(PFNGLUNIFORMMATRIX4FVPROC, glUniformMatrix4fv)                                                       \
+  X(PFNGLUNIFORM1IPROC, glUniform1i)                                                                     \
+  X(PFNGLUNIFORM1UIPROC, glUniform1ui)                                                                   \
+  X(PFNGLUNIFORM1FPROC, glUniform1f)                                                                     \
+  X(PFNGLUNIFORM3FPROC, glUniform3f)                                                                     \
+  X(PFNGLUNIFORM4FPROC, glUniform4f)                                                                     \
+  X(PFNGLDRAWELEMENTSPROC, glDrawElements)                                                               \
+  X(PFNGLDRAWARRAYSPROC, glDrawArrays)
+
+namespace cgview::render {
+
+struct GlFunctions {
+#define CGVIEW_GL_MEMBER(type, name) type name = nullptr;
+  CGVIEW_GL_FUNCTIONS(CGVIEW_GL_MEMBER)
+#undef CGVIEW_GL_MEMBER
+};
+
+}  // namespace cgview::render
