@@ -38,6 +38,8 @@ std::string default_extension(const Artifact& a) {
     case 1: return ".txt";
     case 2: return ".vtk";
     case 3: return ".obj";
+    case 5: return ".txt";
+    case 6: return ".frames";
     default: return ".json";
   }
 }
@@ -60,6 +62,12 @@ void check_artifact_extension(OutputKind kind, const std::filesystem::path& path
       return;
     case OutputKind::metrics:
       if (ext != ".json") unsupported("metrics table", ext, ".json");
+      return;
+    case OutputKind::text:
+      if (ext != ".txt" && ext != ".bin") unsupported("text", ext, ".txt or .bin");
+      return;
+    case OutputKind::animation:
+      if (ext != ".frames") unsupported("animation", ext, ".frames");
       return;
   }
 }
@@ -132,6 +140,12 @@ void write_artifact(const Artifact& a, const Mesh& input, const std::filesystem:
   } else if (const auto* m = std::get_if<Metrics>(&a.value)) {
     if (ext != ".json") unsupported("metrics table", ext, ".json");
     out = metrics_json(*m);
+  } else if (const auto* t = std::get_if<Text>(&a.value)) {
+    if (ext != ".txt" && ext != ".bin") unsupported("text", ext, ".txt or .bin");
+    out = t->bytes;  // as they are: a message's bytes need not be UTF-8
+  } else if (const auto* anim = std::get_if<Animation>(&a.value)) {
+    if (ext != ".frames") unsupported("animation", ext, ".frames");
+    out = encode_frames(*anim);
   }
   write_file_bytes(path, out);
 }

@@ -25,6 +25,7 @@
 #include <variant>
 #include <vector>
 
+#include "core/animation.h"
 #include "core/errors.h"
 #include "core/mesh.h"
 #include "core/scalar_field.h"
@@ -60,9 +61,14 @@ struct ParamSpec {
 
 // One result of an algorithm, named ("sdf", "skeleton", "metrics").
 using Metrics = std::map<std::string, double>;
+// Bytes for the user, kept as they are (a message extracted by chaos_extract):
+// saved as .txt or .bin.
+struct Text {
+  std::string bytes;
+};
 struct Artifact {
   std::string name;
-  std::variant<Mesh, ScalarField, VoxelGrid, Skeleton, Metrics> value;
+  std::variant<Mesh, ScalarField, VoxelGrid, Skeleton, Metrics, Text, Animation> value;
 };
 
 struct AlgorithmResult {
@@ -93,7 +99,7 @@ class Context {
 };
 
 // The kinds of output an algorithm declares.
-enum class OutputKind { mesh, scalar_field, voxel_grid, skeleton, metrics };
+enum class OutputKind { mesh, scalar_field, voxel_grid, skeleton, metrics, text, animation };
 
 struct AlgorithmInfo {  // initializers as in ParamInfo
   std::string name{};  // snake_case, unique
