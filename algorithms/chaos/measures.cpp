@@ -38,8 +38,14 @@ class KdTree {
   }
   double nearest_sq(const Vec3& q) const {
     double best = std::numeric_limits<double>::infinity();
-    search(q, 0, idx_.size(), best);
+    search(q, 0, idx_.size(), best, -1.0);
     return best;
+  }
+  // Whether a point lies closer than sqrt(r2): stops at the first one found.
+  bool any_within(const Vec3& q, double r2) const {
+    double best = r2;
+    search(q, 0, idx_.size(), best, r2);
+    return best < r2;
   }
 
  private:
@@ -62,8 +68,10 @@ class KdTree {
     build(mid + 1, hi);
   }
 
-  void search(const Vec3& q, std::size_t lo, std::size_t hi, double& best) const {
-    if (lo >= hi) return;
+  // Nearest squared distance into best; with stop_below > 0, returns as soon
+  // as best < stop_below.
+  void search(const Vec3& q, std::size_t lo, std::size_t hi, double& best, double stop_below) const {
+    if (lo >= hi || best < stop_below) return;
     const std::size_t mid = lo + (hi - lo) / 2;
     const Vec3& m = p_[idx_[mid]];
     const Vec3 d = q - m;
@@ -72,18 +80,30 @@ class KdTree {
     const int a = axis_[mid];
     const double diff = q[a] - m[a];
     if (diff < 0) {
-      search(q, lo, mid, best);
-      if (diff * diff < best) search(q, mid + 1, hi, best);
+      search(q, lo, mid, best, stop_below);
+      if (diff * diff < best) search(q, mid + 1, hi, best, stop_below);
     } else {
-      search(q, mid + 1, hi, best);
-      if (diff * diff < best) search(q, lo, mid, best);
+      search(q, mid + 1, hi, best, stop_below);
+      if (diff * diff < best) search(q, lo, mid, best, stop_below);
     }
   }
 };
 
+// Exact, with the early break of Taha and Hanbury (2015): a query with some
+// point closer than the largest distance so far cannot raise it, so its
+// search stops there; visiting the queries in a scattered order makes that
+// largest distance grow early.  Without it, a cipher crowded into a small
+// region (every point about as far from a query) costs O(n) per query.
 double directed(const std::vector<Vec3>& from, const KdTree& to) {
   double worst = 0;
-  for (const Vec3& q : from) worst = std::max(worst, to.nearest_sq(q));
+  const std::size_t n = from.size();
+  std::size_t stride = 7919;  // a prime: coprime with n unless n is a multiple of it
+  while (n % stride == 0 && stride < n) stride += 2;
+  std::size_t i = 0;
+  for (std::size_t k = 0; k < n; ++k, i = (i + stride) % n) {
+    if (worst > 0 && to.any_within(from[i], worst)) continue;
+    worst = std::max(worst, to.nearest_sq(from[i]));
+  }
   return std::sqrt(worst);
 }
 
