@@ -13,6 +13,8 @@ export interface JobsActions {
   showField(jobId: string, artifact: string): void;
   /** Adds a mesh artifact to the view, beside its input mesh. */
   addMesh(jobId: string, artifact: string): void;
+  /** Shows an animation artifact (chaos_animate's frames) with the player. */
+  playAnimation(jobId: string, artifact: string): void;
 }
 
 export interface JobsView {
@@ -166,6 +168,12 @@ export class JobsPanel {
       add.disabled = added;
       add.addEventListener('click', () => this.actions.addMesh(job.id, a.name));
       row.append(label, add, ' ', el('a', { href: artifactUrl(job.id, a.name, 'ply'), download: '' }, 'ply'), ' ', el('a', { href: artifactUrl(job.id, a.name, 'obj'), download: '' }, 'obj'));
+    } else if (a.kind === 'animation') {
+      const play = el('button', { type: 'button', class: 'button small play-animation' }, 'Play');
+      play.addEventListener('click', () => this.actions.playAnimation(job.id, a.name));
+      row.append(label, play, ' ', el('a', { href: artifactUrl(job.id, a.name, 'frames'), download: '' }, 'frames'));
+    } else if (a.kind === 'text') {
+      row.append(label, ' ', el('a', { href: artifactUrl(job.id, a.name, 'txt'), download: '' }, 'txt'));
     } else if (a.kind === 'metrics') {
       row.append(label);
       const data = view.metrics.get(`${job.id}/${a.name}`);
