@@ -63,9 +63,9 @@ export class AnimationPlayer {
     if (Number(this.slider.value) >= Number(this.slider.max)) this.go(0);
     this.play.textContent = 'Pause';
     this.timer = window.setInterval(() => {
-      const k = Number(this.slider.value) + 1;
-      if (k > Number(this.slider.max)) this.stop();
-      else this.go(k);
+      const k = Math.min(Number(this.slider.value) + 1, Number(this.slider.max));
+      this.go(k);
+      if (k >= Number(this.slider.max)) this.stop(); // the last frame stays shown
     }, 150);
   }
 
