@@ -183,12 +183,24 @@ ChaoticStream::ChaoticStream(std::string_view domain, std::string_view key) {
   for (int i = 0; i < 64; ++i) next();
 }
 
+namespace {
+
+// x + d wrapped into (0, 1).  Wrapping, not clamping: a clamp sends every
+// state near an end to the same value, and the stream would then repeat.
+double wrap01(double x, double d) {
+  x += d;
+  x -= std::floor(x);
+  return x > 0 ? x : 0x1p-30;
+}
+
+}  // namespace
+
 void ChaoticStream::perturb() {
   weyl_ += 0x9E3779B97F4A7C15ull ^ seed_;
-  // Nudges both states by less than 2^-20 of their range, a change the map
-  // amplifies within a few dozen iterates, and keeps them inside (0, 1).
-  x_ = std::clamp(x_ + (double(weyl_ >> 44) - 524288.0) * 0x1p-40, 0.01, 0.99);
-  y_ = std::clamp(y_ + (double((weyl_ >> 20) & 0xFFFFF) - 524288.0) * 0x1p-40, 0.01, 0.99);
+  // Nudges both states by less than 2^-20, a change the map amplifies within
+  // a few dozen iterates; the Weyl counter never repeats within 2^64 calls.
+  x_ = wrap01(x_, double(weyl_ >> 44) * 0x1p-40);
+  y_ = wrap01(y_, double((weyl_ >> 20) & 0xFFFFF) * 0x1p-40);
 }
 
 std::uint32_t ChaoticStream::next() {
