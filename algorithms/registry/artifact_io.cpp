@@ -33,13 +33,14 @@ std::string metrics_json(const Metrics& m) { return nlohmann::json(m).dump() + "
 }  // namespace
 
 std::string default_extension(const Artifact& a) {
+  // By type, not by index: the variant may grow in another order.
+  if (std::holds_alternative<Text>(a.value)) return ".txt";
+  if (std::holds_alternative<Animation>(a.value)) return ".frames";
   switch (a.value.index()) {
     case 0: return ".ply";
     case 1: return ".txt";
     case 2: return ".vtk";
     case 3: return ".obj";
-    case 5: return ".txt";
-    case 6: return ".frames";
     default: return ".json";
   }
 }
