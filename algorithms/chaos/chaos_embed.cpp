@@ -79,7 +79,7 @@ AlgorithmResult run_embed(const Mesh& mesh, const EmbedParams& p, Context& ctx) 
   AlgorithmResult result;
   result.artifacts.push_back({"mesh", std::move(e.mesh)});
   result.artifacts.push_back({"metrics", std::move(m)});
-  result.warnings.push_back("save the mesh in a float32 binary format (PLY, STL) to keep the message: a text format "
+  result.warnings.push_back("save the mesh as PLY, OBJ, OFF or glb to keep the message: STL, Draco, a text format "
                             "with fewer digits or any processing destroys it");
   ctx.progress(1, "done");
   return result;

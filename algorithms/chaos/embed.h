@@ -19,8 +19,9 @@
 // 2^k ulp(x) <= 2^(k - 23) |x|, so that every vertex moves by at most
 // sqrt(3) 2^(k - 23) max|coordinate| (the exponent and sign are never
 // touched: no coordinate becomes infinite or NaN).
-// Exactness: the message survives any lossless float32 storage (binary PLY,
-// STL); extract tries k = 1..16 and accepts the first header whose length
+// Exactness: the message survives storage that keeps the float32 values and
+// the vertex order (PLY; OBJ and OFF as CGView writes them; glTF), not STL
+// (re-welded) or Draco (quantized); extract tries k = 1..16 and accepts the first header whose length
 // fits and whose checksum matches, so a wrong key fails cleanly (a false
 // accept has a probability of about 16 x 2^-32).
 #pragma once

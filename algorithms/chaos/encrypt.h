@@ -4,7 +4,7 @@
 // see docs/CHAOS.md.
 //
 // Exactness: on the float32 coordinates.  Every coordinate is first rounded
-// to float32 (what binary PLY, STL, Draco and the GPU store; a mesh read from
+// to float32 (what binary PLY, STL, glTF and the GPU store; a mesh read from
 // such a file is unchanged by it), and decrypt(encrypt(M, key), key) gives
 // those float32 values back bit for bit (-0.0 and denormals included), the
 // faces exactly (same corners, same order).  Normals, UVs and colours are
