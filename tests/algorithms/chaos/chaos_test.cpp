@@ -220,6 +220,8 @@ TEST(ChaosEncryptTest, SurvivesBinaryPlyAndKeepsSignedZerosAndDenormals) {
   write_mesh(cipher, dir / "cipher.ply");
   const Mesh back = chaos::decrypt(read_mesh(dir / "cipher.ply"), "k");
   EXPECT_TRUE(bit_equal(back.positions, chaos::float32_copy(m).positions));
+  write_mesh(cipher, dir / "cipher.obj");
+  EXPECT_TRUE(bit_equal(chaos::decrypt(read_mesh(dir / "cipher.obj"), "k").positions, chaos::float32_copy(m).positions));
   EXPECT_TRUE(std::signbit(back.positions[0].x));
   EXPECT_EQ(back.faces, m.faces);
 }
@@ -303,6 +305,14 @@ TEST(ChaosEmbedTest, MessageSurvivesBinaryPlyAndAWrongKeyFailsCleanly) {
   write_mesh(e.mesh, dir / "stego.ply");
   const Mesh back = read_mesh(dir / "stego.ply");
   EXPECT_EQ(chaos::extract(back, "key").message, message);
+  // The other formats that keep float32 values and the vertex order (docs/CHAOS.md).
+  for (const char* ext : {"obj", "off", "glb"}) {
+    write_mesh(e.mesh, dir / (std::string("stego.") + ext));
+    EXPECT_EQ(chaos::extract(read_mesh(dir / (std::string("stego.") + ext)), "key").message, message) << ext;
+  }
+  // Draco quantizes: the message is gone, and extraction says so cleanly.
+  write_mesh(e.mesh, dir / "stego.drc");
+  EXPECT_THROW(chaos::extract(read_mesh(dir / "stego.drc"), "key"), InvalidInput);
   try {
     chaos::extract(back, chaos::flip_one_bit("key"));
     FAIL() << "a wrong key extracted something";
