@@ -23,7 +23,10 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   if (mesh.num_vertices() == 0) throw InvalidInput("chaos_map: the mesh has no vertices");
   const chaos::MapParams mp = p.map_params();
   ctx.progress(0, "mapping");
-  const chaos::MapResult r = chaos::apply_map(mesh.positions, mp, p.steps);
+  const chaos::MapResult r = chaos::apply_map(mesh.positions, mp, p.steps, [&](int k) {
+    ctx.check_cancelled();
+    ctx.progress(double(k) / p.steps, "mapping");
+  });
   ctx.check_cancelled();
   AlgorithmResult result;
   Mesh out = mesh;

@@ -121,7 +121,8 @@ void map_one_step(std::vector<Vec3>& pts, const MapParams& p, std::vector<std::u
   }
 }
 
-MapResult apply_map(const std::vector<Vec3>& positions, const MapParams& p, int steps) {
+MapResult apply_map(const std::vector<Vec3>& positions, const MapParams& p, int steps,
+                    const std::function<void(int)>& after_step) {
   if (steps < 0) throw InvalidInput("parameter 'steps': must be 0 or more, got " + std::to_string(steps));
   if (p.map == MapKind::cat && p.grid < 2)
     throw InvalidInput("parameter 'grid': must be 2 or more, got " + std::to_string(p.grid));
@@ -131,7 +132,10 @@ MapResult apply_map(const std::vector<Vec3>& positions, const MapParams& p, int 
   if (p.map == MapKind::cat)
     for (Vec3& v : q) v.x = (cell(v.x, p.grid) + 0.5) / p.grid, v.y = (cell(v.y, p.grid) + 0.5) / p.grid;
   std::vector<std::uint8_t> escaped;
-  for (int s = 0; s < steps; ++s) map_one_step(q, p, escaped);
+  for (int s = 0; s < steps; ++s) {
+    map_one_step(q, p, escaped);
+    if (after_step) after_step(s + 1);
+  }
   MapResult r;
   r.positions.resize(q.size());
   for (std::size_t i = 0; i < q.size(); ++i) r.positions[i] = n.from_normalized(q[i]);

@@ -22,6 +22,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -70,12 +71,15 @@ Normalization normalization_for(const std::vector<Vec3>& points, MapKind map);
 void map_one_step(std::vector<Vec3>& normalized, const MapParams& p, std::vector<std::uint8_t>& escaped);
 
 // Positions after `steps` steps (0 gives the input, snapped to the grid for
-// cat).  Throws InvalidInput for a bad parameter (grid < 2, steps < 0).
+// cat).  after_step(k), when given, is called after step k (for progress and
+// cancellation; it may throw).  Throws InvalidInput for a bad parameter
+// (grid < 2, steps < 0).
 struct MapResult {
   std::vector<Vec3> positions;
   std::size_t escaped = 0;  // points that left every bound and were frozen
 };
-MapResult apply_map(const std::vector<Vec3>& positions, const MapParams& p, int steps);
+MapResult apply_map(const std::vector<Vec3>& positions, const MapParams& p, int steps,
+                    const std::function<void(int)>& after_step = {});
 
 // ---- float32 rounding --------------------------------------------------------
 // x rounded to the nearest float32, as a double.  Not double(float(x)): GCC
