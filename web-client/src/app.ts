@@ -101,6 +101,7 @@ export class App {
   /** Jobs this page submitted: their scalar field is shown when they finish. */
   private readonly autoShow = new Set<string>();
   private readonly metrics = new Map<string, unknown>();
+  private readonly texts = new Map<string, string | undefined>();
   /** Jobs asked for with GET /jobs/{id} (progress of a job not seen yet). */
   private readonly asking = new Set<string>();
   /** Mesh artifacts in the view (`${jobId}/${name}`), beside the selected mesh. */
@@ -298,6 +299,23 @@ export class App {
 
   private loadMetrics(job: Job): void {
     for (const a of job.artifacts ?? []) {
+      if (a.kind === 'text') {
+        const key = `${job.id}/${a.name}`;
+        if (this.texts.has(key)) continue;
+        this.texts.set(key, undefined);
+        fetchArtifactBytes(job.id, a.name, 'txt').then(
+          (bytes) => {
+            // Not necessarily UTF-8: undecodable bytes show as U+FFFD.
+            this.texts.set(key, new TextDecoder('utf-8').decode(bytes));
+            this.renderJobs();
+          },
+          (e) => {
+            this.texts.set(key, `Cannot fetch ${a.name}: ${describe(e)}`);
+            this.renderJobs();
+          },
+        );
+        continue;
+      }
       if (a.kind !== 'metrics') continue;
       const key = `${job.id}/${a.name}`;
       if (this.metrics.has(key)) continue;
@@ -323,6 +341,7 @@ export class App {
       shown: this.field ? { jobId: this.field.jobId, artifact: this.field.artifact } : null,
       added: this.added,
       metrics: this.metrics,
+      texts: this.texts,
     });
   }
 

@@ -4,6 +4,8 @@
 // slider changes the positions drawn (window.__cgview.lastAnimation, set
 // after the frame is rendered); the play button advances the frames.  The
 // canvas at the last frame is kept in build/test-artifacts/e2e-chaos-animate.png.
+// A message hidden by chaos_embed and read back by a chained chaos_extract
+// (submitted over REST by another client) shows in the job panel.
 //
 // Environment: CGVIEW_SERVER (default build/bin/cgview-server),
 // CHROMIUM (default /usr/bin/chromium).
@@ -20,6 +22,7 @@ let server = null;
 let browser = null;
 let page = null;
 let baseUrl = null;
+let elephantId = null;
 const pageProblems = [];
 const describeProblems = () => (pageProblems.length ? `\npage problems:\n${pageProblems.join('\n')}` : '');
 
@@ -45,9 +48,9 @@ before(async () => {
   await page.waitForFunction(() => window.__cgview?.ready === true, null, { timeout: 30000 });
   const r = await fetch(`${baseUrl}/api/v1/meshes?name=elephant.off`, { method: 'POST', body: fs.readFileSync(elephant) });
   assert.equal(r.status, 201, await r.clone().text());
-  const id = (await r.json()).id;
-  await page.locator(`#mesh-list li.mesh[data-mesh-id="${id}"]`).click();
-  await page.waitForFunction((i) => window.__cgview.lastLoaded?.id === i, id, { timeout: 60000 });
+  elephantId = (await r.json()).id;
+  await page.locator(`#mesh-list li.mesh[data-mesh-id="${elephantId}"]`).click();
+  await page.waitForFunction((i) => window.__cgview.lastLoaded?.id === i, elephantId, { timeout: 60000 });
 });
 
 after(async () => {
@@ -93,5 +96,30 @@ test('chaos_animate from the form: the slider and the play button change the pos
   await page.waitForFunction(() => window.__cgview.lastAnimation?.frame === 8, null, { timeout: 20000 });
   assert.equal(await page.locator('#animation-player button.player-play').innerText(), 'Play', 'stopped at the end');
   fs.writeFileSync(path.join(artifacts, 'e2e-chaos-animate.png'), await page.locator('#viewport canvas').screenshot());
+  assert.deepEqual(pageProblems, [], describeProblems());
+});
+
+async function runJob(body) {
+  const r = await fetch(`${baseUrl}/api/v1/jobs`, { method: 'POST', body: JSON.stringify(body) });
+  assert.equal(r.status, 201, await r.clone().text());
+  const id = (await r.json()).id;
+  for (let i = 0; i < 600; ++i) {
+    const job = await (await fetch(`${baseUrl}/api/v1/jobs/${id}`)).json();
+    if (job.state === 'done' || job.state === 'failed') return job;
+    await new Promise((res) => setTimeout(res, 100));
+  }
+  throw new Error(`job ${id} did not finish`);
+}
+
+test('a message extracted by chaos_extract shows in the job panel', async () => {
+  const message = 'Figure 11, hidden in the elephant — ünïcödé';
+  const embed = await runJob({ algorithm: 'chaos_embed', inputs: { mesh: elephantId }, params: { key: 'k', message } });
+  assert.equal(embed.state, 'done', JSON.stringify(embed));
+  const extract = await runJob({ algorithm: 'chaos_extract', inputs: { mesh: { job: embed.id, artifact: 'mesh' } }, params: { key: 'k' } });
+  assert.equal(extract.state, 'done', JSON.stringify(extract));
+  const text = page.locator(`#jobs li.job[data-job-id="${extract.id}"] .text-content`);
+  await text.waitFor({ timeout: 20000 });
+  await page.waitForFunction((id) => !document.querySelector(`#jobs li.job[data-job-id="${id}"] .text-content`)?.textContent?.includes('loading'), extract.id, { timeout: 10000 });
+  assert.equal(await text.innerText(), message);
   assert.deepEqual(pageProblems, [], describeProblems());
 });

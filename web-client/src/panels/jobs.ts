@@ -27,6 +27,8 @@ export interface JobsView {
   added: ReadonlySet<string>;
   /** Fetched metrics artifacts, by `${jobId}/${name}`: the JSON, or an error sentence. */
   metrics: ReadonlyMap<string, unknown>;
+  /** Fetched text artifacts (chaos_extract's message), by `${jobId}/${name}`: the text, or undefined while loading. */
+  texts: ReadonlyMap<string, string | undefined>;
 }
 
 const ACTIVE = new Set(['queued', 'running']);
@@ -104,7 +106,9 @@ export class JobsPanel {
   private signature(job: Job, view: JobsView): string {
     const mesh = job.inputs?.mesh ? view.meshName(job.inputs.mesh) : null;
     const shown = view.shown?.jobId === job.id ? view.shown.artifact : '';
-    const metrics = (job.artifacts ?? []).map((a) => (view.metrics.get(`${job.id}/${a.name}`) === undefined ? 0 : 1)).join('');
+    const metrics = (job.artifacts ?? [])
+      .map((a) => (view.metrics.get(`${job.id}/${a.name}`) === undefined && view.texts.get(`${job.id}/${a.name}`) === undefined ? 0 : 1))
+      .join('');
     const added = (job.artifacts ?? []).map((a) => (view.added.has(`${job.id}/${a.name}`) ? 1 : 0)).join('');
     return JSON.stringify([job.state, job.cached, job.error, mesh, shown, metrics, added, job.artifacts?.length ?? 0]);
   }
@@ -174,6 +178,10 @@ export class JobsPanel {
       row.append(label, play, ' ', el('a', { href: artifactUrl(job.id, a.name, 'frames'), download: '' }, 'frames'));
     } else if (a.kind === 'text') {
       row.append(label, ' ', el('a', { href: artifactUrl(job.id, a.name, 'txt'), download: '' }, 'txt'));
+      const text = view.texts.get(`${job.id}/${a.name}`);
+      // At most 2000 characters here; the link has all the bytes.
+      const shown = text === undefined ? 'loading…' : text.length > 2000 ? `${text.slice(0, 2000)}…` : text;
+      row.append(el('pre', { class: 'text-content' }, shown));
     } else if (a.kind === 'metrics') {
       row.append(label);
       const data = view.metrics.get(`${job.id}/${a.name}`);
