@@ -16,7 +16,8 @@
 // Capacity: 3 k bits per vertex, less the 64 header bits.
 // Distortion: every coordinate is rounded to float32 first (0 for a mesh
 // read from a float32 file), then a used coordinate x moves by less than
-// 2^k ulp(x) <= 2^(k - 23) |x|, so that every vertex moves by at most
+// 2^k ulp(x) <= 2^(k - 23) |x| (a zero or denormal x: less than
+// 2^(k - 149)), so that every vertex moves by at most
 // sqrt(3) 2^(k - 23) max|coordinate| (the exponent and sign are never
 // touched: no coordinate becomes infinite or NaN).
 // Exactness: the message survives storage that keeps the float32 values and
