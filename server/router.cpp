@@ -258,7 +258,7 @@ Router::Router(MeshService& meshes, RouterConfig config)
                      },
                      false});
   routes_.push_back({"GET", "/api/v1/jobs/{id}/artifacts/{name}", "An artifact of a done job in a format",
-                     {{"format", "scalar field: json (default), f32, txt, csv, ply; mesh: ply (default) or any writable mesh format; metrics: json"}},
+                     {{"format", "scalar field: json (default), f32, txt, csv, ply; mesh: ply (default) or any writable mesh format; metrics: json; text: txt; animation: frames"}},
                      [jobs](const Params& p, const HttpRequest& req) {
                        const auto q = split_target(req.target).second;
                        const auto f = q.find("format");

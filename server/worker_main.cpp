@@ -12,6 +12,8 @@
 //                 {"name","location","hint","range":[lo,hi],"count"}
 //   mesh          NAME.ply
 //   metrics       NAME.json
+//   text          NAME.txt (the bytes as they are)
+//   animation     NAME.frames (core/animation.h)
 //   others        NAME + default_extension (write_artifact)
 // and result.json {"artifacts":[{"name","kind","file",...}],"warnings":[...]}.
 // Exit status: 0 done; 2 invalid input; 3 out of memory; 1 any other error
@@ -67,7 +69,10 @@ json save(const Artifact& a, const Mesh& input, const fs::path& out) {
     entry["file"] = a.name + ".json";
     write_artifact(a, input, out / (a.name + ".json"));
   } else {
-    entry["kind"] = std::holds_alternative<VoxelGrid>(a.value) ? "voxel_grid" : "skeleton";
+    entry["kind"] = std::holds_alternative<VoxelGrid>(a.value) ? "voxel_grid"
+                    : std::holds_alternative<Text>(a.value)    ? "text"
+                    : std::holds_alternative<Animation>(a.value) ? "animation"
+                                                               : "skeleton";
     entry["file"] = a.name + default_extension(a);
     write_artifact(a, input, out / entry["file"].get<std::string>());
   }

@@ -33,6 +33,9 @@ std::string metrics_json(const Metrics& m) { return nlohmann::json(m).dump() + "
 }  // namespace
 
 std::string default_extension(const Artifact& a) {
+  // By type, not by index: the variant may grow in another order.
+  if (std::holds_alternative<Text>(a.value)) return ".txt";
+  if (std::holds_alternative<Animation>(a.value)) return ".frames";
   switch (a.value.index()) {
     case 0: return ".ply";
     case 1: return ".txt";
@@ -60,6 +63,12 @@ void check_artifact_extension(OutputKind kind, const std::filesystem::path& path
       return;
     case OutputKind::metrics:
       if (ext != ".json") unsupported("metrics table", ext, ".json");
+      return;
+    case OutputKind::text:
+      if (ext != ".txt" && ext != ".bin") unsupported("text", ext, ".txt or .bin");
+      return;
+    case OutputKind::animation:
+      if (ext != ".frames") unsupported("animation", ext, ".frames");
       return;
   }
 }
@@ -132,6 +141,12 @@ void write_artifact(const Artifact& a, const Mesh& input, const std::filesystem:
   } else if (const auto* m = std::get_if<Metrics>(&a.value)) {
     if (ext != ".json") unsupported("metrics table", ext, ".json");
     out = metrics_json(*m);
+  } else if (const auto* t = std::get_if<Text>(&a.value)) {
+    if (ext != ".txt" && ext != ".bin") unsupported("text", ext, ".txt or .bin");
+    out = t->bytes;  // as they are: a message's bytes need not be UTF-8
+  } else if (const auto* anim = std::get_if<Animation>(&a.value)) {
+    if (ext != ".frames") unsupported("animation", ext, ".frames");
+    out = encode_frames(*anim);
   }
   write_file_bytes(path, out);
 }

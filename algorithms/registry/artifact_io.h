@@ -6,6 +6,8 @@
 //   skeleton      .obj (v and l records), .json
 //   voxel grid    .vtk (legacy STRUCTURED_POINTS, for ParaView)
 //   metrics       .json
+//   text          .txt or .bin (the bytes as they are)
+//   animation     .frames (core/animation.h: faces and uint16-quantized positions per frame)
 #pragma once
 
 #include <filesystem>

@@ -54,6 +54,8 @@ const char* to_string(OutputKind k) {
     case OutputKind::voxel_grid: return "voxel_grid";
     case OutputKind::skeleton: return "skeleton";
     case OutputKind::metrics: return "metrics";
+    case OutputKind::text: return "text";
+    case OutputKind::animation: return "animation";
   }
   return "?";
 }

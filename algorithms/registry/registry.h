@@ -29,6 +29,7 @@
 #include <variant>
 #include <vector>
 
+#include "core/animation.h"
 #include "core/errors.h"
 #include "core/mesh.h"
 #include "core/scalar_field.h"
@@ -64,9 +65,14 @@ struct ParamSpec {
 
 // One result of an algorithm, named ("sdf", "skeleton", "metrics").
 using Metrics = std::map<std::string, double>;
+// Bytes for the user, kept as they are (a message extracted by chaos_extract):
+// saved as .txt or .bin.
+struct Text {
+  std::string bytes;
+};
 struct Artifact {
   std::string name;
-  std::variant<Mesh, ScalarField, VoxelGrid, Skeleton, Metrics> value;
+  std::variant<Mesh, ScalarField, VoxelGrid, Skeleton, Metrics, Text, Animation> value;
 };
 
 struct AlgorithmResult {
@@ -97,7 +103,7 @@ class Context {
 };
 
 // The kinds of output an algorithm declares.
-enum class OutputKind { mesh, scalar_field, voxel_grid, skeleton, metrics };
+enum class OutputKind { mesh, scalar_field, voxel_grid, skeleton, metrics, text, animation };
 
 // An algorithm's named input ("mesh", "reference", "grid"), of one kind.
 struct InputSpec {  // initializers as in ParamInfo

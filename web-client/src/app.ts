@@ -1,7 +1,7 @@
 // The one place that owns the view state: the list of meshes, the chosen
 // mesh, the load in progress and what the viewer shows. Panels render from
 // it and call its actions; nothing else changes it.
-import type * as THREE from 'three';
+import * as THREE from 'three';
 import {
   ApiError,
   cancelJob,
@@ -27,7 +27,9 @@ import { ProgressPanel } from './panels/progress.ts';
 import { ReportPanel } from './panels/report.ts';
 import { UploadControl } from './panels/upload.ts';
 import { byId } from './panels/dom.ts';
+import { AnimationPlayer } from './viewer/animation_player.ts';
 import { DracoDecoder } from './viewer/draco_decoder.ts';
+import { decodeFrames, framePositions } from './viewer/frames.ts';
 import { defaultMapFor } from './viewer/colormaps.ts';
 import { Legend } from './viewer/legend.ts';
 import { parsePly, type PlyMesh } from './viewer/ply.ts';
@@ -63,6 +65,12 @@ export interface TestHooks {
   algorithmsApi: boolean | null;
   /** The last mesh artifact added to the view, set after the first frame with it. */
   lastExtra: { jobId: string; artifact: string; vertices: number; faces: number } | null;
+  /**
+   * The animation frame drawn (chaos_animate), set after the frame is
+   * rendered: which frame of how many, and the first vertex's position and
+   * the sum of all coordinates as drawn.
+   */
+  lastAnimation: { jobId: string; artifact: string; frame: number; frames: number; vertices: number; first: [number, number, number]; sum: number } | null;
 }
 
 declare global {
@@ -93,6 +101,7 @@ export class App {
   /** Jobs this page submitted: their scalar field is shown when they finish. */
   private readonly autoShow = new Set<string>();
   private readonly metrics = new Map<string, unknown>();
+  private readonly texts = new Map<string, string | undefined>();
   /** Jobs asked for with GET /jobs/{id} (progress of a job not seen yet). */
   private readonly asking = new Set<string>();
   /** Mesh artifacts in the view (`${jobId}/${name}`), beside the selected mesh. */
@@ -114,6 +123,7 @@ export class App {
     lastField: null,
     algorithmsApi: null,
     lastExtra: null,
+    lastAnimation: null,
   };
   private readonly socket = new CgviewSocket();
   private readonly decoder = new DracoDecoder();
@@ -125,6 +135,8 @@ export class App {
   private readonly algorithmsPanel: AlgorithmsPanel;
   private readonly jobsPanel: JobsPanel;
   private readonly legend: Legend;
+  private readonly player: AnimationPlayer;
+  private animationToken = 0;
   private readonly status: HTMLElement;
 
   constructor() {
@@ -146,8 +158,10 @@ export class App {
       showField: (jobId, artifact) => void this.showField(jobId, artifact),
       addMesh: (jobId, artifact) => void this.addMeshArtifact(jobId, artifact),
       runOn: (jobId, artifact) => this.setRunTarget(jobId, artifact),
+      playAnimation: (jobId, artifact) => void this.showAnimation(jobId, artifact),
     });
     this.legend = new Legend(byId('viewport'), (name) => this.setColorMap(name));
+    this.player = new AnimationPlayer(byId('viewport'));
     new UploadControl(byId<HTMLInputElement>('file-input'), document.body, (files) => void this.upload(files));
     byId('fit').addEventListener('click', () => this.viewer.fitToView());
   }
@@ -311,6 +325,23 @@ export class App {
 
   private loadMetrics(job: Job): void {
     for (const a of job.artifacts ?? []) {
+      if (a.kind === 'text') {
+        const key = `${job.id}/${a.name}`;
+        if (this.texts.has(key)) continue;
+        this.texts.set(key, undefined);
+        fetchArtifactBytes(job.id, a.name, 'txt').then(
+          (bytes) => {
+            // Not necessarily UTF-8: undecodable bytes show as U+FFFD.
+            this.texts.set(key, new TextDecoder('utf-8').decode(bytes));
+            this.renderJobs();
+          },
+          (e) => {
+            this.texts.set(key, `Cannot fetch ${a.name}: ${describe(e)}`);
+            this.renderJobs();
+          },
+        );
+        continue;
+      }
       if (a.kind !== 'metrics') continue;
       const key = `${job.id}/${a.name}`;
       if (this.metrics.has(key)) continue;
@@ -337,6 +368,7 @@ export class App {
       added: this.added,
       target: this.runTarget ? `${this.runTarget.jobId}/${this.runTarget.artifact}` : null,
       metrics: this.metrics,
+      texts: this.texts,
     });
   }
 
@@ -415,6 +447,53 @@ export class App {
       this.renderJobs();
     } catch (e) {
       this.error(`Cannot add ${artifactName} of ${job.algorithm}: ${describe(e)}`);
+    }
+  }
+
+  /**
+   * Shows a job's animation artifact (.frames: chaos_animate) as points in
+   * place of the mesh, with the player's slider and play button over the
+   * view; the camera frames the box of every frame.
+   */
+  async showAnimation(jobId: string, artifactName: string): Promise<void> {
+    const job = this.jobs.get(jobId);
+    if (!job) return;
+    const token = ++this.animationToken;
+    try {
+      const [bytes] = await Promise.all([fetchArtifactBytes(jobId, artifactName, 'frames'), this.showing]);
+      if (token !== this.animationToken) return;
+      const frames = decodeFrames(bytes);
+      if (this.field) this.dropField();
+      const positions = framePositions(frames, 0, new Float32Array(3 * frames.vertices));
+      const geometry = new THREE.BufferGeometry();
+      const attribute = new THREE.BufferAttribute(positions, 3);
+      attribute.setUsage(THREE.DynamicDrawUsage);
+      geometry.setAttribute('position', attribute);
+      // The box of every frame, so that fit-to-view and culling hold for all.
+      geometry.boundingBox = new THREE.Box3(new THREE.Vector3(...frames.lo), new THREE.Vector3(...frames.hi));
+      geometry.boundingSphere = geometry.boundingBox.getBoundingSphere(new THREE.Sphere());
+      const size = geometry.boundingSphere.radius / 150;
+      const points = new THREE.Points(geometry, new THREE.PointsMaterial({ color: '#e07a1f', size, sizeAttenuation: true }));
+      points.name = 'animation';
+      this.hooks.lastAnimation = null;
+      this.viewer.show(points);
+      this.player.show(`${job.algorithm} · ${artifactName}`, frames.frames, (k) => {
+        if (this.viewer.object !== points) return;
+        framePositions(frames, k, positions);
+        attribute.needsUpdate = true;
+        this.viewer.redraw(() => {
+          if (this.viewer.object !== points) return;
+          let sum = 0;
+          for (let i = 0; i < positions.length; ++i) sum += positions[i]!;
+          this.hooks.lastAnimation = {
+            jobId, artifact: artifactName, frame: k, frames: frames.frames, vertices: frames.vertices,
+            first: [positions[0]!, positions[1]!, positions[2]!], sum,
+          };
+        });
+      });
+    } catch (e) {
+      if (token !== this.animationToken) return;
+      this.error(`Cannot show ${artifactName} of ${job.algorithm}: ${describe(e)}`);
     }
   }
 
@@ -504,6 +583,9 @@ export class App {
   /** Downloads the mesh over the WebSocket, decodes it in the worker and shows it. */
   private async show(mesh: Mesh): Promise<void> {
     this.load?.controller.abort();
+    ++this.animationToken;
+    this.player.hide();
+    this.hooks.lastAnimation = null;
     if (this.field || this.added.size) {
       this.dropField();
       this.added.clear(); // show() below clears the viewer's extras

@@ -451,6 +451,18 @@ TEST(ArtifactIo, DefaultExtensions) {
   EXPECT_EQ(default_extension({"g", VoxelGrid{}}), ".vtk");
   EXPECT_EQ(default_extension({"s", Skeleton{}}), ".obj");
   EXPECT_EQ(default_extension({"k", Metrics{}}), ".json");
+  EXPECT_EQ(default_extension({"t", Text{}}), ".txt");
+  EXPECT_EQ(default_extension({"a", Animation{}}), ".frames");
+}
+
+TEST(ArtifactIo, TextIsWrittenAsItsBytes) {
+  const auto dir = test::temp_dir("artifact_text");
+  const std::string bytes("a\0\xff\n", 4);
+  write_artifact({"message", Text{bytes}}, Mesh{}, dir / "m.bin");
+  EXPECT_EQ(read_file_bytes(dir / "m.bin", 100), bytes);
+  EXPECT_THROW(write_artifact({"message", Text{bytes}}, Mesh{}, dir / "m.json"), UnsupportedFormat);
+  EXPECT_THROW(check_artifact_extension(OutputKind::animation, "a.ply"), UnsupportedFormat);
+  EXPECT_NO_THROW(check_artifact_extension(OutputKind::animation, "a.frames"));
 }
 
 TEST(ArtifactIo, ScalarFieldAsTxtHasOneValuePerLine) {

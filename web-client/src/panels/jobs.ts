@@ -16,6 +16,8 @@ export interface JobsActions {
   addMesh(jobId: string, artifact: string): void;
   /** Makes a mesh artifact the input of the next job (the algorithm form runs on it). */
   runOn(jobId: string, artifact: string): void;
+  /** Shows an animation artifact (chaos_animate's frames) with the player. */
+  playAnimation(jobId: string, artifact: string): void;
 }
 
 export interface JobsView {
@@ -30,6 +32,8 @@ export interface JobsView {
   target: string | null;
   /** Fetched metrics artifacts, by `${jobId}/${name}`: the JSON, or an error sentence. */
   metrics: ReadonlyMap<string, unknown>;
+  /** Fetched text artifacts (chaos_extract's message), by `${jobId}/${name}`: the text, or undefined while loading. */
+  texts: ReadonlyMap<string, string | undefined>;
 }
 
 const ACTIVE = new Set(['queued', 'running']);
@@ -107,7 +111,9 @@ export class JobsPanel {
   private signature(job: Job, view: JobsView): string {
     const mesh = job.inputs?.mesh ? view.meshName(job.inputs.mesh) : null;
     const shown = view.shown?.jobId === job.id ? view.shown.artifact : '';
-    const metrics = (job.artifacts ?? []).map((a) => (view.metrics.get(`${job.id}/${a.name}`) === undefined ? 0 : 1)).join('');
+    const metrics = (job.artifacts ?? [])
+      .map((a) => (view.metrics.get(`${job.id}/${a.name}`) === undefined && view.texts.get(`${job.id}/${a.name}`) === undefined ? 0 : 1))
+      .join('');
     const added = (job.artifacts ?? []).map((a) => (view.added.has(`${job.id}/${a.name}`) ? 1 : 0)).join('');
     return JSON.stringify([job.state, job.cached, job.error, mesh, shown, metrics, added, job.artifacts?.length ?? 0]);
   }
@@ -175,6 +181,16 @@ export class JobsPanel {
       runOn.disabled = targeted;
       runOn.addEventListener('click', () => this.actions.runOn(job.id, a.name));
       row.append(label, add, ' ', runOn, ' ', el('a', { href: artifactUrl(job.id, a.name, 'ply'), download: '' }, 'ply'), ' ', el('a', { href: artifactUrl(job.id, a.name, 'obj'), download: '' }, 'obj'));
+    } else if (a.kind === 'animation') {
+      const play = el('button', { type: 'button', class: 'button small play-animation' }, 'Play');
+      play.addEventListener('click', () => this.actions.playAnimation(job.id, a.name));
+      row.append(label, play, ' ', el('a', { href: artifactUrl(job.id, a.name, 'frames'), download: '' }, 'frames'));
+    } else if (a.kind === 'text') {
+      row.append(label, ' ', el('a', { href: artifactUrl(job.id, a.name, 'txt'), download: '' }, 'txt'));
+      const text = view.texts.get(`${job.id}/${a.name}`);
+      // At most 2000 characters here; the link has all the bytes.
+      const shown = text === undefined ? 'loading…' : text.length > 2000 ? `${text.slice(0, 2000)}…` : text;
+      row.append(el('pre', { class: 'text-content' }, shown));
     } else if (a.kind === 'metrics') {
       row.append(label);
       const data = view.metrics.get(`${job.id}/${a.name}`);
