@@ -2,16 +2,19 @@
 // Processing's connected_components): count them, keep the largest, or drop
 // the small ones.
 #include <string>
+#include <vector>
 
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 
 #include "core/surface_mesh.h"
+#include "filters/repair_mesh.h"
 #include "registry/registry.h"
 
 namespace cgview {
 namespace {
 
 struct Params {
+  bool repair = false;
   std::string mode = "keep_largest";
   int min_faces = 100;
   template <class V>
@@ -23,6 +26,9 @@ struct Params {
               .choices = {"keep_largest", "drop_smaller_than", "count"}});
     v.integer("min_faces", min_faces,
               {.label = "Minimum faces", .min = 1, .max = 1e9, .help = "for drop_smaller_than: the smallest size kept"});
+    v.boolean("repair", repair,
+              {.label = "Repair first",
+               .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
   }
 };
 
@@ -30,7 +36,8 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   if (mesh.num_faces() == 0) throw InvalidInput("components needs a triangle mesh: the mesh has no faces");
   mesh.validate();
   ctx.progress(0.0, "halfedges");
-  SurfaceMesh sm = manifold_surface_mesh(mesh, "components");
+  std::vector<std::string> repaired;
+  SurfaceMesh sm = halfedge_mesh_for(mesh, "components", p.repair, repaired);
   ctx.check_cancelled();
   ctx.progress(0.3, "components");
   namespace PMP = CGAL::Polygon_mesh_processing;
@@ -53,6 +60,7 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   result.artifacts.push_back({"mesh", std::move(out)});
   result.artifacts.push_back({"metrics", Metrics{{"components", double(n)}, {"kept", double(kept)}}});
   ctx.progress(1.0, "done");
+  result.warnings.insert(result.warnings.begin(), repaired.begin(), repaired.end());
   return result;
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/surface_mesh.h"
+#include "filters/repair_mesh.h"
 #include "registry/registry.h"
 
 namespace cgview {
@@ -18,6 +19,7 @@ namespace {
 namespace PMP = CGAL::Polygon_mesh_processing;
 
 struct Params {
+  bool repair = false;
   int max_hole_edges = 1000;
   std::string mode = "refine_and_fair";
   template <class V>
@@ -30,13 +32,17 @@ struct Params {
               .help = "triangulate: fewest new faces; refine: also add vertices to match the surrounding "
                       "density; refine_and_fair: also move them to blend smoothly with the surface",
               .choices = {"triangulate", "refine", "refine_and_fair"}});
+    v.boolean("repair", repair,
+              {.label = "Repair first",
+               .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
   }
 };
 
 AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   if (mesh.num_faces() == 0) throw InvalidInput("fill_holes needs a mesh with faces");
   ctx.progress(0, "converting");
-  SurfaceMesh sm = manifold_surface_mesh(mesh, "fill_holes");
+  std::vector<std::string> repaired;
+  SurfaceMesh sm = halfedge_mesh_for(mesh, "fill_holes", p.repair, repaired);
   using Halfedge = SurfaceMesh::Halfedge_index;
   std::vector<Halfedge> cycles;
   PMP::extract_boundary_cycles(sm, std::back_inserter(cycles));
@@ -76,6 +82,7 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   result.artifacts.push_back({"metrics", Metrics{{"holes_found", double(cycles.size())},
                                                  {"holes_filled", double(filled)}}});
   ctx.progress(1.0, "done");
+  result.warnings.insert(result.warnings.begin(), repaired.begin(), repaired.end());
   return result;
 }
 

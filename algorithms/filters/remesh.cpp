@@ -4,8 +4,10 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "core/surface_mesh.h"
+#include "filters/repair_mesh.h"
 #include "registry/registry.h"
 
 namespace cgview {
@@ -14,6 +16,7 @@ namespace {
 namespace PMP = CGAL::Polygon_mesh_processing;
 
 struct Params {
+  bool repair = false;
   double target_edge_length = 0;
   int iterations = 3;
   template <class V>
@@ -23,13 +26,17 @@ struct Params {
               .help = "the edge length to reach; 0 means the input's mean edge length"});
     v.integer("iterations", iterations,
               {.label = "Iterations", .min = 1, .max = 100, .help = "split/collapse/flip/relax rounds"});
+    v.boolean("repair", repair,
+              {.label = "Repair first",
+               .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
   }
 };
 
 AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   if (mesh.num_faces() == 0) throw InvalidInput("remesh needs a mesh with faces");
   ctx.progress(0, "converting");
-  SurfaceMesh sm = manifold_surface_mesh(mesh, "remesh");
+  std::vector<std::string> repaired;
+  SurfaceMesh sm = halfedge_mesh_for(mesh, "remesh", p.repair, repaired);
   double target = p.target_edge_length;
   if (target == 0) {
     double sum = 0;
@@ -47,6 +54,7 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   AlgorithmResult result;
   result.artifacts.push_back({"mesh", from_surface_mesh(sm)});
   ctx.progress(1.0, "done");
+  result.warnings.insert(result.warnings.begin(), repaired.begin(), repaired.end());
   return result;
 }
 

@@ -13,8 +13,10 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "core/surface_mesh.h"
+#include "filters/repair_mesh.h"
 #include "registry/registry.h"
 
 namespace cgview {
@@ -23,6 +25,7 @@ namespace {
 namespace SMS = CGAL::Surface_mesh_simplification;
 
 struct Params {
+  bool repair = false;
   int target_faces = 0;
   double ratio = 0.5;
   template <class V>
@@ -33,6 +36,9 @@ struct Params {
     v.number("ratio", ratio,
              {.label = "Ratio", .min = 0, .max = 1,
               .help = "fraction of the input's faces to keep, used when target_faces is 0"});
+    v.boolean("repair", repair,
+              {.label = "Repair first",
+               .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
   }
 };
 
@@ -66,7 +72,8 @@ struct Stop {
 AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   if (mesh.num_faces() == 0) throw InvalidInput("simplify needs a mesh with faces");
   ctx.progress(0, "converting");
-  SurfaceMesh sm = manifold_surface_mesh(mesh, "simplify");
+  std::vector<std::string> repaired;
+  SurfaceMesh sm = halfedge_mesh_for(mesh, "simplify", p.repair, repaired);
   Tracker t;
   t.faces = t.initial = sm.number_of_faces();
   t.target = p.target_faces > 0 ? std::size_t(p.target_faces)
@@ -85,6 +92,7 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   }
   result.artifacts.push_back({"mesh", from_surface_mesh(sm)});
   ctx.progress(1.0, "done");
+  result.warnings.insert(result.warnings.begin(), repaired.begin(), repaired.end());
   return result;
 }
 

@@ -6,8 +6,10 @@
 #include <CGAL/Polygon_mesh_processing/smooth_shape.h>
 
 #include <string>
+#include <vector>
 
 #include "core/surface_mesh.h"
+#include "filters/repair_mesh.h"
 #include "registry/registry.h"
 
 namespace cgview {
@@ -16,6 +18,7 @@ namespace {
 namespace PMP = CGAL::Polygon_mesh_processing;
 
 struct Params {
+  bool repair = false;
   std::string method = "mean_curvature_flow";
   double time = 1e-4;
   int iterations = 5;
@@ -31,13 +34,17 @@ struct Params {
              {.label = "Time step", .min = 1e-8, .max = 1,
               .help = "mean_curvature_flow only: the step of each iteration; larger smooths faster"});
     v.integer("iterations", iterations, {.label = "Iterations", .min = 1, .max = 1000});
+    v.boolean("repair", repair,
+              {.label = "Repair first",
+               .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
   }
 };
 
 AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   if (mesh.num_faces() == 0) throw InvalidInput("smooth needs a mesh with faces");
   ctx.progress(0, "converting");
-  SurfaceMesh sm = manifold_surface_mesh(mesh, "smooth");
+  std::vector<std::string> repaired;
+  SurfaceMesh sm = halfedge_mesh_for(mesh, "smooth", p.repair, repaired);
   for (int i = 0; i < p.iterations; ++i) {
     ctx.check_cancelled();
     ctx.progress(double(i) / double(p.iterations), "iteration " + std::to_string(i + 1));
@@ -50,6 +57,7 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   AlgorithmResult result;
   result.artifacts.push_back({"mesh", from_surface_mesh(sm)});
   ctx.progress(1.0, "done");
+  result.warnings.insert(result.warnings.begin(), repaired.begin(), repaired.end());
   return result;
 }
 

@@ -2,11 +2,13 @@
 // Catmull-Clark (its quads triangulated afterwards) and Kobbelt's sqrt(3).
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/subdivision_method_3.h>
 
 #include "core/surface_mesh.h"
+#include "filters/repair_mesh.h"
 #include "registry/registry.h"
 
 namespace cgview {
@@ -16,6 +18,7 @@ namespace {
 constexpr double max_faces = 20e6;
 
 struct Params {
+  bool repair = false;
   std::string method = "loop";
   int iterations = 1;
   template <class V>
@@ -26,6 +29,9 @@ struct Params {
                       "then each quad into 4 per step, split into 2 triangles each at the end; sqrt3: Kobbelt's scheme, each triangle into 3",
               .choices = {"loop", "catmull_clark", "sqrt3"}});
     v.integer("iterations", iterations, {.label = "Iterations", .min = 1, .max = 5, .help = "subdivision steps"});
+    v.boolean("repair", repair,
+              {.label = "Repair first",
+               .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
   }
 };
 
@@ -43,7 +49,8 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
     throw InvalidInput("subdivide would make " + std::to_string(std::llround(expected)) + " faces, over the limit of " +
                        std::to_string(std::llround(max_faces)) + ": use fewer iterations");
   ctx.progress(0.0, "halfedges");
-  SurfaceMesh sm = manifold_surface_mesh(mesh, "subdivide");
+  std::vector<std::string> repaired;
+  SurfaceMesh sm = halfedge_mesh_for(mesh, "subdivide", p.repair, repaired);
   namespace SM = CGAL::Subdivision_method_3;
   const auto one_step = CGAL::parameters::number_of_iterations(1);
   for (int i = 0; i < p.iterations; ++i) {
@@ -62,6 +69,7 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   AlgorithmResult result;
   result.artifacts.push_back({"mesh", from_surface_mesh(sm)});
   ctx.progress(1.0, "done");
+  result.warnings.insert(result.warnings.begin(), repaired.begin(), repaired.end());
   return result;
 }
 

@@ -275,5 +275,38 @@ TEST(HausdorffTest, MissingOrBadInputsAreInvalid) {
   }
 }
 
+// A sphere with one more face on one of its edges: three faces on an edge.
+Mesh sphere_with_a_fin() {
+  Mesh m = test::uv_sphere(1.0, 16, 32);
+  const Tri f = m.faces[40];
+  m.positions.push_back({3, 3, 3});
+  m.faces.push_back({f[0], f[1], Index(m.positions.size() - 1)});
+  return m;
+}
+
+TEST(RepairFirstTest, HalfedgeFiltersRefuseANonManifoldMeshOrRepairItWhenAsked) {
+  const Mesh fin = sphere_with_a_fin();
+  ASSERT_FALSE(mesh_report(fin).manifold);
+  for (const std::string name : {"simplify", "smooth", "remesh", "fill_holes", "subdivide", "components"}) {
+    SCOPED_TRACE(name);
+    try {
+      run(name, fin);
+      ADD_FAILURE() << "no error";
+    } catch (const InvalidInput& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(name + " needs a manifold mesh"), std::string::npos) << what;
+      EXPECT_NE(what.find("set 'repair'"), std::string::npos) << what;
+    }
+    const AlgorithmResult r = run(name, fin, {{"repair", true}});
+    ASSERT_FALSE(r.warnings.empty());
+    EXPECT_NE(r.warnings[0].find("repaired first"), std::string::npos) << r.warnings[0];
+    const Mesh& out = artifact<Mesh>(r, "mesh");
+    EXPECT_GT(out.num_faces(), 0u);
+    EXPECT_TRUE(mesh_report(out).manifold);
+  }
+  // A manifold mesh is left as it is: no warning.
+  EXPECT_TRUE(run("simplify", test::uv_sphere(), {{"repair", true}}).warnings.empty());
+}
+
 }  // namespace
 }  // namespace cgview
