@@ -4,7 +4,8 @@
 //                 (index,value), .ply (the input mesh with the values as a
 //                 float property, for MeshLab and ParaView)
 //   skeleton      .obj (v and l records), .json
-//   voxel grid    .vtk (legacy STRUCTURED_POINTS, for ParaView)
+//   voxel grid    .vtk (legacy STRUCTURED_POINTS, for ParaView), and .binvox .raw
+//                 .nrrd .vti .vox .vdb (voxel/voxel_io.h)
 //   metrics       .json
 #pragma once
 
