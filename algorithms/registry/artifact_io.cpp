@@ -37,7 +37,7 @@ std::string default_extension(const Artifact& a) {
   switch (a.value.index()) {
     case 0: return ".ply";
     case 1: return ".txt";
-    case 2: return ".vtk";
+    case 2: return ".nrrd";  // binary and read back by read_voxel_grid (ASCII .vtk is 20x larger)
     case 3: return ".obj";
     default: return ".json";
   }

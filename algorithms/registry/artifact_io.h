@@ -4,8 +4,8 @@
 //                 (index,value), .ply (the input mesh with the values as a
 //                 float property, for MeshLab and ParaView)
 //   skeleton      .obj (v and l records), .json
-//   voxel grid    .vtk (legacy STRUCTURED_POINTS, for ParaView), and .binvox .raw
-//                 .nrrd .vti .vox .vdb (voxel/voxel_io.h)
+//   voxel grid    .nrrd (the default), .binvox .raw .vti .vox .vdb (voxel/voxel_io.h),
+//                 .vtk (legacy STRUCTURED_POINTS, ASCII, for ParaView)
 //   metrics       .json
 #pragma once
 
