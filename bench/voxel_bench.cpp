@@ -7,7 +7,7 @@
 // triangles).  Both sides use every core (OpenVDB through TBB, CGView through
 // std::thread).  Prints a Markdown table.
 //
-//   build/bin/voxel_bench [--quick] [--max-res N] [--repeat N]
+//   build/bin/voxel_bench [--quick] [--max-res N] [--repeat N] [--res N]... [--large-only]
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/LevelSetUtil.h>
 #include <openvdb/tools/MeshToVolume.h>
@@ -51,15 +51,18 @@ struct Input {
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool quick = false;
+  bool quick = false, large_only = false;
   int max_res = 1024, repeat = 2;
+  std::vector<int> only_res;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--quick") quick = true;
     else if (a == "--max-res" && i + 1 < argc) max_res = std::atoi(argv[++i]);
     else if (a == "--repeat" && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--res" && i + 1 < argc) only_res.push_back(std::atoi(argv[++i]));
+    else if (a == "--large-only") large_only = true;
     else {
-      std::fprintf(stderr, "usage: voxel_bench [--quick] [--max-res N] [--repeat N]\n");
+      std::fprintf(stderr, "usage: voxel_bench [--quick] [--max-res N] [--repeat N] [--res N]... [--large-only]\n");
       return 2;
     }
   }
@@ -73,6 +76,8 @@ int main(int argc, char** argv) {
   inputs.push_back({"refined_elephant", read_mesh(*path)});
   if (!quick) inputs.push_back({"refined_elephant subdivided twice", subdivide_midpoint(subdivide_midpoint(inputs[0].mesh))});
   std::vector<int> resolutions = quick ? std::vector<int>{128, 256} : std::vector<int>{128, 256, 512, 1024};
+  if (!only_res.empty()) resolutions = only_res;
+  if (large_only && inputs.size() > 1) inputs.erase(inputs.begin());
   resolutions.erase(std::remove_if(resolutions.begin(), resolutions.end(), [&](int r) { return r > max_res; }), resolutions.end());
 
   std::printf("threads: %u (both sides)\n\n", std::thread::hardware_concurrency());

@@ -139,6 +139,26 @@ VoxelSlice slice(const VoxelGrid& grid, int axis, int index) {
   return out;
 }
 
+VoxelGrid threshold(const VoxelGrid& grid, float t) {
+  VoxelGrid out(grid.dims(), grid.origin(), grid.voxel_size(), VoxelType::bit, grid.size() + 1);
+  auto& o = out.bytes();
+  if (grid.type() == VoxelType::float32)
+    for (std::size_t i = 0; i < o.size(); ++i) o[i] = grid.floats()[i] > t;
+  else
+    for (std::size_t i = 0; i < o.size(); ++i) o[i] = float(grid.bytes()[i]) > t;
+  return out;
+}
+
+std::pair<float, float> value_range(const VoxelGrid& grid) {
+  if (grid.size() == 0) return {0.f, 0.f};
+  if (grid.type() == VoxelType::float32) {
+    const auto [a, b] = std::minmax_element(grid.floats().begin(), grid.floats().end());
+    return {*a, *b};
+  }
+  const auto [a, b] = std::minmax_element(grid.bytes().begin(), grid.bytes().end());
+  return {float(*a), float(*b)};
+}
+
 Mesh boundary_mesh(const VoxelGrid& grid) {
   const auto d = grid.dims();
   Mesh mesh;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "core/mesh.h"
@@ -57,6 +58,14 @@ struct VoxelSlice {
   std::vector<float> values;  // width * height
 };
 VoxelSlice slice(const VoxelGrid& grid, int axis, int index);
+
+// The voxels of a scalar grid above a threshold: a bit grid of the same
+// geometry, 1 where value > threshold (strictly).  For the vote grids and
+// distance fields that the viewer shows with a threshold slider.
+VoxelGrid threshold(const VoxelGrid& grid, float threshold);
+
+// The smallest and largest value of a grid (0, 0 for an empty one).
+std::pair<float, float> value_range(const VoxelGrid& grid);
 
 struct VoxelTopology {
   std::size_t components = 0;  // 26-connected components of occupied voxels (b0)

@@ -42,6 +42,12 @@ void for_each_triangle_voxel(const Vec3& a, const Vec3& b, const Vec3& c, std::a
     hi[d] = std::min(dims[d] - 1, last_cell(mx, n[d]));
     if (lo[d] > hi[d]) return;
   }
+  // Inside one voxel's closed cube, the ranges above already chose the voxel
+  // (ties included): the common case of triangles smaller than a voxel.
+  if (lo[0] == hi[0] && lo[1] == hi[1] && lo[2] == hi[2]) {
+    f(lo[0], lo[1], lo[2]);
+    return;
+  }
   // The 9 cross products of the box's axes with the triangle's edges.
   EdgeAxis axes[9];
   int m = 0;

@@ -333,6 +333,21 @@ TEST(VoxelOpsTest, DistanceTransformIsEuclidean) {
   }
 }
 
+TEST(VoxelOpsTest, ScalarGridThresholds) {
+  // The distance inside a solid box, thresholded: the voxels deeper than 0.5.
+  const VoxelizeResult box = vox(test::box({0, 0, 0}, {2, 3, 4}), 16, VoxelizeMode::solid);
+  const VoxelGrid depth = distance_transform(box.grid);
+  const auto [lo, hi] = value_range(depth);
+  EXPECT_EQ(lo, 0.f);
+  EXPECT_FLOAT_EQ(hi, 1.0f);  // half the shortest side
+  const VoxelGrid deep = threshold(depth, 0.5f);
+  EXPECT_EQ(deep.type(), VoxelType::bit);
+  // Depth d > 0.5 means more than 2 voxels in from every side: (8-4) x (12-4) x (16-4).
+  EXPECT_EQ(deep.count_occupied(), 4u * 8u * 12u);
+  EXPECT_EQ(threshold(depth, hi).count_occupied(), 0u);
+  EXPECT_EQ(threshold(depth, -1.f).count_occupied(), depth.size());
+}
+
 TEST(VoxelOpsTest, BoundaryMeshMergesCoplanarFaces) {
   const VoxelizeResult box = vox(test::box({0, 0, 0}, {2, 3, 4}), 16, VoxelizeMode::solid);
   const Mesh m = boundary_mesh(box.grid);
