@@ -7,7 +7,7 @@
 // triangles).  Both sides use every core (OpenVDB through TBB, CGView through
 // std::thread).  Prints a Markdown table.
 //
-//   build/bin/voxel_bench [--quick] [--max-res N] [--repeat N] [--res N]... [--large-only]
+//   build/bin/voxel_bench [--quick] [--max-res N] [--repeat N] [--res N]... [--large-only] [--no-openvdb]
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/LevelSetUtil.h>
 #include <openvdb/tools/MeshToVolume.h>
@@ -51,7 +51,7 @@ struct Input {
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool quick = false, large_only = false;
+  bool quick = false, large_only = false, no_vdb = false;
   int max_res = 1024, repeat = 2;
   std::vector<int> only_res;
   for (int i = 1; i < argc; ++i) {
@@ -61,8 +61,9 @@ int main(int argc, char** argv) {
     else if (a == "--repeat" && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
     else if (a == "--res" && i + 1 < argc) only_res.push_back(std::atoi(argv[++i]));
     else if (a == "--large-only") large_only = true;
+    else if (a == "--no-openvdb") no_vdb = true;
     else {
-      std::fprintf(stderr, "usage: voxel_bench [--quick] [--max-res N] [--repeat N] [--res N]... [--large-only]\n");
+      std::fprintf(stderr, "usage: voxel_bench [--quick] [--max-res N] [--repeat N] [--res N]... [--large-only] [--no-openvdb]\n");
       return 2;
     }
   }
@@ -111,6 +112,11 @@ int main(int argc, char** argv) {
       xf->postTranslate(openvdb::Vec3d(c.x, c.y, c.z));
       openvdb::FloatGrid::Ptr sdf;
       openvdb::BoolGrid::Ptr interior;
+      if (no_vdb) {
+        std::printf("| %s | %zu | %d | CGView only | %.3f | | | %.3f | %.1f | %zu | | | |\n", in.name.c_str(), in.mesh.num_faces(), res,
+                    t_solid, t_surface, double(in.mesh.num_faces()) / t_surface / 1e6, ours.solid_voxels);
+        continue;
+      }
       const double t_vdb = best_seconds(rep, [&] {
         sdf = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(*xf, points, tris, 3.0f);
         interior = openvdb::tools::sdfInteriorMask(*sdf);

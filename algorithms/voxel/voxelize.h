@@ -6,7 +6,9 @@
 // inside of an outward-oriented mesh).  The test is the separating-axis
 // triangle-box overlap of Akenine-Moller ("Fast 3D triangle-box overlap
 // testing", JGT 2001: the 3 box axes, the triangle's normal and the 9 edge
-// cross products), with ties on an axis broken by the sign of normal . axis.
+// cross products), with ties on the 3 box axes broken by the sign of the
+// normal's component (on the 10 others a tie, or a near tie within rounding,
+// counts as overlap: a voxel too many rather than a gap).
 // So:
 //   - no gaps: the closed marked voxels cover the surface, so a connected
 //     surface gives a 26-connected set whatever the size, thinness or slant

@@ -24,7 +24,7 @@ inline int last_cell(double hi, double n) {
 
 struct EdgeAxis {
   Vec3 axis;
-  double pmin, pmax, r, s;
+  double pmin, pmax, r, tol;
 };
 
 }  // namespace voxelize_detail
@@ -51,18 +51,22 @@ void for_each_triangle_voxel(const Vec3& a, const Vec3& b, const Vec3& c, std::a
   // The 9 cross products of the box's axes with the triangle's edges.
   EdgeAxis axes[9];
   int m = 0;
+  // Rounding in the projections grows with the coordinates' size.
+  const double scale = 1.0 + std::max({std::abs(a.x), std::abs(a.y), std::abs(a.z), std::abs(b.x), std::abs(b.y),
+                                       std::abs(b.z), std::abs(c.x), std::abs(c.y), std::abs(c.z)});
   const Vec3 edges[3] = {b - a, c - b, a - c};
   for (const Vec3& e : edges) {
     const Vec3 cand[3] = {{0, -e.z, e.y}, {e.z, 0, -e.x}, {-e.y, e.x, 0}};
     for (const Vec3& ax : cand) {
       if (ax.x == 0 && ax.y == 0 && ax.z == 0) continue;
       const double pa = dot(ax, a), pb = dot(ax, b), pc = dot(ax, c);
-      axes[m++] = {ax, std::min({pa, pb, pc}), std::max({pa, pb, pc}),
-                   0.5 * (std::abs(ax.x) + std::abs(ax.y) + std::abs(ax.z)), dot(n, ax)};
+      const double r = 0.5 * (std::abs(ax.x) + std::abs(ax.y) + std::abs(ax.z));
+      axes[m++] = {ax, std::min({pa, pb, pc}), std::max({pa, pb, pc}), r, r * scale * 1e-12};
     }
   }
   const double dplane = dot(n, a);
   const double rplane = 0.5 * (std::abs(n.x) + std::abs(n.y) + std::abs(n.z));
+  const double tol_plane = rplane * scale * 1e-12;
   // Walk the columns along the normal's dominant axis w: in each, only the
   // few voxels the plane crosses are tested.
   const double an[3] = {std::abs(n.x), std::abs(n.y), std::abs(n.z)};
@@ -82,14 +86,17 @@ void for_each_triangle_voxel(const Vec3& a, const Vec3& b, const Vec3& c, std::a
         cc[u] = iu + 0.5;
         cc[v] = iv + 0.5;
         cc[w] = k + 0.5;
+        // On these axes a near tie (within rounding) counts as overlap: a
+        // voxel too many rather than a gap.  The exact ties that matter (faces
+        // and edges on voxel boundaries) were settled by the ranges above.
         const double p = dplane - dot(n, cc);
-        if (p > rplane || p <= -rplane) continue;
+        if (p > rplane + tol_plane || p < -rplane - tol_plane) continue;
         bool separated = false;
         for (int t = 0; t < m && !separated; ++t) {
           const EdgeAxis& e = axes[t];
           const double qc = dot(e.axis, cc);
           const double l = e.pmin - qc, h = e.pmax - qc;
-          separated = h < -e.r || (h == -e.r && e.s >= 0) || l > e.r || (l == e.r && e.s <= 0);
+          separated = h < -e.r - e.tol || l > e.r + e.tol;
         }
         if (separated) continue;
         int idx[3];
