@@ -7,10 +7,11 @@
 // triangles).  Both sides use every core (OpenVDB through TBB, CGView through
 // std::thread).  Prints a Markdown table.
 //
-//   build/bin/voxel_bench [--quick] [--max-res N] [--repeat N] [--res N]... [--large-only] [--no-openvdb]
+//   build/bin/voxel_bench [--quick] [--max-res N] [--repeat N] [--res N]... [--large-only] [--no-openvdb] [--threads N]
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/LevelSetUtil.h>
 #include <openvdb/tools/MeshToVolume.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <chrono>
@@ -52,6 +53,7 @@ struct Input {
 
 int main(int argc, char** argv) {
   bool quick = false, large_only = false, no_vdb = false;
+  int threads = 0;  // 0: all cores
   int max_res = 1024, repeat = 2;
   std::vector<int> only_res;
   for (int i = 1; i < argc; ++i) {
@@ -62,12 +64,16 @@ int main(int argc, char** argv) {
     else if (a == "--res" && i + 1 < argc) only_res.push_back(std::atoi(argv[++i]));
     else if (a == "--large-only") large_only = true;
     else if (a == "--no-openvdb") no_vdb = true;
+    else if (a == "--threads" && i + 1 < argc) threads = std::max(1, std::atoi(argv[++i]));
     else {
-      std::fprintf(stderr, "usage: voxel_bench [--quick] [--max-res N] [--repeat N] [--res N]... [--large-only] [--no-openvdb]\n");
+      std::fprintf(stderr, "usage: voxel_bench [--quick] [--max-res N] [--repeat N] [--res N]... [--large-only] [--no-openvdb] [--threads N]\n");
       return 2;
     }
   }
   openvdb::initialize();
+  // The same number of threads on both sides: TBB's limit for OpenVDB.
+  const unsigned nthreads = threads > 0 ? unsigned(threads) : std::thread::hardware_concurrency();
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, nthreads);
   const auto path = resolve_mesh_path("refined_elephant.off");
   if (!path) {
     std::fprintf(stderr, "voxel_bench: refined_elephant.off not found (install libcgal-demo, re-run cmake)\n");
@@ -81,8 +87,8 @@ int main(int argc, char** argv) {
   if (large_only && inputs.size() > 1) inputs.erase(inputs.begin());
   resolutions.erase(std::remove_if(resolutions.begin(), resolutions.end(), [&](int r) { return r > max_res; }), resolutions.end());
 
-  std::printf("threads: %u (both sides)\n\n", std::thread::hardware_concurrency());
-  std::printf("| mesh | triangles | resolution | grid | CGView solid s | OpenVDB solid s | OpenVDB / CGView | "
+  std::printf("threads: %u (both sides)\n\n", nthreads);
+  std::printf("| mesh | triangles | resolution | grid | CGView solid s | OpenVDB solid s (of which meshToLevelSet) | OpenVDB / CGView | "
               "CGView surface s | surface Mtri/s | voxels inside: CGView | OpenVDB | OpenVDB's inside also CGView's | "
               "CGView's inside also OpenVDB's |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
@@ -99,6 +105,7 @@ int main(int argc, char** argv) {
       VoxelizeParams p;
       p.resolution = res;
       p.max_memory_mb = 8192;
+      p.threads = int(nthreads);
       p.mode = VoxelizeMode::surface;
       const double t_surface = best_seconds(rep, [&] { (void)voxelize(in.mesh, p); });
       p.mode = VoxelizeMode::solid;
@@ -117,8 +124,11 @@ int main(int argc, char** argv) {
                     t_solid, t_surface, double(in.mesh.num_faces()) / t_surface / 1e6, ours.solid_voxels);
         continue;
       }
+      double t_ls = 1e300;
       const double t_vdb = best_seconds(rep, [&] {
+        const auto t0 = std::chrono::steady_clock::now();
         sdf = openvdb::tools::meshToLevelSet<openvdb::FloatGrid>(*xf, points, tris, 3.0f);
+        t_ls = std::min(t_ls, seconds_since(t0));
         interior = openvdb::tools::sdfInteriorMask(*sdf);
       });
 
@@ -138,8 +148,8 @@ int main(int argc, char** argv) {
             vdb_in += v;
             both += o && v;
           }
-      std::printf("| %s | %zu | %d | %dx%dx%d | %.3f | %.3f | %.2f | %.3f | %.1f | %zu | %zu | %.4f%% | %.2f%% |\n",
-                  in.name.c_str(), in.mesh.num_faces(), res, d[0], d[1], d[2], t_solid, t_vdb, t_vdb / t_solid, t_surface,
+      std::printf("| %s | %zu | %d | %dx%dx%d | %.3f | %.3f (%.3f) | %.2f | %.3f | %.1f | %zu | %zu | %.4f%% | %.2f%% |\n",
+                  in.name.c_str(), in.mesh.num_faces(), res, d[0], d[1], d[2], t_solid, t_vdb, t_ls, t_vdb / t_solid, t_surface,
                   double(in.mesh.num_faces()) / t_surface / 1e6, ours_in * std::size_t(step * step * step),
                   vdb_in * std::size_t(step * step * step), 100.0 * double(both) / double(std::max<std::size_t>(vdb_in, 1)),
                   100.0 * double(both) / double(std::max<std::size_t>(ours_in, 1)));

@@ -21,37 +21,44 @@ std::string format_bytes(double b) {
   return buf;
 }
 
-// Boundary edges (used by one face) and the loops they form.  The
-// undirected edges as sorted 64-bit keys (two threads sort a half each):
-// an edge used once is a boundary edge.  Faster than edge_topology(), which
-// builds the whole edge-face adjacency.
+// Boundary edges (used by one face) and the loops they form.  Each
+// undirected edge (a < b) goes into a's bucket (a counting sort, O(faces));
+// an edge found once in its bucket is a boundary edge.  Faster than
+// edge_topology(), which builds the whole edge-face adjacency.
 void count_boundary(const Mesh& mesh, std::size_t& edges, std::size_t& loops) {
-  std::vector<std::uint64_t> keys;
-  keys.reserve(mesh.num_faces() * 3);
+  const std::size_t nv = mesh.num_vertices();
+  std::vector<std::uint32_t> start(nv + 1, 0);
   for (const Tri& t : mesh.faces)
     for (int c = 0; c < 3; ++c) {
-      const std::uint64_t a = t[c], b = t[(c + 1) % 3];
-      if (a != b) keys.push_back(a < b ? (a << 32 | b) : (b << 32 | a));
+      const Index a = t[c], b = t[(c + 1) % 3];
+      if (a != b) ++start[std::min(a, b) + 1];
     }
-  const auto mid = keys.begin() + std::ptrdiff_t(keys.size() / 2);
-  std::thread half([&] { std::sort(keys.begin(), mid); });
-  std::sort(mid, keys.end());
-  half.join();
-  std::inplace_merge(keys.begin(), mid, keys.end());
-  std::vector<std::uint32_t> parent;
-  std::vector<std::uint32_t> verts;  // boundary vertices, for the loops
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<std::uint32_t> other(start[nv]);
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for (const Tri& t : mesh.faces)
+    for (int c = 0; c < 3; ++c) {
+      const Index a = t[c], b = t[(c + 1) % 3];
+      if (a != b) other[fill[std::min(a, b)]++] = std::max(a, b);
+    }
   std::vector<std::pair<std::uint32_t, std::uint32_t>> border;
-  for (std::size_t i = 0; i < keys.size();) {
-    std::size_t j = i + 1;
-    while (j < keys.size() && keys[j] == keys[i]) ++j;
-    if (j - i == 1) border.push_back({std::uint32_t(keys[i] >> 32), std::uint32_t(keys[i])});
-    i = j;
+  for (std::uint32_t v = 0; v < nv; ++v) {
+    std::uint32_t* first = other.data() + start[v];
+    std::uint32_t* last = other.data() + start[v + 1];
+    std::sort(first, last);  // a handful each
+    for (std::uint32_t* i = first; i != last;) {
+      std::uint32_t* j = i + 1;
+      while (j != last && *j == *i) ++j;
+      if (j - i == 1) border.push_back({v, *i});
+      i = j;
+    }
   }
   edges = border.size();
+  std::vector<std::uint32_t> verts;  // boundary vertices, for the loops
   for (const auto& [p, q] : border) verts.push_back(p), verts.push_back(q);
   std::sort(verts.begin(), verts.end());
   verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
-  parent.resize(verts.size());
+  std::vector<std::uint32_t> parent(verts.size());
   std::iota(parent.begin(), parent.end(), 0u);
   auto id = [&](std::uint32_t v) { return std::uint32_t(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin()); };
   auto find = [&](std::uint32_t x) {
