@@ -26,6 +26,8 @@ import { MessagesPanel } from './panels/messages.ts';
 import { ProgressPanel } from './panels/progress.ts';
 import { ReportPanel } from './panels/report.ts';
 import { UploadControl } from './panels/upload.ts';
+import { VoxelSlicePanel } from './panels/voxel_slices.ts';
+import { buildSlicePlane } from './viewer/slice_plane.ts';
 import { byId } from './panels/dom.ts';
 import { DracoDecoder } from './viewer/draco_decoder.ts';
 import { defaultMapFor } from './viewer/colormaps.ts';
@@ -122,6 +124,7 @@ export class App {
   private readonly messages: MessagesPanel;
   private readonly algorithmsPanel: AlgorithmsPanel;
   private readonly jobsPanel: JobsPanel;
+  private readonly slicePanel: VoxelSlicePanel;
   private readonly legend: Legend;
   private readonly status: HTMLElement;
 
@@ -143,7 +146,11 @@ export class App {
       cancel: (id) => void this.cancel(id),
       showField: (jobId, artifact) => void this.showField(jobId, artifact),
       addMesh: (jobId, artifact) => void this.addMeshArtifact(jobId, artifact),
+      showSlices: (jobId, artifact) => this.slicePanel.open(jobId, artifact),
     });
+    this.slicePanel = new VoxelSlicePanel(byId('voxel-slices'), this.socket, (shown) =>
+      this.viewer.setOverlay('voxel-slice', shown ? buildSlicePlane(shown.canvas, shown.slice) : null),
+    );
     this.legend = new Legend(byId('viewport'), (name) => this.setColorMap(name));
     new UploadControl(byId<HTMLInputElement>('file-input'), document.body, (files) => void this.upload(files));
     byId('fit').addEventListener('click', () => this.viewer.fitToView());

@@ -13,6 +13,8 @@ export interface JobsActions {
   showField(jobId: string, artifact: string): void;
   /** Adds a mesh artifact to the view, beside its input mesh. */
   addMesh(jobId: string, artifact: string): void;
+  /** Opens the slice panel on a voxel_grid artifact. */
+  showSlices(jobId: string, artifact: string): void;
 }
 
 export interface JobsView {
@@ -166,6 +168,11 @@ export class JobsPanel {
       add.disabled = added;
       add.addEventListener('click', () => this.actions.addMesh(job.id, a.name));
       row.append(label, add, ' ', el('a', { href: artifactUrl(job.id, a.name, 'ply'), download: '' }, 'ply'), ' ', el('a', { href: artifactUrl(job.id, a.name, 'obj'), download: '' }, 'obj'));
+    } else if (a.kind === 'voxel_grid') {
+      const slices = el('button', { type: 'button', class: 'button small slices' }, 'Slices');
+      slices.addEventListener('click', () => this.actions.showSlices(job.id, a.name));
+      row.append(label, slices);
+      for (const f of ['nrrd', 'vti', 'binvox']) row.append(' ', el('a', { href: artifactUrl(job.id, a.name, f), download: '' }, f));
     } else if (a.kind === 'metrics') {
       row.append(label);
       const data = view.metrics.get(`${job.id}/${a.name}`);

@@ -104,6 +104,21 @@ export class Viewer {
     this.requestRender();
   }
 
+  /** Shows `object` as the overlay of that name (a voxel slice plane), replacing and
+   * disposing of the previous one; null removes it. */
+  setOverlay(name: string, object: THREE.Object3D | null): void {
+    const old = this.scene.getObjectByName(`overlay:${name}`);
+    if (old) {
+      this.scene.remove(old);
+      disposeObject(old);
+    }
+    if (object) {
+      object.name = `overlay:${name}`;
+      this.scene.add(object);
+    }
+    this.requestRender();
+  }
+
   /** Removes and disposes of the objects added with addExtra(). */
   clearExtras(): void {
     for (const child of [...this.extras.children]) {
