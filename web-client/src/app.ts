@@ -27,7 +27,7 @@ import { ProgressPanel } from './panels/progress.ts';
 import { ReportPanel } from './panels/report.ts';
 import { UploadControl } from './panels/upload.ts';
 import { VoxelSlicePanel } from './panels/voxel_slices.ts';
-import { buildSlicePlane } from './viewer/slice_plane.ts';
+import { buildSlicePlane, sliceClipPlane } from './viewer/slice_plane.ts';
 import { byId } from './panels/dom.ts';
 import { DracoDecoder } from './viewer/draco_decoder.ts';
 import { defaultMapFor } from './viewer/colormaps.ts';
@@ -148,9 +148,10 @@ export class App {
       addMesh: (jobId, artifact) => void this.addMeshArtifact(jobId, artifact),
       showSlices: (jobId, artifact) => this.slicePanel.open(jobId, artifact),
     });
-    this.slicePanel = new VoxelSlicePanel(byId('voxel-slices'), this.socket, (shown) =>
-      this.viewer.setOverlay('voxel-slice', shown ? buildSlicePlane(shown.canvas, shown.slice) : null),
-    );
+    this.slicePanel = new VoxelSlicePanel(byId('voxel-slices'), this.socket, (shown) => {
+      this.viewer.setOverlay('voxel-slice', shown ? buildSlicePlane(shown.canvas, shown.slice) : null);
+      this.viewer.setClipPlane(shown?.cut ? sliceClipPlane(shown.slice) : null);
+    });
     this.legend = new Legend(byId('viewport'), (name) => this.setColorMap(name));
     new UploadControl(byId<HTMLInputElement>('file-input'), document.body, (files) => void this.upload(files));
     byId('fit').addEventListener('click', () => this.viewer.fitToView());

@@ -13,7 +13,7 @@ export interface SliceSource {
 
 export interface SliceShown {
   /** The slice drawn as a canvas, where it lies in the world (plane corner, size), or null to hide. */
-  (shown: { canvas: HTMLCanvasElement; slice: VoxelSlice; begin: SliceBegin } | null): void;
+  (shown: { canvas: HTMLCanvasElement; slice: VoxelSlice; begin: SliceBegin; cut: boolean } | null): void;
 }
 
 export class VoxelSlicePanel {
@@ -32,6 +32,7 @@ export class VoxelSlicePanel {
   private readonly slider = el('input', { type: 'range', min: '0', max: '0', value: '0', 'aria-label': 'Slice index' });
   private readonly thresholdSlider = el('input', { type: 'range', min: '0', max: '1000', value: '0', 'aria-label': 'Threshold' });
   private readonly label = el('span', { class: 'slice-label' });
+  private readonly cut = el('input', { type: 'checkbox', 'aria-label': 'Cut the mesh at the slice' });
   private readonly error = el('p', { class: 'empty' });
 
   constructor(root: HTMLElement, source: SliceSource, onShown: SliceShown) {
@@ -42,6 +43,7 @@ export class VoxelSlicePanel {
       this.index = Number(this.slider.value);
       this.fetch();
     });
+    this.cut.addEventListener('change', () => this.draw());
     this.thresholdSlider.addEventListener('input', () => {
       this.threshold = Number(this.thresholdSlider.value) / 1000;
       this.draw();
@@ -90,6 +92,7 @@ export class VoxelSlicePanel {
       el('div', { class: 'slice-controls' }, 'axis ', axes, ' ', close),
       el('label', {}, 'slice ', this.slider, ' ', this.label),
       el('label', {}, 'threshold ', this.thresholdSlider),
+      el('label', {}, this.cut, ' cut the mesh at the slice (section view)'),
       this.canvas,
       this.error,
     );
@@ -164,6 +167,6 @@ export class VoxelSlicePanel {
       }
     }
     ctx.putImageData(image, 0, 0);
-    this.onShown({ canvas: this.canvas, slice, begin: this.last.begin });
+    this.onShown({ canvas: this.canvas, slice, begin: this.last.begin, cut: this.cut.checked });
   }
 }

@@ -13,6 +13,9 @@ export function buildSlicePlane(canvas: HTMLCanvasElement, slice: VoxelSlice): T
   texture.minFilter = THREE.NearestFilter;
   texture.colorSpace = THREE.SRGBColorSpace;
   const material = new THREE.MeshBasicMaterial({ map: texture, transparent: true, side: THREE.DoubleSide, depthWrite: false });
+  // disposeObject() frees geometries and materials, not textures: the overlay
+  // is replaced at every slider step, so its texture goes with its material.
+  material.addEventListener('dispose', () => texture.dispose());
   const plane = new THREE.Mesh(new THREE.PlaneGeometry(w, h), material);
   const outline = new THREE.LineSegments(
     new THREE.EdgesGeometry(new THREE.PlaneGeometry(w, h)),
@@ -35,4 +38,13 @@ export function buildSlicePlane(canvas: HTMLCanvasElement, slice: VoxelSlice): T
     group.position.set(cx + w / 2, cy + s / 2, cz + h / 2);
   }
   return group;
+}
+
+/** The section at a slice: keeps what lies below the far side of the slice's
+ * voxel layer along its axis (the slice plane itself stays visible). */
+export function sliceClipPlane(slice: VoxelSlice): THREE.Plane {
+  const a = slice.axis === 'x' ? 0 : slice.axis === 'y' ? 1 : 2;
+  const normal = new THREE.Vector3();
+  normal.setComponent(a, -1);
+  return new THREE.Plane(normal, slice.corner[a]! + slice.voxelSize);
 }

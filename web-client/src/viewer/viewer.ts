@@ -119,6 +119,13 @@ export class Viewer {
     this.requestRender();
   }
 
+  /** Cuts everything shown by a plane (the part where plane.distanceToPoint < 0 is
+   * hidden): the section view at a voxel slice; null shows all again. */
+  setClipPlane(plane: THREE.Plane | null): void {
+    this.renderer.clippingPlanes = plane ? [plane] : [];
+    this.requestRender();
+  }
+
   /** Removes and disposes of the objects added with addExtra(). */
   clearExtras(): void {
     for (const child of [...this.extras.children]) {
