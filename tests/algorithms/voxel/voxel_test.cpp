@@ -273,6 +273,16 @@ TEST(VoxelizeTest, RegisteredAlgorithmGivesGridAndMetrics) {
   EXPECT_EQ(m.at("dim_x"), 10);
 }
 
+TEST(VoxelizeTest, VoxelSurfaceAlgorithmGivesTheMergedBoundary) {
+  const Algorithm& a = find_algorithm("voxel_surface");
+  Context ctx;
+  const AlgorithmResult r = a.run(test::box({0, 0, 0}, {2, 3, 4}), {{"resolution", 16LL}}, ctx);
+  const Mesh& m = std::get<Mesh>(r.artifacts.at(0).value);
+  EXPECT_EQ(m.num_faces(), 12u);
+  EXPECT_NEAR(mesh_volume(m), 24.0, 1e-9);
+  EXPECT_EQ(std::get<Metrics>(r.artifacts.at(1).value).at("voxels"), 1536);
+}
+
 // ---- grid operations ------------------------------------------------------------------
 
 TEST(VoxelOpsTest, SimplePoints) {
