@@ -218,8 +218,10 @@ VoxelizeResult voxelize(const Mesh& mesh, const VoxelizeParams& p, const Context
     throw InvalidInput("the mesh's bounding box is a single point: give a voxel_size to voxelize it");
   std::array<int, 3> dims{};
   double voxels = 1;
+  double cells_of[3];
   for (int a = 0; a < 3; ++a) {
     const double cells = std::max(1.0, std::ceil(ext[a] / size * (1 - 1e-12)));
+    cells_of[a] = cells;
     const double n = cells + 2.0 * p.padding;
     voxels *= n;
     dims[a] = n < 2e9 ? int(n) : 2000000000;
@@ -241,7 +243,13 @@ VoxelizeResult voxelize(const Mesh& mesh, const VoxelizeParams& p, const Context
 
   // Vertices in grid coordinates, where voxel (i, j, k) is [i, i+1) x ...
   std::vector<Vec3> g(mesh.num_vertices());
-  for (std::size_t v = 0; v < g.size(); ++v) g[v] = (mesh.positions[v] - origin) / size;
+  // Measured from the box's corner, so that the lowest vertex lands exactly on
+  // the padding and rounding never marks a padding voxel (the clamp moves a
+  // vertex by a rounding error at most): the padding stays empty.
+  for (std::size_t v = 0; v < g.size(); ++v) {
+    const Vec3 q = (mesh.positions[v] - box.min) / size;
+    for (int a = 0; a < 3; ++a) g[v][a] = std::clamp(q[a], 0.0, cells_of[a]) + p.padding;
+  }
 
   int nt = p.threads > 0 ? p.threads : int(std::thread::hardware_concurrency());
   nt = std::max(1, std::min(nt, 64));

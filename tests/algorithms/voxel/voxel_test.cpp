@@ -76,6 +76,21 @@ TEST(VoxelizeTest, AxisAlignedBoxGivesItsExactVoxelCount) {
   EXPECT_EQ(off.solid_voxels, 27u);
 }
 
+TEST(VoxelizeTest, PaddingStaysEmpty) {
+  // refined_elephant's coordinates are not dyadic: rounding must not reach the padding.
+  const Mesh m = read_mesh(test::sample("elephant.off"));
+  for (int res : {48, 97, 128}) {
+    const VoxelizeResult r = vox(m, res, VoxelizeMode::surface, 2);
+    const auto d = r.grid.dims();
+    for (std::size_t n = 0; n < r.grid.size(); ++n) {
+      if (!r.grid.bytes()[n]) continue;
+      const VoxelIndex v = r.grid.unlinear(n);
+      ASSERT_TRUE(v.i >= 2 && v.j >= 2 && v.k >= 2 && v.i < d[0] - 2 && v.j < d[1] - 2 && v.k < d[2] - 2)
+          << "resolution " << res << ": voxel " << v.i << " " << v.j << " " << v.k << " of " << d[0] << "x" << d[1] << "x" << d[2];
+    }
+  }
+}
+
 TEST(VoxelizeTest, SphereSolidVolumeIsConservativeAndConverges) {
   const Mesh sphere = test::uv_sphere(1.0, 96, 192);
   const double v_mesh = mesh_volume(sphere);
