@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstring>
@@ -242,6 +243,32 @@ TEST_F(JobsTest, VoxelizeJobServesItsGridAndSlicesOverWebSocket) {
   ASSERT_FALSE(ws.send({{"type", "get_slice"}, {"request_id", 13}, {"job_id", id}, {"artifact", "metrics"}, {"axis", "x"}, {"index", 0}}));
   EXPECT_EQ(ws.reply()["error"], "bad_request");
   EXPECT_TRUE(ws.ping(14));
+
+  // A scalar grid (voxel_distance): its slices come as float32.
+  const json dist = wait_end(submit("voxel_distance", {{"resolution", 16}})["id"]);
+  ASSERT_EQ(dist["state"], "done") << dist.dump();
+  ASSERT_FALSE(ws.send({{"type", "get_slice"}, {"request_id", 15}, {"job_id", dist["id"]}, {"artifact", "distance"}, {"axis", "y"}, {"index", 8}}));
+  // Job events (job_progress, job_done) of that job reach this open socket too.
+  auto reply = [&] {
+    json m = ws.reply();
+    while (m.value("type", "").rfind("job_", 0) == 0) m = ws.reply();
+    return m;
+  };
+  const json fb = reply();
+  ASSERT_EQ(fb["type"], "slice") << fb.dump();
+  std::string fpayload;
+  for (int i = 0; i < fb["chunks"].get<int>(); ++i) {
+    auto m = ws.read();
+    while (m && !m->binary && json::parse(m->data).value("type", "").rfind("job_", 0) == 0) m = ws.read();  // a late job event
+    ASSERT_TRUE(m && m->binary);
+    std::string_view chunk;
+    protocol::decode_frame(m->data, &chunk);
+    fpayload += chunk;
+  }
+  EXPECT_EQ(reply()["type"], "slice_end");
+  const protocol::DecodedSlice fd = protocol::decode_slice_payload(fpayload);
+  EXPECT_TRUE(fd.floats);
+  EXPECT_GT(*std::max_element(fd.slice.values.begin(), fd.slice.values.end()), 0.f);
 
   // Too large a grid for the memory limit: the job fails with the memory it would need.
   const json big = wait_end(submit("voxelize", {{"resolution", 4000}})["id"]);

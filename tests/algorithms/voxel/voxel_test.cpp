@@ -298,6 +298,18 @@ TEST(VoxelizeTest, VoxelSurfaceAlgorithmGivesTheMergedBoundary) {
   EXPECT_EQ(std::get<Metrics>(r.artifacts.at(1).value).at("voxels"), 1536);
 }
 
+TEST(VoxelizeTest, VoxelDistanceAlgorithmGivesAScalarGrid) {
+  const Algorithm& a = find_algorithm("voxel_distance");
+  Context ctx;
+  const AlgorithmResult r = a.run(test::box({0, 0, 0}, {2, 3, 4}), {{"resolution", 16LL}}, ctx);
+  const VoxelGrid& g = std::get<VoxelGrid>(r.artifacts.at(0).value);
+  EXPECT_EQ(g.type(), VoxelType::float32);
+  EXPECT_FLOAT_EQ(g.get({4, 7, 9}), 1.0f);
+  EXPECT_FLOAT_EQ(float(std::get<Metrics>(r.artifacts.at(1).value).at("max_distance")), 1.0f);
+  // Its memory limit counts the distances too.
+  EXPECT_NE(error_of([&] { a.run(test::box(), {{"resolution", 1000LL}}, ctx); }).find("13 bytes per voxel"), std::string::npos);
+}
+
 // ---- grid operations ------------------------------------------------------------------
 
 TEST(VoxelOpsTest, SimplePoints) {
