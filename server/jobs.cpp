@@ -23,6 +23,7 @@
 #include "io/mesh_io.h"
 #include "registry/artifact_io.h"
 #include "registry/registry.h"
+#include "voxel/voxel_io.h"
 
 namespace cgview::server {
 
@@ -499,6 +500,19 @@ ArtifactBytes JobScheduler::artifact(const std::string& id, const std::string& n
     format = "json";
     out.bytes = read_file(dir / file);
     out.content_type = "application/json";
+  } else if (kind == "voxel_grid") {
+    const std::string ext = fs::path(file).extension().string().substr(1);
+    if (format.empty()) format = ext;
+    if (format == ext) {
+      out.bytes = read_file(dir / file);
+    } else {
+      const VoxelGrid grid = read_voxel_grid(dir / file);
+      if (format == "nrrd") out.bytes = encode_nrrd(grid);
+      else if (format == "binvox") out.bytes = encode_binvox(grid);
+      else if (format == "vti") out.bytes = encode_vti(grid);
+      else if (format == "vox") out.bytes = encode_vox(grid);
+      else throw UnsupportedFormat("a voxel grid is served as nrrd, binvox, vti or vox, not '" + format + "'");
+    }
   } else {
     const std::string ext = fs::path(file).extension().string().substr(1);
     if (!format.empty() && format != ext) throw UnsupportedFormat("a " + kind + " is served as " + ext + ", not '" + format + "'");

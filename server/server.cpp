@@ -7,6 +7,7 @@
 #include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
 
+#include <climits>
 #include <deque>
 #include <iostream>
 #include <mutex>
@@ -19,6 +20,8 @@
 #include "mesh_service.h"
 #include "router.h"
 #include "store.h"
+#include "voxel/voxel_io.h"
+#include "voxel_slice.h"
 
 namespace cgview::server {
 
@@ -135,7 +138,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     if (!msg.contains("type") || !msg["type"].is_string()) return error(id, "bad_request", "the message has no \"type\"");
     const std::string type = msg["type"];
     if (type == "ping") return send_json({{"type", "pong"}, {"request_id", id}});
-    if (type == "list_meshes" || type == "get_mesh") {
+    if (type == "list_meshes" || type == "get_mesh" || type == "get_slice") {
       net::post(shared_->workers, [self = shared_from_this(), msg = std::move(msg), id, type] { self->work(type, msg, id); });
       return;
     }
@@ -150,6 +153,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
         for (const auto& r : shared_->store.list_meshes()) list.push_back(mesh_json(r));
         return send_json({{"type", "meshes"}, {"request_id", id}, {"meshes", list}});
       }
+      if (type == "get_slice") return slice(msg, id);
       if (id.is_null()) return error(id, "bad_request", "get_mesh needs a request_id");
       if (!msg.contains("mesh_id") || !msg["mesh_id"].is_string()) return error(id, "bad_request", "get_mesh needs a \"mesh_id\" string");
       int bits = 14;
@@ -178,6 +182,52 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     } catch (const std::exception& e) {
       error(id, "internal", e.what());
     }
+  }
+
+  // get_slice: a 2D slice of a job's voxel grid artifact, zlib-compressed
+  // in voxel-slice frames (protocol/voxel_slice.h, API.md).  On a worker thread.
+  void slice(const json& msg, const json& id) {
+    if (id.is_null()) return error(id, "bad_request", "get_slice needs a request_id");
+    if (!msg.contains("job_id") || !msg["job_id"].is_string()) return error(id, "bad_request", "get_slice needs a \"job_id\" string");
+    const std::string artifact = msg.contains("artifact") && msg["artifact"].is_string() ? msg["artifact"].get<std::string>() : "grid";
+    int axis = -1;
+    if (msg.contains("axis") && msg["axis"].is_string()) {
+      const std::string a = msg["axis"];
+      axis = a == "x" ? 0 : a == "y" ? 1 : a == "z" ? 2 : -1;
+    } else if (msg.contains("axis") && msg["axis"].is_number_integer()) {
+      axis = msg["axis"].get<int>();
+    }
+    if (axis < 0 || axis > 2) return error(id, "bad_request", "get_slice needs an \"axis\": \"x\", \"y\" or \"z\" (or 0, 1, 2)");
+    if (!msg.contains("index") || !msg["index"].is_number_integer())
+      return error(id, "bad_request", "get_slice needs an integer \"index\"");
+    const long long index = msg["index"].get<long long>();
+    VoxelGrid grid;
+    try {
+      const ArtifactBytes a = shared_->jobs->artifact(msg["job_id"], artifact, "nrrd");
+      grid = decode_nrrd(a.bytes, artifact);
+    } catch (const std::out_of_range& e) {
+      return error(id, "not_found", e.what());
+    } catch (const UnsupportedFormat&) {
+      return error(id, "bad_request", "artifact '" + artifact + "' of job " + msg["job_id"].get<std::string>() + " is not a voxel grid");
+    }
+    if (index < INT_MIN || index > INT_MAX) return error(id, "bad_request", "slice index " + std::to_string(index) + " is out of range");
+    const VoxelSlice sl = cgview::slice(grid, axis, int(index));  // InvalidInput out of range: bad_request
+    auto payload = std::make_shared<const std::string>(protocol::encode_slice_payload(grid, sl));
+    const std::uint32_t rid = std::uint32_t(id.get<std::uint64_t>());
+    const std::size_t chunk = shared_->config.chunk_bytes;
+    const std::size_t total = payload->size();
+    const std::size_t count = (total + chunk - 1) / chunk;
+    const auto d = grid.dims();
+    send_json({{"type", "slice"}, {"request_id", id}, {"job_id", msg["job_id"]}, {"artifact", artifact}, {"axis", std::string(1, "xyz"[axis])},
+               {"index", index}, {"width", sl.width}, {"height", sl.height}, {"dims", {d[0], d[1], d[2]}},
+               {"voxel_size", grid.voxel_size()}, {"origin", {grid.origin().x, grid.origin().y, grid.origin().z}},
+               {"encoding", "zlib"}, {"bytes", total}, {"chunks", count}});
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::string_view part = std::string_view(*payload).substr(i * chunk, chunk);
+      send({protocol::encode_frame_header({protocol::FrameKind::voxel_slice, rid, std::uint32_t(i), std::uint32_t(count), total}),
+            payload, part, true});
+    }
+    send_json({{"type", "slice_end"}, {"request_id", id}});
   }
 
   void enqueue(Outgoing out) {

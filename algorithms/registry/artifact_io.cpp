@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/mesh_io.h"
+#include "voxel/voxel_io.h"
 
 namespace cgview {
 
@@ -39,7 +40,7 @@ std::string default_extension(const Artifact& a) {
   switch (a.value.index()) {
     case 0: return ".ply";
     case 1: return ".txt";
-    case 2: return ".vtk";
+    case 2: return ".nrrd";  // binary and read back by read_voxel_grid (ASCII .vtk is 20x larger)
     case 3: return ".obj";
     default: return ".json";
   }
@@ -56,7 +57,7 @@ void check_artifact_extension(OutputKind kind, const std::filesystem::path& path
       if (ext != ".txt" && ext != ".csv" && ext != ".ply") unsupported("scalar field", ext, ".txt, .csv or .ply");
       return;
     case OutputKind::voxel_grid:
-      if (ext != ".vtk") unsupported("voxel grid", ext, ".vtk");
+      if (ext != ".vtk" && !is_voxel_format(path)) unsupported("voxel grid", ext, ".vtk, .binvox, .raw, .nrrd, .vti, .vox or .vdb");
       return;
     case OutputKind::skeleton:
       if (ext != ".obj" && ext != ".json") unsupported("skeleton", ext, ".obj or .json");
@@ -94,7 +95,11 @@ void write_artifact(const Artifact& a, const Mesh& input, const std::filesystem:
       unsupported("scalar field", ext, ".txt, .csv or .ply");
     }
   } else if (const auto* g = std::get_if<VoxelGrid>(&a.value)) {
-    if (ext != ".vtk") unsupported("voxel grid", ext, ".vtk");
+    if (is_voxel_format(path)) {
+      write_voxel_grid(*g, path);
+      return;
+    }
+    if (ext != ".vtk") unsupported("voxel grid", ext, ".vtk, .binvox, .raw, .nrrd, .vti, .vox or .vdb");
     const auto d = g->dims();
     const Vec3 o = g->origin();
     char head[512];

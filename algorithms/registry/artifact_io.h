@@ -4,7 +4,8 @@
 //                 (index,value), .ply (the input mesh with the values as a
 //                 float property, for MeshLab and ParaView)
 //   skeleton      .obj (v and l records), .json
-//   voxel grid    .vtk (legacy STRUCTURED_POINTS, for ParaView)
+//   voxel grid    .nrrd (the default), .binvox .raw .vti .vox .vdb (voxel/voxel_io.h),
+//                 .vtk (legacy STRUCTURED_POINTS, ASCII, for ParaView)
 //   metrics       .json
 //   text          .txt or .bin (the bytes as they are)
 //   animation     .frames (core/animation.h: faces and uint16-quantized positions per frame)

@@ -233,9 +233,11 @@ TEST(FramesDecode, OtherVersionsThrow) {
 }
 
 TEST(FramesDecode, UnknownKindThrows) {
-  std::string f = good_frame();
-  put_le<std::uint16_t>(f, 6, 2);
-  EXPECT_THROW(decode_frame(f), InvalidInput);
+  for (std::uint16_t kind : {0, 3, 0xffff}) {  // 1 Draco mesh, 2 voxel slice
+    std::string f = good_frame();
+    put_le<std::uint16_t>(f, 6, kind);
+    EXPECT_THROW(decode_frame(f), InvalidInput) << "kind " << kind;
+  }
 }
 
 TEST(FramesDecode, ChunkIndexAtOrPastCountThrows) {

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstring>
@@ -21,6 +22,9 @@
 #include "registry/registry.h"
 #include "server_harness.h"
 #include "store.h"
+#include "frames.h"
+#include "voxel/voxel_io.h"
+#include "voxel_slice.h"
 #include "test_support.h"
 
 #include <sqlite3.h>
@@ -183,6 +187,93 @@ TEST_F(JobsTest, CentroidDistanceArtifactsMatchAnInProcessRun) {
   // Listed.
   const json list = http_get(server_.port(), "/api/v1/jobs").body_json();
   EXPECT_GE(list["jobs"].size(), 3u);
+}
+
+TEST_F(JobsTest, VoxelizeJobServesItsGridAndSlicesOverWebSocket) {
+  const json done = wait_end(submit("voxelize", {{"resolution", 32}, {"mode", "solid"}})["id"]);
+  ASSERT_EQ(done["state"], "done") << done.dump();
+  ASSERT_EQ(done["artifacts"][0]["kind"], "voxel_grid");
+  const std::string id = done["id"];
+  // The same grid in-process.
+  const Mesh mesh = read_mesh_file(test::sample("sphere.off")).mesh;
+  Context ctx;
+  const AlgorithmResult direct = find_algorithm("voxelize").run(mesh, {{"resolution", 32LL}}, ctx);
+  const auto& grid = std::get<VoxelGrid>(direct.artifacts.at(0).value);
+  EXPECT_EQ(decode_nrrd(artifact(id, "grid", "nrrd")).bytes(), grid.bytes());
+  EXPECT_EQ(decode_binvox(artifact(id, "grid", "binvox")).count_occupied(), grid.count_occupied());
+  EXPECT_EQ(decode_vti(artifact(id, "grid", "vti")).bytes(), grid.bytes());
+  EXPECT_EQ(http_get(server_.port(), "/api/v1/jobs/" + id + "/artifacts/grid?format=obj").status, 400);
+
+  WsClient ws;
+  ASSERT_FALSE(ws.connect(server_.port()));
+  const int k = grid.dims()[2] / 2;
+  ASSERT_FALSE(ws.send({{"type", "get_slice"}, {"request_id", 9}, {"job_id", id}, {"artifact", "grid"}, {"axis", "z"}, {"index", k}}));
+  const json begin = ws.reply();
+  ASSERT_EQ(begin["type"], "slice") << begin.dump();
+  EXPECT_EQ(begin["request_id"], 9);
+  EXPECT_EQ(begin["width"], grid.dims()[0]);
+  EXPECT_EQ(begin["height"], grid.dims()[1]);
+  std::string payload;
+  for (int i = 0; i < begin["chunks"].get<int>(); ++i) {
+    const auto m = ws.read();
+    ASSERT_TRUE(m && m->binary);
+    std::string_view chunk;
+    const protocol::FrameHeader h = protocol::decode_frame(m->data, &chunk);
+    EXPECT_EQ(h.kind, protocol::FrameKind::voxel_slice);
+    EXPECT_EQ(h.request_id, 9u);
+    payload += chunk;
+  }
+  EXPECT_EQ(payload.size(), begin["bytes"].get<std::size_t>());
+  EXPECT_EQ(ws.reply()["type"], "slice_end");
+  const protocol::DecodedSlice d = protocol::decode_slice_payload(payload);
+  EXPECT_EQ(d.slice.values, slice(grid, 2, k).values);
+  std::size_t inside = 0;
+  for (float v : d.slice.values) inside += v != 0;
+  EXPECT_GT(inside, 0u);
+
+  // Out of range, an unknown job, a missing axis: clear errors, the connection stays.
+  ASSERT_FALSE(ws.send({{"type", "get_slice"}, {"request_id", 10}, {"job_id", id}, {"axis", "z"}, {"index", 1000}}));
+  json e = ws.reply();
+  EXPECT_EQ(e["error"], "bad_request") << e.dump();
+  EXPECT_NE(e["detail"].get<std::string>().find("slice index 1000 is out of range"), std::string::npos) << e.dump();
+  ASSERT_FALSE(ws.send({{"type", "get_slice"}, {"request_id", 11}, {"job_id", "nope"}, {"axis", "z"}, {"index", 0}}));
+  EXPECT_EQ(ws.reply()["error"], "not_found");
+  ASSERT_FALSE(ws.send({{"type", "get_slice"}, {"request_id", 12}, {"job_id", id}, {"index", 0}}));
+  EXPECT_EQ(ws.reply()["error"], "bad_request");
+  ASSERT_FALSE(ws.send({{"type", "get_slice"}, {"request_id", 13}, {"job_id", id}, {"artifact", "metrics"}, {"axis", "x"}, {"index", 0}}));
+  EXPECT_EQ(ws.reply()["error"], "bad_request");
+  EXPECT_TRUE(ws.ping(14));
+
+  // A scalar grid (voxel_distance): its slices come as float32.
+  const json dist = wait_end(submit("voxel_distance", {{"resolution", 16}})["id"]);
+  ASSERT_EQ(dist["state"], "done") << dist.dump();
+  ASSERT_FALSE(ws.send({{"type", "get_slice"}, {"request_id", 15}, {"job_id", dist["id"]}, {"artifact", "distance"}, {"axis", "y"}, {"index", 8}}));
+  // Job events (job_progress, job_done) of that job reach this open socket too.
+  auto reply = [&] {
+    json m = ws.reply();
+    while (m.value("type", "").rfind("job_", 0) == 0) m = ws.reply();
+    return m;
+  };
+  const json fb = reply();
+  ASSERT_EQ(fb["type"], "slice") << fb.dump();
+  std::string fpayload;
+  for (int i = 0; i < fb["chunks"].get<int>(); ++i) {
+    auto m = ws.read();
+    while (m && !m->binary && json::parse(m->data).value("type", "").rfind("job_", 0) == 0) m = ws.read();  // a late job event
+    ASSERT_TRUE(m && m->binary);
+    std::string_view chunk;
+    protocol::decode_frame(m->data, &chunk);
+    fpayload += chunk;
+  }
+  EXPECT_EQ(reply()["type"], "slice_end");
+  const protocol::DecodedSlice fd = protocol::decode_slice_payload(fpayload);
+  EXPECT_TRUE(fd.floats);
+  EXPECT_GT(*std::max_element(fd.slice.values.begin(), fd.slice.values.end()), 0.f);
+
+  // Too large a grid for the memory limit: the job fails with the memory it would need.
+  const json big = wait_end(submit("voxelize", {{"resolution", 4000}})["id"]);
+  EXPECT_EQ(big["state"], "failed");
+  EXPECT_NE(big["error"].get<std::string>().find("GB"), std::string::npos) << big.dump();
 }
 
 TEST_F(JobsTest, AJobRunsOnAnEarlierJobsOutputMesh) {

@@ -26,6 +26,8 @@ import { MessagesPanel } from './panels/messages.ts';
 import { ProgressPanel } from './panels/progress.ts';
 import { ReportPanel } from './panels/report.ts';
 import { UploadControl } from './panels/upload.ts';
+import { VoxelSlicePanel } from './panels/voxel_slices.ts';
+import { buildSlicePlane, sliceClipPlane } from './viewer/slice_plane.ts';
 import { byId } from './panels/dom.ts';
 import { AnimationPlayer } from './viewer/animation_player.ts';
 import { DracoDecoder } from './viewer/draco_decoder.ts';
@@ -134,6 +136,7 @@ export class App {
   private readonly messages: MessagesPanel;
   private readonly algorithmsPanel: AlgorithmsPanel;
   private readonly jobsPanel: JobsPanel;
+  private readonly slicePanel: VoxelSlicePanel;
   private readonly legend: Legend;
   private readonly player: AnimationPlayer;
   private animationToken = 0;
@@ -159,6 +162,11 @@ export class App {
       addMesh: (jobId, artifact) => void this.addMeshArtifact(jobId, artifact),
       runOn: (jobId, artifact) => this.setRunTarget(jobId, artifact),
       playAnimation: (jobId, artifact) => void this.showAnimation(jobId, artifact),
+      showSlices: (jobId, artifact) => this.slicePanel.open(jobId, artifact),
+    });
+    this.slicePanel = new VoxelSlicePanel(byId('voxel-slices'), this.socket, (shown) => {
+      this.viewer.setOverlay('voxel-slice', shown ? buildSlicePlane(shown.canvas, shown.slice) : null);
+      this.viewer.setClipPlane(shown?.cut ? sliceClipPlane(shown.slice) : null);
     });
     this.legend = new Legend(byId('viewport'), (name) => this.setColorMap(name));
     this.player = new AnimationPlayer(byId('viewport'));

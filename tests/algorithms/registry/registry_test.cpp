@@ -448,7 +448,7 @@ Artifact sphere_field(const Mesh& s) { return run("centroid_distance", s).artifa
 TEST(ArtifactIo, DefaultExtensions) {
   EXPECT_EQ(default_extension({"m", Mesh{}}), ".ply");
   EXPECT_EQ(default_extension({"f", ScalarField{}}), ".txt");
-  EXPECT_EQ(default_extension({"g", VoxelGrid{}}), ".vtk");
+  EXPECT_EQ(default_extension({"g", VoxelGrid{}}), ".nrrd");
   EXPECT_EQ(default_extension({"s", Skeleton{}}), ".obj");
   EXPECT_EQ(default_extension({"k", Metrics{}}), ".json");
   EXPECT_EQ(default_extension({"t", Text{}}), ".txt");

@@ -5,6 +5,20 @@
 // Reconnects by itself; requests in flight when the connection drops fail.
 import { ChunkAssembler, FrameError, FrameKind, decodeFrame } from './frames.ts';
 import { SERVER_EVENT_TYPES, type Mesh, type MeshBegin, type ServerEvent } from './types.ts';
+import { decodeSlicePayload, type Axis, type VoxelSlice } from './voxel_slice.ts';
+
+/** The `slice` text frame that precedes a slice's binary frames (API.md). */
+export interface SliceBegin {
+  axis: Axis;
+  index: number;
+  width: number;
+  height: number;
+  dims: [number, number, number];
+  voxel_size: number;
+  origin: [number, number, number];
+  bytes: number;
+  chunks: number;
+}
 
 /** An `{"type":"error"}` answer: the server's code and detail. */
 export class ServerError extends Error {
@@ -40,6 +54,13 @@ export interface GetMeshOptions {
 
 type Pending =
   | { kind: 'reply'; expect: string; resolve: (msg: Record<string, unknown>) => void; reject: (e: Error) => void }
+  | {
+      kind: 'slice';
+      begin: SliceBegin | null;
+      assembler: ChunkAssembler;
+      resolve: (t: { begin: SliceBegin; slice: VoxelSlice }) => void;
+      reject: (e: Error) => void;
+    }
   | {
       kind: 'mesh';
       begin: MeshBegin | null;
@@ -163,6 +184,16 @@ export class CgviewSocket {
     });
   }
 
+  /** A 2D slice of a done job's voxel grid artifact (get_slice). */
+  async getSlice(jobId: string, artifact: string, axis: Axis, index: number): Promise<{ begin: SliceBegin; slice: VoxelSlice }> {
+    await this.connect();
+    const id = this.takeId();
+    return new Promise((resolve, reject) => {
+      this.pending.set(id, { kind: 'slice', begin: null, assembler: new ChunkAssembler(id), resolve, reject });
+      this.send({ type: 'get_slice', request_id: id, job_id: jobId, artifact, axis, index });
+    });
+  }
+
   private takeId(): number {
     const id = this.nextId;
     this.nextId = this.nextId >= 0xffffffff ? 1 : this.nextId + 1;
@@ -239,6 +270,27 @@ export class CgviewSocket {
       }
       return;
     }
+    if (p.kind === 'slice') {
+      if (type === 'slice') {
+        p.begin = msg as unknown as SliceBegin;
+      } else if (type === 'slice_end') {
+        this.pending.delete(id);
+        const begin = p.begin;
+        if (!begin) {
+          p.reject(new Error('slice_end without slice'));
+          return;
+        }
+        let payload: Uint8Array;
+        try {
+          payload = p.assembler.result();
+        } catch (e) {
+          p.reject(e as Error);
+          return;
+        }
+        decodeSlicePayload(payload).then((slice) => p.resolve({ begin, slice }), (e: Error) => p.reject(e));
+      }
+      return;
+    }
     if (type === 'mesh_begin') {
       const begin = msg as unknown as MeshBegin;
       if (begin.encoding !== 'draco') {
@@ -280,8 +332,19 @@ export class CgviewSocket {
     const id = frame.header.request_id;
     const p = this.pending.get(id);
     if (!p) return; // aborted request: drop its chunks
-    if (p.kind !== 'mesh') {
+    if (p.kind === 'reply') {
       this.fail(id, new FrameError(`binary frame for request ${id}, which expects "${p.expect}"`));
+      return;
+    }
+    if (p.kind === 'slice') {
+      try {
+        if (frame.header.kind !== FrameKind.VoxelSlice) {
+          throw new FrameError(`frame kind ${frame.header.kind}, expected ${FrameKind.VoxelSlice} (voxel slice)`);
+        }
+        p.assembler.add(frame);
+      } catch (e) {
+        this.fail(id, e as Error);
+      }
       return;
     }
     try {

@@ -18,6 +18,8 @@ export interface JobsActions {
   runOn(jobId: string, artifact: string): void;
   /** Shows an animation artifact (chaos_animate's frames) with the player. */
   playAnimation(jobId: string, artifact: string): void;
+  /** Opens the slice panel on a voxel_grid artifact. */
+  showSlices(jobId: string, artifact: string): void;
 }
 
 export interface JobsView {
@@ -191,6 +193,11 @@ export class JobsPanel {
       // At most 2000 characters here; the link has all the bytes.
       const shown = text === undefined ? 'loading…' : text.length > 2000 ? `${text.slice(0, 2000)}…` : text;
       row.append(el('pre', { class: 'text-content' }, shown));
+    } else if (a.kind === 'voxel_grid') {
+      const slices = el('button', { type: 'button', class: 'button small slices' }, 'Slices');
+      slices.addEventListener('click', () => this.actions.showSlices(job.id, a.name));
+      row.append(label, slices);
+      for (const f of ['nrrd', 'vti', 'binvox']) row.append(' ', el('a', { href: artifactUrl(job.id, a.name, f), download: '' }, f));
     } else if (a.kind === 'metrics') {
       row.append(label);
       const data = view.metrics.get(`${job.id}/${a.name}`);

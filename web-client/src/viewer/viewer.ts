@@ -104,6 +104,28 @@ export class Viewer {
     this.requestRender();
   }
 
+  /** Shows `object` as the overlay of that name (a voxel slice plane), replacing and
+   * disposing of the previous one; null removes it. */
+  setOverlay(name: string, object: THREE.Object3D | null): void {
+    const old = this.scene.getObjectByName(`overlay:${name}`);
+    if (old) {
+      this.scene.remove(old);
+      disposeObject(old);
+    }
+    if (object) {
+      object.name = `overlay:${name}`;
+      this.scene.add(object);
+    }
+    this.requestRender();
+  }
+
+  /** Cuts everything shown by a plane (the part where plane.distanceToPoint < 0 is
+   * hidden): the section view at a voxel slice; null shows all again. */
+  setClipPlane(plane: THREE.Plane | null): void {
+    this.renderer.clippingPlanes = plane ? [plane] : [];
+    this.requestRender();
+  }
+
   /** Removes and disposes of the objects added with addExtra(). */
   clearExtras(): void {
     for (const child of [...this.extras.children]) {

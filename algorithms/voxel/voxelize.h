@@ -1,0 +1,84 @@
+// voxelize: the voxels a triangle mesh's surface touches, or the solid it
+// encloses, on a grid of a given resolution or voxel size.
+//
+// Surface: voxel v is marked when the triangle meets v's open cube after an
+// infinitesimal shift of the triangle against its normal (towards the
+// inside of an outward-oriented mesh).  The test is the separating-axis
+// triangle-box overlap of Akenine-Moller ("Fast 3D triangle-box overlap
+// testing", JGT 2001: the 3 box axes, the triangle's normal and the 9 edge
+// cross products), with ties on the 3 box axes broken by the sign of the
+// normal's component (on the 10 others a tie, or a near tie within rounding,
+// counts as overlap: a voxel too many rather than a gap).
+// So:
+//   - no gaps: the closed marked voxels cover the surface, so a connected
+//     surface gives a 26-connected set whatever the size, thinness or slant
+//     of its triangles (a triangle smaller than a voxel marks its voxel);
+//   - a face lying exactly on a voxel boundary marks the voxel behind it, and
+//     an edge lying on one marks nothing more: an axis-aligned box whose sides
+//     fall on voxel boundaries gives exactly the voxels inside it.
+//   Degenerate (zero-area) triangles mark nothing.
+// Solid: the surface voxels plus every empty voxel that a 6-connected flood
+// of empty voxels from the grid's border does not reach.  Since the marked
+// voxels cover the surface, a closed mesh's solid covers its whole volume
+// (the solid's volume is never below the mesh's).  A mesh that is not closed
+// gets a warning with its number of boundary loops; holes narrower than a
+// voxel are closed by the surface voxels, wider ones let the flood in.
+//
+// Grid: origin = bounding-box minimum - padding * voxel_size;
+// dims[a] = ceil(extent[a] / voxel_size) + 2 * padding (at least 1 + 2 * padding);
+// voxel_size = longest extent / resolution unless voxel_size > 0 is given.
+// Storage: VoxelType::bit, one byte per voxel (core/voxel_grid.h).
+//
+// Throws InvalidInput for an empty or invalid mesh, a resolution below 1, a
+// negative padding, and a grid whose memory (one byte per voxel) would pass
+// max_memory_mb: the message says how much it would take.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/mesh.h"
+#include "core/voxel_grid.h"
+
+namespace cgview {
+
+class Context;
+
+enum class VoxelizeMode { surface, solid };
+
+struct VoxelizeParams {
+  int resolution = 128;        // voxels along the longest side of the bounding box
+  double voxel_size = 0.0;     // > 0: use this size and ignore resolution
+  VoxelizeMode mode = VoxelizeMode::solid;
+  int padding = 1;             // empty voxels added on every side
+  double max_memory_mb = 2048; // refuse grids that would need more
+  int threads = 0;             // 0: std::thread::hardware_concurrency()
+};
+
+struct VoxelizeResult {
+  VoxelGrid grid;                    // bit grid, 1 = occupied
+  std::size_t surface_voxels = 0;    // voxels the surface touches
+  std::size_t solid_voxels = 0;      // surface + interior (solid mode; = surface_voxels otherwise)
+  std::size_t boundary_loops = 0;    // of the mesh (0 for a closed mesh)
+  std::size_t boundary_edges = 0;
+  std::vector<std::string> warnings;
+};
+
+// "surface" or "solid"; throws InvalidInput naming the parameter otherwise.
+VoxelizeMode parse_voxelize_mode(const std::string& mode);
+// Memory (bytes) a grid of these dimensions needs while voxelizing.
+double voxelize_memory_bytes(std::array<int, 3> dims);
+
+// ctx (optional): progress and cancellation (throws Cancelled).
+VoxelizeResult voxelize(const Mesh& mesh, const VoxelizeParams& params = {}, const Context* ctx = nullptr);
+
+// The surface voxels of one triangle (a, b, c given in grid coordinates,
+// where voxel (i, j, k) is the unit cube [i, i+1) x [j, j+1) x [k, k+1)),
+// each passed to f(i, j, k); clipped to [0, dims).  Exposed for tests.
+template <class F>
+void for_each_triangle_voxel(const Vec3& a, const Vec3& b, const Vec3& c, std::array<int, 3> dims, F&& f);
+
+}  // namespace cgview
+
+#include "voxel/voxelize_impl.h"

@@ -1,0 +1,172 @@
+// The voxel slice panel (issue 6): for a voxel grid artifact, an axis, a
+// slider through the grid's slices and, for float grids, a threshold slider;
+// each slice is fetched over the WebSocket (get_slice, a zlib-compressed
+// binary frame), drawn in a 2D canvas, and handed to the viewer, which shows
+// it as a textured plane moving through the mesh.
+import type { SliceBegin } from '../api/ws.ts';
+import { AXES, type Axis, type VoxelSlice } from '../api/voxel_slice.ts';
+import { el } from './dom.ts';
+
+export interface SliceSource {
+  getSlice(jobId: string, artifact: string, axis: Axis, index: number): Promise<{ begin: SliceBegin; slice: VoxelSlice }>;
+}
+
+export interface SliceShown {
+  /** The slice drawn as a canvas, where it lies in the world (plane corner, size), or null to hide. */
+  (shown: { canvas: HTMLCanvasElement; slice: VoxelSlice; begin: SliceBegin; cut: boolean } | null): void;
+}
+
+export class VoxelSlicePanel {
+  private readonly root: HTMLElement;
+  private readonly source: SliceSource;
+  private readonly onShown: SliceShown;
+  private target: { jobId: string; artifact: string } | null = null;
+  private axis: Axis = 'z';
+  private index = 0;
+  private threshold = 0;
+  private dims: [number, number, number] | null = null;
+  private last: { begin: SliceBegin; slice: VoxelSlice } | null = null;
+  private inFlight = false;
+  private again = false;
+  private readonly canvas = el('canvas', { class: 'slice-canvas', width: '1', height: '1' });
+  private readonly slider = el('input', { type: 'range', min: '0', max: '0', value: '0', 'aria-label': 'Slice index' });
+  private readonly thresholdSlider = el('input', { type: 'range', min: '0', max: '1000', value: '0', 'aria-label': 'Threshold' });
+  private readonly label = el('span', { class: 'slice-label' });
+  private readonly cut = el('input', { type: 'checkbox', 'aria-label': 'Cut the mesh at the slice' });
+  private readonly error = el('p', { class: 'empty' });
+
+  constructor(root: HTMLElement, source: SliceSource, onShown: SliceShown) {
+    this.root = root;
+    this.source = source;
+    this.onShown = onShown;
+    this.slider.addEventListener('input', () => {
+      this.index = Number(this.slider.value);
+      this.fetch();
+    });
+    this.cut.addEventListener('change', () => this.draw());
+    this.thresholdSlider.addEventListener('input', () => {
+      this.threshold = Number(this.thresholdSlider.value) / 1000;
+      this.draw();
+    });
+    this.render();
+  }
+
+  /** Opens the panel on a job's voxel grid artifact (the middle z slice first). */
+  open(jobId: string, artifact: string): void {
+    this.target = { jobId, artifact };
+    this.dims = null;
+    this.index = 0;
+    this.render();
+    this.fetch();
+  }
+
+  close(): void {
+    this.target = null;
+    this.last = null;
+    this.onShown(null);
+    this.render();
+  }
+
+  private render(): void {
+    this.root.replaceChildren();
+    if (!this.target) {
+      this.root.hidden = true;
+      return;
+    }
+    this.root.hidden = false;
+    const axes = el('span', { class: 'slice-axes' });
+    for (const a of AXES) {
+      const b = el('button', { type: 'button', class: a === this.axis ? 'button small active' : 'button small' }, a);
+      b.addEventListener('click', () => {
+        this.axis = a;
+        this.index = this.dims ? Math.floor(this.dims[AXES.indexOf(a)] / 2) : 0;
+        this.render();
+        this.fetch();
+      });
+      axes.append(b);
+    }
+    const close = el('button', { type: 'button', class: 'button small' }, 'Close');
+    close.addEventListener('click', () => this.close());
+    this.root.append(
+      el('h2', {}, `Slices of ${this.target.artifact}`),
+      el('div', { class: 'slice-controls' }, 'axis ', axes, ' ', close),
+      el('label', {}, 'slice ', this.slider, ' ', this.label),
+      el('label', {}, 'threshold ', this.thresholdSlider),
+      el('label', {}, this.cut, ' cut the mesh at the slice (section view)'),
+      this.canvas,
+      this.error,
+    );
+  }
+
+  // One request at a time; a slider moved meanwhile asks again once it is answered.
+  private fetch(): void {
+    if (!this.target) return;
+    if (this.inFlight) {
+      this.again = true;
+      return;
+    }
+    this.inFlight = true;
+    const { jobId, artifact } = this.target;
+    const first = this.dims === null;
+    this.source
+      .getSlice(jobId, artifact, this.axis, this.index)
+      .then((r) => {
+        this.error.textContent = '';
+        this.dims = r.begin.dims;
+        const n = this.dims[AXES.indexOf(this.axis)];
+        this.slider.max = String(n - 1);
+        this.slider.value = String(this.index);
+        this.label.textContent = `${this.index} / ${n - 1}`;
+        this.last = r;
+        this.draw();
+        if (first) {
+          // Start in the middle of the grid.
+          this.index = Math.floor(n / 2);
+          this.again = true;
+        }
+      })
+      .catch((e: Error) => {
+        this.error.textContent = e.message;
+      })
+      .finally(() => {
+        this.inFlight = false;
+        if (this.again) {
+          this.again = false;
+          this.fetch();
+        }
+      });
+  }
+
+  private draw(): void {
+    if (!this.last) return;
+    const { slice } = this.last;
+    this.canvas.width = slice.width;
+    this.canvas.height = slice.height;
+    const ctx = this.canvas.getContext('2d');
+    if (!ctx) return;
+    const image = ctx.createImageData(slice.width, slice.height);
+    let lo = Infinity;
+    let hi = -Infinity;
+    for (const v of slice.values) {
+      if (v < lo) lo = v;
+      if (v > hi) hi = v;
+    }
+    const span = hi > lo ? hi - lo : 1;
+    const cut = lo + this.threshold * span;
+    for (let y = 0; y < slice.height; ++y) {
+      for (let x = 0; x < slice.width; ++x) {
+        const v = slice.values[x + slice.width * y]!;
+        // Row 0 at the bottom, as the axes run in the 3D view.
+        const o = 4 * (x + slice.width * (slice.height - 1 - y));
+        const on = v !== 0 && v > cut - (this.threshold === 0 ? Infinity : 0);
+        const t = (v - lo) / span;
+        image.data[o] = on ? 80 + 175 * t : 20;
+        image.data[o + 1] = on ? 160 + 60 * t : 22;
+        image.data[o + 2] = on ? 230 : 28;
+        image.data[o + 3] = on ? 230 : 90;
+      }
+    }
+    ctx.putImageData(image, 0, 0);
+    this.onShown({ canvas: this.canvas, slice, begin: this.last.begin, cut: this.cut.checked });
+  }
+}

@@ -1,0 +1,115 @@
+// End-to-end test of voxel slices in the viewer (issue 6), against the real
+// server: voxelize run from the generated form, then the job's grid artifact
+// opened in the slice panel: the slice comes over the WebSocket (get_slice,
+// a zlib voxel-slice frame), is drawn in the 2D canvas and as a plane in the
+// 3D view; the slider moves it, the checkbox cuts the mesh at it. The page is
+// kept in build/test-artifacts/e2e-voxel-slice.png.
+//
+// Environment: CGVIEW_SERVER (default build/bin/cgview-server),
+// CHROMIUM (default /usr/bin/chromium).
+import { after, before, test } from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { chromiumBin, dist, launchBrowser, repo, serverBin, startServer } from './harness.mjs';
+
+const elephant = path.join(repo, 'build', 'samples', 'elephant.off');
+const artifacts = path.join(repo, 'build', 'test-artifacts');
+
+let server = null;
+let browser = null;
+let page = null;
+const pageProblems = [];
+const describeProblems = () => (pageProblems.length ? `\npage problems:\n${pageProblems.join('\n')}` : '');
+
+before(async () => {
+  for (const [what, file] of [
+    ['the server', serverBin],
+    ['the built web client', path.join(dist, 'index.html')],
+    ['the elephant sample', elephant],
+    ['chromium', chromiumBin],
+  ]) {
+    assert.ok(fs.existsSync(file), `${what} is missing: ${file}`);
+  }
+  fs.mkdirSync(artifacts, { recursive: true });
+  server = await startServer({ tmpPrefix: 'cgview-e2e-voxel-' });
+  browser = await launchBrowser();
+  page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+  page.on('pageerror', (e) => pageProblems.push(`pageerror: ${e.message}`));
+  page.on('console', (m) => {
+    if (m.type() === 'error') pageProblems.push(`console.error: ${m.text()}`);
+  });
+  await page.goto(server.url + '/');
+  await page.waitForFunction(() => window.__cgview?.ready === true, null, { timeout: 30000 });
+  const r = await fetch(`${server.url}/api/v1/meshes?name=elephant.off`, { method: 'POST', body: fs.readFileSync(elephant) });
+  assert.equal(r.status, 201, await r.clone().text());
+  const id = (await r.json()).id;
+  await page.locator(`#mesh-list li.mesh[data-mesh-id="${id}"]`).click();
+  await page.waitForFunction((i) => window.__cgview.lastLoaded?.id === i, id, { timeout: 60000 });
+});
+
+after(async () => {
+  try {
+    if (browser) await browser.close();
+  } finally {
+    if (server) await server.stop();
+  }
+});
+
+// Lit (occupied) pixels of the slice canvas.
+const litPixels = () =>
+  page.evaluate(() => {
+    const c = document.querySelector('#voxel-slices canvas.slice-canvas');
+    if (!c || c.width < 2) return -1;
+    const { data } = c.getContext('2d').getImageData(0, 0, c.width, c.height);
+    let n = 0;
+    for (let i = 0; i < data.length; i += 4) n += data[i + 2] === 230 ? 1 : 0;
+    return n;
+  });
+
+test('voxelize, then its grid in the slice panel: a slice drawn in 2D and in 3D, moved by the slider', async () => {
+  const menu = page.locator('#algorithm-menu');
+  await menu.waitFor();
+  await menu.selectOption('voxelize');
+  const form = page.locator('form.algorithm-form[data-algorithm="voxelize"]');
+  await form.waitFor();
+  await form.locator('input[data-param="resolution"]').fill('48');
+  await form.locator('button.run').click();
+  await page.locator('#jobs li.job[data-state="done"]').first().waitFor({ timeout: 60000 }).catch((e) => {
+    throw new Error(`the voxelize job never showed done: ${e.message}${describeProblems()}\n${server.log()}`);
+  });
+  const slices = page.locator('#jobs .artifact-voxel_grid button.slices').first();
+  await slices.click();
+  const panel = page.locator('#voxel-slices');
+  await panel.waitFor({ state: 'visible' });
+  await page.waitForFunction(() => Number(document.querySelector('#voxel-slices input[type=range]')?.max ?? 0) > 0, null, {
+    timeout: 30000,
+  });
+  // The first answer sets the slider's range, then the middle slice is fetched.
+  await page.waitForFunction(() => {
+    const c = document.querySelector('#voxel-slices canvas.slice-canvas');
+    return c && c.width > 1;
+  });
+  await page.waitForTimeout(500);
+  const middle = await litPixels();
+  assert.ok(middle > 20, `the middle slice of the elephant shows its section: ${middle} lit voxels${describeProblems()}`);
+  const max = Number(await panel.locator('input[type=range]').first().getAttribute('max'));
+  assert.ok(max >= 20, `the slider runs over the grid: max ${max}`);
+  // The first slice (padding) is empty.
+  await panel.locator('input[type=range]').first().fill('0');
+  await page.waitForFunction(() => document.querySelector('#voxel-slices .slice-label')?.textContent?.startsWith('0 /'), null, {
+    timeout: 15000,
+  });
+  await page.waitForTimeout(300);
+  assert.equal(await litPixels(), 0, 'slice 0 is padding');
+  // Another axis, then the section view.
+  await panel.locator('button', { hasText: /^x$/ }).click();
+  await page.waitForTimeout(800);
+  assert.ok((await litPixels()) > 20, `the middle x slice shows a section${describeProblems()}`);
+  await panel.locator('input[type=checkbox]').check();
+  await page.waitForTimeout(500);
+  const overlay = await page.evaluate(() => window.__cgview !== undefined);
+  assert.ok(overlay);
+  await page.screenshot({ path: path.join(artifacts, 'e2e-voxel-slice.png') });
+  assert.deepEqual(pageProblems, [], describeProblems());
+});
