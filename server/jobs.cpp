@@ -283,9 +283,21 @@ json JobScheduler::submit(const json& req, const std::string& owner, std::vector
   std::string mesh_id, input_shas;
   std::optional<MeshRecord> mesh;
   for (const auto& spec : specs) {
-    const std::string name = spec.value("name", "");
-    if (spec.value("kind", "mesh") != "mesh")
-      throw InvalidInput("input '" + name + "' is a " + spec.value("kind", "") + ", which jobs cannot take yet");
+    const std::string name = spec.value("name", ""), kind = spec.value("kind", "mesh");
+    if (kind != "mesh") {
+      // Any other kind is an earlier job's artifact of that kind.
+      if (!inputs.contains(name)) throw InvalidInput("input '" + name + "' is missing: {\"" + name + "\": {\"job\": \"<job id>\", \"artifact\": \"<name>\"}}");
+      const json& v = inputs[name];
+      if (!v.is_object() || !v.value("job", json()).is_string() || !v.value("artifact", json()).is_string())
+        throw InvalidInput("input '" + name + "' is a " + kind + ": {\"job\": \"<job id>\", \"artifact\": \"<name>\"}");
+      {
+        std::lock_guard lock(mutex_);
+        (void)artifact_file_locked(v["job"], v["artifact"], kind);
+      }
+      resolved[name] = {{"job", v["job"]}, {"artifact", v["artifact"]}};
+      input_shas += "\n" + name + "=" + v["job"].get<std::string>() + "/" + v["artifact"].get<std::string>();
+      continue;
+    }
     if (!inputs.contains(name)) throw InvalidInput("input '" + name + "' is missing: " + shape(name));
     const json& v = inputs[name];
     std::string id;
@@ -334,11 +346,11 @@ json JobScheduler::submit(const json& req, const std::string& owner, std::vector
   j->owner = owner;
   j->algorithm = algorithm;
   j->mesh_id = mesh_id;
-  j->mesh_sha = mesh->sha256;
+  j->mesh_sha = mesh ? mesh->sha256 : "";
   j->inputs = resolved.dump();
   j->params = canonical.dump();
   // A one-mesh job keeps the key it always had (its cached results stay valid).
-  j->cache_key = sha256_hex(mesh->sha256 + input_shas + "\n" + algorithm + "\n" + j->params);
+  j->cache_key = sha256_hex((mesh ? mesh->sha256 : std::string()) + input_shas + "\n" + algorithm + "\n" + j->params);
   j->created = now_iso8601();
   json out, event;
   {
@@ -416,6 +428,20 @@ std::optional<json> JobScheduler::cancel(const std::string& id) {
     if (on_event) on_event({{"type", "job_cancelled"}, {"job", out}});
   }
   return out;
+}
+
+fs::path JobScheduler::artifact_file_locked(const std::string& id, const std::string& name, const std::string& kind) const {
+  const auto it = jobs_.find(id);
+  if (it == jobs_.end()) throw std::out_of_range("no job with id '" + id + "'");
+  const Job& j = *it->second;
+  if (j.state != "done") throw InvalidInput("job " + id + " is " + j.state + ", not done: it has no artifacts");
+  for (const auto& a : json::parse(j.artifacts, nullptr, false))
+    if (a.value("name", "") == name) {
+      if (!kind.empty() && a.value("kind", "") != kind)
+        throw InvalidInput("artifact '" + name + "' of job " + id + " is a " + a.value("kind", "") + ", not a " + kind);
+      return job_dir(j.files) / a.value("file", "");
+    }
+  throw std::out_of_range("job " + id + " has no artifact '" + name + "'");
 }
 
 ArtifactBytes JobScheduler::artifact(const std::string& id, const std::string& name, const std::string& format_in) {
@@ -528,25 +554,28 @@ bool JobScheduler::launch(Job& j) {
   std::error_code ec;
   fs::remove_all(dir, ec);
   fs::create_directories(dir, ec);
-  const auto mesh = meshes_.store().get_mesh(j.mesh_id);
-  if (!mesh) {
-    j.error = "the mesh " + j.mesh_id + " was deleted";
-    return false;
-  }
   json files = json::object();
   const json inputs = job_inputs(j.inputs, j.mesh_id);
-  for (const auto& [name, id] : inputs.items()) {
-    const auto rec = meshes_.store().get_mesh(id.get<std::string>());
+  for (const auto& [name, in] : inputs.items()) {
+    if (in.is_object()) {  // an earlier job's artifact
+      try {
+        files[name] = artifact_file_locked(in.value("job", ""), in.value("artifact", ""), "").string();
+      } catch (const std::exception& e) {
+        j.error = std::string("input '") + name + "': " + e.what();
+        return false;
+      }
+      continue;
+    }
+    const auto rec = meshes_.store().get_mesh(in.get<std::string>());
     if (!rec) {
-      j.error = "the mesh " + id.get<std::string>() + " (input '" + name + "') was deleted";
+      j.error = "the mesh " + in.get<std::string>() + " (input '" + name + "') was deleted";
       return false;
     }
     files[name] = meshes_.store().blob_file(*rec).string();
   }
   {
     std::ofstream f(dir / "job.json");
-    f << json{{"algorithm", j.algorithm}, {"params", json::parse(j.params)},
-              {"mesh", meshes_.store().blob_file(*mesh).string()}, {"inputs", files}, {"out", dir.string()}}
+    f << json{{"algorithm", j.algorithm}, {"params", json::parse(j.params)}, {"inputs", files}, {"out", dir.string()}}
              .dump();
     if (!f) {
       j.error = "cannot write " + (dir / "job.json").string();

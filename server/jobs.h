@@ -86,6 +86,10 @@ class JobScheduler {
   void reap(Job& job, int status, std::vector<nlohmann::json>& events);  // under mutex_
   void wake();
   std::filesystem::path job_dir(const std::string& id) const;
+  // The file of a done job's artifact of that kind (under mutex_); throws
+  // std::out_of_range (no such job or artifact) or InvalidInput (not done,
+  // another kind).
+  std::filesystem::path artifact_file_locked(const std::string& job, const std::string& name, const std::string& kind) const;
 
   MeshService& meshes_;
   JobConfig config_;

@@ -3,6 +3,7 @@
 //
 //   cgview-worker JOB.json      runs the job the file describes:
 //     {"algorithm": "hausdorff", "params": {...}, "inputs": {"mesh": "/path/a.off", "reference": "/path/b.ply"}, "out": "/dir"}
+//   (an input the algorithm declares as a voxel_grid is a grid file: .nrrd, .binvox, ...)
 //   (an older job file names its one mesh as "mesh": "/path/in.off")
 //   cgview-worker --list        prints every algorithm linked in, as JSON (protocol/algorithm_json)
 //
@@ -30,6 +31,7 @@
 #include "io/mesh_io.h"
 #include "registry/artifact_io.h"
 #include "registry/registry.h"
+#include "voxel/voxel_io.h"
 
 namespace {
 
@@ -86,15 +88,22 @@ int run_job(const fs::path& spec_path, fs::path& out) {
   out = spec.at("out").get<std::string>();
   const Algorithm& algo = find_algorithm(spec.at("algorithm").get<std::string>());
   const auto values = protocol::params_from_json(algo, spec.value("params", json::object()));
-  // Every input is a stored mesh file ("inputs": {"mesh": path, "reference": path}).
+  // Every input is a file ("inputs": {"mesh": path, "reference": path}): a
+  // stored mesh, or an earlier job's voxel grid, as the algorithm declares.
   std::map<std::string, Mesh> meshes;
+  std::map<std::string, VoxelGrid> grids;
   const json files = spec.value("inputs", json::object());
-  for (const auto& [name, path] : files.items())
-    meshes.emplace(name, read_mesh_file(path.get<std::string>()).mesh);
-  if (!meshes.count("mesh") && spec.contains("mesh"))
+  for (const InputSpec& in : algo.info.inputs) {
+    if (!files.contains(in.name)) continue;
+    const std::string path = files.at(in.name).get<std::string>();
+    if (in.kind == OutputKind::voxel_grid) grids.emplace(in.name, read_voxel_grid(path));
+    else meshes.emplace(in.name, read_mesh_file(path).mesh);
+  }
+  if (!meshes.count("mesh") && spec.contains("mesh") && !spec["mesh"].get<std::string>().empty())
     meshes.emplace("mesh", read_mesh_file(spec.at("mesh").get<std::string>()).mesh);
   Inputs inputs;
   for (const auto& [name, m] : meshes) inputs.add(name, m);
+  for (const auto& [name, g] : grids) inputs.add(name, g);
   // Per-vertex artifacts are written on the first mesh input.
   static const Mesh no_mesh;
   const Mesh* primary = &no_mesh;

@@ -17,6 +17,7 @@
 #include "registry/artifact_io.h"
 #include "registry/registry.h"
 #include "render/renderer.h"
+#include "voxel/voxel_io.h"
 
 #include <chrono>
 #include <cmath>
@@ -318,19 +319,33 @@ int cmd_run(const std::vector<std::string>& args) {
   }
   if (mesh_arg.empty()) throw Usage("run: which mesh?");
   if (!out.empty() && !algo->info.outputs.empty()) check_artifact_extension(algo->info.outputs[0].second, out);
-  const ReadResult r = read_mesh_file(need_mesh(mesh_arg));
-  print_warnings(r);
+  // Each input from its file: MESH for the first, --NAME FILE for the others;
+  // a voxel_grid input reads a grid file (.nrrd, .binvox, .vti, .vox, .vdb, ...).
   Inputs inputs;
-  inputs.add(algo->info.inputs.empty() ? "mesh" : algo->info.inputs.front().name, r.mesh);
-  std::map<std::string, ReadResult> others;
-  for (const auto& in : algo->info.inputs) {
-    if (in.name == algo->info.inputs.front().name) continue;
-    const auto f = more_inputs.find(in.name);
-    if (f == more_inputs.end()) throw Usage("run: " + args[0] + " needs --" + in.name + " FILE (" + in.help + ")");
-    const ReadResult& o = others.emplace(in.name, read_mesh_file(need_mesh(f->second))).first->second;
+  std::map<std::string, ReadResult> meshes;
+  std::map<std::string, VoxelGrid> grids;
+  const Mesh* primary = nullptr;  // per-vertex artifacts are written on it
+  static const Mesh no_mesh;
+  for (std::size_t k = 0; k < algo->info.inputs.size(); ++k) {
+    const InputSpec& in = algo->info.inputs[k];
+    std::string file;
+    if (k == 0) {
+      file = mesh_arg;
+    } else {
+      const auto f = more_inputs.find(in.name);
+      if (f == more_inputs.end()) throw Usage("run: " + args[0] + " needs --" + in.name + " FILE (" + in.help + ")");
+      file = f->second;
+    }
+    if (in.kind == OutputKind::voxel_grid) {
+      inputs.add(in.name, grids.emplace(in.name, read_voxel_grid(file)).first->second);
+      continue;
+    }
+    const ReadResult& o = meshes.emplace(in.name, read_mesh_file(need_mesh(file))).first->second;
     print_warnings(o);
     inputs.add(in.name, o.mesh);
+    if (!primary) primary = &o.mesh;
   }
+  const Mesh& input_mesh = primary ? *primary : no_mesh;
   ProgressPrinter printer;
   Context ctx([&](double f, std::string_view stage) { printer(f, stage); }, nullptr);
   const AlgorithmResult result = algo->run(inputs, values, ctx);
@@ -344,7 +359,7 @@ int cmd_run(const std::vector<std::string>& args) {
       const std::filesystem::path o(out);
       path = o.parent_path() / (o.stem().string() + "-" + art.name + default_extension(art));
     }
-    write_artifact(art, r.mesh, path);
+    write_artifact(art, input_mesh, path);
     std::printf("%s: %s\n", art.name.c_str(), path.c_str());
   }
   return 0;

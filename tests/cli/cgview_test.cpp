@@ -367,6 +367,26 @@ TEST(CliTest, RunSavesPlyWithTheField) {
   expect_elephant(info_json(out.string()));
 }
 
+TEST(CliTest, RunTakesAGridFileAndASecondMesh) {
+  const fs::path dir = test::temp_dir("cli-run-inputs");
+  // A voxel grid saved by voxelize is grid_surface's input.
+  const fs::path grid = dir / "e.nrrd", surface = dir / "s.ply";
+  ASSERT_EQ(cgview("run voxelize elephant --resolution 20 -o " + quote(grid.string())).status, 0);
+  const Result r = cgview("run grid_surface " + quote(grid.string()) + " -o " + quote(surface.string()));
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::ifstream a(dir / "e-metrics.json"), b(dir / "s-metrics.json");
+  const auto va = nlohmann::json::parse(a), vb = nlohmann::json::parse(b);
+  EXPECT_EQ(va["occupied_voxels"], vb["voxels"]) << va.dump() << vb.dump();
+  // hausdorff takes its reference as --reference FILE, and names it when it is missing.
+  const Result h = cgview("run hausdorff elephant --reference elephant -o " + quote((dir / "h.ply").string()));
+  ASSERT_EQ(h.status, 0) << h.out;
+  std::ifstream m(dir / "h-metrics.json");
+  EXPECT_LE(nlohmann::json::parse(m)["hausdorff"].get<double>(), 1e-3);
+  const Result missing = cgview_stderr("run hausdorff elephant");
+  EXPECT_NE(missing.status, 0);
+  EXPECT_NE(missing.out.find("--reference FILE"), std::string::npos) << missing.out;
+}
+
 TEST(CliTest, RunBadParameterIsOneLineNamingIt) {
   expect_one_line_error("run centroid_distance elephant --exponent 9", "parameter 'exponent': 9 is over the maximum 4");
   EXPECT_EQ(cgview("run centroid_distance elephant --exponent 9").status, 1);

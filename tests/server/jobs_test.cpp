@@ -354,6 +354,35 @@ TEST_F(JobsTest, AJobOfTwoInputsTakesBothAndNamesAMissingOne) {
     }
 }
 
+TEST_F(JobsTest, AGridFromAnEarlierJobIsTheInputOfTheNext) {
+  const json vox = wait_end(submit("voxelize", {{"resolution", 24}})["id"]);
+  ASSERT_EQ(vox["state"], "done") << vox.dump();
+  const json vox_metrics = json::parse(artifact(vox["id"], "metrics", "json"));
+  auto post = [&](const json& inputs, const json& params = json::object()) {
+    return http_call(server_.port(), Method::post, "/api/v1/jobs",
+                     json{{"algorithm", "grid_surface"}, {"inputs", inputs}, {"params", params}}.dump());
+  };
+  const auto r = post({{"grid", {{"job", vox["id"]}, {"artifact", "grid"}}}});
+  ASSERT_EQ(r.status, 201) << r.body;
+  const json done = wait_end(r.body_json()["id"]);
+  ASSERT_EQ(done["state"], "done") << done.dump();
+  EXPECT_EQ(done["inputs"]["grid"]["job"], vox["id"]);
+  // The surface encloses the voxels voxelize counted.
+  const json m = json::parse(artifact(done["id"], "metrics", "json"));
+  EXPECT_EQ(m["voxels"], vox_metrics["occupied_voxels"]) << m.dump() << vox_metrics.dump();
+  const std::string ply = artifact(done["id"], "mesh", "ply");
+  EXPECT_NE(ply.find("element face"), std::string::npos);
+  // A grid input named by a mesh id, an artifact of another kind, a job that is not there.
+  auto e = post({{"grid", mesh_id_}});
+  EXPECT_EQ(e.status, 400);
+  EXPECT_NE(e.body.find("input 'grid' is a voxel_grid"), std::string::npos) << e.body;
+  e = post({{"grid", {{"job", vox["id"]}, {"artifact", "metrics"}}}});
+  EXPECT_EQ(e.status, 400);
+  EXPECT_NE(e.body.find("is a metrics, not a voxel_grid"), std::string::npos) << e.body;
+  EXPECT_EQ(post({{"grid", {{"job", "nope"}, {"artifact", "grid"}}}}).status, 404);
+  EXPECT_EQ(post({{"grid", {{"job", vox["id"]}, {"artifact", "nope"}}}}).status, 404);
+}
+
 TEST_F(JobsTest, BadRequests) {
   json e = submit("centroid_distance", {{"exponent", 9}}, 400);
   EXPECT_EQ(e["error"], "bad_request");

@@ -17,7 +17,8 @@ import {
   submitJob,
   uploadMesh,
 } from './api/rest.ts';
-import type { Job, JobInput, JobProgress, Mesh, ServerEvent } from './api/types.ts';
+import { jobMeshId } from './api/types.ts';
+import type { Algorithm, Job, JobInput, JobProgress, Mesh, ServerEvent } from './api/types.ts';
 import { CgviewSocket, ServerError } from './api/ws.ts';
 import { AlgorithmsPanel } from './panels/algorithms.ts';
 import { JobsPanel } from './panels/jobs.ts';
@@ -109,7 +110,8 @@ export class App {
   /** Mesh artifacts in the view (`${jobId}/${name}`), beside the selected mesh. */
   private readonly added = new Set<string>();
   /** A job's output mesh that the next job runs on ("Run on this"), instead of the selected mesh. */
-  private runTarget: { jobId: string; artifact: string } | null = null;
+  private runTarget: { jobId: string; artifact: string; kind: string } | null = null;
+  private algorithms: Algorithm[] = [];
   /** The scalar field drawn now (or being prepared: token). */
   private field: { jobId: string; artifact: string; meshId: string; data: ScalarField; object: THREE.Mesh } | null = null;
   private fieldToken = 0;
@@ -218,6 +220,7 @@ export class App {
   async loadAlgorithms(): Promise<void> {
     try {
       const algorithms = await listAlgorithms();
+      this.algorithms = algorithms;
       this.hooks.algorithmsApi = true;
       this.algorithmsPanel.render(algorithms);
       this.algorithmsPanel.setMesh(this.selectedMesh()?.name ?? null);
@@ -253,8 +256,16 @@ export class App {
   async runJob(algorithm: string, params: Record<string, unknown>, extra: Record<string, string> = {}): Promise<void> {
     const target = this.runTarget;
     const mesh = this.selectedMesh();
+    // The algorithm's first input: the selected mesh, or the output chosen with "Run on this".
+    const first = this.algorithms.find((a) => a.name === algorithm)?.inputs?.[0] ?? { name: 'mesh', kind: 'mesh' };
+    if (first.kind !== 'mesh' && target?.kind !== first.kind) {
+      throw new Error(`${algorithm} runs on a ${first.kind}: choose one with "Run on this" in the job list.`);
+    }
     if (!target && !mesh) throw new Error('Choose a mesh first.');
-    const inputs: Record<string, JobInput> = { ...extra, mesh: target ? { job: target.jobId, artifact: target.artifact } : mesh!.id };
+    const inputs: Record<string, JobInput> = {
+      ...extra,
+      [first.name]: target ? { job: target.jobId, artifact: target.artifact } : mesh!.id,
+    };
     let job: Job;
     try {
       job = await submitJob(algorithm, inputs, params);
@@ -262,9 +273,9 @@ export class App {
       throw new Error(describe(e));
     }
     if (target) {
-      // The chained input is a stored mesh now: later runs and fields use it.
+      // A chained mesh is a stored mesh now: later runs and fields use it.
       this.runTarget = null;
-      const stored = job.inputs.mesh;
+      const stored = typeof job.inputs.mesh === 'string' ? job.inputs.mesh : null;
       if (stored && !this.meshes.some((m) => m.id === stored)) await this.refresh();
       if (stored) this.select(stored);
     }
@@ -277,7 +288,8 @@ export class App {
   setRunTarget(jobId: string, artifact: string): void {
     const job = this.jobs.get(jobId);
     if (!job) return;
-    this.runTarget = { jobId, artifact };
+    const kind = job.artifacts?.find((a) => a.name === artifact)?.kind ?? 'mesh';
+    this.runTarget = { jobId, artifact, kind };
     this.algorithmsPanel.setMesh(`${artifact} of ${job.algorithm}`);
     this.renderJobs();
   }
@@ -398,7 +410,7 @@ export class App {
   async showField(jobId: string, artifactName: string): Promise<void> {
     const job = this.jobs.get(jobId);
     const artifact = job?.artifacts?.find((a) => a.name === artifactName);
-    const meshId = job?.inputs?.mesh;
+    const meshId = jobMeshId(job);
     if (!job || !artifact || !meshId) return;
     if (this.selectedId !== meshId) {
       if (!this.meshes.some((m) => m.id === meshId)) {
@@ -438,7 +450,7 @@ export class App {
   /** Adds a job's mesh artifact (fetched as binary PLY) to the view, beside its input mesh. */
   async addMeshArtifact(jobId: string, artifactName: string): Promise<void> {
     const job = this.jobs.get(jobId);
-    const meshId = job?.inputs?.mesh;
+    const meshId = jobMeshId(job);
     if (!job) return;
     if (meshId && this.selectedId !== meshId && this.meshes.some((m) => m.id === meshId)) this.select(meshId);
     const selected = this.selectedId;

@@ -4,6 +4,7 @@
 // output against the original elephant, chosen in the form's reference
 // chooser. The chained output becomes a mesh of its own in the list, and the
 // per-vertex distance is drawn on it as a colour map, with the metrics table.
+// Then a voxel grid chains the same way: grid_surface on voxelize's grid.
 // The canvas is kept in build/test-artifacts/e2e-filters-*.png.
 //
 // Environment: CGVIEW_SERVER (default build/bin/cgview-server),
@@ -145,5 +146,34 @@ test('"Run on this" chains: hausdorff of the simplified mesh against the elephan
   const m = /hausdorff relative\s+([0-9.e-]+)/.exec(text);
   assert.ok(m, `the table shows the relative distance:\n${text}`);
   assert.ok(Number(m[1]) > 0 && Number(m[1]) < 0.05, `simplified to ${TARGET_FACES} faces stays within 5% of the diagonal: ${m[1]}`);
+  assert.deepEqual(pageProblems, [], describeProblems());
+});
+
+test('"Run on this" on a voxel grid: grid_surface takes the grid of voxelize, and its mesh is drawn', async () => {
+  await page.locator(`#mesh-list li.mesh[data-mesh-id="${elephantId}"]`).click();
+  let form = await selectAlgorithm('voxelize');
+  await form.locator('input[data-param="resolution"]').fill('24');
+  await form.locator('button.run').click();
+  const vox = await waitDone('voxelize');
+  // grid_surface needs a grid: without one the form says so.
+  form = await selectAlgorithm('grid_surface');
+  await form.locator('button.run').click();
+  const error = form.locator('.form-error');
+  await error.waitFor({ state: 'visible', timeout: 15000 });
+  assert.match(await error.innerText(), /voxel_grid/);
+
+  await vox.locator('.artifact-voxel_grid[data-artifact="grid"] button.run-on').click();
+  form = await selectAlgorithm('grid_surface');
+  assert.match(await form.locator('.run-target').innerText(), /grid of voxelize/);
+  await form.locator('button.run').click();
+  const li = await waitDone('grid_surface');
+  const jobId = await li.getAttribute('data-job-id');
+  const job = await (await fetch(`${baseUrl}/api/v1/jobs/${jobId}`)).json();
+  assert.equal(job.inputs.grid.job, await vox.getAttribute('data-job-id'));
+  await li.locator('.artifact-mesh[data-artifact="mesh"] button.add').click();
+  await page.waitForFunction((id) => window.__cgview.lastExtra?.jobId === id, jobId, { timeout: 30000 });
+  const extra = await page.evaluate(() => window.__cgview.lastExtra);
+  assert.ok(extra.faces > 100, `the voxel surface has faces: ${JSON.stringify(extra)}`);
+  await page.locator('#viewport canvas').screenshot({ path: path.join(artifacts, 'e2e-filters-grid-surface.png') });
   assert.deepEqual(pageProblems, [], describeProblems());
 });

@@ -101,7 +101,8 @@ export type JobInput = string | { job: string; artifact: string };
 export interface Job {
   id: string;
   algorithm: string;
-  inputs: Record<string, string>;
+  /** Each input: a mesh id, or an earlier job's artifact (a voxel grid). */
+  inputs: Record<string, JobInput>;
   params: Record<string, unknown>;
   state: JobState;
   progress: number;
@@ -143,3 +144,9 @@ export const SERVER_EVENT_TYPES: ReadonlySet<string> = new Set([
   'job_failed',
   'job_cancelled',
 ]);
+
+/** The id of a job's input mesh ("mesh"), or null (a job on a voxel grid). */
+export function jobMeshId(job: Job | undefined): string | null {
+  const m = job?.inputs?.mesh;
+  return typeof m === 'string' ? m : null;
+}

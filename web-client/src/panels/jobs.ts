@@ -5,6 +5,7 @@
 // meshes can be added to the view beside their input, downloaded, or made the
 // input of the next job ("Run on this": a chain, API.md "Jobs chain").
 import { artifactUrl } from '../api/rest.ts';
+import { jobMeshId } from '../api/types.ts';
 import type { ArtifactInfo, Job } from '../api/types.ts';
 import { el } from './dom.ts';
 
@@ -14,7 +15,7 @@ export interface JobsActions {
   showField(jobId: string, artifact: string): void;
   /** Adds a mesh artifact to the view, beside its input mesh. */
   addMesh(jobId: string, artifact: string): void;
-  /** Makes a mesh artifact the input of the next job (the algorithm form runs on it). */
+  /** Makes a mesh or voxel-grid artifact the input of the next job (the algorithm form runs on it). */
   runOn(jobId: string, artifact: string): void;
   /** Shows an animation artifact (chaos_animate's frames) with the player. */
   playAnimation(jobId: string, artifact: string): void;
@@ -111,7 +112,8 @@ export class JobsPanel {
   }
 
   private signature(job: Job, view: JobsView): string {
-    const mesh = job.inputs?.mesh ? view.meshName(job.inputs.mesh) : null;
+    const meshId = jobMeshId(job);
+    const mesh = meshId ? view.meshName(meshId) : null;
     const shown = view.shown?.jobId === job.id ? view.shown.artifact : '';
     const metrics = (job.artifacts ?? [])
       .map((a) => (view.metrics.get(`${job.id}/${a.name}`) === undefined && view.texts.get(`${job.id}/${a.name}`) === undefined ? 0 : 1))
@@ -132,7 +134,8 @@ export class JobsPanel {
   }
 
   private item(job: Job, view: JobsView): HTMLElement {
-    const mesh = job.inputs?.mesh ? view.meshName(job.inputs.mesh) ?? job.inputs.mesh.slice(0, 8) : '';
+    const meshId = jobMeshId(job);
+    const mesh = meshId ? view.meshName(meshId) ?? meshId.slice(0, 8) : '';
     const fraction = Math.min(1, Math.max(0, job.state === 'done' ? 1 : job.progress || 0));
     const bar = el('progress', { max: '1', class: 'job-progress' });
     bar.value = fraction;
@@ -165,6 +168,15 @@ export class JobsPanel {
     return li;
   }
 
+  /** "Run on this": the artifact (a mesh, a voxel grid) becomes the next job's input. */
+  private runOnButton(job: Job, a: ArtifactInfo, view: JobsView): HTMLButtonElement {
+    const targeted = view.target === `${job.id}/${a.name}`;
+    const runOn = el('button', { type: 'button', class: targeted ? 'button small run-on active' : 'button small run-on', title: 'Run the next algorithm on this result' }, targeted ? 'Input of next run' : 'Run on this');
+    runOn.disabled = targeted;
+    runOn.addEventListener('click', () => this.actions.runOn(job.id, a.name));
+    return runOn;
+  }
+
   private artifact(job: Job, a: ArtifactInfo, view: JobsView): HTMLElement {
     const row = el('div', { class: `artifact artifact-${a.kind}`, 'data-artifact': a.name });
     const label = el('span', { class: 'artifact-name', title: a.kind }, a.name);
@@ -178,11 +190,7 @@ export class JobsPanel {
       const add = el('button', { type: 'button', class: added ? 'button small add active' : 'button small add' }, added ? 'Added' : 'Add to view');
       add.disabled = added;
       add.addEventListener('click', () => this.actions.addMesh(job.id, a.name));
-      const targeted = view.target === `${job.id}/${a.name}`;
-      const runOn = el('button', { type: 'button', class: targeted ? 'button small run-on active' : 'button small run-on', title: 'Run the next algorithm on this result' }, targeted ? 'Input of next run' : 'Run on this');
-      runOn.disabled = targeted;
-      runOn.addEventListener('click', () => this.actions.runOn(job.id, a.name));
-      row.append(label, add, ' ', runOn, ' ', el('a', { href: artifactUrl(job.id, a.name, 'ply'), download: '' }, 'ply'), ' ', el('a', { href: artifactUrl(job.id, a.name, 'obj'), download: '' }, 'obj'));
+      row.append(label, add, ' ', this.runOnButton(job, a, view), ' ', el('a', { href: artifactUrl(job.id, a.name, 'ply'), download: '' }, 'ply'), ' ', el('a', { href: artifactUrl(job.id, a.name, 'obj'), download: '' }, 'obj'));
     } else if (a.kind === 'animation') {
       const play = el('button', { type: 'button', class: 'button small play-animation' }, 'Play');
       play.addEventListener('click', () => this.actions.playAnimation(job.id, a.name));
@@ -196,7 +204,7 @@ export class JobsPanel {
     } else if (a.kind === 'voxel_grid') {
       const slices = el('button', { type: 'button', class: 'button small slices' }, 'Slices');
       slices.addEventListener('click', () => this.actions.showSlices(job.id, a.name));
-      row.append(label, slices);
+      row.append(label, slices, ' ', this.runOnButton(job, a, view));
       for (const f of ['nrrd', 'vti', 'binvox']) row.append(' ', el('a', { href: artifactUrl(job.id, a.name, f), download: '' }, f));
     } else if (a.kind === 'metrics') {
       row.append(label);
