@@ -280,6 +280,7 @@ json JobScheduler::submit(const json& req, const std::string& owner, std::vector
     if (!known) throw InvalidInput("algorithm '" + algorithm + "' has no input '" + name + "' (it takes: " + names + ")");
   }
   json resolved = json::object();
+  InputSummaries summaries;
   std::string mesh_id, input_shas;
   std::optional<MeshRecord> mesh;
   for (const auto& spec : specs) {
@@ -319,6 +320,20 @@ json JobScheduler::submit(const json& req, const std::string& owner, std::vector
     const auto rec = meshes_.store().get_mesh(id);
     if (!rec) throw std::out_of_range("no mesh with id '" + id + "'");
     resolved[name] = id;
+    // What a precheck may know of it: the stored report's box and counts.
+    const json report = json::parse(rec->report_json, nullptr, false);
+    if (report.is_object()) {
+      InputSummary& sum = summaries[name];
+      sum.vertices = report.value("vertices", std::size_t(0));
+      sum.faces = report.value("faces", std::size_t(0));
+      const json box = report.value("bbox", json::object());
+      if (box.contains("min") && box.contains("max") && box["min"].size() == 3 && box["max"].size() == 3 &&
+          box["min"][0].is_number() && box["max"][0].is_number())
+        for (int a = 0; a < 3; ++a) {
+          sum.bbox.min[a] = box["min"][a].get<double>();
+          sum.bbox.max[a] = box["max"][a].get<double>();
+        }
+    }
     if (!mesh) {
       mesh = rec;
       mesh_id = id;
@@ -336,6 +351,7 @@ json JobScheduler::submit(const json& req, const std::string& owner, std::vector
       const auto v = values.find(p.name);
       canonical[p.name] = value_json(v == values.end() ? p.default_value : v->second);
     }
+    if (it->second.precheck) it->second.precheck(summaries, values);
   } else {
     // Only the worker knows it (a test algorithm): the worker checks.
     if (!params_in.is_null() && !params_in.is_object()) throw InvalidInput("\"params\" must be a JSON object");

@@ -31,6 +31,13 @@ const Algorithm& find_algorithm(const std::string& name) {
   return it->second;
 }
 
+void detail::set_precheck(const std::string& name,
+                          std::function<void(const InputSummaries&, const std::map<std::string, ParamValue>&)> check) {
+  const auto it = table().find(name);
+  if (it == table().end()) throw std::logic_error("a precheck for '" + name + "', which is not registered (yet)");
+  it->second.precheck = std::move(check);
+}
+
 void register_algorithm(Algorithm a) {
   const std::string name = a.info.name;
   if (!table().emplace(name, std::move(a)).second) throw std::logic_error("two algorithms are named '" + name + "'");

@@ -152,9 +152,22 @@ struct AlgorithmInfo {  // initializers as in ParamInfo
   std::vector<InputSpec> inputs{{.name = "mesh", .kind = OutputKind::mesh, .help = "the mesh to process"}};
 };
 
+// What is known of a mesh input before a job runs (the server has its stored
+// report): enough for a precheck to refuse parameters that cannot fit it.
+struct InputSummary {
+  BBox bbox;
+  std::size_t vertices = 0, faces = 0;
+};
+using InputSummaries = std::map<std::string, InputSummary>;
+
 struct Algorithm {
   AlgorithmInfo info;
   std::vector<ParamSpec> params;
+  // Optional, cheap: throws InvalidInput for parameters the inputs cannot
+  // take (voxelize: a grid over its memory limit), so that the server answers
+  // 400 at submission instead of failing the job later.  Set by
+  // CGVIEW_REGISTER_PRECHECK.
+  std::function<void(const InputSummaries&, const std::map<std::string, ParamValue>&)> precheck;
   // Checks and converts the values (missing ones take their defaults), then
   // runs.  Throws InvalidInput naming the bad parameter and the rule broken.
   // Inputs missing from `inputs` throw InvalidInput naming them.
@@ -245,10 +258,35 @@ struct Registrar {
   explicit Registrar(Algorithm a) { register_algorithm(std::move(a)); }
 };
 
+// Gives a registered algorithm its precheck, fn(const InputSummaries&, const Params&).
+void set_precheck(const std::string& name,
+                  std::function<void(const InputSummaries&, const std::map<std::string, ParamValue>&)> check);
+template <class Params, class Fn>
+struct PrecheckRegistrar {
+  PrecheckRegistrar(const char* name, Fn fn) {
+    Params defaults;
+    SpecCollector collect;
+    defaults.describe(collect);
+    set_precheck(name, [fn, specs = collect.specs](const InputSummaries& in, const std::map<std::string, ParamValue>& values) {
+      Params p;
+      ValueAssigner assign{values, specs};
+      p.describe(assign);
+      fn(in, p);
+    });
+  }
+};
+
 }  // namespace detail
 }  // namespace cgview
 
 // Registers an algorithm at program start.  NAME: snake_case identifier.
+// After CGVIEW_REGISTER_ALGORITHM(NAME, ...) in the same file: a precheck
+// FN(const InputSummaries&, const PARAMS&) that throws InvalidInput.
+#define CGVIEW_REGISTER_PRECHECK(NAME, PARAMS, FN)                                                    \
+  namespace {                                                                                         \
+  const ::cgview::detail::PrecheckRegistrar<PARAMS, decltype(&FN)> cgview_precheck_##NAME{#NAME, &FN}; \
+  }
+
 #define CGVIEW_REGISTER_ALGORITHM(NAME, PARAMS, FN, ...)                                        \
   namespace {                                                                                  \
   const ::cgview::detail::Registrar cgview_registrar_##NAME{                                   \

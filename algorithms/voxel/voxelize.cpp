@@ -197,9 +197,7 @@ double voxelize_memory_bytes(std::array<int, 3> dims) {
   return double(dims[0]) * double(dims[1]) * double(dims[2]) * 1.0;
 }
 
-VoxelizeResult voxelize(const Mesh& mesh, const VoxelizeParams& p, const Context* ctx) {
-  if (mesh.num_faces() == 0) throw InvalidInput("voxelize needs a triangle mesh: the mesh has no faces");
-  mesh.validate();
+VoxelizeGeometry voxelize_geometry(const BBox& box, const VoxelizeParams& p) {
   if (p.voxel_size < 0 || !std::isfinite(p.voxel_size))
     throw InvalidInput("parameter 'voxel_size' must be positive (or 0 to use the resolution)");
   if (p.voxel_size == 0 && p.resolution < 1)
@@ -207,10 +205,6 @@ VoxelizeResult voxelize(const Mesh& mesh, const VoxelizeParams& p, const Context
   if (p.padding < 0) throw InvalidInput("parameter 'padding' must be 0 or more, got " + std::to_string(p.padding));
   if (!(p.max_memory_mb > 0)) throw InvalidInput("parameter 'max_memory_mb' must be positive");
 
-  // Only the vertices that faces use count for the box.
-  BBox box;
-  for (const Tri& t : mesh.faces)
-    for (Index v : t) box.add(mesh.positions[v]);
   const Vec3 ext = box.size();
   const double longest = std::max({ext.x, ext.y, ext.z});
   const double size = p.voxel_size > 0 ? p.voxel_size : longest / p.resolution;
@@ -218,10 +212,8 @@ VoxelizeResult voxelize(const Mesh& mesh, const VoxelizeParams& p, const Context
     throw InvalidInput("the mesh's bounding box is a single point: give a voxel_size to voxelize it");
   std::array<int, 3> dims{};
   double voxels = 1;
-  double cells_of[3];
   for (int a = 0; a < 3; ++a) {
     const double cells = std::max(1.0, std::ceil(ext[a] / size * (1 - 1e-12)));
-    cells_of[a] = cells;
     const double n = cells + 2.0 * p.padding;
     voxels *= n;
     dims[a] = n < 2e9 ? int(n) : 2000000000;
@@ -236,6 +228,20 @@ VoxelizeResult voxelize(const Mesh& mesh, const VoxelizeParams& p, const Context
                        " grid would take " + format_bytes(need) + ", over the limit max_memory_mb = " +
                        std::to_string(long(p.max_memory_mb)) + " MB");
   }
+  return {dims, size, need};
+}
+
+VoxelizeResult voxelize(const Mesh& mesh, const VoxelizeParams& p, const Context* ctx) {
+  if (mesh.num_faces() == 0) throw InvalidInput("voxelize needs a triangle mesh: the mesh has no faces");
+  mesh.validate();
+  // Only the vertices that faces use count for the box.
+  BBox box;
+  for (const Tri& t : mesh.faces)
+    for (Index v : t) box.add(mesh.positions[v]);
+  const auto [dims, size, need] = voxelize_geometry(box, p);
+  // The cells the box spans on each axis (dims without the padding).
+  const double cells_of[3] = {double(dims[0] - 2 * p.padding), double(dims[1] - 2 * p.padding),
+                              double(dims[2] - 2 * p.padding)};
   const Vec3 origin = box.min - Vec3{1, 1, 1} * (p.padding * size);
   VoxelizeResult result;
   result.grid = VoxelGrid(dims, origin, size, VoxelType::bit, std::uint64_t(need) + 1);

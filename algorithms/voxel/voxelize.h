@@ -70,6 +70,16 @@ VoxelizeMode parse_voxelize_mode(const std::string& mode);
 // Memory (bytes) a grid of these dimensions needs while voxelizing.
 double voxelize_memory_bytes(std::array<int, 3> dims);
 
+// The grid voxelize would make for a bounding box: its dimensions, voxel size
+// and memory (bytes).  Throws InvalidInput as voxelize does for bad
+// parameters and a grid over max_memory_mb (without allocating anything).
+struct VoxelizeGeometry {
+  std::array<int, 3> dims;
+  double voxel_size;
+  double memory_bytes;
+};
+VoxelizeGeometry voxelize_geometry(const BBox& box, const VoxelizeParams& params);
+
 // ctx (optional): progress and cancellation (throws Cancelled).
 VoxelizeResult voxelize(const Mesh& mesh, const VoxelizeParams& params = {}, const Context* ctx = nullptr);
 

@@ -32,13 +32,26 @@ struct Params {
   }
 };
 
-AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
+VoxelizeParams voxelize_params(const Params& p) {
   VoxelizeParams vp;
   vp.resolution = p.resolution;
   vp.voxel_size = p.voxel_size;
   vp.mode = parse_voxelize_mode(p.mode);
   vp.padding = p.padding;
   vp.max_memory_mb = p.max_memory_mb;
+  return vp;
+}
+
+// Before the job runs: the grid for the mesh's bounding box must fit the
+// memory limit (the server answers 400 with what it would take).  The stored
+// box spans every vertex, voxelize's only those faces use: never smaller.
+void precheck(const InputSummaries& in, const Params& p) {
+  const auto it = in.find("mesh");
+  if (it != in.end() && !it->second.bbox.empty()) (void)voxelize_geometry(it->second.bbox, voxelize_params(p));
+}
+
+AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
+  const VoxelizeParams vp = voxelize_params(p);
   VoxelizeResult r = voxelize(mesh, vp, &ctx);
   const auto d = r.grid.dims();
   const double s = r.grid.voxel_size();
@@ -64,6 +77,7 @@ CGVIEW_REGISTER_ALGORITHM(voxelize, Params, run,
                                           "triangle-box overlap (no gaps), interior by a flood fill of the outside.",
                            .area = "voxel",
                            .outputs = {{"grid", OutputKind::voxel_grid}, {"metrics", OutputKind::metrics}}})
+CGVIEW_REGISTER_PRECHECK(voxelize, Params, precheck)
 
 }  // namespace
 }  // namespace cgview

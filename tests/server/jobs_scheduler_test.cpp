@@ -1,4 +1,5 @@
 // The JobScheduler in-process (with the test worker): fairness across owners.
+#include <algorithm>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -37,7 +38,10 @@ TEST(JobScheduler, RoundRobinAcrossOwners) {
   int ended = 0;
   jobs.on_event = [&](const json& e) {
     std::lock_guard lock(m);
-    if (e["type"] == "job_progress" && e["job"]["state"] == "running" && e["job"]["progress"] == 0.0)
+    // A job's first running event marks its start (a slow worker may report
+    // progress 0 again before its first step).
+    if (e["type"] == "job_progress" && e["job"]["state"] == "running" &&
+        std::find(started.begin(), started.end(), e["job"]["id"].get<std::string>()) == started.end())
       started.push_back(e["job"]["id"]);
     if (e["type"] == "job_done" || e["type"] == "job_failed") ++ended;
     cv.notify_all();

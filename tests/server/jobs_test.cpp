@@ -271,9 +271,9 @@ TEST_F(JobsTest, VoxelizeJobServesItsGridAndSlicesOverWebSocket) {
   EXPECT_GT(*std::max_element(fd.slice.values.begin(), fd.slice.values.end()), 0.f);
 
   // Too large a grid for the memory limit: the job fails with the memory it would need.
-  const json big = wait_end(submit("voxelize", {{"resolution", 4000}})["id"]);
-  EXPECT_EQ(big["state"], "failed");
-  EXPECT_NE(big["error"].get<std::string>().find("GB"), std::string::npos) << big.dump();
+  // Over the memory limit: refused at submission (the precheck), naming the size.
+  const json big = submit("voxelize", {{"resolution", 4000}}, 400);
+  EXPECT_NE(big["detail"].get<std::string>().find("59.7 GB"), std::string::npos) << big.dump();
 }
 
 TEST_F(JobsTest, AJobRunsOnAnEarlierJobsOutputMesh) {
@@ -372,6 +372,10 @@ TEST_F(JobsTest, AGridFromAnEarlierJobIsTheInputOfTheNext) {
   EXPECT_EQ(m["voxels"], vox_metrics["occupied_voxels"]) << m.dump() << vox_metrics.dump();
   const std::string ply = artifact(done["id"], "mesh", "ply");
   EXPECT_NE(ply.find("element face"), std::string::npos);
+  // A grid over the memory limit is refused at submission, saying what it would take.
+  const json big = submit("voxelize", {{"resolution", 1000}, {"max_memory_mb", 64}}, 400);
+  EXPECT_NE(big["detail"].get<std::string>().find("parameter 'resolution'"), std::string::npos) << big.dump();
+  EXPECT_NE(big["detail"].get<std::string>().find("over the limit max_memory_mb = 64 MB"), std::string::npos) << big.dump();
   // A grid input named by a mesh id, an artifact of another kind, a job that is not there.
   auto e = post({{"grid", mesh_id_}});
   EXPECT_EQ(e.status, 400);
