@@ -64,6 +64,8 @@ export interface TestHooks {
    * (and again after a colour-map change); null when none is drawn.
    */
   lastField: { jobId: string; artifact: string; meshId: string; location: string; count: number; range: [number, number]; map: string } | null;
+  /** The voxels drawn in 3D from the slice panel: boundary cubes drawn, voxels kept, the threshold (0..1 of the range). */
+  lastVoxels: { count: number; kept: number; threshold: number } | null;
   /** Whether the server answered GET /api/v1/algorithms (null until asked). */
   algorithmsApi: boolean | null;
   /** The last mesh artifact added to the view, set after the first frame with it. */
@@ -125,6 +127,7 @@ export class App {
     frames: 0,
     lastError: null,
     lastField: null,
+    lastVoxels: null,
     algorithmsApi: null,
     lastExtra: null,
     lastAnimation: null,
@@ -166,10 +169,19 @@ export class App {
       playAnimation: (jobId, artifact) => void this.showAnimation(jobId, artifact),
       showSlices: (jobId, artifact) => this.slicePanel.open(jobId, artifact),
     });
-    this.slicePanel = new VoxelSlicePanel(byId('voxel-slices'), this.socket, (shown) => {
-      this.viewer.setOverlay('voxel-slice', shown ? buildSlicePlane(shown.canvas, shown.slice) : null);
-      this.viewer.setClipPlane(shown?.cut ? sliceClipPlane(shown.slice) : null);
-    });
+    this.slicePanel = new VoxelSlicePanel(
+      byId('voxel-slices'),
+      this.socket,
+      (shown) => {
+        this.viewer.setOverlay('voxel-slice', shown ? buildSlicePlane(shown.canvas, shown.slice) : null);
+        this.viewer.setClipPlane(shown?.cut ? sliceClipPlane(shown.slice) : null);
+      },
+      (jobId, artifact) => fetchArtifactBytes(jobId, artifact, 'nrrd'),
+      (shown) => {
+        this.viewer.setOverlay('voxels', shown?.object ?? null);
+        this.hooks.lastVoxels = shown ? { count: shown.count, kept: shown.kept, threshold: shown.threshold } : null;
+      },
+    );
     this.legend = new Legend(byId('viewport'), (name) => this.setColorMap(name));
     this.player = new AnimationPlayer(byId('viewport'));
     new UploadControl(byId<HTMLInputElement>('file-input'), document.body, (files) => void this.upload(files));

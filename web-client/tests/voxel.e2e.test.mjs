@@ -106,10 +106,28 @@ test('voxelize, then its grid in the slice panel: a slice drawn in 2D and in 3D,
   await panel.locator('button', { hasText: /^x$/ }).click();
   await page.waitForTimeout(800);
   assert.ok((await litPixels()) > 20, `the middle x slice shows a section${describeProblems()}`);
-  await panel.locator('input[type=checkbox]').check();
+  await panel.locator('input[aria-label="Cut the mesh at the slice"]').check();
   await page.waitForTimeout(500);
   const overlay = await page.evaluate(() => window.__cgview !== undefined);
   assert.ok(overlay);
   await page.screenshot({ path: path.join(artifacts, 'e2e-voxel-slice.png') });
+  assert.deepEqual(pageProblems, [], describeProblems());
+});
+
+test('the voxels above the threshold in 3D: every occupied voxel kept, its boundary drawn as cubes', async () => {
+  const panel = page.locator('#voxel-slices');
+  await panel.locator('input.voxels-3d').check();
+  await page.waitForFunction(() => window.__cgview.lastVoxels !== null, null, { timeout: 30000 }).catch((e) => {
+    throw new Error(`no voxels drawn: ${e.message}${describeProblems()}`);
+  });
+  const shown = await page.evaluate(() => window.__cgview.lastVoxels);
+  const jobId = await page.locator('#jobs li.job[data-state="done"]').first().getAttribute('data-job-id');
+  const metrics = await (await fetch(`${server.url}/api/v1/jobs/${jobId}/artifacts/metrics?format=json`)).json();
+  assert.equal(shown.kept, metrics.occupied_voxels, `every occupied voxel is kept: ${JSON.stringify(shown)}`);
+  assert.ok(shown.count > 100 && shown.count < shown.kept, `only the boundary voxels are drawn: ${JSON.stringify(shown)}`);
+  await page.screenshot({ path: path.join(artifacts, 'e2e-voxel-3d.png') });
+  // Unchecked: gone.
+  await panel.locator('input.voxels-3d').uncheck();
+  await page.waitForFunction(() => window.__cgview.lastVoxels === null, null, { timeout: 10000 });
   assert.deepEqual(pageProblems, [], describeProblems());
 });

@@ -2,8 +2,12 @@
 // slider through the grid's slices and, for float grids, a threshold slider;
 // each slice is fetched over the WebSocket (get_slice, a zlib-compressed
 // binary frame), drawn in a 2D canvas, and handed to the viewer, which shows
-// it as a textured plane moving through the mesh.
+// it as a textured plane moving through the mesh. "3D" fetches the whole grid
+// (its NRRD artifact) and shows the voxels above the threshold as cubes; the
+// threshold slider updates both views.
 import type { SliceBegin } from '../api/ws.ts';
+import { buildVoxels, parseNrrd, valueRange, type VoxelVolume } from '../viewer/voxel_renderer.ts';
+import type * as THREE from 'three';
 import { AXES, type Axis, type VoxelSlice } from '../api/voxel_slice.ts';
 import { el } from './dom.ts';
 
@@ -14,6 +18,11 @@ export interface SliceSource {
 export interface SliceShown {
   /** The slice drawn as a canvas, where it lies in the world (plane corner, size), or null to hide. */
   (shown: { canvas: HTMLCanvasElement; slice: VoxelSlice; begin: SliceBegin; cut: boolean } | null): void;
+}
+
+export interface VoxelsShown {
+  /** The voxels above the threshold as one object (null: hide), with their counts. */
+  (shown: { object: THREE.Object3D; count: number; kept: number; threshold: number } | null): void;
 }
 
 export class VoxelSlicePanel {
@@ -34,11 +43,21 @@ export class VoxelSlicePanel {
   private readonly label = el('span', { class: 'slice-label' });
   private readonly cut = el('input', { type: 'checkbox', 'aria-label': 'Cut the mesh at the slice' });
   private readonly error = el('p', { class: 'empty' });
+  private readonly show3d = el('input', { type: 'checkbox', 'aria-label': 'Show the voxels above the threshold in 3D', class: 'voxels-3d' });
+  private volume: { key: string; data: Promise<VoxelVolume> } | null = null;
+  private voxelsToken = 0;
 
-  constructor(root: HTMLElement, source: SliceSource, onShown: SliceShown) {
+  constructor(
+    root: HTMLElement,
+    source: SliceSource,
+    onShown: SliceShown,
+    private readonly fetchGrid: (jobId: string, artifact: string) => Promise<ArrayBuffer>,
+    private readonly onVoxels: VoxelsShown,
+  ) {
     this.root = root;
     this.source = source;
     this.onShown = onShown;
+    this.show3d.addEventListener('change', () => this.drawVoxels());
     this.slider.addEventListener('input', () => {
       this.index = Number(this.slider.value);
       this.fetch();
@@ -47,6 +66,7 @@ export class VoxelSlicePanel {
     this.thresholdSlider.addEventListener('input', () => {
       this.threshold = Number(this.thresholdSlider.value) / 1000;
       this.draw();
+      this.drawVoxels();
     });
     this.render();
   }
@@ -54,6 +74,7 @@ export class VoxelSlicePanel {
   /** Opens the panel on a job's voxel grid artifact (the middle z slice first). */
   open(jobId: string, artifact: string): void {
     this.target = { jobId, artifact };
+    this.drawVoxels();
     this.dims = null;
     this.index = 0;
     this.render();
@@ -64,6 +85,8 @@ export class VoxelSlicePanel {
     this.target = null;
     this.last = null;
     this.onShown(null);
+    this.show3d.checked = false;
+    this.drawVoxels();
     this.render();
   }
 
@@ -93,6 +116,7 @@ export class VoxelSlicePanel {
       el('label', {}, 'slice ', this.slider, ' ', this.label),
       el('label', {}, 'threshold ', this.thresholdSlider),
       el('label', {}, this.cut, ' cut the mesh at the slice (section view)'),
+      el('label', {}, this.show3d, ' the voxels above the threshold in 3D'),
       this.canvas,
       this.error,
     );
@@ -168,5 +192,30 @@ export class VoxelSlicePanel {
     }
     ctx.putImageData(image, 0, 0);
     this.onShown({ canvas: this.canvas, slice, begin: this.last.begin, cut: this.cut.checked });
+  }
+
+  /** The voxels above the threshold in 3D (the grid fetched once per artifact). */
+  private drawVoxels(): void {
+    const token = ++this.voxelsToken;
+    if (!this.target || !this.show3d.checked) {
+      this.onVoxels(null);
+      return;
+    }
+    const { jobId, artifact } = this.target;
+    const key = `${jobId}/${artifact}`;
+    if (this.volume?.key !== key) this.volume = { key, data: this.fetchGrid(jobId, artifact).then(parseNrrd) };
+    const threshold = this.threshold;
+    this.volume.data
+      .then((v) => {
+        if (token !== this.voxelsToken) return;
+        const [lo, hi] = valueRange(v);
+        const cut = threshold === 0 ? -Infinity : lo + threshold * (hi > lo ? hi - lo : 1);
+        const { object, count, kept } = buildVoxels(v, cut);
+        this.onVoxels({ object, count, kept, threshold });
+      })
+      .catch((e: Error) => {
+        this.volume = null;
+        this.error.textContent = `Cannot show the voxels: ${e.message}`;
+      });
   }
 }
