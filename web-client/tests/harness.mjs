@@ -187,3 +187,58 @@ export function hueStats({ data }) {
   const distinct = buckets.filter((n) => n >= 0.01 * saturated).length;
   return { saturated, distinct, buckets, orange: saturated ? orange / saturated : 0 };
 }
+
+export const artifactsDir = path.join(repo, 'build', 'test-artifacts');
+
+// The set-up the end-to-end tests share: checks that the server, the built
+// client, chromium and `mesh` exist; starts the server, chromium and a page
+// on the viewer, recording the page's errors (and HTTP errors with
+// httpErrors) in `problems`; with `mesh`, uploads it and shows it.
+// Returns { server, browser, page, problems, describeProblems, meshId, close }.
+export async function openViewer({ tmpPrefix, mesh = null, httpErrors = true }) {
+  const files = [
+    ['the server', serverBin],
+    ['the built web client', path.join(dist, 'index.html')],
+    ['chromium', chromiumBin],
+  ];
+  if (mesh) files.push(['the mesh', mesh]);
+  for (const [what, file] of files) {
+    if (!fs.existsSync(file)) throw new Error(`${what} is missing: ${file}`);
+  }
+  fs.mkdirSync(artifactsDir, { recursive: true });
+  const server = await startServer({ tmpPrefix });
+  const browser = await launchBrowser();
+  const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+  const problems = [];
+  page.on('pageerror', (e) => problems.push(`pageerror: ${e.message}`));
+  page.on('console', (m) => {
+    if (m.type() === 'error') problems.push(`console.error: ${m.text()} (${m.location().url})`);
+  });
+  if (httpErrors) {
+    page.on('response', (r) => {
+      if (r.status() >= 400) problems.push(`HTTP ${r.status()}: ${r.request().method()} ${r.url()}`);
+    });
+  }
+  const describeProblems = () => (problems.length ? `\npage problems:\n${problems.join('\n')}` : '');
+  await page.goto(server.url + '/');
+  await page.waitForFunction(() => window.__cgview?.ready === true, null, { timeout: 30000 });
+  let meshId = null;
+  if (mesh) {
+    const r = await fetch(`${server.url}/api/v1/meshes?name=${encodeURIComponent(path.basename(mesh))}`, {
+      method: 'POST',
+      body: fs.readFileSync(mesh),
+    });
+    if (r.status !== 201) throw new Error(`uploading ${mesh}: HTTP ${r.status} ${await r.text()}`);
+    meshId = (await r.json()).id;
+    await page.locator(`#mesh-list li.mesh[data-mesh-id="${meshId}"]`).click();
+    await page.waitForFunction((id) => window.__cgview.lastLoaded?.id === id, meshId, { timeout: 60000 });
+  }
+  const close = async () => {
+    try {
+      await browser.close();
+    } finally {
+      await server.stop();
+    }
+  };
+  return { server, browser, page, problems, describeProblems, meshId, close };
+}

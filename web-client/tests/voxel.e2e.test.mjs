@@ -9,51 +9,27 @@
 // CHROMIUM (default /usr/bin/chromium).
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
-import fs from 'node:fs';
 import path from 'node:path';
-import { chromiumBin, dist, launchBrowser, repo, serverBin, startServer } from './harness.mjs';
+import { artifactsDir as artifacts, openViewer, repo } from './harness.mjs';
 
 const elephant = path.join(repo, 'build', 'samples', 'elephant.off');
-const artifacts = path.join(repo, 'build', 'test-artifacts');
 
+let v = null; // the viewer: server, page, problems
 let server = null;
-let browser = null;
 let page = null;
-const pageProblems = [];
-const describeProblems = () => (pageProblems.length ? `\npage problems:\n${pageProblems.join('\n')}` : '');
+let baseUrl = null;
+let elephantId = null;
+let pageProblems = [];
+let describeProblems = () => '';
 
 before(async () => {
-  for (const [what, file] of [
-    ['the server', serverBin],
-    ['the built web client', path.join(dist, 'index.html')],
-    ['the elephant sample', elephant],
-    ['chromium', chromiumBin],
-  ]) {
-    assert.ok(fs.existsSync(file), `${what} is missing: ${file}`);
-  }
-  fs.mkdirSync(artifacts, { recursive: true });
-  server = await startServer({ tmpPrefix: 'cgview-e2e-voxel-' });
-  browser = await launchBrowser();
-  page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
-  page.on('pageerror', (e) => pageProblems.push(`pageerror: ${e.message}`));
-  page.on('console', (m) => {
-    if (m.type() === 'error') pageProblems.push(`console.error: ${m.text()}`);
-  });
-  await page.goto(server.url + '/');
-  await page.waitForFunction(() => window.__cgview?.ready === true, null, { timeout: 30000 });
-  const r = await fetch(`${server.url}/api/v1/meshes?name=elephant.off`, { method: 'POST', body: fs.readFileSync(elephant) });
-  assert.equal(r.status, 201, await r.clone().text());
-  const id = (await r.json()).id;
-  await page.locator(`#mesh-list li.mesh[data-mesh-id="${id}"]`).click();
-  await page.waitForFunction((i) => window.__cgview.lastLoaded?.id === i, id, { timeout: 60000 });
+  v = await openViewer({ tmpPrefix: 'cgview-e2e-voxel-', mesh: elephant, httpErrors: false });
+  ({ server, page, meshId: elephantId, problems: pageProblems, describeProblems } = v);
+  baseUrl = server.url;
 });
 
 after(async () => {
-  try {
-    if (browser) await browser.close();
-  } finally {
-    if (server) await server.stop();
-  }
+  if (v) await v.close();
 });
 
 // Lit (occupied) pixels of the slice canvas.
