@@ -42,7 +42,7 @@ FrameHeader decode_frame(std::string_view f, std::string_view* chunk) {
   if (header_bytes < kFrameHeaderBytes || header_bytes > f.size()) throw InvalidInput("a frame's header size is wrong");
   FrameHeader h;
   h.kind = FrameKind(get<std::uint16_t>(f, 6));
-  if (h.kind != FrameKind::draco_mesh && h.kind != FrameKind::voxel_slice) throw InvalidInput("unknown frame kind " + std::to_string(int(h.kind)));
+  if (h.kind != FrameKind::draco_mesh && h.kind != FrameKind::voxel_slice && h.kind != FrameKind::animation) throw InvalidInput("unknown frame kind " + std::to_string(int(h.kind)));
   h.request_id = get<std::uint32_t>(f, 8);
   h.chunk_index = get<std::uint32_t>(f, 12);
   h.chunk_count = get<std::uint32_t>(f, 16);

@@ -18,7 +18,7 @@ constexpr std::uint16_t kFrameVersion = 1;
 constexpr std::uint32_t kFrameHeaderBytes = 32;
 constexpr std::size_t kDefaultChunkBytes = std::size_t(4) << 20;  // under Beast's 16 MiB message limit
 
-enum class FrameKind : std::uint16_t { draco_mesh = 1, voxel_slice = 2 };
+enum class FrameKind : std::uint16_t { draco_mesh = 1, voxel_slice = 2, animation = 3 };
 
 struct FrameHeader {
   FrameKind kind = FrameKind::draco_mesh;

@@ -16,6 +16,7 @@
 #include <unordered_map>
 
 #include "core/errors.h"
+#include "animation_frames.h"
 #include "frames.h"
 #include "mesh_service.h"
 #include "router.h"
@@ -138,7 +139,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     if (!msg.contains("type") || !msg["type"].is_string()) return error(id, "bad_request", "the message has no \"type\"");
     const std::string type = msg["type"];
     if (type == "ping") return send_json({{"type", "pong"}, {"request_id", id}});
-    if (type == "list_meshes" || type == "get_mesh" || type == "get_slice") {
+    if (type == "list_meshes" || type == "get_mesh" || type == "get_slice" || type == "get_animation") {
       net::post(shared_->workers, [self = shared_from_this(), msg = std::move(msg), id, type] { self->work(type, msg, id); });
       return;
     }
@@ -154,6 +155,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
         return send_json({{"type", "meshes"}, {"request_id", id}, {"meshes", list}});
       }
       if (type == "get_slice") return slice(msg, id);
+      if (type == "get_animation") return animation(msg, id);
       if (id.is_null()) return error(id, "bad_request", "get_mesh needs a request_id");
       if (!msg.contains("mesh_id") || !msg["mesh_id"].is_string()) return error(id, "bad_request", "get_mesh needs a \"mesh_id\" string");
       int bits = 14;
@@ -182,6 +184,36 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     } catch (const std::exception& e) {
       error(id, "internal", e.what());
     }
+  }
+
+  // get_animation: a job's animation artifact (chaos_animate's frames) as
+  // quantized deltas, zlib-compressed, in frames of kind 3
+  // (protocol/animation_frames.h, API.md).  On a worker thread.
+  void animation(const json& msg, const json& id) {
+    if (id.is_null()) return error(id, "bad_request", "get_animation needs a request_id");
+    if (!msg.contains("job_id") || !msg["job_id"].is_string()) return error(id, "bad_request", "get_animation needs a \"job_id\" string");
+    const std::string artifact = msg.contains("artifact") && msg["artifact"].is_string() ? msg["artifact"].get<std::string>() : "frames";
+    std::string raw;
+    try {
+      raw = shared_->jobs->artifact(msg["job_id"], artifact, "frames").bytes;
+    } catch (const std::out_of_range& e) {
+      return error(id, "not_found", e.what());
+    } catch (const UnsupportedFormat&) {
+      return error(id, "bad_request", "artifact '" + artifact + "' of job " + msg["job_id"].get<std::string>() + " is not an animation");
+    }
+    auto payload = std::make_shared<const std::string>(protocol::encode_animation_payload(raw));
+    const std::uint32_t rid = std::uint32_t(id.get<std::uint64_t>());
+    const std::size_t chunk = shared_->config.chunk_bytes;
+    const std::size_t total = payload->size();
+    const std::size_t count = (total + chunk - 1) / chunk;
+    send_json({{"type", "animation_begin"}, {"request_id", id}, {"job_id", msg["job_id"]}, {"artifact", artifact},
+               {"encoding", "frames-delta-zlib"}, {"raw_bytes", raw.size()}, {"bytes", total}, {"chunks", count}});
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::string_view part = std::string_view(*payload).substr(i * chunk, chunk);
+      send({protocol::encode_frame_header({protocol::FrameKind::animation, rid, std::uint32_t(i), std::uint32_t(count), total}),
+            payload, part, true});
+    }
+    send_json({{"type", "animation_end"}, {"request_id", id}});
   }
 
   // get_slice: a 2D slice of a job's voxel grid artifact, zlib-compressed

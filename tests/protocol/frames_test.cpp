@@ -233,7 +233,7 @@ TEST(FramesDecode, OtherVersionsThrow) {
 }
 
 TEST(FramesDecode, UnknownKindThrows) {
-  for (std::uint16_t kind : {0, 3, 0xffff}) {  // 1 Draco mesh, 2 voxel slice
+  for (std::uint16_t kind : {0, 4, 0xffff}) {  // 1 Draco mesh, 2 voxel slice, 3 animation
     std::string f = good_frame();
     put_le<std::uint16_t>(f, 6, kind);
     EXPECT_THROW(decode_frame(f), InvalidInput) << "kind " << kind;

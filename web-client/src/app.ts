@@ -492,7 +492,8 @@ export class App {
     if (!job) return;
     const token = ++this.animationToken;
     try {
-      const [bytes] = await Promise.all([fetchArtifactBytes(jobId, artifactName, 'frames'), this.showing]);
+      // Over the WebSocket, as quantized deltas (protocol/API.md, get_animation).
+      const [bytes] = await Promise.all([this.socket.getAnimation(jobId, artifactName), this.showing]);
       if (token !== this.animationToken) return;
       const frames = decodeFrames(bytes);
       if (this.field) this.dropField();

@@ -7,7 +7,7 @@
 // |--------|---------|-------------------------------------|
 // | 0      | 4 bytes | magic "CGVF"                        |
 // | 4      | u16     | version = 1                         |
-// | 6      | u16     | kind: 1 = Draco mesh, 2 = voxel slice |
+// | 6      | u16     | kind: 1 = Draco mesh, 2 = voxel slice, 3 = animation |
 // | 8      | u32     | request_id                          |
 // | 12     | u32     | chunk_index (0-based)               |
 // | 16     | u32     | chunk_count                         |
@@ -23,6 +23,7 @@ export const FRAME_MAX_CHUNK_BYTES = 4 * 1024 * 1024;
 export const FrameKind = {
   DracoMesh: 1,
   VoxelSlice: 2,
+  Animation: 3,
 } as const;
 
 /** The header's fields, named as in API.md. */

@@ -5,6 +5,7 @@
 // Reconnects by itself; requests in flight when the connection drops fail.
 import { ChunkAssembler, FrameError, FrameKind, decodeFrame } from './frames.ts';
 import { SERVER_EVENT_TYPES, type Mesh, type MeshBegin, type ServerEvent } from './types.ts';
+import { decodeAnimationPayload } from './animation_payload.ts';
 import { decodeSlicePayload, type Axis, type VoxelSlice } from './voxel_slice.ts';
 
 /** The `slice` text frame that precedes a slice's binary frames (API.md). */
@@ -54,6 +55,13 @@ export interface GetMeshOptions {
 
 type Pending =
   | { kind: 'reply'; expect: string; resolve: (msg: Record<string, unknown>) => void; reject: (e: Error) => void }
+  | {
+      kind: 'animation';
+      rawBytes: number | null;
+      assembler: ChunkAssembler;
+      resolve: (frames: ArrayBuffer) => void;
+      reject: (e: Error) => void;
+    }
   | {
       kind: 'slice';
       begin: SliceBegin | null;
@@ -194,6 +202,16 @@ export class CgviewSocket {
     });
   }
 
+  /** A done job's animation artifact (get_animation): the .frames bytes, sent as zlib-compressed quantized deltas. */
+  async getAnimation(jobId: string, artifact: string): Promise<ArrayBuffer> {
+    await this.connect();
+    const id = this.takeId();
+    return new Promise((resolve, reject) => {
+      this.pending.set(id, { kind: 'animation', rawBytes: null, assembler: new ChunkAssembler(id), resolve, reject });
+      this.send({ type: 'get_animation', request_id: id, job_id: jobId, artifact });
+    });
+  }
+
   private takeId(): number {
     const id = this.nextId;
     this.nextId = this.nextId >= 0xffffffff ? 1 : this.nextId + 1;
@@ -270,6 +288,26 @@ export class CgviewSocket {
       }
       return;
     }
+    if (p.kind === 'animation') {
+      if (type === 'animation_begin') {
+        p.rawBytes = Number(msg.raw_bytes);
+      } else if (type === 'animation_end') {
+        this.pending.delete(id);
+        if (p.rawBytes === null) {
+          p.reject(new Error('animation_end without animation_begin'));
+          return;
+        }
+        let payload: Uint8Array;
+        try {
+          payload = p.assembler.result();
+        } catch (e) {
+          p.reject(e as Error);
+          return;
+        }
+        decodeAnimationPayload(payload, p.rawBytes).then(p.resolve, (e: Error) => p.reject(e));
+      }
+      return;
+    }
     if (p.kind === 'slice') {
       if (type === 'slice') {
         p.begin = msg as unknown as SliceBegin;
@@ -334,6 +372,17 @@ export class CgviewSocket {
     if (!p) return; // aborted request: drop its chunks
     if (p.kind === 'reply') {
       this.fail(id, new FrameError(`binary frame for request ${id}, which expects "${p.expect}"`));
+      return;
+    }
+    if (p.kind === 'animation') {
+      try {
+        if (frame.header.kind !== FrameKind.Animation) {
+          throw new FrameError(`frame kind ${frame.header.kind}, expected ${FrameKind.Animation} (animation)`);
+        }
+        p.assembler.add(frame);
+      } catch (e) {
+        this.fail(id, e as Error);
+      }
       return;
     }
     if (p.kind === 'slice') {
