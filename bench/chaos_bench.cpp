@@ -12,6 +12,7 @@
 #include <functional>
 #include <string>
 
+#include "bench_util.h"
 #include "chaos/embed.h"
 #include "chaos/encrypt.h"
 #include "io/mesh_io.h"
@@ -19,32 +20,12 @@
 
 using namespace cgview;
 
-namespace {
-
-double best_seconds(int repeat, const std::function<void()>& f) {
-  double best = 1e300;
-  for (int i = 0; i < repeat; ++i) {
-    const auto t0 = std::chrono::steady_clock::now();
-    f();
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-  return best;
-}
-
-}  // namespace
+using bench::best_seconds;
 
 int main(int argc, char** argv) {
-  int repeat = 3;
-  bool quick = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--repeat" && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
-    else if (a == "--quick") quick = true;
-    else {
-      std::fprintf(stderr, "usage: chaos_bench [--repeat N] [--quick]\n");
-      return 64;
-    }
-  }
+  const bench::Options options = bench::parse_options(argc, argv, "chaos_bench", false);
+  const int repeat = options.repeat;
+  const bool quick = options.quick;
   const auto base = resolve_mesh_path("man.off");
   if (!base) {
     std::fprintf(stderr, "chaos_bench: sample meshes not found (install libcgal-demo, re-run cmake)\n");

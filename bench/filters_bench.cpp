@@ -41,7 +41,7 @@
 
 #include "core/surface_mesh.h"
 #include "io/mesh_io.h"
-#include "bench_options.h"
+#include "bench_util.h"
 #include "io/samples.h"
 #include "registry/registry.h"
 
@@ -49,23 +49,9 @@ using namespace cgview;
 namespace PMP = CGAL::Polygon_mesh_processing;
 namespace SMS = CGAL::Surface_mesh_simplification;
 
+using bench::best_seconds;
+
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// Best of `repeat` runs of f; setup() runs before each, outside the timing.
-double best_seconds(int repeat, const std::function<void()>& setup, const std::function<void()>& f) {
-  double best = 1e300;
-  for (int i = 0; i < repeat; ++i) {
-    setup();
-    const auto t0 = std::chrono::steady_clock::now();
-    f();
-    best = std::min(best, seconds_since(t0));
-  }
-  return best;
-}
 
 double mean_edge_length(const SurfaceMesh& sm) {
   double sum = 0;

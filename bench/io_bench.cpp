@@ -15,23 +15,15 @@
 
 #include "core/surface_mesh.h"
 #include "io/mesh_io.h"
-#include "bench_options.h"
+#include "bench_util.h"
 #include "io/samples.h"
 
 namespace fs = std::filesystem;
 using namespace cgview;
 
-namespace {
+using bench::best_seconds;
 
-double best_seconds(int repeat, const std::function<void()>& f) {
-  double best = 1e300;
-  for (int i = 0; i < repeat; ++i) {
-    const auto t0 = std::chrono::steady_clock::now();
-    f();
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-  return best;
-}
+namespace {
 
 struct Case {
   const char* label;

@@ -18,24 +18,15 @@
 #include "core/errors.h"
 #include "io/mesh_io.h"
 #include "registry/registry.h"
+#include "algorithm_support.h"
 #include "test_support.h"
 
 namespace cgview {
 namespace {
 
-using Values = std::map<std::string, ParamValue>;
-
-AlgorithmResult run(const std::string& name, const Mesh& mesh, const Values& values = {}) {
-  Context ctx;
-  return find_algorithm(name).run(mesh, values, ctx);
-}
-
-template <class T>
-const T& artifact(const AlgorithmResult& r, const std::string& name) {
-  for (const Artifact& a : r.artifacts)
-    if (a.name == name) return std::get<T>(a.value);
-  throw std::runtime_error("no artifact " + name);
-}
+using test::artifact;
+using test::run_algorithm;
+using test::Values;
 
 std::vector<Mesh> sample_meshes() {
   std::vector<Mesh> out;
@@ -103,13 +94,13 @@ TEST(ChaosMapsTest, CatMapOnAMeshReturnsAfterItsPeriod) {
 TEST(ChaosMapsTest, EveryMapKeepsPositionsFiniteThroughTheRegistry) {
   const Mesh m = read_mesh(test::sample("bunny00.off"));
   for (const char* map : {"ikeda", "cat", "logistic", "henon", "composite"}) {
-    const AlgorithmResult r = run("chaos_map", m, {{"map", std::string(map)}, {"steps", 20LL}});
+    const AlgorithmResult r = run_algorithm("chaos_map", m, {{"map", std::string(map)}, {"steps", 20LL}});
     const Mesh& out = artifact<Mesh>(r, "mesh");
     ASSERT_EQ(out.num_vertices(), m.num_vertices()) << map;
     for (const Vec3& v : out.positions) ASSERT_TRUE(is_finite(v)) << map;
     EXPECT_FALSE(bit_equal(out.positions, m.positions)) << map;
   }
-  EXPECT_THROW(run("chaos_map", m, {{"map", std::string("tent")}}), InvalidInput);
+  EXPECT_THROW(run_algorithm("chaos_map", m, {{"map", std::string("tent")}}), InvalidInput);
 }
 
 TEST(ChaosMapsTest, StreamDependsOnEveryBitOfTheKey) {
@@ -125,7 +116,7 @@ TEST(ChaosMapsTest, StreamDependsOnEveryBitOfTheKey) {
 
 TEST(ChaosAnimateTest, FramesFollowTheMapAndSurviveTheFramesFormat) {
   const Mesh m = read_mesh(test::sample("bunny00.off"));
-  const AlgorithmResult r = run("chaos_animate", m, {{"map", std::string("ikeda")}, {"frames", 5LL}});
+  const AlgorithmResult r = run_algorithm("chaos_animate", m, {{"map", std::string("ikeda")}, {"frames", 5LL}});
   const Animation& a = artifact<Animation>(r, "animation");
   ASSERT_EQ(a.frames.size(), 5u);
   EXPECT_EQ(a.base.faces, m.faces);
@@ -258,20 +249,20 @@ TEST(ChaosEncryptTest, CipherDecorrelatesAdjacentCoordinatesAndStaysInTheBox) {
 
 TEST(ChaosEncryptTest, RegisteredAlgorithmReportsTheMeasures) {
   const Mesh m = read_mesh(test::sample("bunny00.off"));
-  const AlgorithmResult r = run("chaos_encrypt", m, {{"key", std::string("k")}});
+  const AlgorithmResult r = run_algorithm("chaos_encrypt", m, {{"key", std::string("k")}});
   const Metrics& x = artifact<Metrics>(r, "metrics");
   EXPECT_EQ(x.at("key_space_bits"), 256);
   EXPECT_EQ(x.at("round_trip_exact"), 1);
   EXPECT_GT(x.at("key_sensitivity_changed_coordinates"), 0.99);
   EXPECT_GT(x.at("hausdorff_vertices_relative"), 0.05);
-  const AlgorithmResult d = run("chaos_decrypt", artifact<Mesh>(r, "mesh"), {{"key", std::string("k")}});
+  const AlgorithmResult d = run_algorithm("chaos_decrypt", artifact<Mesh>(r, "mesh"), {{"key", std::string("k")}});
   EXPECT_TRUE(bit_equal(artifact<Mesh>(d, "mesh").positions, chaos::float32_copy(m).positions));
 }
 
 TEST(ChaosEncryptTest, BadInputsNameTheProblem) {
   const Mesh m = test::box();
   try {
-    run("chaos_encrypt", m, {{"key", std::string("")}});
+    run_algorithm("chaos_encrypt", m, {{"key", std::string("")}});
     FAIL();
   } catch (const InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find("'key'"), std::string::npos) << e.what();
@@ -354,7 +345,7 @@ TEST(ChaosEmbedTest, MessageLongerThanTheCapacityIsRefused) {
   EXPECT_EQ(chaos::embed_capacity_bytes(8, 4), 4u);
   EXPECT_NO_THROW(chaos::embed(m, "k", "four", 4));
   try {
-    run("chaos_embed", m, {{"key", std::string("k")}, {"message", std::string("five!")}, {"bits", 4LL}});
+    run_algorithm("chaos_embed", m, {{"key", std::string("k")}, {"message", std::string("five!")}, {"bits", 4LL}});
     FAIL();
   } catch (const InvalidInput& e) {
     const std::string w = e.what();
@@ -369,21 +360,21 @@ TEST(ChaosEmbedTest, MessageLongerThanTheCapacityIsRefused) {
 TEST(ChaosEmbedTest, RegisteredPairReturnsTheMessageAsText) {
   const Mesh m = read_mesh(test::sample("bunny00.off"));
   const AlgorithmResult e =
-      run("chaos_embed", m, {{"key", std::string("k")}, {"message", std::string("hello, mesh")}, {"bits", 2LL}});
+      run_algorithm("chaos_embed", m, {{"key", std::string("k")}, {"message", std::string("hello, mesh")}, {"bits", 2LL}});
   const Metrics& x = artifact<Metrics>(e, "metrics");
   EXPECT_EQ(x.at("capacity_bits_per_vertex"), 6);
   EXPECT_LE(x.at("max_displacement_relative"), x.at("bound_displacement_relative"));
   EXPECT_GT(x.at("snr_db"), 100);
-  const AlgorithmResult r = run("chaos_extract", artifact<Mesh>(e, "mesh"), {{"key", std::string("k")}});
+  const AlgorithmResult r = run_algorithm("chaos_extract", artifact<Mesh>(e, "mesh"), {{"key", std::string("k")}});
   EXPECT_EQ(artifact<Text>(r, "message").bytes, "hello, mesh");
-  EXPECT_THROW(run("chaos_extract", artifact<Mesh>(e, "mesh"), {{"key", std::string("K")}}), InvalidInput);
+  EXPECT_THROW(run_algorithm("chaos_extract", artifact<Mesh>(e, "mesh"), {{"key", std::string("K")}}), InvalidInput);
   // A file's bytes, as base64.
-  const AlgorithmResult b = run("chaos_embed", m,
+  const AlgorithmResult b = run_algorithm("chaos_embed", m,
                                 {{"key", std::string("k")}, {"message", std::string("AP8BaGk=")},
                                  {"encoding", std::string("base64")}});
-  const AlgorithmResult rb = run("chaos_extract", artifact<Mesh>(b, "mesh"), {{"key", std::string("k")}});
+  const AlgorithmResult rb = run_algorithm("chaos_extract", artifact<Mesh>(b, "mesh"), {{"key", std::string("k")}});
   EXPECT_EQ(artifact<Text>(rb, "message").bytes, std::string("\x00\xff\x01hi", 5));
-  EXPECT_THROW(run("chaos_embed", m, {{"key", std::string("k")}, {"message", std::string("not*base64")},
+  EXPECT_THROW(run_algorithm("chaos_embed", m, {{"key", std::string("k")}, {"message", std::string("not*base64")},
                                       {"encoding", std::string("base64")}}),
                InvalidInput);
 }

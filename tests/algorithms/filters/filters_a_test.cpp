@@ -9,23 +9,15 @@
 
 #include "filters/curvature.h"
 #include "registry/registry.h"
+#include "algorithm_support.h"
 #include "test_support.h"
 
 namespace cgview {
 namespace {
 
-AlgorithmResult run_algorithm(const std::string& name, const Mesh& mesh,
-                              const std::map<std::string, ParamValue>& params = {}) {
-  Context ctx;
-  return find_algorithm(name).run(mesh, params, ctx);
-}
-
-template <class T>
-const T& artifact(const AlgorithmResult& r, const std::string& name) {
-  for (const Artifact& a : r.artifacts)
-    if (a.name == name) return std::get<T>(a.value);
-  throw std::runtime_error("no artifact " + name);
-}
+using test::artifact;
+using test::run_algorithm;
+using test::Values;
 
 double median(std::vector<double> v) {
   std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());

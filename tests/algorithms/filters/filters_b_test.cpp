@@ -13,17 +13,15 @@
 #include "core/surface_mesh.h"
 #include "io/mesh_io.h"
 #include "registry/registry.h"
+#include "algorithm_support.h"
 #include "test_support.h"
 
 namespace cgview {
 namespace {
 
-using Values = std::map<std::string, ParamValue>;
-
-AlgorithmResult run(const std::string& name, const Mesh& mesh, const Values& values = {}) {
-  Context ctx;
-  return find_algorithm(name).run(mesh, values, ctx);
-}
+using test::artifact;
+using test::run_algorithm;
+using test::Values;
 
 const Mesh& mesh_of(const AlgorithmResult& r) {
   for (const Artifact& a : r.artifacts)
@@ -68,7 +66,7 @@ TEST(SimplifyTest, SphereToTargetFacesStaysClose) {
   const double r = 1.0;
   const Mesh sphere = test::uv_sphere(r, 64, 128);
   const int target = 500;
-  const Mesh out = mesh_of(run("simplify", sphere, {{"target_faces", (long long)target}}));
+  const Mesh out = mesh_of(run_algorithm("simplify", sphere, {{"target_faces", (long long)target}}));
   EXPECT_LE(out.num_faces(), std::size_t(target));
   EXPECT_GT(out.num_faces(), std::size_t(target) * 9 / 10);
   const MeshReport rep = mesh_report(out);
@@ -84,7 +82,7 @@ TEST(SimplifyTest, SphereToTargetFacesStaysClose) {
 
 TEST(SimplifyTest, RatioHalvesFaces) {
   const Mesh sphere = test::uv_sphere(1.0, 16, 32);
-  const Mesh out = mesh_of(run("simplify", sphere, {{"ratio", 0.5}}));
+  const Mesh out = mesh_of(run_algorithm("simplify", sphere, {{"ratio", 0.5}}));
   EXPECT_LE(out.num_faces(), sphere.num_faces() / 2);
   EXPECT_TRUE(mesh_report(out).closed);
 }
@@ -92,7 +90,7 @@ TEST(SimplifyTest, RatioHalvesFaces) {
 TEST(RemeshTest, ReachesTargetEdgeLength) {
   const Mesh sphere = test::uv_sphere(1.0, 24, 48);
   const double target = 0.1;
-  const Mesh out = mesh_of(run("remesh", sphere, {{"target_edge_length", target}, {"iterations", 3LL}}));
+  const Mesh out = mesh_of(run_algorithm("remesh", sphere, {{"target_edge_length", target}, {"iterations", 3LL}}));
   EXPECT_NEAR(mean_edge_length(out), target, 0.2 * target);
   EXPECT_TRUE(mesh_report(out).closed);
 }
@@ -100,20 +98,20 @@ TEST(RemeshTest, ReachesTargetEdgeLength) {
 TEST(RemeshTest, ZeroMeansInputMeanEdgeLength) {
   const Mesh sphere = test::uv_sphere(1.0, 16, 32);
   const double before = mean_edge_length(sphere);
-  const Mesh out = mesh_of(run("remesh", sphere));
+  const Mesh out = mesh_of(run_algorithm("remesh", sphere));
   EXPECT_NEAR(mean_edge_length(out), before, 0.2 * before);
 }
 
 TEST(SmoothTest, MeanCurvatureFlowReducesRadiusVariance) {
   const Mesh noisy = noisy_sphere();
-  const Mesh out = mesh_of(run("smooth", noisy, {{"method", std::string("mean_curvature_flow")}}));
+  const Mesh out = mesh_of(run_algorithm("smooth", noisy, {{"method", std::string("mean_curvature_flow")}}));
   EXPECT_EQ(out.num_vertices(), noisy.num_vertices());
   EXPECT_LT(radius_variance(out), 0.5 * radius_variance(noisy));
 }
 
 TEST(SmoothTest, AngleSmoothingKeepsAClosedMesh) {
   const Mesh noisy = noisy_sphere();
-  const Mesh out = mesh_of(run("smooth", noisy, {{"method", std::string("angle_and_area")}, {"iterations", 2LL}}));
+  const Mesh out = mesh_of(run_algorithm("smooth", noisy, {{"method", std::string("angle_and_area")}, {"iterations", 2LL}}));
   EXPECT_EQ(out.num_vertices(), noisy.num_vertices());
   EXPECT_TRUE(mesh_report(out).closed);
 }
@@ -122,7 +120,7 @@ TEST(FillHolesTest, ClosesTheElephant) {
   const Mesh holed = read_mesh(test::sample("elephant-with-holes.off"));
   const Mesh whole = read_mesh(test::sample("elephant.off"));
   ASSERT_GT(mesh_report(holed).boundary_loops, 0u);
-  const AlgorithmResult r = run("fill_holes", holed);
+  const AlgorithmResult r = run_algorithm("fill_holes", holed);
   const MeshReport rep = mesh_report(mesh_of(r));
   EXPECT_EQ(rep.boundary_loops, 0u);
   EXPECT_EQ(rep.genus, mesh_report(whole).genus);
@@ -133,9 +131,9 @@ TEST(FillHolesTest, ClosesTheElephant) {
 
 TEST(FillHolesTest, TriangulateModeAndSizeLimit) {
   const Mesh g = test::grid(4);  // one hole of 16 edges: the grid's border
-  const MeshReport filled = mesh_report(mesh_of(run("fill_holes", g, {{"mode", std::string("triangulate")}})));
+  const MeshReport filled = mesh_report(mesh_of(run_algorithm("fill_holes", g, {{"mode", std::string("triangulate")}})));
   EXPECT_EQ(filled.boundary_loops, 0u);
-  const AlgorithmResult r = run("fill_holes", g, {{"max_hole_edges", 10LL}});
+  const AlgorithmResult r = run_algorithm("fill_holes", g, {{"max_hole_edges", 10LL}});
   EXPECT_EQ(mesh_report(mesh_of(r)).boundary_loops, 1u);
   EXPECT_EQ(std::get<Metrics>(r.artifacts.at(1).value).at("holes_filled"), 0.0);
   EXPECT_EQ(r.warnings.size(), 1u);
@@ -144,7 +142,7 @@ TEST(FillHolesTest, TriangulateModeAndSizeLimit) {
 TEST(FiltersBTest, NonManifoldInputIsRefused) {
   for (const char* name : {"simplify", "smooth", "remesh", "fill_holes"}) {
     try {
-      run(name, non_manifold());
+      run_algorithm(name, non_manifold());
       ADD_FAILURE() << name << " accepted a non-manifold mesh";
     } catch (const InvalidInput& e) {
       EXPECT_NE(std::string(e.what()).find(std::string(name) + " needs a manifold mesh"), std::string::npos)

@@ -12,24 +12,15 @@
 #include "core/errors.h"
 #include "core/mesh_report.h"
 #include "registry/registry.h"
+#include "algorithm_support.h"
 #include "test_support.h"
 
 namespace cgview {
 namespace {
 
-using Values = std::map<std::string, ParamValue>;
-
-AlgorithmResult run(const std::string& name, const Mesh& mesh, const Values& values = {}) {
-  Context ctx;
-  return find_algorithm(name).run(mesh, values, ctx);
-}
-
-template <class T>
-const T& artifact(const AlgorithmResult& r, const std::string& name) {
-  for (const Artifact& a : r.artifacts)
-    if (a.name == name) return std::get<T>(a.value);
-  throw std::runtime_error("no artifact " + name);
-}
+using test::artifact;
+using test::run_algorithm;
+using test::Values;
 
 // Three triangles on one edge.
 Mesh three_on_an_edge() {
@@ -50,7 +41,7 @@ Mesh bowtie() {
 TEST(RepairTest, ThreeFacesOnAnEdgeBecomeManifold) {
   const Mesh in = three_on_an_edge();
   ASSERT_FALSE(mesh_report(in).manifold);
-  const AlgorithmResult r = run("repair", in);
+  const AlgorithmResult r = run_algorithm("repair", in);
   const Mesh& out = artifact<Mesh>(r, "mesh");
   const MeshReport rep = mesh_report(out);
   EXPECT_TRUE(rep.manifold);
@@ -65,7 +56,7 @@ TEST(RepairTest, ThreeFacesOnAnEdgeBecomeManifold) {
 TEST(RepairTest, BowtieBecomesManifold) {
   const Mesh in = bowtie();
   ASSERT_FALSE(mesh_report(in).manifold);
-  const AlgorithmResult r = run("repair", in);
+  const AlgorithmResult r = run_algorithm("repair", in);
   const Mesh& out = artifact<Mesh>(r, "mesh");
   const MeshReport rep = mesh_report(out);
   EXPECT_TRUE(rep.manifold);
@@ -87,7 +78,7 @@ TEST(RepairTest, DuplicateAndDegenerateFacesAreRemoved) {
   in.faces.push_back({0, 1, Index(in.positions.size() - 1)});  // zero area
   in.positions.push_back({5, 5, 5});                           // used by no face
   ASSERT_GT(mesh_report(in).duplicate_faces + mesh_report(in).degenerate_faces, 0u);
-  const AlgorithmResult r = run("repair", in);
+  const AlgorithmResult r = run_algorithm("repair", in);
   const Mesh& out = artifact<Mesh>(r, "mesh");
   EXPECT_EQ(out.num_faces(), faces);
   EXPECT_EQ(out.num_vertices(), 8u);
@@ -111,7 +102,7 @@ TEST(RepairTest, SplitBoxIsWeldedAndClosed) {
   }
   ASSERT_EQ(in.num_vertices(), 36u);
   ASSERT_FALSE(mesh_report(in).closed);
-  const AlgorithmResult r = run("repair", in);
+  const AlgorithmResult r = run_algorithm("repair", in);
   const Mesh& out = artifact<Mesh>(r, "mesh");
   EXPECT_EQ(out.num_vertices(), 8u);
   EXPECT_EQ(out.num_faces(), 12u);
@@ -129,7 +120,7 @@ TEST(RepairTest, SplitBoxIsWeldedAndClosed) {
 
 TEST(RepairTest, ManifoldInputIsUnchanged) {
   const Mesh in = test::torus();
-  const AlgorithmResult r = run("repair", in);
+  const AlgorithmResult r = run_algorithm("repair", in);
   const Mesh& out = artifact<Mesh>(r, "mesh");
   EXPECT_EQ(out.num_vertices(), in.num_vertices());
   EXPECT_EQ(out.num_faces(), in.num_faces());
@@ -146,7 +137,7 @@ double percentile(std::vector<double> v, double q) {
 
 TEST(GeodesicDistanceTest, SphereFromNorthPoleMatchesGreatCircle) {
   const Mesh sphere = test::uv_sphere(1.0, 64, 128);
-  const AlgorithmResult r = run("geodesic_distance", sphere, {{"sources", std::string("0")}});
+  const AlgorithmResult r = run_algorithm("geodesic_distance", sphere, {{"sources", std::string("0")}});
   const ScalarField& f = artifact<ScalarField>(r, "distance");
   ASSERT_EQ(f.values.size(), sphere.num_vertices());
   EXPECT_EQ(f.location, Location::vertex);
@@ -166,7 +157,7 @@ TEST(GeodesicDistanceTest, TwoSourcesTakeTheNearer) {
   const Mesh sphere = test::uv_sphere(1.0, 32, 64);
   const Index south = Index(sphere.num_vertices() - 1);
   const AlgorithmResult r =
-      run("geodesic_distance", sphere, {{"sources", "0, " + std::to_string(south)}});
+      run_algorithm("geodesic_distance", sphere, {{"sources", "0, " + std::to_string(south)}});
   const ScalarField& f = artifact<ScalarField>(r, "distance");
   EXPECT_NEAR(f.values[0], 0.0, 0.02);
   EXPECT_NEAR(f.values[south], 0.0, 0.02);
@@ -180,7 +171,7 @@ TEST(GeodesicDistanceTest, BadSourcesAreInvalidInput) {
   const std::vector<std::string> bads = {"", "x", "1,", "-1", "3.5", std::to_string(sphere.num_vertices())};
   for (const std::string& bad : bads) {
     try {
-      run("geodesic_distance", sphere, {{"sources", bad}});
+      run_algorithm("geodesic_distance", sphere, {{"sources", bad}});
       ADD_FAILURE() << "no error for sources '" << bad << "'";
     } catch (const InvalidInput& e) {
       EXPECT_NE(std::string(e.what()).find("sources"), std::string::npos) << e.what();
@@ -190,7 +181,7 @@ TEST(GeodesicDistanceTest, BadSourcesAreInvalidInput) {
 
 TEST(GeodesicDistanceTest, NonManifoldInputIsInvalid) {
   try {
-    run("geodesic_distance", three_on_an_edge());
+    run_algorithm("geodesic_distance", three_on_an_edge());
     FAIL() << "no error";
   } catch (const InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find("manifold"), std::string::npos) << e.what();
@@ -201,8 +192,7 @@ AlgorithmResult hausdorff(const Mesh& mesh, const Mesh& reference, const Values&
   Inputs in;
   in.add("mesh", mesh);
   in.add("reference", reference);
-  Context ctx;
-  return find_algorithm("hausdorff").run(in, values, ctx);
+  return run_algorithm("hausdorff", in, values);
 }
 
 Mesh translated(Mesh m, Vec3 t) {
@@ -290,14 +280,14 @@ TEST(RepairFirstTest, HalfedgeFiltersRefuseANonManifoldMeshOrRepairItWhenAsked) 
   for (const std::string name : {"simplify", "smooth", "remesh", "fill_holes", "subdivide", "components"}) {
     SCOPED_TRACE(name);
     try {
-      run(name, fin);
+      run_algorithm(name, fin);
       ADD_FAILURE() << "no error";
     } catch (const InvalidInput& e) {
       const std::string what = e.what();
       EXPECT_NE(what.find(name + " needs a manifold mesh"), std::string::npos) << what;
       EXPECT_NE(what.find("set 'repair'"), std::string::npos) << what;
     }
-    const AlgorithmResult r = run(name, fin, {{"repair", true}});
+    const AlgorithmResult r = run_algorithm(name, fin, {{"repair", true}});
     ASSERT_FALSE(r.warnings.empty());
     EXPECT_NE(r.warnings[0].find("repaired first"), std::string::npos) << r.warnings[0];
     const Mesh& out = artifact<Mesh>(r, "mesh");
@@ -305,7 +295,7 @@ TEST(RepairFirstTest, HalfedgeFiltersRefuseANonManifoldMeshOrRepairItWhenAsked) 
     EXPECT_TRUE(mesh_report(out).manifold);
   }
   // A manifold mesh is left as it is: no warning.
-  EXPECT_TRUE(run("simplify", test::uv_sphere(), {{"repair", true}}).warnings.empty());
+  EXPECT_TRUE(run_algorithm("simplify", test::uv_sphere(), {{"repair", true}}).warnings.empty());
 }
 
 }  // namespace

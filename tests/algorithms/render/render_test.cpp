@@ -132,7 +132,9 @@ TEST(RenderContext, FallsBackWhenAPlatformFailsToStart) {
     bool refused = false;
     for (const auto& a : r.info().attempts) refused |= a.find("surfaceless: refused") == 0;
     // (On a GPU machine the hardware device comes first and surfaceless is never tried.)
-    if (r.info().software) EXPECT_TRUE(refused);
+    if (r.info().software) {
+      EXPECT_TRUE(refused);
+    }
     const Mesh cube = test::box();
     RenderParams p;
     p.width = p.height = 16;
@@ -183,7 +185,9 @@ TEST(RenderViews, SphereDirections) {
       EXPECT_NEAR(norm(v), 1.0, 1e-12);
       mean += v;
     }
-    if (n == 100) EXPECT_LT(norm(mean / 100.0), 0.02);
+    if (n == 100) {
+      EXPECT_LT(norm(mean / 100.0), 0.02);
+    }
   }
   EXPECT_EQ(sphere_directions(12, SphereSampling::icosahedron).size(), 12u);
   EXPECT_EQ(sphere_directions(13, SphereSampling::icosahedron).size(), 42u);

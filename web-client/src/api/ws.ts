@@ -56,17 +56,15 @@ export interface GetMeshOptions {
 type Pending =
   | { kind: 'reply'; expect: string; resolve: (msg: Record<string, unknown>) => void; reject: (e: Error) => void }
   | {
-      kind: 'animation';
-      rawBytes: number | null;
+      // A payload in binary frames of one kind between a begin and an end
+      // text message (get_slice, get_animation), decoded once complete.
+      kind: 'payload';
+      beginType: string;
+      endType: string;
+      frameKind: number;
+      begin: Record<string, unknown> | null;
       assembler: ChunkAssembler;
-      resolve: (frames: ArrayBuffer) => void;
-      reject: (e: Error) => void;
-    }
-  | {
-      kind: 'slice';
-      begin: SliceBegin | null;
-      assembler: ChunkAssembler;
-      resolve: (t: { begin: SliceBegin; slice: VoxelSlice }) => void;
+      finish: (begin: Record<string, unknown>, payload: Uint8Array) => Promise<void>;
       reject: (e: Error) => void;
     }
   | {
@@ -193,22 +191,40 @@ export class CgviewSocket {
   }
 
   /** A 2D slice of a done job's voxel grid artifact (get_slice). */
-  async getSlice(jobId: string, artifact: string, axis: Axis, index: number): Promise<{ begin: SliceBegin; slice: VoxelSlice }> {
-    await this.connect();
-    const id = this.takeId();
-    return new Promise((resolve, reject) => {
-      this.pending.set(id, { kind: 'slice', begin: null, assembler: new ChunkAssembler(id), resolve, reject });
-      this.send({ type: 'get_slice', request_id: id, job_id: jobId, artifact, axis, index });
-    });
+  getSlice(jobId: string, artifact: string, axis: Axis, index: number): Promise<{ begin: SliceBegin; slice: VoxelSlice }> {
+    return this.getPayload(
+      { type: 'get_slice', job_id: jobId, artifact, axis, index },
+      'slice',
+      'slice_end',
+      FrameKind.VoxelSlice,
+      async (begin, payload) => ({ begin: begin as unknown as SliceBegin, slice: await decodeSlicePayload(payload) }),
+    );
   }
 
   /** A done job's animation artifact (get_animation): the .frames bytes, sent as zlib-compressed quantized deltas. */
-  async getAnimation(jobId: string, artifact: string): Promise<ArrayBuffer> {
+  getAnimation(jobId: string, artifact: string): Promise<ArrayBuffer> {
+    return this.getPayload(
+      { type: 'get_animation', job_id: jobId, artifact },
+      'animation_begin',
+      'animation_end',
+      FrameKind.Animation,
+      (begin, payload) => decodeAnimationPayload(payload, Number(begin.raw_bytes)),
+    );
+  }
+
+  private async getPayload<T>(
+    request: Record<string, unknown>,
+    beginType: string,
+    endType: string,
+    frameKind: number,
+    decode: (begin: Record<string, unknown>, payload: Uint8Array) => Promise<T>,
+  ): Promise<T> {
     await this.connect();
     const id = this.takeId();
-    return new Promise((resolve, reject) => {
-      this.pending.set(id, { kind: 'animation', rawBytes: null, assembler: new ChunkAssembler(id), resolve, reject });
-      this.send({ type: 'get_animation', request_id: id, job_id: jobId, artifact });
+    return new Promise<T>((resolve, reject) => {
+      const finish = async (begin: Record<string, unknown>, payload: Uint8Array) => resolve(await decode(begin, payload));
+      this.pending.set(id, { kind: 'payload', beginType, endType, frameKind, begin: null, assembler: new ChunkAssembler(id), finish, reject });
+      this.send({ ...request, request_id: id });
     });
   }
 
@@ -288,34 +304,14 @@ export class CgviewSocket {
       }
       return;
     }
-    if (p.kind === 'animation') {
-      if (type === 'animation_begin') {
-        p.rawBytes = Number(msg.raw_bytes);
-      } else if (type === 'animation_end') {
-        this.pending.delete(id);
-        if (p.rawBytes === null) {
-          p.reject(new Error('animation_end without animation_begin'));
-          return;
-        }
-        let payload: Uint8Array;
-        try {
-          payload = p.assembler.result();
-        } catch (e) {
-          p.reject(e as Error);
-          return;
-        }
-        decodeAnimationPayload(payload, p.rawBytes).then(p.resolve, (e: Error) => p.reject(e));
-      }
-      return;
-    }
-    if (p.kind === 'slice') {
-      if (type === 'slice') {
-        p.begin = msg as unknown as SliceBegin;
-      } else if (type === 'slice_end') {
+    if (p.kind === 'payload') {
+      if (type === p.beginType) {
+        p.begin = msg;
+      } else if (type === p.endType) {
         this.pending.delete(id);
         const begin = p.begin;
         if (!begin) {
-          p.reject(new Error('slice_end without slice'));
+          p.reject(new Error(`${p.endType} without ${p.beginType}`));
           return;
         }
         let payload: Uint8Array;
@@ -325,7 +321,7 @@ export class CgviewSocket {
           p.reject(e as Error);
           return;
         }
-        decodeSlicePayload(payload).then((slice) => p.resolve({ begin, slice }), (e: Error) => p.reject(e));
+        p.finish(begin, payload).catch((e: Error) => p.reject(e));
       }
       return;
     }
@@ -374,21 +370,10 @@ export class CgviewSocket {
       this.fail(id, new FrameError(`binary frame for request ${id}, which expects "${p.expect}"`));
       return;
     }
-    if (p.kind === 'animation') {
+    if (p.kind === 'payload') {
       try {
-        if (frame.header.kind !== FrameKind.Animation) {
-          throw new FrameError(`frame kind ${frame.header.kind}, expected ${FrameKind.Animation} (animation)`);
-        }
-        p.assembler.add(frame);
-      } catch (e) {
-        this.fail(id, e as Error);
-      }
-      return;
-    }
-    if (p.kind === 'slice') {
-      try {
-        if (frame.header.kind !== FrameKind.VoxelSlice) {
-          throw new FrameError(`frame kind ${frame.header.kind}, expected ${FrameKind.VoxelSlice} (voxel slice)`);
+        if (frame.header.kind !== p.frameKind) {
+          throw new FrameError(`frame kind ${frame.header.kind}, expected ${p.frameKind} (${p.beginType})`);
         }
         p.assembler.add(frame);
       } catch (e) {
