@@ -32,11 +32,11 @@ SurfaceMeshResult to_surface_mesh(const Mesh& mesh) {
   return r;
 }
 
-SurfaceMesh manifold_surface_mesh(const Mesh& mesh, const char* who) {
+SurfaceMesh manifold_surface_mesh(const Mesh& mesh, const char* who, const char* remedy) {
   SurfaceMeshResult r = to_surface_mesh(mesh);
   if (r.skipped_faces > 0)
     throw InvalidInput(std::string(who) + " needs a manifold mesh: " + std::to_string(r.skipped_faces) +
-                       " faces could not be placed in a halfedge structure (non-manifold or degenerate)");
+                       " faces could not be placed in a halfedge structure (non-manifold or degenerate); " + remedy);
   return std::move(r.mesh);
 }
 

@@ -23,8 +23,8 @@ struct SurfaceMeshResult {
 
 // For algorithms that need halfedges: the Surface_mesh of a mesh that fits
 // one, else InvalidInput "WHO needs a manifold mesh: N faces could not be
-// placed in a halfedge structure (non-manifold or degenerate)".
-SurfaceMesh manifold_surface_mesh(const Mesh& mesh, const char* who);
+// placed in a halfedge structure (non-manifold or degenerate); REMEDY".
+SurfaceMesh manifold_surface_mesh(const Mesh& mesh, const char* who, const char* remedy = "run repair on it first");
 
 // Vertices keep their indices; per-vertex normals and colours go into the
 // property maps "v:normal" (Kernel::Vector_3) and "v:color" (CGAL::IO::Color).

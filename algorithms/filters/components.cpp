@@ -36,8 +36,8 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   if (mesh.num_faces() == 0) throw InvalidInput("components needs a triangle mesh: the mesh has no faces");
   mesh.validate();
   ctx.progress(0.0, "halfedges");
-  std::vector<std::string> repaired;
-  SurfaceMesh sm = halfedge_mesh_for(mesh, "components", p.repair, repaired);
+  AlgorithmResult result;
+  SurfaceMesh sm = halfedge_mesh_for(mesh, "components", p.repair, result.warnings);
   ctx.check_cancelled();
   ctx.progress(0.3, "components");
   namespace PMP = CGAL::Polygon_mesh_processing;
@@ -56,11 +56,9 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
     sm.collect_garbage();
     out = from_surface_mesh(sm);
   }
-  AlgorithmResult result;
   result.artifacts.push_back({"mesh", std::move(out)});
   result.artifacts.push_back({"metrics", Metrics{{"components", double(n)}, {"kept", double(kept)}}});
   ctx.progress(1.0, "done");
-  result.warnings.insert(result.warnings.begin(), repaired.begin(), repaired.end());
   return result;
 }
 

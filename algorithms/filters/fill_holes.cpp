@@ -41,12 +41,11 @@ struct Params {
 AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   if (mesh.num_faces() == 0) throw InvalidInput("fill_holes needs a mesh with faces");
   ctx.progress(0, "converting");
-  std::vector<std::string> repaired;
-  SurfaceMesh sm = halfedge_mesh_for(mesh, "fill_holes", p.repair, repaired);
+  AlgorithmResult result;
+  SurfaceMesh sm = halfedge_mesh_for(mesh, "fill_holes", p.repair, result.warnings);
   using Halfedge = SurfaceMesh::Halfedge_index;
   std::vector<Halfedge> cycles;
   PMP::extract_boundary_cycles(sm, std::back_inserter(cycles));
-  AlgorithmResult result;
   std::size_t filled = 0, too_large = 0, fairing_failed = 0;
   for (std::size_t i = 0; i < cycles.size(); ++i) {
     ctx.check_cancelled();
@@ -82,7 +81,6 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   result.artifacts.push_back({"metrics", Metrics{{"holes_found", double(cycles.size())},
                                                  {"holes_filled", double(filled)}}});
   ctx.progress(1.0, "done");
-  result.warnings.insert(result.warnings.begin(), repaired.begin(), repaired.end());
   return result;
 }
 

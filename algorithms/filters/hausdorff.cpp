@@ -41,17 +41,6 @@ struct Params {
 using Triangle = Kernel::Triangle_3;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle>::const_iterator>>>;
 
-// Both meshes as CGAL needs them; non-manifold faces cannot enter a
-// Surface_mesh, so the bound would leave them out: refuse instead.
-SurfaceMesh halfedge_mesh(const Mesh& m, const char* which) {
-  SurfaceMeshResult r = to_surface_mesh(m);
-  if (r.skipped_faces > 0)
-    throw InvalidInput(std::string("hausdorff needs a manifold ") + which + ": " + std::to_string(r.skipped_faces) +
-                       " faces could not be placed in a halfedge structure (non-manifold or degenerate; run repair "
-                       "first)");
-  return std::move(r.mesh);
-}
-
 AlgorithmResult run(const Inputs& in, const Params& p, Context& ctx) {
   const Mesh& a = in.mesh("mesh");
   const Mesh& b = in.mesh("reference");
@@ -62,7 +51,9 @@ AlgorithmResult run(const Inputs& in, const Params& p, Context& ctx) {
   for (const Vec3& v : a.positions) box.add(v);
   for (const Vec3& v : b.positions) box.add(v);
   const double diagonal = box.diagonal();
-  const SurfaceMesh sa = halfedge_mesh(a, "mesh"), sb = halfedge_mesh(b, "reference");
+  // Non-manifold faces cannot enter a Surface_mesh, so the bound would leave them out: refused.
+  const SurfaceMesh sa = manifold_surface_mesh(a, "hausdorff (input 'mesh')"),
+                    sb = manifold_surface_mesh(b, "hausdorff (input 'reference')");
   ctx.check_cancelled();
 
   // The per-vertex field: distance from each vertex of A to B's surface.

@@ -35,8 +35,8 @@ struct Params {
 AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   if (mesh.num_faces() == 0) throw InvalidInput("remesh needs a mesh with faces");
   ctx.progress(0, "converting");
-  std::vector<std::string> repaired;
-  SurfaceMesh sm = halfedge_mesh_for(mesh, "remesh", p.repair, repaired);
+  AlgorithmResult result;
+  SurfaceMesh sm = halfedge_mesh_for(mesh, "remesh", p.repair, result.warnings);
   double target = p.target_edge_length;
   if (target == 0) {
     double sum = 0;
@@ -51,10 +51,8 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
     PMP::isotropic_remeshing(faces(sm), target, sm, CGAL::parameters::number_of_iterations(1));
   }
   sm.collect_garbage();
-  AlgorithmResult result;
   result.artifacts.push_back({"mesh", from_surface_mesh(sm)});
   ctx.progress(1.0, "done");
-  result.warnings.insert(result.warnings.begin(), repaired.begin(), repaired.end());
   return result;
 }
 

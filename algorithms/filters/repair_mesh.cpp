@@ -48,12 +48,9 @@ SurfaceMesh repair_to_surface_mesh(const Mesh& mesh, bool stitch, RepairReport& 
 }
 
 SurfaceMesh halfedge_mesh_for(const Mesh& mesh, const char* who, bool repair, std::vector<std::string>& warnings) {
+  if (!repair) return manifold_surface_mesh(mesh, who, "set 'repair' to repair it first, or run repair on it");
   SurfaceMeshResult r = to_surface_mesh(mesh);
   if (r.skipped_faces == 0) return std::move(r.mesh);
-  if (!repair)
-    throw InvalidInput(std::string(who) + " needs a manifold mesh: " + std::to_string(r.skipped_faces) +
-                       " faces could not be placed in a halfedge structure (non-manifold or degenerate); set "
-                       "'repair' to repair it first, or run repair on it");
   RepairReport rep;
   SurfaceMesh sm = repair_to_surface_mesh(mesh, true, rep);
   warnings.push_back(std::string(who) + ": the mesh was not manifold (" + std::to_string(r.skipped_faces) +

@@ -72,14 +72,13 @@ struct Stop {
 AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   if (mesh.num_faces() == 0) throw InvalidInput("simplify needs a mesh with faces");
   ctx.progress(0, "converting");
-  std::vector<std::string> repaired;
-  SurfaceMesh sm = halfedge_mesh_for(mesh, "simplify", p.repair, repaired);
+  AlgorithmResult result;
+  SurfaceMesh sm = halfedge_mesh_for(mesh, "simplify", p.repair, result.warnings);
   Tracker t;
   t.faces = t.initial = sm.number_of_faces();
   t.target = p.target_faces > 0 ? std::size_t(p.target_faces)
                                 : std::size_t(std::llround(p.ratio * double(t.initial)));
   t.ctx = &ctx;
-  AlgorithmResult result;
   if (t.target < t.initial) {
     SMS::GarlandHeckbert_plane_policies<SurfaceMesh, Kernel> gh(sm);
     SMS::edge_collapse(sm, Stop{&t},
@@ -92,7 +91,6 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   }
   result.artifacts.push_back({"mesh", from_surface_mesh(sm)});
   ctx.progress(1.0, "done");
-  result.warnings.insert(result.warnings.begin(), repaired.begin(), repaired.end());
   return result;
 }
 

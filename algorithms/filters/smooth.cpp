@@ -43,8 +43,8 @@ struct Params {
 AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   if (mesh.num_faces() == 0) throw InvalidInput("smooth needs a mesh with faces");
   ctx.progress(0, "converting");
-  std::vector<std::string> repaired;
-  SurfaceMesh sm = halfedge_mesh_for(mesh, "smooth", p.repair, repaired);
+  AlgorithmResult result;
+  SurfaceMesh sm = halfedge_mesh_for(mesh, "smooth", p.repair, result.warnings);
   for (int i = 0; i < p.iterations; ++i) {
     ctx.check_cancelled();
     ctx.progress(double(i) / double(p.iterations), "iteration " + std::to_string(i + 1));
@@ -54,10 +54,8 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
       PMP::angle_and_area_smoothing(sm, CGAL::parameters::number_of_iterations(1).use_area_smoothing(false));
   }
   sm.collect_garbage();
-  AlgorithmResult result;
   result.artifacts.push_back({"mesh", from_surface_mesh(sm)});
   ctx.progress(1.0, "done");
-  result.warnings.insert(result.warnings.begin(), repaired.begin(), repaired.end());
   return result;
 }
 

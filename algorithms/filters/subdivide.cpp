@@ -49,8 +49,8 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
     throw InvalidInput("subdivide would make " + std::to_string(std::llround(expected)) + " faces, over the limit of " +
                        std::to_string(std::llround(max_faces)) + ": use fewer iterations");
   ctx.progress(0.0, "halfedges");
-  std::vector<std::string> repaired;
-  SurfaceMesh sm = halfedge_mesh_for(mesh, "subdivide", p.repair, repaired);
+  AlgorithmResult result;
+  SurfaceMesh sm = halfedge_mesh_for(mesh, "subdivide", p.repair, result.warnings);
   namespace SM = CGAL::Subdivision_method_3;
   const auto one_step = CGAL::parameters::number_of_iterations(1);
   for (int i = 0; i < p.iterations; ++i) {
@@ -66,10 +66,8 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
     CGAL::Polygon_mesh_processing::triangulate_faces(sm);
   }
   ctx.progress(0.95, "converting");
-  AlgorithmResult result;
   result.artifacts.push_back({"mesh", from_surface_mesh(sm)});
   ctx.progress(1.0, "done");
-  result.warnings.insert(result.warnings.begin(), repaired.begin(), repaired.end());
   return result;
 }
 
