@@ -9,6 +9,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { after, before } from 'node:test';
 import { chromium } from 'playwright-core';
 
 export const webClient = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
@@ -241,4 +242,18 @@ export async function openViewer({ tmpPrefix, mesh = null, httpErrors = true }) 
     }
   };
   return { server, browser, page, problems, describeProblems, meshId, close };
+}
+
+// openViewer() for a test file: registers the node:test hooks that open the
+// viewer before its tests and close it after them, and returns the object
+// they fill in ({ server, page, problems, describeProblems, meshId, ... }).
+export function useViewer(options) {
+  const v = {};
+  before(async () => {
+    Object.assign(v, await openViewer(options));
+  });
+  after(async () => {
+    if (v.close) await v.close();
+  });
+  return v;
 }

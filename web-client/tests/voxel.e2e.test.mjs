@@ -7,34 +7,19 @@
 //
 // Environment: CGVIEW_SERVER (default build/bin/cgview-server),
 // CHROMIUM (default /usr/bin/chromium).
-import { after, before, test } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import path from 'node:path';
-import { artifactsDir as artifacts, openViewer, repo } from './harness.mjs';
+import { artifactsDir as artifacts, useViewer, repo } from './harness.mjs';
 
 const elephant = path.join(repo, 'build', 'samples', 'elephant.off');
 
-let v = null; // the viewer: server, page, problems
-let server = null;
-let page = null;
-let baseUrl = null;
-let elephantId = null;
-let pageProblems = [];
-let describeProblems = () => '';
-
-before(async () => {
-  v = await openViewer({ tmpPrefix: 'cgview-e2e-voxel-', mesh: elephant, httpErrors: false });
-  ({ server, page, meshId: elephantId, problems: pageProblems, describeProblems } = v);
-  baseUrl = server.url;
-});
-
-after(async () => {
-  if (v) await v.close();
-});
+// The viewer (server, page, problems), open for this file's tests.
+const v = useViewer({ tmpPrefix: 'cgview-e2e-voxel-', mesh: elephant, httpErrors: false });
 
 // Lit (occupied) pixels of the slice canvas.
 const litPixels = () =>
-  page.evaluate(() => {
+  v.page.evaluate(() => {
     const c = document.querySelector('#voxel-slices canvas.slice-canvas');
     if (!c || c.width < 2) return -1;
     const { data } = c.getContext('2d').getImageData(0, 0, c.width, c.height);
@@ -44,66 +29,66 @@ const litPixels = () =>
   });
 
 test('voxelize, then its grid in the slice panel: a slice drawn in 2D and in 3D, moved by the slider', async () => {
-  const menu = page.locator('#algorithm-menu');
+  const menu = v.page.locator('#algorithm-menu');
   await menu.waitFor();
   await menu.selectOption('voxelize');
-  const form = page.locator('form.algorithm-form[data-algorithm="voxelize"]');
+  const form = v.page.locator('form.algorithm-form[data-algorithm="voxelize"]');
   await form.waitFor();
   await form.locator('input[data-param="resolution"]').fill('48');
   await form.locator('button.run').click();
-  await page.locator('#jobs li.job[data-state="done"]').first().waitFor({ timeout: 60000 }).catch((e) => {
-    throw new Error(`the voxelize job never showed done: ${e.message}${describeProblems()}\n${server.log()}`);
+  await v.page.locator('#jobs li.job[data-state="done"]').first().waitFor({ timeout: 60000 }).catch((e) => {
+    throw new Error(`the voxelize job never showed done: ${e.message}${v.describeProblems()}\n${v.server.log()}`);
   });
-  const slices = page.locator('#jobs .artifact-voxel_grid button.slices').first();
+  const slices = v.page.locator('#jobs .artifact-voxel_grid button.slices').first();
   await slices.click();
-  const panel = page.locator('#voxel-slices');
+  const panel = v.page.locator('#voxel-slices');
   await panel.waitFor({ state: 'visible' });
-  await page.waitForFunction(() => Number(document.querySelector('#voxel-slices input[type=range]')?.max ?? 0) > 0, null, {
+  await v.page.waitForFunction(() => Number(document.querySelector('#voxel-slices input[type=range]')?.max ?? 0) > 0, null, {
     timeout: 30000,
   });
   // The first answer sets the slider's range, then the middle slice is fetched.
-  await page.waitForFunction(() => {
+  await v.page.waitForFunction(() => {
     const c = document.querySelector('#voxel-slices canvas.slice-canvas');
     return c && c.width > 1;
   });
-  await page.waitForTimeout(500);
+  await v.page.waitForTimeout(500);
   const middle = await litPixels();
-  assert.ok(middle > 20, `the middle slice of the elephant shows its section: ${middle} lit voxels${describeProblems()}`);
+  assert.ok(middle > 20, `the middle slice of the elephant shows its section: ${middle} lit voxels${v.describeProblems()}`);
   const max = Number(await panel.locator('input[type=range]').first().getAttribute('max'));
   assert.ok(max >= 20, `the slider runs over the grid: max ${max}`);
   // The first slice (padding) is empty.
   await panel.locator('input[type=range]').first().fill('0');
-  await page.waitForFunction(() => document.querySelector('#voxel-slices .slice-label')?.textContent?.startsWith('0 /'), null, {
+  await v.page.waitForFunction(() => document.querySelector('#voxel-slices .slice-label')?.textContent?.startsWith('0 /'), null, {
     timeout: 15000,
   });
-  await page.waitForTimeout(300);
+  await v.page.waitForTimeout(300);
   assert.equal(await litPixels(), 0, 'slice 0 is padding');
   // Another axis, then the section view.
   await panel.locator('button', { hasText: /^x$/ }).click();
-  await page.waitForTimeout(800);
-  assert.ok((await litPixels()) > 20, `the middle x slice shows a section${describeProblems()}`);
+  await v.page.waitForTimeout(800);
+  assert.ok((await litPixels()) > 20, `the middle x slice shows a section${v.describeProblems()}`);
   await panel.locator('input[aria-label="Cut the mesh at the slice"]').check();
-  await page.waitForTimeout(500);
-  const overlay = await page.evaluate(() => window.__cgview !== undefined);
+  await v.page.waitForTimeout(500);
+  const overlay = await v.page.evaluate(() => window.__cgview !== undefined);
   assert.ok(overlay);
-  await page.screenshot({ path: path.join(artifacts, 'e2e-voxel-slice.png') });
-  assert.deepEqual(pageProblems, [], describeProblems());
+  await v.page.screenshot({ path: path.join(artifacts, 'e2e-voxel-slice.png') });
+  assert.deepEqual(v.problems, [], v.describeProblems());
 });
 
 test('the voxels above the threshold in 3D: every occupied voxel kept, its boundary drawn as cubes', async () => {
-  const panel = page.locator('#voxel-slices');
+  const panel = v.page.locator('#voxel-slices');
   await panel.locator('input.voxels-3d').check();
-  await page.waitForFunction(() => window.__cgview.lastVoxels !== null, null, { timeout: 30000 }).catch((e) => {
-    throw new Error(`no voxels drawn: ${e.message}${describeProblems()}`);
+  await v.page.waitForFunction(() => window.__cgview.lastVoxels !== null, null, { timeout: 30000 }).catch((e) => {
+    throw new Error(`no voxels drawn: ${e.message}${v.describeProblems()}`);
   });
-  const shown = await page.evaluate(() => window.__cgview.lastVoxels);
-  const jobId = await page.locator('#jobs li.job[data-state="done"]').first().getAttribute('data-job-id');
-  const metrics = await (await fetch(`${server.url}/api/v1/jobs/${jobId}/artifacts/metrics?format=json`)).json();
+  const shown = await v.page.evaluate(() => window.__cgview.lastVoxels);
+  const jobId = await v.page.locator('#jobs li.job[data-state="done"]').first().getAttribute('data-job-id');
+  const metrics = await (await fetch(`${v.server.url}/api/v1/jobs/${jobId}/artifacts/metrics?format=json`)).json();
   assert.equal(shown.kept, metrics.occupied_voxels, `every occupied voxel is kept: ${JSON.stringify(shown)}`);
   assert.ok(shown.count > 100 && shown.count < shown.kept, `only the boundary voxels are drawn: ${JSON.stringify(shown)}`);
-  await page.screenshot({ path: path.join(artifacts, 'e2e-voxel-3d.png') });
+  await v.page.screenshot({ path: path.join(artifacts, 'e2e-voxel-3d.png') });
   // Unchecked: gone.
   await panel.locator('input.voxels-3d').uncheck();
-  await page.waitForFunction(() => window.__cgview.lastVoxels === null, null, { timeout: 10000 });
-  assert.deepEqual(pageProblems, [], describeProblems());
+  await v.page.waitForFunction(() => window.__cgview.lastVoxels === null, null, { timeout: 10000 });
+  assert.deepEqual(v.problems, [], v.describeProblems());
 });
