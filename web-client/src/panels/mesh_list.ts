@@ -16,6 +16,8 @@ export interface MeshListActions {
 export class MeshListPanel {
   private readonly root: HTMLElement;
   private readonly actions: MeshListActions;
+  /** Each mesh's thumbnail, kept across re-renders so that it is rendered and fetched once (null: it failed). */
+  private readonly thumbs = new Map<string, HTMLImageElement | null>();
 
   constructor(root: HTMLElement, actions: MeshListActions) {
     this.root = root;
@@ -23,6 +25,7 @@ export class MeshListPanel {
   }
 
   render(meshes: readonly Mesh[], selectedId: string | null): void {
+    for (const id of this.thumbs.keys()) if (!meshes.some((m) => m.id === id)) this.thumbs.delete(id);
     if (meshes.length === 0) {
       this.root.replaceChildren(el('p', { class: 'empty' }, 'No meshes yet. Upload one, or drop a file on the page.'));
       return;
@@ -30,21 +33,13 @@ export class MeshListPanel {
     const items = meshes.map((mesh) => {
       const counts = `${mesh.report.vertices} V · ${mesh.report.faces} F`;
       const remove = el('button', { class: 'delete', type: 'button', title: `Delete ${mesh.name}`, 'aria-label': `Delete ${mesh.name}` }, '✕');
+      const thumb = this.thumbnail(mesh.id);
       remove.addEventListener('click', (ev) => {
         ev.stopPropagation();
+        // A render still on its way would answer 404 once the mesh is gone: stop it first.
+        if (thumb && !thumb.complete) thumb.removeAttribute('src');
         this.actions.remove(mesh.id);
       });
-      const thumb = el('img', {
-        class: 'mesh-thumb',
-        src: renderUrl(mesh.id, { width: THUMBNAIL_PX, height: THUMBNAIL_PX }),
-        alt: '',
-        loading: 'lazy',
-        decoding: 'async',
-        width: '48',
-        height: '48',
-      });
-      // A server that cannot render (no EGL) leaves the list as it was.
-      thumb.addEventListener('error', () => thumb.remove());
       const item = el(
         'li',
         {
@@ -54,7 +49,7 @@ export class MeshListPanel {
           role: 'button',
           title: `${mesh.name} (${mesh.format})`,
         },
-        thumb,
+        ...(thumb ? [thumb] : []),
         el('span', { class: 'mesh-name' }, mesh.name),
         el('span', { class: 'mesh-counts' }, counts),
         remove,
@@ -69,5 +64,28 @@ export class MeshListPanel {
       return item;
     });
     this.root.replaceChildren(el('ul', { class: 'mesh-list' }, ...items));
+  }
+
+  private thumbnail(id: string): HTMLImageElement | null {
+    let thumb = this.thumbs.get(id);
+    if (thumb === undefined) {
+      const img = el('img', {
+        class: 'mesh-thumb',
+        src: renderUrl(id, { width: THUMBNAIL_PX, height: THUMBNAIL_PX }),
+        alt: '',
+        loading: 'lazy',
+        decoding: 'async',
+        width: '48',
+        height: '48',
+      });
+      // A server that cannot render (no EGL) leaves the list as it was.
+      img.addEventListener('error', () => {
+        img.remove();
+        if (this.thumbs.has(id)) this.thumbs.set(id, null);
+      });
+      this.thumbs.set(id, img);
+      thumb = img;
+    }
+    return thumb;
   }
 }
