@@ -4,7 +4,6 @@
 //   cgview-worker JOB.json      runs the job the file describes:
 //     {"algorithm": "hausdorff", "params": {...}, "inputs": {"mesh": "/path/a.off", "reference": "/path/b.ply"}, "out": "/dir"}
 //   (an input the algorithm declares as a voxel_grid is a grid file: .nrrd, .binvox, ...)
-//   (an older job file names its one mesh as "mesh": "/path/in.off")
 //   cgview-worker --list        prints every algorithm linked in, as JSON (protocol/algorithm_json)
 //
 // Progress goes to stdout as lines "progress FRACTION STAGE" (at most ~10 a
@@ -99,8 +98,6 @@ int run_job(const fs::path& spec_path, fs::path& out) {
     if (in.kind == OutputKind::voxel_grid) grids.emplace(in.name, read_voxel_grid(path));
     else meshes.emplace(in.name, read_mesh_file(path).mesh);
   }
-  if (!meshes.count("mesh") && spec.contains("mesh") && !spec["mesh"].get<std::string>().empty())
-    meshes.emplace("mesh", read_mesh_file(spec.at("mesh").get<std::string>()).mesh);
   Inputs inputs;
   for (const auto& [name, m] : meshes) inputs.add(name, m);
   for (const auto& [name, g] : grids) inputs.add(name, g);

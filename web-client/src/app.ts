@@ -113,7 +113,6 @@ export class App {
   private readonly added = new Set<string>();
   /** A job's output mesh that the next job runs on ("Run on this"), instead of the selected mesh. */
   private runTarget: { jobId: string; artifact: string; kind: string } | null = null;
-  private algorithms: Algorithm[] = [];
   /** The scalar field drawn now (or being prepared: token). */
   private field: { jobId: string; artifact: string; meshId: string; data: ScalarField; object: THREE.Mesh } | null = null;
   private fieldToken = 0;
@@ -232,7 +231,6 @@ export class App {
   async loadAlgorithms(): Promise<void> {
     try {
       const algorithms = await listAlgorithms();
-      this.algorithms = algorithms;
       this.hooks.algorithmsApi = true;
       this.algorithmsPanel.render(algorithms);
       this.algorithmsPanel.setMesh(this.selectedMesh()?.name ?? null);
@@ -265,13 +263,13 @@ export class App {
    * announces it); `extra` names the meshes of the algorithm's other inputs.
    * Rejects with the server's detail (shown beside the form).
    */
-  async runJob(algorithm: string, params: Record<string, unknown>, extra: Record<string, string> = {}): Promise<void> {
+  async runJob(algorithm: Algorithm, params: Record<string, unknown>, extra: Record<string, string> = {}): Promise<void> {
     const target = this.runTarget;
     const mesh = this.selectedMesh();
     // The algorithm's first input: the selected mesh, or the output chosen with "Run on this".
-    const first = this.algorithms.find((a) => a.name === algorithm)?.inputs?.[0] ?? { name: 'mesh', kind: 'mesh' };
+    const first = algorithm.inputs?.[0] ?? { name: 'mesh', kind: 'mesh' };
     if (first.kind !== 'mesh' && target?.kind !== first.kind) {
-      throw new Error(`${algorithm} runs on a ${first.kind}: choose one with "Run on this" in the job list.`);
+      throw new Error(`${algorithm.name} runs on a ${first.kind}: choose one with "Run on this" in the job list.`);
     }
     if (!target && !mesh) throw new Error('Choose a mesh first.');
     const inputs: Record<string, JobInput> = {
@@ -280,7 +278,7 @@ export class App {
     };
     let job: Job;
     try {
-      job = await submitJob(algorithm, inputs, params);
+      job = await submitJob(algorithm.name, inputs, params);
     } catch (e) {
       throw new Error(describe(e));
     }

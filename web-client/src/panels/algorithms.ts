@@ -15,7 +15,7 @@ export interface AlgorithmsActions {
    * Submits a job; `inputs` holds the mesh ids chosen for the inputs after the
    * first. Resolves when it is submitted, rejects with a sentence to show beside the form.
    */
-  run(algorithm: string, params: Record<string, unknown>, inputs: Record<string, string>): Promise<void>;
+  run(algorithm: Algorithm, params: Record<string, unknown>, inputs: Record<string, string>): Promise<void>;
 }
 
 export interface MeshChoice {
@@ -217,7 +217,7 @@ export class AlgorithmsPanel {
       const inputs: Record<string, string> = {};
       for (const [name, select] of this.inputSelects) if (select.value) inputs[name] = select.value;
       this.actions
-        .run(algorithm.name, params, inputs)
+        .run(algorithm, params, inputs)
         .catch((e: unknown) => {
           errorBox.textContent = e instanceof Error ? e.message : String(e);
           errorBox.hidden = false;
