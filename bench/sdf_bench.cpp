@@ -1,0 +1,138 @@
+// The Shape Diameter Function (issue 7), in one run:
+// - sdf against CGAL's sdf_values with the same rays (25, Vogel's spiral,
+//   uniform weights), the same cone (120 degrees) and the same
+//   post-processing (missing values filled, bilateral filter, linear
+//   normalization): time ratio, and Pearson r of the normalized values;
+// - sdf_fast at 5%, 10% and 20% against our sdf (same options): time ratio,
+//   mean and 95th-percentile error relative to the full SDF's range.
+// On the 1M-triangle mesh CGAL runs without post-processing (its bilateral
+// filter walks std::maps over ~2000 faces per face: hours), said in the row.
+//
+//   build/bin/sdf_bench [--repeat N] [--quick] [--only elephant,...]
+#include <CGAL/mesh_segmentation.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "bench_util.h"
+#include "core/surface_mesh.h"
+#include "io/mesh_io.h"
+#include "io/samples.h"
+#include "registry/registry.h"
+#include "sdf/sdf_fast.h"
+#include "sdf/sdf_params.h"
+
+using namespace cgview;
+
+namespace {
+
+double pearson(const std::vector<double>& a, const std::vector<double>& b) {
+  const double n = double(a.size());
+  double ma = 0, mb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) ma += a[i] / n, mb += b[i] / n;
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    sab += (a[i] - ma) * (b[i] - mb);
+    saa += (a[i] - ma) * (a[i] - ma);
+    sbb += (b[i] - mb) * (b[i] - mb);
+  }
+  return sab / std::sqrt(saa * sbb);
+}
+
+// Our whole sdf: face graph, rays, post-processing (as the algorithm runs it).
+std::vector<double> our_sdf(const Mesh& mesh, const sdf::SdfParamFields& p, bool smooth) {
+  Context ctx;
+  const Adjacency graph = face_neighbors(mesh, edge_topology(mesh));
+  std::vector<double> v = sdf::raw_sdf(mesh, p.options()).values;
+  sdf::SdfParamFields q = p;
+  q.smooth = smooth;
+  sdf::postprocess(mesh, graph, v, q, ctx);
+  return v;
+}
+
+std::vector<double> our_fast(const Mesh& mesh, const sdf::SdfParamFields& p, double fraction, sdf::Solver solver) {
+  const Adjacency graph = face_neighbors(mesh, edge_topology(mesh));
+  sdf::FastOptions f;
+  f.fraction = fraction;
+  f.solver = solver;
+  f.smooth = p.smooth;
+  return sdf::sdf_fast(mesh, graph, p.options(), f).values;
+}
+
+Mesh sample(const std::string& name) {
+  const auto path = resolve_mesh_path(name);
+  if (!path) {
+    std::fprintf(stderr, "sdf_bench: no sample mesh %s (install libcgal-demo)\n", name.c_str());
+    std::exit(1);
+  }
+  return read_mesh(*path);
+}
+
+struct Input {
+  std::string name;
+  Mesh mesh;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const bench::Options opt = bench::parse_options(argc, argv, "sdf_bench");
+  std::vector<Input> inputs;
+  for (const char* n : {"elephant", "man", "armadillo", "refined_elephant"})
+    if (opt.wants(n) && (!opt.quick || std::string(n) == "elephant"))
+      inputs.push_back({n, sample(n)});
+  if (!opt.quick && opt.wants("big"))
+    inputs.push_back({"big", subdivide_midpoint(subdivide_midpoint(sample("refined_elephant")))});
+
+  std::printf("sdf against CGAL 5.5 sdf_values (25 rays, 120 degrees, Vogel's spiral, uniform weights, MAD outliers)\n");
+  std::printf("%-18s %9s %10s %10s %8s %9s\n", "mesh", "faces", "CGAL s", "ours s", "ratio", "Pearson");
+  sdf::SdfParamFields cgal_like;
+  cgal_like.weights = "uniform";
+  cgal_like.outliers = "mad";
+  for (const Input& in : inputs) {
+    const bool big = in.mesh.faces.size() > 500000;
+    SurfaceMesh sm = manifold_surface_mesh(in.mesh, "sdf_bench");
+    auto map = sm.add_property_map<SurfaceMesh::Face_index, double>("f:sdf", 0.0).first;
+    const double cgal_s = bench::best_seconds(big ? 1 : opt.repeat, [&] {
+      CGAL::sdf_values(sm, map, 2.0 * std::numbers::pi / 3.0, 25, !big);
+    });
+    std::vector<double> ours, theirs;
+    const double ours_s = bench::best_seconds(opt.repeat, [&] { ours = our_sdf(in.mesh, cgal_like, !big); });
+    if (!big) ours = sdf::normalize_linear(ours);
+    for (SurfaceMesh::Face_index f : sm.faces()) theirs.push_back(map[f]);
+    std::printf("%-18s %9zu %10.3f %10.3f %7.1fx %9.4f%s\n", in.name.c_str(), in.mesh.faces.size(), cgal_s, ours_s,
+                cgal_s / ours_s, pearson(ours, theirs), big ? "  (both without post-processing)" : "");
+    std::fflush(stdout);
+  }
+
+  std::printf("\nsdf_fast against our sdf (defaults: inverse-angle weights, std-dev outliers, bilateral filter)\n");
+  std::printf("%-18s %9s %9s %10s %10s %8s %10s %10s %6s\n", "mesh", "fraction", "solver", "sdf s", "fast s", "ratio",
+              "mean err", "p95 err", "");
+  const sdf::SdfParamFields defaults;
+  for (const Input& in : inputs) {
+    std::vector<double> full;
+    const double full_s = bench::best_seconds(opt.repeat, [&] { full = our_sdf(in.mesh, defaults, true); });
+    const auto [lo, hi] = std::minmax_element(full.begin(), full.end());
+    const double range = *hi - *lo;
+    for (double fraction : {0.05, 0.1, 0.2})
+      for (sdf::Solver solver : {sdf::Solver::conjugate_gradient, sdf::Solver::cholesky}) {
+        std::vector<double> fast;
+        const double fast_s = bench::best_seconds(opt.repeat, [&] { fast = our_fast(in.mesh, defaults, fraction, solver); });
+        std::vector<double> err(full.size());
+        double mean = 0;
+        for (std::size_t f = 0; f < full.size(); ++f) mean += (err[f] = std::abs(fast[f] - full[f]));
+        mean /= double(full.size());
+        std::sort(err.begin(), err.end());
+        const double p95 = err[std::size_t(0.95 * double(err.size() - 1))];
+        std::printf("%-18s %8.0f%% %9s %10.3f %10.3f %7.1fx %9.2f%% %9.2f%%\n", in.name.c_str(), 100 * fraction,
+                    solver == sdf::Solver::cholesky ? "cholesky" : "cg", full_s, fast_s, full_s / fast_s,
+                    100 * mean / range, 100 * p95 / range);
+        std::fflush(stdout);
+      }
+  }
+  return 0;
+}
