@@ -88,28 +88,14 @@ int run_job(const fs::path& spec_path, fs::path& out) {
   const Algorithm& algo = find_algorithm(spec.at("algorithm").get<std::string>());
   const auto values = protocol::params_from_json(algo, spec.value("params", json::object()));
   // Every input is a file ("inputs": {"mesh": path, "reference": path}): a
-  // stored mesh, or an earlier job's voxel grid, as the algorithm declares.
-  std::map<std::string, Mesh> meshes;
-  std::map<std::string, VoxelGrid> grids;
-  const json files = spec.value("inputs", json::object());
-  for (const InputSpec& in : algo.info.inputs) {
-    if (!files.contains(in.name)) continue;
-    const std::string path = files.at(in.name).get<std::string>();
-    if (in.kind == OutputKind::voxel_grid) grids.emplace(in.name, read_voxel_grid(path));
-    else meshes.emplace(in.name, read_mesh_file(path).mesh);
-  }
-  Inputs inputs;
-  for (const auto& [name, m] : meshes) inputs.add(name, m);
-  for (const auto& [name, g] : grids) inputs.add(name, g);
-  // Per-vertex artifacts are written on the first mesh input.
-  static const Mesh no_mesh;
-  const Mesh* primary = &no_mesh;
+  // stored mesh, or an earlier job's voxel grid or skeleton, as the
+  // algorithm declares.
+  InputFiles files;
+  const json paths = spec.value("inputs", json::object());
   for (const InputSpec& in : algo.info.inputs)
-    if (in.kind == OutputKind::mesh) {
-      primary = &inputs.mesh(in.name);
-      break;
-    }
-  const Mesh& mesh = *primary;
+    if (paths.contains(in.name)) files.read(in, paths.at(in.name).get<std::string>());
+  const Inputs& inputs = files.inputs();
+  const Mesh& mesh = files.primary_mesh();
   using Clock = std::chrono::steady_clock;
   Clock::time_point last{};
   Context ctx(

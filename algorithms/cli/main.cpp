@@ -320,12 +320,9 @@ int cmd_run(const std::vector<std::string>& args) {
   if (mesh_arg.empty()) throw Usage("run: which mesh?");
   if (!out.empty() && !algo->info.outputs.empty()) check_artifact_extension(algo->info.outputs[0].second, out);
   // Each input from its file: MESH for the first, --NAME FILE for the others;
-  // a voxel_grid input reads a grid file (.nrrd, .binvox, .vti, .vox, .vdb, ...).
-  Inputs inputs;
-  std::map<std::string, ReadResult> meshes;
-  std::map<std::string, VoxelGrid> grids;
-  const Mesh* primary = nullptr;  // per-vertex artifacts are written on it
-  static const Mesh no_mesh;
+  // a voxel_grid input reads a grid file (.nrrd, .binvox, .vti, .vox, .vdb, ...),
+  // a skeleton input a skeleton file (.polylines.txt, .cg, .obj, .json).
+  InputFiles files;
   for (std::size_t k = 0; k < algo->info.inputs.size(); ++k) {
     const InputSpec& in = algo->info.inputs[k];
     std::string file;
@@ -336,16 +333,11 @@ int cmd_run(const std::vector<std::string>& args) {
       if (f == more_inputs.end()) throw Usage("run: " + args[0] + " needs --" + in.name + " FILE (" + in.help + ")");
       file = f->second;
     }
-    if (in.kind == OutputKind::voxel_grid) {
-      inputs.add(in.name, grids.emplace(in.name, read_voxel_grid(file)).first->second);
-      continue;
-    }
-    const ReadResult& o = meshes.emplace(in.name, read_mesh_file(need_mesh(file))).first->second;
-    print_warnings(o);
-    inputs.add(in.name, o.mesh);
-    if (!primary) primary = &o.mesh;
+    for (const auto& w : files.read(in, in.kind == OutputKind::mesh ? need_mesh(file) : std::filesystem::path(file)))
+      std::fprintf(stderr, "cgview: warning: %s\n", w.c_str());
   }
-  const Mesh& input_mesh = primary ? *primary : no_mesh;
+  const Inputs& inputs = files.inputs();
+  const Mesh& input_mesh = files.primary_mesh();
   ProgressPrinter printer;
   Context ctx([&](double f, std::string_view stage) { printer(f, stage); }, nullptr);
   const AlgorithmResult result = algo->run(inputs, values, ctx);

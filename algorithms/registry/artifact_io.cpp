@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/mesh_io.h"
+#include "io/skeleton_io.h"
 #include "voxel/voxel_io.h"
 
 namespace cgview {
@@ -60,7 +61,7 @@ void check_artifact_extension(OutputKind kind, const std::filesystem::path& path
       if (ext != ".vtk" && !is_voxel_format(path)) unsupported("voxel grid", ext, ".vtk, .binvox, .raw, .nrrd, .vti, .vox or .vdb");
       return;
     case OutputKind::skeleton:
-      if (ext != ".obj" && ext != ".json") unsupported("skeleton", ext, ".obj or .json");
+      skeleton_format_from_name(path.filename().string());  // throws UnsupportedFormat naming the formats
       return;
     case OutputKind::metrics:
       if (ext != ".json") unsupported("metrics table", ext, ".json");
@@ -114,35 +115,8 @@ void write_artifact(const Artifact& a, const Mesh& input, const std::filesystem:
       out += '\n';
     }
   } else if (const auto* s = std::get_if<Skeleton>(&a.value)) {
-    if (ext == ".obj") {
-      for (const Vec3& p : s->nodes) {
-        out += "v ";
-        append_number(out, p.x);
-        out += ' ';
-        append_number(out, p.y);
-        out += ' ';
-        append_number(out, p.z);
-        out += '\n';
-      }
-      for (const auto& e : s->edges) out += "l " + std::to_string(e[0] + 1) + " " + std::to_string(e[1] + 1) + "\n";
-    } else if (ext == ".json") {
-      out = "{\"nodes\": [";
-      for (std::size_t i = 0; i < s->nodes.size(); ++i) {
-        out += i ? ", [" : "[";
-        append_number(out, s->nodes[i].x);
-        out += ", ";
-        append_number(out, s->nodes[i].y);
-        out += ", ";
-        append_number(out, s->nodes[i].z);
-        out += "]";
-      }
-      out += "], \"edges\": [";
-      for (std::size_t i = 0; i < s->edges.size(); ++i)
-        out += (i ? ", [" : "[") + std::to_string(s->edges[i][0]) + ", " + std::to_string(s->edges[i][1]) + "]";
-      out += "]}\n";
-    } else {
-      unsupported("skeleton", ext, ".obj or .json");
-    }
+    write_skeleton(*s, path);
+    return;
   } else if (const auto* m = std::get_if<Metrics>(&a.value)) {
     if (ext != ".json") unsupported("metrics table", ext, ".json");
     out = metrics_json(*m);
@@ -154,6 +128,29 @@ void write_artifact(const Artifact& a, const Mesh& input, const std::filesystem:
     out = encode_frames(*anim);
   }
   write_file_bytes(path, out);
+}
+
+std::vector<std::string> InputFiles::read(const InputSpec& spec, const std::filesystem::path& path) {
+  switch (spec.kind) {
+    case OutputKind::voxel_grid:
+      inputs_.add(spec.name, grids_.insert_or_assign(spec.name, read_voxel_grid(path)).first->second);
+      return {};
+    case OutputKind::skeleton:
+      inputs_.add(spec.name, skeletons_.insert_or_assign(spec.name, read_skeleton(path)).first->second);
+      return {};
+    default: {
+      ReadResult r = read_mesh_file(path);
+      const Mesh& m = meshes_.insert_or_assign(spec.name, std::move(r.mesh)).first->second;
+      inputs_.add(spec.name, m);
+      if (!primary_) primary_ = &m;
+      return std::move(r.warnings);
+    }
+  }
+}
+
+const Mesh& InputFiles::primary_mesh() const {
+  static const Mesh no_mesh;
+  return primary_ ? *primary_ : no_mesh;
 }
 
 }  // namespace cgview

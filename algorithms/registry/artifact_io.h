@@ -3,7 +3,7 @@
 //   scalar field  .txt (one value per line, in vertex or face order), .csv
 //                 (index,value), .ply (the input mesh with the values as a
 //                 float property, for MeshLab and ParaView)
-//   skeleton      .obj (v and l records), .json
+//   skeleton      .obj (v and l records), .json, .cg, .polylines.txt (io/skeleton_io.h)
 //   voxel grid    .nrrd (the default), .binvox .raw .vti .vox .vdb (voxel/voxel_io.h),
 //                 .vtk (legacy STRUCTURED_POINTS, ASCII, for ParaView)
 //   metrics       .json
@@ -12,7 +12,9 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <string>
+#include <vector>
 
 #include "registry/registry.h"
 
@@ -28,5 +30,27 @@ void write_artifact(const Artifact& artifact, const Mesh& input, const std::file
 // that kind can be saved under path's extension: `cgview run` checks its -o
 // before a long run rather than after.
 void check_artifact_extension(OutputKind kind, const std::filesystem::path& path);
+
+// The files of one run's inputs, each read as the kind its InputSpec
+// declares: a mesh file, a voxel grid file (voxel/voxel_io.h) or a skeleton
+// file (io/skeleton_io.h).  Owns what it read; inputs() refers to it.  Used
+// by `cgview run` and cgview-worker alike.
+class InputFiles {
+ public:
+  // Reads `path` as input `spec`; returns the mesh reader's warnings (what
+  // was repaired or dropped), none for the other kinds.  Throws what the
+  // readers throw.
+  std::vector<std::string> read(const InputSpec& spec, const std::filesystem::path& path);
+  const Inputs& inputs() const { return inputs_; }
+  // The first mesh read (per-vertex artifacts are saved on it), else an empty mesh.
+  const Mesh& primary_mesh() const;
+
+ private:
+  std::map<std::string, Mesh> meshes_;
+  std::map<std::string, VoxelGrid> grids_;
+  std::map<std::string, Skeleton> skeletons_;
+  Inputs inputs_;
+  const Mesh* primary_ = nullptr;
+};
 
 }  // namespace cgview

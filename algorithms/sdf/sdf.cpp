@@ -1,7 +1,5 @@
 #include "sdf/sdf.h"
 
-#include <embree3/rtcore.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -10,6 +8,7 @@
 #include <numbers>
 #include <thread>
 
+#include "rays/ray_caster.h"
 #include "registry/registry.h"
 
 namespace cgview::sdf {
@@ -52,58 +51,6 @@ void parallel_blocks(std::size_t n, std::size_t block, int threads, const Contex
   work(true);
   for (auto& th : pool) th.join();
   if (ctx) ctx->check_cancelled();
-}
-
-// Embree's device and scene, released in the right order.
-struct EmbreeScene {
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
-  ~EmbreeScene() {
-    if (scene) rtcReleaseScene(scene);
-    if (device) rtcReleaseDevice(device);
-  }
-};
-
-// An intersection context that remembers the face a ray starts from, so that
-// the filter below can skip it (CGAL's SkipPrimitiveFunctor).
-struct SkipContext {
-  RTCIntersectContext context;
-  unsigned skip;
-};
-
-void skip_origin_face(const RTCFilterFunctionNArguments* args) {
-  const auto* c = reinterpret_cast<const SkipContext*>(args->context);
-  for (unsigned i = 0; i < args->N; ++i)
-    if (args->valid[i] == -1 && RTCHitN_primID(args->hit, args->N, i) == c->skip) args->valid[i] = 0;
-}
-
-void build_scene(const Mesh& mesh, EmbreeScene& s) {
-  s.device = rtcNewDevice(nullptr);
-  if (!s.device) throw Error("Embree could not start: " + std::to_string(int(rtcGetDeviceError(nullptr))));
-  s.scene = rtcNewScene(s.device);
-  rtcSetSceneFlags(s.scene, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION | RTC_SCENE_FLAG_ROBUST);
-  rtcSetSceneBuildQuality(s.scene, RTC_BUILD_QUALITY_HIGH);
-  RTCGeometry g = rtcNewGeometry(s.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                        3 * sizeof(float), mesh.positions.size()));
-  auto* f = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                           3 * sizeof(unsigned), mesh.faces.size()));
-  if (!v || !f) {
-    rtcReleaseGeometry(g);
-    throw Error("Embree could not allocate the mesh's buffers");
-  }
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    v[3 * i] = float(mesh.positions[i].x);
-    v[3 * i + 1] = float(mesh.positions[i].y);
-    v[3 * i + 2] = float(mesh.positions[i].z);
-  }
-  for (std::size_t i = 0; i < mesh.faces.size(); ++i)
-    for (int k = 0; k < 3; ++k) f[3 * i + k] = unsigned(mesh.faces[i][k]);
-  rtcCommitGeometry(g);
-  rtcAttachGeometry(s.scene, g);
-  rtcReleaseGeometry(g);
-  rtcCommitScene(s.scene);
-  if (rtcGetDeviceError(s.device) != RTC_ERROR_NONE) throw Error("Embree could not build the mesh's BVH");
 }
 
 // A ray of the cone in the face's frame: t along the axis (-n), (du, dv) in
@@ -182,10 +129,9 @@ RawSdf raw_sdf(const Mesh& mesh, const SdfOptions& o, std::span<const std::uint3
   const std::size_t n = faces.empty() ? mesh.faces.size() : faces.size();
   const auto face_at = [&](std::size_t i) { return faces.empty() ? std::uint32_t(i) : faces[i]; };
 
-  EmbreeScene scene;
-  build_scene(mesh, scene);
+  const RayCaster caster(mesh);
   if (ctx) ctx->check_cancelled();
-  const std::vector<Vec3> normals = face_normals(mesh);
+  const std::vector<Vec3>& normals = caster.normals();
   const std::vector<ConeRay> cone = cone_rays(o);
 
   RawSdf out;
@@ -195,9 +141,6 @@ RawSdf raw_sdf(const Mesh& mesh, const SdfOptions& o, std::span<const std::uint3
     std::vector<std::pair<double, double>> hits;
     std::vector<double> scratch;
     std::size_t local_accepted = 0;
-    SkipContext sc;
-    rtcInitIntersectContext(&sc.context);
-    sc.context.filter = skip_origin_face;
     for (std::size_t i = b; i < e; ++i) {
       const std::uint32_t f = face_at(i);
       const Vec3 n = normals[f];
@@ -206,22 +149,14 @@ RawSdf raw_sdf(const Mesh& mesh, const SdfOptions& o, std::span<const std::uint3
       const Vec3 c = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
       const Vec3 u = normalized(mesh.positions[t[1]] - mesh.positions[t[0]]);
       const Vec3 v = cross(n, u);
-      sc.skip = f;
       hits.clear();
       for (const ConeRay& r : cone) {
-        const Vec3 d = -r.axis * n + r.du * u + r.dv * v;
-        RTCRayHit rh{};
-        rh.ray.org_x = float(c.x), rh.ray.org_y = float(c.y), rh.ray.org_z = float(c.z);
-        rh.ray.dir_x = float(d.x), rh.ray.dir_y = float(d.y), rh.ray.dir_z = float(d.z);
-        rh.ray.tnear = 0.0f;
-        rh.ray.tfar = std::numeric_limits<float>::infinity();
-        rh.ray.mask = ~0u;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(scene.scene, &sc.context, &rh);
-        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;  // escaped: an open mesh
+        const Vec3 d = (-r.axis) * n + r.du * u + r.dv * v;
+        const RayCaster::Hit h = caster.first_hit(c, d, f);
+        if (!h) continue;  // escaped: an open mesh
         // The ray must leave the shape where it first meets the surface.
-        if (dot(d, normals[rh.hit.primID]) <= 0) continue;
-        hits.push_back({double(rh.ray.tfar) * norm(d), r.weight});
+        if (dot(d, normals[h.face]) <= 0) continue;
+        hits.push_back({h.distance, r.weight});
       }
       local_accepted += hits.size();
       if (!hits.empty()) out.values[i] = combine(hits, o.outliers, scratch);

@@ -1,0 +1,101 @@
+#include "rays/ray_caster.h"
+
+#include <embree3/rtcore.h>
+
+#include <string>
+
+#include "core/errors.h"
+
+namespace cgview {
+namespace {
+
+// An intersection context that remembers the face a ray starts from, so that
+// the filter below can skip it (CGAL's SkipPrimitiveFunctor).
+struct SkipContext {
+  RTCIntersectContext context;
+  unsigned skip;
+};
+
+void skip_origin_face(const RTCFilterFunctionNArguments* args) {
+  const auto* c = reinterpret_cast<const SkipContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i)
+    if (args->valid[i] == -1 && RTCHitN_primID(args->hit, args->N, i) == c->skip) args->valid[i] = 0;
+}
+
+}  // namespace
+
+struct RayCaster::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
+RayCaster::RayCaster(const Mesh& mesh) : impl_(std::make_unique<Impl>()), normals_(face_normals(mesh)) {
+  Impl& s = *impl_;
+  s.device = rtcNewDevice(nullptr);
+  if (!s.device) throw Error("Embree could not start: error " + std::to_string(int(rtcGetDeviceError(nullptr))));
+  s.scene = rtcNewScene(s.device);
+  rtcSetSceneFlags(s.scene, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION | RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(s.scene, RTC_BUILD_QUALITY_HIGH);
+  RTCGeometry g = rtcNewGeometry(s.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                        3 * sizeof(float), mesh.positions.size()));
+  auto* f = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                           3 * sizeof(unsigned), mesh.faces.size()));
+  if (!v || !f) {
+    rtcReleaseGeometry(g);
+    throw Error("Embree could not allocate the mesh's buffers");
+  }
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    v[3 * i] = float(mesh.positions[i].x);
+    v[3 * i + 1] = float(mesh.positions[i].y);
+    v[3 * i + 2] = float(mesh.positions[i].z);
+  }
+  for (std::size_t i = 0; i < mesh.faces.size(); ++i)
+    for (int k = 0; k < 3; ++k) f[3 * i + k] = unsigned(mesh.faces[i][k]);
+  rtcCommitGeometry(g);
+  rtcAttachGeometry(s.scene, g);
+  rtcReleaseGeometry(g);
+  rtcCommitScene(s.scene);
+  if (rtcGetDeviceError(s.device) != RTC_ERROR_NONE) throw Error("Embree could not build the mesh's BVH");
+}
+
+RayCaster::~RayCaster() = default;
+
+RayCaster::Hit RayCaster::first_hit(const Vec3& origin, const Vec3& direction, std::uint32_t skip,
+                                    double max_distance) const {
+  const double length = norm(direction);
+  if (!(length > 0)) return {};
+  const Vec3 d = direction / length;
+  SkipContext sc;
+  rtcInitIntersectContext(&sc.context);
+  sc.context.filter = skip_origin_face;
+  sc.skip = skip;
+  RTCRayHit rh{};
+  rh.ray.org_x = float(origin.x), rh.ray.org_y = float(origin.y), rh.ray.org_z = float(origin.z);
+  rh.ray.dir_x = float(d.x), rh.ray.dir_y = float(d.y), rh.ray.dir_z = float(d.z);
+  rh.ray.tnear = 0.0f;
+  rh.ray.tfar = max_distance < 3.0e38 ? float(max_distance) : std::numeric_limits<float>::infinity();
+  rh.ray.mask = ~0u;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->scene, &sc.context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
+  return {double(rh.ray.tfar), rh.hit.primID};
+}
+
+bool RayCaster::inside(const Vec3& p) const {
+  // Directions away from the axes, so that a grid-aligned mesh's edges are
+  // not grazed.
+  static const Vec3 dirs[3] = {{0.5773, 0.5774, 0.5775}, {-0.8017, 0.2673, 0.5345}, {0.2182, -0.8729, 0.4364}};
+  int votes = 0;
+  for (const Vec3& d : dirs) {
+    const Hit h = first_hit(p, d);
+    if (h && dot(d, normals_[h.face]) > 0) ++votes;
+  }
+  return votes >= 2;
+}
+
+}  // namespace cgview

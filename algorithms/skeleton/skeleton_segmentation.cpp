@@ -1,0 +1,80 @@
+// skeleton_segmentation (the paper's octopus figure): each face takes the
+// branch of the skeleton nearest to its centroid among those it can see, the
+// segment from the centroid to the branch's nearest point crossing no other
+// face (so that a finger lying against a palm keeps its own branch). Where
+// no branch is visible, the nearest one.  A categorical per-face field.
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "rays/ray_caster.h"
+#include "registry/registry.h"
+
+namespace cgview {
+namespace {
+
+struct NoParams {
+  template <class V>
+  void describe(V&) {}
+};
+
+// The nearest point of segment ab to p.
+Vec3 nearest_point(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double len2 = dot(ab, ab);
+  const double t = len2 > 0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+  return a + ab * t;
+}
+
+AlgorithmResult run(const Inputs& in, const NoParams&, Context& ctx) {
+  const Mesh& mesh = in.mesh("mesh");
+  const Skeleton& s = in.skeleton("skeleton");
+  s.validate();
+  if (mesh.faces.empty()) throw InvalidInput("the mesh has no faces");
+  const std::vector<std::vector<Index>> branches = skeleton_branches(s);
+  if (branches.empty()) throw InvalidInput("the skeleton has no edge: there is no branch to assign faces to");
+  const RayCaster caster(mesh);
+  ScalarField field{"branch", Location::face, ColorHint::categorical, std::vector<float>(mesh.faces.size())};
+  std::vector<std::pair<double, Vec3>> best(branches.size());
+  std::vector<std::size_t> order(branches.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (f % 4096 == 0) {
+      ctx.check_cancelled();
+      ctx.progress(double(f) / double(mesh.faces.size()), "assigning faces");
+    }
+    const Tri& t = mesh.faces[f];
+    const Vec3 c = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+    for (std::size_t b = 0; b < branches.size(); ++b) {
+      best[b] = {HUGE_VAL, {}};
+      for (std::size_t k = 1; k < branches[b].size(); ++k) {
+        const Vec3 q = nearest_point(c, s.nodes[branches[b][k - 1]], s.nodes[branches[b][k]]);
+        const double d = norm(q - c);
+        if (d < best[b].first) best[b] = {d, q};
+      }
+    }
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return best[a].first < best[b].first; });
+    std::size_t chosen = order[0];
+    for (std::size_t b : order) {
+      const double d = best[b].first;
+      if (!(d > 0) || !caster.first_hit(c, best[b].second - c, std::uint32_t(f), d * (1 - 1e-6))) {
+        chosen = b;
+        break;
+      }
+    }
+    field.values[f] = float(chosen);
+  }
+  ctx.progress(1.0, "done");
+  return {{{"branch", std::move(field)}, {"metrics", Metrics{{"branches", double(branches.size())}}}}, {}};
+}
+
+CGVIEW_REGISTER_ALGORITHM(skeleton_segmentation, NoParams, run,
+                          {.title = "Segmentation by skeleton branches",
+                           .description = "Each face coloured by the nearest skeleton branch it can see (the paper's octopus).",
+                           .area = "skeleton",
+                           .outputs = {{"branch", OutputKind::scalar_field}, {"metrics", OutputKind::metrics}},
+                           .inputs = {{.name = "mesh", .kind = OutputKind::mesh, .help = "the mesh to segment"},
+                                      {.name = "skeleton", .kind = OutputKind::skeleton, .help = "its skeleton"}}});
+
+}  // namespace
+}  // namespace cgview

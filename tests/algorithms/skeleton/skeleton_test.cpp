@@ -1,0 +1,227 @@
+// Curve skeletons: every file format round-trips and bad files name their
+// line; the measures of analytic skeletons (a circle in a torus, its
+// off-centre copy); CGAL's mean curvature flow on a torus and a capsule;
+// segmentation by branches; bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "algorithm_support.h"
+#include "core/errors.h"
+#include "io/mesh_io.h"
+#include "io/skeleton_io.h"
+#include "skeleton/skeleton_metrics.h"
+#include "test_support.h"
+
+namespace cgview {
+namespace {
+
+using test::artifact;
+using test::run_algorithm;
+
+// A circle of n nodes, radius R, in the z = 0 plane, around (0, 0, 0).
+Skeleton circle(double R, int n) {
+  Skeleton s;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * std::numbers::pi * i / n;
+    s.nodes.push_back({R * std::cos(a), R * std::sin(a), 0});
+    s.edges.push_back({Index(i), Index((i + 1) % n)});
+  }
+  return s;
+}
+
+// A surface of revolution about z from a profile (radius, z) running from
+// the top pole to the bottom pole (radius 0 at both ends).
+Mesh revolve(const std::vector<std::pair<double, double>>& profile, int segments) {
+  Mesh m;
+  m.positions.push_back({0, 0, profile.front().second});
+  const int rings = int(profile.size()) - 2;
+  for (int i = 1; i <= rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      const double a = 2 * std::numbers::pi * j / segments;
+      m.positions.push_back({profile[i].first * std::cos(a), profile[i].first * std::sin(a), profile[i].second});
+    }
+  m.positions.push_back({0, 0, profile.back().second});
+  const Index south = Index(m.positions.size() - 1);
+  const auto ring = [&](int i, int j) { return Index(1 + (i - 1) * segments + (j % segments)); };
+  for (int j = 0; j < segments; ++j) m.faces.push_back({0, ring(1, j), ring(1, j + 1)});
+  for (int i = 1; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      m.faces.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
+      m.faces.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
+    }
+  for (int j = 0; j < segments; ++j) m.faces.push_back({south, ring(rings, j + 1), ring(rings, j)});
+  return m;
+}
+
+// A capsule along z: radius r, cylinder from -h/2 to h/2, hemispherical ends.
+Mesh capsule(double r, double h) {
+  std::vector<std::pair<double, double>> profile;
+  const int cap = 12, body = 40;
+  for (int i = 0; i <= cap; ++i) {
+    const double t = std::numbers::pi / 2 * i / cap;
+    profile.push_back({r * std::sin(t), h / 2 + r * std::cos(t)});
+  }
+  for (int i = 1; i < body; ++i) profile.push_back({r, h / 2 - h * i / body});
+  for (int i = 0; i <= cap; ++i) {
+    const double t = std::numbers::pi / 2 * i / cap;
+    profile.push_back({r * std::cos(t), -h / 2 - r * std::sin(t)});
+  }
+  return revolve(profile, 32);
+}
+
+Skeleton sample_skeleton() {
+  Skeleton s;  // a Y: three branches meeting at node 1, one with a middle node
+  s.nodes = {{0, 0, 0}, {0, 1, 0}, {-1, 2, 0.5}, {1, 2, -0.25}, {1.5, 3, 0.125}};
+  s.edges = {{0, 1}, {1, 2}, {1, 3}, {3, 4}};
+  return s;
+}
+
+TEST(SkeletonFiles, EveryFormatRoundTrips) {
+  const Skeleton s = sample_skeleton();
+  for (const char* name : {"y.polylines.txt", "y.cg", "y.obj", "y.json"}) {
+    const SkeletonFormat f = skeleton_format_from_name(name);
+    const Skeleton back = read_skeleton_bytes(write_skeleton_bytes(s, f), f, name);
+    ASSERT_EQ(back.nodes.size(), s.nodes.size()) << name;
+    ASSERT_EQ(back.edges.size(), s.edges.size()) << name;
+    // Same nodes (polylines may renumber them) and the same edges between them.
+    const SkeletonMetrics a = skeleton_shape_metrics(s), b = skeleton_shape_metrics(back);
+    EXPECT_EQ(a.endpoints, b.endpoints) << name;
+    EXPECT_EQ(a.junctions, b.junctions) << name;
+    EXPECT_DOUBLE_EQ(a.length, b.length) << name;
+    EXPECT_NEAR(skeleton_distance(s, back).hausdorff, 0.0, 1e-12) << name;
+  }
+}
+
+TEST(SkeletonFiles, ReadsWhatOtherToolsWrite) {
+  // CGAL's polylines: branches share their end points exactly.
+  const Skeleton p = read_skeleton_bytes("3 0 0 0 0 1 0 0 2 0\n2 0 1 0 1 1 0\n", SkeletonFormat::polylines, "cgal.polylines.txt");
+  EXPECT_EQ(p.nodes.size(), 4u);
+  EXPECT_EQ(p.edges.size(), 3u);
+  // The .cg curve graph of the contraction tools.
+  const Skeleton c = read_skeleton_bytes("# D:3 NV:3 NE:2\nv 0 0 0\nv 1 0 0\nv 2 0 0\ne 1 2\ne 2 3\n", SkeletonFormat::cg, "a.cg");
+  EXPECT_EQ(c.edges.size(), 2u);
+  EXPECT_EQ(c.edges[1][1], 2u);
+  // OBJ polylines with negative indices, other records ignored.
+  const Skeleton o = read_skeleton_bytes("o s\nv 0 0 0\nv 1 0 0\nv 2 0 0\nl 1 2 -1\nvn 0 0 1\n", SkeletonFormat::obj, "a.obj");
+  EXPECT_EQ(o.edges.size(), 2u);
+}
+
+TEST(SkeletonFiles, BadFilesNameTheLine) {
+  const auto line_of = [](const std::string& bytes, SkeletonFormat f) -> std::optional<std::uint64_t> {
+    try {
+      read_skeleton_bytes(bytes, f, "bad");
+    } catch (const ParseError& e) {
+      return e.line();
+    }
+    return std::nullopt;
+  };
+  EXPECT_EQ(line_of("# D:3\nv 0 0 0\nv 1 0 0\ne 1 3\n", SkeletonFormat::cg), 4u);    // index out of range
+  EXPECT_EQ(line_of("v 0 0 0\nv 1 x 0\n", SkeletonFormat::cg), 2u);                  // not a number
+  EXPECT_EQ(line_of("v 0 0 0\nv 1 0 0\ne 1 1\n", SkeletonFormat::cg), 3u);          // a loop edge
+  EXPECT_EQ(line_of("v 0 0 0\nf 1 2 3\n", SkeletonFormat::cg), 2u);                  // unknown record
+  EXPECT_EQ(line_of("2 0 0 0 1 1 1\n3 0 0 0 1 1\n", SkeletonFormat::polylines), 2u);  // short polyline
+  EXPECT_EQ(line_of("v 0 0 0\nl 1 7\n", SkeletonFormat::obj), 2u);
+  EXPECT_EQ(line_of("{\"nodes\": [[0, 0, 0]],\n \"edges\": [[0, 1]\n", SkeletonFormat::json), 3u);  // not JSON
+  EXPECT_THROW(read_skeleton_bytes("{\"nodes\": [[0, 0, 0]], \"edges\": [[0, 4]]}", SkeletonFormat::json, "j"), ParseError);
+  EXPECT_THROW(read_skeleton_bytes("", SkeletonFormat::cg, "empty"), ParseError);
+  EXPECT_THROW(skeleton_format_from_name("a.stl"), UnsupportedFormat);
+}
+
+TEST(SkeletonMetrics, CircleInsideATorus) {
+  const double R = 2, r = 0.5;
+  const Mesh torus = test::torus(R, r, 96, 32);
+  const SkeletonMetrics m = skeleton_metrics(circle(R, 64), torus);
+  EXPECT_EQ(m.loops, 1u);
+  EXPECT_EQ(m.endpoints, 0u);
+  EXPECT_EQ(m.junctions, 0u);
+  EXPECT_EQ(m.branches, 1u);
+  EXPECT_DOUBLE_EQ(m.inside_fraction, 1.0);
+  EXPECT_EQ(m.centredness_nodes, 64u);
+  EXPECT_LT(m.centredness_max, 0.03);
+  // Moved outwards by half the tube's radius: centredness 0.5.
+  const SkeletonMetrics off = skeleton_metrics(circle(R + r / 2, 64), torus);
+  EXPECT_NEAR(off.centredness_mean, 0.5, 0.05);
+  EXPECT_DOUBLE_EQ(off.inside_fraction, 1.0);
+  // Outside the tube altogether.
+  EXPECT_DOUBLE_EQ(skeleton_metrics(circle(R + 2 * r, 64), torus).inside_fraction, 0.0);
+}
+
+TEST(SkeletonMetrics, DistanceBetweenTwoCircles) {
+  const SkeletonDistance d = skeleton_distance(circle(2.0, 200), circle(2.1, 200));
+  EXPECT_NEAR(d.hausdorff, 0.1, 0.002);
+  EXPECT_NEAR(d.mean, 0.1, 0.002);
+  EXPECT_NEAR(skeleton_distance(circle(2.0, 50), circle(2.0, 50)).hausdorff, 0.0, 1e-12);
+}
+
+TEST(SkeletonMcf, TorusGivesOneLoopAtItsCoreRadius) {
+  const double R = 2, r = 0.5;
+  const AlgorithmResult res = run_algorithm("skeleton_mcf", test::torus(R, r, 64, 24));
+  const Skeleton& s = artifact<Skeleton>(res, "skeleton");
+  const Metrics& m = artifact<Metrics>(res, "metrics");
+  EXPECT_EQ(m.at("loops"), 1.0);
+  EXPECT_EQ(m.at("endpoints"), 0.0);
+  EXPECT_EQ(m.at("inside_fraction"), 1.0);
+  for (const Vec3& p : s.nodes) {
+    EXPECT_NEAR(std::hypot(p.x, p.y), R, 0.02 * R);
+    EXPECT_NEAR(p.z, 0.0, 0.02 * R);
+  }
+  EXPECT_EQ(s.vertex_to_node.size(), test::torus(R, r, 64, 24).positions.size());
+}
+
+TEST(SkeletonMcf, CapsuleGivesOneSegmentAlongItsAxis) {
+  const double r = 0.5, h = 4;
+  const AlgorithmResult res = run_algorithm("skeleton_mcf", capsule(r, h));
+  const Skeleton& s = artifact<Skeleton>(res, "skeleton");
+  const Metrics& m = artifact<Metrics>(res, "metrics");
+  EXPECT_EQ(m.at("endpoints"), 2.0);
+  EXPECT_EQ(m.at("junctions"), 0.0);
+  EXPECT_EQ(m.at("loops"), 0.0);
+  for (const Vec3& p : s.nodes) EXPECT_LT(std::hypot(p.x, p.y), 0.05 * r);
+  const BBox box = bounding_box(s);
+  EXPECT_GT(box.size().z, h);  // from near one cap's centre to near the other's
+}
+
+TEST(SkeletonSegmentation, EachFaceTakesTheBranchItSees) {
+  // Two spheres, each with its own segment inside it.
+  const Mesh two = test::merged(test::uv_sphere(1, 16, 32), [] {
+    Mesh b = test::uv_sphere(1, 16, 32);
+    for (Vec3& p : b.positions) p.x += 5;
+    return b;
+  }());
+  Skeleton s;
+  s.nodes = {{0, 0, -0.5}, {0, 0, 0.5}, {5, 0, -0.5}, {5, 0, 0.5}};
+  s.edges = {{0, 1}, {2, 3}};
+  Inputs in;
+  in.add("mesh", two);
+  in.add("skeleton", s);
+  const AlgorithmResult res = run_algorithm("skeleton_segmentation", in);
+  const ScalarField& f = artifact<ScalarField>(res, "branch");
+  EXPECT_EQ(f.hint, ColorHint::categorical);
+  const std::size_t half = two.faces.size() / 2;
+  for (std::size_t i = 0; i < two.faces.size(); ++i) ASSERT_EQ(f.values[i], i < half ? f.values[0] : f.values[half]);
+  EXPECT_NE(f.values[0], f.values[half]);
+}
+
+TEST(SkeletonBadInput, McfRefusesOpenAndNonManifoldMeshes) {
+  try {
+    run_algorithm("skeleton_mcf", test::grid(4));
+    FAIL() << "an open mesh was taken";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("closed"), std::string::npos) << e.what();
+  }
+  Mesh fin;
+  fin.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
+  fin.faces = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  EXPECT_THROW(run_algorithm("skeleton_mcf", fin), InvalidInput);
+  Inputs in;
+  const Mesh sphere = test::uv_sphere();
+  in.add("mesh", sphere);
+  EXPECT_THROW(run_algorithm("skeleton_metrics", in), InvalidInput);  // no skeleton given
+}
+
+}  // namespace
+}  // namespace cgview
