@@ -21,6 +21,7 @@
 #include "algorithm_json.h"
 #include "core/errors.h"
 #include "io/mesh_io.h"
+#include "io/skeleton_io.h"
 #include "registry/artifact_io.h"
 #include "registry/registry.h"
 #include "voxel/voxel_io.h"
@@ -555,6 +556,20 @@ ArtifactBytes JobScheduler::artifact(const std::string& id, const std::string& n
       else if (format == "vox") out.bytes = encode_vox(grid);
       else throw UnsupportedFormat("a voxel grid is served as nrrd, binvox, vti or vox, not '" + format + "'");
     }
+  } else if (kind == "skeleton") {
+    // Stored as .obj; also served in the other skeleton files (io/skeleton_io.h).
+    if (format.empty()) format = "obj";
+    const std::string stored = read_file(dir / file);
+    if (format == "obj") {
+      out.bytes = stored;
+    } else {
+      if (format != "cg" && format != "json" && format != "polylines")
+        throw UnsupportedFormat("a skeleton is served as obj, cg, json or polylines, not '" + format + "'");
+      const SkeletonFormat f = skeleton_format_from_name("s." + std::string(format == "polylines" ? "polylines.txt" : format));
+      out.bytes = write_skeleton_bytes(read_skeleton_bytes(stored, SkeletonFormat::obj, file), f);
+      if (format == "polylines") format = "polylines.txt";
+    }
+    out.content_type = format == "json" ? "application/json" : "text/plain; charset=utf-8";
   } else {
     const std::string ext = fs::path(file).extension().string().substr(1);
     if (!format.empty() && format != ext) throw UnsupportedFormat("a " + kind + " is served as " + ext + ", not '" + format + "'");

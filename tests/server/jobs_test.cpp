@@ -18,6 +18,7 @@
 #include "core/errors.h"
 
 #include "io/mesh_io.h"
+#include "io/skeleton_io.h"
 #include "registry/artifact_io.h"
 #include "registry/registry.h"
 #include "server_harness.h"
@@ -385,6 +386,36 @@ TEST_F(JobsTest, AGridFromAnEarlierJobIsTheInputOfTheNext) {
   EXPECT_NE(e.body.find("is a metrics, not a voxel_grid"), std::string::npos) << e.body;
   EXPECT_EQ(post({{"grid", {{"job", "nope"}, {"artifact", "grid"}}}}).status, 404);
   EXPECT_EQ(post({{"grid", {{"job", vox["id"]}, {"artifact", "nope"}}}}).status, 404);
+}
+
+// Issues 7 and 10 through the server: the SDF's fields; a skeleton made by
+// one job, measured by the next, served in every skeleton file format.
+TEST_F(JobsTest, SdfAndSkeletonJobs) {
+  const json sdf = wait_end(submit("sdf", {{"rays", 16}})["id"]);
+  ASSERT_EQ(sdf["state"], "done") << sdf.dump();
+  const std::string values = artifact(sdf["id"], "sdf", "txt");
+  EXPECT_GT(std::count(values.begin(), values.end(), '\n'), 300);  // sphere.off has 320 faces
+  EXPECT_NE(submit("sdf", {{"rays", 0}}, 400)["detail"].get<std::string>().find("'rays'"), std::string::npos);
+  EXPECT_NE(submit("sdf_fast", {{"fraction", 2.0}}, 400)["detail"].get<std::string>().find("'fraction'"), std::string::npos);
+
+  const json mcf = wait_end(submit("skeleton_mcf", json::object())["id"]);
+  ASSERT_EQ(mcf["state"], "done") << mcf.dump();
+  const auto r = http_call(server_.port(), Method::post, "/api/v1/jobs",
+                           json{{"algorithm", "skeleton_metrics"},
+                                {"inputs", {{"mesh", mesh_id_}, {"skeleton", {{"job", mcf["id"]}, {"artifact", "skeleton"}}}}}}
+                               .dump());
+  ASSERT_EQ(r.status, 201) << r.body;
+  const json measured = wait_end(r.body_json()["id"]);
+  ASSERT_EQ(measured["state"], "done") << measured.dump();
+  const json m = json::parse(artifact(measured["id"], "metrics", "json"));
+  EXPECT_EQ(m["nodes"], json::parse(artifact(mcf["id"], "metrics", "json"))["nodes"]) << m.dump();
+  for (const char* format : {"obj", "cg", "json", "polylines"}) {
+    const std::string bytes = artifact(mcf["id"], "skeleton", format);
+    const std::string name = std::string("s.") + (std::string(format) == "polylines" ? "polylines.txt" : format);
+    const Skeleton s = read_skeleton_bytes(bytes, skeleton_format_from_name(name), name);
+    EXPECT_EQ(double(s.nodes.size()), m["nodes"].get<double>()) << format;
+  }
+  EXPECT_EQ(http_get(server_.port(), "/api/v1/jobs/" + mcf["id"].get<std::string>() + "/artifacts/skeleton?format=stl").status, 400);
 }
 
 TEST_F(JobsTest, BadRequests) {
