@@ -13,6 +13,7 @@
 #include "io/mesh_io.h"
 #include "algorithm_json.h"
 #include "io/samples.h"
+#include "io/skeleton_io.h"
 #include "mesh_report_json.h"
 #include "registry/artifact_io.h"
 #include "registry/registry.h"
@@ -376,6 +377,7 @@ const char* kRenderHelp =
     "  --depth FILE        also write the depth buffer: raw float32, rows from the top, window depth\n"
     "                      in [0, 1] (1: background); not with --views\n"
     "  --face-ids FILE     also write the face seen at each pixel: raw uint32 (4294967295: none)\n"
+    "  --skeleton FILE     draw a skeleton over the mesh (.polylines.txt, .cg, .obj, .json)\n"
     "  --gl-platform P     auto (default: GPU device, else surfaceless llvmpipe), device or surfaceless;\n"
     "                      also the environment variable CGVIEW_GL_PLATFORM\n";
 
@@ -408,7 +410,7 @@ int cmd_render(const std::vector<std::string>& args) {
   bool size_given = false, silhouette = false;
   int views = 0;
   render::GlPlatform platform = render::GlPlatform::automatic;
-  std::string depth_out, ids_out;
+  std::string depth_out, ids_out, skeleton_file;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&]() -> const std::string& {
@@ -434,6 +436,7 @@ int cmd_render(const std::vector<std::string>& args) {
     else if (a == "--silhouette") silhouette = true;
     else if (a == "--depth") depth_out = value();
     else if (a == "--face-ids") ids_out = value();
+    else if (a == "--skeleton") skeleton_file = value();
     else if (a == "--gl-platform") platform = render::parse_gl_platform(value(), "--gl-platform");
     else if (a.starts_with("-")) throw Usage("render: unknown option " + a);
     else if (mesh_arg.empty()) mesh_arg = a;
@@ -461,8 +464,11 @@ int cmd_render(const std::vector<std::string>& args) {
     std::ofstream f(path, std::ios::binary);
     if (!f.write(static_cast<const char*>(data), std::streamsize(bytes))) throw IoError(path + ": cannot write");
   };
+  const Skeleton skeleton = skeleton_file.empty() ? Skeleton{} : read_skeleton(skeleton_file);
+  render::RenderItem item{&r.mesh};
+  if (!skeleton_file.empty()) item.skeleton = &skeleton;
   auto picture = [&](const render::RenderParams& p) {
-    render::RenderResult res = renderer.render(r.mesh, p);
+    render::RenderResult res = renderer.render({item}, p);
     if (!depth_out.empty()) write_raw(depth_out, res.depth.data(), res.depth.size() * sizeof(float));
     if (!ids_out.empty()) write_raw(ids_out, res.face_ids.data(), res.face_ids.size() * sizeof(std::uint32_t));
     return silhouette ? render::mask_image(res.silhouette, p.width, p.height) : std::move(res.color);

@@ -72,10 +72,14 @@ std::vector<ViewCapture> capture_views(Renderer& renderer, const Mesh& mesh, con
   std::vector<CameraMatrices> cameras;
   cameras.reserve(dirs.size());
   for (const Vec3& d : dirs) cameras.push_back(orthographic_view(d, box, params.width, params.height));
-  if (params.contexts < 1 || params.contexts > 64)
-    throw InvalidInput("contexts must be in [1, 64], got " + std::to_string(params.contexts));
-  const int n = std::min<int>(params.contexts, int(cameras.size()));
-  if (n <= 1) return renderer.capture(mesh, cameras, params.face_ids);
+  return capture_cameras(renderer, mesh, cameras, params.contexts, params.face_ids);
+}
+
+std::vector<ViewCapture> capture_cameras(Renderer& renderer, const Mesh& mesh, const std::vector<CameraMatrices>& cameras,
+                                         int contexts, bool face_ids) {
+  if (contexts < 1 || contexts > 64) throw InvalidInput("contexts must be in [1, 64], got " + std::to_string(contexts));
+  const int n = std::min<int>(contexts, int(cameras.size()));
+  if (n <= 1) return renderer.capture(mesh, cameras, face_ids);
 
   // Contiguous blocks of views, one per context; the first on this thread.
   const GlPlatform platform = renderer.info().platform == "surfaceless" ? GlPlatform::surfaceless : GlPlatform::device;
@@ -90,13 +94,13 @@ std::vector<ViewCapture> capture_views(Renderer& renderer, const Mesh& mesh, con
     threads.emplace_back([&, k] {
       try {
         Renderer extra(platform);
-        parts[k] = extra.capture(mesh, block(k), params.face_ids);
+        parts[k] = extra.capture(mesh, block(k), face_ids);
       } catch (...) {
         errors[k] = std::current_exception();
       }
     });
   try {
-    parts[0] = renderer.capture(mesh, block(0), params.face_ids);
+    parts[0] = renderer.capture(mesh, block(0), face_ids);
   } catch (...) {
     errors[0] = std::current_exception();
   }

@@ -38,5 +38,9 @@ struct ViewsParams {
 // bounding sphere fills each image (render/camera.h, orthographic_view).
 // Throws InvalidInput for a bad size, view count or contexts < 1.
 std::vector<ViewCapture> capture_views(Renderer& renderer, const Mesh& mesh, const ViewsParams& params = {});
+// The same from cameras of the caller's choosing (all of one size), drawn by
+// `contexts` contexts at once.
+std::vector<ViewCapture> capture_cameras(Renderer& renderer, const Mesh& mesh, const std::vector<CameraMatrices>& cameras,
+                                         int contexts = 1, bool face_ids = false);
 
 }  // namespace cgview::render

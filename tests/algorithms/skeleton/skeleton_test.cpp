@@ -14,6 +14,7 @@
 #include "io/mesh_io.h"
 #include "io/skeleton_io.h"
 #include "skeleton/skeleton_metrics.h"
+#include "skeleton/skeleton_projection.h"
 #include "test_support.h"
 
 namespace cgview {
@@ -21,6 +22,12 @@ namespace {
 
 using test::artifact;
 using test::run_algorithm;
+
+std::string metrics_json_for_test(const Metrics& m) {
+  std::string out;
+  for (const auto& [k, v] : m) out += k + "=" + std::to_string(v) + " ";
+  return out;
+}
 
 // A circle of n nodes, radius R, in the z = 0 plane, around (0, 0, 0).
 Skeleton circle(double R, int n) {
@@ -183,6 +190,77 @@ TEST(SkeletonMcf, CapsuleGivesOneSegmentAlongItsAxis) {
   for (const Vec3& p : s.nodes) EXPECT_LT(std::hypot(p.x, p.y), 0.05 * r);
   const BBox box = bounding_box(s);
   EXPECT_GT(box.size().z, h);  // from near one cap's centre to near the other's
+}
+
+TEST(SkeletonProjection, MedialAxisOfARectangleIsItsMidline) {
+  const int w = 40, h = 20;
+  std::vector<std::uint8_t> mask(w * h, 0);
+  for (int y = 5; y < 15; ++y)
+    for (int x = 5; x < 35; ++x) mask[y * w + x] = 1;
+  const std::vector<std::uint16_t> dt = skeleton::chamfer_34(mask, w, h);
+  EXPECT_EQ(dt[10 * w + 20], 15);  // 5 steps of 3 to the nearest outside pixel
+  EXPECT_EQ(dt[5 * w + 20], 3);
+  EXPECT_EQ(dt[0], 0);
+  const std::vector<std::uint8_t> axis = skeleton::medial_axis(dt, w, h, 2);
+  int on = 0;
+  for (int x = 12; x < 28; ++x) on += axis[9 * w + x] | axis[10 * w + x];
+  EXPECT_EQ(on, 16);  // the midline (rows 9-10) away from the ends
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (axis[y * w + x]) {
+        EXPECT_GE(dt[y * w + x], 6);
+      }
+}
+
+// The paper's method on shapes with known skeletons.
+TEST(SkeletonProjection, TorusGivesOneLoopAtItsCoreRadius) {
+  const double R = 2, r = 0.5;
+  const AlgorithmResult res = run_algorithm("skeleton_projection", test::torus(R, r, 64, 24));
+  const Skeleton& s = artifact<Skeleton>(res, "skeleton");
+  const Metrics& m = artifact<Metrics>(res, "metrics");
+  EXPECT_EQ(m.at("loops"), 1.0) << metrics_json_for_test(m);
+  EXPECT_EQ(m.at("endpoints"), 0.0);
+  EXPECT_EQ(m.at("inside_fraction"), 1.0);
+  for (const Vec3& p : s.nodes) {
+    EXPECT_NEAR(std::hypot(p.x, p.y), R, 0.02 * R);
+    EXPECT_NEAR(p.z, 0.0, 0.02 * R);
+  }
+}
+
+TEST(SkeletonProjection, CapsuleGivesOneSegmentAlongItsAxis) {
+  const double r = 0.5, h = 4;
+  const AlgorithmResult res = run_algorithm("skeleton_projection", capsule(r, h));
+  const Skeleton& s = artifact<Skeleton>(res, "skeleton");
+  const Metrics& m = artifact<Metrics>(res, "metrics");
+  EXPECT_EQ(m.at("endpoints"), 2.0) << metrics_json_for_test(m);
+  EXPECT_EQ(m.at("junctions"), 0.0);
+  EXPECT_EQ(m.at("loops"), 0.0);
+  // On the axis to a voxel or two (0.04 here) along the body; the ends, in
+  // the caps, to a quarter of the radius.
+  for (const Vec3& p : s.nodes) EXPECT_LT(std::hypot(p.x, p.y), (std::abs(p.z) < h / 2 ? 0.1 : 0.25) * r) << p.z;
+  EXPECT_GT(bounding_box(s).size().z, 0.8 * h);
+}
+
+TEST(SkeletonProjection, EveryNodeIsInsideTheSampleMeshes) {
+  for (const char* name : {"elephant.off", "armadillo.off", "man.off"}) {
+    const Mesh mesh = read_mesh(test::sample(name));
+    const AlgorithmResult res = run_algorithm("skeleton_projection", mesh);
+    const Metrics& m = artifact<Metrics>(res, "metrics");
+    EXPECT_EQ(m.at("inside_fraction"), 1.0) << name << " " << metrics_json_for_test(m);
+    EXPECT_EQ(m.at("components"), 1.0) << name;
+  }
+}
+
+TEST(SkeletonProjection, BadViewCounts) {
+  const Mesh sphere = test::uv_sphere();
+  for (long long views : {0LL, 3LL, 2000LL}) {
+    try {
+      run_algorithm("skeleton_projection", sphere, {{"views", views}});
+      FAIL() << views << " views were taken";
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("views"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(SkeletonSegmentation, EachFaceTakesTheBranchItSees) {

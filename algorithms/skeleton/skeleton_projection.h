@@ -1,0 +1,105 @@
+// A curve skeleton from the 2D medial axes of a shape's projections (the
+// CGView paper, section 3.1), each stage a function of its own:
+//
+// (a) `views` orthographic directions in antipodal pairs (d and -d, d on a
+//     Fibonacci sphere), silhouettes and depth from the EGL renderer
+//     (render/views.h); the pair gives each pixel's ray both where it enters
+//     the shape (depth from d) and where it leaves it (depth from -d);
+// (b) medial_axis: the (3,4) chamfer distance transform of each silhouette
+//     (Borgefors 1986; Sanniti di Baja 1994's skeletons), whose centres of
+//     maximal discs are the medial axis: a pixel p such that no neighbour q
+//     has dt(q) >= dt(p) + w(p, q) (w = 3 edge-, 4 corner-wise); pixels
+//     closer than `min_radius` pixels to the border are dropped (the
+//     spurious branches of a noisy outline);
+// (c) vote: each medial pixel of radius w casts its ray; the voxels from
+//     where it enters the shape to min(where it leaves, entry + 2 w) get a
+//     vote (inside the shape by the depth buffers, and no deeper than the
+//     disc the pixel is the centre of);
+// (d) thin: the voxels with at least `threshold` x the most votes; an
+//     intensity-driven shortest-path tree from the most voted voxel (a step
+//     costs its length over the voxel's normalized votes squared, so paths
+//     run along the ridge of votes, cf. Yim et al. 2000); branches taken as
+//     in TEASAR (Sato et al. 2000): the farthest voxel not yet covered gives a
+//     path back to the tree, kept if long enough and voted enough (low-valued
+//     branches pruned), and the voxels within 1.5 x the local radius (the
+//     medial discs' that voted) around it are covered; then loops: two skeleton voxels joined
+//     through voted voxels but far apart along the skeleton close a loop
+//     (a tunnel of the shape);
+// (e) simplify: internal arcs shorter than `merge_distance` collapsed (branch
+//     nodes that are too close merged), then endpoint-preserving Laplacian
+//     smoothing of the nodes inside branches, which frees them from voxel
+//     centres.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "core/mesh.h"
+#include "core/skeleton.h"
+#include "core/voxel_grid.h"
+
+namespace cgview {
+
+class Context;
+
+namespace render {
+class Renderer;
+struct ViewCapture;
+}  // namespace render
+
+namespace skeleton {
+
+struct ProjectionParams {
+  int views = 48;                // an even number in [2, 1000]: views / 2 antipodal pairs
+  int image = 256;               // pixels on a side, [32, 2048]
+  int grid = 128;                // voxels along the bounding box's longest side, [16, 512]
+  int min_radius = 2;            // medial pixels nearer the border are dropped
+  double threshold = 0.25;       // voxels with fewer votes than this x the most are out
+  double min_branch = 0.05;      // shortest branch kept, x the bounding box's diagonal
+  double branch_votes = 0.2;     // branches whose mean votes are below this x the main path's are pruned
+  double merge_distance = 0.03;  // internal arcs shorter than this x the diagonal are collapsed
+  int smoothing = 20;            // Laplacian iterations (lambda 0.5)
+  int contexts = 2;              // rendering contexts at once (render/views.h)
+  // Throws InvalidInput naming the parameter out of range.
+  void check() const;
+};
+
+// (b) The (3,4) chamfer distance of each inside pixel to the outside (3 per
+// pixel step, 4 per diagonal step; 0 outside; the image border is outside).
+std::vector<std::uint16_t> chamfer_34(const std::vector<std::uint8_t>& mask, int width, int height);
+// The centres of maximal discs with dt >= 3 * min_radius: 1 on the axis.
+std::vector<std::uint8_t> medial_axis(const std::vector<std::uint16_t>& dt, int width, int height, int min_radius);
+
+// (c) Votes (a float grid over the mesh's bounding box, `grid` voxels along
+// its longest side, one voxel of margin) from views given as antipodal pairs
+// (view 2k and 2k + 1 look along opposite directions).  `radius`, when not
+// null, gets the mean radius (world units) of the medial discs that voted
+// for each voxel.
+VoxelGrid vote(const std::vector<render::ViewCapture>& views, const BBox& box, const ProjectionParams& p,
+               std::vector<float>* radius = nullptr, const Context* ctx = nullptr);
+
+// (d) The skeleton of the vote grid, nodes at voxel centres; `radius` (from
+// vote) sets how far a branch covers the voxels around it (1.5 x the radius
+// + 2 voxels, as TEASAR) and how far an end looks to close a loop.
+Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const ProjectionParams& p);
+
+// (e) Collapses internal arcs shorter than `merge_length` and smooths; a
+// smoothing step that would take a node where `allowed` says no (outside the
+// mesh) leaves it where it was.
+void simplify(Skeleton& s, double merge_length, int smoothing_iterations,
+              const std::function<bool(const Vec3&)>& allowed = {});
+
+// All stages.  `votes`, when not null, receives the vote grid; `axis`, when
+// not null, the first view's silhouette (1) with its medial axis (2).
+struct ProjectionResult {
+  Skeleton skeleton;
+  VoxelGrid votes;
+  std::vector<std::uint8_t> first_view;  // 0 outside, 1 inside, 2 medial axis; image x image, rows from the top
+  double render_seconds = 0, vote_seconds = 0, thin_seconds = 0;  // vote: medial axes and votes
+};
+ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mesh& mesh, const ProjectionParams& p,
+                                           const Context* ctx = nullptr);
+
+}  // namespace skeleton
+}  // namespace cgview
