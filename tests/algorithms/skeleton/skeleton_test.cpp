@@ -15,6 +15,7 @@
 #include "io/skeleton_io.h"
 #include "skeleton/skeleton_metrics.h"
 #include "skeleton/skeleton_projection.h"
+#include "voxel/voxel_ops.h"
 #include "test_support.h"
 
 namespace cgview {
@@ -239,6 +240,32 @@ TEST(SkeletonProjection, CapsuleGivesOneSegmentAlongItsAxis) {
   // the caps, to a quarter of the radius.
   for (const Vec3& p : s.nodes) EXPECT_LT(std::hypot(p.x, p.y), (std::abs(p.z) < h / 2 ? 0.1 : 0.25) * r) << p.z;
   EXPECT_GT(bounding_box(s).size().z, 0.8 * h);
+}
+
+// Four cylinders (radius 4 voxels, arms 20 long) joined at a centre, as
+// voxels, their boundary a closed (T-junctioned) surface: silhouettes need no
+// more.
+TEST(SkeletonProjection, FourCylindersGiveFourEndsAndOneBranchNode) {
+  VoxelGrid g({49, 49, 11}, Vec3{}, 1.0, VoxelType::bit);
+  for (int k = 0; k < 11; ++k)
+    for (int j = 0; j < 49; ++j)
+      for (int i = 0; i < 49; ++i) {
+        const double dz = k - 5.0, dx = i - 24.0, dy = j - 24.0;
+        if (dx * dx + dz * dz <= 16 || dy * dy + dz * dz <= 16) g.set({i, j, k}, 1);
+      }
+  const Mesh plus = boundary_mesh(g);
+  const AlgorithmResult res = run_algorithm("skeleton_projection", plus);
+  const Metrics& m = artifact<Metrics>(res, "metrics");
+  EXPECT_EQ(m.at("endpoints"), 4.0) << metrics_json_for_test(m);
+  EXPECT_EQ(m.at("junctions"), 1.0) << metrics_json_for_test(m);
+  EXPECT_EQ(m.at("loops"), 0.0);
+  const Skeleton& s = artifact<Skeleton>(res, "skeleton");
+  const std::vector<std::uint32_t> degree = node_degrees(s);
+  for (std::size_t n = 0; n < s.nodes.size(); ++n)
+    if (degree[n] >= 3) {
+      EXPECT_NEAR(s.nodes[n].x, 24.5, 2.0);
+      EXPECT_NEAR(s.nodes[n].y, 24.5, 2.0);
+    }
 }
 
 TEST(SkeletonProjection, EveryNodeIsInsideTheSampleMeshes) {
