@@ -17,6 +17,7 @@ import {
   submitJob,
   uploadMesh,
 } from './api/rest.ts';
+import { parseSkeleton } from './api/skeleton.ts';
 import { jobMeshId } from './api/types.ts';
 import type { Algorithm, Job, JobInput, JobProgress, Mesh, ServerEvent } from './api/types.ts';
 import { CgviewSocket, ServerError } from './api/ws.ts';
@@ -35,6 +36,7 @@ import { DracoDecoder } from './viewer/draco_decoder.ts';
 import { decodeFrames, framePositions } from './viewer/frames.ts';
 import { defaultMapFor } from './viewer/colormaps.ts';
 import { Legend } from './viewer/legend.ts';
+import { buildSkeleton, SKELETON_COLORS } from './viewer/skeleton_renderer.ts';
 import { parsePly, type PlyMesh } from './viewer/ply.ts';
 import { buildScalarSurface, colourGeometry, finiteRange, type ScalarField } from './viewer/scalar_field_renderer.ts';
 import { buildPlainSurface, buildSurface } from './viewer/surface_renderer.ts';
@@ -76,6 +78,8 @@ export interface TestHooks {
    * the sum of all coordinates as drawn.
    */
   lastAnimation: { jobId: string; artifact: string; frame: number; frames: number; vertices: number; first: [number, number, number]; sum: number } | null;
+  /** The skeletons drawn over the mesh, set after the first frame with each change: key, colour, nodes, edges. */
+  skeletons: Array<{ key: string; color: string; nodes: number; edges: number }>;
 }
 
 declare global {
@@ -111,6 +115,8 @@ export class App {
   private readonly asking = new Set<string>();
   /** Mesh artifacts in the view (`${jobId}/${name}`), beside the selected mesh. */
   private readonly added = new Set<string>();
+  /** Skeleton artifacts drawn over the mesh, by `${jobId}/${name}`, in the order shown. */
+  private readonly skeletons = new Map<string, { object: THREE.Object3D; color: string; nodes: number; edges: number }>();
   /** A job's output mesh that the next job runs on ("Run on this"), instead of the selected mesh. */
   private runTarget: { jobId: string; artifact: string; kind: string } | null = null;
   /** The scalar field drawn now (or being prepared: token). */
@@ -130,6 +136,7 @@ export class App {
     algorithmsApi: null,
     lastExtra: null,
     lastAnimation: null,
+    skeletons: [],
   };
   private readonly socket = new CgviewSocket();
   private readonly decoder = new DracoDecoder();
@@ -167,6 +174,7 @@ export class App {
       runOn: (jobId, artifact) => this.setRunTarget(jobId, artifact),
       playAnimation: (jobId, artifact) => void this.showAnimation(jobId, artifact),
       showSlices: (jobId, artifact) => this.slicePanel.open(jobId, artifact),
+      toggleSkeleton: (jobId, artifact) => void this.toggleSkeleton(jobId, artifact),
     });
     this.slicePanel = new VoxelSlicePanel(
       byId('voxel-slices'),
@@ -399,6 +407,7 @@ export class App {
       target: this.runTarget ? `${this.runTarget.jobId}/${this.runTarget.artifact}` : null,
       metrics: this.metrics,
       texts: this.texts,
+      skeletons: new Map([...this.skeletons].map(([k, v]) => [k, v.color])),
     });
   }
 
@@ -455,6 +464,46 @@ export class App {
       if (token !== this.fieldToken) return;
       this.error(`Cannot show ${artifactName} of ${job.algorithm}: ${describe(e)}`);
     }
+  }
+
+  /**
+   * Draws a job's skeleton artifact over its mesh (fetched as JSON), each in
+   * its own colour, so that skeletons from several algorithms compare at a
+   * glance (the paper's Figure 5); a second click hides it.
+   */
+  async toggleSkeleton(jobId: string, artifactName: string): Promise<void> {
+    const key = `${jobId}/${artifactName}`;
+    const drawn = this.skeletons.get(key);
+    if (drawn) {
+      this.viewer.removeExtra(drawn.object);
+      this.skeletons.delete(key);
+      this.renderJobs();
+      this.viewer.redraw(() => this.reportSkeletons());
+      return;
+    }
+    const job = this.jobs.get(jobId);
+    if (!job) return;
+    const meshId = jobMeshId(job);
+    if (meshId && this.selectedId !== meshId && this.meshes.some((m) => m.id === meshId)) this.select(meshId);
+    const selected = this.selectedId;
+    try {
+      const [json] = await Promise.all([fetchArtifactJson(jobId, artifactName), this.showing]);
+      if (this.selectedId !== selected || this.skeletons.has(key)) return;
+      const data = parseSkeleton(json);
+      const palette = SKELETON_COLORS;
+      const used = new Set([...this.skeletons.values()].map((v) => v.color));
+      const color = palette.find((c) => !used.has(c)) ?? palette[this.skeletons.size % palette.length]!;
+      const object = buildSkeleton(data, color);
+      this.skeletons.set(key, { object, color, nodes: data.nodes.length / 3, edges: data.edges.length / 2 });
+      this.viewer.addExtra(object, () => this.reportSkeletons());
+      this.renderJobs();
+    } catch (e) {
+      this.error(`Cannot show ${artifactName} of ${job.algorithm}: ${describe(e)}`);
+    }
+  }
+
+  private reportSkeletons(): void {
+    this.hooks.skeletons = [...this.skeletons].map(([key, v]) => ({ key, color: v.color, nodes: v.nodes, edges: v.edges }));
   }
 
   /** Adds a job's mesh artifact (fetched as binary PLY) to the view, beside its input mesh. */
@@ -617,10 +666,12 @@ export class App {
     ++this.animationToken;
     this.player.hide();
     this.hooks.lastAnimation = null;
-    if (this.field || this.added.size) {
+    if (this.field || this.added.size || this.skeletons.size) {
       this.dropField();
       this.added.clear(); // show() below clears the viewer's extras
+      this.skeletons.clear();
       this.hooks.lastExtra = null;
+      this.hooks.skeletons = [];
       this.renderJobs();
     }
     const load = { id: mesh.id, controller: new AbortController() };
@@ -692,6 +743,8 @@ export class App {
       }
       this.viewer.clearAll();
       this.added.clear();
+      this.skeletons.clear();
+      this.hooks.skeletons = [];
       this.hooks.lastExtra = null;
       this.hooks.lastLoaded = null;
       this.hooks.timings = null;

@@ -21,6 +21,8 @@ export interface JobsActions {
   playAnimation(jobId: string, artifact: string): void;
   /** Opens the slice panel on a voxel_grid artifact. */
   showSlices(jobId: string, artifact: string): void;
+  /** Shows or hides a skeleton artifact over its mesh. */
+  toggleSkeleton(jobId: string, artifact: string): void;
 }
 
 export interface JobsView {
@@ -37,6 +39,8 @@ export interface JobsView {
   metrics: ReadonlyMap<string, unknown>;
   /** Fetched text artifacts (chaos_extract's message), by `${jobId}/${name}`: the text, or undefined while loading. */
   texts: ReadonlyMap<string, string | undefined>;
+  /** Skeleton artifacts drawn now, by `${jobId}/${name}`: their colour. */
+  skeletons: ReadonlyMap<string, string>;
 }
 
 const ACTIVE = new Set(['queued', 'running']);
@@ -119,7 +123,8 @@ export class JobsPanel {
       .map((a) => (view.metrics.get(`${job.id}/${a.name}`) === undefined && view.texts.get(`${job.id}/${a.name}`) === undefined ? 0 : 1))
       .join('');
     const added = (job.artifacts ?? []).map((a) => (view.added.has(`${job.id}/${a.name}`) ? 1 : 0)).join('');
-    return JSON.stringify([job.state, job.cached, job.error, mesh, shown, metrics, added, job.artifacts?.length ?? 0]);
+    const skeletons = (job.artifacts ?? []).map((a) => view.skeletons.get(`${job.id}/${a.name}`) ?? '').join(',');
+    return JSON.stringify([job.state, job.cached, job.error, mesh, shown, metrics, added, skeletons, job.artifacts?.length ?? 0]);
   }
 
   /** The parts that progress events change. */
@@ -210,6 +215,17 @@ export class JobsPanel {
       row.append(label);
       const data = view.metrics.get(`${job.id}/${a.name}`);
       row.append(data === undefined ? el('p', { class: 'empty' }, 'loading…') : metricsTable(data));
+    } else if (a.kind === 'skeleton') {
+      const color = view.skeletons.get(`${job.id}/${a.name}`);
+      const show = el(
+        'button',
+        { type: 'button', class: color ? 'button small show-skeleton active' : 'button small show-skeleton' },
+        color ? 'Shown' : 'Show',
+      );
+      show.addEventListener('click', () => this.actions.toggleSkeleton(job.id, a.name));
+      row.append(label, show);
+      if (color) row.append(' ', el('span', { class: 'swatch', style: `background:${color}`, title: color }));
+      for (const f of ['obj', 'cg', 'polylines', 'json']) row.append(' ', el('a', { href: artifactUrl(job.id, a.name, f), download: '' }, f));
     } else {
       row.append(label, ' ', el('a', { href: artifactUrl(job.id, a.name, 'json'), download: '' }, 'json'));
     }

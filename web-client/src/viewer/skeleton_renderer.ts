@@ -4,6 +4,9 @@
 import * as THREE from 'three';
 import { nodeDegrees, type SkeletonData } from '../api/skeleton.ts';
 
+/** Colours for skeletons drawn together: tab10 without its orange, the mesh's own colour. */
+export const SKELETON_COLORS: readonly string[] = ['#1f77b4', '#2ca02c', '#d62728', '#9467bd', '#17becf', '#e377c2', '#8c564b', '#bcbd22'];
+
 export function buildSkeleton(s: SkeletonData, color: THREE.ColorRepresentation): THREE.Group {
   const group = new THREE.Group();
   const positions = new Float32Array(s.edges.length * 3);

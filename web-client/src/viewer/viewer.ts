@@ -126,6 +126,14 @@ export class Viewer {
     this.requestRender();
   }
 
+  /** Removes and disposes of one object added with addExtra(). */
+  removeExtra(object: THREE.Object3D): void {
+    if (object.parent !== this.extras) return;
+    this.extras.remove(object);
+    disposeObject(object);
+    this.requestRender();
+  }
+
   /** Removes and disposes of the objects added with addExtra(). */
   clearExtras(): void {
     for (const child of [...this.extras.children]) {

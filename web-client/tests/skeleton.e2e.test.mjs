@@ -1,0 +1,66 @@
+// End-to-end test of skeletons in the viewer, against the real server: the
+// paper's skeleton from projections and CGAL's MCF skeleton of the elephant,
+// run from the algorithm form, drawn over the mesh at once in two colours
+// (the paper's Figure 5), then one hidden again. The canvas is kept in
+// build/test-artifacts/e2e-skeletons-*.png.
+//
+// Environment: CGVIEW_SERVER (default build/bin/cgview-server),
+// CHROMIUM (default /usr/bin/chromium).
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import path from 'node:path';
+import { artifactsDir as artifacts, useViewer, pngPixels, repo } from './harness.mjs';
+
+const elephant = path.join(repo, 'build', 'samples', 'elephant.off');
+const v = useViewer({ tmpPrefix: 'cgview-e2e-skeletons-', mesh: elephant });
+
+async function run(algorithm) {
+  await v.page.locator('#algorithm-menu').selectOption(algorithm);
+  const form = v.page.locator(`form.algorithm-form[data-algorithm="${algorithm}"]`);
+  await form.waitFor();
+  await form.locator('button.run').click();
+  const li = v.page.locator(`#jobs li.job[data-algorithm="${algorithm}"][data-state="done"]`).first();
+  await li.waitFor({ timeout: 180000 }).catch((e) => {
+    throw new Error(`${algorithm} never showed done: ${e.message}${v.describeProblems()}\n${v.server.log()}`);
+  });
+  return li;
+}
+
+// Pixels of the canvas within `tolerance` of an sRGB colour.
+function countColour(pixels, hex, tolerance = 40) {
+  const n = parseInt(hex.slice(1), 16);
+  const [r, g, b] = [(n >> 16) & 255, (n >> 8) & 255, n & 255];
+  let count = 0;
+  for (let i = 0; i < pixels.data.length; i += 4) {
+    if (Math.abs(pixels.data[i] - r) + Math.abs(pixels.data[i + 1] - g) + Math.abs(pixels.data[i + 2] - b) < tolerance) ++count;
+  }
+  return count;
+}
+
+test('two skeletons of the elephant drawn at once, each in its colour, then one hidden', async () => {
+  const projection = await run('skeleton_projection');
+  const mcf = await run('skeleton_mcf');
+  for (const li of [projection, mcf]) await li.locator('.artifact-skeleton[data-artifact="skeleton"] button.show-skeleton').click();
+  await v.page.waitForFunction(() => window.__cgview.skeletons.length === 2, null, { timeout: 30000 });
+  const drawn = await v.page.evaluate(() => window.__cgview.skeletons);
+  assert.notEqual(drawn[0].color, drawn[1].color, 'each skeleton has its own colour');
+  for (const s of drawn) assert.ok(s.nodes > 20 && s.edges >= s.nodes - 5, `a skeleton of the elephant: ${JSON.stringify(s)}`);
+  // The job list shows the colours; both metrics tables list the same measures.
+  for (const li of [projection, mcf]) {
+    await li.locator('.artifact-skeleton .swatch').waitFor();
+    assert.match(await li.locator('.artifact-metrics').innerText(), /endpoints[\s\S]*inside fraction/);
+  }
+  const png = await v.page.locator('#viewport canvas').screenshot({ path: path.join(artifacts, 'e2e-skeletons-both.png') });
+  const pixels = await pngPixels(v.page, png);
+  for (const s of drawn) assert.ok(countColour(pixels, s.color) > 200, `skeleton ${s.key} is drawn in ${s.color}`);
+
+  await mcf.locator('.artifact-skeleton button.show-skeleton').click();
+  await v.page.waitForFunction(() => window.__cgview.skeletons.length === 1, null, { timeout: 30000 });
+  const png2 = await v.page.locator('#viewport canvas').screenshot({ path: path.join(artifacts, 'e2e-skeletons-one.png') });
+  const left = await v.page.evaluate(() => window.__cgview.skeletons[0]);
+  const pixels2 = await pngPixels(v.page, png2);
+  const hidden = drawn.find((s) => s.key !== left.key);
+  assert.ok(countColour(pixels2, hidden.color) < 20, `the hidden skeleton is gone: ${countColour(pixels2, hidden.color)} pixels of ${hidden.color}`);
+  assert.ok(countColour(pixels2, left.color) > 200, 'the other stays');
+  assert.deepEqual(v.problems, [], v.describeProblems());
+});
