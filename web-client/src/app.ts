@@ -29,6 +29,7 @@ import { ProgressPanel } from './panels/progress.ts';
 import { ReportPanel } from './panels/report.ts';
 import { UploadControl } from './panels/upload.ts';
 import { VoxelSlicePanel } from './panels/voxel_slices.ts';
+import { SkeletonsPanel } from './panels/skeletons.ts';
 import { buildSlicePlane, sliceClipPlane } from './viewer/slice_plane.ts';
 import { byId } from './panels/dom.ts';
 import { AnimationPlayer } from './viewer/animation_player.ts';
@@ -117,6 +118,9 @@ export class App {
   private readonly added = new Set<string>();
   /** Skeleton artifacts drawn over the mesh, by `${jobId}/${name}`, in the order shown. */
   private readonly skeletons = new Map<string, { object: THREE.Object3D; color: string; nodes: number; edges: number }>();
+  /** skeleton_distance jobs submitted for the comparison table, by `${first key}|${other key}`. */
+  private readonly distanceJobs = new Map<string, string>();
+  private readonly skeletonsPanel = new SkeletonsPanel(byId('skeletons'));
   /** A job's output mesh that the next job runs on ("Run on this"), instead of the selected mesh. */
   private runTarget: { jobId: string; artifact: string; kind: string } | null = null;
   /** The scalar field drawn now (or being prepared: token). */
@@ -409,6 +413,48 @@ export class App {
       texts: this.texts,
       skeletons: new Map([...this.skeletons].map(([k, v]) => [k, v.color])),
     });
+    this.renderSkeletons();
+  }
+
+  /** The comparison table of the skeletons drawn; asks the server for each one's distance to the first. */
+  private renderSkeletons(): void {
+    const keys = [...this.skeletons.keys()];
+    const split = (key: string) => {
+      const i = key.indexOf('/');
+      return { job: key.slice(0, i), artifact: key.slice(i + 1) };
+    };
+    const metricsOf = (jobId: string) => {
+      const m = this.metrics.get(`${jobId}/metrics`);
+      return m && typeof m === 'object' ? (m as Record<string, unknown>) : undefined;
+    };
+    this.skeletonsPanel.render(
+      keys.map((key, i) => {
+        const { job } = split(key);
+        let distance: { hausdorff: number; mean: number } | undefined | null = null;
+        if (i > 0) {
+          const pair = `${keys[0]}|${key}`;
+          const distanceJob = this.distanceJobs.get(pair);
+          if (distanceJob === undefined) {
+            this.distanceJobs.set(pair, '');
+            submitJob('skeleton_distance', { skeleton: split(keys[0]!), reference: split(key) }, {})
+              .then((j) => {
+                this.distanceJobs.set(pair, j.id);
+                this.upsertJob(j);
+              })
+              .catch((e) => this.error(`Cannot measure the distance between skeletons: ${describe(e)}`));
+          }
+          const m = distanceJob ? metricsOf(distanceJob) : undefined;
+          distance = m && typeof m.hausdorff === 'number' && typeof m.mean === 'number' ? { hausdorff: m.hausdorff, mean: m.mean } : undefined;
+        }
+        return {
+          key,
+          color: this.skeletons.get(key)!.color,
+          algorithm: this.jobs.get(job)?.algorithm ?? job,
+          metrics: metricsOf(job),
+          distance,
+        };
+      }),
+    );
   }
 
   private meshPly(meshId: string): Promise<PlyMesh> {

@@ -50,6 +50,25 @@ test('two skeletons of the elephant drawn at once, each in its colour, then one 
     await li.locator('.artifact-skeleton .swatch').waitFor();
     assert.match(await li.locator('.artifact-metrics').innerText(), /endpoints[\s\S]*inside fraction/);
   }
+  // The comparison table: a column per skeleton, its job's measures, and the
+  // distance the server's skeleton_distance measured.
+  const table = v.page.locator('#skeletons table.skeleton-table');
+  await table.waitFor();
+  assert.equal(await table.locator('tr').first().locator('th[data-skeleton]').count(), 2);
+  for (const [i, li] of [projection, mcf].entries()) {
+    const jobId = await li.getAttribute('data-job-id');
+    const metrics = await (await fetch(`${v.server.url}/api/v1/jobs/${jobId}/artifacts/metrics?format=json`)).json();
+    assert.equal(await table.locator('tr[data-metric="endpoints"] td').nth(i).innerText(), String(metrics.endpoints));
+  }
+  const distanceCell = table.locator('tr[data-metric="distance"] td').nth(1);
+  await v.page.waitForFunction((el) => /^[0-9.e-]+ \/ [0-9.e-]+$/.test(el.textContent), await distanceCell.elementHandle(), { timeout: 60000 });
+  const distanceJob = v.page.locator('#jobs li.job[data-algorithm="skeleton_distance"][data-state="done"]').first();
+  const distanceId = await distanceJob.getAttribute('data-job-id');
+  const d = await (await fetch(`${v.server.url}/api/v1/jobs/${distanceId}/artifacts/metrics?format=json`)).json();
+  const [h, mean] = (await distanceCell.innerText()).split(' / ').map(Number);
+  assert.ok(Math.abs(h - d.hausdorff) <= 1e-3 * d.hausdorff && Math.abs(mean - d.mean) <= 1e-3 * d.mean, `${h} / ${mean} against ${JSON.stringify(d)}`);
+  assert.ok(d.hausdorff > 0 && d.hausdorff < 0.5, `two skeletons of one elephant are close: ${JSON.stringify(d)}`);
+
   const png = await v.page.locator('#viewport canvas').screenshot({ path: path.join(artifacts, 'e2e-skeletons-both.png') });
   const pixels = await pngPixels(v.page, png);
   for (const s of drawn) assert.ok(countColour(pixels, s.color) > 200, `skeleton ${s.key} is drawn in ${s.color}`);
