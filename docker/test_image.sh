@@ -50,7 +50,11 @@ fi
 say "Building $IMAGE (docker/Dockerfile)"
 mkdir -p "$CCACHE"
 start=$SECONDS
-podman build --isolation=chroot --format docker -v "$CCACHE:/ccache" -f docker/Dockerfile -t "$IMAGE" .
+volumes=(-v "$CCACHE:/ccache")
+# This machine's own certificate authorities (a proxy's), for apt and npm in the build.
+cas=/usr/local/share/ca-certificates
+compgen -G "$cas/*.crt" >/dev/null && volumes+=(-v "$cas:$cas:ro")
+podman build --isolation=chroot --format docker "${volumes[@]}" -f docker/Dockerfile -t "$IMAGE" .
 say "Built in $((SECONDS - start)) s"
 
 inspect() { podman image inspect --format "$1" "$IMAGE"; }
