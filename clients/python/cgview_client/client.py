@@ -144,8 +144,8 @@ class Client:
                     raise TimeoutError(f"job {job_id} is still {job['state']} after {timeout} s")
                 event = events.next_for(job_id, 1.0) if events else None
                 if event is None:
-                    if events is None:
-                        time.sleep(0.25)
+                    if not (events and events.connected):
+                        time.sleep(0.25)  # polling
                     job = self.job(job_id)  # no event for a while: ask
                 elif event["state"] in TERMINAL_STATES and "artifacts" not in event:
                     job = self.job(job_id)

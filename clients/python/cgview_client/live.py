@@ -41,6 +41,10 @@ class JobEvents:
             self.ws = None
         return self.ws is not None
 
+    @property
+    def connected(self):
+        return self.ws is not None
+
     def next_for(self, job_id, timeout):
         """The job object of the next event about job_id, or None when none
         came within about timeout seconds (or the connection closed)."""

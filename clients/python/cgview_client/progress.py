@@ -1,6 +1,8 @@
 """A text progress bar for jobs, on a terminal or in a log."""
 import sys
 
+from .client import TERMINAL_STATES
+
 
 class ProgressBar:
     """Call with each job state: on a terminal one line redrawn in place,
@@ -23,6 +25,6 @@ class ProgressBar:
         self.last = key
         filled = round(fraction * self.width)
         line = f"{job.get('algorithm', job['id'])} [{'#' * filled}{'.' * (self.width - filled)}] {fraction:4.0%} {stage}"
-        end = "\n" if not self.tty or job["state"] in ("done", "failed", "cancelled", "interrupted") else ""
+        end = "\n" if not self.tty or job["state"] in TERMINAL_STATES else ""
         self.stream.write(("\r\033[K" if self.tty else "") + line + end)
         self.stream.flush()
