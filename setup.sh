@@ -28,7 +28,7 @@ APT_PACKAGES=(
   build-essential cmake ninja-build ccache pkg-config git
   libboost-dev libboost-system-dev nlohmann-json3-dev libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev
   libdraco-dev libtinygltf-dev
-  libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libpng-dev
+  libegl-dev libopengl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libpng-dev
   libopenvdb-dev libembree-dev
   libsqlite3-dev libssl-dev zlib1g-dev
   libcgal-demo
