@@ -99,6 +99,11 @@ class ClientTest(unittest.TestCase):
             self.client.render(self.mesh["id"], width=0)
         self.assertEqual(e.exception.parameter, "width")
 
+    def test_cancel(self):
+        job = self.client.submit("voxelize", self.mesh["id"], {"resolution": 1000})
+        self.assertEqual(self.client.cancel(job["id"])["state"], "cancelled")
+        self.assertEqual(self.client.wait(job["id"], timeout=60)["state"], "cancelled")
+
     def test_run_raises_when_the_job_does_not_end_done(self):
         done = self.client.run("curvature", self.mesh["id"])
         with mock.patch.object(Client, "wait", return_value={**done, "state": "failed", "error": "boom"}):
