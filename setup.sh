@@ -95,9 +95,11 @@ build_web_client() {
 
 build() {
   say "Building (Release) into $BUILD_DIR with $JOBS jobs"
-  local options=()
-  [ "$TESTS" = 0 ] && options=(-DCGVIEW_BUILD_TESTS=OFF -DCGVIEW_BUILD_BENCH=OFF)
-  cmake -S "$ROOT" -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release "${options[@]}" || die "cmake configure failed"
+  # Said each time: a build directory configured with CGVIEW_TESTS=0 gets its tests back.
+  local tests=ON
+  [ "$TESTS" != 0 ] || tests=OFF
+  cmake -S "$ROOT" -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCGVIEW_BUILD_TESTS=$tests -DCGVIEW_BUILD_BENCH=$tests \
+    || die "cmake configure failed"
   cmake --build "$BUILD_DIR" -j "$JOBS" || die "the build failed"
 }
 
