@@ -25,7 +25,7 @@ class Server:
     def __init__(self, timeout=30):
         for path in (SERVER, ELEPHANT):
             if not os.path.exists(path):
-                raise unittest.SkipTest(f"{path} is missing: build first (cmake --build build)")
+                raise FileNotFoundError(f"{path} is missing: build first (cmake --build build)")
         self.data_dir = tempfile.mkdtemp(prefix="cgview-pyclient-")
         self.proc = subprocess.Popen(
             [SERVER, "--host", "127.0.0.1", "--port", "0", "--data-dir", self.data_dir, "--samples", "none",
