@@ -7,7 +7,10 @@
 #                      (http://127.0.0.1:8080/; CGVIEW_PORT, CGVIEW_DATA change port and data dir)
 #   ./setup.sh test    install, build, and run every test
 #   ./setup.sh build   install and build only
+#   ./setup.sh install install only (Debian and npm packages)
 #
+# CGVIEW_TESTS=0 leaves out the test tools, the tests and the benchmarks: the
+# programs alone (the container image's build, docker/Dockerfile).
 # Run as root, or as a user who may sudo (for apt-get).
 set -euo pipefail
 
@@ -15,23 +18,29 @@ cd "$(dirname "$0")"
 ROOT=$(pwd)
 BUILD_DIR=${CGVIEW_BUILD_DIR:-$ROOT/build}
 JOBS=${CGVIEW_JOBS:-$(nproc)}
+TESTS=${CGVIEW_TESTS:-1}
 
 say() { if [ -t 1 ]; then printf '\033[1m==> %s\033[0m\n' "$*"; else printf '==> %s\n' "$*"; fi; }
 die() { printf 'setup.sh: error: %s\n' "$*" >&2; exit 1; }
 
-# Debian packages: build tools, libraries, sample data, test tools.
+# Debian packages: build tools, libraries, sample data; then test tools.
 APT_PACKAGES=(
   build-essential cmake ninja-build ccache pkg-config git
   libboost-dev libboost-system-dev nlohmann-json3-dev libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev
-  libdraco-dev draco libtinygltf-dev
-  libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libpng-dev
+  libdraco-dev libtinygltf-dev
+  libegl-dev libopengl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libpng-dev
   libopenvdb-dev libembree-dev
   libsqlite3-dev libssl-dev zlib1g-dev
-  libgtest-dev libgmock-dev
-  libcgal-demo assimp-testmodels assimp-utils
-  chromium wrk
+  libcgal-demo
   nodejs npm
 )
+TEST_APT_PACKAGES=(
+  draco libgtest-dev libgmock-dev
+  assimp-testmodels assimp-utils
+  chromium wrk
+  python3 python3-websocket
+)
+[ "$TESTS" = 0 ] || APT_PACKAGES+=("${TEST_APT_PACKAGES[@]}")
 
 as_root() {
   if [ "$(id -u)" -eq 0 ]; then "$@"
@@ -59,7 +68,9 @@ install_debian_packages() {
 
 check_tools() {
   local t
-  for t in cmake ninja g++ ccache node npm draco_decoder assimp; do
+  local tools=(cmake ninja g++ ccache node npm)
+  [ "$TESTS" = 0 ] || tools+=(draco_decoder assimp python3)
+  for t in "${tools[@]}"; do
     command -v "$t" >/dev/null || die "'$t' is missing after the install (see the apt-get output above)"
   done
   local node_major
@@ -84,14 +95,22 @@ build_web_client() {
 
 build() {
   say "Building (Release) into $BUILD_DIR with $JOBS jobs"
-  cmake -S "$ROOT" -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release || die "cmake configure failed"
+  # Said each time: a build directory configured with CGVIEW_TESTS=0 gets its tests back.
+  local tests=ON
+  [ "$TESTS" != 0 ] || tests=OFF
+  cmake -S "$ROOT" -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCGVIEW_BUILD_TESTS=$tests -DCGVIEW_BUILD_BENCH=$tests \
+    || die "cmake configure failed"
   cmake --build "$BUILD_DIR" -j "$JOBS" || die "the build failed"
 }
 
-setup() {
+install_packages() {
   install_debian_packages
   check_tools
   install_npm_packages
+}
+
+setup() {
+  install_packages
   build_web_client
   build
 }
@@ -112,6 +131,7 @@ case "${1:-}" in
   start) setup; start ;;
   test) setup; run_tests ;;
   build) setup ;;
-  -h|--help|"") sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; [ -n "${1:-}" ] ;;
-  *) die "unknown command '$1' (start, test or build)" ;;
+  install) install_packages ;;
+  -h|--help|"") sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; [ -n "${1:-}" ] ;;
+  *) die "unknown command '$1' (start, test, build or install)" ;;
 esac

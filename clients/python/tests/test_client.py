@@ -1,0 +1,166 @@
+"""cgview_client.Client against the real cgview-server."""
+import http.server
+import json
+import os
+import tempfile
+import threading
+import unittest
+from unittest import mock
+
+import harness
+from cgview_client import CGViewError, Client, JobFailed, live, png, render_around
+
+server = None
+
+
+def setUpModule():
+    global server
+    server = harness.start_module_server()
+
+
+class ClientTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.client = Client(server.url)
+        cls.mesh = cls.client.upload(harness.ELEPHANT)
+
+    def test_health_and_upload(self):
+        self.assertEqual(self.client.health()["status"], "ok")
+        self.assertEqual(self.mesh["name"], "elephant.off")
+        self.assertEqual(self.mesh["report"]["vertices"], 2775)
+        self.assertIn(self.mesh["id"], [m["id"] for m in self.client.meshes()])
+        self.assertEqual(self.client.mesh(self.mesh["id"])["sha256"], self.mesh["sha256"])
+
+    def test_find_mesh_by_id_name_or_file(self):
+        self.assertEqual(self.client.find_mesh(self.mesh["id"])["id"], self.mesh["id"])
+        self.assertEqual(self.client.find_mesh("elephant.off")["id"], self.mesh["id"])
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "tetra.off")
+            with open(path, "w") as f:
+                f.write("OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n")
+            uploaded = self.client.find_mesh(path)
+            self.assertEqual((uploaded["name"], uploaded["report"]["faces"]), ("tetra.off", 4))
+            self.assertEqual(self.client.download_mesh(uploaded["id"], "off")[:3], b"OFF")
+            self.client.delete_mesh(uploaded["id"])
+        with self.assertRaisesRegex(LookupError, "no mesh with id or name 'nothing.off'"):
+            self.client.find_mesh("nothing.off")
+
+    def run_and_watch(self, exponent, use_websocket):
+        # Each test its own exponent: a cached result would be done at once.
+        job = self.client.submit("centroid_distance", self.mesh["id"], {"exponent": exponent})
+        seen = []
+        job = self.client.wait(job["id"], seen.append, timeout=120, use_websocket=use_websocket)
+        self.assertEqual(job["state"], "done", job)
+        self.assertEqual(seen[-1]["state"], "done")
+        self.assertIn("artifacts", job)
+
+    def test_wait_by_polling(self):
+        self.run_and_watch(1.5, use_websocket=False)
+
+    @unittest.skipIf(live.websocket is None, "python3-websocket is not installed")
+    def test_wait_with_live_events(self):
+        events = live.JobEvents(server.url, token="sent-and-ignored-on-loopback")
+        self.assertTrue(events.open(), "the WebSocket did not open")
+        self.addCleanup(events.close)
+        job = self.client.submit("centroid_distance", self.mesh["id"], {"exponent": 2.5})
+        states = []
+        while not states or states[-1] not in ("done", "failed"):
+            event = events.next_for(job["id"], 30)
+            self.assertIsNotNone(event, f"no event after {states}")
+            states.append(event["state"])
+        self.assertEqual(states[-1], "done")
+        self.run_and_watch(3.5, use_websocket=True)
+
+    def test_run_download_and_artifact_formats(self):
+        job = self.client.run("curvature", self.mesh["id"])
+        names = sorted(a["name"] for a in job["artifacts"])
+        self.assertEqual(names, ["gaussian_curvature", "mean_curvature"])
+        with tempfile.TemporaryDirectory() as d:
+            paths = self.client.download(job["id"], d)
+            self.assertEqual(sorted(os.path.basename(p) for p in paths),
+                             ["gaussian_curvature.json", "mean_curvature.json"])
+            with open(os.path.join(d, "mean_curvature.json")) as f:
+                field = json.load(f)
+            self.assertEqual((field["location"], len(field["values"])), ("vertex", 2775))
+            [csv] = self.client.download(job["id"], d, ["mean_curvature"], "csv")
+            self.assertTrue(csv.endswith("mean_curvature.csv"))
+        self.assertEqual(self.client.job(job["id"])["state"], "done")
+        self.assertIn(job["id"], [j["id"] for j in self.client.jobs()])
+
+    def test_errors_name_what_is_wrong(self):
+        with self.assertRaises(CGViewError) as e:
+            self.client.submit("centroid_distance", self.mesh["id"], {"exponent": 9})
+        self.assertEqual((e.exception.status, e.exception.error), (400, "bad_request"))
+        self.assertIn("parameter 'exponent'", str(e.exception))
+        with self.assertRaises(CGViewError) as e:
+            self.client.mesh("0000000000000000")
+        self.assertEqual(e.exception.status, 404)
+        with self.assertRaises(CGViewError) as e:
+            self.client.render(self.mesh["id"], width=0)
+        self.assertEqual(e.exception.parameter, "width")
+
+    def test_cancel(self):
+        job = self.client.submit("voxelize", self.mesh["id"], {"resolution": 1000})
+        self.assertEqual(self.client.cancel(job["id"])["state"], "cancelled")
+        self.assertEqual(self.client.wait(job["id"], timeout=60)["state"], "cancelled")
+
+    def test_run_raises_when_the_job_does_not_end_done(self):
+        done = self.client.run("curvature", self.mesh["id"])
+        with mock.patch.object(Client, "wait", return_value={**done, "state": "failed", "error": "boom"}):
+            with self.assertRaisesRegex(JobFailed, "failed: boom"):
+                self.client.run("curvature", self.mesh["id"])
+
+    def test_render_and_views_around(self):
+        job = self.client.run("centroid_distance", self.mesh["id"])
+        plain = png.decode(self.client.render(self.mesh["id"], width=120, height=90))
+        self.assertEqual((plain.width, plain.height), (120, 90))
+        sheet = png.decode(render_around(self.client, self.mesh["id"], 4, 60, 50, field=f"{job['id']}/distance"))
+        self.assertEqual((sheet.width, sheet.height), (240, 50))
+        self.assertLess(harness.colourful(plain), 20)
+        for i in range(4):  # the field's colours in each view
+            view = png.Image(60, 50, b"".join(sheet.rgba[4 * (y * 240 + 60 * i):4 * (y * 240 + 60 * i + 60)]
+                                              for y in range(50)))
+            self.assertGreater(harness.colourful(view), 50, f"view {i}")
+
+
+class Recorder(http.server.BaseHTTPRequestHandler):
+    """Answers every GET with {} and keeps each request's Authorization."""
+    seen = []
+
+    def do_GET(self):
+        Recorder.seen.append(self.headers.get("Authorization"))
+        self.send_response(200)
+        self.send_header("Content-Type", "application/json")
+        self.end_headers()
+        self.wfile.write(b"{}")
+
+    def log_message(self, *args):
+        pass
+
+
+class TokenTest(unittest.TestCase):
+    def setUp(self):
+        self.http = http.server.HTTPServer(("127.0.0.1", 0), Recorder)
+        threading.Thread(target=self.http.serve_forever, daemon=True).start()
+        self.addCleanup(self.http.server_close)
+        self.addCleanup(self.http.shutdown)
+        self.url = f"http://127.0.0.1:{self.http.server_port}"
+        Recorder.seen = []
+
+    def test_bearer_token_from_argument_or_environment(self):
+        with mock.patch.dict(os.environ, {"CGVIEW_TOKEN": "from-env"}):
+            Client(self.url, token="given").health()
+            Client(self.url).health()
+        with mock.patch.dict(os.environ, {"CGVIEW_TOKEN": ""}):
+            Client(self.url).health()
+        self.assertEqual(Recorder.seen, ["Bearer given", "Bearer from-env", None])
+
+    def test_url_from_environment(self):
+        with mock.patch.dict(os.environ, {"CGVIEW_URL": self.url + "/"}):
+            self.assertEqual(Client().url, self.url)
+            Client().health()
+        self.assertEqual(len(Recorder.seen), 1)
+
+
+if __name__ == "__main__":
+    unittest.main()
