@@ -60,9 +60,22 @@ test('two skeletons of the elephant drawn at once, each in its colour, then one 
     const metrics = await (await fetch(`${v.server.url}/api/v1/jobs/${jobId}/artifacts/metrics?format=json`)).json();
     assert.equal(await table.locator('tr[data-metric="endpoints"] td').nth(i).innerText(), String(metrics.endpoints));
   }
-  const distanceCell = table.locator('tr[data-metric="distance"] td').nth(1);
-  await v.page.waitForFunction((el) => /^[0-9.e-]+ \/ [0-9.e-]+$/.test(el.textContent), await distanceCell.elementHandle(), { timeout: 60000 });
   const distanceJob = v.page.locator('#jobs li.job[data-algorithm="skeleton_distance"][data-state="done"]').first();
+  await distanceJob.waitFor({ timeout: 120000 }).catch(async (e) => {
+    const states = await v.page.locator('#jobs li.job').evaluateAll((ls) => ls.map((l) => `${l.dataset.algorithm}:${l.dataset.state}`));
+    throw new Error(`skeleton_distance never showed done: ${e.message}\njobs: ${states.join(' ')}${v.describeProblems()}\n${v.server.log()}`);
+  });
+  const distanceCell = table.locator('tr[data-metric="distance"] td').nth(1);
+  // The table is drawn anew on each change: ask the page, not a handle.
+  await v.page
+    .waitForFunction(
+      () => /^[0-9.e-]+ \/ [0-9.e-]+$/.test(document.querySelectorAll('#skeletons tr[data-metric="distance"] td')[1]?.textContent ?? ''),
+      null,
+      { timeout: 60000 },
+    )
+    .catch(async (e) => {
+      throw new Error(`the distance cell reads '${await distanceCell.innerText()}': ${e.message}${v.describeProblems()}`);
+    });
   const distanceId = await distanceJob.getAttribute('data-job-id');
   const d = await (await fetch(`${v.server.url}/api/v1/jobs/${distanceId}/artifacts/metrics?format=json`)).json();
   const [h, mean] = (await distanceCell.innerText()).split(' / ').map(Number);
