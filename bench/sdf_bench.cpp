@@ -30,19 +30,6 @@ using namespace cgview;
 
 namespace {
 
-double pearson(const std::vector<double>& a, const std::vector<double>& b) {
-  const double n = double(a.size());
-  double ma = 0, mb = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) ma += a[i] / n, mb += b[i] / n;
-  double sab = 0, saa = 0, sbb = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    sab += (a[i] - ma) * (b[i] - mb);
-    saa += (a[i] - ma) * (a[i] - ma);
-    sbb += (b[i] - mb) * (b[i] - mb);
-  }
-  return sab / std::sqrt(saa * sbb);
-}
-
 // Our whole sdf: face graph, rays, post-processing (as the algorithm runs it).
 std::vector<double> our_sdf(const Mesh& mesh, const sdf::SdfParamFields& p, bool smooth) {
   Context ctx;
@@ -105,7 +92,7 @@ int main(int argc, char** argv) {
     if (!big) ours = sdf::normalize_linear(ours);
     for (SurfaceMesh::Face_index f : sm.faces()) theirs.push_back(map[f]);
     std::printf("%-18s %9zu %10.3f %10.3f %7.1fx %9.4f%s\n", in.name.c_str(), in.mesh.faces.size(), cgal_s, ours_s,
-                cgal_s / ours_s, pearson(ours, theirs), big ? "  (both without post-processing)" : "");
+                cgal_s / ours_s, sdf::pearson(ours, theirs), big ? "  (both without post-processing)" : "");
     std::fflush(stdout);
   }
 

@@ -79,5 +79,10 @@ void bilateral_smooth(const Adjacency& face_graph, std::vector<double>& values, 
 int default_window(std::size_t faces);
 std::vector<double> normalize_linear(const std::vector<double>& values);
 
+// Pearson's correlation of two equally long series (how far two SDFs agree:
+// the tests and the benchmark compare ours with CGAL's by it); 0 when either
+// is constant or empty.
+double pearson(std::span<const double> a, std::span<const double> b);
+
 }  // namespace sdf
 }  // namespace cgview

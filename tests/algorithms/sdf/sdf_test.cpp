@@ -55,19 +55,6 @@ Vec3 face_centroid(const Mesh& m, std::size_t f) {
   return (m.positions[m.faces[f][0]] + m.positions[m.faces[f][1]] + m.positions[m.faces[f][2]]) / 3.0;
 }
 
-double pearson(const std::vector<double>& a, const std::vector<double>& b) {
-  const double n = double(a.size());
-  double ma = 0, mb = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) ma += a[i] / n, mb += b[i] / n;
-  double sab = 0, saa = 0, sbb = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    sab += (a[i] - ma) * (b[i] - mb);
-    saa += (a[i] - ma) * (a[i] - ma);
-    sbb += (b[i] - mb) * (b[i] - mb);
-  }
-  return sab / std::sqrt(saa * sbb);
-}
-
 // CGAL's raw SDF (no post-processing), -1 where it found none.
 std::vector<double> cgal_raw_sdf(const Mesh& mesh, double cone_degrees, int rays) {
   SurfaceMesh sm = manifold_surface_mesh(mesh, "the CGAL reference");
@@ -148,7 +135,7 @@ TEST(Sdf, RawValuesCorrelateWithCgalsSdfValuesOnSampleMeshes) {
       for (std::size_t f = 0; f < cgal.size(); ++f)
         if (cgal[f] >= 0 && !std::isnan(ours.values[f])) a.push_back(ours.values[f]), b.push_back(cgal[f]);
       EXPECT_GT(a.size(), 0.99 * double(cgal.size())) << name;
-      const double r = pearson(a, b);
+      const double r = sdf::pearson(a, b);
       EXPECT_GE(r, weights == sdf::Weights::uniform ? 0.98 : 0.95) << name << " weights " << int(weights);
       std::printf("%s: Pearson r = %.4f (weights %d, outliers %d) over %zu faces\n", name, r, int(weights),
                   int(outliers), a.size());
