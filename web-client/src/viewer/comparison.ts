@@ -1,0 +1,97 @@
+// Scalar fields side by side (a comparison): each field on the same surface in
+// its own pane of the viewer, all drawn through the one camera (viewer.ts
+// says why), each with its own title, colour map and legend with histogram.
+// Whatever algorithms made the fields: this is the scalar-field renderer
+// repeated per pane, nothing in it knows one algorithm from another.
+import { el } from '../panels/dom.ts';
+import { defaultMapFor } from './colormaps.ts';
+import { Legend } from './legend.ts';
+import type { PlyMesh } from './ply.ts';
+import { buildScalarSurface, colourGeometry, type ScalarField } from './scalar_field_renderer.ts';
+import { paneGrid, type Viewer } from './viewer.ts';
+import type * as THREE from 'three';
+
+export interface ComparedField {
+  /** Identifies the field across show() calls (a chosen colour map is kept): `${jobId}/${artifact}`. */
+  key: string;
+  title: string;
+  data: ScalarField;
+  /** The artifact's ColorHint: it chooses the default colour map. */
+  hint?: string;
+}
+
+export class ComparisonView {
+  private readonly viewer: Viewer;
+  private readonly container: HTMLElement;
+  /** Called after each frame that changed what the panes show, with each pane's key and colour map. */
+  private readonly onDrawn: (panes: Array<{ key: string; map: string }>) => void;
+  private root: HTMLElement | null = null;
+  private legends: Legend[] = [];
+  private panes: Array<{ field: ComparedField; object: THREE.Mesh }> = [];
+  /** Colour maps chosen in a pane's legend, by key. */
+  private readonly maps = new Map<string, string>();
+
+  constructor(viewer: Viewer, container: HTMLElement, onDrawn: ComparisonView['onDrawn']) {
+    this.viewer = viewer;
+    this.container = container;
+    this.onDrawn = onDrawn;
+  }
+
+  get active(): boolean {
+    return this.panes.length > 0;
+  }
+
+  /** Shows `fields` (one value per vertex or per face of `mesh`, server order) side by side, replacing any comparison. */
+  show(mesh: PlyMesh, fields: ComparedField[]): void {
+    this.removeOverlay();
+    const { cols, rows } = paneGrid(fields.length);
+    const cells = fields.map((f, i) => el('div', { class: 'compare-pane', 'data-pane': String(i), 'data-key': f.key }));
+    this.root = el('div', { class: 'compare', style: `grid-template-columns: repeat(${cols}, 1fr); grid-template-rows: repeat(${rows}, 1fr)` }, ...cells);
+    this.container.append(this.root);
+    this.panes = fields.map((field) => ({ field, object: buildScalarSurface(mesh, field.data, this.mapOf(field)) }));
+    this.legends = cells.map((cell, i) => new Legend(cell, (name) => this.setMap(i, name)));
+    this.panes.forEach((_, i) => this.showLegend(i));
+    this.viewer.setPanes(this.panes.map((p) => p.object), () => this.drawn());
+  }
+
+  /** Ends the comparison: the panes are disposed and the viewer shows one view again. */
+  clear(): void {
+    if (!this.active) return;
+    this.removeOverlay();
+    this.panes = [];
+    this.viewer.setPanes([]);
+  }
+
+  private mapOf(field: ComparedField): string {
+    return this.maps.get(field.key) ?? defaultMapFor(field.hint);
+  }
+
+  private setMap(i: number, name: string): void {
+    const pane = this.panes[i];
+    if (!pane) return;
+    this.maps.set(pane.field.key, name);
+    colourGeometry(pane.object.geometry, pane.field.data, name);
+    this.showLegend(i);
+    const panes = this.panes;
+    this.viewer.redraw(() => {
+      if (this.panes === panes) this.drawn();
+    });
+  }
+
+  private showLegend(i: number): void {
+    const { field } = this.panes[i]!;
+    this.legends[i]!.show(field.title, field.data.range, this.mapOf(field), field.data.values);
+    this.root?.children[i]?.setAttribute('data-map', this.mapOf(field));
+  }
+
+  private drawn(): void {
+    this.onDrawn(this.panes.map((p) => ({ key: p.field.key, map: this.mapOf(p.field) })));
+  }
+
+  private removeOverlay(): void {
+    for (const l of this.legends) l.dispose();
+    this.legends = [];
+    this.root?.remove();
+    this.root = null;
+  }
+}
