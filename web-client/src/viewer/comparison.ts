@@ -46,7 +46,7 @@ export class ComparisonView {
     this.removeOverlay();
     const { cols, rows } = paneGrid(fields.length);
     const cells = fields.map((f, i) => el('div', { class: 'compare-pane', 'data-pane': String(i), 'data-key': f.key }));
-    this.root = el('div', { class: 'compare', style: `grid-template-columns: repeat(${cols}, 1fr); grid-template-rows: repeat(${rows}, 1fr)` }, ...cells);
+    this.root = el('div', { class: 'compare-view', style: `grid-template-columns: repeat(${cols}, 1fr); grid-template-rows: repeat(${rows}, 1fr)` }, ...cells);
     this.container.append(this.root);
     this.panes = fields.map((field) => ({ field, object: buildScalarSurface(mesh, field.data, this.mapOf(field)) }));
     this.legends = cells.map((cell, i) => new Legend(cell, (name) => this.setMap(i, name)));

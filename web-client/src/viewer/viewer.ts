@@ -15,10 +15,10 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 
 export const BACKGROUND = '#1b1d22';
 
-/** Columns and rows of the grid of `n` panes: side by side up to 3, then 2 by 2 (and so on). */
+/** Columns and rows of the grid of `n` panes: side by side up to 3, then 2 by 2 (and so on); one cell for none. */
 export function paneGrid(n: number): { cols: number; rows: number } {
   const cols = n <= 3 ? Math.max(1, n) : Math.ceil(Math.sqrt(n));
-  return { cols, rows: Math.ceil(n / cols) };
+  return { cols, rows: Math.max(1, Math.ceil(n / cols)) };
 }
 
 export interface ViewerOptions {
@@ -152,10 +152,12 @@ export class Viewer {
       this.scene.remove(o);
       disposeObject(o);
     }
+    const cols = paneGrid(this.panes.length).cols;
     this.panes = objects;
     for (const o of objects) this.scene.add(o);
     this.resize();
-    if (!this.shown && objects.length) this.fitToView();
+    // Panes of another width: frame the surface again so that it fits them.
+    if (paneGrid(objects.length).cols !== cols) this.fitToView();
     if (onShown) this.afterFrame.push(onShown);
     this.requestRender();
   }
