@@ -4,6 +4,7 @@
 // The histogram is SVG, one <rect> per bin, so that it scales with the legend
 // and tests can read its bins (data-bins, data-total) from the DOM.
 import { COLOR_MAPS, colorMap, cssGradient, sample } from './colormaps.ts';
+import { histogram } from './histogram.ts';
 import { el } from '../panels/dom.ts';
 
 /** Bins of the legend's histogram. */
@@ -16,23 +17,6 @@ function formatValue(v: number): string {
   const a = Math.abs(v);
   if (a >= 1e5 || a < 1e-3) return v.toExponential(3);
   return Number(v.toPrecision(4)).toString();
-}
-
-/**
- * Counts the finite values in `bins` equal bins over [lo, hi]; values outside
- * the range go to the first or last bin (the colours clamp the same way).
- */
-export function histogram(values: Float32Array, [lo, hi]: [number, number], bins: number): { counts: Uint32Array; total: number } {
-  const counts = new Uint32Array(bins);
-  let total = 0;
-  const scale = hi > lo ? bins / (hi - lo) : 0;
-  for (const v of values) {
-    if (!Number.isFinite(v)) continue;
-    const b = scale ? Math.floor((v - lo) * scale) : bins >> 1;
-    ++counts[Math.min(bins - 1, Math.max(0, b))]!;
-    ++total;
-  }
-  return { counts, total };
 }
 
 export class Legend {
