@@ -415,7 +415,8 @@ export class App {
     this.jobsPanel.render({
       jobs,
       meshName: (id) => this.meshes.find((m) => m.id === id)?.name ?? null,
-      shown: this.field ? { jobId: this.field.jobId, artifact: this.field.artifact } : null,
+      // The single field is hidden while fields are compared.
+      shown: this.field && !this.compared.length ? { jobId: this.field.jobId, artifact: this.field.artifact } : null,
       compared: new Set(this.compared.map((c) => `${c.jobId}/${c.artifact}`)),
       added: this.added,
       target: this.runTarget ? `${this.runTarget.jobId}/${this.runTarget.artifact}` : null,
