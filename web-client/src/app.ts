@@ -69,10 +69,10 @@ export interface TestHooks {
   lastVoxels: { count: number; kept: number; threshold: number } | null;
   /**
    * The fields compared side by side, in pane order (left to right, top to
-   * bottom), with the colour map of each; set after the first frame showing
+   * bottom), with the colour map and the range of each; set after the first frame showing
    * them (and again after a colour-map change); null when not comparing.
    */
-  lastCompare: { meshId: string; panes: Array<{ jobId: string; artifact: string; map: string }> } | null;
+  lastCompare: { meshId: string; panes: Array<{ jobId: string; artifact: string; map: string; range: [number, number] }> } | null;
   /** Whether the server answered GET /api/v1/algorithms (null until asked). */
   algorithmsApi: boolean | null;
   /** The last mesh artifact added to the view, set after the first frame with it. */
@@ -199,7 +199,7 @@ export class App {
     this.legend = new Legend(byId('viewport'), (name) => this.setColorMap(name), 'legend');
     this.comparison = new ComparisonView(this.viewer, byId('viewport'), (panes) => {
       const meshId = this.selectedId;
-      this.hooks.lastCompare = meshId && this.compared.length ? { meshId, panes: panes.map((p, i) => ({ ...this.compared[i]!, map: p.map })) } : null;
+      this.hooks.lastCompare = meshId && this.compared.length ? { meshId, panes: panes.map((p, i) => ({ ...this.compared[i]!, map: p.map, range: p.range })) } : null;
     });
     this.leaveCompare = byId<HTMLButtonElement>('leave-compare');
     this.leaveCompare.addEventListener('click', () => this.leaveComparison());

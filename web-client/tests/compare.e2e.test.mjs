@@ -46,12 +46,12 @@ async function histogramOf(legend) {
   return { bins, total, counts };
 }
 
-function checkHistogram(h, count, what) {
+function checkHistogram(h, count, what, filled = 3) {
   assert.ok(h.bins >= 32 && h.bins <= 64, `${what}: 32 to 64 bins: ${h.bins}`);
   assert.equal(h.counts.length, h.bins, `${what}: one bar per bin`);
   assert.equal(h.total, count, `${what}: every value is counted`);
   assert.equal(h.counts.reduce((a, b) => a + b, 0), count, `${what}: the bars add up to the values`);
-  assert.ok(h.counts.filter((n) => n > 0).length >= 3, `${what}: the values spread over several bins: ${h.counts}`);
+  assert.ok(h.counts.filter((n) => n > 0).length >= filled, `${what}: the values spread over ${filled} bins or more: ${h.counts}`);
 }
 
 // Waits until the viewer has stopped drawing (the orbit's damping settles): no new frame over a second.
@@ -72,7 +72,7 @@ async function settled() {
 async function panes(n, file) {
   const png = await v.page.locator('#viewport canvas').screenshot({
     path: path.join(artifacts, file),
-    style: '.legend, .messages { visibility: hidden !important; }',
+    style: '.legend, .messages, .compare-options { visibility: hidden !important; }',
   });
   const img = await pngPixels(v.page, png);
   const width = Math.floor(img.width / n) - 4;
@@ -205,6 +205,27 @@ test('each pane shows its own field; a drag in the first pane turns the one came
     assert.ok(moved > 3 * SAME, `pane ${i} turned with the drag in pane 0: ${moved}`);
     assert.ok(still < SAME, `pane ${i} still has the silhouette of pane 0: ${still}`);
   }
+  assert.deepEqual(v.problems, [], v.describeProblems());
+});
+
+test('"One range per hint" colours the two curvatures over one range; the distance keeps its own', async () => {
+  const ranges = () => v.page.evaluate(() => window.__cgview.lastCompare.panes.map((p) => p.range));
+  const own = await ranges();
+  assert.notDeepEqual(own[0], own[1], 'mean and Gaussian curvature have ranges of their own');
+  const box = v.page.locator('.compare-view input.compare-same-range');
+  await box.check();
+  await v.page.waitForFunction((r) => JSON.stringify(window.__cgview.lastCompare.panes.map((p) => p.range)) !== r, JSON.stringify(own), { timeout: 10000 });
+  const shared = await ranges();
+  const hi = Math.max(own[0][1], own[1][1]);
+  assert.deepEqual(shared.slice(0, 2), [[-hi, hi], [-hi, hi]], 'both symmetric fields over their common range');
+  assert.deepEqual(shared[2], own[2], 'the only magnitude field keeps its range');
+  const legends = v.page.locator('.compare-view .compare-pane .legend');
+  assert.equal(await legends.nth(0).locator('.legend-max').innerText(), await legends.nth(1).locator('.legend-max').innerText());
+  // The histogram follows the range: still every value, in fewer, wider-spaced bins.
+  const count = curvature.job.artifacts.find((a) => a.name === 'mean_curvature').count;
+  checkHistogram(await histogramOf(legends.nth(0)), count, 'mean curvature over the common range', 1);
+  await box.uncheck();
+  await v.page.waitForFunction((r) => JSON.stringify(window.__cgview.lastCompare.panes.map((p) => p.range)) === r, JSON.stringify(own), { timeout: 10000 });
   assert.deepEqual(v.problems, [], v.describeProblems());
 });
 
