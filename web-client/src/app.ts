@@ -91,6 +91,13 @@ declare global {
   }
 }
 
+/** A scalar_field artifact to draw: its job, its description in the Job, and the mesh it is on. */
+interface FieldSource {
+  job: Job;
+  artifact: ArtifactInfo;
+  meshId: string;
+}
+
 function describe(e: unknown): string {
   if (e instanceof ApiError || e instanceof ServerError) return e.detail || e.message;
   if (e instanceof Error) return e.message;
@@ -176,8 +183,8 @@ export class App {
     this.jobsPanel = new JobsPanel(byId('jobs'), {
       cancel: (id) => void this.cancel(id),
       showField: (jobId, artifact) => void this.showField(jobId, artifact),
-      compare: (jobId) => void this.compareJob(jobId),
-      addToComparison: (jobId, artifact) => void this.addToComparison(jobId, artifact),
+      compare: (jobId) => this.compareJob(jobId),
+      addToComparison: (jobId, artifact) => this.addToComparison(jobId, artifact),
       addMesh: (jobId, artifact) => void this.addMeshArtifact(jobId, artifact),
       runOn: (jobId, artifact) => this.setRunTarget(jobId, artifact),
       playAnimation: (jobId, artifact) => void this.showAnimation(jobId, artifact),
@@ -440,7 +447,7 @@ export class App {
    * (the selection drops what was drawn on another mesh); null, with an error
    * shown, when the job, the artifact or the mesh is gone.
    */
-  private fieldSource(jobId: string, artifactName: string): { job: Job; artifact: ArtifactInfo; meshId: string } | null {
+  private fieldSource(jobId: string, artifactName: string): FieldSource | null {
     const job = this.jobs.get(jobId);
     const artifact = job?.artifacts?.find((a) => a.name === artifactName);
     const meshId = jobMeshId(job);
@@ -518,7 +525,7 @@ export class App {
 
   /** Shows the fields (all on one mesh) side by side in synchronized panes, each with its legend. */
   private async compare(list: Array<{ jobId: string; artifact: string }>): Promise<void> {
-    const sources: Array<NonNullable<ReturnType<App['fieldSource']>>> = [];
+    const sources: FieldSource[] = [];
     for (const c of list) {
       const source = this.fieldSource(c.jobId, c.artifact);
       if (!source) return;
