@@ -19,7 +19,7 @@ import {
 } from './api/rest.ts';
 import { parseSkeleton } from './api/skeleton.ts';
 import { jobMeshId } from './api/types.ts';
-import type { Algorithm, Job, JobInput, JobProgress, Mesh, ServerEvent } from './api/types.ts';
+import type { Algorithm, ArtifactInfo, Job, JobInput, JobProgress, Mesh, ServerEvent } from './api/types.ts';
 import { CgviewSocket, ServerError } from './api/ws.ts';
 import { AlgorithmsPanel } from './panels/algorithms.ts';
 import { JobsPanel } from './panels/jobs.ts';
@@ -36,6 +36,7 @@ import { AnimationPlayer } from './viewer/animation_player.ts';
 import { DracoDecoder } from './viewer/draco_decoder.ts';
 import { decodeFrames, framePositions } from './viewer/frames.ts';
 import { defaultMapFor } from './viewer/colormaps.ts';
+import { ComparisonView } from './viewer/comparison.ts';
 import { Legend } from './viewer/legend.ts';
 import { buildSkeleton, SKELETON_COLORS } from './viewer/skeleton_renderer.ts';
 import { parsePly, type PlyMesh } from './viewer/ply.ts';
@@ -69,6 +70,12 @@ export interface TestHooks {
   lastField: { jobId: string; artifact: string; meshId: string; location: string; count: number; range: [number, number]; map: string } | null;
   /** The voxels drawn in 3D from the slice panel: boundary cubes drawn, voxels kept, the threshold (0..1 of the range). */
   lastVoxels: { count: number; kept: number; threshold: number } | null;
+  /**
+   * The fields compared side by side, in pane order (left to right, top to
+   * bottom), with the colour map and the range of each; set after the first frame showing
+   * them (and again after a colour-map change); null when not comparing.
+   */
+  lastCompare: { meshId: string; panes: Array<{ jobId: string; artifact: string; map: string; range: [number, number] }> } | null;
   /** Whether the server answered GET /api/v1/algorithms (null until asked). */
   algorithmsApi: boolean | null;
   /** The last mesh artifact added to the view, set after the first frame with it. */
@@ -87,6 +94,13 @@ declare global {
   interface Window {
     __cgview: TestHooks;
   }
+}
+
+/** A scalar_field artifact to draw: its job, its description in the Job, and the mesh it is on. */
+interface FieldSource {
+  job: Job;
+  artifact: ArtifactInfo;
+  meshId: string;
 }
 
 function describe(e: unknown): string {
@@ -124,9 +138,12 @@ export class App {
   /** A job's output mesh that the next job runs on ("Run on this"), instead of the selected mesh. */
   private runTarget: { jobId: string; artifact: string; kind: string } | null = null;
   /** The scalar field drawn now (or being prepared: token). */
-  private field: { jobId: string; artifact: string; meshId: string; data: ScalarField; object: THREE.Mesh } | null = null;
+  private field: { jobId: string; artifact: string; meshId: string; data: ScalarField; object: THREE.Mesh; map: string } | null = null;
   private fieldToken = 0;
   private mapName: string | null = null; // null: the field's hint chooses
+  /** The fields compared side by side (empty: one view), and the token of the comparison being prepared. */
+  private compared: Array<{ jobId: string; artifact: string }> = [];
+  private compareToken = 0;
   private readonly plyCache = new Map<string, Promise<PlyMesh>>();
 
   private readonly hooks: TestHooks = {
@@ -137,6 +154,7 @@ export class App {
     lastError: null,
     lastField: null,
     lastVoxels: null,
+    lastCompare: null,
     algorithmsApi: null,
     lastExtra: null,
     lastAnimation: null,
@@ -153,6 +171,8 @@ export class App {
   private readonly jobsPanel: JobsPanel;
   private readonly slicePanel: VoxelSlicePanel;
   private readonly legend: Legend;
+  private readonly comparison: ComparisonView;
+  private readonly leaveCompare: HTMLButtonElement;
   private readonly player: AnimationPlayer;
   private animationToken = 0;
   private readonly status: HTMLElement;
@@ -174,6 +194,8 @@ export class App {
     this.jobsPanel = new JobsPanel(byId('jobs'), {
       cancel: (id) => void this.cancel(id),
       showField: (jobId, artifact) => void this.showField(jobId, artifact),
+      compare: (jobId) => this.compareJob(jobId),
+      addToComparison: (jobId, artifact) => this.addToComparison(jobId, artifact),
       addMesh: (jobId, artifact) => void this.addMeshArtifact(jobId, artifact),
       runOn: (jobId, artifact) => this.setRunTarget(jobId, artifact),
       playAnimation: (jobId, artifact) => void this.showAnimation(jobId, artifact),
@@ -193,7 +215,13 @@ export class App {
         this.hooks.lastVoxels = shown ? { count: shown.count, kept: shown.kept, threshold: shown.threshold } : null;
       },
     );
-    this.legend = new Legend(byId('viewport'), (name) => this.setColorMap(name));
+    this.legend = new Legend(byId('viewport'), (name) => this.setColorMap(name), 'legend');
+    this.comparison = new ComparisonView(this.viewer, byId('viewport'), (panes) => {
+      const meshId = this.selectedId;
+      this.hooks.lastCompare = meshId && this.compared.length ? { meshId, panes: panes.map((p, i) => ({ ...this.compared[i]!, map: p.map, range: p.range })) } : null;
+    });
+    this.leaveCompare = byId<HTMLButtonElement>('leave-compare');
+    this.leaveCompare.addEventListener('click', () => this.leaveComparison());
     this.player = new AnimationPlayer(byId('viewport'));
     new UploadControl(byId<HTMLInputElement>('file-input'), document.body, (files) => void this.upload(files));
     byId('fit').addEventListener('click', () => this.viewer.fitToView());
@@ -406,7 +434,9 @@ export class App {
     this.jobsPanel.render({
       jobs,
       meshName: (id) => this.meshes.find((m) => m.id === id)?.name ?? null,
-      shown: this.field ? { jobId: this.field.jobId, artifact: this.field.artifact } : null,
+      // The single field is hidden while fields are compared.
+      shown: this.field && !this.compared.length ? { jobId: this.field.jobId, artifact: this.field.artifact } : null,
+      compared: new Set(this.compared.map((c) => `${c.jobId}/${c.artifact}`)),
       added: this.added,
       target: this.runTarget ? `${this.runTarget.jobId}/${this.runTarget.artifact}` : null,
       metrics: this.metrics,
@@ -468,43 +498,59 @@ export class App {
   }
 
   /**
-   * Draws a job's scalar_field artifact on its mesh (selecting that mesh first
-   * when another one is shown): the values as f32, the range and location
-   * from the Job, the mesh in the server's vertex order (viewer/ply.ts).
+   * The job's scalar_field artifact and its mesh, with that mesh selected
+   * (the selection drops what was drawn on another mesh); null, with an error
+   * shown, when the job, the artifact or the mesh is gone.
    */
-  async showField(jobId: string, artifactName: string): Promise<void> {
+  private fieldSource(jobId: string, artifactName: string): FieldSource | null {
     const job = this.jobs.get(jobId);
     const artifact = job?.artifacts?.find((a) => a.name === artifactName);
     const meshId = jobMeshId(job);
-    if (!job || !artifact || !meshId) return;
+    if (!job || !artifact || !meshId) return null;
     if (this.selectedId !== meshId) {
       if (!this.meshes.some((m) => m.id === meshId)) {
         this.error(`Cannot show ${artifactName} of ${job.algorithm}: its mesh no longer exists`);
-        return;
+        return null;
       }
-      this.select(meshId); // drops the field shown now
+      this.select(meshId);
     }
+    return { job, artifact, meshId };
+  }
+
+  /**
+   * Fetches a scalar_field artifact: the values as f32, the range and location
+   * from the Job, the mesh in the server's vertex order (viewer/ply.ts).
+   */
+  private async loadField(jobId: string, artifact: ArtifactInfo, meshId: string): Promise<{ data: ScalarField; ply: PlyMesh }> {
+    const [values, ply] = await Promise.all([fetchArtifactF32(jobId, artifact.name), this.meshPly(meshId), this.showing]);
+    const location = artifact.location ?? (values.length === ply.faces && values.length !== ply.vertices ? 'face' : 'vertex');
+    let range: [number, number] =
+      artifact.range && artifact.range.length === 2 && artifact.range.every(Number.isFinite) ? artifact.range : finiteRange(values);
+    if (artifact.hint === 'symmetric') {
+      const m = Math.max(Math.abs(range[0]), Math.abs(range[1]));
+      range = [-m, m];
+    }
+    return { data: { name: artifact.name, location, values, range }, ply };
+  }
+
+  /** Draws a job's scalar_field artifact on its mesh, in place of a comparison (selecting that mesh first when another one is shown). */
+  async showField(jobId: string, artifactName: string): Promise<void> {
+    const source = this.fieldSource(jobId, artifactName);
+    if (!source) return;
+    const { job, artifact, meshId } = source;
+    this.leaveComparison();
     const token = ++this.fieldToken;
     try {
-      const [values, ply] = await Promise.all([fetchArtifactF32(jobId, artifactName), this.meshPly(meshId), this.showing]);
+      const { data, ply } = await this.loadField(jobId, artifact, meshId);
       if (token !== this.fieldToken || this.selectedId !== meshId) return;
-      const location =
-        artifact.location ?? (values.length === ply.faces && values.length !== ply.vertices ? 'face' : 'vertex');
-      let range: [number, number] =
-        artifact.range && artifact.range.length === 2 && artifact.range.every(Number.isFinite) ? artifact.range : finiteRange(values);
-      if (artifact.hint === 'symmetric') {
-        const m = Math.max(Math.abs(range[0]), Math.abs(range[1]));
-        range = [-m, m];
-      }
-      const data: ScalarField = { name: artifactName, location, values, range };
       const mapName = this.mapName ?? defaultMapFor(artifact.hint);
       const object = buildScalarSurface(ply, data, mapName);
-      this.field = { jobId, artifact: artifactName, meshId, data, object };
+      this.field = { jobId, artifact: artifactName, meshId, data, object, map: mapName };
       this.hooks.lastField = null;
       this.viewer.replace(object, () => {
-        if (this.viewer.object === object) this.hooks.lastField = this.fieldHook(mapName);
+        if (this.viewer.object === object) this.hooks.lastField = this.fieldHook();
       });
-      this.legend.show(`${job.algorithm} · ${artifactName}`, range, mapName);
+      this.showFieldLegend();
       this.renderJobs();
     } catch (e) {
       if (token !== this.fieldToken) return;
@@ -552,6 +598,67 @@ export class App {
     this.hooks.skeletons = [...this.skeletons].map(([key, v]) => ({ key, color: v.color, nodes: v.nodes, edges: v.edges }));
   }
 
+  /** "Compare": every scalar field of the job side by side (at most MAX_PANES). */
+  compareJob(jobId: string): void {
+    const fields = this.jobs.get(jobId)?.artifacts?.filter((a) => a.kind === 'scalar_field') ?? [];
+    if (fields.length > App.MAX_PANES) this.messages.notice(`Comparing the first ${App.MAX_PANES} of ${fields.length} fields.`);
+    void this.compare(fields.slice(0, App.MAX_PANES).map((a) => ({ jobId, artifact: a.name })));
+  }
+
+  /** "Add to comparison": the field joins the fields compared now (or the one shown), on the same mesh. */
+  addToComparison(jobId: string, artifact: string): void {
+    const now = this.compared.length ? this.compared : this.field ? [{ jobId: this.field.jobId, artifact: this.field.artifact }] : [];
+    if (now.some((c) => c.jobId === jobId && c.artifact === artifact)) return;
+    const meshId = jobMeshId(this.jobs.get(jobId));
+    const other = now.find((c) => jobMeshId(this.jobs.get(c.jobId)) !== meshId);
+    if (other) return this.error(`Cannot compare ${artifact}: it is on another mesh than ${other.artifact}; compare fields of one mesh.`);
+    if (now.length >= App.MAX_PANES) return this.error(`At most ${App.MAX_PANES} fields side by side: leave the comparison first.`);
+    void this.compare([...now, { jobId, artifact }]);
+  }
+
+  private static readonly MAX_PANES = 4;
+
+  /** Shows the fields (all on one mesh) side by side in synchronized panes, each with its legend. */
+  private async compare(list: Array<{ jobId: string; artifact: string }>): Promise<void> {
+    const sources: FieldSource[] = [];
+    for (const c of list) {
+      const source = this.fieldSource(c.jobId, c.artifact);
+      if (!source) return;
+      sources.push(source);
+    }
+    const meshId = sources[0]?.meshId;
+    if (!meshId || sources.some((s) => s.meshId !== meshId)) return;
+    const token = ++this.compareToken;
+    try {
+      const loaded = await Promise.all(sources.map((s) => this.loadField(s.job.id, s.artifact, meshId)));
+      if (token !== this.compareToken || this.selectedId !== meshId) return;
+      this.compared = list;
+      this.hooks.lastCompare = null;
+      this.legend.hide();
+      this.comparison.show(
+        loaded[0]!.ply,
+        loaded.map(({ data }, i) => ({ key: `${list[i]!.jobId}/${list[i]!.artifact}`, title: `${sources[i]!.job.algorithm} · ${data.name}`, data, hint: sources[i]!.artifact.hint })),
+      );
+      this.leaveCompare.hidden = false;
+      this.renderJobs();
+    } catch (e) {
+      if (token !== this.compareToken) return;
+      this.error(`Cannot compare the fields: ${describe(e)}`);
+    }
+  }
+
+  /** Back to one view: the field drawn before the comparison (if any) with its legend. */
+  leaveComparison(): void {
+    ++this.compareToken;
+    if (!this.compared.length) return;
+    this.compared = [];
+    this.hooks.lastCompare = null;
+    this.comparison.clear();
+    this.leaveCompare.hidden = true;
+    if (this.field) this.showFieldLegend();
+    this.renderJobs();
+  }
+
   /** Adds a job's mesh artifact (fetched as binary PLY) to the view, beside its input mesh. */
   async addMeshArtifact(jobId: string, artifactName: string): Promise<void> {
     const job = this.jobs.get(jobId);
@@ -589,6 +696,7 @@ export class App {
       const [bytes] = await Promise.all([this.socket.getAnimation(jobId, artifactName), this.showing]);
       if (token !== this.animationToken) return;
       const frames = decodeFrames(bytes);
+      this.leaveComparison();
       if (this.field) this.dropField();
       const positions = framePositions(frames, 0, new Float32Array(3 * frames.vertices));
       const geometry = new THREE.BufferGeometry();
@@ -623,19 +731,25 @@ export class App {
     }
   }
 
-  private fieldHook(map: string): TestHooks['lastField'] {
+  private fieldHook(): TestHooks['lastField'] {
     const f = this.field!;
-    return { jobId: f.jobId, artifact: f.artifact, meshId: f.meshId, location: f.data.location, count: f.data.values.length, range: f.data.range, map };
+    return { jobId: f.jobId, artifact: f.artifact, meshId: f.meshId, location: f.data.location, count: f.data.values.length, range: f.data.range, map: f.map };
+  }
+
+  private showFieldLegend(): void {
+    const f = this.field!;
+    this.legend.show(`${this.jobs.get(f.jobId)?.algorithm ?? ''} · ${f.artifact}`, f.data.range, f.map, f.data.values);
   }
 
   private setColorMap(name: string): void {
     this.mapName = name;
     const f = this.field;
     if (!f) return;
+    f.map = name;
     colourGeometry(f.object.geometry, f.data, name);
-    this.legend.show(`${this.jobs.get(f.jobId)?.algorithm ?? ''} · ${f.artifact}`, f.data.range, name);
+    this.showFieldLegend();
     this.viewer.redraw(() => {
-      if (this.field === f) this.hooks.lastField = this.fieldHook(name);
+      if (this.field === f) this.hooks.lastField = this.fieldHook();
     });
   }
 
@@ -709,6 +823,7 @@ export class App {
   /** Downloads the mesh over the WebSocket, decodes it in the worker and shows it. */
   private async show(mesh: Mesh): Promise<void> {
     this.load?.controller.abort();
+    this.leaveComparison();
     ++this.animationToken;
     this.player.hide();
     this.hooks.lastAnimation = null;
@@ -781,6 +896,7 @@ export class App {
     if (this.selectedId === id) {
       this.selectedId = null;
       this.algorithmsPanel.setMesh(null);
+      this.leaveComparison();
       if (this.field) this.dropField();
       if (this.load?.id === id) {
         this.load.controller.abort();

@@ -17,7 +17,7 @@ import { createHash } from 'node:crypto';
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import ts from 'typescript';
+import { importTs } from './ts_module.mjs';
 import draco3d from 'draco3d';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
@@ -26,16 +26,7 @@ const repo = path.resolve(webClient, '..');
 const samplesDir = path.join(repo, 'tests', 'data', 'frames');
 
 // frames.ts is pure TypeScript with no imports: strip its types and load it.
-async function loadFrames() {
-  const source = fs.readFileSync(path.join(webClient, 'src', 'api', 'frames.ts'), 'utf8');
-  const { outputText } = ts.transpileModule(source, {
-    compilerOptions: { module: ts.ModuleKind.ESNext, target: ts.ScriptTarget.ES2022 },
-    fileName: 'frames.ts',
-  });
-  return import('data:text/javascript;base64,' + Buffer.from(outputText).toString('base64'));
-}
-
-const frames = await loadFrames();
+const frames = await importTs('api/frames.ts');
 const { decodeFrame, decodeFrameHeader, encodeFrame, ChunkAssembler, FrameError, FRAME_HEADER_BYTES } = frames;
 
 // Sidecar key -> FrameHeader field.

@@ -176,7 +176,7 @@ test('running centroid_distance on the elephant: the job goes to done and the me
   assert.equal(shown.meshId, elephantId);
   assert.equal(shown.location, 'vertex');
   assert.equal(shown.count, ELEPHANT.vertices, 'one value per vertex');
-  assert.equal(shown.map, 'viridis');
+  assert.equal(shown.map, 'turbo', 'a distance (hint magnitude) is drawn on turbo');
   const legend = page.locator('#legend');
   assert.ok(await legend.isVisible(), 'the legend is shown');
   const lo = Number(await legend.locator('.legend-min').innerText());

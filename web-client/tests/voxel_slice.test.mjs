@@ -3,19 +3,10 @@
 // node's zlib, decoded by the viewer's code.  `npm run test:unit`.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import fs from 'node:fs';
-import path from 'node:path';
 import zlib from 'node:zlib';
-import { fileURLToPath } from 'node:url';
-import ts from 'typescript';
+import { importTs } from './ts_module.mjs';
 
-const here = path.dirname(fileURLToPath(import.meta.url));
-const source = fs.readFileSync(path.join(here, '..', 'src', 'api', 'voxel_slice.ts'), 'utf8');
-const { outputText } = ts.transpileModule(source, {
-  compilerOptions: { module: ts.ModuleKind.ESNext, target: ts.ScriptTarget.ES2022 },
-  fileName: 'voxel_slice.ts',
-});
-const { decodeSlicePayload } = await import('data:text/javascript;base64,' + Buffer.from(outputText).toString('base64'));
+const { decodeSlicePayload } = await importTs('api/voxel_slice.ts');
 
 function payload({ axis, type, index, width, height, values }) {
   const raw = type === 2 ? Buffer.from(new Float32Array(values).buffer) : Buffer.from(Uint8Array.from(values));

@@ -1,7 +1,9 @@
 // The job panel: every job, newest first, with its algorithm and mesh, state,
 // stage and a live progress bar (updated from the WebSocket's job_* events),
 // a cancel button while it is queued or running, and for a finished job its
-// artifacts: scalar fields can be shown on the mesh, metrics are a table,
+// artifacts: scalar fields can be shown on the mesh or compared side by side
+// ("Compare" shows every field of the job, "Add to comparison" adds one field
+// of any job on the same mesh), metrics are a table,
 // meshes can be added to the view beside their input, downloaded, or made the
 // input of the next job ("Run on this": a chain, API.md "Jobs chain").
 import { artifactUrl } from '../api/rest.ts';
@@ -13,6 +15,10 @@ export interface JobsActions {
   cancel(id: string): void;
   /** Shows a scalar_field artifact on its mesh. */
   showField(jobId: string, artifact: string): void;
+  /** Shows every scalar_field artifact of the job side by side, in synchronized views. */
+  compare(jobId: string): void;
+  /** Adds a scalar_field artifact to the fields compared side by side (or to the one shown). */
+  addToComparison(jobId: string, artifact: string): void;
   /** Adds a mesh artifact to the view, beside its input mesh. */
   addMesh(jobId: string, artifact: string): void;
   /** Makes a mesh or voxel-grid artifact the input of the next job (the algorithm form runs on it). */
@@ -31,6 +37,8 @@ export interface JobsView {
   meshName(id: string): string | null;
   /** The field shown now: job id and artifact name. */
   shown: { jobId: string; artifact: string } | null;
+  /** The fields compared side by side now, as `${jobId}/${name}`. */
+  compared: ReadonlySet<string>;
   /** Mesh artifacts in the view, as `${jobId}/${name}`. */
   added: ReadonlySet<string>;
   /** The mesh artifact the next job runs on (`${jobId}/${name}`), if one was chosen. */
@@ -122,7 +130,9 @@ export class JobsPanel {
     const metrics = (job.artifacts ?? [])
       .map((a) => (view.metrics.get(`${job.id}/${a.name}`) === undefined && view.texts.get(`${job.id}/${a.name}`) === undefined ? 0 : 1))
       .join('');
-    const added = (job.artifacts ?? []).map((a) => (view.added.has(`${job.id}/${a.name}`) ? 1 : 0)).join('');
+    const added = (job.artifacts ?? [])
+      .map((a) => (view.added.has(`${job.id}/${a.name}`) ? 1 : 0) + (view.compared.has(`${job.id}/${a.name}`) ? 2 : 0))
+      .join('');
     const skeletons = (job.artifacts ?? []).map((a) => view.skeletons.get(`${job.id}/${a.name}`) ?? '').join(',');
     return JSON.stringify([job.state, job.cached, job.error, mesh, shown, metrics, added, skeletons, job.artifacts?.length ?? 0]);
   }
@@ -168,6 +178,11 @@ export class JobsPanel {
     }
     if (job.error) li.append(el('p', { class: 'job-error' }, job.error));
     if (job.state === 'done') {
+      if ((job.artifacts ?? []).filter((a) => a.kind === 'scalar_field').length >= 2) {
+        const compare = el('button', { type: 'button', class: 'button small compare', title: "Show this job's fields side by side" }, 'Compare');
+        compare.addEventListener('click', () => this.actions.compare(job.id));
+        li.append(el('div', { class: 'job-actions' }, compare));
+      }
       for (const a of job.artifacts ?? []) li.append(this.artifact(job, a, view));
     }
     return li;
@@ -189,7 +204,11 @@ export class JobsPanel {
       const shown = view.shown?.jobId === job.id && view.shown.artifact === a.name;
       const show = el('button', { type: 'button', class: shown ? 'button small show active' : 'button small show' }, shown ? 'Shown' : 'Show');
       show.addEventListener('click', () => this.actions.showField(job.id, a.name));
-      row.append(label, show, el('a', { href: artifactUrl(job.id, a.name, 'csv'), download: '' }, 'csv'));
+      const compared = view.compared.has(`${job.id}/${a.name}`);
+      const add = el('button', { type: 'button', class: compared ? 'button small compare-add active' : 'button small compare-add', title: 'Show beside the fields compared now (or the one shown)' }, compared ? 'Compared' : 'Add to comparison');
+      add.disabled = compared;
+      add.addEventListener('click', () => this.actions.addToComparison(job.id, a.name));
+      row.append(label, show, add, el('a', { href: artifactUrl(job.id, a.name, 'csv'), download: '' }, 'csv'));
     } else if (a.kind === 'mesh') {
       const added = view.added.has(`${job.id}/${a.name}`);
       const add = el('button', { type: 'button', class: added ? 'button small add active' : 'button small add' }, added ? 'Added' : 'Add to view');

@@ -1,6 +1,7 @@
 // Colour maps for scalar fields: matplotlib's viridis, magma and inferno
-// (sequential), coolwarm (diverging, for fields symmetric around zero) and
-// tab10 (categorical labels). Sequential and diverging maps are stops at
+// (sequential), Google's turbo (sequential, blue for low to red for high: the
+// default for magnitudes such as distances and errors), coolwarm (diverging,
+// for fields symmetric around zero) and tab10 (categorical labels). Sequential and diverging maps are stops at
 // equal spacing, interpolated linearly in sRGB; the categorical one picks a
 // colour per integer value.
 
@@ -10,6 +11,29 @@ export interface ColorMap {
   stops: readonly string[];
   /** Categorical: value v gets stops[v mod n], no interpolation. */
   categorical?: boolean;
+}
+
+/**
+ * Turbo (Mikhailov, Google AI blog, 2019) from its published polynomial
+ * approximation, sampled at `n` equal steps: dark blue, cyan, green, yellow,
+ * orange, dark red.
+ */
+function turboStops(n: number): string[] {
+  const poly = [
+    [0.13572138, 4.6153926, -42.66032258, 132.13108234, -152.94239396, 59.28637943],
+    [0.09140261, 2.19418839, 4.84296658, -14.18503333, 4.27729857, 2.82956604],
+    [0.1066733, 12.64194608, -60.58204836, 110.36276771, -89.90310912, 27.34824973],
+  ];
+  const stops: string[] = [];
+  for (let i = 0; i < n; ++i) {
+    const x = i / (n - 1);
+    const channel = (c: number[]) => {
+      const v = c.reduceRight((acc, k) => acc * x + k, 0);
+      return Math.round(255 * Math.min(1, Math.max(0, v)));
+    };
+    stops.push(`#${poly.map((c) => channel(c).toString(16).padStart(2, '0')).join('')}`);
+  }
+  return stops;
 }
 
 export const COLOR_MAPS: readonly ColorMap[] = [
@@ -25,6 +49,7 @@ export const COLOR_MAPS: readonly ColorMap[] = [
     name: 'inferno',
     stops: ['#000004', '#160b39', '#420a68', '#6a176e', '#932667', '#bc3754', '#dd513a', '#f37819', '#fca50a', '#f6d746', '#fcffa4'],
   },
+  { name: 'turbo', stops: turboStops(33) },
   {
     name: 'coolwarm',
     stops: ['#3b4cc0', '#6282ea', '#8db0fe', '#b8d0f9', '#dddddd', '#f5c4ac', '#f49a7b', '#de604d', '#b40426'],
@@ -44,6 +69,7 @@ export function colorMap(name: string): ColorMap {
 export function defaultMapFor(hint: string | undefined): string {
   if (hint === 'symmetric') return 'coolwarm';
   if (hint === 'categorical') return 'tab10';
+  if (hint === 'magnitude') return 'turbo';
   return 'viridis';
 }
 

@@ -2,10 +2,24 @@
 // handling and fit-to-view. It holds at most one shown object at a time and
 // disposes of it when another replaces it (three-gltf-viewer's clear()).
 // Frames are rendered on demand (after a change), not continuously.
+//
+// Panes (a comparison of fields side by side): the viewer can draw several
+// objects, each in its own viewport of the one canvas, all through the one
+// camera. One WebGLRenderer with setViewport/setScissor per pane rather than
+// a canvas per pane: a single WebGL context (browsers cap them, and software
+// GL pays for each), the lights and overlays are shared, and the views are
+// synchronized by construction, since the orbit controls move the one camera
+// that every pane is drawn with; nothing copies camera state between views.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 
 export const BACKGROUND = '#1b1d22';
+
+/** Columns and rows of the grid of `n` panes: side by side up to 3, then 2 by 2 (and so on); one cell for none. */
+export function paneGrid(n: number): { cols: number; rows: number } {
+  const cols = n <= 3 ? Math.max(1, n) : Math.ceil(Math.sqrt(n));
+  return { cols, rows: Math.max(1, Math.ceil(n / cols)) };
+}
 
 export interface ViewerOptions {
   /** Called after every rendered frame. */
@@ -23,6 +37,8 @@ export class Viewer {
   private shown: THREE.Object3D | null = null;
   /** Objects shown beside the main one (mesh artifacts of jobs); cleared by show(). */
   private readonly extras = new THREE.Group();
+  /** Objects drawn each in its own pane, in place of the shown one and the extras; empty: one view. */
+  private panes: THREE.Object3D[] = [];
   private frameRequested = false;
   private afterFrame: Array<() => void> = [];
 
@@ -134,6 +150,26 @@ export class Viewer {
     this.requestRender();
   }
 
+  /**
+   * Draws `objects` side by side, each in its own pane through the shared
+   * camera, in place of the shown object and the extras (kept, hidden, until
+   * setPanes([]) ends the comparison); the previous panes are disposed.
+   */
+  setPanes(objects: THREE.Object3D[], onShown?: () => void): void {
+    for (const o of this.panes) {
+      this.scene.remove(o);
+      disposeObject(o);
+    }
+    const cols = paneGrid(this.panes.length).cols;
+    this.panes = objects;
+    for (const o of objects) this.scene.add(o);
+    this.resize();
+    // Panes of another width: frame the surface again so that it fits them.
+    if (paneGrid(objects.length).cols !== cols) this.fitToView();
+    if (onShown) this.afterFrame.push(onShown);
+    this.requestRender();
+  }
+
   /** Removes and disposes of the objects added with addExtra(). */
   clearExtras(): void {
     for (const child of [...this.extras.children]) {
@@ -158,16 +194,18 @@ export class Viewer {
     this.requestRender();
   }
 
-  /** Removes the shown object and everything beside it. */
+  /** Removes the shown object, everything beside it and the panes. */
   clearAll(): void {
     this.clear();
     this.clearExtras();
+    this.setPanes([]);
   }
 
   /** Frames the camera on the shown object's bounding sphere, looking from the front-right-above. */
   fitToView(): void {
-    if (!this.shown) return;
-    const box = new THREE.Box3().setFromObject(this.shown);
+    const target = this.shown ?? this.panes[0];
+    if (!target) return;
+    const box = new THREE.Box3().setFromObject(target);
     if (box.isEmpty()) return;
     const sphere = box.getBoundingSphere(new THREE.Sphere());
     const radius = Math.max(sphere.radius, 1e-6);
@@ -197,7 +235,7 @@ export class Viewer {
   }
 
   dispose(): void {
-    this.clear();
+    this.clearAll();
     this.resizeObserver.disconnect();
     this.controls.dispose();
     this.renderer.dispose();
@@ -208,7 +246,8 @@ export class Viewer {
     const width = Math.max(1, this.container.clientWidth);
     const height = Math.max(1, this.container.clientHeight);
     this.renderer.setSize(width, height, false);
-    this.camera.aspect = width / height;
+    const { cols, rows } = paneGrid(this.panes.length);
+    this.camera.aspect = width / cols / (height / rows);
     this.camera.updateProjectionMatrix();
     this.requestRender();
   }
@@ -218,11 +257,38 @@ export class Viewer {
     // With damping, update() keeps moving the camera for a few frames after
     // the pointer stops; it fires 'change', which asks for the next frame.
     this.controls.update();
-    this.renderer.render(this.scene, this.camera);
+    if (this.panes.length) this.renderPanes();
+    else this.renderer.render(this.scene, this.camera);
     this.options.onFrame?.();
     const callbacks = this.afterFrame;
     this.afterFrame = [];
     for (const cb of callbacks) cb();
+  }
+
+  /** Draws each pane in its cell of the grid, the others hidden (the clear, too, is scissored to the cell). */
+  private renderPanes(): void {
+    const { x: width, y: height } = this.renderer.getSize(new THREE.Vector2());
+    const { cols, rows } = paneGrid(this.panes.length);
+    const single = [this.shown, this.extras].filter((o) => o !== null);
+    const wasVisible = single.map((o) => o.visible);
+    for (const o of single) o.visible = false;
+    this.renderer.setScissorTest(true);
+    this.panes.forEach((pane, i) => {
+      const col = i % cols;
+      const row = Math.floor(i / cols);
+      const x0 = Math.round((col * width) / cols);
+      const x1 = Math.round(((col + 1) * width) / cols);
+      // GL's origin is the bottom left; row 0 is the top.
+      const y0 = Math.round(height - ((row + 1) * height) / rows);
+      const y1 = Math.round(height - (row * height) / rows);
+      for (const p of this.panes) p.visible = p === pane;
+      this.renderer.setViewport(x0, y0, x1 - x0, y1 - y0);
+      this.renderer.setScissor(x0, y0, x1 - x0, y1 - y0);
+      this.renderer.render(this.scene, this.camera);
+    });
+    this.renderer.setScissorTest(false);
+    this.renderer.setViewport(0, 0, width, height);
+    single.forEach((o, i) => (o.visible = wasVisible[i]!));
   }
 }
 
