@@ -242,3 +242,31 @@ test('"Leave comparison" goes back to one view with the field shown before', asy
   assert.ok(drawn > 20000, `the mesh fills the whole view again, larger than in a pane: ${drawn} pixels`);
   assert.deepEqual(v.problems, [], v.describeProblems());
 });
+
+// Issue 7's view (the paper's Figure 9): sdf_fast with compare on gives the
+// full SDF, its approximation from 10% of the faces and the error map; one
+// "Compare" shows the three side by side, per face, the error on turbo.
+test('sdf_fast with compare: the full SDF, the approximation and the error map side by side', async () => {
+  await v.page.locator('#algorithm-menu').selectOption('sdf_fast');
+  const form = v.page.locator('form.algorithm-form[data-algorithm="sdf_fast"]');
+  await form.locator('input[data-param="compare"]').check();
+  await form.locator('button.run').click();
+  const li = v.page.locator('#jobs li.job[data-algorithm="sdf_fast"][data-state="done"]').first();
+  await li.waitFor({ timeout: 120000 });
+  const job = await (await fetch(`${v.server.url}/api/v1/jobs/${await li.getAttribute('data-job-id')}`)).json();
+  assert.equal(job.params.compare, true, JSON.stringify(job.params));
+  const fields = job.artifacts.filter((a) => a.kind === 'scalar_field').map((a) => a.name);
+  assert.deepEqual(fields.sort(), ['error', 'sdf', 'sdf_fast']);
+  await li.locator('button.compare').click();
+  await v.page.waitForFunction(() => window.__cgview.lastCompare?.panes.length === 3, null, { timeout: 60000 });
+  const compare = await v.page.evaluate(() => window.__cgview.lastCompare);
+  const byName = Object.fromEntries(compare.panes.map((p) => [p.artifact, p.map]));
+  assert.equal(byName.error, 'turbo', `the error map is blue for none, towards red for the most: ${JSON.stringify(compare)}`);
+  const cells = v.page.locator('.compare-view .compare-pane');
+  const faces = job.artifacts.find((a) => a.name === 'sdf').count;
+  for (let i = 0; i < 3; ++i) checkHistogram(await histogramOf(cells.nth(i).locator('.legend')), faces, `pane ${i}`);
+  await settled();
+  await v.page.locator('#viewport canvas').screenshot({ path: path.join(artifacts, 'e2e-compare-sdf.png') });
+  await v.page.locator('#leave-compare').click();
+  assert.deepEqual(v.problems, [], v.describeProblems());
+});
