@@ -115,10 +115,7 @@ JobScheduler::JobScheduler(MeshService& meshes, JobConfig config) : meshes_(mesh
            "CREATE INDEX IF NOT EXISTS jobs_cache ON jobs(cache_key);",
            "jobs");
   // A database from before algorithms of several inputs lacks the column.
-  sqlite3_stmt* probe = nullptr;
-  const bool has_inputs = sqlite3_prepare_v2(db_, "SELECT inputs FROM jobs LIMIT 0", -1, &probe, nullptr) == SQLITE_OK;
-  sqlite3_finalize(probe);
-  if (!has_inputs) exec_sql(db_, "ALTER TABLE jobs ADD COLUMN inputs TEXT NOT NULL DEFAULT '{}';", "jobs");
+  add_missing_column(db_, "jobs", "inputs", "TEXT NOT NULL DEFAULT '{}'", "jobs");
   load();
   if (::pipe2(wake_pipe_, O_CLOEXEC | O_NONBLOCK) != 0) throw IoError("jobs: pipe failed");
 }
@@ -257,7 +254,8 @@ json JobScheduler::algorithms_json() const {
   return {{"algorithms", list}};
 }
 
-json JobScheduler::submit(const json& req, const std::string& owner, std::vector<std::string>* new_meshes) {
+json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std::string>* new_meshes) {
+  const std::string& owner = caller.user;
   if (!req.is_object()) throw InvalidInput("the body must be a JSON object");
   if (!req.contains("algorithm") || !req["algorithm"].is_string()) throw InvalidInput("\"algorithm\" must be a string");
   const std::string algorithm = req["algorithm"].get<std::string>();
@@ -293,7 +291,7 @@ json JobScheduler::submit(const json& req, const std::string& owner, std::vector
         throw InvalidInput("input '" + name + "' is a " + kind + ": {\"job\": \"<job id>\", \"artifact\": \"<name>\"}");
       {
         std::lock_guard lock(mutex_);
-        (void)artifact_file_locked(v["job"], v["artifact"], kind);
+        (void)artifact_file_locked(v["job"], v["artifact"], kind, caller);
       }
       resolved[name] = {{"job", v["job"]}, {"artifact", v["artifact"]}};
       input_shas += "\n" + name + "=" + v["job"].get<std::string>() + "/" + v["artifact"].get<std::string>();
@@ -308,16 +306,16 @@ json JobScheduler::submit(const json& req, const std::string& owner, std::vector
       // A chain: an earlier job's output mesh becomes a stored mesh (once, by
       // content) and the new job runs on it like on any other.
       const std::string from = v["job"], artifact_name = v["artifact"];
-      const ArtifactBytes ply = artifact(from, artifact_name, "ply");
-      if (const auto known = meshes_.store().find_by_sha256(sha256_hex(ply.bytes))) id = known->id;
+      const ArtifactBytes ply = artifact(from, artifact_name, "ply", caller);
+      if (const auto known = meshes_.store().find_by_sha256(sha256_hex(ply.bytes), owner)) id = known->id;
       else {
-        id = meshes_.upload(from + "-" + artifact_name + ".ply", "ply", ply.bytes).id;
+        id = meshes_.upload(from + "-" + artifact_name + ".ply", "ply", ply.bytes, owner).id;
         if (new_meshes) new_meshes->push_back(id);
       }
     } else {
       throw InvalidInput(shape(name));
     }
-    const auto rec = meshes_.store().get_mesh(id);
+    const auto rec = meshes_.store().get_mesh(id, caller);
     if (!rec) throw std::out_of_range("no mesh with id '" + id + "'");
     resolved[name] = id;
     // What a precheck may know of it: the stored report's box and counts.
@@ -391,35 +389,52 @@ json JobScheduler::submit(const json& req, const std::string& owner, std::vector
     out = job_json(*j);
   }
   if (j->cached) {
-    if (on_event) on_event({{"type", "job_done"}, {"job", out}});
+    if (on_event) on_event({{"type", "job_done"}, {"job", out}}, {owner});
   } else {
     wake();
   }
   return out;
 }
 
-json JobScheduler::list() const {
+const JobScheduler::Job& JobScheduler::job_locked(const std::string& id, const Caller& caller) const {
+  const auto it = jobs_.find(id);
+  if (it == jobs_.end() || !Access{it->second->owner}.allows(caller)) throw std::out_of_range("no job with id '" + id + "'");
+  return *it->second;
+}
+
+Access JobScheduler::job_access(const std::string& id) const {
+  std::lock_guard lock(mutex_);
+  const auto it = jobs_.find(id);
+  return {it == jobs_.end() ? std::string() : it->second->owner};
+}
+
+json JobScheduler::list(const Caller& caller) const {
   std::lock_guard lock(mutex_);
   json list = json::array();
-  for (const auto& id : order_) list.push_back(job_json(*jobs_.at(id)));
+  for (const auto& id : order_)
+    if (const Job& j = *jobs_.at(id); Access{j.owner}.allows(caller)) list.push_back(job_json(j));
   return {{"jobs", list}};
 }
 
-std::optional<json> JobScheduler::get(const std::string& id) const {
+std::optional<json> JobScheduler::get(const std::string& id, const Caller& caller) const {
   std::lock_guard lock(mutex_);
-  const auto it = jobs_.find(id);
-  if (it == jobs_.end()) return std::nullopt;
-  return job_json(*it->second);
+  try {
+    return job_json(job_locked(id, caller));
+  } catch (const std::out_of_range&) {
+    return std::nullopt;
+  }
 }
 
-std::optional<json> JobScheduler::cancel(const std::string& id) {
+std::optional<json> JobScheduler::cancel(const std::string& id, const Caller& caller) {
   json out;
   bool changed = false;
+  std::string owner;
   {
     std::lock_guard lock(mutex_);
     const auto it = jobs_.find(id);
-    if (it == jobs_.end()) return std::nullopt;
+    if (it == jobs_.end() || !Access{it->second->owner}.owned_by(caller)) return std::nullopt;
     Job& j = *it->second;
+    owner = j.owner;
     if (j.state == "queued") {
       auto& q = queues_[j.owner];
       q.erase(std::remove(q.begin(), q.end(), id), q.end());
@@ -441,15 +456,14 @@ std::optional<json> JobScheduler::cancel(const std::string& id) {
   }
   if (changed) {
     wake();
-    if (on_event) on_event({{"type", "job_cancelled"}, {"job", out}});
+    if (on_event) on_event({{"type", "job_cancelled"}, {"job", out}}, {owner});
   }
   return out;
 }
 
-fs::path JobScheduler::artifact_file_locked(const std::string& id, const std::string& name, const std::string& kind) const {
-  const auto it = jobs_.find(id);
-  if (it == jobs_.end()) throw std::out_of_range("no job with id '" + id + "'");
-  const Job& j = *it->second;
+fs::path JobScheduler::artifact_file_locked(const std::string& id, const std::string& name, const std::string& kind,
+                                           const Caller& caller) const {
+  const Job& j = job_locked(id, caller);
   if (j.state != "done") throw InvalidInput("job " + id + " is " + j.state + ", not done: it has no artifacts");
   for (const auto& a : json::parse(j.artifacts, nullptr, false))
     if (a.value("name", "") == name) {
@@ -460,14 +474,13 @@ fs::path JobScheduler::artifact_file_locked(const std::string& id, const std::st
   throw std::out_of_range("job " + id + " has no artifact '" + name + "'");
 }
 
-ArtifactBytes JobScheduler::artifact(const std::string& id, const std::string& name, const std::string& format_in) {
+ArtifactBytes JobScheduler::artifact(const std::string& id, const std::string& name, const std::string& format_in,
+                                     const Caller& caller) {
   json entry;
   std::string files, mesh_id;
   {
     std::lock_guard lock(mutex_);
-    const auto it = jobs_.find(id);
-    if (it == jobs_.end()) throw std::out_of_range("no job with id '" + id + "'");
-    const Job& j = *it->second;
+    const Job& j = job_locked(id, caller);
     if (j.state != "done") throw InvalidInput("job " + id + " is " + j.state + ", not done: it has no artifacts");
     for (const auto& a : json::parse(j.artifacts, nullptr, false))
       if (a.value("name", "") == name) entry = a;
@@ -733,7 +746,7 @@ void JobScheduler::loop() {
       }
     }
     for (auto& e : events)
-      if (on_event) on_event(e);
+      if (on_event) on_event(e, job_access(e["job"].value("id", "")));
     events.clear();
     // Wait for output, an exit (EOF on the pipe) or a wake-up.
     fds.push_back({wake_pipe_[0], POLLIN, 0});
