@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -601,10 +602,10 @@ TEST_F(ServerIntegration, MeshesSurviveARestart) {
 
 // cgview-server ARGS... on the test's data directory; its stdout.
 std::string server_command(const fs::path& data, const std::string& args) {
-  std::string cmd = test::bin("cgview-server");
-  cmd.insert(0, "'").append("' --data-dir '").append(data.string()).append("' ").append(args).append(" 2>/dev/null");
+  std::ostringstream cmd;  // (one + chain of strings here trips GCC 12's -Wrestrict)
+  cmd << "'" << test::bin("cgview-server") << "' --data-dir '" << data.string() << "' " << args << " 2>/dev/null";
   std::string out;
-  if (FILE* p = ::popen(cmd.c_str(), "r")) {
+  if (FILE* p = ::popen(cmd.str().c_str(), "r")) {
     char buf[512];
     for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
     ::pclose(p);
