@@ -1,12 +1,11 @@
 import './styles.css';
-import { installAuthorizedDownloads, onUnauthorized, setToken, tokenForm } from './api/auth.ts';
+import { installAuthorizedDownloads, onUnauthorized, tokenForm } from './api/auth.ts';
 import { App } from './app.ts';
 
 // A server that needs a token (protocol/API.md "Users and tokens"): ask once,
 // keep it, and start again with it.  On loopback this never happens.
 installAuthorizedDownloads();
 onUnauthorized(() => {
-  setToken(null);
   void tokenForm('This server needs a token (cgview-server user add NAME prints one):').then(() => location.reload());
 });
 

@@ -82,11 +82,12 @@ export function installAuthorizedDownloads(root: Document = document): void {
   });
 }
 
-/** The small form that asks for a token once; resolves when one is stored. */
+let asking: Promise<void> | null = null;
+
+/** The small form that asks for a token once (however many requests were refused); resolves when one is stored. */
 export function tokenForm(message: string): Promise<void> {
-  const existing = document.getElementById('token-form');
-  if (existing) return Promise.resolve();
-  return new Promise((resolve) => {
+  asking ??= new Promise((resolve) => {
+    setToken(null); // the stored one, if any, was refused
     const form = document.createElement('form');
     form.id = 'token-form';
     form.className = 'token-form';
@@ -107,4 +108,5 @@ export function tokenForm(message: string): Promise<void> {
     document.body.append(form);
     input.focus();
   });
+  return asking;
 }
