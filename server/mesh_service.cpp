@@ -125,7 +125,7 @@ int MeshService::import_samples(const std::vector<std::filesystem::path>& files,
       const std::string bytes = read_file_bytes(p, max_bytes_each);
       if (store_.find_by_sha256(sha256_hex(bytes), kSystemOwner)) continue;
       const MeshRecord rec = upload(p.filename().string(), "", bytes, kSystemOwner);
-      store_.share("mesh", rec.id, {kEveryone});
+      store_.set_shared("mesh", rec.id, {kEveryone}, true);
       ++added;
     } catch (const std::exception&) {
       // Not a mesh we read (or too large): samples are a convenience.

@@ -389,8 +389,7 @@ HttpResponse Router::share(const MeshRecord& rec, const HttpRequest& req, bool a
   if (!everyone.is_boolean()) return error_response(400, "bad_request", shape);
   if (everyone.get<bool>()) users.push_back(kEveryone);
   if (users.empty()) return error_response(400, "bad_request", shape);
-  if (add) meshes_.store().share("mesh", rec.id, users);
-  else meshes_.store().unshare("mesh", rec.id, users);
+  meshes_.store().set_shared("mesh", rec.id, users, add);
   const Access a = meshes_.store().mesh_access(rec.id).value_or(Access{rec.owner});
   return json_response(200, {{"mesh_id", rec.id}, {"owner", a.owner}, {"users", a.readers}, {"everyone", a.everyone}});
 }

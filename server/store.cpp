@@ -270,19 +270,11 @@ std::string Store::read_blob(const MeshRecord& r) const {
   return bytes;
 }
 
-void Store::share(const std::string& kind, const std::string& id, const std::vector<std::string>& users) {
+void Store::set_shared(const std::string& kind, const std::string& id, const std::vector<std::string>& users, bool shared) {
   std::lock_guard lock(mutex_);
   for (const auto& u : users) {
-    Stmt s(db_, "INSERT OR IGNORE INTO shares (kind, item, user) VALUES (?1, ?2, ?3)");
-    s.bind(1, kind).bind(2, id).bind(3, u);
-    s.step();
-  }
-}
-
-void Store::unshare(const std::string& kind, const std::string& id, const std::vector<std::string>& users) {
-  std::lock_guard lock(mutex_);
-  for (const auto& u : users) {
-    Stmt s(db_, "DELETE FROM shares WHERE kind = ?1 AND item = ?2 AND user = ?3");
+    Stmt s(db_, shared ? "INSERT OR IGNORE INTO shares (kind, item, user) VALUES (?1, ?2, ?3)"
+                       : "DELETE FROM shares WHERE kind = ?1 AND item = ?2 AND user = ?3");
     s.bind(1, kind).bind(2, id).bind(3, u);
     s.step();
   }

@@ -91,9 +91,9 @@ class Store {
   std::filesystem::path blob_file(const MeshRecord& record) const { return blob_path(record); }
   std::size_t count() const { return count_; }
 
-  // Sharing: kind is "mesh" or "job"; users by name, or kEveryone.
-  void share(const std::string& kind, const std::string& id, const std::vector<std::string>& users);
-  void unshare(const std::string& kind, const std::string& id, const std::vector<std::string>& users);
+  // Shares an item with users (by name, or kEveryone), or stops sharing it
+  // (shared false); kind is "mesh".
+  void set_shared(const std::string& kind, const std::string& id, const std::vector<std::string>& users, bool shared);
   // The users an item is shared with (kEveryone included as such).
   std::vector<std::string> shared_with(const std::string& kind, const std::string& id) const;
   // A mesh's owner and readers; nullopt when there is no such mesh.

@@ -174,7 +174,7 @@ TEST(Store, AnOldDataDirectoryUpgradesAndUsersPersist) {
     EXPECT_FALSE(store.get_mesh(old->id, {"alice", false}));
     store.add_user("alice", false);
     store.add_token("0123456789abcdef", "alice", sha256_hex("secret"));
-    store.share("mesh", old->id, {"alice"});
+    store.set_shared("mesh", old->id, {"alice"}, true);
   }
   Store again(dir);
   EXPECT_TRUE(again.get_mesh("00000000000000aa", {"alice", false}));
