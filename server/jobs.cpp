@@ -389,30 +389,48 @@ json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std
     out = job_json(*j);
   }
   if (j->cached) {
-    if (on_event) on_event({{"type", "job_done"}, {"job", out}}, {owner});
+    if (on_event) on_event({{"type", "job_done"}, {"job", out}}, Access{owner});
   } else {
     wake();
   }
   return out;
 }
 
+bool JobScheduler::readable(const Job& j, const Caller& caller) const {
+  // Another user's job: the store knows whether it was shared.
+  return Access{j.owner}.allows(caller) || meshes_.store().access("job", j.id, j.owner).allows(caller);
+}
+
 const JobScheduler::Job& JobScheduler::job_locked(const std::string& id, const Caller& caller) const {
   const auto it = jobs_.find(id);
-  if (it == jobs_.end() || !Access{it->second->owner}.allows(caller)) throw std::out_of_range("no job with id '" + id + "'");
+  if (it == jobs_.end() || !readable(*it->second, caller)) throw std::out_of_range("no job with id '" + id + "'");
   return *it->second;
 }
 
 Access JobScheduler::job_access(const std::string& id) const {
-  std::lock_guard lock(mutex_);
-  const auto it = jobs_.find(id);
-  return {it == jobs_.end() ? std::string() : it->second->owner};
+  std::string owner;
+  {
+    std::lock_guard lock(mutex_);
+    const auto it = jobs_.find(id);
+    if (it != jobs_.end()) owner = it->second->owner;
+  }
+  return meshes_.store().access("job", id, owner);
+}
+
+Access JobScheduler::access(const std::string& id, const Caller& caller) const {
+  std::string owner;
+  {
+    std::lock_guard lock(mutex_);
+    owner = job_locked(id, caller).owner;
+  }
+  return meshes_.store().access("job", id, owner);
 }
 
 json JobScheduler::list(const Caller& caller) const {
   std::lock_guard lock(mutex_);
   json list = json::array();
   for (const auto& id : order_)
-    if (const Job& j = *jobs_.at(id); Access{j.owner}.allows(caller)) list.push_back(job_json(j));
+    if (const Job& j = *jobs_.at(id); readable(j, caller)) list.push_back(job_json(j));
   return {{"jobs", list}};
 }
 
@@ -428,13 +446,12 @@ std::optional<json> JobScheduler::get(const std::string& id, const Caller& calle
 std::optional<json> JobScheduler::cancel(const std::string& id, const Caller& caller) {
   json out;
   bool changed = false;
-  std::string owner;
   {
     std::lock_guard lock(mutex_);
     const auto it = jobs_.find(id);
-    if (it == jobs_.end() || !Access{it->second->owner}.owned_by(caller)) return std::nullopt;
+    if (it == jobs_.end() || !readable(*it->second, caller)) return std::nullopt;
     Job& j = *it->second;
-    owner = j.owner;
+    if (!Access{j.owner}.owned_by(caller)) throw Forbidden("job " + id + " is " + j.owner + "'s: only its owner cancels it");
     if (j.state == "queued") {
       auto& q = queues_[j.owner];
       q.erase(std::remove(q.begin(), q.end(), id), q.end());
@@ -456,7 +473,7 @@ std::optional<json> JobScheduler::cancel(const std::string& id, const Caller& ca
   }
   if (changed) {
     wake();
-    if (on_event) on_event({{"type", "job_cancelled"}, {"job", out}}, {owner});
+    if (on_event) on_event({{"type", "job_cancelled"}, {"job", out}}, job_access(id));
   }
   return out;
 }

@@ -55,7 +55,7 @@ class JobScheduler {
   // Starts running queued jobs (set on_event first).
   void start();
   // Called (from the scheduler's thread) with job_progress, job_done, job_failed
-  // and job_cancelled events, and who may see them (the job's owner).
+  // and job_cancelled events, and who may see them (the job's owner and shares).
   std::function<void(const nlohmann::json&, const Access&)> on_event;
 
   // GET /api/v1/algorithms: the algorithms a client may run (test ones hidden).
@@ -69,11 +69,16 @@ class JobScheduler {
   // that does not exist.
   nlohmann::json submit(const nlohmann::json& request, const Caller& caller = Caller::local(),
                         std::vector<std::string>* new_meshes = nullptr);
-  // The jobs the caller may see (their own; an admin's: all); get, cancel
-  // and artifact answer nullopt or std::out_of_range for any other.
+  // The jobs the caller may see (their own and those shared with them; an
+  // admin's: all); get, cancel and artifact answer nullopt or
+  // std::out_of_range for any other.
   nlohmann::json list(const Caller& caller = Caller::local()) const;
   std::optional<nlohmann::json> get(const std::string& id, const Caller& caller = Caller::local()) const;
-  // Cancels a queued or running job; the job (unchanged when it had ended).
+  // Who reads a job the caller sees (its owner and shares); std::out_of_range
+  // for any other.
+  Access access(const std::string& id, const Caller& caller) const;
+  // Cancels a queued or running job (its owner or an admin, else Forbidden);
+  // the job (unchanged when it had ended).
   std::optional<nlohmann::json> cancel(const std::string& id, const Caller& caller = Caller::local());
   // An artifact of a done job in a format; throws std::out_of_range (no such
   // job or artifact), InvalidInput (job not done), UnsupportedFormat.
@@ -92,6 +97,8 @@ class JobScheduler {
   void reap(Job& job, int status, std::vector<nlohmann::json>& events);  // under mutex_
   void wake();
   std::filesystem::path job_dir(const std::string& id) const;
+  // Whether the caller reads the job: theirs, shared with them, or admin.
+  bool readable(const Job& job, const Caller& caller) const;
   // The job if the caller may see it (under mutex_); throws std::out_of_range.
   const Job& job_locked(const std::string& id, const Caller& caller) const;
   // Who may see a job's events.

@@ -79,11 +79,6 @@ const char* content_type_of(const std::string& ext) {
   return it == types.end() ? "application/octet-stream" : it->second;
 }
 
-// A 403: the caller reads the item (it was shared with them) but may not change it.
-struct Forbidden : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
 // A 400 naming the query parameter at fault.
 struct BadParameter : std::runtime_error {
   BadParameter(std::string name, const std::string& detail) : std::runtime_error(detail), parameter(std::move(name)) {}
@@ -233,12 +228,12 @@ Router::Router(MeshService& meshes, RouterConfig config)
   routes_.push_back({"POST", "/api/v1/meshes/{id}/share",
                      "Share a mesh (its owner or an admin): {\"users\":[NAME,...]} and/or {\"everyone\":true}; answers who reads it", {},
                      [this, find_owned](const Params& p, const HttpRequest& req, const Caller& caller) {
-                       return share(find_owned(p, caller), req, true);
+                       return share("mesh", p.at("id"), find_owned(p, caller).owner, req, true);
                      },
                      false});
   routes_.push_back({"POST", "/api/v1/meshes/{id}/unshare", "Stop sharing a mesh: the same body as share", {},
                      [this, find_owned](const Params& p, const HttpRequest& req, const Caller& caller) {
-                       return share(find_owned(p, caller), req, false);
+                       return share("mesh", p.at("id"), find_owned(p, caller).owner, req, false);
                      },
                      false});
   // Algorithms and jobs (protocol/API.md): run in worker processes by the JobScheduler.
@@ -303,6 +298,23 @@ Router::Router(MeshService& meshes, RouterConfig config)
                        r.headers.push_back({"Content-Disposition", "attachment; filename=\"" + a.file_name + "\""});
                        return r;
                      }});
+  // A job shared is its state and artifacts, read-only.
+  auto job_owner = [jobs](const Params& p, const Caller& caller) {
+    const Access a = jobs().access(p.at("id"), caller);
+    if (!a.owned_by(caller)) throw Forbidden("job " + p.at("id") + " is " + a.owner + "'s: only its owner changes it");
+    return a.owner;
+  };
+  routes_.push_back({"POST", "/api/v1/jobs/{id}/share",
+                     "Share a job and its artifacts (its owner or an admin): the same body as a mesh's share", {},
+                     [this, job_owner](const Params& p, const HttpRequest& req, const Caller& caller) {
+                       return share("job", p.at("id"), job_owner(p, caller), req, true);
+                     },
+                     false});
+  routes_.push_back({"POST", "/api/v1/jobs/{id}/unshare", "Stop sharing a job", {},
+                     [this, job_owner](const Params& p, const HttpRequest& req, const Caller& caller) {
+                       return share("job", p.at("id"), job_owner(p, caller), req, false);
+                     },
+                     false});
   routes_.push_back({"GET", "/api/v1/openapi.json", "This API's OpenAPI 3 document", {},
                      [this](const Params&, const HttpRequest&, const Caller&) { return json_response(200, openapi()); },
                      false});
@@ -373,7 +385,8 @@ HttpResponse Router::render_png(const MeshRecord& rec, const HttpRequest& req, c
   return r;
 }
 
-HttpResponse Router::share(const MeshRecord& rec, const HttpRequest& req, bool add) const {
+HttpResponse Router::share(const std::string& kind, const std::string& id, const std::string& owner, const HttpRequest& req,
+                           bool add) const {
   const json body = json::parse(req.body, nullptr, false);
   const char* shape = "the body is {\"users\": [NAME, ...]} and/or {\"everyone\": true}";
   if (!body.is_object()) return error_response(400, "bad_request", shape);
@@ -389,9 +402,9 @@ HttpResponse Router::share(const MeshRecord& rec, const HttpRequest& req, bool a
   if (!everyone.is_boolean()) return error_response(400, "bad_request", shape);
   if (everyone.get<bool>()) users.push_back(kEveryone);
   if (users.empty()) return error_response(400, "bad_request", shape);
-  meshes_.store().set_shared("mesh", rec.id, users, add);
-  const Access a = meshes_.store().mesh_access(rec.id).value_or(Access{rec.owner});
-  return json_response(200, {{"mesh_id", rec.id}, {"owner", a.owner}, {"users", a.readers}, {"everyone", a.everyone}});
+  meshes_.store().set_shared(kind, id, users, add);
+  const Access a = meshes_.store().access(kind, id, owner);
+  return json_response(200, {{"id", id}, {"owner", a.owner}, {"users", a.readers}, {"everyone", a.everyone}});
 }
 
 ScalarField Router::resolve_field(const MeshRecord& rec, const std::string& spec, const Caller& caller) const {
@@ -523,7 +536,7 @@ json Router::openapi() const {
     const bool json_body = r.pattern != "/api/v1/meshes";  // every POST but the upload takes JSON
     if (r.method == "POST" && json_body) {
       op["requestBody"] = {{"content", {{"application/json", {{"schema", {{"type", "object"}}}}}}}};
-      if (is_job) {
+      if (r.pattern == "/api/v1/jobs") {
         op["responses"].erase("200");
         op["responses"]["201"] = {{"description", "created"}};
       } else {

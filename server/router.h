@@ -81,8 +81,10 @@ class Router {
   HttpResponse render_png(const MeshRecord& rec, const HttpRequest& req, const Caller& caller) const;
   // The scalar field that render.png's `field` names (JOB_ID/NAME or NAME).
   ScalarField resolve_field(const MeshRecord& rec, const std::string& spec, const Caller& caller) const;
-  // POST /api/v1/meshes/{id}/share and /unshare.
-  HttpResponse share(const MeshRecord& rec, const HttpRequest& req, bool add) const;
+  // POST /api/v1/meshes/{id}/share, /unshare and the same for jobs (kind
+  // "mesh" or "job"), once the caller is known to own the item.
+  HttpResponse share(const std::string& kind, const std::string& id, const std::string& owner, const HttpRequest& req,
+                     bool add) const;
   MeshService& meshes_;
   RouterConfig config_;
   Auth auth_;

@@ -289,14 +289,18 @@ std::vector<std::string> Store::shared_with(const std::string& kind, const std::
   return out;
 }
 
-std::optional<Access> Store::mesh_access(const std::string& id) const {
-  const auto rec = get_mesh(id);
-  if (!rec) return std::nullopt;
-  Access a{rec->owner, shared_with("mesh", id)};
+Access Store::access(const std::string& kind, const std::string& id, std::string owner) const {
+  Access a{std::move(owner), shared_with(kind, id)};
   const auto all = std::find(a.readers.begin(), a.readers.end(), kEveryone);
   a.everyone = all != a.readers.end();
   if (a.everyone) a.readers.erase(all);
   return a;
+}
+
+std::optional<Access> Store::mesh_access(const std::string& id) const {
+  const auto rec = get_mesh(id);
+  if (!rec) return std::nullopt;
+  return access("mesh", id, rec->owner);
 }
 
 void Store::add_user(const std::string& name, bool admin) {

@@ -14,6 +14,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -40,6 +41,11 @@ struct Access {
   bool allows(const Caller& c) const;
   // Reads and also changes (delete, share): the owner or an admin.
   bool owned_by(const Caller& c) const { return c.admin || c.user == owner; }
+};
+
+// A 403: the caller reads the item (it was shared with them) but may not change it.
+struct Forbidden : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
 // The owner of the sample meshes loaded at start (shared with everyone).
@@ -92,10 +98,12 @@ class Store {
   std::size_t count() const { return count_; }
 
   // Shares an item with users (by name, or kEveryone), or stops sharing it
-  // (shared false); kind is "mesh".
+  // (shared false); kind is "mesh" or "job".
   void set_shared(const std::string& kind, const std::string& id, const std::vector<std::string>& users, bool shared);
   // The users an item is shared with (kEveryone included as such).
   std::vector<std::string> shared_with(const std::string& kind, const std::string& id) const;
+  // Who reads an item of that owner: the owner and what it is shared with.
+  Access access(const std::string& kind, const std::string& id, std::string owner) const;
   // A mesh's owner and readers; nullopt when there is no such mesh.
   std::optional<Access> mesh_access(const std::string& id) const;
 

@@ -216,6 +216,27 @@ TEST_F(AuthTest, SharingWithAUserAndWithEveryone) {
   EXPECT_EQ(call(alice_, "GET", target).status, 404);
 }
 
+TEST_F(AuthTest, SharingAJobSharesItsStateAndArtifactsReadOnly) {
+  const std::string b_mesh = upload(bob_);
+  const std::string b_job = run_job(bob_, {{"algorithm", "test_translate"}, {"inputs", {{"mesh", b_mesh}}}});
+  const std::string target = "/api/v1/jobs/" + b_job;
+  ASSERT_EQ(call(bob_, "POST", target + "/share", R"({"users":["alice"]})").status, 200);
+  EXPECT_EQ(call(alice_, "GET", target).status, 200);
+  EXPECT_NE(call(alice_, "GET", "/api/v1/jobs").body.find(b_job), std::string::npos);
+  EXPECT_EQ(call(alice_, "GET", target + "/artifacts/mesh").status, 200);
+  // Its output mesh as her job's input: stored as her own mesh.
+  const std::string a_job = run_job(alice_, {{"algorithm", "test_translate"}, {"inputs", {{"mesh", {{"job", b_job}, {"artifact", "mesh"}}}}}});
+  const json a_input = json::parse(call(alice_, "GET", "/api/v1/jobs/" + a_job).body)["inputs"]["mesh"];
+  EXPECT_EQ(json::parse(call(alice_, "GET", "/api/v1/meshes/" + a_input.get<std::string>()).body)["owner"], "alice");
+  // B's input mesh stays his.
+  EXPECT_EQ(call(alice_, "GET", "/api/v1/meshes/" + b_mesh).status, 404);
+  EXPECT_EQ(call(alice_, "DELETE", target).status, 403);
+  EXPECT_EQ(call(alice_, "POST", target + "/share", R"({"everyone":true})").status, 403);
+  ASSERT_EQ(call(bob_, "POST", target + "/unshare", R"({"users":["alice"]})").status, 200);
+  EXPECT_EQ(call(alice_, "GET", target).status, 404);
+  EXPECT_EQ(call(alice_, "GET", target + "/artifacts/mesh").status, 404);
+}
+
 TEST_F(AuthTest, EventsGoOnlyToThoseWhoMayReadThem) {
   std::vector<std::pair<json, Access>> events;
   router_->on_event = [&](const json& e, const Access& a) { events.emplace_back(e, a); };
