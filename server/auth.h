@@ -24,13 +24,12 @@ class Auth {
   // or empty); nullopt answers 401: no header where one is required, or a
   // wrong or revoked token (even where none is required).
   std::optional<Caller> authenticate(std::string_view authorization) const;
-  // The same for a bare token (a WebSocket's auth message).
-  std::optional<Caller> check_token(std::string_view token) const;
 
   // Creates the user if needed (or changes admin) and returns a new token.
   std::string add_user(const std::string& name, bool admin);
 
  private:
+  std::optional<Caller> check_token(std::string_view token) const;
   Store& store_;
   bool required_;
 };

@@ -83,10 +83,11 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     shared_->sessions.erase(this);
   }
 
-  // caller: from the upgrade request's Authorization header, or (where a
-  // token is required and none came) unset until an auth message.
-  void run(http::request<http::string_body> req, std::optional<Caller> caller) {
-    caller_ = std::move(caller);
+  // The upgrade request's Authorization header (checked by the caller), or
+  // empty: then where a token is required the session waits for an auth message.
+  void run(http::request<http::string_body> req, std::string authorization) {
+    authorization_ = std::move(authorization);
+    caller_ = shared_->router.auth().authenticate(authorization_);
     ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
     ws_.read_message_max(shared_->config.max_ws_message_bytes);
     ws_.async_accept(req, beast::bind_front_handler(&WebSocketSession::on_accept, shared_from_this()));
@@ -100,7 +101,8 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   // Thread-safe: sends an event if this session's user may read it.
   void send_event(const json& event, const Access& readers) {
     net::post(ws_.get_executor(), [self = shared_from_this(), event, readers] {
-      if (self->caller_ && readers.allows(*self->caller_)) self->enqueue({event.dump(), nullptr, {}, false});
+      if (self->caller_ && self->still_authorized() && readers.allows(*self->caller_))
+        self->enqueue({event.dump(), nullptr, {}, false});
     });
   }
 
@@ -139,6 +141,17 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     close_when_sent_ = true;
   }
 
+  // The token is checked again for every request and event, so that a
+  // revoked one stops an open session at once; false (and the session
+  // refused) when it was revoked.
+  bool still_authorized() {
+    if (close_when_sent_) return false;
+    if (authorization_.empty()) return true;  // the local user
+    if (shared_->router.auth().authenticate(authorization_)) return true;
+    refuse(nullptr, "the token was revoked");
+    return false;
+  }
+
   void error(const json& request_id, const std::string& code, const std::string& detail) {
     send_json({{"type", "error"}, {"request_id", request_id}, {"error", code}, {"detail", detail}});
   }
@@ -157,11 +170,13 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     const std::string type = msg["type"];
     if (type == "auth") {
       const json token = msg.value("token", json());
-      caller_ = token.is_string() ? shared_->router.auth().check_token(token.get<std::string>()) : std::nullopt;
+      authorization_ = token.is_string() && !token.get<std::string>().empty() ? "Bearer " + token.get<std::string>() : "-";
+      caller_ = shared_->router.auth().authenticate(authorization_);
       if (!caller_) return refuse(id, "the token is wrong or was revoked");
       return send_json({{"type", "authenticated"}, {"request_id", id}, {"user", caller_->user}, {"admin", caller_->admin}});
     }
     if (!caller_) return refuse(id, "this server needs a token: send {\"type\":\"auth\",\"token\":TOKEN} first");
+    if (!still_authorized()) return;
     if (type == "ping") return send_json({{"type", "pong"}, {"request_id", id}});
     if (type == "list_meshes" || type == "get_mesh" || type == "get_slice" || type == "get_animation") {
       net::post(shared_->workers, [self = shared_from_this(), msg = std::move(msg), id, type, caller = *caller_] {
@@ -331,6 +346,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   bool closing_ = false;
   bool close_when_sent_ = false;  // refused: close once the error is written
   std::optional<Caller> caller_;  // set once authenticated; read on the strand only
+  std::string authorization_;     // "Bearer TOKEN", checked again for each request; empty: the local user
 };
 
 void Shared::broadcast(const json& event, const Access& readers) {
@@ -397,12 +413,11 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
         return write(error_response(404, "not_found", "WebSockets are served at /api/v1/ws"), false);
       // A token in the upgrade's header authenticates at once (scripts); a
       // browser, which cannot set it, sends an auth message first.
-      const std::string authorization(req[http::field::authorization]);
-      const std::optional<Caller> caller = shared_->router.auth().authenticate(authorization);
-      if (!caller && !authorization.empty())
+      std::string authorization(req[http::field::authorization]);
+      if (!authorization.empty() && !shared_->router.auth().authenticate(authorization))
         return write(error_response(401, "unauthorized", "the token is wrong or was revoked"), false);
       stream_.expires_never();
-      std::make_shared<WebSocketSession>(stream_.release_socket(), shared_)->run(parser_->release(), caller);
+      std::make_shared<WebSocketSession>(stream_.release_socket(), shared_)->run(parser_->release(), std::move(authorization));
       return;
     }
     keep_alive_ = req.keep_alive();

@@ -676,6 +676,10 @@ TEST_F(ServerIntegration, TokensOverHttpAndWebSocketAndRevokedAtOnce) {
   EXPECT_EQ(call_as(port(), alice, "GET", "/api/v1/meshes").status, 200u);
   EXPECT_EQ(server_command(data_, "user revoke alice"), "revoked 1 token of alice");
   expect_error(call_as(port(), alice, "GET", "/api/v1/meshes"), 401, "unauthorized");
+  // Her open WebSocket too: its next request is refused and the connection closed.
+  ASSERT_FALSE(a.send({{"type", "ping"}, {"request_id", 9}}));
+  EXPECT_EQ(a.reply().value("error", ""), "unauthorized");
+  EXPECT_FALSE(a.read(5s).has_value());
   EXPECT_EQ(call_as(port(), bob, "GET", "/api/v1/meshes").status, 200u);
   const std::string users = server_command(data_, "user list");
   EXPECT_NE(users.find("alice"), std::string::npos) << users;
