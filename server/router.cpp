@@ -551,8 +551,8 @@ json Router::openapi() const {
     if (r.method == "DELETE" && !is_job) {
       op["responses"].erase("200");
       op["responses"]["204"] = {{"description", "deleted"}};
-      op["responses"]["403"] = error_ref;
     }
+    if (r.method == "DELETE") op["responses"]["403"] = error_ref;  // a shared item: only its owner
     op["responses"]["400"] = error_ref;
     if (r.pattern.find('{') != std::string::npos || (is_job && r.method == "POST")) op["responses"]["404"] = error_ref;
     op["responses"]["401"] = error_ref;
