@@ -116,10 +116,7 @@ JobScheduler::JobScheduler(MeshService& meshes, JobConfig config) : meshes_(mesh
            "CREATE INDEX IF NOT EXISTS jobs_cache ON jobs(cache_key);",
            "jobs");
   // A database from before algorithms of several inputs lacks the column.
-  sqlite3_stmt* probe = nullptr;
-  const bool has_inputs = sqlite3_prepare_v2(db_, "SELECT inputs FROM jobs LIMIT 0", -1, &probe, nullptr) == SQLITE_OK;
-  sqlite3_finalize(probe);
-  if (!has_inputs) exec_sql(db_, "ALTER TABLE jobs ADD COLUMN inputs TEXT NOT NULL DEFAULT '{}';", "jobs");
+  add_missing_column(db_, "jobs", "inputs", "TEXT NOT NULL DEFAULT '{}'", "jobs");
   load();
   if (::pipe2(wake_pipe_, O_CLOEXEC | O_NONBLOCK) != 0) throw IoError("jobs: pipe failed");
 }
@@ -258,7 +255,8 @@ json JobScheduler::algorithms_json() const {
   return {{"algorithms", list}};
 }
 
-json JobScheduler::submit(const json& req, const std::string& owner, std::vector<std::string>* new_meshes) {
+json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std::string>* new_meshes) {
+  const std::string& owner = caller.user;
   if (!req.is_object()) throw InvalidInput("the body must be a JSON object");
   if (!req.contains("algorithm") || !req["algorithm"].is_string()) throw InvalidInput("\"algorithm\" must be a string");
   const std::string algorithm = req["algorithm"].get<std::string>();
@@ -294,7 +292,7 @@ json JobScheduler::submit(const json& req, const std::string& owner, std::vector
         throw InvalidInput("input '" + name + "' is a " + kind + ": {\"job\": \"<job id>\", \"artifact\": \"<name>\"}");
       {
         std::lock_guard lock(mutex_);
-        (void)artifact_file_locked(v["job"], v["artifact"], kind);
+        (void)artifact_file_locked(v["job"], v["artifact"], kind, caller);
       }
       resolved[name] = {{"job", v["job"]}, {"artifact", v["artifact"]}};
       input_shas += "\n" + name + "=" + v["job"].get<std::string>() + "/" + v["artifact"].get<std::string>();
@@ -309,16 +307,16 @@ json JobScheduler::submit(const json& req, const std::string& owner, std::vector
       // A chain: an earlier job's output mesh becomes a stored mesh (once, by
       // content) and the new job runs on it like on any other.
       const std::string from = v["job"], artifact_name = v["artifact"];
-      const ArtifactBytes ply = artifact(from, artifact_name, "ply");
-      if (const auto known = meshes_.store().find_by_sha256(sha256_hex(ply.bytes))) id = known->id;
+      const ArtifactBytes ply = artifact(from, artifact_name, "ply", caller);
+      if (const auto known = meshes_.store().find_by_sha256(sha256_hex(ply.bytes), owner)) id = known->id;
       else {
-        id = meshes_.upload(from + "-" + artifact_name + ".ply", "ply", ply.bytes).id;
+        id = meshes_.upload(from + "-" + artifact_name + ".ply", "ply", ply.bytes, owner).id;
         if (new_meshes) new_meshes->push_back(id);
       }
     } else {
       throw InvalidInput(shape(name));
     }
-    const auto rec = meshes_.store().get_mesh(id);
+    const auto rec = meshes_.store().get_mesh(id, caller);
     if (!rec) throw std::out_of_range("no mesh with id '" + id + "'");
     resolved[name] = id;
     // What a precheck may know of it: the stored report's box and counts.
@@ -392,35 +390,69 @@ json JobScheduler::submit(const json& req, const std::string& owner, std::vector
     out = job_json(*j);
   }
   if (j->cached) {
-    if (on_event) on_event({{"type", "job_done"}, {"job", out}});
+    if (on_event) on_event({{"type", "job_done"}, {"job", out}}, Access{owner});
   } else {
     wake();
   }
   return out;
 }
 
-json JobScheduler::list() const {
+bool JobScheduler::readable(const Job& j, const Caller& caller) const {
+  // Another user's job: the store knows whether it was shared.
+  return Access{j.owner}.allows(caller) || meshes_.store().access("job", j.id, j.owner).allows(caller);
+}
+
+const JobScheduler::Job& JobScheduler::job_locked(const std::string& id, const Caller& caller) const {
+  const auto it = jobs_.find(id);
+  if (it == jobs_.end() || !readable(*it->second, caller)) throw std::out_of_range("no job with id '" + id + "'");
+  return *it->second;
+}
+
+Access JobScheduler::job_access(const std::string& id) const {
+  std::string owner;
+  {
+    std::lock_guard lock(mutex_);
+    const auto it = jobs_.find(id);
+    if (it != jobs_.end()) owner = it->second->owner;
+  }
+  return meshes_.store().access("job", id, owner);
+}
+
+Access JobScheduler::access(const std::string& id, const Caller& caller) const {
+  std::string owner;
+  {
+    std::lock_guard lock(mutex_);
+    owner = job_locked(id, caller).owner;
+  }
+  return meshes_.store().access("job", id, owner);
+}
+
+json JobScheduler::list(const Caller& caller) const {
   std::lock_guard lock(mutex_);
   json list = json::array();
-  for (const auto& id : order_) list.push_back(job_json(*jobs_.at(id)));
+  for (const auto& id : order_)
+    if (const Job& j = *jobs_.at(id); readable(j, caller)) list.push_back(job_json(j));
   return {{"jobs", list}};
 }
 
-std::optional<json> JobScheduler::get(const std::string& id) const {
+std::optional<json> JobScheduler::get(const std::string& id, const Caller& caller) const {
   std::lock_guard lock(mutex_);
-  const auto it = jobs_.find(id);
-  if (it == jobs_.end()) return std::nullopt;
-  return job_json(*it->second);
+  try {
+    return job_json(job_locked(id, caller));
+  } catch (const std::out_of_range&) {
+    return std::nullopt;
+  }
 }
 
-std::optional<json> JobScheduler::cancel(const std::string& id) {
+std::optional<json> JobScheduler::cancel(const std::string& id, const Caller& caller) {
   json out;
   bool changed = false;
   {
     std::lock_guard lock(mutex_);
     const auto it = jobs_.find(id);
-    if (it == jobs_.end()) return std::nullopt;
+    if (it == jobs_.end() || !readable(*it->second, caller)) return std::nullopt;
     Job& j = *it->second;
+    if (!Access{j.owner}.owned_by(caller)) throw Forbidden("job " + id + " is " + j.owner + "'s: only its owner cancels it");
     if (j.state == "queued") {
       auto& q = queues_[j.owner];
       q.erase(std::remove(q.begin(), q.end(), id), q.end());
@@ -442,15 +474,14 @@ std::optional<json> JobScheduler::cancel(const std::string& id) {
   }
   if (changed) {
     wake();
-    if (on_event) on_event({{"type", "job_cancelled"}, {"job", out}});
+    if (on_event) on_event({{"type", "job_cancelled"}, {"job", out}}, job_access(id));
   }
   return out;
 }
 
-fs::path JobScheduler::artifact_file_locked(const std::string& id, const std::string& name, const std::string& kind) const {
-  const auto it = jobs_.find(id);
-  if (it == jobs_.end()) throw std::out_of_range("no job with id '" + id + "'");
-  const Job& j = *it->second;
+fs::path JobScheduler::artifact_file_locked(const std::string& id, const std::string& name, const std::string& kind,
+                                           const Caller& caller) const {
+  const Job& j = job_locked(id, caller);
   if (j.state != "done") throw InvalidInput("job " + id + " is " + j.state + ", not done: it has no artifacts");
   for (const auto& a : json::parse(j.artifacts, nullptr, false))
     if (a.value("name", "") == name) {
@@ -461,14 +492,13 @@ fs::path JobScheduler::artifact_file_locked(const std::string& id, const std::st
   throw std::out_of_range("job " + id + " has no artifact '" + name + "'");
 }
 
-ArtifactBytes JobScheduler::artifact(const std::string& id, const std::string& name, const std::string& format_in) {
+ArtifactBytes JobScheduler::artifact(const std::string& id, const std::string& name, const std::string& format_in,
+                                     const Caller& caller) {
   json entry;
   std::string files, mesh_id;
   {
     std::lock_guard lock(mutex_);
-    const auto it = jobs_.find(id);
-    if (it == jobs_.end()) throw std::out_of_range("no job with id '" + id + "'");
-    const Job& j = *it->second;
+    const Job& j = job_locked(id, caller);
     if (j.state != "done") throw InvalidInput("job " + id + " is " + j.state + ", not done: it has no artifacts");
     for (const auto& a : json::parse(j.artifacts, nullptr, false))
       if (a.value("name", "") == name) entry = a;
@@ -748,7 +778,7 @@ void JobScheduler::loop() {
       }
     }
     for (auto& e : events)
-      if (on_event) on_event(e);
+      if (on_event) on_event(e, job_access(e["job"].value("id", "")));
     events.clear();
     // Wait for output, an exit (EOF on the pipe) or a wake-up.
     fds.push_back({wake_pipe_[0], POLLIN, 0});

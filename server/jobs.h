@@ -55,8 +55,8 @@ class JobScheduler {
   // Starts running queued jobs (set on_event first).
   void start();
   // Called (from the scheduler's thread) with job_progress, job_done, job_failed
-  // and job_cancelled events.
-  std::function<void(const nlohmann::json&)> on_event;
+  // and job_cancelled events, and who may see them (the job's owner and shares).
+  std::function<void(const nlohmann::json&, const Access&)> on_event;
 
   // GET /api/v1/algorithms: the algorithms a client may run (test ones hidden).
   nlohmann::json algorithms_json() const;
@@ -64,15 +64,26 @@ class JobScheduler {
   // (bad parameters, naming the parameter and the rule broken).
   // An input that names an earlier job's output mesh stores that mesh; its id
   // is appended to `new_meshes` when given (the router announces it).
-  nlohmann::json submit(const nlohmann::json& request, const std::string& owner = "local",
+  // The job belongs to the caller, whose every input must be readable: a
+  // mesh or job of another user is unknown (std::out_of_range), as is one
+  // that does not exist.
+  nlohmann::json submit(const nlohmann::json& request, const Caller& caller = Caller::local(),
                         std::vector<std::string>* new_meshes = nullptr);
-  nlohmann::json list() const;
-  std::optional<nlohmann::json> get(const std::string& id) const;
-  // Cancels a queued or running job; the job (unchanged when it had ended).
-  std::optional<nlohmann::json> cancel(const std::string& id);
+  // The jobs the caller may see (their own and those shared with them; an
+  // admin's: all); get, cancel and artifact answer nullopt or
+  // std::out_of_range for any other.
+  nlohmann::json list(const Caller& caller = Caller::local()) const;
+  std::optional<nlohmann::json> get(const std::string& id, const Caller& caller = Caller::local()) const;
+  // Who reads a job the caller sees (its owner and shares); std::out_of_range
+  // for any other.
+  Access access(const std::string& id, const Caller& caller) const;
+  // Cancels a queued or running job (its owner or an admin, else Forbidden);
+  // the job (unchanged when it had ended).
+  std::optional<nlohmann::json> cancel(const std::string& id, const Caller& caller = Caller::local());
   // An artifact of a done job in a format; throws std::out_of_range (no such
   // job or artifact), InvalidInput (job not done), UnsupportedFormat.
-  ArtifactBytes artifact(const std::string& id, const std::string& name, const std::string& format);
+  ArtifactBytes artifact(const std::string& id, const std::string& name, const std::string& format,
+                         const Caller& caller = Caller::local());
 
   std::uint64_t workers_started() const { return workers_started_; }
 
@@ -86,10 +97,17 @@ class JobScheduler {
   void reap(Job& job, int status, std::vector<nlohmann::json>& events);  // under mutex_
   void wake();
   std::filesystem::path job_dir(const std::string& id) const;
+  // Whether the caller reads the job: theirs, shared with them, or admin.
+  bool readable(const Job& job, const Caller& caller) const;
+  // The job if the caller may see it (under mutex_); throws std::out_of_range.
+  const Job& job_locked(const std::string& id, const Caller& caller) const;
+  // Who may see a job's events.
+  Access job_access(const std::string& id) const;
   // The file of a done job's artifact of that kind (under mutex_); throws
   // std::out_of_range (no such job or artifact) or InvalidInput (not done,
   // another kind).
-  std::filesystem::path artifact_file_locked(const std::string& job, const std::string& name, const std::string& kind) const;
+  std::filesystem::path artifact_file_locked(const std::string& job, const std::string& name, const std::string& kind,
+                                             const Caller& caller = Caller::local()) const;
 
   MeshService& meshes_;
   JobConfig config_;

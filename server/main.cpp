@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "auth.h"
 #include "io/samples.h"
 #include "mesh_service.h"
 #include "server.h"
@@ -13,8 +14,18 @@ namespace {
 
 const char* kHelp =
     "usage: cgview-server [--host 127.0.0.1] [--port 8080] [--data-dir DIR] [options]\n"
+    "       cgview-server [--data-dir DIR] user add NAME [--admin] | user list | user revoke NAME\n"
     "\n"
     "Serves the CGView viewer at / and the API under /api/v1 (REST and WebSocket).\n"
+    "On a loopback address a single local user needs no token; on any other address, or\n"
+    "with --auth required, every request carries \"Authorization: Bearer TOKEN\".\n"
+    "\n"
+    "  user add NAME        create a user, or give one another token, and print the new token;\n"
+    "                       the user is an admin exactly when --admin is given\n"
+    "  user list            the users, whether admin, and how many live tokens each has\n"
+    "  user revoke NAME     revoke every token of a user, at once, also on a running server\n"
+    "  --admin              (user add) the user sees and changes everyone's data\n"
+    "  --auth MODE          auto (default: tokens unless the address is loopback) or required\n"
     "\n"
     "  --host ADDR          address to listen on (default 127.0.0.1)\n"
     "  --port N             port (default 8080; 0 picks a free one)\n"
@@ -38,6 +49,35 @@ const std::vector<std::string> kDefaultSamples = {"elephant.off", "bunny00.off",
                                                    "man.off",      "kitten.off",  "double-torus-example.off",
                                                    "colored_tetra.ply", "sphere.off"};
 
+// cgview-server user add|list|revoke: on the data directory's store, with or
+// without a server running on it.
+int user_command(const std::vector<std::string>& args, const std::filesystem::path& data_dir, bool admin) {
+  using namespace cgview::server;
+  const std::string what = args.size() > 1 ? args[1] : "";
+  if (!((what == "add" || what == "revoke") && args.size() == 3) && !(what == "list" && args.size() == 2)) {
+    std::fprintf(stderr, "cgview-server: user add NAME [--admin], user list or user revoke NAME (see --help)\n");
+    return 2;
+  }
+  Store store(data_dir);
+  if (what == "add") {
+    const std::string token = Auth(store, true).add_user(args[2], admin);
+    std::printf("%s\n", token.c_str());
+    std::fprintf(stderr, "cgview-server: a new token for %s%s; it is shown only once\n", args[2].c_str(), admin ? " (admin)" : "");
+  } else if (what == "list") {
+    for (const UserRecord& u : store.list_users())
+      std::printf("%-24s %-6s %d token%s  since %s\n", u.name.c_str(), u.admin ? "admin" : "user", u.tokens,
+                  u.tokens == 1 ? "" : "s", u.created.c_str());
+  } else {
+    if (!store.get_user(args[2])) {
+      std::fprintf(stderr, "cgview-server: no user '%s'\n", args[2].c_str());
+      return 1;
+    }
+    const int n = store.revoke_tokens(args[2]);
+    std::printf("revoked %d token%s of %s\n", n, n == 1 ? "" : "s", args[2].c_str());
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -47,6 +87,8 @@ int main(int argc, char** argv) {
   config.static_dir = CGVIEW_WEB_DIST;
 #endif
   std::string samples = "default";
+  std::vector<std::string> command;  // user add NAME ...
+  bool admin = false;
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -85,11 +127,25 @@ int main(int argc, char** argv) {
         if (v != "requeue" && v != "interrupt") throw std::invalid_argument("--on-restart is requeue or interrupt");
         config.jobs.requeue_on_restart = v == "requeue";
       } else if (a == "--ws-chunk-kb") config.chunk_bytes = std::size_t(number(1, 16 * 1024 - 1)) << 10;
+      else if (a == "--auth") {
+        const std::string v = value();
+        if (v != "auto" && v != "required") throw std::invalid_argument("--auth is auto or required");
+        config.auth_required = v == "required";
+      } else if (a == "--admin") admin = true;
+      else if (!a.starts_with("-") && (a == "user" || !command.empty())) command.push_back(a);
       else throw std::invalid_argument("unknown option " + a);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "cgview-server: %s (see --help)\n", e.what());
     return 2;
+  }
+  if (!command.empty()) {
+    try {
+      return user_command(command, config.data_dir, admin);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "cgview-server: error: %s\n", e.what());
+      return 1;
+    }
   }
   if (config.jobs.worker.empty()) {
     std::error_code ec;

@@ -24,7 +24,8 @@ std::string clean_name(const std::string& name) {
 
 MeshService::MeshService(Store& store, std::size_t cache_bytes) : store_(store), cache_bytes_(cache_bytes) {}
 
-MeshRecord MeshService::upload(const std::string& name, const std::string& format, std::string_view bytes) {
+MeshRecord MeshService::upload(const std::string& name, const std::string& format, std::string_view bytes,
+                               const std::string& owner) {
   const std::string n = clean_name(name);
   const MeshFormat f = format_from_name(format.empty() ? n : "x." + format);
   ReadResult r = read_mesh_bytes(bytes, f, n);
@@ -35,6 +36,7 @@ MeshRecord MeshService::upload(const std::string& name, const std::string& forma
   rec.sha256 = sha256_hex(bytes);
   rec.report_json = protocol::to_json(mesh_report(r.mesh)).dump();
   rec.warnings_json = nlohmann::json(r.warnings).dump();
+  rec.owner = owner;
   rec = store_.add_mesh(std::move(rec), bytes);
   std::lock_guard lock(mutex_);
   meshes_.emplace_front(rec.sha256, std::make_shared<const Mesh>(std::move(r.mesh)));
@@ -121,8 +123,9 @@ int MeshService::import_samples(const std::vector<std::filesystem::path>& files,
   for (const auto& p : files) {
     try {
       const std::string bytes = read_file_bytes(p, max_bytes_each);
-      if (store_.find_by_sha256(sha256_hex(bytes))) continue;
-      upload(p.filename().string(), "", bytes);
+      if (store_.find_by_sha256(sha256_hex(bytes), kSystemOwner)) continue;
+      const MeshRecord rec = upload(p.filename().string(), "", bytes, kSystemOwner);
+      store_.set_shared("mesh", rec.id, {kEveryone}, true);
       ++added;
     } catch (const std::exception&) {
       // Not a mesh we read (or too large): samples are a convenience.
@@ -133,7 +136,8 @@ int MeshService::import_samples(const std::vector<std::filesystem::path>& files,
 
 namespace {
 nlohmann::json mesh_head(const MeshRecord& r) {
-  return {{"id", r.id}, {"name", r.name}, {"format", r.format}, {"bytes", r.bytes}, {"created", r.created}, {"sha256", r.sha256}};
+  return {{"id", r.id}, {"name", r.name}, {"format", r.format}, {"bytes", r.bytes}, {"created", r.created}, {"sha256", r.sha256},
+          {"owner", r.owner}};
 }
 }  // namespace
 

@@ -34,8 +34,10 @@ class MeshService {
   explicit MeshService(Store& store, std::size_t cache_bytes = std::size_t(512) << 20);
 
   // Parses the bytes (format given, or from the name's extension), computes
-  // the report and stores it.  Throws InvalidInput (bad name, format or file).
-  MeshRecord upload(const std::string& name, const std::string& format, std::string_view bytes);
+  // the report and stores it, owned by `owner`.  Throws InvalidInput (bad
+  // name, format or file).
+  MeshRecord upload(const std::string& name, const std::string& format, std::string_view bytes,
+                    const std::string& owner = "local");
   // The mesh, parsed from its stored bytes (the last few are kept in memory).
   std::shared_ptr<const Mesh> mesh(const MeshRecord& record);
   // The Draco encoding at a position quantization (1..30 bits).
@@ -44,7 +46,8 @@ class MeshService {
   // when the format is the uploaded one, else a conversion.
   std::string download(const MeshRecord& record, const std::string& format);
   // Uploads each mesh file that is not stored yet (by content), skipping
-  // files it cannot read; returns how many were added.
+  // files it cannot read; returns how many were added.  Samples belong to
+  // kSystemOwner and are shared with everyone.
   int import_samples(const std::vector<std::filesystem::path>& files, std::size_t max_bytes_each);
 
   Store& store() { return store_; }

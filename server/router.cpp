@@ -134,53 +134,64 @@ std::pair<std::string, std::map<std::string, std::string>> split_target(const st
 Router::Router(MeshService& meshes, RouterConfig config)
     : meshes_(meshes),
       config_(std::move(config)),
+      auth_(meshes_.store(), config_.auth_required),
       renders_(std::make_shared<RenderService>(config_.gl_platform, config_.renderers)) {
   using Params = std::map<std::string, std::string>;
-  auto find = [this](const Params& p) {
-    auto rec = meshes_.store().get_mesh(p.at("id"));
+  // The mesh if the caller may read it; another user's answers as an unknown id.
+  auto find = [this](const Params& p, const Caller& caller) {
+    auto rec = meshes_.store().get_mesh(p.at("id"), caller);
     if (!rec) throw std::out_of_range("no mesh with id '" + p.at("id") + "'");
     return *rec;
   };
+  // The same for a change (delete, share): the owner's or an admin's.
+  auto find_owned = [this, find](const Params& p, const Caller& caller) {
+    MeshRecord rec = find(p, caller);
+    if (!Access{rec.owner}.owned_by(caller)) throw Forbidden("mesh " + rec.id + " is " + rec.owner + "'s: only its owner changes it");
+    return rec;
+  };
   routes_.push_back({"GET", "/api/v1/health", "Server health: status, version, mesh count, uptime", {},
-                     [this](const Params&, const HttpRequest&) {
+                     [this](const Params&, const HttpRequest&, const Caller& caller) {
                        const double up = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+                       const std::size_t count = caller.admin ? meshes_.store().count() : meshes_.store().list_meshes(caller).size();
                        return json_response(200, {{"status", "ok"}, {"version", config_.version},
-                                                  {"meshes", meshes_.store().count()}, {"uptime_s", up}});
+                                                  {"meshes", count}, {"uptime_s", up}});
                      },
                      false});
   routes_.push_back({"GET", "/api/v1/meshes", "List the stored meshes with their reports", {},
-                     [this](const Params&, const HttpRequest&) {
+                     [this](const Params&, const HttpRequest&, const Caller& caller) {
                        json list = json::array();
-                       for (const auto& r : meshes_.store().list_meshes()) list.push_back(mesh_json(r));
+                       for (const auto& r : meshes_.store().list_meshes(caller)) list.push_back(mesh_json(r));
                        return json_response(200, {{"meshes", list}});
                      }});
   routes_.push_back({"POST", "/api/v1/meshes", "Upload a mesh: the file's bytes as the raw body",
                      {{"name", "the file name, e.g. bunny.ply (required)"},
                       {"format", "off, obj, ply, stl, drc, glb or gltf (default: from the name's extension)"}},
-                     [this](const Params&, const HttpRequest& req) {
+                     [this](const Params&, const HttpRequest& req, const Caller& caller) {
                        const auto [path, q] = split_target(req.target);
                        const auto name = q.find("name");
                        if (name == q.end()) return error_response(400, "bad_request", "the query needs ?name=FILE.EXT");
                        const auto format = q.find("format");
-                       const MeshRecord rec = meshes_.upload(name->second, format == q.end() ? "" : format->second, req.body);
+                       const MeshRecord rec =
+                           meshes_.upload(name->second, format == q.end() ? "" : format->second, req.body, caller.user);
                        json j = mesh_json(rec);
-                       if (on_event) on_event({{"type", "mesh_added"}, {"mesh", j}});
+                       if (on_event) on_event({{"type", "mesh_added"}, {"mesh", j}}, {rec.owner});
                        HttpResponse r = json_response(201, j);
                        r.headers.push_back({"Location", "/api/v1/meshes/" + rec.id});
                        return r;
                      }});
   routes_.push_back({"GET", "/api/v1/meshes/{id}", "One mesh's metadata and report", {},
-                     [find](const Params& p, const HttpRequest&) {
+                     [find](const Params& p, const HttpRequest&, const Caller& caller) {
                        HttpResponse r;
-                       r.body = mesh_json_text(find(p));
+                       r.body = mesh_json_text(find(p, caller));
                        return r;
                      },
                      false});
   routes_.push_back({"DELETE", "/api/v1/meshes/{id}", "Delete a mesh", {},
-                     [this, find](const Params& p, const HttpRequest&) {
-                       const MeshRecord rec = find(p);
+                     [this, find_owned](const Params& p, const HttpRequest&, const Caller& caller) {
+                       const MeshRecord rec = find_owned(p, caller);
+                       const Access readers = meshes_.store().mesh_access(rec.id).value_or(Access{rec.owner});
                        meshes_.store().remove_mesh(rec.id);
-                       if (on_event) on_event({{"type", "mesh_deleted"}, {"mesh_id", rec.id}});
+                       if (on_event) on_event({{"type", "mesh_deleted"}, {"mesh_id", rec.id}}, readers);
                        HttpResponse r;
                        r.status = 204;
                        r.content_type.clear();
@@ -188,8 +199,8 @@ Router::Router(MeshService& meshes, RouterConfig config)
                      }});
   routes_.push_back({"GET", "/api/v1/meshes/{id}/download", "Download a mesh in a format",
                      {{"format", "obj, off, ply, stl, glb or drc (default: the uploaded format)"}},
-                     [this, find](const Params& p, const HttpRequest& req) {
-                       const MeshRecord rec = find(p);
+                     [this, find](const Params& p, const HttpRequest& req, const Caller& caller) {
+                       const MeshRecord rec = find(p, caller);
                        const auto q = split_target(req.target).second;
                        const auto f = q.find("format");
                        const std::string format = f == q.end() ? rec.format : f->second;
@@ -211,60 +222,73 @@ Router::Router(MeshService& meshes, RouterConfig config)
                       {"elevation", "camera elevation in degrees, -90..90 (default 20)"},
                       {"projection", "perspective (default) or orthographic"},
                       {"field", "a scalar-field artifact to colour by: JOB_ID/NAME, or NAME for the newest done job on this mesh"}},
-                     [this, find](const Params& p, const HttpRequest& req) { return render_png(find(p), req); }});
+                     [this, find](const Params& p, const HttpRequest& req, const Caller& caller) {
+                       return render_png(find(p, caller), req, caller);
+                     }});
+  routes_.push_back({"POST", "/api/v1/meshes/{id}/share",
+                     "Share a mesh (its owner or an admin): {\"users\":[NAME,...]} and/or {\"everyone\":true}; answers who reads it", {},
+                     [this, find_owned](const Params& p, const HttpRequest& req, const Caller& caller) {
+                       return share("mesh", p.at("id"), find_owned(p, caller).owner, req, true);
+                     },
+                     false});
+  routes_.push_back({"POST", "/api/v1/meshes/{id}/unshare", "Stop sharing a mesh: the same body as share", {},
+                     [this, find_owned](const Params& p, const HttpRequest& req, const Caller& caller) {
+                       return share("mesh", p.at("id"), find_owned(p, caller).owner, req, false);
+                     },
+                     false});
   // Algorithms and jobs (protocol/API.md): run in worker processes by the JobScheduler.
   auto jobs = [this]() -> JobScheduler& {
     if (!config_.jobs) throw std::runtime_error("this server runs no jobs");
     return *config_.jobs;
   };
   routes_.push_back({"GET", "/api/v1/algorithms", "The algorithms a job may run, with a JSON Schema of their parameters", {},
-                     [jobs](const Params&, const HttpRequest&) { return json_response(200, jobs().algorithms_json()); },
+                     [jobs](const Params&, const HttpRequest&, const Caller&) { return json_response(200, jobs().algorithms_json()); },
                      false});
   routes_.push_back({"POST", "/api/v1/jobs", "Submit a job: {\"algorithm\",\"inputs\":{\"mesh\":id or {\"job\":id,\"artifact\":name},...},\"params\":{...}}", {},
-                     [this, jobs](const Params&, const HttpRequest& req) {
+                     [this, jobs](const Params&, const HttpRequest& req, const Caller& caller) {
                        const json body = json::parse(req.body, nullptr, false);
                        if (body.is_discarded()) return error_response(400, "bad_request", "the body is not JSON");
                        json job;
                        std::vector<std::string> new_meshes;
                        try {
-                         job = jobs().submit(body, "local", &new_meshes);
+                         job = jobs().submit(body, caller, &new_meshes);
                        } catch (const InvalidInput& e) {
                          return error_response(400, "bad_request", e.what());
                        }
                        // A chained job's input mesh is stored: the mesh lists show it.
                        for (const auto& id : new_meshes)
                          if (const auto rec = meshes_.store().get_mesh(id); rec && on_event)
-                           on_event({{"type", "mesh_added"}, {"mesh", mesh_json(*rec)}});
+                           on_event({{"type", "mesh_added"}, {"mesh", mesh_json(*rec)}}, {rec->owner});
                        HttpResponse r = json_response(201, job);
                        r.headers.push_back({"Location", "/api/v1/jobs/" + job["id"].get<std::string>()});
                        return r;
                      },
                      false});
   routes_.push_back({"GET", "/api/v1/jobs", "List the jobs, oldest first", {},
-                     [jobs](const Params&, const HttpRequest&) { return json_response(200, jobs().list()); },
+                     [jobs](const Params&, const HttpRequest&, const Caller& caller) { return json_response(200, jobs().list(caller)); },
                      false});
   routes_.push_back({"GET", "/api/v1/jobs/{id}", "One job: state, progress, artifacts", {},
-                     [jobs](const Params& p, const HttpRequest&) {
-                       const auto job = jobs().get(p.at("id"));
+                     [jobs](const Params& p, const HttpRequest&, const Caller& caller) {
+                       const auto job = jobs().get(p.at("id"), caller);
                        if (!job) return error_response(404, "not_found", "no job with id '" + p.at("id") + "'");
                        return json_response(200, *job);
                      },
                      false});
   routes_.push_back({"DELETE", "/api/v1/jobs/{id}", "Cancel a queued or running job; answers the job", {},
-                     [jobs](const Params& p, const HttpRequest&) {
-                       const auto job = jobs().cancel(p.at("id"));
+                     [jobs](const Params& p, const HttpRequest&, const Caller& caller) {
+                       const auto job = jobs().cancel(p.at("id"), caller);
                        if (!job) return error_response(404, "not_found", "no job with id '" + p.at("id") + "'");
                        return json_response(200, *job);
                      },
                      false});
   routes_.push_back({"GET", "/api/v1/jobs/{id}/artifacts/{name}", "An artifact of a done job in a format",
                      {{"format", "scalar field: json (default), f32, txt, csv, ply; mesh: ply (default) or any writable mesh format; metrics: json; text: txt; animation: frames"}},
-                     [jobs](const Params& p, const HttpRequest& req) {
+                     [jobs](const Params& p, const HttpRequest& req, const Caller& caller) {
                        const auto q = split_target(req.target).second;
                        const auto f = q.find("format");
                        ArtifactBytes a;
                        try {
-                         a = jobs().artifact(p.at("id"), p.at("name"), f == q.end() ? "" : f->second);
+                         a = jobs().artifact(p.at("id"), p.at("name"), f == q.end() ? "" : f->second, caller);
                        } catch (const InvalidInput& e) {
                          return error_response(400, "bad_request", e.what());
                        }
@@ -274,8 +298,25 @@ Router::Router(MeshService& meshes, RouterConfig config)
                        r.headers.push_back({"Content-Disposition", "attachment; filename=\"" + a.file_name + "\""});
                        return r;
                      }});
+  // A job shared is its state and artifacts, read-only.
+  auto job_owner = [jobs](const Params& p, const Caller& caller) {
+    const Access a = jobs().access(p.at("id"), caller);
+    if (!a.owned_by(caller)) throw Forbidden("job " + p.at("id") + " is " + a.owner + "'s: only its owner changes it");
+    return a.owner;
+  };
+  routes_.push_back({"POST", "/api/v1/jobs/{id}/share",
+                     "Share a job and its artifacts (its owner or an admin): the same body as a mesh's share", {},
+                     [this, job_owner](const Params& p, const HttpRequest& req, const Caller& caller) {
+                       return share("job", p.at("id"), job_owner(p, caller), req, true);
+                     },
+                     false});
+  routes_.push_back({"POST", "/api/v1/jobs/{id}/unshare", "Stop sharing a job", {},
+                     [this, job_owner](const Params& p, const HttpRequest& req, const Caller& caller) {
+                       return share("job", p.at("id"), job_owner(p, caller), req, false);
+                     },
+                     false});
   routes_.push_back({"GET", "/api/v1/openapi.json", "This API's OpenAPI 3 document", {},
-                     [this](const Params&, const HttpRequest&) { return json_response(200, openapi()); },
+                     [this](const Params&, const HttpRequest&, const Caller&) { return json_response(200, openapi()); },
                      false});
 }
 
@@ -287,7 +328,7 @@ HttpResponse bad_parameter(const std::string& name, const std::string& detail) {
 
 }  // namespace
 
-HttpResponse Router::render_png(const MeshRecord& rec, const HttpRequest& req) const {
+HttpResponse Router::render_png(const MeshRecord& rec, const HttpRequest& req, const Caller& caller) const {
   const auto q = split_target(req.target).second;
   render::RenderParams params;
   std::optional<ScalarField> field;
@@ -319,7 +360,7 @@ HttpResponse Router::render_png(const MeshRecord& rec, const HttpRequest& req) c
       else if (v != "perspective")
         throw BadParameter("projection", "parameter 'projection': '" + v + "' is not perspective or orthographic");
     }
-    if (q.count("field")) field = resolve_field(rec, q.at("field"));
+    if (q.count("field")) field = resolve_field(rec, q.at("field"), caller);
   } catch (const BadParameter& e) {
     return bad_parameter(e.parameter, e.what());
   }
@@ -344,7 +385,29 @@ HttpResponse Router::render_png(const MeshRecord& rec, const HttpRequest& req) c
   return r;
 }
 
-ScalarField Router::resolve_field(const MeshRecord& rec, const std::string& spec) const {
+HttpResponse Router::share(const std::string& kind, const std::string& id, const std::string& owner, const HttpRequest& req,
+                           bool add) const {
+  const json body = json::parse(req.body, nullptr, false);
+  const char* shape = "the body is {\"users\": [NAME, ...]} and/or {\"everyone\": true}";
+  if (!body.is_object()) return error_response(400, "bad_request", shape);
+  std::vector<std::string> users;
+  const json names = body.value("users", json::array());
+  if (!names.is_array()) return error_response(400, "bad_request", shape);
+  for (const auto& n : names) {
+    if (!n.is_string()) return error_response(400, "bad_request", shape);
+    if (!meshes_.store().get_user(n)) return error_response(400, "bad_request", "no user '" + n.get<std::string>() + "'");
+    users.push_back(n);
+  }
+  const json everyone = body.value("everyone", json(false));
+  if (!everyone.is_boolean()) return error_response(400, "bad_request", shape);
+  if (everyone.get<bool>()) users.push_back(kEveryone);
+  if (users.empty()) return error_response(400, "bad_request", shape);
+  meshes_.store().set_shared(kind, id, users, add);
+  const Access a = meshes_.store().access(kind, id, owner);
+  return json_response(200, {{"id", id}, {"owner", a.owner}, {"users", a.readers}, {"everyone", a.everyone}});
+}
+
+ScalarField Router::resolve_field(const MeshRecord& rec, const std::string& spec, const Caller& caller) const {
   auto bad = [](const std::string& why) { return BadParameter("field", "parameter 'field': " + why); };
   if (!config_.jobs) throw bad("this server runs no jobs, so it has no fields");
   std::string job_id, name;
@@ -354,7 +417,7 @@ ScalarField Router::resolve_field(const MeshRecord& rec, const std::string& spec
   } else {
     name = spec;
     // The newest done job on this mesh with an artifact of that name.
-    const json list = config_.jobs->list();
+    const json list = config_.jobs->list(caller);
     const json& jobs = list.is_object() && list.contains("jobs") ? list["jobs"] : list;
     for (auto it = jobs.rbegin(); it != jobs.rend(); ++it) {
       const json& j = *it;
@@ -370,7 +433,7 @@ ScalarField Router::resolve_field(const MeshRecord& rec, const std::string& spec
   if (job_id.empty() || name.empty()) throw bad("'" + spec + "' is not JOB_ID/NAME or NAME");
   ArtifactBytes a;
   try {
-    a = config_.jobs->artifact(job_id, name, "json");
+    a = config_.jobs->artifact(job_id, name, "json", caller);
   } catch (const std::exception& e) {
     throw bad(e.what());
   }
@@ -396,6 +459,18 @@ bool Router::is_heavy(const HttpRequest& req) const {
 
 HttpResponse Router::handle(const HttpRequest& req) const {
   const auto [path, query] = split_target(req.target);
+  // The web client's files are public (it asks for a token); the API is not.
+  std::optional<Caller> caller;
+  if (path.starts_with("/api/")) {
+    caller = auth_.authenticate(req.authorization);
+    if (!caller) {
+      HttpResponse r = error_response(401, "unauthorized", req.authorization.empty()
+                                                               ? "this server needs a token: Authorization: Bearer TOKEN"
+                                                               : "the token is wrong or was revoked");
+      r.headers.push_back({"WWW-Authenticate", "Bearer"});
+      return r;
+    }
+  }
   bool path_known = false;
   for (const Route& r : routes_) {
     std::map<std::string, std::string> params;
@@ -403,7 +478,9 @@ HttpResponse Router::handle(const HttpRequest& req) const {
     path_known = true;
     if (r.method != req.method) continue;
     try {
-      return r.handler(params, req);
+      return r.handler(params, req, caller.value_or(Caller::local()));
+    } catch (const Forbidden& e) {
+      return error_response(403, "forbidden", e.what());
     } catch (const UnsupportedFormat& e) {
       return error_response(400, "unsupported_format", e.what());
     } catch (const InvalidInput& e) {
@@ -456,10 +533,15 @@ json Router::openapi() const {
                             {"content", {{"application/json", {{"schema", {{"$ref", "#/components/schemas/Error"}}}}}}}};
     op["responses"]["200"] = {{"description", "success"}};
     const bool is_job = r.pattern.starts_with("/api/v1/jobs");
-    if (r.method == "POST" && is_job) {
+    const bool json_body = r.pattern != "/api/v1/meshes";  // every POST but the upload takes JSON
+    if (r.method == "POST" && json_body) {
       op["requestBody"] = {{"content", {{"application/json", {{"schema", {{"type", "object"}}}}}}}};
-      op["responses"].erase("200");
-      op["responses"]["201"] = {{"description", "created"}};
+      if (r.pattern == "/api/v1/jobs") {
+        op["responses"].erase("200");
+        op["responses"]["201"] = {{"description", "created"}};
+      } else {
+        op["responses"]["403"] = error_ref;  // share, unshare: only the owner
+      }
     } else if (r.method == "POST") {
       op["requestBody"] = {{"content", {{"application/octet-stream", {{"schema", {{"type", "string"}, {"format", "binary"}}}}}}}};
       op["responses"].erase("200");
@@ -470,8 +552,10 @@ json Router::openapi() const {
       op["responses"].erase("200");
       op["responses"]["204"] = {{"description", "deleted"}};
     }
+    if (r.method == "DELETE") op["responses"]["403"] = error_ref;  // a shared item: only its owner
     op["responses"]["400"] = error_ref;
     if (r.pattern.find('{') != std::string::npos || (is_job && r.method == "POST")) op["responses"]["404"] = error_ref;
+    op["responses"]["401"] = error_ref;
     std::string method = r.method;
     for (char& c : method) c = char(std::tolower(static_cast<unsigned char>(c)));
     paths[r.pattern][method] = op;
@@ -486,6 +570,9 @@ json Router::openapi() const {
   doc["info"] = {{"title", "CGView API"}, {"version", config_.version}};
   doc["paths"] = paths;
   doc["components"]["schemas"]["Error"] = error_schema;
+  // On loopback a server needs no token; elsewhere (or with --auth required) every route does.
+  doc["components"]["securitySchemes"]["bearer"] = {{"type", "http"}, {"scheme", "bearer"}};
+  doc["security"] = json::array({{{"bearer", json::array()}}, json::object()});
   return doc;
 }
 

@@ -44,10 +44,11 @@ struct Shared {
         store(c.data_dir),
         meshes(store),
         jobs(std::make_unique<JobScheduler>(meshes, c.jobs)),
-        router(meshes, {c.static_dir, "0.1.0", jobs.get(), c.gl_platform, std::max(1, c.workers)}),
+        router(meshes, {c.static_dir, "0.1.0", jobs.get(), c.gl_platform, std::max(1, c.workers),
+                        c.auth_required || !net::ip::make_address(c.host).is_loopback()}),
         workers(std::size_t(std::max(1, c.workers))) {
-    jobs->on_event = [r = &router](const json& e) {
-      if (r->on_event) r->on_event(e);
+    jobs->on_event = [r = &router](const json& e, const Access& readers) {
+      if (r->on_event) r->on_event(e, readers);
     };
   }
   ~Shared() { jobs.reset(); }  // its thread sends events through the router
@@ -59,7 +60,8 @@ struct Shared {
   net::thread_pool workers;
   std::mutex sessions_mutex;
   std::unordered_map<WebSocketSession*, std::weak_ptr<WebSocketSession>> sessions;
-  void broadcast(const json& event);
+  // Sends the event to the sessions of the users who may read it.
+  void broadcast(const json& event, const Access& readers);
 };
 
 // A message queued for a WebSocket: text, or a binary frame header followed
@@ -81,7 +83,11 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     shared_->sessions.erase(this);
   }
 
-  void run(http::request<http::string_body> req) {
+  // The upgrade request's Authorization header (checked by the caller), or
+  // empty: then where a token is required the session waits for an auth message.
+  void run(http::request<http::string_body> req, std::string authorization) {
+    authorization_ = std::move(authorization);
+    caller_ = shared_->router.auth().authenticate(authorization_);
     ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
     ws_.read_message_max(shared_->config.max_ws_message_bytes);
     ws_.async_accept(req, beast::bind_front_handler(&WebSocketSession::on_accept, shared_from_this()));
@@ -92,6 +98,13 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     net::post(ws_.get_executor(), [self = shared_from_this(), out = std::move(out)]() mutable { self->enqueue(std::move(out)); });
   }
   void send_json(const json& j) { send({j.dump(), nullptr, {}, false}); }
+  // Thread-safe: sends an event if this session's user may read it.
+  void send_event(const json& event, const Access& readers) {
+    net::post(ws_.get_executor(), [self = shared_from_this(), event, readers] {
+      if (self->caller_ && self->still_authorized() && readers.allows(*self->caller_))
+        self->enqueue({event.dump(), nullptr, {}, false});
+    });
+  }
 
  private:
   void on_accept(beast::error_code ec) {
@@ -119,7 +132,24 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     buffer_.consume(buffer_.size());
     if (binary) error(nullptr, "bad_request", "binary messages are not accepted; send JSON text");
     else handle(text);
-    do_read();
+    if (!close_when_sent_) do_read();
+  }
+
+  // A missing or wrong token: one error, then the connection closes.
+  void refuse(const json& id, const std::string& detail) {
+    error(id, "unauthorized", detail);
+    close_when_sent_ = true;
+  }
+
+  // The token is checked again for every request and event, so that a
+  // revoked one stops an open session at once; false (and the session
+  // refused) when it was revoked.
+  bool still_authorized() {
+    if (close_when_sent_) return false;
+    if (authorization_.empty()) return true;  // the local user
+    if (shared_->router.auth().authenticate(authorization_)) return true;
+    refuse(nullptr, "the token was revoked");
+    return false;
   }
 
   void error(const json& request_id, const std::string& code, const std::string& detail) {
@@ -138,24 +168,35 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     if (!id.is_null() && !id.is_number_unsigned()) return error(nullptr, "bad_request", "request_id must be a non-negative integer");
     if (!msg.contains("type") || !msg["type"].is_string()) return error(id, "bad_request", "the message has no \"type\"");
     const std::string type = msg["type"];
+    if (type == "auth") {
+      const json token = msg.value("token", json());
+      authorization_ = token.is_string() && !token.get<std::string>().empty() ? "Bearer " + token.get<std::string>() : "-";
+      caller_ = shared_->router.auth().authenticate(authorization_);
+      if (!caller_) return refuse(id, "the token is wrong or was revoked");
+      return send_json({{"type", "authenticated"}, {"request_id", id}, {"user", caller_->user}, {"admin", caller_->admin}});
+    }
+    if (!caller_) return refuse(id, "this server needs a token: send {\"type\":\"auth\",\"token\":TOKEN} first");
+    if (!still_authorized()) return;
     if (type == "ping") return send_json({{"type", "pong"}, {"request_id", id}});
     if (type == "list_meshes" || type == "get_mesh" || type == "get_slice" || type == "get_animation") {
-      net::post(shared_->workers, [self = shared_from_this(), msg = std::move(msg), id, type] { self->work(type, msg, id); });
+      net::post(shared_->workers, [self = shared_from_this(), msg = std::move(msg), id, type, caller = *caller_] {
+        self->work(type, msg, id, caller);
+      });
       return;
     }
     error(id, "bad_request", "unknown message type '" + type + "'");
   }
 
   // On a worker thread.
-  void work(const std::string& type, const json& msg, const json& id) {
+  void work(const std::string& type, const json& msg, const json& id, const Caller& caller) {
     try {
       if (type == "list_meshes") {
         json list = json::array();
-        for (const auto& r : shared_->store.list_meshes()) list.push_back(mesh_json(r));
+        for (const auto& r : shared_->store.list_meshes(caller)) list.push_back(mesh_json(r));
         return send_json({{"type", "meshes"}, {"request_id", id}, {"meshes", list}});
       }
-      if (type == "get_slice") return slice(msg, id);
-      if (type == "get_animation") return animation(msg, id);
+      if (type == "get_slice") return slice(msg, id, caller);
+      if (type == "get_animation") return animation(msg, id, caller);
       if (id.is_null()) return error(id, "bad_request", "get_mesh needs a request_id");
       if (!msg.contains("mesh_id") || !msg["mesh_id"].is_string()) return error(id, "bad_request", "get_mesh needs a \"mesh_id\" string");
       int bits = 14;
@@ -163,7 +204,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
         if (!msg["quantization"].is_number_integer()) return error(id, "bad_request", "quantization must be an integer 1..30");
         bits = msg["quantization"];
       }
-      const auto rec = shared_->store.get_mesh(msg["mesh_id"]);
+      const auto rec = shared_->store.get_mesh(msg["mesh_id"], caller);
       if (!rec) return error(id, "not_found", "no mesh with id '" + msg["mesh_id"].get<std::string>() + "'");
       const std::shared_ptr<const EncodedMesh> enc = shared_->meshes.draco(*rec, bits);
       const std::uint32_t rid = std::uint32_t(id.get<std::uint64_t>());
@@ -189,13 +230,13 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   // get_animation: a job's animation artifact (chaos_animate's frames) as
   // quantized deltas, zlib-compressed, in frames of kind 3
   // (protocol/animation_frames.h, API.md).  On a worker thread.
-  void animation(const json& msg, const json& id) {
+  void animation(const json& msg, const json& id, const Caller& caller) {
     if (id.is_null()) return error(id, "bad_request", "get_animation needs a request_id");
     if (!msg.contains("job_id") || !msg["job_id"].is_string()) return error(id, "bad_request", "get_animation needs a \"job_id\" string");
     const std::string artifact = msg.contains("artifact") && msg["artifact"].is_string() ? msg["artifact"].get<std::string>() : "frames";
     std::string raw;
     try {
-      raw = shared_->jobs->artifact(msg["job_id"], artifact, "frames").bytes;
+      raw = shared_->jobs->artifact(msg["job_id"], artifact, "frames", caller).bytes;
     } catch (const std::out_of_range& e) {
       return error(id, "not_found", e.what());
     } catch (const UnsupportedFormat&) {
@@ -218,7 +259,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
 
   // get_slice: a 2D slice of a job's voxel grid artifact, zlib-compressed
   // in voxel-slice frames (protocol/voxel_slice.h, API.md).  On a worker thread.
-  void slice(const json& msg, const json& id) {
+  void slice(const json& msg, const json& id, const Caller& caller) {
     if (id.is_null()) return error(id, "bad_request", "get_slice needs a request_id");
     if (!msg.contains("job_id") || !msg["job_id"].is_string()) return error(id, "bad_request", "get_slice needs a \"job_id\" string");
     const std::string artifact = msg.contains("artifact") && msg["artifact"].is_string() ? msg["artifact"].get<std::string>() : "grid";
@@ -235,7 +276,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     const long long index = msg["index"].get<long long>();
     VoxelGrid grid;
     try {
-      const ArtifactBytes a = shared_->jobs->artifact(msg["job_id"], artifact, "nrrd");
+      const ArtifactBytes a = shared_->jobs->artifact(msg["job_id"], artifact, "nrrd", caller);
       grid = decode_nrrd(a.bytes, artifact);
     } catch (const std::out_of_range& e) {
       return error(id, "not_found", e.what());
@@ -290,7 +331,11 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
     }
     queued_bytes_ -= queue_.front().size();
     queue_.pop_front();
-    if (!queue_.empty()) do_write();
+    if (!queue_.empty()) return do_write();
+    if (close_when_sent_ && !closing_) {
+      closing_ = true;
+      ws_.async_close(websocket::close_code::policy_error, [self = shared_from_this()](beast::error_code) {});
+    }
   }
 
   websocket::stream<beast::tcp_stream> ws_;
@@ -299,16 +344,19 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   std::deque<Outgoing> queue_;
   std::size_t queued_bytes_ = 0;
   bool closing_ = false;
+  bool close_when_sent_ = false;  // refused: close once the error is written
+  std::optional<Caller> caller_;  // set once authenticated; read on the strand only
+  std::string authorization_;     // "Bearer TOKEN", checked again for each request; empty: the local user
 };
 
-void Shared::broadcast(const json& event) {
+void Shared::broadcast(const json& event, const Access& readers) {
   std::vector<std::shared_ptr<WebSocketSession>> live;
   {
     std::lock_guard lock(sessions_mutex);
     for (auto& [p, w] : sessions)
       if (auto s = w.lock()) live.push_back(std::move(s));
   }
-  for (auto& s : live) s->send_json(event);
+  for (auto& s : live) s->send_event(event, readers);
 }
 
 class HttpSession : public std::enable_shared_from_this<HttpSession> {
@@ -363,12 +411,18 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     if (websocket::is_upgrade(req)) {
       if (split_target(std::string(req.target())).first != "/api/v1/ws")
         return write(error_response(404, "not_found", "WebSockets are served at /api/v1/ws"), false);
+      // A token in the upgrade's header authenticates at once (scripts); a
+      // browser, which cannot set it, sends an auth message first.
+      std::string authorization(req[http::field::authorization]);
+      if (!authorization.empty() && !shared_->router.auth().authenticate(authorization))
+        return write(error_response(401, "unauthorized", "the token is wrong or was revoked"), false);
       stream_.expires_never();
-      std::make_shared<WebSocketSession>(stream_.release_socket(), shared_)->run(parser_->release());
+      std::make_shared<WebSocketSession>(stream_.release_socket(), shared_)->run(parser_->release(), std::move(authorization));
       return;
     }
     keep_alive_ = req.keep_alive();
-    HttpRequest r{std::string(req.method_string()), std::string(req.target()), std::move(req.body())};
+    HttpRequest r{std::string(req.method_string()), std::string(req.target()), std::move(req.body()),
+                  std::string(req[http::field::authorization])};
     const bool head = r.method == "HEAD";
     if (head) r.method = "GET";
     if (!shared_->router.is_heavy(r)) {
@@ -416,7 +470,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
 
 struct Server::Impl {
   explicit Impl(const ServerConfig& c) : shared(std::make_shared<Shared>(c)), acceptor(ioc) {
-    shared->router.on_event = [s = shared.get()](const json& e) { s->broadcast(e); };
+    shared->router.on_event = [s = shared.get()](const json& e, const Access& readers) { s->broadcast(e, readers); };
     shared->jobs->start();
     const tcp::endpoint ep(net::ip::make_address(c.host), c.port);
     acceptor.open(ep.protocol());

@@ -25,6 +25,9 @@ struct ServerConfig {
   std::size_t max_ws_message_bytes = std::size_t(1) << 20;  // client messages are small JSON
   std::size_t max_write_queue_bytes = std::size_t(1) << 30; // per WebSocket, then the client is dropped
   int workers = 2;
+  // Every request carries a bearer token.  A server on a non-loopback
+  // address needs tokens whatever this says.
+  bool auth_required = false;
   render::GlPlatform gl_platform = render::GlPlatform::automatic;  // EGL platform of render.png
   JobConfig jobs;  // the worker executable, pool size, limits
 };

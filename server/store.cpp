@@ -3,6 +3,7 @@
 #include <openssl/evp.h>
 #include <sqlite3.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -50,10 +51,17 @@ class Stmt {
   sqlite3_stmt* s_ = nullptr;
 };
 
-constexpr const char* kColumns = "id, name, format, bytes, sha256, created, report, warnings";
+constexpr const char* kColumns = "id, name, format, bytes, sha256, created, report, warnings, owner";
+// The meshes caller ?1 (admin: ?2) may read.
+constexpr const char* kReadable =
+    "(?2 OR owner = ?1 OR id IN (SELECT item FROM shares WHERE kind = 'mesh' AND (user = ?1 OR user = '*')))";
 
 MeshRecord row(const Stmt& s) {
-  return {s.text(0), s.text(1), s.text(2), std::uint64_t(s.integer(3)), s.text(4), s.text(5), s.text(6), s.text(7)};
+  return {s.text(0), s.text(1), s.text(2), std::uint64_t(s.integer(3)), s.text(4), s.text(5), s.text(6), s.text(7), s.text(8)};
+}
+
+std::string mesh_query(const std::string& where) {
+  return std::string("SELECT ") + kColumns + " FROM meshes WHERE " + kReadable + where;
 }
 
 bool safe_ext(const std::string& f) {
@@ -110,16 +118,33 @@ void exec_sql(sqlite3* db, const char* sql, const char* who) {
   }
 }
 
+void add_missing_column(sqlite3* db, const char* table, const char* column, const char* decl, const char* who) {
+  sqlite3_stmt* probe = nullptr;
+  const std::string select = std::string("SELECT ") + column + " FROM " + table + " LIMIT 0";
+  const bool has = sqlite3_prepare_v2(db, select.c_str(), -1, &probe, nullptr) == SQLITE_OK;
+  sqlite3_finalize(probe);
+  if (!has) exec_sql(db, (std::string("ALTER TABLE ") + table + " ADD COLUMN " + column + " " + decl + ";").c_str(), who);
+}
+
+bool Access::allows(const Caller& c) const {
+  if (owned_by(c) || everyone) return true;
+  return std::find(readers.begin(), readers.end(), c.user) != readers.end();
+}
+
 std::string sha256_hex(std::string_view bytes) {
   unsigned char md[EVP_MAX_MD_SIZE];
   unsigned int n = 0;
   if (!EVP_Digest(bytes.data(), bytes.size(), md, &n, EVP_sha256(), nullptr)) throw Error("SHA-256 failed");
+  return to_hex(md, n);
+}
+
+std::string to_hex(const unsigned char* bytes, std::size_t n) {
   static const char* hex = "0123456789abcdef";
   std::string out;
   out.reserve(2 * n);
-  for (unsigned i = 0; i < n; ++i) {
-    out.push_back(hex[md[i] >> 4]);
-    out.push_back(hex[md[i] & 15]);
+  for (std::size_t i = 0; i < n; ++i) {
+    out.push_back(hex[bytes[i] >> 4]);
+    out.push_back(hex[bytes[i] & 15]);
   }
   return out;
 }
@@ -135,8 +160,14 @@ Store::Store(const fs::path& data_dir) : dir_(data_dir) {
        " id TEXT PRIMARY KEY, name TEXT NOT NULL, format TEXT NOT NULL, bytes INTEGER NOT NULL,"
        " sha256 TEXT NOT NULL, created TEXT NOT NULL, report TEXT NOT NULL, warnings TEXT NOT NULL,"
        " seq INTEGER);"
-       "CREATE INDEX IF NOT EXISTS meshes_sha ON meshes(sha256);",
+       "CREATE INDEX IF NOT EXISTS meshes_sha ON meshes(sha256);"
+       "CREATE TABLE IF NOT EXISTS users (name TEXT PRIMARY KEY, admin INTEGER NOT NULL, created TEXT NOT NULL);"
+       "CREATE TABLE IF NOT EXISTS tokens (id TEXT PRIMARY KEY, user TEXT NOT NULL, hash TEXT NOT NULL, created TEXT NOT NULL);"
+       "CREATE TABLE IF NOT EXISTS shares (kind TEXT NOT NULL, item TEXT NOT NULL, user TEXT NOT NULL,"
+       " PRIMARY KEY (kind, item, user));",
            "store");
+  // Meshes stored before users belong to the local user.
+  add_missing_column(db_, "meshes", "owner", "TEXT NOT NULL DEFAULT 'local'", "store");
   {
     Stmt s(db_, "SELECT COUNT(*) FROM meshes");
     s.step();
@@ -173,10 +204,10 @@ MeshRecord Store::add_mesh(MeshRecord r, std::string_view bytes) {
   std::lock_guard lock(mutex_);
   try {
     Stmt s(db_,
-           "INSERT INTO meshes (id, name, format, bytes, sha256, created, report, warnings, seq)"
-           " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, (SELECT IFNULL(MAX(seq), 0) + 1 FROM meshes))");
+           "INSERT INTO meshes (id, name, format, bytes, sha256, created, report, warnings, owner, seq)"
+           " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, (SELECT IFNULL(MAX(seq), 0) + 1 FROM meshes))");
     s.bind(1, r.id).bind(2, r.name).bind(3, r.format).bind(4, std::int64_t(r.bytes)).bind(5, r.sha256);
-    s.bind(6, r.created).bind(7, r.report_json).bind(8, r.warnings_json);
+    s.bind(6, r.created).bind(7, r.report_json).bind(8, r.warnings_json).bind(9, r.owner);
     s.step();
     ++count_;
   } catch (...) {
@@ -186,26 +217,27 @@ MeshRecord Store::add_mesh(MeshRecord r, std::string_view bytes) {
   return r;
 }
 
-std::vector<MeshRecord> Store::list_meshes() const {
+std::vector<MeshRecord> Store::list_meshes(const Caller& caller) const {
   std::lock_guard lock(mutex_);
-  Stmt s(db_, (std::string("SELECT ") + kColumns + " FROM meshes ORDER BY seq").c_str());
+  Stmt s(db_, mesh_query(" ORDER BY seq").c_str());
+  s.bind(1, caller.user).bind(2, std::int64_t(caller.admin));
   std::vector<MeshRecord> out;
   while (s.step()) out.push_back(row(s));
   return out;
 }
 
-std::optional<MeshRecord> Store::get_mesh(const std::string& id) const {
+std::optional<MeshRecord> Store::get_mesh(const std::string& id, const Caller& caller) const {
   std::lock_guard lock(mutex_);
-  Stmt s(db_, (std::string("SELECT ") + kColumns + " FROM meshes WHERE id = ?1").c_str());
-  s.bind(1, id);
+  Stmt s(db_, mesh_query(" AND id = ?3").c_str());
+  s.bind(1, caller.user).bind(2, std::int64_t(caller.admin)).bind(3, id);
   if (!s.step()) return std::nullopt;
   return row(s);
 }
 
-std::optional<MeshRecord> Store::find_by_sha256(const std::string& sha) const {
+std::optional<MeshRecord> Store::find_by_sha256(const std::string& sha, const std::string& owner) const {
   std::lock_guard lock(mutex_);
-  Stmt s(db_, (std::string("SELECT ") + kColumns + " FROM meshes WHERE sha256 = ?1 ORDER BY seq LIMIT 1").c_str());
-  s.bind(1, sha);
+  Stmt s(db_, (std::string("SELECT ") + kColumns + " FROM meshes WHERE sha256 = ?1 AND owner = ?2 ORDER BY seq LIMIT 1").c_str());
+  s.bind(1, sha).bind(2, owner);
   if (!s.step()) return std::nullopt;
   return row(s);
 }
@@ -220,6 +252,9 @@ bool Store::remove_mesh(const std::string& id) {
     s.step();
     if (sqlite3_changes(db_) == 0) return false;
     --count_;
+    Stmt shares(db_, "DELETE FROM shares WHERE kind = 'mesh' AND item = ?1");
+    shares.bind(1, id);
+    shares.step();
   }
   std::error_code ec;
   fs::remove(blob_path(*r), ec);
@@ -235,5 +270,91 @@ std::string Store::read_blob(const MeshRecord& r) const {
   return bytes;
 }
 
+void Store::set_shared(const std::string& kind, const std::string& id, const std::vector<std::string>& users, bool shared) {
+  std::lock_guard lock(mutex_);
+  for (const auto& u : users) {
+    Stmt s(db_, shared ? "INSERT OR IGNORE INTO shares (kind, item, user) VALUES (?1, ?2, ?3)"
+                       : "DELETE FROM shares WHERE kind = ?1 AND item = ?2 AND user = ?3");
+    s.bind(1, kind).bind(2, id).bind(3, u);
+    s.step();
+  }
+}
+
+std::vector<std::string> Store::shared_with(const std::string& kind, const std::string& id) const {
+  std::lock_guard lock(mutex_);
+  Stmt s(db_, "SELECT user FROM shares WHERE kind = ?1 AND item = ?2 ORDER BY user");
+  s.bind(1, kind).bind(2, id);
+  std::vector<std::string> out;
+  while (s.step()) out.push_back(s.text(0));
+  return out;
+}
+
+Access Store::access(const std::string& kind, const std::string& id, std::string owner) const {
+  Access a{std::move(owner), shared_with(kind, id)};
+  const auto all = std::find(a.readers.begin(), a.readers.end(), kEveryone);
+  a.everyone = all != a.readers.end();
+  if (a.everyone) a.readers.erase(all);
+  return a;
+}
+
+std::optional<Access> Store::mesh_access(const std::string& id) const {
+  const auto rec = get_mesh(id);
+  if (!rec) return std::nullopt;
+  return access("mesh", id, rec->owner);
+}
+
+void Store::add_user(const std::string& name, bool admin) {
+  std::lock_guard lock(mutex_);
+  Stmt s(db_,
+         "INSERT INTO users (name, admin, created) VALUES (?1, ?2, ?3)"
+         " ON CONFLICT(name) DO UPDATE SET admin = excluded.admin");
+  s.bind(1, name).bind(2, std::int64_t(admin)).bind(3, now_iso8601());
+  s.step();
+}
+
+namespace {
+constexpr const char* kUserQuery =
+    "SELECT name, admin, created, (SELECT COUNT(*) FROM tokens WHERE tokens.user = users.name) FROM users";
+UserRecord user_row(const Stmt& s) { return {s.text(0), s.integer(1) != 0, s.text(2), int(s.integer(3))}; }
+}  // namespace
+
+std::optional<UserRecord> Store::get_user(const std::string& name) const {
+  std::lock_guard lock(mutex_);
+  Stmt s(db_, (std::string(kUserQuery) + " WHERE name = ?1").c_str());
+  s.bind(1, name);
+  if (!s.step()) return std::nullopt;
+  return user_row(s);
+}
+
+std::vector<UserRecord> Store::list_users() const {
+  std::lock_guard lock(mutex_);
+  Stmt s(db_, (std::string(kUserQuery) + " ORDER BY name").c_str());
+  std::vector<UserRecord> out;
+  while (s.step()) out.push_back(user_row(s));
+  return out;
+}
+
+void Store::add_token(const std::string& token_id, const std::string& user, const std::string& hash) {
+  std::lock_guard lock(mutex_);
+  Stmt s(db_, "INSERT INTO tokens (id, user, hash, created) VALUES (?1, ?2, ?3, ?4)");
+  s.bind(1, token_id).bind(2, user).bind(3, hash).bind(4, now_iso8601());
+  s.step();
+}
+
+std::optional<std::pair<std::string, std::string>> Store::find_token(const std::string& token_id) const {
+  std::lock_guard lock(mutex_);
+  Stmt s(db_, "SELECT user, hash FROM tokens WHERE id = ?1");
+  s.bind(1, token_id);
+  if (!s.step()) return std::nullopt;
+  return std::pair{s.text(0), s.text(1)};
+}
+
+int Store::revoke_tokens(const std::string& user) {
+  std::lock_guard lock(mutex_);
+  Stmt s(db_, "DELETE FROM tokens WHERE user = ?1");
+  s.bind(1, user);
+  s.step();
+  return sqlite3_changes(db_);
+}
 
 }  // namespace cgview::server

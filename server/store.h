@@ -2,6 +2,7 @@
 // both under one data directory:
 //   DATA/cgview.db            SQLite (WAL): one row per mesh
 //   DATA/blobs/ID.EXT         the uploaded bytes, as uploaded
+// and the users: their tokens (hashed) and what is shared with whom.
 // A blob is written (to a temporary name, then renamed) before its row is
 // committed, and removed after its row is deleted, so a crash at any point
 // leaves no row without its file.  Thread-safe.
@@ -13,6 +14,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -20,6 +22,43 @@
 struct sqlite3;
 
 namespace cgview::server {
+
+// Who asks: a user and whether they may see everything.
+struct Caller {
+  std::string user = "local";
+  bool admin = false;
+  // The single user of a server that needs no token: it sees everything.
+  static Caller local() { return {"local", true}; }
+};
+
+// Who may read a mesh or a job: its owner, the users it was shared with, or
+// everyone; admins read everything.
+struct Access {
+  Access(std::string owner_ = {}, std::vector<std::string> readers_ = {}) : owner(std::move(owner_)), readers(std::move(readers_)) {}
+  std::string owner;
+  std::vector<std::string> readers;
+  bool everyone = false;
+  bool allows(const Caller& c) const;
+  // Reads and also changes (delete, share): the owner or an admin.
+  bool owned_by(const Caller& c) const { return c.admin || c.user == owner; }
+};
+
+// A 403: the caller reads the item (it was shared with them) but may not change it.
+struct Forbidden : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// The owner of the sample meshes loaded at start (shared with everyone).
+inline constexpr const char* kSystemOwner = "system";
+// The user name that means "everyone" in a share.
+inline constexpr const char* kEveryone = "*";
+
+struct UserRecord {
+  std::string name;
+  bool admin = false;
+  std::string created;
+  int tokens = 0;  // live tokens
+};
 
 struct MeshRecord {
   std::string id;       // 16 hex digits
@@ -30,6 +69,7 @@ struct MeshRecord {
   std::string created;  // ISO 8601 UTC
   std::string report_json;    // protocol::to_json(MeshReport), serialized
   std::string warnings_json;  // JSON array of strings
+  std::string owner = "local";
 };
 
 class Store {
@@ -42,9 +82,13 @@ class Store {
 
   // Saves the bytes and the record; assigns id and created.
   MeshRecord add_mesh(MeshRecord record, std::string_view bytes);
-  std::vector<MeshRecord> list_meshes() const;
-  std::optional<MeshRecord> get_mesh(const std::string& id) const;
-  std::optional<MeshRecord> find_by_sha256(const std::string& sha256) const;
+  // The meshes the caller may read, oldest first.
+  std::vector<MeshRecord> list_meshes(const Caller& caller = Caller::local()) const;
+  // The mesh if the caller may read it; nullopt also when it exists but is
+  // another user's (the two answer alike).
+  std::optional<MeshRecord> get_mesh(const std::string& id, const Caller& caller = Caller::local()) const;
+  // The oldest mesh with these bytes that `owner` owns.
+  std::optional<MeshRecord> find_by_sha256(const std::string& sha256, const std::string& owner = "local") const;
   // False when there was no such mesh.
   bool remove_mesh(const std::string& id);
   // The uploaded bytes of a mesh; throws IoError when the blob is missing.
@@ -52,6 +96,27 @@ class Store {
   // The path of a mesh's stored file (for a worker process to read).
   std::filesystem::path blob_file(const MeshRecord& record) const { return blob_path(record); }
   std::size_t count() const { return count_; }
+
+  // Shares an item with users (by name, or kEveryone), or stops sharing it
+  // (shared false); kind is "mesh" or "job".
+  void set_shared(const std::string& kind, const std::string& id, const std::vector<std::string>& users, bool shared);
+  // The users an item is shared with (kEveryone included as such).
+  std::vector<std::string> shared_with(const std::string& kind, const std::string& id) const;
+  // Who reads an item of that owner: the owner and what it is shared with.
+  Access access(const std::string& kind, const std::string& id, std::string owner) const;
+  // A mesh's owner and readers; nullopt when there is no such mesh.
+  std::optional<Access> mesh_access(const std::string& id) const;
+
+  // Users and their tokens.  add_user creates the user or changes admin.
+  void add_user(const std::string& name, bool admin);
+  std::optional<UserRecord> get_user(const std::string& name) const;
+  std::vector<UserRecord> list_users() const;
+  // token_id: the public part of a token; hash: the SHA-256 of its secret.
+  void add_token(const std::string& token_id, const std::string& user, const std::string& hash);
+  // The user and hash of a token id.
+  std::optional<std::pair<std::string, std::string>> find_token(const std::string& token_id) const;
+  // Deletes every token of a user; how many there were.
+  int revoke_tokens(const std::string& user);
   const std::filesystem::path& data_dir() const { return dir_; }
 
  private:
@@ -64,6 +129,8 @@ class Store {
 
 // Lowercase hex SHA-256 of bytes.
 std::string sha256_hex(std::string_view bytes);
+// Lowercase hex of n bytes.
+std::string to_hex(const unsigned char* bytes, std::size_t n);
 // A new random id: 16 hex digits.
 std::string new_id();
 // The current time, ISO 8601 UTC ("2026-11-21T12:00:00Z").
@@ -73,5 +140,8 @@ std::string now_iso8601();
 sqlite3* open_database(const std::filesystem::path& path);
 // Runs SQL statements; throws IoError("WHO: message") on failure.
 void exec_sql(sqlite3* db, const char* sql, const char* who);
+// Adds a column that a database from an older version lacks (DECL: "TEXT
+// NOT NULL DEFAULT 'x'"); throws IoError.
+void add_missing_column(sqlite3* db, const char* table, const char* column, const char* decl, const char* who);
 
 }  // namespace cgview::server

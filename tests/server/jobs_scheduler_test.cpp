@@ -54,7 +54,7 @@ TEST(JobScheduler, RoundRobinAcrossOwners) {
   std::condition_variable cv;
   std::vector<std::string> started;
   int ended = 0;
-  jobs.on_event = [&](const json& e) {
+  jobs.on_event = [&](const json& e, const Access&) {
     std::lock_guard lock(m);
     // A job's first running event marks its start (a slow worker may report
     // progress 0 again before its first step).
@@ -66,7 +66,7 @@ TEST(JobScheduler, RoundRobinAcrossOwners) {
   };
   auto submit = [&](const std::string& owner, double seconds) {
     return jobs.submit({{"algorithm", "test_sleep"}, {"inputs", {{"mesh", mesh.id}}}, {"params", {{"seconds", seconds}}}},
-                       owner)["id"].get<std::string>();
+                       Caller{owner, true})["id"].get<std::string>();
   };
   // Queued before the scheduler starts: alice has three, bob one, carol one.
   const std::string a1 = submit("alice", 0.01), a2 = submit("alice", 0.02), a3 = submit("alice", 0.03);
@@ -89,7 +89,7 @@ TEST(JobsChaos, EmbedExtractAndAnimateThroughTheWorker) {
   std::mutex m;
   std::condition_variable cv;
   std::set<std::string> ended;
-  jobs.on_event = [&](const json& e) {
+  jobs.on_event = [&](const json& e, const Access&) {
     std::lock_guard lock(m);
     if (e["type"] == "job_done" || e["type"] == "job_failed") ended.insert(e["job"]["id"].get<std::string>());
     cv.notify_all();

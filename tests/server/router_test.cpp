@@ -61,7 +61,7 @@ class RouterTest : public ::testing::Test {
     store_ = std::make_unique<Store>(dir_ / "data");
     service_ = std::make_unique<MeshService>(*store_);
     router_ = std::make_unique<Router>(*service_, RouterConfig{static_dir_, "0.1.0"});
-    router_->on_event = [this](const json& e) { events_.push_back(e); };
+    router_->on_event = [this](const json& e, const Access&) { events_.push_back(e); };
   }
 
   void TearDown() override {
@@ -73,7 +73,7 @@ class RouterTest : public ::testing::Test {
   }
 
   HttpResponse call(const std::string& method, const std::string& target, std::string body = "") {
-    return router_->handle({method, target, std::move(body)});
+    return router_->handle({method, target, std::move(body), ""});
   }
 
   // Uploads a sample; returns the Mesh object.
@@ -283,8 +283,8 @@ TEST_F(RouterTest, RefusesPathTraversal) {
 
 TEST_F(RouterTest, NoStaticDirMeans404) {
   Router bare(*service_, RouterConfig{});
-  expect_error(bare.handle({"GET", "/", ""}), 404, "not_found");
-  expect_error(bare.handle({"GET", "/index.html", ""}), 404, "not_found");
+  expect_error(bare.handle({"GET", "/", "", ""}), 404, "not_found");
+  expect_error(bare.handle({"GET", "/index.html", "", ""}), 404, "not_found");
 }
 
 TEST(RouterTarget, SplitsAndDecodes) {

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -595,6 +596,97 @@ TEST_F(ServerIntegration, MeshesSurviveARestart) {
   ASSERT_FALSE(ws.connect(port()));
   EXPECT_EQ(get_mesh(ws, c["id"], 1).begin["vertices"], c["report"]["vertices"]);
   EXPECT_EQ(server_.stop(SIGINT), 0);
+}
+
+// ---------------------------------------------------------------- users
+
+// cgview-server ARGS... on the test's data directory; its stdout.
+std::string server_command(const fs::path& data, const std::string& args) {
+  std::ostringstream cmd;  // (one + chain of strings here trips GCC 12's -Wrestrict)
+  cmd << "'" << test::bin("cgview-server") << "' --data-dir '" << data.string() << "' " << args << " 2>/dev/null";
+  std::string out;
+  if (FILE* p = ::popen(cmd.str().c_str(), "r")) {
+    char buf[512];
+    for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
+    ::pclose(p);
+  }
+  while (!out.empty() && out.back() == '\n') out.pop_back();
+  return out;
+}
+
+// One request with "Authorization: Bearer TOKEN".
+HttpResult call_as(unsigned short port, const std::string& token, const std::string& method, const std::string& target,
+                   const std::string& body = "") {
+  return http_raw(port, method + " " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\nAuthorization: Bearer " + token +
+                            "\r\nContent-Length: " + std::to_string(body.size()) + "\r\nConnection: close\r\n\r\n" + body);
+}
+
+TEST_F(ServerIntegration, TokensOverHttpAndWebSocketAndRevokedAtOnce) {
+  fs::create_directories(data_);
+  const std::string alice = server_command(data_, "user add alice"), bob = server_command(data_, "user add bob");
+  ASSERT_EQ(alice.size(), 85u) << alice;
+  ASSERT_TRUE(start({"--auth", "required"}));
+  // No token, or a wrong one: 401 and nothing more.
+  const HttpResult none = http_get(port(), "/api/v1/meshes");
+  expect_error(none, 401, "unauthorized");
+  EXPECT_EQ(none.header("WWW-Authenticate"), "Bearer");
+  expect_error(call_as(port(), "cgv_nonsense", "GET", "/api/v1/health"), 401, "unauthorized");
+  const HttpResult up = call_as(port(), bob, "POST", "/api/v1/meshes?name=sphere.off", read_bytes(test::sample("sphere.off")));
+  ASSERT_EQ(up.status, 201u) << up.body;
+  const std::string mesh = up.body_json()["id"];
+  EXPECT_EQ(up.body_json()["owner"], "bob");
+
+  // A WebSocket that does not authenticate first gets one error, then is closed.
+  {
+    WsClient ws;
+    ASSERT_FALSE(ws.connect(port()));
+    ASSERT_FALSE(ws.send({{"type", "list_meshes"}, {"request_id", 1}}));
+    EXPECT_EQ(ws.reply().value("error", ""), "unauthorized");
+    EXPECT_FALSE(ws.read(5s).has_value());
+  }
+  {
+    WsClient ws;
+    ASSERT_FALSE(ws.connect(port()));
+    ASSERT_FALSE(ws.send({{"type", "auth"}, {"request_id", 1}, {"token", alice + "x"}}));
+    EXPECT_EQ(ws.reply().value("error", ""), "unauthorized");
+    EXPECT_FALSE(ws.read(5s).has_value());
+  }
+  WsClient a, b;
+  ASSERT_FALSE(a.connect(port()));
+  ASSERT_FALSE(a.send({{"type", "auth"}, {"request_id", 1}, {"token", alice}}));
+  const json hello = a.reply();
+  EXPECT_EQ(hello.value("type", ""), "authenticated") << hello.dump();
+  EXPECT_EQ(hello.value("user", ""), "alice");
+  ASSERT_FALSE(a.send({{"type", "list_meshes"}, {"request_id", 2}}));
+  EXPECT_EQ(a.reply()["meshes"], json::array());
+  ASSERT_FALSE(a.send({{"type", "get_mesh"}, {"request_id", 3}, {"mesh_id", mesh}}));
+  EXPECT_EQ(a.reply().value("error", ""), "not_found");
+  // Events reach only those who may read them: bob sees his upload, alice does not.
+  ASSERT_FALSE(b.connect(port()));
+  ASSERT_FALSE(b.send({{"type", "auth"}, {"request_id", 1}, {"token", bob}}));
+  EXPECT_EQ(b.reply().value("user", ""), "bob");
+  ASSERT_EQ(call_as(port(), bob, "POST", "/api/v1/meshes?name=cube.off", read_bytes(test::sample("cube.off"))).status, 201u);
+  const auto added = b.read();
+  ASSERT_TRUE(added.has_value());
+  EXPECT_EQ(json::parse(added->data).value("type", ""), "mesh_added");
+  EXPECT_TRUE(a.ping(4));
+  EXPECT_TRUE(a.events().empty()) << a.events().size() << " events reached alice";
+
+  // Revoked on the command line while the server runs: refused at once.
+  EXPECT_EQ(call_as(port(), alice, "GET", "/api/v1/meshes").status, 200u);
+  EXPECT_EQ(server_command(data_, "user revoke alice"), "revoked 1 token of alice");
+  expect_error(call_as(port(), alice, "GET", "/api/v1/meshes"), 401, "unauthorized");
+  // Her open WebSocket too: its next request is refused and the connection closed.
+  ASSERT_FALSE(a.send({{"type", "ping"}, {"request_id", 9}}));
+  EXPECT_EQ(a.reply().value("error", ""), "unauthorized");
+  EXPECT_FALSE(a.read(5s).has_value());
+  EXPECT_EQ(call_as(port(), bob, "GET", "/api/v1/meshes").status, 200u);
+  const std::string users = server_command(data_, "user list");
+  EXPECT_NE(users.find("alice"), std::string::npos) << users;
+  EXPECT_NE(users.find("bob"), std::string::npos) << users;
+  // Tokens are never logged.
+  EXPECT_EQ(server_.stderr_text().find(alice.substr(21)), std::string::npos);
+  EXPECT_EQ(users.find(bob.substr(21)), std::string::npos);
 }
 
 }  // namespace

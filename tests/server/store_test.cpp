@@ -153,6 +153,42 @@ TEST(Store, ReopeningShowsTheSameRecordsAndBlobs) {
   EXPECT_EQ(integrity_check(dir / "cgview.db"), "ok");
 }
 
+// A data directory from before users: its meshes become the local user's,
+// and users, tokens and shares are kept across a restart.
+TEST(Store, AnOldDataDirectoryUpgradesAndUsersPersist) {
+  const fs::path dir = test::temp_dir("store-upgrade");
+  {
+    sqlite3* db = open_database(dir / "cgview.db");
+    exec_sql(db,
+             "CREATE TABLE meshes (id TEXT PRIMARY KEY, name TEXT NOT NULL, format TEXT NOT NULL, bytes INTEGER NOT NULL,"
+             " sha256 TEXT NOT NULL, created TEXT NOT NULL, report TEXT NOT NULL, warnings TEXT NOT NULL, seq INTEGER);"
+             "INSERT INTO meshes VALUES ('00000000000000aa', 'old.off', 'off', 3, 'x', '2026-01-01T00:00:00Z', '{}', '[]', 1);",
+             "test");
+    sqlite3_close(db);
+  }
+  {
+    Store store(dir);
+    const auto old = store.get_mesh("00000000000000aa");
+    ASSERT_TRUE(old);
+    EXPECT_EQ(old->owner, "local");
+    EXPECT_FALSE(store.get_mesh(old->id, {"alice", false}));
+    store.add_user("alice", false);
+    store.add_token("0123456789abcdef", "alice", sha256_hex("secret"));
+    store.set_shared("mesh", old->id, {"alice"}, true);
+  }
+  Store again(dir);
+  EXPECT_TRUE(again.get_mesh("00000000000000aa", {"alice", false}));
+  EXPECT_EQ(again.list_meshes({"alice", false}).size(), 1u);
+  EXPECT_TRUE(again.list_meshes({"bob", false}).empty());
+  ASSERT_TRUE(again.find_token("0123456789abcdef"));
+  EXPECT_EQ(again.find_token("0123456789abcdef")->first, "alice");
+  EXPECT_EQ(again.list_users().size(), 1u);
+  EXPECT_EQ(again.revoke_tokens("alice"), 1);
+  EXPECT_FALSE(again.find_token("0123456789abcdef"));
+  EXPECT_TRUE(again.remove_mesh("00000000000000aa"));
+  EXPECT_TRUE(again.shared_with("mesh", "00000000000000aa").empty());
+}
+
 TEST(Store, MissingBlobIsAnIoError) {
   const fs::path dir = test::temp_dir("store-missing");
   Store store(dir);

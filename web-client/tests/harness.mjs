@@ -118,6 +118,7 @@ async function waitForHealth(url, timeoutMs, exited, log) {
       const r = await fetch(`${url}/api/v1/health`);
       const body = await r.json();
       if (r.status === 200 && body.status === 'ok') return body;
+      if (r.status === 401 && body.error === 'unauthorized') return body; // up, and it needs a token (--auth required)
       last = `HTTP ${r.status} ${JSON.stringify(body)}`;
     } catch (e) {
       last = e.message;

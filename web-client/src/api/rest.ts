@@ -1,5 +1,6 @@
 // The REST half of protocol/API.md: list, upload, get, delete meshes; list
 // algorithms; submit, list, get and cancel jobs; fetch their artifacts.
+import { authFetch } from './auth.ts';
 import type { Algorithm, ErrorBody, Health, Job, JobInput, Mesh } from './types.ts';
 
 const BASE = '/api/v1';
@@ -48,7 +49,7 @@ async function failure(response: Response): Promise<ApiError> {
 async function request<T>(path: string, init?: RequestInit): Promise<T> {
   let response: Response;
   try {
-    response = await fetch(BASE + path, init);
+    response = await authFetch(BASE + path, init);
   } catch (e) {
     throw new ApiError(0, 'network', `cannot reach the server: ${(e as Error).message}`);
   }
@@ -133,7 +134,7 @@ export function artifactUrl(jobId: string, name: string, format: string): string
 async function fetchOk(url: string, signal?: AbortSignal): Promise<Response> {
   let response: Response;
   try {
-    response = await fetch(url, { signal });
+    response = await authFetch(url, { signal });
   } catch (e) {
     if (e instanceof DOMException && e.name === 'AbortError') throw e;
     throw new ApiError(0, 'network', `cannot reach the server: ${(e as Error).message}`);

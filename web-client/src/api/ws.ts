@@ -4,6 +4,7 @@
 // job_progress / job_done / job_failed / job_cancelled.
 // Reconnects by itself; requests in flight when the connection drops fail.
 import { ChunkAssembler, FrameError, FrameKind, decodeFrame } from './frames.ts';
+import { getToken, reportUnauthorized } from './auth.ts';
 import { SERVER_EVENT_TYPES, type Mesh, type MeshBegin, type ServerEvent } from './types.ts';
 import { decodeAnimationPayload } from './animation_payload.ts';
 import { decodeSlicePayload, type Axis, type VoxelSlice } from './voxel_slice.ts';
@@ -125,6 +126,9 @@ export class CgviewSocket {
       this.socket = ws;
       let didOpen = false;
       ws.onopen = () => {
+        // Where the server needs a token, it must be the first message.
+        const token = getToken();
+        if (token) ws.send(JSON.stringify({ type: 'auth', request_id: 0, token }));
         didOpen = true;
         this.retryMs = 500;
         resolve();
@@ -286,6 +290,7 @@ export class CgviewSocket {
       for (const h of this.eventHandlers) h(msg as unknown as ServerEvent);
       return;
     }
+    if (type === 'error' && msg.error === 'unauthorized') reportUnauthorized();
     if (id === null) {
       if (type === 'error') console.warn('cgview: server error without a request', msg);
       return;

@@ -1,6 +1,7 @@
 // The list of stored meshes: a thumbnail rendered by the server (render.png),
 // name, vertex and face counts; a click shows the mesh, the delete button
 // removes it from the server.
+import { setImageSource } from '../api/auth.ts';
 import { renderUrl } from '../api/rest.ts';
 import type { Mesh } from '../api/types.ts';
 import { el } from './dom.ts';
@@ -71,7 +72,6 @@ export class MeshListPanel {
     if (thumb === undefined) {
       const img = el('img', {
         class: 'mesh-thumb',
-        src: renderUrl(id, { width: THUMBNAIL_PX, height: THUMBNAIL_PX }),
         alt: '',
         loading: 'lazy',
         decoding: 'async',
@@ -83,6 +83,7 @@ export class MeshListPanel {
         img.remove();
         if (this.thumbs.has(id)) this.thumbs.set(id, null);
       });
+      setImageSource(img, renderUrl(id, { width: THUMBNAIL_PX, height: THUMBNAIL_PX }));
       this.thumbs.set(id, img);
       thumb = img;
     }

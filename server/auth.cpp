@@ -1,0 +1,64 @@
+#include "auth.h"
+
+#include <openssl/crypto.h>
+#include <openssl/rand.h>
+
+#include <vector>
+
+#include "core/errors.h"
+
+namespace cgview::server {
+
+namespace {
+
+constexpr std::string_view kPrefix = "cgv_";
+
+std::string random_hex(std::size_t bytes) {
+  std::vector<unsigned char> raw(bytes);
+  if (RAND_bytes(raw.data(), int(bytes)) != 1) throw Error("no random bytes from OpenSSL");
+  return to_hex(raw.data(), bytes);
+}
+
+}  // namespace
+
+bool valid_user_name(const std::string& name) {
+  if (name.empty() || name.size() > 64 || name == "local" || name == kSystemOwner) return false;
+  for (unsigned char c : name)
+    if (!std::isalnum(c) && c != '_' && c != '.' && c != '-') return false;
+  return true;
+}
+
+std::optional<Caller> Auth::authenticate(std::string_view authorization) const {
+  if (authorization.empty()) return required_ ? std::nullopt : std::optional(Caller::local());
+  constexpr std::string_view bearer = "Bearer ";
+  if (authorization.size() <= bearer.size()) return std::nullopt;
+  for (std::size_t i = 0; i < bearer.size(); ++i)  // the scheme is case-insensitive (RFC 7235)
+    if (std::tolower(static_cast<unsigned char>(authorization[i])) != std::tolower(static_cast<unsigned char>(bearer[i])))
+      return std::nullopt;
+  return check_token(authorization.substr(bearer.size()));
+}
+
+std::optional<Caller> Auth::check_token(std::string_view token) const {
+  // cgv_ + 16 hex + _ + 64 hex
+  if (token.size() != kPrefix.size() + 16 + 1 + 64 || !token.starts_with(kPrefix) || token[kPrefix.size() + 16] != '_')
+    return std::nullopt;
+  const auto row = store_.find_token(std::string(token.substr(kPrefix.size(), 16)));
+  if (!row) return std::nullopt;
+  const std::string hash = sha256_hex(token.substr(kPrefix.size() + 17));
+  if (row->second.size() != hash.size() || CRYPTO_memcmp(row->second.data(), hash.data(), hash.size()) != 0)
+    return std::nullopt;
+  const auto user = store_.get_user(row->first);
+  if (!user) return std::nullopt;
+  return Caller{user->name, user->admin};
+}
+
+std::string Auth::add_user(const std::string& name, bool admin) {
+  if (!valid_user_name(name))
+    throw InvalidInput("'" + name + "' is not a user name: 1 to 64 letters, digits, '_', '.' or '-' (not local or system)");
+  store_.add_user(name, admin);
+  const std::string id = random_hex(8), secret = random_hex(32);
+  store_.add_token(id, name, sha256_hex(secret));
+  return std::string(kPrefix) + id + "_" + secret;
+}
+
+}  // namespace cgview::server

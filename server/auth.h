@@ -1,0 +1,40 @@
+// Users and bearer tokens.  A token is "cgv_ID_SECRET": ID (16 hex digits)
+// names the stored row, SECRET is 256 random bits from OpenSSL's CSPRNG
+// (64 hex digits) of which only the SHA-256 is stored; a token is checked by
+// hashing its secret and comparing the hashes in constant time.  Tokens are
+// never logged.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "store.h"
+
+namespace cgview::server {
+
+class Auth {
+ public:
+  // required: every request needs a token; else one without a token is
+  // Caller::local() (a loopback server's single user).
+  Auth(Store& store, bool required) : store_(store), required_(required) {}
+
+  bool required() const { return required_; }
+  // The caller of a request from its Authorization header ("Bearer TOKEN",
+  // or empty); nullopt answers 401: no header where one is required, or a
+  // wrong or revoked token (even where none is required).
+  std::optional<Caller> authenticate(std::string_view authorization) const;
+
+  // Creates the user if needed (or changes admin) and returns a new token.
+  std::string add_user(const std::string& name, bool admin);
+
+ private:
+  std::optional<Caller> check_token(std::string_view token) const;
+  Store& store_;
+  bool required_;
+};
+
+// True for a user name: 1..64 of [A-Za-z0-9_.-], not "local" or "system".
+bool valid_user_name(const std::string& name);
+
+}  // namespace cgview::server

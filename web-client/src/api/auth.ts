@@ -1,0 +1,112 @@
+// Bearer tokens (protocol/API.md "Users and tokens").  A server on loopback
+// needs none, and nothing here changes a request then; where the server
+// answers 401, the viewer asks once for a token (tokenForm), keeps it in
+// localStorage, and sends it as the Authorization header on every fetch and
+// as the WebSocket's first message.  Tokens never go into URLs (they would
+// be logged): thumbnails and downloads are fetched, then shown from blob URLs.
+
+const KEY = 'cgview.token';
+
+export function getToken(): string | null {
+  try {
+    return localStorage.getItem(KEY);
+  } catch {
+    return null; // storage disabled
+  }
+}
+
+export function setToken(token: string | null): void {
+  if (token) localStorage.setItem(KEY, token);
+  else localStorage.removeItem(KEY);
+}
+
+type Handler = () => void;
+const unauthorizedHandlers = new Set<Handler>();
+
+/** Called when the server refuses the request for its token (401, or the WebSocket's `unauthorized`). */
+export function onUnauthorized(handler: Handler): () => void {
+  unauthorizedHandlers.add(handler);
+  return () => unauthorizedHandlers.delete(handler);
+}
+
+export function reportUnauthorized(): void {
+  for (const h of unauthorizedHandlers) h();
+}
+
+/** fetch with the stored token, if any, as `Authorization: Bearer`. */
+export async function authFetch(url: string, init: RequestInit = {}): Promise<Response> {
+  const token = getToken();
+  if (token) {
+    const headers = new Headers(init.headers);
+    headers.set('Authorization', `Bearer ${token}`);
+    init = { ...init, headers };
+  }
+  const response = await fetch(url, init);
+  if (response.status === 401) reportUnauthorized();
+  return response;
+}
+
+/** Shows `url` in an image: as it is without a token, else fetched with it into a blob URL. */
+export function setImageSource(img: HTMLImageElement, url: string): void {
+  if (!getToken()) {
+    img.src = url;
+    return;
+  }
+  authFetch(url)
+    .then(async (r) => {
+      if (!r.ok) throw new Error(`HTTP ${r.status}`);
+      const blobUrl = URL.createObjectURL(await r.blob());
+      img.addEventListener('load', () => URL.revokeObjectURL(blobUrl), { once: true });
+      img.src = blobUrl;
+    })
+    .catch(() => img.dispatchEvent(new Event('error')));
+}
+
+/**
+ * With a token, a click on a download link to the API fetches the file with
+ * the token and saves it from a blob URL (a plain link would get 401).
+ */
+export function installAuthorizedDownloads(root: Document = document): void {
+  root.addEventListener('click', (ev) => {
+    const a = (ev.target as Element | null)?.closest?.('a[download]') as HTMLAnchorElement | null;
+    if (!a || !getToken() || !a.getAttribute('href')?.startsWith('/api/')) return;
+    ev.preventDefault();
+    void authFetch(a.href).then(async (r) => {
+      if (!r.ok) return;
+      const name = /filename="([^"]+)"/.exec(r.headers.get('Content-Disposition') ?? '')?.[1] ?? 'download';
+      const blobUrl = URL.createObjectURL(await r.blob());
+      const link = Object.assign(root.createElement('a'), { href: blobUrl, download: name });
+      link.click();
+      setTimeout(() => URL.revokeObjectURL(blobUrl), 10_000);
+    });
+  });
+}
+
+let asking: Promise<void> | null = null;
+
+/** The small form that asks for a token once (however many requests were refused); resolves when one is stored. */
+export function tokenForm(message: string): Promise<void> {
+  asking ??= new Promise((resolve) => {
+    setToken(null); // the stored one, if any, was refused
+    const form = document.createElement('form');
+    form.id = 'token-form';
+    form.className = 'token-form';
+    const label = document.createElement('label');
+    label.textContent = message;
+    const input = Object.assign(document.createElement('input'), { type: 'password', name: 'token', placeholder: 'cgv_…', autocomplete: 'off' });
+    const button = Object.assign(document.createElement('button'), { type: 'submit', textContent: 'Sign in' });
+    label.append(input);
+    form.append(label, button);
+    form.addEventListener('submit', (ev) => {
+      ev.preventDefault();
+      const token = input.value.trim();
+      if (!token) return;
+      setToken(token);
+      form.remove();
+      resolve();
+    });
+    document.body.append(form);
+    input.focus();
+  });
+  return asking;
+}
