@@ -67,6 +67,14 @@ uid=$(awk -F: '$1 == "cgview" {print $3}' "$root/etc/passwd")
 [ -n "$uid" ] && [ "$uid" -ne 0 ] || die "no non-root user cgview in the image"
 mkdir -p "$work/data"
 chown "$uid:$uid" "$work/data"
+# A user and its token, made by the image's own program in the data volume:
+# the server listens on every address in the image, so it wants a token.
+token=$(unshare --mount --propagation private sh -c '
+  root=$1 data=$2 uid=$3; shift 3
+  mount --bind "$data" "$root/var/lib/cgview" && exec chroot --userspec="$uid:$uid" "$root" "$@"' \
+  sh "$root" "$work/data" "$uid" "$(inspect '{{index .Config.Entrypoint 0}}')" --data-dir /var/lib/cgview user add tester) \
+  || die "cgview-server user add failed in the image"
+auth=(-H "Authorization: Bearer $token")
 port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
 # The image's own entry point (a later --port wins), as its user, in a mount
 # namespace of its own: /proc, /dev, a /tmp and the data volume over the
@@ -83,35 +91,36 @@ server_pid=$!
 
 url=http://127.0.0.1:$port/api/v1
 for _ in $(seq 300); do
-  curl -fsS "$url/health" >/dev/null 2>&1 && break
+  curl -fsS "${auth[@]}" "$url/health" >/dev/null 2>&1 && break
   kill -0 "$server_pid" 2>/dev/null || { cat "$work/server.log"; die "the server exited"; }
   sleep 0.2
 done
-health=$(curl -fsS "$url/health") || { cat "$work/server.log"; die "no answer from $url/health"; }
+[ "$(curl -sS -o /dev/null -w '%{http_code}' "$url/meshes")" = 401 ] || die "a request without a token was not refused"
+health=$(curl -fsS "${auth[@]}" "$url/health") || { cat "$work/server.log"; die "no answer from $url/health"; }
 echo "$health" | grep -q '"status":"ok"' || die "health: $health"
 say "health: $health"
 # The health check's command, run in the image (its curl) against this port.
-chroot "$root" curl -fsS -o /dev/null "$url/health" || die "the image's curl cannot reach the health route"
+chroot "$root" curl -sS -o /dev/null "$url/health" || die "the image's curl cannot reach the health route"
 # unshare, sh and chroot each exec the next: $server_pid is the server.
 grep -q "^Uid:[[:space:]]*$uid[[:space:]]" "/proc/$server_pid/status" || die "the server does not run as uid $uid"
 
-mesh=$(curl -fsS -X POST --data-binary @"$root/opt/cgview/samples/elephant.off" "$url/meshes?name=elephant.off") \
+mesh=$(curl -fsS "${auth[@]}" -X POST --data-binary @"$root/opt/cgview/samples/elephant.off" "$url/meshes?name=elephant.off") \
   || die "the upload failed"
 id=$(echo "$mesh" | python3 -c 'import json, sys; print(json.load(sys.stdin)["id"])')
 say "uploaded elephant.off as $id"
-curl -fsS "$url/meshes" | grep -q "\"$id\"" || die "the mesh is not listed"
+curl -fsS "${auth[@]}" "$url/meshes" | grep -q "\"$id\"" || die "the mesh is not listed"
 ls "$work/data" | grep -q . || die "nothing was written to the data volume"
-job=$(curl -fsS -X POST -d "{\"algorithm\":\"centroid_distance\",\"inputs\":{\"mesh\":\"$id\"}}" "$url/jobs" \
+job=$(curl -fsS "${auth[@]}" -X POST -d "{\"algorithm\":\"centroid_distance\",\"inputs\":{\"mesh\":\"$id\"}}" "$url/jobs" \
   | python3 -c 'import json, sys; print(json.load(sys.stdin)["id"])') || die "the job was refused"
 state=
 for _ in $(seq 300); do
-  state=$(curl -fsS "$url/jobs/$job" | python3 -c 'import json, sys; print(json.load(sys.stdin)["state"])')
+  state=$(curl -fsS "${auth[@]}" "$url/jobs/$job" | python3 -c 'import json, sys; print(json.load(sys.stdin)["state"])')
   case $state in done|failed|cancelled|interrupted) break ;; esac
   sleep 0.2
 done
 [ "$state" = done ] || { cat "$work/server.log"; die "the job ended $state"; }
 say "job $job done (cgview-worker runs in the image)"
-curl -fsS -o "$work/render.png" "$url/meshes/$id/render.png?width=64&height=48&field=distance" \
+curl -fsS "${auth[@]}" -o "$work/render.png" "$url/meshes/$id/render.png?width=64&height=48&field=distance" \
   || { cat "$work/server.log"; die "render.png failed"; }
 [ "$(head -c 8 "$work/render.png" | od -An -tx1 | tr -d ' ')" = 89504e470d0a1a0a ] || die "render.png is not a PNG"
 say "render.png: $(stat -c %s "$work/render.png") bytes"

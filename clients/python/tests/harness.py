@@ -21,15 +21,25 @@ SAMPLES = os.environ.get("CGVIEW_SAMPLES") or os.path.join(REPO, "build", "sampl
 ELEPHANT = os.path.join(SAMPLES, "elephant.off")
 
 
+def add_user(data_dir, name):
+    """`cgview-server user add NAME` on a data directory: the new token."""
+    out = subprocess.run([SERVER, "--data-dir", data_dir, "user", "add", name], check=True, capture_output=True, text=True)
+    return out.stdout.strip()
+
+
 class Server:
-    def __init__(self, timeout=30):
+    """`users`: names to create before the start, their tokens in self.tokens;
+    `args`: more flags (--auth required)."""
+
+    def __init__(self, timeout=30, users=(), args=()):
         for path in (SERVER, ELEPHANT):
             if not os.path.exists(path):
                 raise FileNotFoundError(f"{path} is missing: build first (cmake --build build)")
         self.data_dir = tempfile.mkdtemp(prefix="cgview-pyclient-")
+        self.tokens = {name: add_user(self.data_dir, name) for name in users}
         self.proc = subprocess.Popen(
             [SERVER, "--host", "127.0.0.1", "--port", "0", "--data-dir", self.data_dir, "--samples", "none",
-             "--job-workers", "2"],
+             "--job-workers", "2", *args],
             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         self.lines = []
         served = threading.Event()
@@ -52,7 +62,10 @@ class Server:
             if self.proc.poll() is not None:
                 raise RuntimeError(f"cgview-server exited ({self.proc.returncode}):\n{self.log()}")
             try:
-                with urllib.request.urlopen(self.url + "/api/v1/health", timeout=2) as r:
+                request = urllib.request.Request(self.url + "/api/v1/health")
+                if self.tokens:
+                    request.add_header("Authorization", "Bearer " + next(iter(self.tokens.values())))
+                with urllib.request.urlopen(request, timeout=2) as r:
                     if json.load(r).get("status") == "ok":
                         return
             except OSError:

@@ -59,7 +59,7 @@ class ClientTest(unittest.TestCase):
 
     @unittest.skipIf(live.websocket is None, "python3-websocket is not installed")
     def test_wait_with_live_events(self):
-        events = live.JobEvents(server.url, token="sent-and-ignored-on-loopback")
+        events = live.JobEvents(server.url)
         self.assertTrue(events.open(), "the WebSocket did not open")
         self.addCleanup(events.close)
         job = self.client.submit("centroid_distance", self.mesh["id"], {"exponent": 2.5})
@@ -121,6 +121,43 @@ class ClientTest(unittest.TestCase):
             view = png.Image(60, 50, b"".join(sheet.rgba[4 * (y * 240 + 60 * i):4 * (y * 240 + 60 * i + 60)]
                                               for y in range(50)))
             self.assertGreater(harness.colourful(view), 50, f"view {i}")
+
+
+class AuthRequiredTest(unittest.TestCase):
+    """A server with --auth required: the client's token opens it, over REST
+    and the WebSocket; without one, or with a wrong one, 401."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.server = harness.Server(users=["alice", "bob"], args=["--auth", "required"])
+        cls.addClassCleanup(cls.server.stop)
+
+    def test_no_token_or_a_wrong_one_is_refused(self):
+        for token in ("", "cgv_0123456789abcdef_" + "0" * 64):
+            with mock.patch.dict(os.environ, {"CGVIEW_TOKEN": ""}):
+                with self.assertRaises(CGViewError) as caught:
+                    Client(self.server.url, token=token or None).meshes()
+            self.assertEqual(caught.exception.status, 401)
+
+    def test_a_users_token_runs_a_job_with_live_progress_and_sees_only_its_own(self):
+        alice = Client(self.server.url, token=self.server.tokens["alice"])
+        bob = Client(self.server.url, token=self.server.tokens["bob"])
+        mesh = alice.upload(harness.ELEPHANT)
+        seen = []
+        job = alice.wait(alice.submit("centroid_distance", mesh["id"])["id"], seen.append, timeout=120,
+                         use_websocket=live.websocket is not None)
+        self.assertEqual(job["state"], "done", job)
+        self.assertEqual(seen[-1]["state"], "done")
+        self.assertNotIn(mesh["id"], [m["id"] for m in bob.meshes()])
+        with self.assertRaises(CGViewError) as caught:
+            bob.submit("centroid_distance", mesh["id"])
+        self.assertEqual(caught.exception.status, 404)
+
+    @unittest.skipIf(live.websocket is None, "python3-websocket is not installed")
+    def test_the_websocket_takes_the_token(self):
+        events = live.JobEvents(self.server.url, token=self.server.tokens["alice"])
+        self.assertTrue(events.open(), "the WebSocket did not open with alice's token")
+        events.close()
 
 
 class Recorder(http.server.BaseHTTPRequestHandler):
