@@ -17,7 +17,7 @@ import {
   submitJob,
   uploadMesh,
 } from './api/rest.ts';
-import { parseSkeleton } from './api/skeleton.ts';
+import { parseSkeleton, type SkeletonData } from './api/skeleton.ts';
 import { jobMeshId } from './api/types.ts';
 import type { Algorithm, ArtifactInfo, Job, JobInput, JobProgress, Mesh, ServerEvent } from './api/types.ts';
 import { CgviewSocket, ServerError } from './api/ws.ts';
@@ -41,7 +41,7 @@ import { Legend } from './viewer/legend.ts';
 import { buildSkeleton, SKELETON_COLORS } from './viewer/skeleton_renderer.ts';
 import { parsePly, type PlyMesh } from './viewer/ply.ts';
 import { buildScalarSurface, colourGeometry, finiteRange, type ScalarField } from './viewer/scalar_field_renderer.ts';
-import { buildPlainSurface, buildSurface } from './viewer/surface_renderer.ts';
+import { buildPlainSurface, buildSurface, SURFACE_COLOR } from './viewer/surface_renderer.ts';
 import { LoadTimer, type LoadTimings } from './viewer/timings.ts';
 import { Viewer } from './viewer/viewer.ts';
 
@@ -131,10 +131,10 @@ export class App {
   /** Mesh artifacts in the view (`${jobId}/${name}`), beside the selected mesh. */
   private readonly added = new Set<string>();
   /** Skeleton artifacts drawn over the mesh, by `${jobId}/${name}`, in the order shown. */
-  private readonly skeletons = new Map<string, { object: THREE.Object3D; color: string; nodes: number; edges: number }>();
+  private readonly skeletons = new Map<string, { object: THREE.Object3D; data: SkeletonData; color: string; nodes: number; edges: number }>();
   /** skeleton_distance jobs submitted for the comparison table, by `${first key}|${other key}`. */
   private readonly distanceJobs = new Map<string, string>();
-  private readonly skeletonsPanel = new SkeletonsPanel(byId('skeletons'));
+  private readonly skeletonsPanel = new SkeletonsPanel(byId('skeletons'), () => void this.compareSkeletons());
   /** A job's output mesh that the next job runs on ("Run on this"), instead of the selected mesh. */
   private runTarget: { jobId: string; artifact: string; kind: string } | null = null;
   /** The scalar field drawn now (or being prepared: token). */
@@ -586,7 +586,7 @@ export class App {
       const used = new Set([...this.skeletons.values()].map((v) => v.color));
       const color = palette.find((c) => !used.has(c)) ?? palette[this.skeletons.size % palette.length]!;
       const object = buildSkeleton(data, color);
-      this.skeletons.set(key, { object, color, nodes: data.nodes.length / 3, edges: data.edges.length / 2 });
+      this.skeletons.set(key, { object, data, color, nodes: data.nodes.length / 3, edges: data.edges.length / 2 });
       this.viewer.addExtra(object, () => this.reportSkeletons());
       this.renderJobs();
     } catch (e) {
@@ -644,6 +644,34 @@ export class App {
     } catch (e) {
       if (token !== this.compareToken) return;
       this.error(`Cannot compare the fields: ${describe(e)}`);
+    }
+  }
+
+  /** The skeletons drawn, side by side: one pane each, over the plain surface, through the one camera. */
+  private async compareSkeletons(): Promise<void> {
+    const list = [...this.skeletons].slice(0, App.MAX_PANES);
+    const meshId = this.selectedId;
+    if (list.length < 2 || !meshId) return;
+    const token = ++this.compareToken;
+    try {
+      const ply = await this.meshPly(meshId);
+      if (token !== this.compareToken || this.selectedId !== meshId) return;
+      this.compared = list.map(([key]) => ({ jobId: key.slice(0, key.indexOf('/')), artifact: key.slice(key.indexOf('/') + 1) }));
+      this.hooks.lastCompare = null;
+      this.legend.hide();
+      this.comparison.showObjects(
+        list.map(([key, s]) => {
+          const group = new THREE.Group();
+          group.add(buildPlainSurface(ply.positions, ply.indices, SURFACE_COLOR), buildSkeleton(s.data, s.color));
+          const jobId = key.slice(0, key.indexOf('/'));
+          return { key, title: this.jobs.get(jobId)?.algorithm ?? jobId, object: group, color: s.color };
+        }),
+      );
+      this.leaveCompare.hidden = false;
+      this.renderJobs();
+    } catch (e) {
+      if (token !== this.compareToken) return;
+      this.error(`Cannot show the skeletons side by side: ${describe(e)}`);
     }
   }
 

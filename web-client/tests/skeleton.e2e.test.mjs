@@ -1,7 +1,8 @@
 // End-to-end test of skeletons in the viewer, against the real server: the
 // paper's skeleton from projections and CGAL's MCF skeleton of the elephant,
 // run from the algorithm form, drawn over the mesh at once in two colours
-// (the paper's Figure 5), then one hidden again. The canvas is kept in
+// (the paper's Figure 5), compared in a table and side by side in two
+// synchronized panes, then one hidden again. The canvas is kept in
 // build/test-artifacts/e2e-skeletons-*.png.
 //
 // Environment: CGVIEW_SERVER (default build/bin/cgview-server),
@@ -85,6 +86,25 @@ test('two skeletons of the elephant drawn at once, each in its colour, then one 
   const png = await v.page.locator('#viewport canvas').screenshot({ path: path.join(artifacts, 'e2e-skeletons-both.png') });
   const pixels = await pngPixels(v.page, png);
   for (const s of drawn) assert.ok(countColour(pixels, s.color) > 200, `skeleton ${s.key} is drawn in ${s.color}`);
+
+  // Side by side: a pane each, through the one camera; each pane shows its own skeleton only.
+  await v.page.locator('#skeletons button.side-by-side').click();
+  await v.page.waitForFunction(() => window.__cgview.lastCompare?.panes.length === 2, null, { timeout: 30000 });
+  const panes = await v.page.evaluate(() => window.__cgview.lastCompare.panes.map((p) => `${p.jobId}/${p.artifact}`));
+  assert.deepEqual(panes, drawn.map((s) => s.key));
+  const sideBySide = await pngPixels(v.page, await v.page.locator('#viewport canvas').screenshot({ path: path.join(artifacts, 'e2e-skeletons-side.png') }));
+  const half = (pixels, right) => {
+    const w = pixels.width, h = pixels.height, out = new Uint8Array((w >> 1) * h * 4);
+    for (let y = 0; y < h; ++y) out.set(pixels.data.subarray((y * w + (right ? w - (w >> 1) : 0)) * 4, (y * w + (right ? w : w >> 1)) * 4), y * (w >> 1) * 4);
+    return { width: w >> 1, height: h, data: out };
+  };
+  for (const [i, s] of drawn.entries()) {
+    const own = half(sideBySide, i === 1), other = half(sideBySide, i === 0);
+    assert.ok(countColour(own, s.color) > 100, `pane ${i} shows ${s.color}`);
+    assert.ok(countColour(other, s.color) < 20, `only pane ${i} shows ${s.color}`);
+  }
+  await v.page.locator('#leave-compare').click();
+  await v.page.waitForFunction(() => window.__cgview.lastCompare === null && !document.querySelector('.compare-view'), null, { timeout: 10000 });
 
   await mcf.locator('.artifact-skeleton button.show-skeleton').click();
   await v.page.waitForFunction(() => window.__cgview.skeletons.length === 1, null, { timeout: 30000 });

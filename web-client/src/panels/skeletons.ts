@@ -32,7 +32,11 @@ function format(v: unknown): string {
 }
 
 export class SkeletonsPanel {
-  constructor(private readonly root: HTMLElement) {}
+  /** onSideBySide: show the skeletons in synchronized panes, one each. */
+  constructor(
+    private readonly root: HTMLElement,
+    private readonly onSideBySide: () => void,
+  ) {}
 
   render(columns: readonly SkeletonColumn[]): void {
     this.root.hidden = columns.length === 0;
@@ -51,6 +55,9 @@ export class SkeletonsPanel {
     const distance = el('tr', { 'data-metric': 'distance' }, el('th', { scope: 'row' }, 'distance to the first (Hausdorff / mean)'));
     for (const c of columns)
       distance.append(el('td', {}, c.distance === null ? '—' : c.distance === undefined ? '…' : `${format(c.distance.hausdorff)} / ${format(c.distance.mean)}`));
-    this.root.replaceChildren(el('table', { class: 'kv skeleton-table' }, head, ...rows, distance));
+    const side = el('button', { type: 'button', class: 'button small side-by-side' }, 'Side by side');
+    side.disabled = columns.length < 2;
+    side.addEventListener('click', () => this.onSideBySide());
+    this.root.replaceChildren(el('table', { class: 'kv skeleton-table' }, head, ...rows, distance), side);
   }
 }

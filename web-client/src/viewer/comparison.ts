@@ -42,8 +42,37 @@ export class ComparisonView {
     this.onDrawn = onDrawn;
   }
 
+  /** Panes of prepared objects (showObjects), beside the field panes. */
+  private objectPanes = 0;
+
   get active(): boolean {
-    return this.panes.length > 0;
+    return this.panes.length > 0 || this.objectPanes > 0;
+  }
+
+  /**
+   * Shows prepared objects side by side (a skeleton over the plain surface in
+   * each pane, say), each under a title with an optional colour swatch;
+   * replaces any comparison.  The same panes, camera and way back as fields.
+   */
+  showObjects(items: Array<{ key: string; title: string; object: THREE.Object3D; color?: string }>): void {
+    this.removeOverlay();
+    this.panes = [];
+    const { cols, rows } = paneGrid(items.length);
+    const cells = items.map((it, i) =>
+      el(
+        'div',
+        { class: 'compare-pane', 'data-pane': String(i), 'data-key': it.key },
+        el('div', { class: 'legend compare-title' }, ...(it.color ? [el('span', { class: 'swatch', style: `background:${it.color}` }), ' '] : []), it.title),
+      ),
+    );
+    this.root = el('div', { class: 'compare-view', style: `grid-template-columns: repeat(${cols}, 1fr); grid-template-rows: repeat(${rows}, 1fr)` }, ...cells);
+    this.container.append(this.root);
+    this.objectPanes = items.length;
+    const drawn = () => this.onDrawn(items.map((it) => ({ key: it.key, map: '', range: [0, 0] as [number, number] })));
+    this.viewer.setPanes(
+      items.map((it) => it.object),
+      drawn,
+    );
   }
 
   /** Shows `fields` (one value per vertex or per face of `mesh`, server order) side by side, replacing any comparison. */
@@ -72,6 +101,7 @@ export class ComparisonView {
     if (!this.active) return;
     this.removeOverlay();
     this.panes = [];
+    this.objectPanes = 0;
     this.viewer.setPanes([]);
   }
 
