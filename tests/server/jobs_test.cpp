@@ -416,6 +416,16 @@ TEST_F(JobsTest, SdfAndSkeletonJobs) {
     EXPECT_EQ(double(s.nodes.size()), m["nodes"].get<double>()) << format;
   }
   EXPECT_EQ(http_get(server_.port(), "/api/v1/jobs/" + mcf["id"].get<std::string>() + "/artifacts/skeleton?format=stl").status, 400);
+
+  // A skeleton from another tool, attached to the mesh: skeleton_file with
+  // the file's text; a malformed one is refused at submission, naming its line.
+  const std::string cg = write_skeleton_bytes(read_skeleton_bytes(artifact(mcf["id"], "skeleton", "cg"), SkeletonFormat::cg, "s.cg"),
+                                              SkeletonFormat::cg);
+  const json attached = wait_end(submit("skeleton_file", {{"name", "mcf.cg"}, {"text", cg}})["id"]);
+  ASSERT_EQ(attached["state"], "done") << attached.dump();
+  EXPECT_EQ(json::parse(artifact(attached["id"], "metrics", "json"))["nodes"], m["nodes"]);
+  const json bad = submit("skeleton_file", {{"name", "bad.cg"}, {"text", "v 0 0 0\nv 1 0 0\ne 1 3\n"}}, 400);
+  EXPECT_NE(bad["detail"].get<std::string>().find("bad.cg: line 3"), std::string::npos) << bad.dump();
 }
 
 TEST_F(JobsTest, BadRequests) {
