@@ -66,6 +66,21 @@ install_debian_packages() {
     || die "apt-get could not install: ${missing[*]}"
 }
 
+# Vite 8 needs Node 20.19 or newer; bookworm's nodejs is 18.  Then Node 20's
+# own binary comes from the npm registry (the package node-linux-ARCH, with
+# Debian's npm), into npm's global prefix, ahead of /usr/bin on the PATH.
+ensure_node() {
+  local version
+  version=$(node -p 'const [a, b] = process.versions.node.split(".").map(Number); a * 1000 + b' 2>/dev/null || echo 0)
+  [ "$version" -ge 20019 ] && return
+  local arch
+  case "$(dpkg --print-architecture)" in amd64) arch=x64 ;; arm64) arch=arm64 ;; *) die "no Node 20 binary for $(dpkg --print-architecture)" ;; esac
+  say "Node.js $(node --version 2>/dev/null || echo 'is missing;') is too old for Vite 8: Node 20 from the npm registry"
+  as_root npm install -g --no-audit --no-fund "node-linux-$arch@20" || die "npm could not install Node 20"
+  as_root ln -sf "$(npm root -g)/node-linux-$arch/bin/node" "$(npm prefix -g)/bin/node"
+  hash -r
+}
+
 check_tools() {
   local t
   local tools=(cmake ninja g++ ccache node npm)
@@ -75,7 +90,7 @@ check_tools() {
   done
   local node_major
   node_major=$(node -p 'process.versions.node.split(".")[0]')
-  [ "$node_major" -ge 20 ] || die "Node.js $(node --version) is too old: Vite 8 needs Node 20.19 or newer (install Node 20, e.g. from NodeSource's Debian packages, then re-run)"
+  [ "$node_major" -ge 20 ] || die "Node.js $(node --version) is too old: Vite 8 needs Node 20.19 or newer (is $(npm prefix -g)/bin on the PATH?)"
   [ -f /usr/share/doc/libcgal-dev/data.tar.gz ] || die "CGAL's sample data is missing: the Debian package libcgal-demo did not install it"
 }
 
@@ -105,6 +120,7 @@ build() {
 
 install_packages() {
   install_debian_packages
+  ensure_node
   check_tools
   install_npm_packages
 }
