@@ -49,6 +49,15 @@ template <class T> Vec3T<T> normalized(Vec3T<T> a) {
 template <class T> bool is_finite(Vec3T<T> a) {
   return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
 }
+// The point of segment ab nearest to p (a when the segment is a point).
+inline Vec3 closest_point_on_segment(Vec3 p, Vec3 a, Vec3 b) {
+  const Vec3 ab = b - a;
+  const double len2 = dot(ab, ab);
+  double t = len2 > 0 ? dot(p - a, ab) / len2 : 0.0;
+  t = t < 0 ? 0 : (t > 1 ? 1 : t);
+  return a + ab * t;
+}
+
 inline Vec3f to_float(Vec3 a) { return {float(a.x), float(a.y), float(a.z)}; }
 inline Vec3 to_double(Vec3f a) { return {a.x, a.y, a.z}; }
 

@@ -9,13 +9,6 @@
 namespace cgview {
 namespace {
 
-double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double len2 = dot(ab, ab);
-  const double t = len2 > 0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-  return norm(p - (a + ab * t));
-}
-
 // Points along every edge, at most `spacing` apart (the nodes included).
 std::vector<Vec3> samples_along(const Skeleton& s, double spacing) {
   std::vector<Vec3> out(s.nodes.begin(), s.nodes.end());
@@ -29,7 +22,7 @@ std::vector<Vec3> samples_along(const Skeleton& s, double spacing) {
 
 double nearest_on(const Skeleton& s, const Vec3& p) {
   double best = HUGE_VAL;
-  for (const auto& e : s.edges) best = std::min(best, point_segment_distance(p, s.nodes[e[0]], s.nodes[e[1]]));
+  for (const auto& e : s.edges) best = std::min(best, norm(p - closest_point_on_segment(p, s.nodes[e[0]], s.nodes[e[1]])));
   if (s.edges.empty())
     for (const Vec3& q : s.nodes) best = std::min(best, norm(p - q));
   return best;

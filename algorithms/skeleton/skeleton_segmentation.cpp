@@ -18,14 +18,6 @@ struct NoParams {
   void describe(V&) {}
 };
 
-// The nearest point of segment ab to p.
-Vec3 nearest_point(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double len2 = dot(ab, ab);
-  const double t = len2 > 0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-  return a + ab * t;
-}
-
 AlgorithmResult run(const Inputs& in, const NoParams&, Context& ctx) {
   const Mesh& mesh = in.mesh("mesh");
   const Skeleton& s = in.skeleton("skeleton");
@@ -47,7 +39,7 @@ AlgorithmResult run(const Inputs& in, const NoParams&, Context& ctx) {
     for (std::size_t b = 0; b < branches.size(); ++b) {
       best[b] = {HUGE_VAL, {}};
       for (std::size_t k = 1; k < branches[b].size(); ++k) {
-        const Vec3 q = nearest_point(c, s.nodes[branches[b][k - 1]], s.nodes[branches[b][k]]);
+        const Vec3 q = closest_point_on_segment(c, s.nodes[branches[b][k - 1]], s.nodes[branches[b][k]]);
         const double d = norm(q - c);
         if (d < best[b].first) best[b] = {d, q};
       }
