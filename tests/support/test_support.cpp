@@ -22,28 +22,35 @@ Mesh box(Vec3 a, Vec3 b) {
   return m;
 }
 
-Mesh uv_sphere(double r, int rings, int segments) {
+Mesh revolve(const std::vector<std::pair<double, double>>& profile, int segments) {
   Mesh m;
-  const double pi = std::numbers::pi;
-  m.positions.push_back({0, 0, r});
-  for (int i = 1; i < rings; ++i) {
-    const double th = pi * i / rings;
+  m.positions.push_back({0, 0, profile.front().second});
+  const int rings = int(profile.size()) - 2;
+  for (int i = 1; i <= rings; ++i)
     for (int j = 0; j < segments; ++j) {
-      const double ph = 2 * pi * j / segments;
-      m.positions.push_back({r * std::sin(th) * std::cos(ph), r * std::sin(th) * std::sin(ph), r * std::cos(th)});
+      const double a = 2 * std::numbers::pi * j / segments;
+      m.positions.push_back({profile[i].first * std::cos(a), profile[i].first * std::sin(a), profile[i].second});
     }
-  }
-  m.positions.push_back({0, 0, -r});
+  m.positions.push_back({0, 0, profile.back().second});
   const Index south = Index(m.positions.size() - 1);
-  auto ring = [&](int i, int j) { return Index(1 + (i - 1) * segments + (j % segments)); };
+  const auto ring = [&](int i, int j) { return Index(1 + (i - 1) * segments + (j % segments)); };
   for (int j = 0; j < segments; ++j) m.faces.push_back({0, ring(1, j), ring(1, j + 1)});
-  for (int i = 1; i + 1 < rings; ++i)
+  for (int i = 1; i < rings; ++i)
     for (int j = 0; j < segments; ++j) {
       m.faces.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
       m.faces.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
     }
-  for (int j = 0; j < segments; ++j) m.faces.push_back({south, ring(rings - 1, j + 1), ring(rings - 1, j)});
+  for (int j = 0; j < segments; ++j) m.faces.push_back({south, ring(rings, j + 1), ring(rings, j)});
   return m;
+}
+
+Mesh uv_sphere(double r, int rings, int segments) {
+  std::vector<std::pair<double, double>> profile;
+  for (int i = 0; i <= rings; ++i) {
+    const double th = std::numbers::pi * i / rings;
+    profile.push_back({i == 0 || i == rings ? 0.0 : r * std::sin(th), i == 0 ? r : i == rings ? -r : r * std::cos(th)});
+  }
+  return revolve(profile, segments);
 }
 
 Mesh torus(double R, double r, int rings, int segments) {

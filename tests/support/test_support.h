@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/mesh.h"
@@ -14,6 +15,10 @@ namespace cgview::test {
 Mesh box(Vec3 min = {0, 0, 0}, Vec3 max = {1, 1, 1});
 // A UV sphere of radius r: `rings` bands, `segments` around; closed, genus 0.
 Mesh uv_sphere(double r = 1.0, int rings = 16, int segments = 32);
+// A closed surface of revolution about z from a profile (radius, z) that runs
+// from the top pole to the bottom pole (radius 0 at both ends): a fan at each
+// pole, two triangles per quad between rings; outward-oriented.
+Mesh revolve(const std::vector<std::pair<double, double>>& profile, int segments);
 // A torus (major radius R, minor radius r): closed, genus 1.
 Mesh torus(double R = 2.0, double r = 0.5, int rings = 24, int segments = 12);
 // A flat n x n grid of squares in the z = 0 plane: one boundary loop, genus 0.

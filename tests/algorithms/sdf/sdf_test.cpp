@@ -29,26 +29,10 @@ using test::Values;
 // A closed cylinder of radius r along z from 0 to length: `segments` around,
 // `rings` along, and a fan on each cap.
 Mesh cylinder(double r, double length, int segments, int rings) {
-  Mesh m;
-  for (int j = 0; j <= rings; ++j)
-    for (int i = 0; i < segments; ++i) {
-      const double a = 2 * std::numbers::pi * i / segments;
-      m.positions.push_back({r * std::cos(a), r * std::sin(a), length * j / rings});
-    }
-  const auto at = [&](int i, int j) { return Index(j * segments + (i % segments)); };
-  for (int j = 0; j < rings; ++j)
-    for (int i = 0; i < segments; ++i) {
-      m.faces.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-      m.faces.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-    }
-  const Index bottom = Index(m.positions.size()), top = bottom + 1;
-  m.positions.push_back({0, 0, 0});
-  m.positions.push_back({0, 0, length});
-  for (int i = 0; i < segments; ++i) {
-    m.faces.push_back({bottom, at(i + 1, 0), at(i, 0)});
-    m.faces.push_back({top, at(i, rings), at(i + 1, rings)});
-  }
-  return m;
+  std::vector<std::pair<double, double>> profile{{0.0, length}};
+  for (int j = 0; j <= rings; ++j) profile.push_back({r, length - length * j / rings});
+  profile.push_back({0.0, 0.0});
+  return test::revolve(profile, segments);
 }
 
 Vec3 face_centroid(const Mesh& m, std::size_t f) {

@@ -41,30 +41,6 @@ Skeleton circle(double R, int n) {
   return s;
 }
 
-// A surface of revolution about z from a profile (radius, z) running from
-// the top pole to the bottom pole (radius 0 at both ends).
-Mesh revolve(const std::vector<std::pair<double, double>>& profile, int segments) {
-  Mesh m;
-  m.positions.push_back({0, 0, profile.front().second});
-  const int rings = int(profile.size()) - 2;
-  for (int i = 1; i <= rings; ++i)
-    for (int j = 0; j < segments; ++j) {
-      const double a = 2 * std::numbers::pi * j / segments;
-      m.positions.push_back({profile[i].first * std::cos(a), profile[i].first * std::sin(a), profile[i].second});
-    }
-  m.positions.push_back({0, 0, profile.back().second});
-  const Index south = Index(m.positions.size() - 1);
-  const auto ring = [&](int i, int j) { return Index(1 + (i - 1) * segments + (j % segments)); };
-  for (int j = 0; j < segments; ++j) m.faces.push_back({0, ring(1, j), ring(1, j + 1)});
-  for (int i = 1; i < rings; ++i)
-    for (int j = 0; j < segments; ++j) {
-      m.faces.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
-      m.faces.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
-    }
-  for (int j = 0; j < segments; ++j) m.faces.push_back({south, ring(rings, j + 1), ring(rings, j)});
-  return m;
-}
-
 // A capsule along z: radius r, cylinder from -h/2 to h/2, hemispherical ends.
 Mesh capsule(double r, double h) {
   std::vector<std::pair<double, double>> profile;
@@ -78,7 +54,7 @@ Mesh capsule(double r, double h) {
     const double t = std::numbers::pi / 2 * i / cap;
     profile.push_back({r * std::cos(t), -h / 2 - r * std::sin(t)});
   }
-  return revolve(profile, 32);
+  return test::revolve(profile, 32);
 }
 
 Skeleton sample_skeleton() {
