@@ -109,6 +109,12 @@ function describe(e: unknown): string {
   return String(e);
 }
 
+/** A `${jobId}/${artifact}` key back into its parts. */
+function splitKey(key: string): { jobId: string; artifact: string } {
+  const i = key.indexOf('/');
+  return { jobId: key.slice(0, i), artifact: key.slice(i + 1) };
+}
+
 function isAbort(e: unknown): boolean {
   return e instanceof DOMException && e.name === 'AbortError';
 }
@@ -449,9 +455,9 @@ export class App {
   /** The comparison table of the skeletons drawn; asks the server for each one's distance to the first. */
   private renderSkeletons(): void {
     const keys = [...this.skeletons.keys()];
-    const split = (key: string) => {
-      const i = key.indexOf('/');
-      return { job: key.slice(0, i), artifact: key.slice(i + 1) };
+    const input = (key: string) => {
+      const { jobId, artifact } = splitKey(key);
+      return { job: jobId, artifact };
     };
     const metricsOf = (jobId: string) => {
       const m = this.metrics.get(`${jobId}/metrics`);
@@ -459,14 +465,14 @@ export class App {
     };
     this.skeletonsPanel.render(
       keys.map((key, i) => {
-        const { job } = split(key);
+        const { jobId: job } = splitKey(key);
         let distance: { hausdorff: number; mean: number } | undefined | null = null;
         if (i > 0) {
           const pair = `${keys[0]}|${key}`;
           const distanceJob = this.distanceJobs.get(pair);
           if (distanceJob === undefined) {
             this.distanceJobs.set(pair, '');
-            submitJob('skeleton_distance', { skeleton: split(keys[0]!), reference: split(key) }, {})
+            submitJob('skeleton_distance', { skeleton: input(keys[0]!), reference: input(key) }, {})
               .then((j) => {
                 this.distanceJobs.set(pair, j.id);
                 this.upsertJob(j);
@@ -575,8 +581,7 @@ export class App {
     }
     const job = this.jobs.get(jobId);
     if (!job) return;
-    const meshId = jobMeshId(job);
-    if (meshId && this.selectedId !== meshId && this.meshes.some((m) => m.id === meshId)) this.select(meshId);
+    this.selectMeshOf(job);
     const selected = this.selectedId;
     try {
       const [json] = await Promise.all([fetchArtifactJson(jobId, artifactName), this.showing]);
@@ -656,14 +661,14 @@ export class App {
     try {
       const ply = await this.meshPly(meshId);
       if (token !== this.compareToken || this.selectedId !== meshId) return;
-      this.compared = list.map(([key]) => ({ jobId: key.slice(0, key.indexOf('/')), artifact: key.slice(key.indexOf('/') + 1) }));
+      this.compared = list.map(([key]) => splitKey(key));
       this.hooks.lastCompare = null;
       this.legend.hide();
       this.comparison.showObjects(
         list.map(([key, s]) => {
           const group = new THREE.Group();
           group.add(buildPlainSurface(ply.positions, ply.indices, SURFACE_COLOR), buildSkeleton(s.data, s.color));
-          const jobId = key.slice(0, key.indexOf('/'));
+          const { jobId } = splitKey(key);
           return { key, title: this.jobs.get(jobId)?.algorithm ?? jobId, object: group, color: s.color };
         }),
       );
@@ -687,12 +692,17 @@ export class App {
     this.renderJobs();
   }
 
+  /** Selects the mesh a job ran on (when it is another one, and still stored), so that what the job made is drawn on it. */
+  private selectMeshOf(job: Job): void {
+    const meshId = jobMeshId(job);
+    if (meshId && this.selectedId !== meshId && this.meshes.some((m) => m.id === meshId)) this.select(meshId);
+  }
+
   /** Adds a job's mesh artifact (fetched as binary PLY) to the view, beside its input mesh. */
   async addMeshArtifact(jobId: string, artifactName: string): Promise<void> {
     const job = this.jobs.get(jobId);
-    const meshId = jobMeshId(job);
     if (!job) return;
-    if (meshId && this.selectedId !== meshId && this.meshes.some((m) => m.id === meshId)) this.select(meshId);
+    this.selectMeshOf(job);
     const selected = this.selectedId;
     try {
       const [bytes] = await Promise.all([fetchArtifactBytes(jobId, artifactName, 'ply'), this.showing]);
