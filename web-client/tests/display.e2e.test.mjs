@@ -19,7 +19,13 @@
 //
 // Overlays: the boundary and non-manifold edge counts the panel reads out on
 // an open sample mesh equal the counts computed here from the OFF file, the
-// box's size equals the OFF's extent, and the boundary edges are drawn.
+// box's size equals the OFF's extent, and the boundary edges and the normals
+// are drawn. Vertex colours: a coloured sample shows its colours, and the
+// material's with them off.
+// Field range: a scalar field recoloured over a range typed in, over its
+// 1-99% percentiles (computed here from the values the server serves) and
+// back over its full range, without fetching it again; it keeps its colours
+// in toon mode, and a view link reopens it with its map and range.
 // View link: a camera moved with the mouse, a mode and overlays, "Copy
 // link", the link opened in a new page: same camera, mode, overlays, and
 // the same picture.
@@ -30,7 +36,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { artifactsDir, pngPixels, repo, useViewer, webClient } from './harness.mjs';
+import { artifactsDir, hueStats, pngPixels, repo, useViewer, webClient } from './harness.mjs';
 
 const samples = process.env.CGVIEW_SAMPLES ?? path.join(repo, 'build', 'samples');
 const referenceDir = path.join(webClient, 'tests', 'reference');
@@ -178,13 +184,16 @@ function offEdges(text) {
   return { boundary: counts.filter((n) => n === 1).length, nonManifold: counts.filter((n) => n > 2).length, size: hi.map((h, c) => h - lo[c]) };
 }
 
-/** Pixels of the boundary edges' colour (#ff3b3b, viewer/overlays.ts). */
-async function redPixels(page, png) {
+/** Pixels of a PNG where `is(r, g, b)`. */
+async function countPixels(page, png, is) {
   const { data } = await pngPixels(page, png);
   let n = 0;
-  for (let i = 0; i < data.length; i += 4) if (data[i] > 200 && data[i + 1] < 110 && data[i + 2] < 110) ++n;
+  for (let i = 0; i < data.length; i += 4) if (is(data[i], data[i + 1], data[i + 2])) ++n;
   return n;
 }
+
+/** Pixels of the boundary edges' colour (#ff3b3b, viewer/overlays.ts). */
+const redPixels = (page, png) => countPixels(page, png, (r, g, b) => r > 200 && g < 110 && b < 110);
 
 test('overlays: the edge counts on an open mesh equal those of its OFF file, the box its extent', async () => {
   const { page, server } = v;
@@ -218,6 +227,46 @@ test('overlays: the edge counts on an open mesh equal those of its OFF file, the
   await page.uncheck('#overlay-edges');
   await page.uncheck('#overlay-bbox');
   await page.waitForFunction(() => window.__cgview.display?.overlays.edges === false && window.__cgview.display.overlays.bbox === false);
+
+  // Vertex normals (cyan) and face normals (lime), longer with the slider.
+  const cyan = (r, g, b) => r < 110 && g > 170 && b > 200;
+  const lime = (r, g, b) => r > 140 && g > 220 && b < 130;
+  const none = await screenshot(page, 'normals-off');
+  await page.check('#overlay-vertex-normals');
+  await page.check('#overlay-face-normals');
+  await page.waitForFunction(() => window.__cgview.display?.overlays.vertexNormals && window.__cgview.display.overlays.faceNormals);
+  const short = await screenshot(page, 'normals-on');
+  await page.locator('#overlay-normal-length').fill('0.1');
+  await page.waitForFunction(() => window.__cgview.display?.overlays.normalLength === 0.1);
+  const long = await screenshot(page, 'normals-long');
+  const counts = [];
+  for (const png of [none, short, long]) counts.push([await countPixels(page, png, cyan), await countPixels(page, png, lime)]);
+  assert.ok(counts[1][0] > counts[0][0] + 100 && counts[1][1] > counts[0][1] + 100, `vertex and face normals are drawn: ${JSON.stringify(counts)}`);
+  assert.ok(counts[2][0] > counts[1][0] && counts[2][1] > counts[1][1], `longer normals cover more: ${JSON.stringify(counts)}`);
+  await page.uncheck('#overlay-vertex-normals');
+  await page.uncheck('#overlay-face-normals');
+  await page.waitForFunction(() => window.__cgview.display?.overlays.vertexNormals === false && !window.__cgview.display.overlays.faceNormals);
+  assert.deepEqual(v.problems, [], v.describeProblems());
+});
+
+test('a mesh with vertex colours shows them, or the material colour with them off', async () => {
+  const { page, server } = v;
+  const file = path.join(samples, 'colored_tetra.ply');
+  const r = await fetch(`${server.url}/api/v1/meshes?name=colored_tetra.ply`, { method: 'POST', body: fs.readFileSync(file) });
+  assert.equal(r.status, 201, await r.clone().text());
+  const { id } = await r.json();
+  await page.locator(`#mesh-list li.mesh[data-mesh-id="${id}"]`).click();
+  await page.waitForFunction((id) => window.__cgview.lastLoaded?.id === id, id, { timeout: 60000 });
+  await page.waitForFunction(() => window.__cgview.display?.object === 'surface');
+  assert.ok(await page.locator('#display-vertex-colors').isVisible(), 'the switch shows for a mesh with colours');
+  const coloured = hueStats(await pngPixels(page, await screenshot(page, 'colors-on')));
+  await page.uncheck('#display-vertex-colors');
+  await page.waitForFunction(() => window.__cgview.display?.vertexColors === false);
+  const plain = hueStats(await pngPixels(page, await screenshot(page, 'colors-off')));
+  assert.ok(coloured.distinct >= 3 && coloured.orange < 0.5, `the vertex colours: ${JSON.stringify(coloured)}`);
+  assert.ok(plain.orange > 0.9, `the plain orange surface: ${JSON.stringify(plain)}`);
+  await page.check('#display-vertex-colors');
+  await page.waitForFunction(() => window.__cgview.display?.vertexColors === true);
   assert.deepEqual(v.problems, [], v.describeProblems());
 });
 
@@ -278,5 +327,97 @@ test('the view link reopens the same view: camera, mode, overlays and picture', 
   } finally {
     await other.close();
   }
+  assert.deepEqual(v.problems, [], v.describeProblems());
+});
+
+test('a field recolours over a range typed in, its 1-99% percentiles and its full range, and a view link keeps it', async () => {
+  const { page, browser, server, meshId } = v;
+  await pinViewport(page);
+  await page.locator(`#mesh-list li.mesh[data-mesh-id="${meshId}"]`).click();
+  await page.waitForFunction((id) => window.__cgview.lastLoaded?.id === id, meshId, { timeout: 60000 });
+  await setMode(page, 'smooth');
+  await page.locator('#algorithm-menu').selectOption('centroid_distance');
+  await page.locator('form.algorithm-form[data-algorithm="centroid_distance"] button.run').click();
+  const li = page.locator('#jobs li.job[data-algorithm="centroid_distance"][data-state="done"]').first();
+  await li.waitFor({ timeout: 120000 });
+  const jobId = await li.getAttribute('data-job-id');
+  await page.waitForFunction((id) => window.__cgview.lastField?.jobId === id, jobId, { timeout: 60000 });
+  const field = await page.evaluate(() => window.__cgview.lastField);
+  const r = await fetch(`${server.url}/api/v1/jobs/${jobId}/artifacts/${encodeURIComponent(field.artifact)}?format=f32`);
+  assert.equal(r.status, 200);
+  const bytes = new Uint8Array(await r.arrayBuffer());
+  const values = new Float32Array(bytes.buffer, bytes.byteOffset, bytes.byteLength / 4);
+  const sorted = [...values].filter(Number.isFinite).sort((a, b) => a - b);
+  const full = field.range;
+  assert.ok(full[1] > full[0], `a field with a spread: ${full}`);
+  assert.ok(await page.locator('#field-range').isVisible(), 'the range control shows with a field');
+  await page.click('#fit');
+  const fetches = [];
+  page.on('request', (req) => {
+    if (req.url().includes('/artifacts/')) fetches.push(req.url());
+  });
+  const before = await screenshot(page, 'field-full');
+
+  // A range typed in: the middle half of the full range.
+  const typed = [full[0] + 0.25 * (full[1] - full[0]), full[0] + 0.75 * (full[1] - full[0])];
+  await page.fill('#field-min', String(typed[0]));
+  await page.fill('#field-max', String(typed[1]));
+  await page.locator('#field-max').dispatchEvent('change');
+  await page.waitForFunction(([lo, hi]) => {
+    const f = window.__cgview.lastField;
+    return f && Math.abs(f.range[0] - lo) < 1e-9 && Math.abs(f.range[1] - hi) < 1e-9;
+  }, typed);
+  const legendMin = Number(await page.locator('#legend .legend-min').innerText());
+  const legendMax = Number(await page.locator('#legend .legend-max').innerText());
+  assert.ok(Math.abs(legendMin - typed[0]) <= 1e-3 * Math.abs(typed[0]) + 1e-9, `legend min ${legendMin} vs ${typed[0]}`);
+  assert.ok(Math.abs(legendMax - typed[1]) <= 1e-3 * Math.abs(typed[1]) + 1e-9, `legend max ${legendMax} vs ${typed[1]}`);
+  const narrowed = await screenshot(page, 'field-typed');
+  assert.ok(!matches(await difference(page, before, narrowed)), 'a narrower range recolours the surface');
+
+  // 1-99%: nearest-rank percentiles of the served values.
+  const rank = (p) => sorted[Math.round((p / 100) * (sorted.length - 1))];
+  await page.click('#field-clip');
+  await page.waitForFunction(([lo, hi]) => {
+    const f = window.__cgview.lastField;
+    return f && f.range[0] === lo && f.range[1] === hi;
+  }, [rank(1), rank(99)]);
+
+  // Toon keeps the field's colours (turbo: several hues, no plain orange).
+  await setMode(page, 'toon');
+  const hues = hueStats(await pngPixels(page, await screenshot(page, 'field-toon')));
+  assert.ok(hues.distinct >= 3, `the field's colours in toon mode: ${JSON.stringify(hues)}`);
+
+  // The link keeps the field, its map and its range.
+  await page.click('#copy-link');
+  await page.waitForFunction(() => window.__cgview.lastLink?.includes('#view='));
+  const link = await page.evaluate(() => window.__cgview.lastLink);
+  const clippedPicture = await screenshot(page, 'field-link-first');
+  const other = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+  try {
+    await other.goto(link);
+    await pinViewport(other);
+    await other.waitForFunction(() => window.__cgview?.viewRestored !== null, null, { timeout: 60000 });
+    const restored = await other.evaluate(() => window.__cgview.viewRestored);
+    assert.ok(!restored.error, `restoring failed: ${restored.error}`);
+    await other.waitForFunction(([id, lo, hi]) => {
+      const f = window.__cgview.lastField;
+      return f && f.jobId === id && f.range[0] === lo && f.range[1] === hi;
+    }, [jobId, rank(1), rank(99)]);
+    assert.equal((await other.evaluate(() => window.__cgview.lastField)).map, field.map);
+    assert.equal(await other.evaluate(() => window.__cgview.display.mode), 'toon');
+    const d = await difference(page, clippedPicture, await screenshot(other, 'field-link-second'));
+    assert.ok(matches(d), `the reopened field differs: ${JSON.stringify(d)}`);
+  } finally {
+    await other.close();
+  }
+
+  // Full range again: the first picture's colours, in toon mode now, so compare the range only.
+  await page.click('#field-full');
+  await page.waitForFunction(([lo, hi]) => {
+    const f = window.__cgview.lastField;
+    return f && f.range[0] === lo && f.range[1] === hi;
+  }, full);
+  assert.deepEqual(fetches, [], 'a new range recolours without fetching the field again');
+  await setMode(page, 'smooth');
   assert.deepEqual(v.problems, [], v.describeProblems());
 });

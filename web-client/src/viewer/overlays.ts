@@ -207,7 +207,7 @@ export function updateOverlays(viewer: Viewer, object: THREE.Object3D | null, s:
     const size = box.getSize(new THREE.Vector3());
     info.size = [size.x, size.y, size.z];
     const diagonal = Math.max(size.length(), 1e-9);
-    const textHeight = diagonal * 0.035;
+    const textHeight = diagonal * 0.05;
     if (s.bbox) built.bbox = boundingBox(box, size, textHeight);
     if (s.axes) built.axes = axes(box.min, Math.max(size.x, size.y, size.z) * 0.5, textHeight);
     const mesh = object as THREE.Mesh;
