@@ -85,6 +85,9 @@ export class DisplayPanel {
   private readonly fieldMin = el('input', { type: 'number', id: 'field-min', step: 'any', 'aria-label': 'Field minimum' });
   private readonly fieldMax = el('input', { type: 'number', id: 'field-max', step: 'any', 'aria-label': 'Field maximum' });
   private readonly link = el('input', { type: 'text', id: 'view-link', readonly: '', 'aria-label': 'View link' });
+  /** Rows that only one mode uses, shown with it. */
+  private readonly pointSizeRow = row('Point size', this.pointSize);
+  private readonly toonBandsRow = row('Toon bands', this.toonBands);
 
   constructor(
     root: HTMLElement,
@@ -115,8 +118,8 @@ export class DisplayPanel {
       row('Colour', this.color),
       row('Roughness', this.roughness),
       row('Metalness', this.metalness),
-      row('Point size', this.pointSize),
-      row('Toon bands', this.toonBands),
+      this.pointSizeRow,
+      this.toonBandsRow,
       this.vertexColors.row,
       el('div', { class: 'display-subhead' }, 'Overlays'),
       ...Object.values(this.checks).map((c) => c.row),
@@ -251,6 +254,8 @@ export class DisplayPanel {
     this.pointSize.value = String(s.pointSize);
     this.toonBands.value = String(s.toonBands);
     this.vertexColors.input.checked = s.vertexColors;
+    this.pointSizeRow.hidden = s.mode !== 'points';
+    this.toonBandsRow.hidden = s.mode !== 'toon';
     for (const [k, c] of Object.entries(this.checks)) c.input.checked = this.overlays[k as keyof typeof this.checks];
     this.normalLength.value = String(this.overlays.normalLength);
   }
