@@ -421,3 +421,25 @@ test('a field recolours over a range typed in, its 1-99% percentiles and its ful
   await setMode(page, 'smooth');
   assert.deepEqual(v.problems, [], v.describeProblems());
 });
+
+test('a bad view link, or one whose mesh is gone, says so in the page', async () => {
+  const { browser, server } = v;
+  const other = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+  try {
+    const errors = [];
+    other.on('pageerror', (e) => errors.push(e.message));
+    await other.goto(`${server.url}/#view=not-json`);
+    await other.waitForFunction(() => window.__cgview?.viewRestored !== null, null, { timeout: 30000 });
+    assert.match((await other.evaluate(() => window.__cgview.viewRestored)).error, /not base64url JSON/);
+    await other.locator('#messages .message.error', { hasText: 'Cannot open the view link' }).waitFor();
+
+    const gone = { v: 1, mesh: 'no-such-mesh', camera: { position: [0, 0, 3], target: [0, 0, 0], up: [0, 1, 0], fov: 40 } };
+    await other.goto(`${server.url}/#view=${Buffer.from(JSON.stringify(gone)).toString('base64url')}`);
+    await other.reload(); // a new hash alone does not reload the page
+    await other.waitForFunction(() => window.__cgview?.viewRestored !== null, null, { timeout: 30000 });
+    assert.match((await other.evaluate(() => window.__cgview.viewRestored)).error, /no-such-mesh .*no longer exists/);
+    assert.deepEqual(errors, [], 'no uncaught errors');
+  } finally {
+    await other.close();
+  }
+});
