@@ -30,6 +30,9 @@ import { ReportPanel } from './panels/report.ts';
 import { UploadControl } from './panels/upload.ts';
 import { VoxelSlicePanel } from './panels/voxel_slices.ts';
 import { SkeletonsPanel } from './panels/skeletons.ts';
+import { DisplayPanel, type DisplayReport } from './panels/display.ts';
+import { applyCamera, readCamera } from './viewer/camera_state.ts';
+import { decodeViewHash, encodeViewHash, type ViewState } from './viewer/view_state.ts';
 import { buildSlicePlane, sliceClipPlane } from './viewer/slice_plane.ts';
 import { byId } from './panels/dom.ts';
 import { AnimationPlayer } from './viewer/animation_player.ts';
@@ -88,6 +91,14 @@ export interface TestHooks {
   lastAnimation: { jobId: string; artifact: string; frame: number; frames: number; vertices: number; first: [number, number, number]; sum: number } | null;
   /** The skeletons drawn over the mesh, set after the first frame with each change: key, colour, nodes, edges. */
   skeletons: Array<{ key: string; color: string; nodes: number; edges: number }>;
+  /** The display mode, material and overlays of the shown object, set after the first frame with each change (panels/display.ts). */
+  display: DisplayReport | null;
+  /** The last view link made with "Copy link". */
+  lastLink: string | null;
+  /** The camera after a view link was restored (set after the frame showing it), or the error that stopped it. */
+  viewRestored: { camera: ViewState['camera']; mode: string } | { error: string } | null;
+  /** The last screenshot downloaded: its PNG's size in bytes. */
+  lastScreenshot: { bytes: number } | null;
 }
 
 declare global {
@@ -144,7 +155,7 @@ export class App {
   /** A job's output mesh that the next job runs on ("Run on this"), instead of the selected mesh. */
   private runTarget: { jobId: string; artifact: string; kind: string } | null = null;
   /** The scalar field drawn now (or being prepared: token). */
-  private field: { jobId: string; artifact: string; meshId: string; data: ScalarField; object: THREE.Mesh; map: string } | null = null;
+  private field: { jobId: string; artifact: string; meshId: string; data: ScalarField; object: THREE.Mesh; map: string; fullRange: [number, number] } | null = null;
   private fieldToken = 0;
   private mapName: string | null = null; // null: the field's hint chooses
   /** The fields compared side by side (empty: one view), and the token of the comparison being prepared. */
@@ -165,6 +176,10 @@ export class App {
     lastExtra: null,
     lastAnimation: null,
     skeletons: [],
+    display: null,
+    lastLink: null,
+    viewRestored: null,
+    lastScreenshot: null,
   };
   private readonly socket = new CgviewSocket();
   private readonly decoder = new DracoDecoder();
@@ -182,6 +197,7 @@ export class App {
   private readonly player: AnimationPlayer;
   private animationToken = 0;
   private readonly status: HTMLElement;
+  private readonly display: DisplayPanel;
 
   constructor() {
     window.__cgview = this.hooks;
@@ -231,6 +247,15 @@ export class App {
     this.player = new AnimationPlayer(byId('viewport'));
     new UploadControl(byId<HTMLInputElement>('file-input'), document.body, (files) => void this.upload(files));
     byId('fit').addEventListener('click', () => this.viewer.fitToView());
+    this.display = new DisplayPanel(byId('display'), this.viewer, {
+      setFieldRange: (range) => this.setFieldRange(range),
+      drawn: (report) => (this.hooks.display = report),
+    });
+    byId('screenshot').addEventListener('click', () => {
+      const name = (this.selectedMesh()?.name ?? 'view').replace(/\.[^.]*$/, '');
+      this.display.screenshot(`cgview-${name}.png`, (blob) => (this.hooks.lastScreenshot = blob ? { bytes: blob.size } : null));
+    });
+    byId('copy-link').addEventListener('click', () => this.copyViewLink());
   }
 
   async start(): Promise<void> {
@@ -252,6 +277,7 @@ export class App {
     this.socket.connect().catch(() => this.error('Cannot open the WebSocket to the server; retrying.'));
     await Promise.all([this.refresh(), this.loadAlgorithms()]);
     this.hooks.ready = true;
+    await this.restoreView();
   }
 
   private onServerEvent(ev: ServerEvent): void {
@@ -551,12 +577,13 @@ export class App {
       if (token !== this.fieldToken || this.selectedId !== meshId) return;
       const mapName = this.mapName ?? defaultMapFor(artifact.hint);
       const object = buildScalarSurface(ply, data, mapName);
-      this.field = { jobId, artifact: artifactName, meshId, data, object, map: mapName };
+      this.field = { jobId, artifact: artifactName, meshId, data, object, map: mapName, fullRange: data.range };
       this.hooks.lastField = null;
       this.viewer.replace(object, () => {
         if (this.viewer.object === object) this.hooks.lastField = this.fieldHook();
       });
       this.showFieldLegend();
+      this.display.setField({ range: data.range, full: data.range, values: data.values });
       this.renderJobs();
     } catch (e) {
       if (token !== this.fieldToken) return;
@@ -797,6 +824,67 @@ export class App {
     this.field = null;
     this.hooks.lastField = null;
     this.legend.hide();
+    this.display.setField(null);
+  }
+
+  /** Recolours the field drawn over `range` (null: its full range), without fetching it again. */
+  private setFieldRange(range: [number, number] | null): void {
+    const f = this.field;
+    if (!f) return;
+    f.data.range = range ?? f.fullRange;
+    colourGeometry(f.object.geometry, f.data, f.map);
+    this.showFieldLegend();
+    this.display.setField({ range: f.data.range, full: f.fullRange, values: f.data.values });
+    this.viewer.redraw(() => {
+      if (this.field === f) this.hooks.lastField = this.fieldHook();
+    });
+  }
+
+  /** "Copy link": the view (camera, mesh, display, overlays, field) in the page's hash; copied to the clipboard where the page may. */
+  private copyViewLink(): void {
+    const meshId = this.selectedId;
+    if (!meshId) return this.error('Choose a mesh first: a view link reopens a mesh.');
+    const { display, overlays } = this.display.state();
+    const state: ViewState = { v: 1, mesh: meshId, camera: readCamera(this.viewer), display: { ...display }, overlays: { ...overlays } };
+    const f = this.field;
+    if (f && f.meshId === meshId) state.field = { job: f.jobId, artifact: f.artifact, map: f.map, range: f.data.range };
+    // Never the token: it stays in this browser's storage (api/auth.ts).
+    const url = `${location.origin}${location.pathname}${location.search}${encodeViewHash(state)}`;
+    history.replaceState(null, '', url);
+    this.display.showLink(url);
+    this.hooks.lastLink = url;
+    navigator.clipboard?.writeText(url).then(
+      () => this.messages.notice('View link copied.'),
+      () => this.messages.notice('View link: copy it from the Display panel.'),
+    );
+  }
+
+  /** Opens the view of the page's #view= link, if any: its mesh, display, overlays and field, then its camera. */
+  private async restoreView(): Promise<void> {
+    let state: ViewState | null;
+    try {
+      state = decodeViewHash(location.hash);
+    } catch (e) {
+      this.hooks.viewRestored = { error: describe(e) };
+      return this.error(`Cannot open the view link: ${describe(e)}`);
+    }
+    if (!state) return;
+    if (!this.meshes.some((m) => m.id === state.mesh)) {
+      const error = `the mesh ${state.mesh} of the view link no longer exists`;
+      this.hooks.viewRestored = { error };
+      return this.error(`Cannot open the view link: ${error}`);
+    }
+    this.select(state.mesh);
+    await this.showing;
+    this.display.restore(state.display, state.overlays);
+    if (state.field) {
+      this.mapName = state.field.map;
+      await this.showField(state.field.job, state.field.artifact);
+      if (this.field) this.setFieldRange(state.field.range);
+    }
+    applyCamera(this.viewer, state.camera);
+    const mode = this.display.state().display.mode;
+    this.viewer.redraw(() => (this.hooks.viewRestored = { camera: readCamera(this.viewer), mode }));
   }
 
   private selectedMesh(): Mesh | null {
