@@ -27,7 +27,7 @@ import { MeshListPanel } from './panels/mesh_list.ts';
 import { MessagesPanel } from './panels/messages.ts';
 import { ProgressPanel } from './panels/progress.ts';
 import { ReportPanel } from './panels/report.ts';
-import { UploadControl } from './panels/upload.ts';
+import { UploadControl, uploadsOf } from './panels/upload.ts';
 import { VoxelSlicePanel } from './panels/voxel_slices.ts';
 import { SkeletonsPanel } from './panels/skeletons.ts';
 import { buildSlicePlane, sliceClipPlane } from './viewer/slice_plane.ts';
@@ -43,6 +43,7 @@ import { parsePly, type PlyMesh } from './viewer/ply.ts';
 import { buildScalarSurface, colourGeometry, finiteRange, type ScalarField } from './viewer/scalar_field_renderer.ts';
 import { buildPlainSurface, buildSurface, SURFACE_COLOR } from './viewer/surface_renderer.ts';
 import { LoadTimer, type LoadTimings } from './viewer/timings.ts';
+import { MeshTextures, type TextureState } from './viewer/textures.ts';
 import { Viewer } from './viewer/viewer.ts';
 
 /** What tests read (window.__cgview). */
@@ -88,6 +89,8 @@ export interface TestHooks {
   lastAnimation: { jobId: string; artifact: string; frame: number; frames: number; vertices: number; first: [number, number, number]; sum: number } | null;
   /** The skeletons drawn over the mesh, set after the first frame with each change: key, colour, nodes, edges. */
   skeletons: Array<{ key: string; color: string; nodes: number; edges: number }>;
+  /** The texture on the surface (a mesh with UVs), set after the first frame with it; null when none. */
+  texture: TextureState | null;
 }
 
 declare global {
@@ -165,6 +168,7 @@ export class App {
     lastExtra: null,
     lastAnimation: null,
     skeletons: [],
+    texture: null,
   };
   private readonly socket = new CgviewSocket();
   private readonly decoder = new DracoDecoder();
@@ -182,10 +186,17 @@ export class App {
   private readonly player: AnimationPlayer;
   private animationToken = 0;
   private readonly status: HTMLElement;
+  private readonly textures: MeshTextures;
 
   constructor() {
     window.__cgview = this.hooks;
     this.viewer = new Viewer(byId('viewport'), { onFrame: () => ++this.hooks.frames });
+    this.textures = new MeshTextures(
+      byId('texture-panel'),
+      (onDrawn) => this.viewer.redraw(onDrawn),
+      (state) => (this.hooks.texture = state),
+      (text) => this.error(text),
+    );
     this.list = new MeshListPanel(byId('mesh-list'), {
       select: (id) => this.select(id),
       remove: (id) => void this.remove(id),
@@ -815,13 +826,19 @@ export class App {
     }
   }
 
-  /** Uploads files one after the other and shows the last one uploaded. */
+  /** Uploads files one after the other (a mesh with its MTL and images as one zip) and shows the last one uploaded. */
   async upload(files: File[]): Promise<void> {
     let last: Mesh | null = null;
-    for (const file of files) {
+    let uploads: Array<{ name: string; body: Blob }> = [];
+    try {
+      uploads = await uploadsOf(files);
+    } catch (e) {
+      this.error(`Upload failed: ${describe(e)}`);
+    }
+    for (const file of uploads) {
       this.progress.show('uploading', null, file.name);
       try {
-        const mesh = await uploadMesh(file.name, file);
+        const mesh = await uploadMesh(file.name, file.body);
         this.upsert(mesh);
         for (const w of mesh.warnings ?? []) this.messages.notice(`${mesh.name}: ${w}`);
         last = mesh;
@@ -899,6 +916,7 @@ export class App {
       timer.setWorkerTiming(decoded.timing);
       const object = buildSurface(decoded);
       timer.mark('geometry-built');
+      this.textures.attach(object, mesh);
       this.viewer.show(object, () => {
         if (this.viewer.object !== object) return;
         timer.mark('first-frame');
@@ -942,6 +960,7 @@ export class App {
         this.progress.hide();
       }
       this.viewer.clearAll();
+      this.textures.detach();
       this.added.clear();
       this.skeletons.clear();
       this.hooks.skeletons = [];
