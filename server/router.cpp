@@ -164,9 +164,9 @@ Router::Router(MeshService& meshes, RouterConfig config)
                        for (const auto& r : meshes_.store().list_meshes(caller)) list.push_back(mesh_json(r));
                        return json_response(200, {{"meshes", list}});
                      }});
-  routes_.push_back({"POST", "/api/v1/meshes", "Upload a mesh: the file's bytes as the raw body",
-                     {{"name", "the file name, e.g. bunny.ply (required)"},
-                      {"format", "off, obj, ply, stl, drc, glb or gltf (default: from the name's extension)"}},
+  routes_.push_back({"POST", "/api/v1/meshes", "Upload a mesh: the file's bytes as the raw body, or a zip of it with its MTL and images",
+                     {{"name", "the file name, e.g. bunny.ply or spider.zip (required)"},
+                      {"format", "off, obj, ply, stl, drc, glb, gltf or zip (default: from the name's extension)"}},
                      [this](const Params&, const HttpRequest& req, const Caller& caller) {
                        const auto [path, q] = split_target(req.target);
                        const auto name = q.find("name");
@@ -560,7 +560,9 @@ json Router::openapi() const {
         op["responses"]["403"] = error_ref;  // share, unshare: only the owner
       }
     } else if (r.method == "POST") {
-      op["requestBody"] = {{"content", {{"application/octet-stream", {{"schema", {{"type", "string"}, {"format", "binary"}}}}}}}};
+      // The mesh file, or a zip of it with its MTL and images (README "Textured meshes").
+      const json binary = {{"schema", {{"type", "string"}, {"format", "binary"}}}};
+      op["requestBody"] = {{"content", {{"application/octet-stream", binary}, {"application/zip", binary}}}};
       op["responses"].erase("200");
       op["responses"]["201"] = {{"description", "created"}};
       op["responses"]["413"] = error_ref;
