@@ -564,6 +564,7 @@ export class App {
       const object = buildScalarSurface(ply, data, mapName);
       this.field = { jobId, artifact: artifactName, meshId, data, object, map: mapName };
       this.hooks.lastField = null;
+      this.textures.detach(); // the field's surface replaces the textured one
       this.viewer.replace(object, () => {
         if (this.viewer.object === object) this.hooks.lastField = this.fieldHook();
       });
@@ -759,6 +760,7 @@ export class App {
       const points = new THREE.Points(geometry, new THREE.PointsMaterial({ color: '#e07a1f', size, sizeAttenuation: true }));
       points.name = 'animation';
       this.hooks.lastAnimation = null;
+      this.textures.detach();
       this.viewer.show(points);
       this.player.show(`${job.algorithm} · ${artifactName}`, frames.frames, (k) => {
         if (this.viewer.object !== points) return;
