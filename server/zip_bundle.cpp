@@ -22,6 +22,13 @@ bool unsafe_name(const std::string& n) {
   return false;
 }
 
+// What macOS's Finder adds to a zip: __MACOSX/ and ._NAME resource forks
+// (a "._spider.obj" is no second mesh).
+bool macos_metadata(const std::string& n) {
+  const std::size_t slash = n.find_last_of("/\\");
+  return n.starts_with("__MACOSX/") || n.compare(slash == std::string::npos ? 0 : slash + 1, 2, "._") == 0;
+}
+
 struct ZipCloser {
   void operator()(zip_t* z) const { zip_discard(z); }
 };
@@ -61,6 +68,7 @@ std::vector<BundleFile> unzip_bundle(std::string_view bytes, std::size_t max_byt
     const std::string name = st.name;
     if (unsafe_name(name)) throw InvalidInput("the zip names an unsafe path '" + name + "' (absolute or with '..')");
     if (name.back() == '/' || name.back() == '\\') continue;  // a directory
+    if (macos_metadata(name)) continue;
     if ((st.valid & ZIP_STAT_ENCRYPTION_METHOD) && st.encryption_method != ZIP_EM_NONE)
       throw InvalidInput("the zip's entry '" + name + "' is encrypted");
     // The declared size is checked first, then the bytes really inflated.

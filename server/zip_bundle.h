@@ -23,7 +23,8 @@ struct BundleFile {
   std::string bytes;
 };
 
-// The regular files of a zip, directories skipped.  Throws InvalidInput
+// The regular files of a zip, directories and macOS's __MACOSX/ and ._NAME
+// entries skipped.  Throws InvalidInput
 // when the bytes are not a zip, an entry is encrypted or damaged, or a name
 // is unsafe (absolute, "..", a drive letter: a zip-slip attempt is refused,
 // not tolerated); TooLarge when the entries unpack to more than max_bytes

@@ -97,7 +97,9 @@ class TextureUploadTest : public ::testing::Test {
 
 TEST_F(TextureUploadTest, ObjMtlAndImageKeepTheirTexture) {
   const json mesh = upload("quad.zip", make_zip({{"quad/quad.obj", kQuad}, {"quad/quad.mtl", kMtl}, {"quad/maps/wood.jpg", jpeg_},
-                                                 {"readme.txt", "not a mesh"}}));
+                                                 {"readme.txt", "not a mesh"},
+                                                 // What macOS's Finder adds: not a second mesh.
+                                                 {"__MACOSX/quad/._quad.obj", "\0\5\x16\7"}, {"quad/._quad.obj", "x"}}));
   EXPECT_EQ(mesh["name"], "quad.obj");
   EXPECT_EQ(mesh["format"], "obj");
   EXPECT_EQ(mesh["bytes"], kQuad.size());
