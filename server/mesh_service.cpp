@@ -1,6 +1,7 @@
 #include "mesh_service.h"
 
 #include <algorithm>
+#include <cctype>
 #include <nlohmann/json.hpp>
 
 #include "core/errors.h"
