@@ -27,7 +27,7 @@ import { MeshListPanel } from './panels/mesh_list.ts';
 import { MessagesPanel } from './panels/messages.ts';
 import { ProgressPanel } from './panels/progress.ts';
 import { ReportPanel } from './panels/report.ts';
-import { UploadControl } from './panels/upload.ts';
+import { UploadControl, uploadsOf } from './panels/upload.ts';
 import { VoxelSlicePanel } from './panels/voxel_slices.ts';
 import { SkeletonsPanel } from './panels/skeletons.ts';
 import { DisplayPanel, type DisplayReport } from './panels/display.ts';
@@ -46,6 +46,7 @@ import { parsePly, type PlyMesh } from './viewer/ply.ts';
 import { buildScalarSurface, colourGeometry, finiteRange, type ScalarField } from './viewer/scalar_field_renderer.ts';
 import { buildPlainSurface, buildSurface, SURFACE_COLOR } from './viewer/surface_renderer.ts';
 import { LoadTimer, type LoadTimings } from './viewer/timings.ts';
+import { MeshTextures, type TextureState } from './viewer/textures.ts';
 import { Viewer } from './viewer/viewer.ts';
 
 /** What tests read (window.__cgview). */
@@ -99,6 +100,8 @@ export interface TestHooks {
   viewRestored: { camera: ViewState['camera']; mode: string } | { error: string } | null;
   /** The last screenshot downloaded: its PNG's size in bytes. */
   lastScreenshot: { bytes: number } | null;
+  /** The texture on the surface (a mesh with UVs), set after the first frame with it; null when none. */
+  texture: TextureState | null;
 }
 
 declare global {
@@ -180,6 +183,7 @@ export class App {
     lastLink: null,
     viewRestored: null,
     lastScreenshot: null,
+    texture: null,
   };
   private readonly socket = new CgviewSocket();
   private readonly decoder = new DracoDecoder();
@@ -198,10 +202,17 @@ export class App {
   private animationToken = 0;
   private readonly status: HTMLElement;
   private readonly display: DisplayPanel;
+  private readonly textures: MeshTextures;
 
   constructor() {
     window.__cgview = this.hooks;
     this.viewer = new Viewer(byId('viewport'), { onFrame: () => ++this.hooks.frames });
+    this.textures = new MeshTextures(
+      byId('texture-panel'),
+      (onDrawn) => this.viewer.redraw(onDrawn),
+      (state) => (this.hooks.texture = state),
+      (text) => this.error(text),
+    );
     this.list = new MeshListPanel(byId('mesh-list'), {
       select: (id) => this.select(id),
       remove: (id) => void this.remove(id),
@@ -579,6 +590,7 @@ export class App {
       const object = buildScalarSurface(ply, data, mapName);
       this.field = { jobId, artifact: artifactName, meshId, data, object, map: mapName, fullRange: data.range };
       this.hooks.lastField = null;
+      this.textures.detach(); // the field's surface replaces the textured one
       this.viewer.replace(object, () => {
         if (this.viewer.object === object) this.hooks.lastField = this.fieldHook();
       });
@@ -775,6 +787,7 @@ export class App {
       const points = new THREE.Points(geometry, new THREE.PointsMaterial({ color: '#e07a1f', size, sizeAttenuation: true }));
       points.name = 'animation';
       this.hooks.lastAnimation = null;
+      this.textures.detach();
       this.viewer.show(points);
       this.player.show(`${job.algorithm} · ${artifactName}`, frames.frames, (k) => {
         if (this.viewer.object !== points) return;
@@ -903,13 +916,19 @@ export class App {
     }
   }
 
-  /** Uploads files one after the other and shows the last one uploaded. */
+  /** Uploads files one after the other (a mesh with its MTL and images as one zip) and shows the last one uploaded. */
   async upload(files: File[]): Promise<void> {
     let last: Mesh | null = null;
-    for (const file of files) {
+    let uploads: Array<{ name: string; body: Blob }> = [];
+    try {
+      uploads = await uploadsOf(files);
+    } catch (e) {
+      this.error(`Upload failed: ${describe(e)}`);
+    }
+    for (const file of uploads) {
       this.progress.show('uploading', null, file.name);
       try {
-        const mesh = await uploadMesh(file.name, file);
+        const mesh = await uploadMesh(file.name, file.body);
         this.upsert(mesh);
         for (const w of mesh.warnings ?? []) this.messages.notice(`${mesh.name}: ${w}`);
         last = mesh;
@@ -987,6 +1006,7 @@ export class App {
       timer.setWorkerTiming(decoded.timing);
       const object = buildSurface(decoded);
       timer.mark('geometry-built');
+      this.textures.attach(object, mesh);
       this.viewer.show(object, () => {
         if (this.viewer.object !== object) return;
         timer.mark('first-frame');
@@ -1030,6 +1050,7 @@ export class App {
         this.progress.hide();
       }
       this.viewer.clearAll();
+      this.textures.detach();
       this.added.clear();
       this.skeletons.clear();
       this.hooks.skeletons = [];
