@@ -273,11 +273,6 @@ json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std
   const std::string algorithm = req["algorithm"].get<std::string>();
   if (!worker_algorithms_.count(algorithm)) throw std::out_of_range("no algorithm '" + algorithm + "'");
   const UserLimits quota = limits(caller);
-  if (quota.storage_bytes || quota.concurrent_jobs) {
-    const Usage use = usage(owner);
-    check_jobs(quota, use);  // again below, under the lock, where it counts
-    check_room_for_results(quota, use);
-  }
   // Each input the algorithm declares is a stored mesh: its id, or an earlier
   // job's output mesh {"job": id, "artifact": name}.
   const json inputs = req.value("inputs", json::object());
@@ -327,6 +322,8 @@ json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std
       const ArtifactBytes ply = artifact(from, artifact_name, "ply", caller);
       if (const auto known = meshes_.store().find_by_sha256(sha256_hex(ply.bytes), owner)) id = known->id;
       else {
+        // Refused before it stores anything (even where the job would be a cache hit).
+        if (quota.concurrent_jobs) check_jobs(quota, usage(owner));
         check_storage(caller, ply.bytes.size(), "the mesh of " + from + "/" + artifact_name);
         id = meshes_.upload(from + "-" + artifact_name + ".ply", "ply", ply.bytes, owner).id;
         if (new_meshes) new_meshes->push_back(id);
@@ -385,6 +382,7 @@ json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std
   // A one-mesh job keeps the key it always had (its cached results stay valid).
   j->cache_key = sha256_hex((mesh ? mesh->sha256 : std::string()) + input_shas + "\n" + algorithm + "\n" + j->params);
   j->created = now_iso8601();
+  const Usage use = quota.storage_bytes ? usage(owner) : Usage{};
   json out, event;
   {
     std::lock_guard lock(mutex_);
@@ -401,8 +399,11 @@ json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std
         j->files = o.files;
       }
     }
-    // A cached result runs nothing: only a job that runs counts.
-    if (!j->cached && quota.concurrent_jobs) check_jobs(quota, {0, active_locked(owner)});
+    // A cached result runs nothing and stores nothing: only a job that runs counts.
+    if (!j->cached) {
+      check_jobs(quota, {0, active_locked(owner)});
+      check_room_for_results(quota, use);
+    }
     persist(*j);
     jobs_[j->id] = j;
     order_.push_back(j->id);
