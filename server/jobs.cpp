@@ -245,6 +245,7 @@ json JobScheduler::job_json(const Job& j) const {
   if (!artifacts.is_array()) artifacts = json::array();
   for (auto& a : artifacts) a.erase("file");
   return {{"id", j.id},
+          {"owner", j.owner},
           {"algorithm", j.algorithm},
           {"inputs", job_inputs(j.inputs, j.mesh_id)},
           {"params", json::parse(j.params, nullptr, false)},

@@ -23,6 +23,26 @@ export interface Mesh {
   sha256?: string;
   report: MeshReport;
   warnings?: string[];
+  /** The user who uploaded it ("system" for the samples). */
+  owner?: string;
+}
+
+/** GET /api/v1/me: the caller, what they use and their limits (null: none). */
+export interface Me {
+  user: string;
+  admin: boolean;
+  storage_bytes_used: number;
+  storage_bytes_limit: number | null;
+  jobs_active: number;
+  jobs_limit: number | null;
+}
+
+/** What POST /meshes|jobs/{id}/share and /unshare answer: who reads the item now. */
+export interface Sharing {
+  id: string;
+  owner: string;
+  users: string[];
+  everyone: boolean;
 }
 
 export interface Health {
@@ -100,6 +120,7 @@ export type JobInput = string | { job: string; artifact: string };
 
 export interface Job {
   id: string;
+  owner?: string;
   algorithm: string;
   /** Each input: a mesh id, or an earlier job's artifact (a voxel grid). */
   inputs: Record<string, JobInput>;
