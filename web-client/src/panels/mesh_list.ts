@@ -1,6 +1,6 @@
 // The list of stored meshes: a thumbnail rendered by the server (render.png),
 // name, vertex and face counts; a click shows the mesh, the delete button
-// removes it from the server, "Share…" opens the share form (on what the
+// removes it from the server, the share button (⇪) opens the share form (on what the
 // user may change: their own meshes, or any for an admin).
 import { setImageSource } from '../api/auth.ts';
 import { renderUrl } from '../api/rest.ts';
@@ -41,7 +41,7 @@ export class MeshListPanel {
       const thumb = this.thumbnail(mesh.id);
       let share: HTMLButtonElement | null = null;
       if (this.actions.mayChange(mesh.owner)) {
-        share = el('button', { class: 'share', type: 'button', title: `Share ${mesh.name}`, 'aria-label': `Share ${mesh.name}` }, 'Share…');
+        share = el('button', { class: 'share', type: 'button', title: `Share ${mesh.name}`, 'aria-label': `Share ${mesh.name}` }, '⇪');
         share.addEventListener('click', (ev) => {
           ev.stopPropagation();
           this.actions.share(mesh.id);
