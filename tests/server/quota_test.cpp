@@ -107,6 +107,14 @@ TEST(QuotaConfig, TheServerRefusesABadFileNamingTheKey) {
   for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
   EXPECT_NE(::pclose(p), 0);
   EXPECT_NE(out.find("bad.json: not JSON"), std::string::npos) << out;
+  // Without --config, DATA-DIR/config.json is read when it is there.
+  std::filesystem::create_directories(dir / "data");
+  std::ofstream(dir / "data" / "config.json") << R"({"users": {"alice": {"storage": 1}}})";
+  p = ::popen((test::bin("cgview-server") + " --port 0 --samples none --data-dir '" + (dir / "data").string() + "' 2>&1").c_str(), "r");
+  out.clear();
+  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
+  EXPECT_NE(::pclose(p), 0);
+  EXPECT_NE(out.find("config.json: users.alice.storage: unknown key"), std::string::npos) << out;
 }
 
 class QuotaTest : public ::testing::Test {
