@@ -3,9 +3,9 @@
 // REST, draws their thumbnails and streams a mesh over the WebSocket with it;
 // the token never appears in a URL.  The header shows the user and their
 // quota use (a config file gives alice a small storage quota: an upload over
-// it shows the server's message); "Sign out" forgets the token; "Share…" on a
+// it shows the server's message); "Sign out" forgets the token; sharing a
 // mesh shares it with another user, who sees it after a reload, and takes it
-// back.
+// back; "Share…" on a job shares it with everyone.
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
@@ -150,6 +150,19 @@ test('a mesh shared in the viewer shows for the other user after a reload, and g
   await other.waitForFunction(() => window.__cgview?.ready === true, null, { timeout: 30000 });
   await other.locator('#mesh-list li.mesh').first().waitFor({ timeout: 30000 });
   assert.equal(await row(other).count(), 0, 'unshared: gone for dave');
+
+  // A job: shared with everyone from its Share… button.
+  const job = await api(carol, 'POST', '/jobs', JSON.stringify({ algorithm: 'centroid_distance', inputs: { mesh: id } }));
+  assert.equal(job.status, 201);
+  assert.equal(job.json.owner, 'carol');
+  assert.equal((await api(dave, 'GET', '/jobs/' + job.json.id)).status, 404);
+  await owner.locator('#share-form .share-close').click();
+  const jobRow = owner.locator(`#jobs li.job[data-job-id="${job.json.id}"]`);
+  await jobRow.locator('.share').click({ timeout: 30000 });
+  await owner.locator('#share-form input[name="everyone"]').check();
+  await owner.locator('#share-form .share-submit').click();
+  await owner.waitForFunction(() => document.querySelector('#share-form .share-status')?.textContent === 'Shared with everyone.');
+  assert.equal((await api(dave, 'GET', '/jobs/' + job.json.id)).status, 200);
   await other.close();
   await owner.close();
 });
