@@ -128,7 +128,7 @@ class QuotaTest : public ::testing::Test {
     meshes_ = std::make_unique<MeshService>(*store_);
     JobConfig jc = sc.jobs;
     jc.worker = test::bin("cgview-worker-test");
-    jc.max_workers = 2;
+    jc.max_workers = 4;  // alice's two long jobs leave room for bob's
     jobs_ = std::make_unique<JobScheduler>(*meshes_, jc);
     jobs_->start();
     RouterConfig rc;
@@ -264,8 +264,9 @@ TEST_F(QuotaTest, OverTheJobCapIs429WithRetryAfter) {
   // Nothing was queued for it.
   EXPECT_EQ(json::parse(call(alice_, "GET", "/api/v1/jobs").body)["jobs"].size(), 2u);
 
-  // Bob's cap is his own (1), and alice's jobs do not count against it.
-  const std::string bob_mesh = json::parse(upload(bob_, "cube.off").body)["id"];
+  // Bob's cap is his own (1), and alice's jobs do not count against it.  (Another
+  // mesh than alice's: results are cached by content, across users.)
+  const std::string bob_mesh = json::parse(upload(bob_, "tetrahedron.off").body)["id"];
   const HttpResponse b1 = sleep_job(bob_, bob_mesh, 0.01);
   ASSERT_EQ(b1.status, 201) << b1.body;
   EXPECT_EQ(wait_job(bob_, json::parse(b1.body)["id"])["state"], "done");
