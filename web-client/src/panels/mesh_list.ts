@@ -1,6 +1,7 @@
 // The list of stored meshes: a thumbnail rendered by the server (render.png),
 // name, vertex and face counts; a click shows the mesh, the delete button
-// removes it from the server.
+// removes it from the server, the share button (⇪) opens the share form (on what the
+// user may change: their own meshes, or any for an admin).
 import { setImageSource } from '../api/auth.ts';
 import { renderUrl } from '../api/rest.ts';
 import type { Mesh } from '../api/types.ts';
@@ -12,6 +13,9 @@ const THUMBNAIL_PX = 96;
 export interface MeshListActions {
   select(id: string): void;
   remove(id: string): void;
+  share(id: string): void;
+  /** Whether the user may share (and delete) a mesh of that owner. */
+  mayChange(owner: string | undefined): boolean;
 }
 
 export class MeshListPanel {
@@ -35,6 +39,14 @@ export class MeshListPanel {
       const counts = `${mesh.report.vertices} V · ${mesh.report.faces} F`;
       const remove = el('button', { class: 'delete', type: 'button', title: `Delete ${mesh.name}`, 'aria-label': `Delete ${mesh.name}` }, '✕');
       const thumb = this.thumbnail(mesh.id);
+      let share: HTMLButtonElement | null = null;
+      if (this.actions.mayChange(mesh.owner)) {
+        share = el('button', { class: 'share', type: 'button', title: `Share ${mesh.name}`, 'aria-label': `Share ${mesh.name}` }, '⇪');
+        share.addEventListener('click', (ev) => {
+          ev.stopPropagation();
+          this.actions.share(mesh.id);
+        });
+      }
       remove.addEventListener('click', (ev) => {
         ev.stopPropagation();
         // A render still on its way would answer 404 once the mesh is gone: stop it first.
@@ -53,6 +65,7 @@ export class MeshListPanel {
         ...(thumb ? [thumb] : []),
         el('span', { class: 'mesh-name' }, mesh.name),
         el('span', { class: 'mesh-counts' }, counts),
+        share,
         remove,
       );
       item.addEventListener('click', () => this.actions.select(mesh.id));
