@@ -165,6 +165,7 @@ int main(int argc, char** argv) {
       else if (!a.starts_with("-") && (a == "user" || !command.empty())) command.push_back(a);
       else throw std::invalid_argument("unknown option " + a);
     }
+    if (config.tls_cert.empty() != config.tls_key.empty()) throw std::invalid_argument("--tls-cert and --tls-key go together");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "cgview-server: %s (see --help)\n", e.what());
     return 2;
