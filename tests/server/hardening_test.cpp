@@ -335,6 +335,26 @@ TEST_F(Hardening, ConnectionsPerAddressAreCapped) {
   expect_healthy();
 }
 
+// A job cancelled at once may get its SIGTERM before its worker has exec'ed,
+// while the child is still a copy of the server with its signal handler: the
+// server must not take it for its own.
+TEST_F(Hardening, JobsCancelledAtOnceDoNotStopTheServer) {
+  ASSERT_TRUE(start({"--job-workers", "2"}));
+  const HttpResult up = http_call(port(), Method::post, "/api/v1/meshes?name=elephant.off", test::read_bytes(test::sample("elephant.off")));
+  ASSERT_EQ(up.status, 201u) << up.body;
+  const std::string mesh = up.body_json().value("id", "");
+  for (int i = 0; i < 40; ++i) {
+    const json request = {{"algorithm", "voxelize"}, {"inputs", {{"mesh", mesh}}}, {"params", {{"resolution", 900 + i}}}};
+    const HttpResult job = http_call(port(), Method::post, "/api/v1/jobs", request.dump());
+    ASSERT_EQ(job.status, 201u) << i << ": " << job.body << job.ec.message();
+    const HttpResult cancel = http_call(port(), Method::delete_, "/api/v1/jobs/" + job.body_json().value("id", ""));
+    ASSERT_EQ(cancel.status, 200u) << i << ": " << cancel.body << cancel.ec.message();
+  }
+  std::this_thread::sleep_for(300ms);
+  EXPECT_TRUE(server_.alive());
+  expect_healthy();
+}
+
 // ---------------------------------------------------------------- rate limit
 
 TEST(RateLimiter, ABucketOfBurstRefilledAtRate) {
