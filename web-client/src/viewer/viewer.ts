@@ -256,7 +256,9 @@ export class Viewer {
     this.frameRequested = false;
     // With damping, update() keeps moving the camera for a few frames after
     // the pointer stops; it fires 'change', which asks for the next frame.
-    this.controls.update();
+    // Off while another navigation mode or the selection tool has the mouse
+    // (its update() would turn the camera back to the orbit target).
+    if (this.controls.enabled) this.controls.update();
     if (this.panes.length) this.renderPanes();
     else this.renderer.render(this.scene, this.camera);
     this.options.onFrame?.();
