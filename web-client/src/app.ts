@@ -376,6 +376,11 @@ export class App {
   private selectionFor(kind: string): number[] {
     const state = this.selectionTool.state();
     if (this.runTarget || state.meshId !== this.selectedId || state.kind !== kind) return [];
+    // Vertices split at attribute seams in the PLY are not the stored ones (docs/DESIGN.md).
+    if (kind === 'vertices' && state.ids.length && this.selectionTool.vertexCount !== this.selectedMesh()?.report.vertices) {
+      this.error('This mesh has seams (separate normal or UV indices): its vertex selection cannot be sent as stored ids.');
+      return [];
+    }
     return state.ids;
   }
 

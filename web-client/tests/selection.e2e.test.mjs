@@ -139,7 +139,9 @@ test('a box selection selects exactly the faces whose centroids project into it,
   const rect = clearOf(projected, [cx - 3.1 * unit, cy - 2.3 * unit, cx + 2.2 * unit, cy + 1.6 * unit]);
   const expected = projected.flatMap(([x, y], i) => (x >= rect[0] && x <= rect[2] && y >= rect[1] && y <= rect[3] ? [i] : []));
   assert.ok(expected.length > 20, `the box holds faces: ${expected.length}`);
+  const camBefore = await v.page.evaluate(() => window.__cgview.camera());
   const s = await drag([[rect[0], rect[1]], [rect[2], rect[3]]]);
+  assert.deepEqual(await v.page.evaluate(() => window.__cgview.camera()), camBefore, 'the drag did not move the camera');
   assert.equal(s.kind, 'faces');
   assert.equal(s.count, expected.length, 'the count');
   assert.deepEqual(s.ids, expected, 'the stored ids');
@@ -354,5 +356,32 @@ test('fly mode: W moves the camera forward, A to the left; trackball mode rotate
   assert.ok(Math.hypot(...t1.direction.map((d, a) => d - t0.direction[a])) > 0.05, 'the trackball turned the camera');
   assert.ok(Math.abs(r1 - r0) < 1e-3 * r0, 'about the centre, at the same distance');
   await v.page.locator('#navigation-mode').selectOption('orbit');
+  assert.deepEqual(v.problems, [], v.describeProblems());
+});
+
+test('visible only: a box over a cube seen from the front selects its front face; through selects all 12', async () => {
+  const cube = 'OFF\n8 12 0\n' +
+    [[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1], [-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]].map((p) => p.join(' ')).join('\n') + '\n' +
+    [[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4], [2, 3, 7], [2, 7, 6], [1, 2, 6], [1, 6, 5], [0, 4, 7], [0, 7, 3]]
+      .map((f) => `3 ${f.join(' ')}`).join('\n') + '\n';
+  const r = await fetch(`${v.server.url}/api/v1/meshes?name=cube.off`, { method: 'POST', body: cube });
+  assert.equal(r.status, 201);
+  const id = (await r.json()).id;
+  await v.page.locator(`#mesh-list li.mesh[data-mesh-id="${id}"]`).click();
+  await v.page.waitForFunction((i) => window.__cgview.lastLoaded?.id === i, id, { timeout: 30000 });
+  await v.page.locator('button[data-view="-z"]').click();
+  await v.page.locator('#select-tool').click();
+  await v.page.waitForFunction((i) => window.__cgview.selection?.ready === true && window.__cgview.selection.meshId === i, id, { timeout: 30000 });
+  const box = await canvasBox();
+  const all = [[5, 5], [box.width - 5, box.height - 5]];
+  let s = await drag(all);
+  assert.deepEqual(s.ids, [2, 3], 'the front face (z = +1) alone');
+  await v.page.locator('#selection-through').check();
+  await v.page.locator('#selection-clear').click();
+  await v.page.waitForFunction(() => window.__cgview.selection.count === 0);
+  s = await drag(all);
+  assert.equal(s.count, 12, 'through: every face');
+  await v.page.locator('#selection-through').uncheck();
+  await v.page.locator('#select-tool').click();
   assert.deepEqual(v.problems, [], v.describeProblems());
 });

@@ -139,8 +139,9 @@ export class SelectionTool {
     this.set([]);
   }
 
-  get meshId(): string | null {
-    return this.target?.meshId ?? null;
+  /** The vertex count of the mesh selected on (in the server's order), or null before it is fetched. */
+  get vertexCount(): number | null {
+    return this.target?.ply.vertices ?? null;
   }
 
   /** Turns the tool on (the camera stays put: the navigation is off) or off. */
