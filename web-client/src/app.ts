@@ -257,7 +257,7 @@ export class App {
       },
       (enabled) => this.navigation.setEnabled(enabled),
     );
-    selectionPanel = new SelectionPanel(byId('selection'), this.selectionTool);
+    selectionPanel = new SelectionPanel(byId('selection'), this.selectionTool, () => this.navigation.mode !== 'fly');
     this.hooks.camera = () => this.navigation.state();
     this.hooks.selectionView = () => this.selectionTool.view();
   }

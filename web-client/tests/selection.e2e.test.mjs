@@ -148,6 +148,7 @@ test('a box selection selects exactly the faces whose centroids project into it,
   assert.ok(Math.abs(s.area - 0.5 * expected.length) < 1e-4, `the area: ${s.area}`);
   assert.equal(await v.page.locator('#selection-readout .selection-count').getAttribute('data-count'), String(expected.length));
   await v.page.locator('#viewport canvas').screenshot({ path: path.join(artifacts, 'e2e-selection-box.png') });
+  await v.page.screenshot({ path: path.join(artifacts, 'e2e-selection-page.png') });
   // Shift adds: a second box to the right.
   const rect2 = clearOf(projected, [cx + 4.2 * unit, cy - 1.3 * unit, cx + 6.1 * unit, cy + 0.6 * unit]);
   const more = projected.flatMap(([x, y], i) => (x >= rect2[0] && x <= rect2[2] && y >= rect2[1] && y <= rect2[3] ? [i] : []));

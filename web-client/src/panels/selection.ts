@@ -13,7 +13,8 @@ export class SelectionPanel {
   private readonly toggle: HTMLButtonElement;
   private readonly tool: SelectionTool;
 
-  constructor(root: HTMLElement, tool: SelectionTool) {
+  /** shortcut(): whether the S key may toggle the tool now (not in fly mode, where S moves back). */
+  constructor(root: HTMLElement, tool: SelectionTool, shortcut: () => boolean = () => true) {
     this.tool = tool;
     this.toggle = el('button', { type: 'button', class: 'button', id: 'select-tool', 'aria-pressed': 'false', title: 'Select with the mouse (S); the camera stays put' }, 'Select');
     this.toggle.addEventListener('click', () => this.setActive(!tool.active));
@@ -55,7 +56,7 @@ export class SelectionPanel {
     );
     this.render(tool.state());
     window.addEventListener('keydown', (e) => {
-      if (e.key !== 's' || e.ctrlKey || e.metaKey || e.altKey || typing(e.target)) return;
+      if (e.key !== 's' || e.ctrlKey || e.metaKey || e.altKey || typing(e.target) || !shortcut()) return;
       this.setActive(!tool.active);
     });
   }
