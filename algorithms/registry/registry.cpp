@@ -99,7 +99,10 @@ std::string to_string(const ParamValue& v) {
         else if constexpr (std::is_same_v<T, double>) return number_text(x);
         else if constexpr (std::is_same_v<T, Ids>) {
           std::string s;
-          for (const Index id : x) s += (s.empty() ? "" : ",") + std::to_string(id);
+          for (const Index id : x) {
+            if (!s.empty()) s += ',';
+            s += std::to_string(id);
+          }
           return s;
         } else return std::to_string(x);
       },
