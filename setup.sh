@@ -30,7 +30,7 @@ APT_PACKAGES=(
   libdraco-dev libtinygltf-dev
   libegl-dev libopengl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libpng-dev
   libopenvdb-dev libembree-dev
-  libsqlite3-dev libssl-dev zlib1g-dev
+  libsqlite3-dev libssl-dev zlib1g-dev libzip-dev
   libcgal-demo
   nodejs npm
 )

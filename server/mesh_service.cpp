@@ -1,12 +1,15 @@
 #include "mesh_service.h"
 
 #include <algorithm>
+#include <cctype>
 #include <nlohmann/json.hpp>
 
 #include "core/errors.h"
 #include "core/mesh_report.h"
+#include "io/materials.h"
 #include "io/mesh_io.h"
 #include "mesh_report_json.h"
+#include "zip_bundle.h"
 
 namespace cgview::server {
 
@@ -20,24 +23,142 @@ std::string clean_name(const std::string& name) {
     if (c < 32 || c == '/' || c == '\\' || c == 127) throw InvalidInput("the name may not hold '/', '\\' or control characters");
   return name;
 }
+
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// The uploaded file that a mesh or MTL names, matched by base name without
+// case (files written on Windows name ".\\Tex.JPG" for "tex.jpg").
+const BundleFile* find_file(const std::vector<BundleFile>& files, const std::string& referenced) {
+  const std::string want = lower(file_base_name(referenced));
+  for (const auto& f : files)
+    if (lower(file_base_name(f.name)) == want) return &f;
+  return nullptr;
+}
+
+// The one mesh file among a zip's files.
+const BundleFile& mesh_file_of(const std::vector<BundleFile>& files) {
+  std::vector<const BundleFile*> meshes;
+  for (const auto& f : files) {
+    try {
+      if (can_read(format_from_name(f.name))) meshes.push_back(&f);
+    } catch (const UnsupportedFormat&) {
+      // an MTL, an image, a readme
+    }
+  }
+  if (meshes.empty()) throw InvalidInput("the zip holds no mesh file (readable: " + readable_formats() + ")");
+  if (meshes.size() > 1)
+    throw InvalidInput("the zip holds several mesh files ('" + meshes[0]->name + "', '" + meshes[1]->name +
+                       "', ...): upload one mesh per zip");
+  return *meshes.front();
+}
+
+struct Textures {
+  nlohmann::json material = nlohmann::json::object();  // has_uvs, textures, kd
+  std::vector<std::string> blobs;                      // one per material["textures"] entry
+};
+
+// The texture (and diffuse colour) of a mesh from the files uploaded with it.
+Textures find_textures(const ReadResult& r, std::string_view mesh_bytes, const std::vector<BundleFile>& files,
+                       bool bundle, std::vector<std::string>& warnings) {
+  Textures t;
+  t.material["has_uvs"] = r.mesh.has_uvs();
+  t.material["textures"] = nlohmann::json::array();
+  std::string image, material_name;
+  std::optional<std::array<float, 3>> kd;
+  if (r.format == MeshFormat::obj) {
+    const ObjMaterialUse use = obj_material_use(mesh_bytes);
+    std::vector<Material> materials;
+    for (const auto& lib : use.libraries) {
+      if (const BundleFile* f = find_file(files, lib)) {
+        for (auto& m : parse_mtl(f->bytes)) materials.push_back(std::move(m));
+      } else {
+        warnings.push_back(bundle ? "the material library '" + lib + "' is not in the zip: the mesh shows untextured"
+                                  : "the OBJ names the material library '" + lib +
+                                        "': upload a zip of the OBJ, the MTL and its images to see its textures");
+      }
+    }
+    const auto faces_of = [&](const Material& m) {
+      const auto it = use.faces.find(m.name);
+      return it == use.faces.end() ? std::size_t(0) : it->second;
+    };
+    const Material* best = nullptr;
+    std::size_t textured = 0;
+    for (const auto& m : materials) {
+      if (faces_of(m) == 0) continue;
+      if (!m.map_kd.empty()) ++textured;
+      // A textured material beats an untextured one, then the one on more faces.
+      if (!best || (!m.map_kd.empty() && best->map_kd.empty()) ||
+          (m.map_kd.empty() == best->map_kd.empty() && faces_of(m) > faces_of(*best)))
+        best = &m;
+    }
+    if (best) {
+      material_name = best->name;
+      kd = best->kd;
+      image = best->map_kd;
+      if (textured > 1)
+        warnings.push_back(std::to_string(textured) + " materials have textures: one texture per mesh is shown, '" +
+                           best->map_kd + "' of material '" + best->name + "' (on " + std::to_string(faces_of(*best)) +
+                           " of " + std::to_string(r.mesh.num_faces()) + " faces)");
+    }
+  } else if (r.format == MeshFormat::ply) {
+    image = ply_texture_file(mesh_bytes);
+  }
+  if (kd) t.material["kd"] = *kd;
+  if (image.empty()) return t;
+  const BundleFile* f = find_file(files, image);
+  if (!f) {
+    warnings.push_back("the texture '" + image + "' is not in the upload: the mesh shows untextured" +
+                       (bundle ? "" : " (upload a zip of the mesh and its images)"));
+    return t;
+  }
+  const std::string mime = image_mime_type(f->bytes);
+  if (mime.empty()) {
+    warnings.push_back("the texture '" + image + "' is not a PNG or JPEG image: the mesh shows untextured");
+    return t;
+  }
+  if (!r.mesh.has_uvs()) {
+    warnings.push_back("the mesh has no texture coordinates: its texture '" + image + "' is not shown");
+    return t;
+  }
+  nlohmann::json tex = {{"name", file_base_name(f->name)}, {"mime", mime}, {"bytes", f->bytes.size()}};
+  if (!material_name.empty()) tex["material"] = material_name;
+  if (kd) tex["kd"] = *kd;
+  t.material["textures"].push_back(tex);
+  t.blobs.push_back(f->bytes);
+  return t;
+}
 }  // namespace
 
 MeshService::MeshService(Store& store, std::size_t cache_bytes) : store_(store), cache_bytes_(cache_bytes) {}
 
 MeshRecord MeshService::upload(const std::string& name, const std::string& format, std::string_view bytes,
                                const std::string& owner) {
-  const std::string n = clean_name(name);
-  const MeshFormat f = format_from_name(format.empty() ? n : "x." + format);
-  ReadResult r = read_mesh_bytes(bytes, f, n);
+  std::string n = clean_name(name);
+  const bool bundle = format == "zip" || (format.empty() && lower(n).ends_with(".zip"));
+  std::vector<BundleFile> files;
+  std::string_view mesh_bytes = bytes;
+  if (bundle) {
+    files = unzip_bundle(bytes, max_upload_bytes_);
+    const BundleFile& m = mesh_file_of(files);
+    n = clean_name(file_base_name(m.name));
+    mesh_bytes = m.bytes;
+  }
+  const MeshFormat f = format_from_name(format.empty() || bundle ? n : "x." + format);
+  ReadResult r = read_mesh_bytes(mesh_bytes, f, n);
   if (r.mesh.num_faces() == 0) throw InvalidInput(n + ": the mesh has no faces");
+  Textures textures = find_textures(r, mesh_bytes, files, bundle, r.warnings);
   MeshRecord rec;
   rec.name = n;
   rec.format = to_string(f);
-  rec.sha256 = sha256_hex(bytes);
+  rec.sha256 = sha256_hex(mesh_bytes);
   rec.report_json = protocol::to_json(mesh_report(r.mesh)).dump();
   rec.warnings_json = nlohmann::json(r.warnings).dump();
+  rec.material_json = textures.material.dump();
   rec.owner = owner;
-  rec = store_.add_mesh(std::move(rec), bytes);
+  rec = store_.add_mesh(std::move(rec), mesh_bytes, textures.blobs);
   std::lock_guard lock(mutex_);
   meshes_.emplace_front(rec.sha256, std::make_shared<const Mesh>(std::move(r.mesh)));
   if (meshes_.size() > kMeshesKept) meshes_.pop_back();
@@ -135,6 +256,16 @@ int MeshService::import_samples(const std::vector<std::filesystem::path>& files,
 }
 
 namespace {
+// has_uvs, textures and (when the material gives one) kd; a mesh stored
+// before textures existed reads as untextured.
+nlohmann::json material_of(const MeshRecord& r) {
+  nlohmann::json m = nlohmann::json::parse(r.material_json, nullptr, false);
+  if (!m.is_object()) m = nlohmann::json::object();
+  if (!m.contains("has_uvs")) m["has_uvs"] = false;
+  if (!m.contains("textures")) m["textures"] = nlohmann::json::array();
+  return m;
+}
+
 nlohmann::json mesh_head(const MeshRecord& r) {
   return {{"id", r.id}, {"name", r.name}, {"format", r.format}, {"bytes", r.bytes}, {"created", r.created}, {"sha256", r.sha256},
           {"owner", r.owner}};
@@ -145,13 +276,15 @@ nlohmann::json mesh_json(const MeshRecord& r) {
   nlohmann::json j = mesh_head(r);
   j["report"] = nlohmann::json::parse(r.report_json);
   j["warnings"] = nlohmann::json::parse(r.warnings_json);
+  j.update(material_of(r));
   return j;
 }
 
 std::string mesh_json_text(const MeshRecord& r) {
   std::string s = mesh_head(r).dump();
   s.pop_back();  // the closing brace
-  return s + ",\"report\":" + r.report_json + ",\"warnings\":" + r.warnings_json + "}";
+  std::string m = material_of(r).dump();  // {"has_uvs":...}: spliced in without its braces
+  return s + ",\"report\":" + r.report_json + ",\"warnings\":" + r.warnings_json + "," + m.substr(1);
 }
 
 }  // namespace cgview::server

@@ -35,7 +35,12 @@ class MeshService {
 
   // Parses the bytes (format given, or from the name's extension), computes
   // the report and stores it, owned by `owner`.  Throws InvalidInput (bad
-  // name, format or file).
+  // name, format or file).  A zip ("x.zip" or format "zip") holds one mesh
+  // file and what it refers to: an OBJ's MTL and its map_Kd image, a PLY's
+  // `comment TextureFile` image; the image is stored as a blob of the mesh
+  // (one texture per mesh: of several textured materials, the one on the
+  // most faces).  A referenced file that is missing is a warning, not an
+  // error.  Throws TooLarge when the zip unpacks past max_upload_bytes.
   MeshRecord upload(const std::string& name, const std::string& format, std::string_view bytes,
                     const std::string& owner = "local");
   // The mesh, parsed from its stored bytes (the last few are kept in memory).
@@ -51,6 +56,8 @@ class MeshService {
   int import_samples(const std::vector<std::filesystem::path>& files, std::size_t max_bytes_each);
 
   Store& store() { return store_; }
+  // The most bytes a zip upload may unpack to (the server's upload limit).
+  void set_max_upload_bytes(std::size_t n) { max_upload_bytes_ = n; }
   std::uint64_t encodings_computed() const { return encodings_computed_; }
 
  private:
@@ -66,6 +73,7 @@ class MeshService {
   std::size_t cache_bytes_, used_bytes_ = 0;
   std::list<std::pair<std::string, std::shared_ptr<const Mesh>>> meshes_;  // by sha256, newest first
   std::uint64_t encodings_computed_ = 0;
+  std::size_t max_upload_bytes_ = std::size_t(256) << 20;
 };
 
 // The JSON object of a stored mesh (API.md's Mesh).

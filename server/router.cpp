@@ -8,6 +8,7 @@
 #include "io/mesh_io.h"
 #include "jobs.h"
 #include "render_service.h"
+#include "zip_bundle.h"
 
 namespace cgview::server {
 
@@ -163,9 +164,9 @@ Router::Router(MeshService& meshes, RouterConfig config)
                        for (const auto& r : meshes_.store().list_meshes(caller)) list.push_back(mesh_json(r));
                        return json_response(200, {{"meshes", list}});
                      }});
-  routes_.push_back({"POST", "/api/v1/meshes", "Upload a mesh: the file's bytes as the raw body",
-                     {{"name", "the file name, e.g. bunny.ply (required)"},
-                      {"format", "off, obj, ply, stl, drc, glb or gltf (default: from the name's extension)"}},
+  routes_.push_back({"POST", "/api/v1/meshes", "Upload a mesh: the file's bytes as the raw body, or a zip of it with its MTL and images",
+                     {{"name", "the file name, e.g. bunny.ply or spider.zip (required)"},
+                      {"format", "off, obj, ply, stl, drc, glb, gltf or zip (default: from the name's extension)"}},
                      [this](const Params&, const HttpRequest& req, const Caller& caller) {
                        const auto [path, q] = split_target(req.target);
                        const auto name = q.find("name");
@@ -211,6 +212,20 @@ Router::Router(MeshService& meshes, RouterConfig config)
                        for (char& c : stem)
                          if (c == '"' || c == '\\') c = '_';
                        r.headers.push_back({"Content-Disposition", "attachment; filename=\"" + stem + "." + format + "\""});
+                       return r;
+                     }});
+  routes_.push_back({"GET", "/api/v1/meshes/{id}/textures/{n}", "A texture image of a mesh (n: its index in the mesh's textures)", {},
+                     [this, find](const Params& p, const HttpRequest&, const Caller& caller) {
+                       const MeshRecord rec = find(p, caller);
+                       const json textures = mesh_json(rec)["textures"];
+                       const std::string& n = p.at("n");
+                       if (n.empty() || n.size() > 3 || n.find_first_not_of("0123456789") != std::string::npos ||
+                           std::stoul(n) >= textures.size())
+                         throw std::out_of_range("mesh " + rec.id + " has no texture '" + n + "' (it has " +
+                                                 std::to_string(textures.size()) + ")");
+                       HttpResponse r;
+                       r.body = meshes_.store().read_texture(rec, std::stoul(n));
+                       r.content_type = textures[std::stoul(n)].value("mime", "application/octet-stream");
                        return r;
                      }});
   // Offscreen renders (algorithms/render): a PNG of one mesh, for scripts and the viewer's thumbnails.
@@ -483,6 +498,8 @@ HttpResponse Router::handle(const HttpRequest& req) const {
       return error_response(403, "forbidden", e.what());
     } catch (const UnsupportedFormat& e) {
       return error_response(400, "unsupported_format", e.what());
+    } catch (const TooLarge& e) {
+      return error_response(413, "payload_too_large", e.what());
     } catch (const InvalidInput& e) {
       return error_response(400, "invalid_mesh", e.what());
     } catch (const std::out_of_range& e) {
@@ -543,7 +560,9 @@ json Router::openapi() const {
         op["responses"]["403"] = error_ref;  // share, unshare: only the owner
       }
     } else if (r.method == "POST") {
-      op["requestBody"] = {{"content", {{"application/octet-stream", {{"schema", {{"type", "string"}, {"format", "binary"}}}}}}}};
+      // The mesh file, or a zip of it with its MTL and images (README "Textured meshes").
+      const json binary = {{"schema", {{"type", "string"}, {"format", "binary"}}}};
+      op["requestBody"] = {{"content", {{"application/octet-stream", binary}, {"application/zip", binary}}}};
       op["responses"].erase("200");
       op["responses"]["201"] = {{"description", "created"}};
       op["responses"]["413"] = error_ref;

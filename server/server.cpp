@@ -47,6 +47,7 @@ struct Shared {
         router(meshes, {c.static_dir, "0.1.0", jobs.get(), c.gl_platform, std::max(1, c.workers),
                         c.auth_required || !net::ip::make_address(c.host).is_loopback()}),
         workers(std::size_t(std::max(1, c.workers))) {
+    meshes.set_max_upload_bytes(c.max_upload_bytes);  // what a zip upload may unpack to
     jobs->on_event = [r = &router](const json& e, const Access& readers) {
       if (r->on_event) r->on_event(e, readers);
     };

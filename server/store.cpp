@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <ctime>
 #include <fstream>
+#include <iterator>
 #include <random>
 
 #include "core/errors.h"
@@ -51,13 +52,14 @@ class Stmt {
   sqlite3_stmt* s_ = nullptr;
 };
 
-constexpr const char* kColumns = "id, name, format, bytes, sha256, created, report, warnings, owner";
+constexpr const char* kColumns = "id, name, format, bytes, sha256, created, report, warnings, owner, material";
 // The meshes caller ?1 (admin: ?2) may read.
 constexpr const char* kReadable =
     "(?2 OR owner = ?1 OR id IN (SELECT item FROM shares WHERE kind = 'mesh' AND (user = ?1 OR user = '*')))";
 
 MeshRecord row(const Stmt& s) {
-  return {s.text(0), s.text(1), s.text(2), std::uint64_t(s.integer(3)), s.text(4), s.text(5), s.text(6), s.text(7), s.text(8)};
+  return {s.text(0), s.text(1), s.text(2), std::uint64_t(s.integer(3)), s.text(4), s.text(5), s.text(6), s.text(7), s.text(8),
+          s.text(9)};
 }
 
 std::string mesh_query(const std::string& where) {
@@ -168,6 +170,7 @@ Store::Store(const fs::path& data_dir) : dir_(data_dir) {
            "store");
   // Meshes stored before users belong to the local user.
   add_missing_column(db_, "meshes", "owner", "TEXT NOT NULL DEFAULT 'local'", "store");
+  add_missing_column(db_, "meshes", "material", "TEXT NOT NULL DEFAULT '{}'", "store");
   {
     Stmt s(db_, "SELECT COUNT(*) FROM meshes");
     s.step();
@@ -182,12 +185,10 @@ Store::~Store() { sqlite3_close(db_); }
 
 fs::path Store::blob_path(const MeshRecord& r) const { return dir_ / "blobs" / (r.id + "." + r.format); }
 
-MeshRecord Store::add_mesh(MeshRecord r, std::string_view bytes) {
-  if (!safe_ext(r.format)) throw InvalidInput("bad format name '" + r.format + "'");
-  r.id = new_id();
-  r.created = now_iso8601();
-  r.bytes = bytes.size();
-  const fs::path final_path = blob_path(r), tmp = final_path.string() + ".part";
+namespace {
+// Writes bytes to a temporary name, then renames it: a crash leaves a .part at worst.
+void write_blob(const fs::path& final_path, std::string_view bytes) {
+  const fs::path tmp = final_path.string() + ".part";
   {
     std::ofstream f(tmp, std::ios::binary);
     f.write(bytes.data(), std::streamsize(bytes.size()));
@@ -201,17 +202,43 @@ MeshRecord Store::add_mesh(MeshRecord r, std::string_view bytes) {
   std::error_code ec;
   fs::rename(tmp, final_path, ec);
   if (ec) throw IoError("store: cannot write " + final_path.string() + ": " + ec.message());
+}
+}  // namespace
+
+fs::path Store::texture_path(const std::string& id, std::size_t n) const {
+  return dir_ / "blobs" / (id + ".tex" + std::to_string(n));
+}
+
+void Store::remove_blobs(const MeshRecord& r) const {
+  std::error_code ec;
+  fs::remove(blob_path(r), ec);
+  for (std::size_t n = 0; fs::remove(texture_path(r.id, n), ec); ++n) {
+  }
+}
+
+MeshRecord Store::add_mesh(MeshRecord r, std::string_view bytes, const std::vector<std::string>& textures) {
+  if (!safe_ext(r.format)) throw InvalidInput("bad format name '" + r.format + "'");
+  r.id = new_id();
+  r.created = now_iso8601();
+  r.bytes = bytes.size();
+  try {
+    for (std::size_t n = 0; n < textures.size(); ++n) write_blob(texture_path(r.id, n), textures[n]);
+    write_blob(blob_path(r), bytes);
+  } catch (...) {
+    remove_blobs(r);
+    throw;
+  }
   std::lock_guard lock(mutex_);
   try {
     Stmt s(db_,
-           "INSERT INTO meshes (id, name, format, bytes, sha256, created, report, warnings, owner, seq)"
-           " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, (SELECT IFNULL(MAX(seq), 0) + 1 FROM meshes))");
+           "INSERT INTO meshes (id, name, format, bytes, sha256, created, report, warnings, owner, material, seq)"
+           " VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, (SELECT IFNULL(MAX(seq), 0) + 1 FROM meshes))");
     s.bind(1, r.id).bind(2, r.name).bind(3, r.format).bind(4, std::int64_t(r.bytes)).bind(5, r.sha256);
-    s.bind(6, r.created).bind(7, r.report_json).bind(8, r.warnings_json).bind(9, r.owner);
+    s.bind(6, r.created).bind(7, r.report_json).bind(8, r.warnings_json).bind(9, r.owner).bind(10, r.material_json);
     s.step();
     ++count_;
   } catch (...) {
-    fs::remove(final_path, ec);
+    remove_blobs(r);
     throw;
   }
   return r;
@@ -256,8 +283,7 @@ bool Store::remove_mesh(const std::string& id) {
     shares.bind(1, id);
     shares.step();
   }
-  std::error_code ec;
-  fs::remove(blob_path(*r), ec);
+  remove_blobs(*r);
   return true;
 }
 
@@ -268,6 +294,12 @@ std::string Store::read_blob(const MeshRecord& r) const {
   f.read(bytes.data(), std::streamsize(bytes.size()));
   if (std::uint64_t(f.gcount()) != r.bytes) throw IoError("store: the file of mesh " + r.id + " is truncated");
   return bytes;
+}
+
+std::string Store::read_texture(const MeshRecord& r, std::size_t n) const {
+  std::ifstream f(texture_path(r.id, n), std::ios::binary);
+  if (!f) throw std::out_of_range("mesh " + r.id + " has no texture " + std::to_string(n));
+  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
 }
 
 void Store::set_shared(const std::string& kind, const std::string& id, const std::vector<std::string>& users, bool shared) {

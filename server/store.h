@@ -2,6 +2,7 @@
 // both under one data directory:
 //   DATA/cgview.db            SQLite (WAL): one row per mesh
 //   DATA/blobs/ID.EXT         the uploaded bytes, as uploaded
+//   DATA/blobs/ID.texN        the mesh's texture images (N = 0, 1, ...), if any
 // and the users: their tokens (hashed) and what is shared with whom.
 // A blob is written (to a temporary name, then renamed) before its row is
 // committed, and removed after its row is deleted, so a crash at any point
@@ -70,6 +71,9 @@ struct MeshRecord {
   std::string report_json;    // protocol::to_json(MeshReport), serialized
   std::string warnings_json;  // JSON array of strings
   std::string owner = "local";
+  // JSON object: has_uvs, and textures (one per texture blob: name, mime,
+  // bytes, material, kd); "{}" for a mesh stored before textures existed.
+  std::string material_json = "{}";
 };
 
 class Store {
@@ -80,8 +84,9 @@ class Store {
   Store(const Store&) = delete;
   Store& operator=(const Store&) = delete;
 
-  // Saves the bytes and the record; assigns id and created.
-  MeshRecord add_mesh(MeshRecord record, std::string_view bytes);
+  // Saves the bytes, the texture images (blobs of the mesh, written before
+  // its row) and the record; assigns id and created.
+  MeshRecord add_mesh(MeshRecord record, std::string_view bytes, const std::vector<std::string>& textures = {});
   // The meshes the caller may read, oldest first.
   std::vector<MeshRecord> list_meshes(const Caller& caller = Caller::local()) const;
   // The mesh if the caller may read it; nullopt also when it exists but is
@@ -93,6 +98,8 @@ class Store {
   bool remove_mesh(const std::string& id);
   // The uploaded bytes of a mesh; throws IoError when the blob is missing.
   std::string read_blob(const MeshRecord& record) const;
+  // The bytes of a mesh's texture n; throws std::out_of_range when it has none such.
+  std::string read_texture(const MeshRecord& record, std::size_t n) const;
   // The path of a mesh's stored file (for a worker process to read).
   std::filesystem::path blob_file(const MeshRecord& record) const { return blob_path(record); }
   std::size_t count() const { return count_; }
@@ -121,6 +128,8 @@ class Store {
 
  private:
   std::filesystem::path blob_path(const MeshRecord& r) const;
+  std::filesystem::path texture_path(const std::string& id, std::size_t n) const;
+  void remove_blobs(const MeshRecord& r) const;  // the mesh's file and its textures
   std::filesystem::path dir_;
   sqlite3* db_ = nullptr;
   mutable std::mutex mutex_;

@@ -123,7 +123,7 @@ TEST_F(AuthTest, AUserSeesNothingOfAnothersOverEveryRoute) {
   const std::string a_mesh = upload(alice_);
   const std::map<std::string, std::pair<std::string, std::string>> values = {
       // placeholder: B's value, a value that does not exist
-      {"name", {"mesh", "mesh"}}};
+      {"name", {"mesh", "mesh"}}, {"n", {"0", "0"}}};
   const std::string fake_mesh = "00000000deadbeef", fake_job = "00000000feedface";
   // POST bodies that try to reach B's data: by id, as a job input, by sharing.
   auto body_for = [](const std::string& pattern, const std::string& mesh) {

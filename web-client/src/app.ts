@@ -27,13 +27,16 @@ import { MeshListPanel } from './panels/mesh_list.ts';
 import { MessagesPanel } from './panels/messages.ts';
 import { ProgressPanel } from './panels/progress.ts';
 import { ReportPanel } from './panels/report.ts';
-import { UploadControl } from './panels/upload.ts';
+import { UploadControl, uploadsOf } from './panels/upload.ts';
 import { VoxelSlicePanel } from './panels/voxel_slices.ts';
 import { SkeletonsPanel } from './panels/skeletons.ts';
 import { NavigationPanel } from './panels/navigation.ts';
 import { SelectionPanel } from './panels/selection.ts';
 import { Navigation, type CameraState } from './viewer/navigation.ts';
 import { SelectionTool } from './viewer/selection_tool.ts';
+import { DisplayPanel, type DisplayReport } from './panels/display.ts';
+import { applyCamera, readCamera } from './viewer/camera_state.ts';
+import { decodeViewHash, encodeViewHash, type ViewState } from './viewer/view_state.ts';
 import { buildSlicePlane, sliceClipPlane } from './viewer/slice_plane.ts';
 import { byId } from './panels/dom.ts';
 import { AnimationPlayer } from './viewer/animation_player.ts';
@@ -47,6 +50,7 @@ import { parsePly, type PlyMesh } from './viewer/ply.ts';
 import { buildScalarSurface, colourGeometry, finiteRange, type ScalarField } from './viewer/scalar_field_renderer.ts';
 import { buildPlainSurface, buildSurface, SURFACE_COLOR } from './viewer/surface_renderer.ts';
 import { LoadTimer, type LoadTimings } from './viewer/timings.ts';
+import { MeshTextures, type TextureState } from './viewer/textures.ts';
 import { Viewer } from './viewer/viewer.ts';
 
 /** What tests read (window.__cgview). */
@@ -98,6 +102,16 @@ export interface TestHooks {
   camera?: () => CameraState;
   /** The camera's view for the selection: canvas size in CSS pixels, projection × view (column-major). */
   selectionView?: () => { width: number; height: number; viewProjection: number[] };
+  /** The display mode, material and overlays of the shown object, set after the first frame with each change (panels/display.ts). */
+  display: DisplayReport | null;
+  /** The last view link made with "Copy link". */
+  lastLink: string | null;
+  /** The camera after a view link was restored (set after the frame showing it), or the error that stopped it. */
+  viewRestored: { camera: ViewState['camera']; mode: string } | { error: string } | null;
+  /** The last screenshot downloaded: its PNG's size in bytes. */
+  lastScreenshot: { bytes: number } | null;
+  /** The texture on the surface (a mesh with UVs), set after the first frame with it; null when none. */
+  texture: TextureState | null;
 }
 
 declare global {
@@ -154,7 +168,7 @@ export class App {
   /** A job's output mesh that the next job runs on ("Run on this"), instead of the selected mesh. */
   private runTarget: { jobId: string; artifact: string; kind: string } | null = null;
   /** The scalar field drawn now (or being prepared: token). */
-  private field: { jobId: string; artifact: string; meshId: string; data: ScalarField; object: THREE.Mesh; map: string } | null = null;
+  private field: { jobId: string; artifact: string; meshId: string; data: ScalarField; object: THREE.Mesh; map: string; fullRange: [number, number] } | null = null;
   private fieldToken = 0;
   private mapName: string | null = null; // null: the field's hint chooses
   /** The fields compared side by side (empty: one view), and the token of the comparison being prepared. */
@@ -175,6 +189,11 @@ export class App {
     lastExtra: null,
     lastAnimation: null,
     skeletons: [],
+    display: null,
+    lastLink: null,
+    viewRestored: null,
+    lastScreenshot: null,
+    texture: null,
   };
   private readonly socket = new CgviewSocket();
   private readonly decoder = new DracoDecoder();
@@ -194,10 +213,18 @@ export class App {
   private readonly status: HTMLElement;
   private readonly navigation: Navigation;
   private readonly selectionTool: SelectionTool;
+  private readonly display: DisplayPanel;
+  private readonly textures: MeshTextures;
 
   constructor() {
     window.__cgview = this.hooks;
     this.viewer = new Viewer(byId('viewport'), { onFrame: () => ++this.hooks.frames });
+    this.textures = new MeshTextures(
+      byId('texture-panel'),
+      (onDrawn) => this.viewer.redraw(onDrawn),
+      (state) => (this.hooks.texture = state),
+      (text) => this.error(text),
+    );
     this.list = new MeshListPanel(byId('mesh-list'), {
       select: (id) => this.select(id),
       remove: (id) => void this.remove(id),
@@ -260,6 +287,15 @@ export class App {
     selectionPanel = new SelectionPanel(byId('selection'), this.selectionTool, () => this.navigation.mode !== 'fly');
     this.hooks.camera = () => this.navigation.state();
     this.hooks.selectionView = () => this.selectionTool.view();
+    this.display = new DisplayPanel(byId('display'), this.viewer, {
+      setFieldRange: (range) => this.setFieldRange(range),
+      drawn: (report) => (this.hooks.display = report),
+    });
+    byId('screenshot').addEventListener('click', () => {
+      const name = (this.selectedMesh()?.name ?? 'view').replace(/\.[^.]*$/, '');
+      this.display.screenshot(`cgview-${name}.png`, (blob) => (this.hooks.lastScreenshot = blob ? { bytes: blob.size } : null));
+    });
+    byId('copy-link').addEventListener('click', () => this.copyViewLink());
   }
 
   async start(): Promise<void> {
@@ -281,6 +317,7 @@ export class App {
     this.socket.connect().catch(() => this.error('Cannot open the WebSocket to the server; retrying.'));
     await Promise.all([this.refresh(), this.loadAlgorithms()]);
     this.hooks.ready = true;
+    await this.restoreView();
   }
 
   private onServerEvent(ev: ServerEvent): void {
@@ -595,12 +632,14 @@ export class App {
       if (token !== this.fieldToken || this.selectedId !== meshId) return;
       const mapName = this.mapName ?? defaultMapFor(artifact.hint);
       const object = buildScalarSurface(ply, data, mapName);
-      this.field = { jobId, artifact: artifactName, meshId, data, object, map: mapName };
+      this.field = { jobId, artifact: artifactName, meshId, data, object, map: mapName, fullRange: data.range };
       this.hooks.lastField = null;
+      this.textures.detach(); // the field's surface replaces the textured one
       this.viewer.replace(object, () => {
         if (this.viewer.object === object) this.hooks.lastField = this.fieldHook();
       });
       this.showFieldLegend();
+      this.display.setField({ range: data.range, full: data.range, values: data.values });
       this.renderJobs();
     } catch (e) {
       if (token !== this.fieldToken) return;
@@ -792,6 +831,7 @@ export class App {
       const points = new THREE.Points(geometry, new THREE.PointsMaterial({ color: '#e07a1f', size, sizeAttenuation: true }));
       points.name = 'animation';
       this.hooks.lastAnimation = null;
+      this.textures.detach();
       this.viewer.show(points);
       this.player.show(`${job.algorithm} · ${artifactName}`, frames.frames, (k) => {
         if (this.viewer.object !== points) return;
@@ -841,6 +881,67 @@ export class App {
     this.field = null;
     this.hooks.lastField = null;
     this.legend.hide();
+    this.display.setField(null);
+  }
+
+  /** Recolours the field drawn over `range` (null: its full range), without fetching it again. */
+  private setFieldRange(range: [number, number] | null): void {
+    const f = this.field;
+    if (!f) return;
+    f.data.range = range ?? f.fullRange;
+    colourGeometry(f.object.geometry, f.data, f.map);
+    this.showFieldLegend();
+    this.display.setField({ range: f.data.range, full: f.fullRange, values: f.data.values });
+    this.viewer.redraw(() => {
+      if (this.field === f) this.hooks.lastField = this.fieldHook();
+    });
+  }
+
+  /** "Copy link": the view (camera, mesh, display, overlays, field) in the page's hash; copied to the clipboard where the page may. */
+  private copyViewLink(): void {
+    const meshId = this.selectedId;
+    if (!meshId) return this.error('Choose a mesh first: a view link reopens a mesh.');
+    const { display, overlays } = this.display.state();
+    const state: ViewState = { v: 1, mesh: meshId, camera: readCamera(this.viewer), display: { ...display }, overlays: { ...overlays } };
+    const f = this.field;
+    if (f && f.meshId === meshId) state.field = { job: f.jobId, artifact: f.artifact, map: f.map, range: f.data.range };
+    // Never the token: it stays in this browser's storage (api/auth.ts).
+    const url = `${location.origin}${location.pathname}${location.search}${encodeViewHash(state)}`;
+    history.replaceState(null, '', url);
+    this.display.showLink(url);
+    this.hooks.lastLink = url;
+    navigator.clipboard?.writeText(url).then(
+      () => this.messages.notice('View link copied.'),
+      () => this.messages.notice('View link: copy it from the Display panel.'),
+    );
+  }
+
+  /** Opens the view of the page's #view= link, if any: its mesh, display, overlays and field, then its camera. */
+  private async restoreView(): Promise<void> {
+    let state: ViewState | null;
+    try {
+      state = decodeViewHash(location.hash);
+    } catch (e) {
+      this.hooks.viewRestored = { error: describe(e) };
+      return this.error(`Cannot open the view link: ${describe(e)}`);
+    }
+    if (!state) return;
+    if (!this.meshes.some((m) => m.id === state.mesh)) {
+      const error = `the mesh ${state.mesh} of the view link no longer exists`;
+      this.hooks.viewRestored = { error };
+      return this.error(`Cannot open the view link: ${error}`);
+    }
+    this.select(state.mesh);
+    await this.showing;
+    this.display.restore(state.display, state.overlays);
+    if (state.field) {
+      this.mapName = state.field.map;
+      await this.showField(state.field.job, state.field.artifact);
+      if (this.field) this.setFieldRange(state.field.range);
+    }
+    applyCamera(this.viewer, state.camera);
+    const mode = this.display.state().display.mode;
+    this.viewer.redraw(() => (this.hooks.viewRestored = { camera: readCamera(this.viewer), mode }));
   }
 
   private selectedMesh(): Mesh | null {
@@ -859,13 +960,19 @@ export class App {
     }
   }
 
-  /** Uploads files one after the other and shows the last one uploaded. */
+  /** Uploads files one after the other (a mesh with its MTL and images as one zip) and shows the last one uploaded. */
   async upload(files: File[]): Promise<void> {
     let last: Mesh | null = null;
-    for (const file of files) {
+    let uploads: Array<{ name: string; body: Blob }> = [];
+    try {
+      uploads = await uploadsOf(files);
+    } catch (e) {
+      this.error(`Upload failed: ${describe(e)}`);
+    }
+    for (const file of uploads) {
       this.progress.show('uploading', null, file.name);
       try {
-        const mesh = await uploadMesh(file.name, file);
+        const mesh = await uploadMesh(file.name, file.body);
         this.upsert(mesh);
         for (const w of mesh.warnings ?? []) this.messages.notice(`${mesh.name}: ${w}`);
         last = mesh;
@@ -944,6 +1051,7 @@ export class App {
       timer.setWorkerTiming(decoded.timing);
       const object = buildSurface(decoded);
       timer.mark('geometry-built');
+      this.textures.attach(object, mesh);
       this.viewer.show(object, () => {
         if (this.viewer.object !== object) return;
         timer.mark('first-frame');
@@ -988,6 +1096,7 @@ export class App {
         this.progress.hide();
       }
       this.viewer.clearAll();
+      this.textures.detach();
       this.added.clear();
       this.skeletons.clear();
       this.hooks.skeletons = [];

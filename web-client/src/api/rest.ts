@@ -171,3 +171,9 @@ export async function fetchMeshBytes(id: string, format: string, signal?: AbortS
   const response = await fetchOk(downloadUrl(id, format), signal);
   return response.arrayBuffer();
 }
+
+/** A mesh's texture image n (GET /meshes/{id}/textures/{n}), typed by the server (image/png or image/jpeg). */
+export async function fetchMeshTexture(id: string, n: number, signal?: AbortSignal): Promise<Blob> {
+  const response = await fetchOk(`${BASE}/meshes/${encodeURIComponent(id)}/textures/${n}`, signal);
+  return response.blob();
+}

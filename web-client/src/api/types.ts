@@ -23,6 +23,20 @@ export interface Mesh {
   sha256?: string;
   report: MeshReport;
   warnings?: string[];
+  /** Whether the mesh has texture coordinates. */
+  has_uvs?: boolean;
+  /** Its texture images (at most one for now), fetched from /meshes/{id}/textures/{n}. */
+  textures?: MeshTexture[];
+  /** The diffuse colour (0..1) of its material, when an MTL gave one. */
+  kd?: [number, number, number];
+}
+
+export interface MeshTexture {
+  name: string;
+  mime: string;
+  bytes: number;
+  material?: string;
+  kd?: [number, number, number];
 }
 
 export interface Health {

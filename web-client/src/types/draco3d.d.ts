@@ -41,6 +41,7 @@ declare module 'draco3d/draco_decoder_nodejs.js' {
     POSITION: number;
     NORMAL: number;
     COLOR: number;
+    TEX_COORD: number;
     DT_INT8: number;
     DT_UINT8: number;
     DT_INT16: number;

@@ -18,6 +18,8 @@ export interface DecodedMesh {
   /** xyz per vertex, or null when the payload has none. */
   normals: Float32Array | null;
   colors: DecodedColors | null;
+  /** uv per vertex (OBJ's convention: v = 0 at the image's bottom), or null when the payload has none. */
+  uvs: Float32Array | null;
   vertices: number;
   faces: number;
   /** How long the worker took, measured inside it. */

@@ -116,7 +116,13 @@ function decode(draco: DracoDecoderModule, payload: ArrayBuffer): Omit<DecodedMe
       const attr = decoder.GetAttribute(mesh, colorId);
       if (attr.num_components() === 3 || attr.num_components() === 4) colors = readColors(draco, decoder, mesh, attr);
     }
-    return { positions, indices, normals, colors, vertices: mesh.num_points(), faces };
+    let uvs: Float32Array | null = null;
+    const uvId = decoder.GetAttributeId(mesh, draco.TEX_COORD);
+    if (uvId >= 0) {
+      const attr = decoder.GetAttribute(mesh, uvId);
+      if (attr.num_components() === 2) uvs = readFloat32(draco, decoder, mesh, attr);
+    }
+    return { positions, indices, normals, colors, uvs, vertices: mesh.num_points(), faces };
   } finally {
     draco.destroy(mesh);
     draco.destroy(decoder);
@@ -137,6 +143,7 @@ scope.onmessage = (ev) => {
       const transfer: Transferable[] = [mesh.positions.buffer, mesh.indices.buffer];
       if (mesh.normals) transfer.push(mesh.normals.buffer);
       if (mesh.colors) transfer.push(mesh.colors.array.buffer);
+      if (mesh.uvs) transfer.push(mesh.uvs.buffer);
       scope.postMessage({ id, ok: true, mesh }, transfer);
     })
     .catch((e: unknown) => {

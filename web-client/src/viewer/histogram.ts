@@ -17,3 +17,15 @@ export function histogram(values: Float32Array, [lo, hi]: [number, number], bins
   }
   return { counts, total };
 }
+
+/**
+ * The values at the `lo` and `hi` percentiles (0..100) of the finite values,
+ * by nearest rank: the range that clips the tails of a field (1 and 99 drop
+ * the extreme 1% on each side). [0, 0] when no value is finite.
+ */
+export function percentileRange(values: Float32Array, lo: number, hi: number): [number, number] {
+  const finite = values.filter((v) => Number.isFinite(v)).sort();
+  if (!finite.length) return [0, 0];
+  const rank = (p: number) => finite[Math.min(finite.length - 1, Math.max(0, Math.round((p / 100) * (finite.length - 1))))]!;
+  return [rank(lo), rank(hi)];
+}

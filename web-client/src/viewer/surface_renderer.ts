@@ -37,6 +37,7 @@ export function buildSurface(decoded: DecodedMesh): THREE.Mesh {
   }
   const colors = decoded.colors;
   if (colors) geometry.setAttribute('color', linearColors(colors));
+  if (decoded.uvs) geometry.setAttribute('uv', new THREE.BufferAttribute(decoded.uvs, 2));
   geometry.computeBoundingBox();
   geometry.computeBoundingSphere();
 

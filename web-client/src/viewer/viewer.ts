@@ -41,6 +41,8 @@ export class Viewer {
   private panes: THREE.Object3D[] = [];
   private frameRequested = false;
   private afterFrame: Array<() => void> = [];
+  /** Called when the shown object changes (display modes and overlays follow it). */
+  private readonly shownListeners: Array<(object: THREE.Object3D | null) => void> = [];
 
   constructor(container: HTMLElement, options: ViewerOptions = {}) {
     this.container = container;
@@ -77,6 +79,18 @@ export class Viewer {
     this.resize();
   }
 
+  /**
+   * Calls `listener` whenever the shown object changes (show, replace,
+   * clear), before the first frame that draws it.
+   */
+  onShownChange(listener: (object: THREE.Object3D | null) => void): void {
+    this.shownListeners.push(listener);
+  }
+
+  private shownChanged(): void {
+    for (const listener of this.shownListeners) listener(this.shown);
+  }
+
   /** The object now shown, or null. */
   get object(): THREE.Object3D | null {
     return this.shown;
@@ -92,6 +106,7 @@ export class Viewer {
     this.clearExtras();
     this.shown = object;
     this.scene.add(object);
+    this.shownChanged();
     this.fitToView();
     if (onShown) this.afterFrame.push(onShown);
     this.requestRender();
@@ -109,6 +124,7 @@ export class Viewer {
     this.clear();
     this.shown = object;
     this.scene.add(object);
+    this.shownChanged();
     if (onShown) this.afterFrame.push(onShown);
     this.requestRender();
   }
@@ -191,6 +207,7 @@ export class Viewer {
     this.scene.remove(this.shown);
     disposeObject(this.shown);
     this.shown = null;
+    this.shownChanged();
     this.requestRender();
   }
 
@@ -258,13 +275,26 @@ export class Viewer {
     // the pointer stops; it fires 'change', which asks for the next frame.
     // Off while another navigation mode or the selection tool has the mouse
     // (its update() would turn the camera back to the orbit target).
-    if (this.controls.enabled) this.controls.update();
+    if (this.controls.enabled && !this.controls.update()) this.settleControls();
     if (this.panes.length) this.renderPanes();
     else this.renderer.render(this.scene, this.camera);
     this.options.onFrame?.();
     const callbacks = this.afterFrame;
     this.afterFrame = [];
     for (const cb of callbacks) cb();
+  }
+
+  /**
+   * Ends the damping's glide at once. update() stops firing 'change' once a
+   * step moves the camera less than 1e-3, but what is left of the motion
+   * would still move it a little at every later frame (a screenshot, a
+   * recoloured field), so that a view link read now would not draw the same
+   * picture again. One undamped update applies the rest and zeroes it.
+   */
+  private settleControls(): void {
+    this.controls.enableDamping = false;
+    this.controls.update();
+    this.controls.enableDamping = true;
   }
 
   /** Draws each pane in its cell of the grid, the others hidden (the clear, too, is scissored to the cell). */

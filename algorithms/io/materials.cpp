@@ -1,0 +1,129 @@
+#include "io/materials.h"
+
+#include <cctype>
+#include <charconv>
+
+namespace cgview {
+
+namespace {
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
+  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+// Calls f(line) for each line, without its end of line.
+template <class F>
+void for_each_line(std::string_view bytes, F&& f) {
+  while (!bytes.empty()) {
+    const std::size_t end = bytes.find('\n');
+    const std::string_view line = bytes.substr(0, end);
+    if (!f(line)) return;
+    if (end == std::string_view::npos) return;
+    bytes.remove_prefix(end + 1);
+  }
+}
+
+// Splits "keyword rest of line" into its keyword and its trimmed rest.
+std::pair<std::string_view, std::string_view> keyword(std::string_view line) {
+  line = trim(line);
+  std::size_t k = 0;
+  while (k < line.size() && !is_space(line[k])) ++k;
+  return {line.substr(0, k), trim(line.substr(k))};
+}
+
+std::vector<std::string_view> words(std::string_view s) {
+  std::vector<std::string_view> out;
+  std::size_t i = 0;
+  while (i < s.size()) {
+    while (i < s.size() && is_space(s[i])) ++i;
+    const std::size_t b = i;
+    while (i < s.size() && !is_space(s[i])) ++i;
+    if (i > b) out.push_back(s.substr(b, i - b));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<Material> parse_mtl(std::string_view bytes) {
+  std::vector<Material> out;
+  for_each_line(bytes, [&](std::string_view line) {
+    const auto [key, rest] = keyword(line);
+    if (key == "newmtl") {
+      out.push_back({std::string(rest), std::nullopt, {}});
+    } else if (!out.empty() && key == "Kd") {
+      const auto w = words(rest);
+      std::array<float, 3> kd{};
+      bool ok = w.size() >= 3;
+      for (std::size_t i = 0; ok && i < 3; ++i) {
+        const auto r = std::from_chars(w[i].data(), w[i].data() + w[i].size(), kd[i]);
+        ok = r.ec == std::errc() && r.ptr == w[i].data() + w[i].size();
+      }
+      if (ok) out.back().kd = kd;
+    } else if (!out.empty() && key == "map_Kd") {
+      // Options (-s 1 1 1, -bm 0.5, ...) come first: the file is the last word.
+      const auto w = words(rest);
+      if (!w.empty()) out.back().map_kd = std::string(w.back());
+    }
+    return true;
+  });
+  return out;
+}
+
+ObjMaterialUse obj_material_use(std::string_view obj_bytes) {
+  ObjMaterialUse use;
+  std::string current;
+  std::size_t* count = nullptr;
+  for_each_line(obj_bytes, [&](std::string_view line) {
+    std::size_t i = 0;
+    while (i < line.size() && is_space(line[i])) ++i;
+    if (i + 1 < line.size() && line[i] == 'f' && is_space(line[i + 1])) {
+      if (!count) count = &use.faces[current];
+      ++*count;
+      return true;
+    }
+    if (i >= line.size() || (line[i] != 'm' && line[i] != 'u')) return true;
+    const auto [key, rest] = keyword(line);
+    if (key == "mtllib") {
+      for (const auto w : words(rest)) use.libraries.emplace_back(w);
+    } else if (key == "usemtl") {
+      current = std::string(rest);
+      count = &use.faces[current];
+    }
+    return true;
+  });
+  return use;
+}
+
+std::string ply_texture_file(std::string_view ply_bytes) {
+  std::string found;
+  for_each_line(ply_bytes.substr(0, 1 << 16), [&](std::string_view line) {
+    const auto [key, rest] = keyword(line);
+    if (key == "end_header") return false;
+    if (key == "comment") {
+      const auto [what, name] = keyword(rest);
+      if (what == "TextureFile" && !name.empty()) found = std::string(name);
+    }
+    return true;
+  });
+  return found;
+}
+
+std::string file_base_name(std::string_view path) {
+  const std::size_t slash = path.find_last_of("/\\");
+  return std::string(slash == std::string_view::npos ? path : path.substr(slash + 1));
+}
+
+std::string image_mime_type(std::string_view b) {
+  if (b.size() >= 8 && b.substr(0, 8) == std::string_view("\x89PNG\r\n\x1a\n", 8)) return "image/png";
+  if (b.size() >= 3 && static_cast<unsigned char>(b[0]) == 0xFF && static_cast<unsigned char>(b[1]) == 0xD8 &&
+      static_cast<unsigned char>(b[2]) == 0xFF)
+    return "image/jpeg";
+  return {};
+}
+
+}  // namespace cgview

@@ -1,0 +1,88 @@
+// Materials beside a mesh (io/materials.h): MTL files, an OBJ's usemtl
+// groups, a PLY's TextureFile comment, and the real files of Debian's
+// assimp-testmodels (the spider's five textured materials, Blender's
+// cube_uv.ply with s/t texture coordinates).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "io/materials.h"
+#include "io/mesh_io.h"
+
+namespace cgview {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kAssimp = "/usr/share/assimp/models";
+
+TEST(Materials, ParsesMtl) {
+  const auto m = parse_mtl(
+      "# comment\r\nnewmtl red\r\nKd 1 0 0.5\r\nmap_Kd -s 1 1 1 tex\\Red.PNG\r\n"
+      "newmtl plain\nKa 0.2 0.2 0.2\nKd spectral x.rfl\n");
+  ASSERT_EQ(m.size(), 2u);
+  EXPECT_EQ(m[0].name, "red");
+  ASSERT_TRUE(m[0].kd.has_value());
+  EXPECT_FLOAT_EQ((*m[0].kd)[2], 0.5f);
+  EXPECT_EQ(m[0].map_kd, "tex\\Red.PNG");
+  EXPECT_EQ(file_base_name(m[0].map_kd), "Red.PNG");
+  EXPECT_EQ(m[1].name, "plain");
+  EXPECT_FALSE(m[1].kd.has_value()) << "a spectral Kd is not a colour";
+  EXPECT_TRUE(m[1].map_kd.empty());
+  EXPECT_TRUE(parse_mtl("Kd 1 1 1\nmap_Kd a.png\n").empty()) << "statements before newmtl belong to no material";
+}
+
+TEST(Materials, CountsFacesPerUsemtl) {
+  const auto u = obj_material_use("mtllib a.mtl b.mtl\nv 0 0 0\nf 1 1 1\nusemtl x\nf 1 1 1\nf 1 1 1\n  usemtl y \nf 1 1 1\nusemtl x\nf 1 1 1\n");
+  EXPECT_EQ(u.libraries, (std::vector<std::string>{"a.mtl", "b.mtl"}));
+  EXPECT_EQ(u.faces.at(""), 1u);
+  EXPECT_EQ(u.faces.at("x"), 3u);
+  EXPECT_EQ(u.faces.at("y"), 1u);
+}
+
+TEST(Materials, PlyTextureFileAndImageTypes) {
+  EXPECT_EQ(ply_texture_file("ply\nformat ascii 1.0\ncomment TextureFile my tex.png\nelement vertex 0\nend_header\n"),
+            "my tex.png");
+  EXPECT_EQ(ply_texture_file("ply\nformat ascii 1.0\nend_header\ncomment TextureFile after.png\n"), "");
+  EXPECT_EQ(image_mime_type(std::string("\x89PNG\r\n\x1a\n....", 12)), "image/png");
+  EXPECT_EQ(image_mime_type("\xFF\xD8\xFF\xE0"), "image/jpeg");
+  EXPECT_EQ(image_mime_type("GIF89a"), "");
+  EXPECT_EQ(file_base_name("./a/b.jpg"), "b.jpg");
+  EXPECT_EQ(file_base_name("b.jpg"), "b.jpg");
+}
+
+TEST(Materials, AssimpSpider) {
+  const fs::path obj = kAssimp / "OBJ" / "spider.obj", mtl = kAssimp / "OBJ" / "spider.mtl";
+  if (!fs::exists(obj)) GTEST_FAIL() << "missing " << obj << " (install Debian's assimp-testmodels)";
+  const auto use = obj_material_use(read_file_bytes(obj, 1 << 24));
+  EXPECT_EQ(use.libraries, std::vector<std::string>{"spider.mtl"});
+  std::size_t faces = 0;
+  for (const auto& [name, n] : use.faces) faces += n;
+  const Mesh mesh = read_mesh(obj);
+  EXPECT_EQ(faces, mesh.num_faces()) << "every face is counted under one material";
+  EXPECT_EQ(use.faces.at("BeinTex"), 952u);
+  const auto materials = parse_mtl(read_file_bytes(mtl, 1 << 20));
+  ASSERT_EQ(materials.size(), 5u);
+  EXPECT_EQ(materials[3].name, "BeinTex");
+  EXPECT_EQ(file_base_name(materials[3].map_kd), "drkwood2.jpg");
+  EXPECT_EQ(image_mime_type(read_file_bytes(kAssimp / "OBJ" / "drkwood2.jpg", 1 << 20)), "image/jpeg");
+  EXPECT_TRUE(mesh.has_uvs());
+  EXPECT_EQ(mesh.uv_faces.size(), mesh.num_faces()) << "OBJ's f v/vt keeps its own UV indices";
+}
+
+TEST(Materials, PlyUvsFromBlender) {
+  const fs::path ply = kAssimp / "PLY" / "cube_uv.ply";
+  if (!fs::exists(ply)) GTEST_FAIL() << "missing " << ply << " (install Debian's assimp-testmodels)";
+  const Mesh mesh = read_mesh(ply);
+  ASSERT_TRUE(mesh.has_uvs());
+  ASSERT_EQ(mesh.uvs.size(), 24u);
+  EXPECT_FLOAT_EQ(mesh.uvs[1].u, 1.f);  // "1.000000 -1.000000 -1.000000 ... 1.000000 0.000000"
+  EXPECT_FLOAT_EQ(mesh.uvs[1].v, 0.f);
+  EXPECT_FLOAT_EQ(mesh.uvs[2].v, 1.f);
+  // Through Draco (what the viewer gets) the UVs survive.
+  const Mesh back = read_mesh_bytes(write_mesh_bytes(mesh, MeshFormat::drc), MeshFormat::drc, "cube.drc").mesh;
+  ASSERT_TRUE(back.has_uvs());
+  EXPECT_EQ(back.uvs.size(), back.num_vertices());
+}
+
+}  // namespace
+}  // namespace cgview

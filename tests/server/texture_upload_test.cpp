@@ -1,0 +1,195 @@
+// Zip uploads of textured meshes through the router (no sockets): an OBJ
+// with its MTL and image, a PLY with `comment TextureFile`, a missing image
+// (a warning, not an error), the texture route, and the zips refused:
+// zip-slip names, one that unpacks past the upload limit, not a zip, none
+// or several meshes.  The zips are made with libzip here.
+#include <gtest/gtest.h>
+#include <zip.h>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "mesh_service.h"
+#include "router.h"
+#include "store.h"
+#include "test_support.h"
+
+namespace cgview::server {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string read_bytes(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+const std::string kQuad =
+    "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+    "usemtl skin\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n";
+// Written on Windows: a backslash path in other case than the file's.
+const std::string kMtl = "newmtl skin\nKd 0.5 0.25 1\nmap_Kd .\\Maps\\WOOD.JPG\n";
+
+class TextureUploadTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = test::temp_dir(std::string("texture-") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    store_ = std::make_unique<Store>(dir_ / "data");
+    service_ = std::make_unique<MeshService>(*store_);
+    router_ = std::make_unique<Router>(*service_, RouterConfig{dir_ / "static", "0.1.0"});
+    jpeg_ = read_bytes("/usr/share/assimp/models/OBJ/drkwood2.jpg");
+    ASSERT_FALSE(jpeg_.empty()) << "install Debian's assimp-testmodels";
+  }
+  void TearDown() override {
+    router_.reset();
+    service_.reset();
+    store_.reset();
+    std::error_code ec;
+    if (!HasFailure()) fs::remove_all(dir_, ec);
+  }
+
+  // A zip of (name, bytes) entries, written by libzip.
+  std::string make_zip(const std::vector<std::pair<std::string, std::string>>& files, bool compress = true) {
+    const fs::path p = dir_ / "made.zip";
+    fs::remove(p);
+    int err = 0;
+    zip_t* z = zip_open(p.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
+    EXPECT_NE(z, nullptr) << "libzip error " << err;
+    if (!z) return {};
+    for (const auto& [name, bytes] : files) {
+      zip_source_t* s = zip_source_buffer(z, bytes.data(), bytes.size(), 0);
+      const zip_int64_t i = zip_file_add(z, name.c_str(), s, ZIP_FL_ENC_UTF_8);
+      EXPECT_GE(i, 0) << zip_strerror(z);
+      if (!compress) zip_set_file_compression(z, zip_uint64_t(i), ZIP_CM_STORE, 0);
+    }
+    EXPECT_EQ(zip_close(z), 0);
+    return read_bytes(p);
+  }
+
+  HttpResponse call(const std::string& method, const std::string& target, std::string body = "") {
+    return router_->handle({method, target, std::move(body), ""});
+  }
+  json upload(const std::string& name, const std::string& bytes, int status = 201) {
+    const HttpResponse r = call("POST", "/api/v1/meshes?name=" + name, bytes);
+    EXPECT_EQ(r.status, status) << r.body;
+    EXPECT_EQ(r.content_type, "application/json");
+    return json::parse(r.body);
+  }
+  // The error code of a refused upload, with its detail checked to hold `says`.
+  void refused(const std::string& name, const std::string& bytes, int status, const std::string& says) {
+    const json j = upload(name, bytes, status);
+    EXPECT_NE(j.value("detail", "").find(says), std::string::npos) << j.dump();
+    EXPECT_EQ(store_->list_meshes().size(), 0u) << "nothing stored";
+  }
+
+  fs::path dir_;
+  std::unique_ptr<Store> store_;
+  std::unique_ptr<MeshService> service_;
+  std::unique_ptr<Router> router_;
+  std::string jpeg_;
+};
+
+TEST_F(TextureUploadTest, ObjMtlAndImageKeepTheirTexture) {
+  const json mesh = upload("quad.zip", make_zip({{"quad/quad.obj", kQuad}, {"quad/quad.mtl", kMtl}, {"quad/maps/wood.jpg", jpeg_},
+                                                 {"readme.txt", "not a mesh"},
+                                                 // What macOS's Finder adds: not a second mesh.
+                                                 {"__MACOSX/quad/._quad.obj", "\0\5\x16\7"}, {"quad/._quad.obj", "x"}}));
+  EXPECT_EQ(mesh["name"], "quad.obj");
+  EXPECT_EQ(mesh["format"], "obj");
+  EXPECT_EQ(mesh["bytes"], kQuad.size());
+  EXPECT_EQ(mesh["sha256"], sha256_hex(kQuad)) << "the stored file is the OBJ, not the zip";
+  EXPECT_EQ(mesh["has_uvs"], true);
+  EXPECT_EQ(mesh["warnings"], json::array());
+  ASSERT_EQ(mesh["textures"].size(), 1u);
+  const json& t = mesh["textures"][0];
+  EXPECT_EQ(t["name"], "wood.jpg");
+  EXPECT_EQ(t["mime"], "image/jpeg");
+  EXPECT_EQ(t["bytes"], jpeg_.size());
+  EXPECT_EQ(t["material"], "skin");
+  EXPECT_EQ(t["kd"], json::array({0.5, 0.25, 1.0}));
+  EXPECT_EQ(mesh["kd"], json::array({0.5, 0.25, 1.0}));
+  const std::string id = mesh["id"];
+  EXPECT_EQ(json::parse(call("GET", "/api/v1/meshes/" + id).body)["textures"], mesh["textures"]);
+
+  const HttpResponse image = call("GET", "/api/v1/meshes/" + id + "/textures/0");
+  ASSERT_EQ(image.status, 200);
+  EXPECT_EQ(image.content_type, "image/jpeg");
+  EXPECT_TRUE(image.body == jpeg_) << "the texture comes back byte for byte";
+  for (const std::string n : {"1", "x", "-1", "99999999999"})
+    EXPECT_EQ(call("GET", "/api/v1/meshes/" + id + "/textures/" + n).status, 404) << n;
+  EXPECT_EQ(call("GET", "/api/v1/meshes/0000000000000000/textures/0").status, 404);
+
+  // The texture is a blob of the mesh: it goes with it.
+  EXPECT_TRUE(fs::exists(dir_ / "data" / "blobs" / (id + ".tex0")));
+  EXPECT_EQ(call("DELETE", "/api/v1/meshes/" + id).status, 204);
+  EXPECT_FALSE(fs::exists(dir_ / "data" / "blobs" / (id + ".tex0")));
+  EXPECT_FALSE(fs::exists(dir_ / "data" / "blobs" / (id + ".obj")));
+}
+
+TEST_F(TextureUploadTest, MissingImageIsAWarning) {
+  const json mesh = upload("quad.zip", make_zip({{"quad.obj", kQuad}, {"quad.mtl", kMtl}}));
+  EXPECT_EQ(mesh["has_uvs"], true);
+  EXPECT_EQ(mesh["textures"], json::array());
+  ASSERT_EQ(mesh["warnings"].size(), 1u);
+  EXPECT_NE(mesh["warnings"][0].get<std::string>().find("'.\\Maps\\WOOD.JPG' is not in the upload"), std::string::npos)
+      << mesh["warnings"];
+  // Not a PNG or JPEG: also a warning.
+  const json gif = upload("quad.zip", make_zip({{"quad.obj", kQuad}, {"quad.mtl", kMtl}, {"wood.jpg", "GIF89a...."}}));
+  EXPECT_EQ(gif["textures"], json::array());
+  EXPECT_NE(gif["warnings"].dump().find("not a PNG or JPEG"), std::string::npos) << gif["warnings"];
+  // The OBJ alone names its MTL: the warning says how to upload it.
+  const json alone = upload("quad.obj", kQuad);
+  EXPECT_EQ(alone["has_uvs"], true);
+  EXPECT_NE(alone["warnings"].dump().find("upload a zip"), std::string::npos) << alone["warnings"];
+}
+
+TEST_F(TextureUploadTest, PlyTextureFile) {
+  const std::string ply =
+      "ply\nformat ascii 1.0\ncomment TextureFile wood.jpg\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nproperty float s\nproperty float t\nelement face 1\nproperty list uchar int vertex_indices\n"
+      "end_header\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2\n";
+  const json mesh = upload("tri.zip", make_zip({{"tri.ply", ply}, {"wood.jpg", jpeg_}}, false));
+  EXPECT_EQ(mesh["has_uvs"], true);
+  ASSERT_EQ(mesh["textures"].size(), 1u);
+  EXPECT_EQ(mesh["textures"][0]["name"], "wood.jpg");
+  EXPECT_FALSE(mesh.contains("kd"));
+  // Blender's cube with s/t and no texture: UVs, no image.
+  const json cube = upload("cube_uv.ply", read_bytes("/usr/share/assimp/models/PLY/cube_uv.ply"));
+  EXPECT_EQ(cube["has_uvs"], true);
+  EXPECT_EQ(cube["textures"], json::array());
+  // A mesh without UVs says so.
+  const json plain = upload("tri.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  EXPECT_EQ(plain["has_uvs"], false);
+}
+
+TEST_F(TextureUploadTest, RefusedZips) {
+  refused("slip.zip", make_zip({{"../quad.obj", kQuad}}), 400, "unsafe path '../quad.obj'");
+  refused("slip.zip", make_zip({{"quad.obj", kQuad}, {"a/../../wood.jpg", jpeg_}}), 400, "unsafe path");
+  refused("slip.zip", make_zip({{"/etc/quad.obj", kQuad}}), 400, "unsafe path");
+  refused("slip.zip", make_zip({{"C:\\quad.obj", kQuad}}), 400, "unsafe path");
+  refused("none.zip", make_zip({{"quad.mtl", kMtl}}), 400, "no mesh file");
+  refused("two.zip", make_zip({{"a.obj", kQuad}, {"b.obj", kQuad}}), 400, "several mesh files");
+  refused("junk.zip", "PK\x03\x04 but not really a zip", 400, "not a readable zip");
+  refused("bad.zip", make_zip({{"quad.obj", "v 0 0 0\nf 1 2 3\n"}}), 400, "quad.obj");
+
+  // A zip bomb in small: 1 MB of zeros deflates to about a kilobyte.
+  service_->set_max_upload_bytes(100000);
+  const std::string bomb = make_zip({{"quad.obj", kQuad + std::string(1 << 20, ' ')}});
+  ASSERT_LT(bomb.size(), 20000u);
+  const json j = upload("bomb.zip", bomb, 413);
+  EXPECT_EQ(j["error"], "payload_too_large");
+  EXPECT_NE(j["detail"].get<std::string>().find("100000 bytes"), std::string::npos) << j;
+  // Under the limit the same kind of zip goes in.
+  EXPECT_EQ(upload("ok.zip", make_zip({{"quad.obj", kQuad}}))["name"], "quad.obj");
+  // The server still answers.
+  EXPECT_EQ(call("GET", "/api/v1/health").status, 200);
+}
+
+}  // namespace
+}  // namespace cgview::server

@@ -1,0 +1,306 @@
+// The Display panel: the shown surface's mode and material, the overlays
+// over it, the range of the scalar field drawn on it, and the view link's
+// text. It owns the display and overlay settings and applies them to
+// whatever the viewer shows (viewer.onShownChange), so that a mesh shown
+// later keeps the mode chosen.
+import * as THREE from 'three';
+import { RoomEnvironment } from 'three/addons/environments/RoomEnvironment.js';
+import {
+  applyDisplay,
+  DEFAULT_DISPLAY,
+  DISPLAY_MODES,
+  isDefaultDisplay,
+  isSurface,
+  MATERIAL_PRESETS,
+  sanitizeDisplay,
+  type DisplaySettings,
+} from '../viewer/display_modes.ts';
+import { percentileRange } from '../viewer/histogram.ts';
+import { DEFAULT_OVERLAYS, EDGE_COLORS, formatSize, sanitizeOverlays, updateOverlays, type OverlayInfo, type OverlaySettings } from '../viewer/overlays.ts';
+import type { Viewer } from '../viewer/viewer.ts';
+import { el } from './dom.ts';
+
+/** What the panel reports after each change has been drawn (window.__cgview.display). */
+export interface DisplayReport extends DisplaySettings, OverlayInfo {
+  overlays: OverlaySettings;
+  /** The shown object's name ("surface", "scalar:NAME"), or null. */
+  object: string | null;
+}
+
+export interface DisplayCallbacks {
+  /** A new range for the field drawn (null: its full range). */
+  setFieldRange: (range: [number, number] | null) => void;
+  /** Called after a frame shows the settings. */
+  drawn: (report: DisplayReport) => void;
+}
+
+const MODE_LABELS: Record<string, string> = {
+  smooth: 'Smooth',
+  flat: 'Flat',
+  wireframe: 'Wireframe',
+  points: 'Points',
+  'hidden-line': 'Hidden line',
+  toon: 'Toon',
+};
+
+function checkbox(id: string, text: string): { row: HTMLLabelElement; input: HTMLInputElement } {
+  const input = el('input', { type: 'checkbox', id });
+  return { row: el('label', { class: 'display-check' }, input, ` ${text}`), input };
+}
+
+function slider(id: string, min: number, max: number, step: number): HTMLInputElement {
+  return el('input', { type: 'range', id, min: String(min), max: String(max), step: String(step) });
+}
+
+function row(text: string, control: HTMLElement): HTMLLabelElement {
+  return el('label', { class: 'display-row' }, el('span', {}, text), control);
+}
+
+export class DisplayPanel {
+  private settings: DisplaySettings = { ...DEFAULT_DISPLAY };
+  private overlays: OverlaySettings = { ...DEFAULT_OVERLAYS };
+  private info: OverlayInfo = { size: null, boundaryEdges: null, nonManifoldEdges: null };
+  private object: THREE.Object3D | null = null;
+  private environment: THREE.Texture | null = null;
+  private field: { range: [number, number]; full: [number, number]; values: Float32Array } | null = null;
+
+  private readonly mode = el('select', { id: 'display-mode', 'aria-label': 'Display mode' });
+  private readonly preset = el('select', { id: 'display-preset', 'aria-label': 'Material' });
+  private readonly color = el('input', { type: 'color', id: 'display-color' });
+  private readonly roughness = slider('display-roughness', 0, 1, 0.05);
+  private readonly metalness = slider('display-metalness', 0, 1, 0.05);
+  private readonly pointSize = slider('display-point-size', 1, 12, 1);
+  private readonly toonBands = el('input', { type: 'number', id: 'display-toon-bands', min: '2', max: '8', step: '1' });
+  private readonly vertexColors = checkbox('display-vertex-colors', 'Vertex colours');
+  private readonly checks = {
+    bbox: checkbox('overlay-bbox', 'Bounding box'),
+    axes: checkbox('overlay-axes', 'Axes'),
+    vertexNormals: checkbox('overlay-vertex-normals', 'Vertex normals'),
+    faceNormals: checkbox('overlay-face-normals', 'Face normals'),
+    edges: checkbox('overlay-edges', 'Boundary / non-manifold edges'),
+  };
+  private readonly normalLength = slider('overlay-normal-length', 0.005, 0.2, 0.005);
+  private readonly readout = el('div', { class: 'display-readout', id: 'overlay-readout' });
+  private readonly fieldBox = el('div', { class: 'field-range', id: 'field-range' });
+  private readonly fieldMin = el('input', { type: 'number', id: 'field-min', step: 'any', 'aria-label': 'Field minimum' });
+  private readonly fieldMax = el('input', { type: 'number', id: 'field-max', step: 'any', 'aria-label': 'Field maximum' });
+  private readonly link = el('input', { type: 'text', id: 'view-link', readonly: '', 'aria-label': 'View link' });
+  /** Rows that only one mode uses, shown with it. */
+  private readonly pointSizeRow = row('Point size', this.pointSize);
+  private readonly toonBandsRow = row('Toon bands', this.toonBands);
+
+  constructor(
+    root: HTMLElement,
+    private readonly viewer: Viewer,
+    private readonly callbacks: DisplayCallbacks,
+  ) {
+    for (const m of DISPLAY_MODES) this.mode.append(el('option', { value: m }, MODE_LABELS[m] ?? m));
+    for (const p of MATERIAL_PRESETS) this.preset.append(el('option', { value: p.name }, p.name));
+    const clip = el('button', { type: 'button', class: 'button small', id: 'field-clip' }, '1–99%');
+    const full = el('button', { type: 'button', class: 'button small', id: 'field-full' }, 'Full range');
+    this.fieldBox.append(
+      el('div', { class: 'display-subhead' }, 'Field range'),
+      el('div', { class: 'field-range-inputs' }, this.fieldMin, '–', this.fieldMax),
+      el('div', { class: 'field-range-buttons' }, clip, full),
+    );
+    this.fieldBox.hidden = true;
+    this.link.hidden = true;
+    const edgeLegend = el(
+      'div',
+      { class: 'display-edge-legend' },
+      el('span', { style: `color:${EDGE_COLORS.boundary}` }, '■ boundary'),
+      ' ',
+      el('span', { style: `color:${EDGE_COLORS.nonManifold}` }, '■ non-manifold'),
+    );
+    root.append(
+      row('Mode', this.mode),
+      row('Material', this.preset),
+      row('Colour', this.color),
+      row('Roughness', this.roughness),
+      row('Metalness', this.metalness),
+      this.pointSizeRow,
+      this.toonBandsRow,
+      this.vertexColors.row,
+      el('div', { class: 'display-subhead' }, 'Overlays'),
+      ...Object.values(this.checks).map((c) => c.row),
+      row('Normal length', this.normalLength),
+      edgeLegend,
+      this.readout,
+      this.fieldBox,
+      this.link,
+    );
+    this.syncInputs();
+
+    const change = () => this.readInputs();
+    for (const input of [this.mode, this.color, this.roughness, this.metalness, this.pointSize, this.toonBands, this.vertexColors.input]) {
+      input.addEventListener('input', change);
+      input.addEventListener('change', change);
+    }
+    this.preset.addEventListener('change', () => {
+      const p = MATERIAL_PRESETS.find((m) => m.name === this.preset.value);
+      if (!p) return;
+      this.setDisplay({ ...this.settings, preset: p.name, color: p.color, roughness: p.roughness, metalness: p.metalness });
+    });
+    const overlayChange = () => this.readOverlayInputs();
+    for (const c of Object.values(this.checks)) c.input.addEventListener('change', overlayChange);
+    this.normalLength.addEventListener('change', overlayChange);
+    this.normalLength.addEventListener('input', overlayChange);
+
+    const rangeChange = () => {
+      const lo = Number(this.fieldMin.value);
+      const hi = Number(this.fieldMax.value);
+      if (this.fieldMin.value !== '' && this.fieldMax.value !== '' && Number.isFinite(lo) && Number.isFinite(hi) && lo < hi) {
+        this.callbacks.setFieldRange([lo, hi]);
+      }
+    };
+    this.fieldMin.addEventListener('change', rangeChange);
+    this.fieldMax.addEventListener('change', rangeChange);
+    clip.addEventListener('click', () => {
+      if (this.field) this.callbacks.setFieldRange(percentileRange(this.field.values, 1, 99));
+    });
+    full.addEventListener('click', () => this.callbacks.setFieldRange(null));
+
+    viewer.onShownChange((object) => this.attach(object));
+  }
+
+  /** The settings, for the view link. */
+  state(): { display: DisplaySettings; overlays: OverlaySettings } {
+    return { display: { ...this.settings }, overlays: { ...this.overlays } };
+  }
+
+  /** Takes settings from a view link (untrusted: checked, invalid values fall back to the defaults). */
+  restore(display: Record<string, unknown> | undefined, overlays: Record<string, unknown> | undefined): void {
+    this.settings = sanitizeDisplay(display);
+    this.overlays = sanitizeOverlays(overlays);
+    this.syncInputs();
+    this.applyAll();
+  }
+
+  /** The field drawn now (its range and full range, and its values for percentiles), or null. */
+  setField(field: { range: [number, number]; full: [number, number]; values: Float32Array } | null): void {
+    this.field = field;
+    this.fieldBox.hidden = !field;
+    if (field) {
+      this.fieldMin.value = String(field.range[0]);
+      this.fieldMax.value = String(field.range[1]);
+    }
+  }
+
+  /** Shows the view link's URL in the panel. */
+  showLink(url: string): void {
+    this.link.value = url;
+    this.link.hidden = false;
+    this.link.select();
+  }
+
+  /** Downloads the canvas as a PNG, drawn afresh (the drawing buffer is read in the frame's own task). */
+  screenshot(fileName: string, done?: (blob: Blob | null) => void): void {
+    this.viewer.redraw(() => {
+      this.viewer.renderer.domElement.toBlob((blob) => {
+        if (blob) {
+          const url = URL.createObjectURL(blob);
+          const a = el('a', { href: url, download: fileName });
+          document.body.append(a);
+          a.click();
+          a.remove();
+          setTimeout(() => URL.revokeObjectURL(url), 10_000);
+        }
+        done?.(blob);
+      }, 'image/png');
+    });
+  }
+
+  private setDisplay(s: DisplaySettings): void {
+    this.settings = s;
+    this.syncInputs();
+    if (isSurface(this.object)) applyDisplay(this.object, this.settings, () => this.env());
+    this.report();
+  }
+
+  private readInputs(): void {
+    const s: DisplaySettings = {
+      ...this.settings,
+      mode: this.mode.value as DisplaySettings['mode'],
+      color: this.color.value,
+      roughness: Number(this.roughness.value),
+      metalness: Number(this.metalness.value),
+      pointSize: Number(this.pointSize.value),
+      toonBands: Math.round(Math.min(8, Math.max(2, Number(this.toonBands.value) || DEFAULT_DISPLAY.toonBands))),
+      vertexColors: this.vertexColors.input.checked,
+    };
+    this.setDisplay(s);
+  }
+
+  private readOverlayInputs(): void {
+    this.overlays = {
+      bbox: this.checks.bbox.input.checked,
+      axes: this.checks.axes.input.checked,
+      vertexNormals: this.checks.vertexNormals.input.checked,
+      faceNormals: this.checks.faceNormals.input.checked,
+      edges: this.checks.edges.input.checked,
+      normalLength: Number(this.normalLength.value),
+    };
+    this.info = updateOverlays(this.viewer, this.object, this.overlays);
+    this.report();
+  }
+
+  private syncInputs(): void {
+    const s = this.settings;
+    this.mode.value = s.mode;
+    this.preset.value = s.preset;
+    this.color.value = s.color;
+    this.roughness.value = String(s.roughness);
+    this.metalness.value = String(s.metalness);
+    this.pointSize.value = String(s.pointSize);
+    this.toonBands.value = String(s.toonBands);
+    this.vertexColors.input.checked = s.vertexColors;
+    this.pointSizeRow.hidden = s.mode !== 'points';
+    this.toonBandsRow.hidden = s.mode !== 'toon';
+    for (const [k, c] of Object.entries(this.checks)) c.input.checked = this.overlays[k as keyof typeof this.checks];
+    this.normalLength.value = String(this.overlays.normalLength);
+  }
+
+  /** A new shown object: the mode and the overlays follow it (a default display leaves it as built). */
+  private attach(object: THREE.Object3D | null): void {
+    this.object = object;
+    if (isSurface(object) && !isDefaultDisplay(this.settings)) applyDisplay(object, this.settings, () => this.env());
+    this.vertexColors.row.hidden = !(isSurface(object) && object.geometry.getAttribute('color') && !object.name.startsWith('scalar:'));
+    this.info = updateOverlays(this.viewer, object, this.overlays);
+    this.report();
+  }
+
+  private applyAll(): void {
+    if (isSurface(this.object)) applyDisplay(this.object, this.settings, () => this.env());
+    this.info = updateOverlays(this.viewer, this.object, this.overlays);
+    this.report();
+  }
+
+  /** Reflections for metals: a PMREM of three's room environment, made once, when first needed. */
+  private env(): THREE.Texture {
+    if (!this.environment) {
+      const pmrem = new THREE.PMREMGenerator(this.viewer.renderer);
+      const room = new RoomEnvironment();
+      this.environment = pmrem.fromScene(room, 0.04).texture;
+      room.dispose();
+      pmrem.dispose();
+    }
+    return this.environment;
+  }
+
+  /** Updates the readout, and tells the app once a frame shows the settings. */
+  private report(): void {
+    const parts: string[] = [];
+    if (this.info.size) parts.push(`Box ${formatSize(this.info.size)}`);
+    if (this.info.boundaryEdges !== null) {
+      parts.push(`${this.info.boundaryEdges} boundary edges, ${this.info.nonManifoldEdges} non-manifold`);
+    }
+    this.readout.textContent = parts.join(' · ');
+    this.readout.dataset.boundary = this.info.boundaryEdges === null ? '' : String(this.info.boundaryEdges);
+    this.readout.dataset.nonManifold = this.info.nonManifoldEdges === null ? '' : String(this.info.nonManifoldEdges);
+    const object = this.object;
+    const report: DisplayReport = { ...this.settings, ...this.info, overlays: { ...this.overlays }, object: object?.name ?? null };
+    this.viewer.redraw(() => {
+      if (this.object === object) this.callbacks.drawn(report);
+    });
+  }
+}

@@ -1,0 +1,178 @@
+// Textures on the shown surface: the mesh's own image (from its MTL's map_Kd
+// or its PLY's TextureFile), none, or a checkerboard to inspect its UVs; and
+// the small panel that picks one, shown only for a mesh with UVs.
+import * as THREE from 'three';
+import { fetchMeshTexture } from '../api/rest.ts';
+import type { Mesh } from '../api/types.ts';
+import { el } from '../panels/dom.ts';
+
+export type TextureMode = 'texture' | 'off' | 'checkerboard';
+
+/** The checkerboard's two colours (sRGB): dark and light. */
+export const CHECKER_DARK = '#202020';
+export const CHECKER_LIGHT = '#f0f0f0';
+
+/** A canvas of `squares` × `squares` alternating squares, repeating across the UV plane. */
+export function checkerTexture(squares: number): THREE.CanvasTexture {
+  const cell = 16;
+  const canvas = document.createElement('canvas');
+  canvas.width = canvas.height = squares * cell;
+  const g = canvas.getContext('2d')!;
+  for (let i = 0; i < squares; ++i) {
+    for (let j = 0; j < squares; ++j) {
+      g.fillStyle = (i + j) % 2 ? CHECKER_DARK : CHECKER_LIGHT;
+      g.fillRect(i * cell, j * cell, cell, cell);
+    }
+  }
+  const texture = new THREE.CanvasTexture(canvas);
+  texture.colorSpace = THREE.SRGBColorSpace;
+  texture.wrapS = texture.wrapT = THREE.RepeatWrapping;
+  texture.magFilter = THREE.NearestFilter;
+  return texture;
+}
+
+/**
+ * A mesh's texture image as a three.js texture. OBJ and PLY put v = 0 at
+ * the image's bottom row; an HTMLImageElement starts at the top, which
+ * three.js's default flipY = true turns round.
+ */
+export async function loadMeshTexture(meshId: string, n: number, signal?: AbortSignal): Promise<THREE.Texture> {
+  const blob = await fetchMeshTexture(meshId, n, signal);
+  const url = URL.createObjectURL(blob);
+  try {
+    const img = new Image();
+    img.src = url;
+    await img.decode();
+    const texture = new THREE.Texture(img);
+    texture.colorSpace = THREE.SRGBColorSpace;
+    texture.wrapS = texture.wrapT = THREE.RepeatWrapping;
+    texture.flipY = true;
+    texture.needsUpdate = true;
+    return texture;
+  } finally {
+    URL.revokeObjectURL(url);
+  }
+}
+
+/** What is drawn, for tests: set after the first frame that shows it. */
+export interface TextureState {
+  meshId: string;
+  mode: TextureMode;
+  /** Squares across the checkerboard texture. */
+  squares: number;
+  /** The image shown in 'texture' mode, or null. */
+  image: string | null;
+}
+
+/**
+ * Owns the texture panel and the textures of the shown surface. attach()
+ * after each new surface; the image is fetched once per mesh.
+ */
+export class MeshTextures {
+  private readonly select: HTMLSelectElement;
+  private readonly squaresInput: HTMLInputElement;
+  private readonly squaresRow: HTMLElement;
+  private surface: THREE.Mesh | null = null;
+  private mesh: Mesh | null = null;
+  private baseColor = new THREE.Color();
+  private image: { meshId: string; texture: THREE.Texture } | null = null;
+  private checker: { squares: number; texture: THREE.CanvasTexture } | null = null;
+  private loading: AbortController | null = null;
+
+  constructor(
+    private readonly panel: HTMLElement,
+    private readonly redraw: (onDrawn: () => void) => void,
+    private readonly onShown: (state: TextureState | null) => void,
+    private readonly onError: (text: string) => void,
+  ) {
+    this.select = el('select', { id: 'texture-mode', 'aria-label': 'Texture' });
+    for (const [value, label] of [['texture', 'on'], ['off', 'off'], ['checkerboard', 'checkerboard']] as const) {
+      this.select.append(el('option', { value }, label));
+    }
+    this.squaresInput = el('input', { id: 'texture-squares', type: 'range', min: '2', max: '64', step: '2', value: '8' });
+    this.squaresRow = el('label', { class: 'texture-squares' }, 'Squares ', this.squaresInput);
+    panel.replaceChildren(el('label', {}, 'Texture ', this.select), this.squaresRow);
+    panel.hidden = true;
+    this.select.addEventListener('change', () => this.apply());
+    this.squaresInput.addEventListener('input', () => this.apply());
+  }
+
+  /** Takes a new surface of `mesh`: the panel shows when it has UVs, and its texture (or a checkerboard) goes on. */
+  attach(surface: THREE.Mesh, mesh: Mesh): void {
+    this.loading?.abort();
+    this.loading = null;
+    this.surface = surface;
+    this.mesh = mesh;
+    const material = surface.material as THREE.MeshStandardMaterial;
+    const uvs = surface.geometry.getAttribute('uv') !== undefined;
+    if (mesh.kd && !material.vertexColors) material.color.setRGB(mesh.kd[0], mesh.kd[1], mesh.kd[2], THREE.SRGBColorSpace);
+    this.baseColor.copy(material.color);
+    this.panel.hidden = !uvs;
+    if (!uvs) {
+      this.onShown(null);
+      return;
+    }
+    const hasImage = (mesh.textures?.length ?? 0) > 0;
+    (this.select.options[0] as HTMLOptionElement).disabled = !hasImage;
+    this.select.value = hasImage ? 'texture' : 'checkerboard';
+    this.apply();
+  }
+
+  /** Forgets the surface (it was replaced or cleared). */
+  detach(): void {
+    this.loading?.abort();
+    this.loading = null;
+    this.surface = null;
+    this.panel.hidden = true;
+    this.onShown(null);
+  }
+
+  private apply(): void {
+    const surface = this.surface;
+    const mesh = this.mesh;
+    if (!surface || !mesh) return;
+    const mode = this.select.value as TextureMode;
+    const squares = Number(this.squaresInput.value);
+    this.squaresRow.hidden = mode !== 'checkerboard';
+    if (mode === 'texture' && this.image?.meshId !== mesh.id) {
+      this.loading?.abort();
+      const controller = new AbortController();
+      this.loading = controller;
+      loadMeshTexture(mesh.id, 0, controller.signal)
+        .then((texture) => {
+          if (controller.signal.aborted) {
+            texture.dispose();
+            return;
+          }
+          this.image?.texture.dispose();
+          this.image = { meshId: mesh.id, texture };
+          this.loading = null;
+          this.apply();
+        })
+        .catch((e: unknown) => {
+          if (controller.signal.aborted) return;
+          this.onError(`Cannot load the texture of ${mesh.name}: ${e instanceof Error ? e.message : String(e)}`);
+        });
+      return;
+    }
+    let map: THREE.Texture | null = null;
+    if (mode === 'texture') map = this.image!.texture;
+    if (mode === 'checkerboard') {
+      if (this.checker?.squares !== squares) {
+        this.checker?.texture.dispose();
+        this.checker = { squares, texture: checkerTexture(squares) };
+      }
+      map = this.checker.texture;
+    }
+    const material = surface.material as THREE.MeshStandardMaterial;
+    material.map = map;
+    // The image shows its own colours; without one the surface keeps its colour.
+    if (map) material.color.set(0xffffff);
+    else material.color.copy(this.baseColor);
+    material.needsUpdate = true;
+    const image = mode === 'texture' ? (mesh.textures?.[0]?.name ?? null) : null;
+    this.redraw(() => {
+      if (this.surface === surface && material.map === map) this.onShown({ meshId: mesh.id, mode, squares, image });
+    });
+  }
+}

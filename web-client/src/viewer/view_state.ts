@@ -1,0 +1,105 @@
+// The view link: what the viewer shows (camera, mesh, display mode and
+// material, overlays, the scalar field with its colour map and range) as
+// base64url JSON in the page's hash, `#view=...`, so that opening the link
+// shows the same view. Pure (no DOM, no three.js), so that node's unit tests
+// load it. Never holds the auth token: a link is something users share.
+
+export const VIEW_HASH_KEY = 'view';
+
+type Vec3 = [number, number, number];
+
+export interface ViewState {
+  /** Format version. */
+  v: 1;
+  /** The shown mesh's id. */
+  mesh: string;
+  camera: { position: Vec3; target: Vec3; up: Vec3; fov: number; near?: number; far?: number };
+  /** Display settings (viewer/display_modes.ts), kept as given; the reader checks them. */
+  display?: Record<string, unknown>;
+  /** Overlay settings (viewer/overlays.ts), kept as given. */
+  overlays?: Record<string, unknown>;
+  /** The scalar field drawn, with its colour map and range. */
+  field?: { job: string; artifact: string; map: string; range: [number, number] };
+}
+
+function toBase64Url(text: string): string {
+  let binary = '';
+  for (const byte of new TextEncoder().encode(text)) binary += String.fromCharCode(byte);
+  return btoa(binary).replace(/\+/g, '-').replace(/\//g, '_').replace(/=+$/, '');
+}
+
+function fromBase64Url(b64: string): string {
+  const std = b64.replace(/-/g, '+').replace(/_/g, '/');
+  const binary = atob(std + '='.repeat((4 - (std.length % 4)) % 4));
+  return new TextDecoder().decode(Uint8Array.from(binary, (c) => c.charCodeAt(0)));
+}
+
+/** The hash (with its '#') that encodes `state`. */
+export function encodeViewHash(state: ViewState): string {
+  return `#${VIEW_HASH_KEY}=${toBase64Url(JSON.stringify(state))}`;
+}
+
+function isVec3(v: unknown): v is Vec3 {
+  return Array.isArray(v) && v.length === 3 && v.every((x) => typeof x === 'number' && Number.isFinite(x));
+}
+
+function isObject(v: unknown): v is Record<string, unknown> {
+  return typeof v === 'object' && v !== null && !Array.isArray(v);
+}
+
+/**
+ * The view in a page hash; null when the hash has no view. Throws a sentence
+ * saying what is wrong with a view that does not decode or check.
+ */
+export function decodeViewHash(hash: string): ViewState | null {
+  const params = new URLSearchParams(hash.replace(/^#/, ''));
+  const b64 = params.get(VIEW_HASH_KEY);
+  if (b64 === null) return null;
+  let raw: unknown;
+  try {
+    raw = JSON.parse(fromBase64Url(b64));
+  } catch {
+    throw new Error('the view link is not base64url JSON');
+  }
+  if (!isObject(raw)) throw new Error('the view link is not a JSON object');
+  if (raw.v !== 1) throw new Error(`the view link has version ${JSON.stringify(raw.v)}, not 1`);
+  if (typeof raw.mesh !== 'string' || !raw.mesh) throw new Error('the view link names no mesh');
+  const cam = raw.camera;
+  if (!isObject(cam) || !isVec3(cam.position) || !isVec3(cam.target) || !isVec3(cam.up)) {
+    throw new Error('the view link\'s camera needs position, target and up as three numbers each');
+  }
+  if (typeof cam.fov !== 'number' || !(cam.fov > 0 && cam.fov < 180)) throw new Error('the view link\'s camera fov is not between 0 and 180');
+  const state: ViewState = {
+    v: 1,
+    mesh: raw.mesh,
+    camera: { position: cam.position, target: cam.target, up: cam.up, fov: cam.fov },
+  };
+  // The clipping planes (optional): the depth precision they give decides how lines on faces draw.
+  if (cam.near !== undefined || cam.far !== undefined) {
+    const { near, far } = cam;
+    if (typeof near !== 'number' || typeof far !== 'number' || !(near > 0) || !(far > near) || !Number.isFinite(far)) {
+      throw new Error('the view link\'s camera near and far must be numbers with 0 < near < far');
+    }
+    state.camera.near = near;
+    state.camera.far = far;
+  }
+  if (raw.display !== undefined) {
+    if (!isObject(raw.display)) throw new Error('the view link\'s display is not an object');
+    state.display = raw.display;
+  }
+  if (raw.overlays !== undefined) {
+    if (!isObject(raw.overlays)) throw new Error('the view link\'s overlays is not an object');
+    state.overlays = raw.overlays;
+  }
+  if (raw.field !== undefined) {
+    const f = raw.field;
+    if (
+      !isObject(f) || typeof f.job !== 'string' || typeof f.artifact !== 'string' || typeof f.map !== 'string' ||
+      !Array.isArray(f.range) || f.range.length !== 2 || !f.range.every((x) => typeof x === 'number' && Number.isFinite(x))
+    ) {
+      throw new Error('the view link\'s field needs job, artifact, map and a range of two numbers');
+    }
+    state.field = { job: f.job, artifact: f.artifact, map: f.map, range: [f.range[0], f.range[1]] };
+  }
+  return state;
+}

@@ -1,0 +1,215 @@
+// End-to-end test of textured meshes (issue 8 item 5), against the real
+// server and a real browser: an OBJ, its MTL and a PNG chosen together in
+// the file picker go up as one zip; seen face-on, the quad shows the
+// texture's four colours in the right quadrants (the PNG is drawn by the
+// page's own canvas, an independent reference); the checkerboard mode shows
+// alternating dark and light squares; a missing image leaves the mesh
+// untextured with a warning; assimp's spider (OBJ + MTL + JPEGs, Debian's
+// assimp-testmodels) shows its leg texture's colour; and a PLY with UVs
+// (Blender's cube_uv.ply) gets the checkerboard.  Screenshots go to
+// build/test-artifacts/e2e-texture-*.png.
+//
+// Environment: CGVIEW_SERVER (default build/bin/cgview-server),
+// CHROMIUM (default /usr/bin/chromium).
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { artifactsDir, pngPixels, useViewer } from './harness.mjs';
+
+const assimp = '/usr/share/assimp/models';
+const v = useViewer({ tmpPrefix: 'cgview-e2e-texture-', httpErrors: false });
+
+// The viewer's camera looks from (0.55, 0.35, 1) with +y up (Viewer.fitToView):
+// a unit quad facing it, its u along the screen's right and v along its up.
+function faceOnQuadObj(mtl) {
+  const norm = (a) => a.map((x) => x / Math.hypot(...a));
+  const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+  const z = norm([0.55, 0.35, 1]);
+  const x = norm(cross([0, 1, 0], z));
+  const y = cross(z, x);
+  const corner = (sx, sy) => [0, 1, 2].map((i) => sx * x[i] + sy * y[i]).join(' ');
+  return [
+    mtl ? `mtllib ${mtl}` : '',
+    `v ${corner(-1, -1)}`, `v ${corner(1, -1)}`, `v ${corner(1, 1)}`, `v ${corner(-1, 1)}`,
+    'vt 0 0', 'vt 1 0', 'vt 1 1', 'vt 0 1',
+    'usemtl quad',
+    'f 1/1 2/2 3/3', 'f 1/1 3/3 4/4', '',
+  ].join('\n');
+}
+const QUAD_MTL = 'newmtl quad\nKd 1 1 1\nmap_Kd quad.png\n';
+// The image's rows top to bottom; OBJ's v = 0 is its bottom row.
+const TEXELS = { topLeft: [255, 0, 0], topRight: [0, 255, 0], bottomLeft: [0, 0, 255], bottomRight: [255, 255, 0] };
+
+function hue([r, g, b]) {
+  const max = Math.max(r, g, b);
+  const min = Math.min(r, g, b);
+  if (max === min) return null;
+  let h;
+  if (max === r) h = (60 * (g - b)) / (max - min);
+  else if (max === g) h = 120 + (60 * (b - r)) / (max - min);
+  else h = 240 + (60 * (r - g)) / (max - min);
+  return (h + 360) % 360;
+}
+const hueDistance = (a, b) => Math.min(Math.abs(a - b), 360 - Math.abs(a - b));
+const luminance = ([r, g, b]) => 0.2126 * r + 0.7152 * g + 0.0722 * b;
+
+async function canvasPixels(name) {
+  const png = await v.page.locator('#viewport canvas').screenshot();
+  fs.writeFileSync(path.join(artifactsDir, `e2e-texture-${name}.png`), png);
+  return pngPixels(v.page, png);
+}
+
+// The mean colour of a 7×7 patch at (fx, fy) of the way from the canvas's centre
+// to its smaller half-side (+y down).
+function sample(img, fx, fy) {
+  const half = Math.min(img.width, img.height) / 2;
+  const cx = Math.round(img.width / 2 + fx * half);
+  const cy = Math.round(img.height / 2 + fy * half);
+  const sum = [0, 0, 0];
+  for (let dy = -3; dy <= 3; ++dy)
+    for (let dx = -3; dx <= 3; ++dx) {
+      const i = ((cy + dy) * img.width + (cx + dx)) * 4;
+      for (let c = 0; c < 3; ++c) sum[c] += img.data[i + c];
+    }
+  return sum.map((s) => s / 49);
+}
+const QUADRANTS = { topLeft: [-0.25, -0.25], topRight: [0.25, -0.25], bottomLeft: [-0.25, 0.25], bottomRight: [0.25, 0.25] };
+
+// A PNG of the 2×2 texels, made by the page's canvas (not by CGView).
+async function quadPng() {
+  const b64 = await v.page.evaluate((texels) => {
+    const c = document.createElement('canvas');
+    c.width = c.height = 2;
+    const g = c.getContext('2d');
+    const put = (x, y, [r, gg, b]) => {
+      g.fillStyle = `rgb(${r},${gg},${b})`;
+      g.fillRect(x, y, 1, 1);
+    };
+    put(0, 0, texels.topLeft);
+    put(1, 0, texels.topRight);
+    put(0, 1, texels.bottomLeft);
+    put(1, 1, texels.bottomRight);
+    return c.toDataURL('image/png').split(',')[1];
+  }, TEXELS);
+  return Buffer.from(b64, 'base64');
+}
+
+// Chooses files in the upload picker; resolves with the mesh shown after it.
+async function pick(files, mode) {
+  const before = await v.page.evaluate(() => window.__cgview.lastLoaded?.id ?? null);
+  await v.page.setInputFiles('#file-input', files);
+  await v.page.waitForFunction(
+    ([prev, m]) => {
+      const h = window.__cgview;
+      return h.lastLoaded && h.lastLoaded.id !== prev && (m === null ? true : h.texture?.meshId === h.lastLoaded.id && h.texture.mode === m);
+    },
+    [before, mode],
+    { timeout: 60000 },
+  ).catch((e) => {
+    throw new Error(`the upload was not shown (${mode}): ${e.message}${v.describeProblems()}\n${v.server.log()}`);
+  });
+  const id = await v.page.evaluate(() => window.__cgview.lastLoaded.id);
+  return (await fetch(`${v.server.url}/api/v1/meshes/${id}`)).json();
+}
+
+const file = (name, text) => ({ name, mimeType: 'application/octet-stream', buffer: Buffer.from(text) });
+
+test('an OBJ, its MTL and a PNG chosen together show the texture face-on, and the checkerboard alternates', async () => {
+  const png = await quadPng();
+  const mesh = await pick([file('quad.obj', faceOnQuadObj('quad.mtl')), file('quad.mtl', QUAD_MTL), { name: 'quad.png', mimeType: 'image/png', buffer: png }], 'texture');
+  assert.equal(mesh.name, 'quad.obj');
+  assert.equal(mesh.has_uvs, true);
+  assert.equal(mesh.textures.length, 1);
+  assert.deepEqual([mesh.textures[0].name, mesh.textures[0].mime, mesh.textures[0].bytes], ['quad.png', 'image/png', png.length]);
+  const served = Buffer.from(await (await fetch(`${v.server.url}/api/v1/meshes/${mesh.id}/textures/0`)).arrayBuffer());
+  assert.ok(served.equals(png), 'the stored texture is the uploaded PNG');
+  assert.equal(await v.page.locator('#texture-panel').isVisible(), true, 'the texture panel shows for a mesh with UVs');
+
+  const img = await canvasPixels('quad');
+  for (const [where, [fx, fy]] of Object.entries(QUADRANTS)) {
+    const got = sample(img, fx, fy);
+    const want = TEXELS[where];
+    const h = hue(got);
+    assert.ok(h !== null && hueDistance(h, hue(want)) <= 20, `${where}: hue of ${got.map(Math.round)} is not that of ${want}`);
+    const max = Math.max(...got);
+    assert.ok(max > 60 && max - Math.min(...got) > 0.5 * max, `${where}: ${got.map(Math.round)} is not a saturated colour`);
+  }
+
+  await v.page.selectOption('#texture-mode', 'checkerboard');
+  await v.page.locator('#texture-squares').fill('2');
+  await v.page.waitForFunction(() => window.__cgview.texture?.mode === 'checkerboard' && window.__cgview.texture.squares === 2, null, { timeout: 10000 });
+  const checker = await canvasPixels('checkerboard');
+  const lum = Object.fromEntries(Object.entries(QUADRANTS).map(([k, [fx, fy]]) => [k, luminance(sample(checker, fx, fy))]));
+  const light = Math.min(lum.topLeft, lum.bottomRight);
+  const dark = Math.max(lum.topRight, lum.bottomLeft);
+  assert.ok(light > 2 * dark + 20, `squares alternate dark and light: ${JSON.stringify(lum)}`);
+  for (const [k, [fx, fy]] of Object.entries(QUADRANTS)) {
+    const c = sample(checker, fx, fy);
+    assert.ok(Math.max(...c) - Math.min(...c) < 40, `${k}: the checkerboard is grey, got ${c.map(Math.round)}`);
+  }
+
+  await v.page.selectOption('#texture-mode', 'off');
+  await v.page.waitForFunction(() => window.__cgview.texture?.mode === 'off', null, { timeout: 10000 });
+  const off = await canvasPixels('off');
+  const c = sample(off, QUADRANTS.topRight[0], QUADRANTS.topRight[1]);
+  assert.ok(Math.max(...c) - Math.min(...c) < 40, `untextured, the quad shows its white Kd: ${c.map(Math.round)}`);
+  assert.deepEqual(v.problems, [], v.describeProblems());
+});
+
+test('a missing texture image: the mesh shows untextured, with a warning in the page', async () => {
+  const mesh = await pick([file('bare.obj', faceOnQuadObj('bare.mtl')), file('bare.mtl', QUAD_MTL)], 'checkerboard');
+  assert.equal(mesh.textures.length, 0);
+  assert.ok(mesh.warnings.some((w) => w.includes("'quad.png' is not in the upload")), JSON.stringify(mesh.warnings));
+  await v.page.locator('#messages', { hasText: "'quad.png' is not in the upload" }).waitFor({ timeout: 10000 });
+  assert.equal(await v.page.locator('#texture-mode option[value="texture"]').isDisabled(), true);
+});
+
+test("assimp's spider (OBJ, MTL, JPEGs) shows its texture's colour", async () => {
+  const dir = path.join(assimp, 'OBJ');
+  const names = ['spider.obj', 'spider.mtl', ...fs.readdirSync(dir).filter((n) => n.endsWith('.jpg'))];
+  const mesh = await pick(names.map((n) => path.join(dir, n)), 'texture');
+  assert.equal(mesh.textures[0].name, 'drkwood2.jpg', 'the texture of the material on most faces');
+  // The reference: the JPEG's mean colour as the page's own decoder reads it.
+  const jpeg = fs.readFileSync(path.join(dir, 'drkwood2.jpg')).toString('base64');
+  const mean = await v.page.evaluate(async (b64) => {
+    const img = new Image();
+    img.src = `data:image/jpeg;base64,${b64}`;
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.naturalWidth;
+    c.height = img.naturalHeight;
+    const g = c.getContext('2d');
+    g.drawImage(img, 0, 0);
+    const { data } = g.getImageData(0, 0, c.width, c.height);
+    const s = [0, 0, 0];
+    for (let i = 0; i < data.length; i += 4) for (let k = 0; k < 3; ++k) s[k] += data[i + k];
+    return s.map((x) => (x * 4) / data.length);
+  }, jpeg);
+  const want = hue(mean);
+  const share = (img) => {
+    let near = 0, lit = 0;
+    for (let i = 0; i < img.data.length; i += 4) {
+      const px = [img.data[i], img.data[i + 1], img.data[i + 2]];
+      const max = Math.max(...px);
+      const min = Math.min(...px);
+      if (max < 30 || (px[0] === 0x1b && px[1] === 0x1d && px[2] === 0x22)) continue; // the background
+      ++lit;
+      if (max - min > 0.15 * max && hueDistance(hue(px), want) <= 20) ++near;
+    }
+    return lit ? near / lit : 0;
+  };
+  const textured = share(await canvasPixels('spider'));
+  await v.page.selectOption('#texture-mode', 'off');
+  await v.page.waitForFunction(() => window.__cgview.texture?.mode === 'off', null, { timeout: 10000 });
+  const plain = share(await canvasPixels('spider-off'));
+  assert.ok(textured > 0.3 && textured > plain + 0.2,
+    `the texture's hue (${Math.round(want)}°) covers ${(100 * textured).toFixed(1)}% of the spider, ${(100 * plain).toFixed(1)}% untextured`);
+});
+
+test("a PLY with UVs (Blender's cube_uv.ply) gets the checkerboard", async () => {
+  const mesh = await pick([path.join(assimp, 'PLY', 'cube_uv.ply')], 'checkerboard');
+  assert.equal(mesh.has_uvs, true);
+  assert.deepEqual(mesh.textures, []);
+  assert.equal(await v.page.locator('#texture-panel').isVisible(), true);
+});
