@@ -366,6 +366,8 @@ json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std
       const auto v = values.find(p.name);
       canonical[p.name] = value_json(v == values.end() ? p.default_value : v->second);
     }
+    if (const auto in = summaries.find("mesh"); in != summaries.end())
+      check_selections(it->second.params, values, in->second.vertices, in->second.faces);
     if (it->second.precheck) it->second.precheck(summaries, values);
   } else {
     // Only the worker knows it (a test algorithm): the worker checks.
