@@ -45,6 +45,7 @@ import { buildSkeleton, SKELETON_COLORS } from './viewer/skeleton_renderer.ts';
 import { parsePly, type PlyMesh } from './viewer/ply.ts';
 import { buildScalarSurface, colourGeometry, finiteRange, type ScalarField } from './viewer/scalar_field_renderer.ts';
 import { buildPlainSurface, buildSurface, SURFACE_COLOR } from './viewer/surface_renderer.ts';
+import { orbitFrameTimes, type OrbitTimes } from './viewer/frame_timer.ts';
 import { LoadTimer, type LoadTimings } from './viewer/timings.ts';
 import { MeshTextures, type TextureState } from './viewer/textures.ts';
 import { Viewer } from './viewer/viewer.ts';
@@ -108,6 +109,8 @@ export interface TestHooks {
    * the full mesh that replaced it (null until then).
    */
   lastPreview: { id: string; vertices: number; faces: number; camera: ViewState['camera']; fullCamera: ViewState['camera'] | null } | null;
+  /** Renders `frames` frames orbiting the shown object and times them (viewer/frame_timer.ts; for bench/frame_bench.mjs). */
+  orbit: (frames: number) => OrbitTimes;
 }
 
 declare global {
@@ -191,6 +194,7 @@ export class App {
     lastScreenshot: null,
     texture: null,
     lastPreview: null,
+    orbit: (frames) => orbitFrameTimes(this.viewer, frames),
   };
   private readonly socket = new CgviewSocket();
   private readonly decoder = new DracoDecoder();
