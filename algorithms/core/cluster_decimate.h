@@ -2,7 +2,7 @@
 // uniform grid (Rossignac and Borrel 1993, "Multi-resolution 3D
 // approximations for rendering complex scenes"), the method viewers use for
 // level-of-detail previews.  It is linear in the mesh size (a 2M-triangle
-// mesh takes about a second), unlike an edge-collapse simplification.
+// mesh takes a second or so), unlike an edge-collapse simplification.
 //
 // Every vertex falls in a cubic cell of side h; the vertices of a cell merge
 // into one, at their mean (so it lies inside the cell: the bounding box
