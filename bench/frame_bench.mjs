@@ -1,13 +1,16 @@
 // Big meshes in the viewer (issue 8 item 8), measured in headless chromium:
 // for a 2M-triangle mesh, the time from the click to the first frame of the
 // decimated preview and to the first frame of the full mesh, and the frame
-// time while orbiting (median and p95 over --frames frames, each rendered
+// time while orbiting (median and p95 over --frames frames (30), each rendered
 // with renderer.render() and waited for with a 1-pixel readPixels:
 // web-client/src/viewer/frame_timer.ts) with the preview shown (while the full
 // mesh is still coming) and with the full mesh.  For comparison, the same
 // mesh on a server with previews off (--preview-faces 0).
 //
-//   node bench/frame_bench.mjs [--mesh FILE] [--frames 100]
+//   node bench/frame_bench.mjs [--mesh FILE] [--frames 30]
+//
+// (SwiftShader draws a 2M-triangle frame in seconds on 2 cores: 100 frames
+// of the full mesh take minutes.)
 //
 // Without --mesh it writes /tmp/cgview_man_2m.ply: CGAL's man.off (34,986
 // triangles) with three midpoint subdivisions (2,239,104 triangles), made
@@ -33,12 +36,12 @@ const TIMEOUT_MS = 600_000;
 
 function usage(message) {
   if (message) console.error(`frame_bench: ${message}`);
-  console.error('usage: node bench/frame_bench.mjs [--mesh FILE] [--frames N]   (N >= 10, default 100)');
+  console.error('usage: node bench/frame_bench.mjs [--mesh FILE] [--frames N]   (N >= 10, default 30)');
   process.exit(2);
 }
 
 function parseArgs(argv) {
-  const args = { mesh: null, frames: 100 };
+  const args = { mesh: null, frames: 30 };
   for (let i = 0; i < argv.length; ++i) {
     const a = argv[i];
     const value = () => (i + 1 < argv.length ? argv[++i] : usage(`${a} needs a value`));
@@ -166,7 +169,10 @@ async function load(page, baseUrl, mesh, first, orbitFrames = 0) {
           if (r.previewMs === null && s.lastPreview?.id === id) {
             r.previewMs = now - window.__benchClick;
             r.previewFaces = s.lastPreview.faces;
-            if (orbitFrames && s.lastLoaded?.id !== id) r.previewOrbit = s.orbit(orbitFrames);
+            if (orbitFrames && s.lastLoaded?.id !== id) {
+              r.previewOrbit = s.orbit(orbitFrames);
+              console.log(`preview orbit: ${JSON.stringify(r.previewOrbit)}`);
+            }
           }
           if (s.lastLoaded?.id === id && s.timings) {
             r.fullMs = now - window.__benchClick;
@@ -183,7 +189,7 @@ async function load(page, baseUrl, mesh, first, orbitFrames = 0) {
   );
 }
 
-async function configuration(meshFile, previewFaces, frames) {
+async function configuration(meshFile, previewFaces, frames, orbitRun = true) {
   server = await startServer({
     tmpPrefix: 'cgview-frame-bench-',
     extraArgs: ['--samples', 'none', '--preview-faces', String(previewFaces)],
@@ -199,9 +205,12 @@ async function configuration(meshFile, previewFaces, frames) {
   const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
   const problems = [];
   page.on('pageerror', (e) => problems.push(`pageerror: ${e.message}`));
-  page.on('console', (m) => m.type() === 'error' && problems.push(`console.error: ${m.text()}`));
+  page.on('console', (m) => {
+    if (m.type() === 'error') problems.push(`console.error: ${m.text()}`);
+    else if (m.text().includes('orbit')) console.error(m.text());
+  });
   const runs = {};
-  for (const [name, orbit] of [['cold', 0], ['warm', 0], ['orbit', frames]]) {
+  for (const [name, orbit] of [['cold', 0], ['warm', 0], ...(orbitRun ? [['orbit', frames]] : [])]) {
     const res = await load(page, server.url, mesh, name === 'cold', orbit);
     if (res.error) throw new Error(`${name}: ${res.error}\n${problems.join('\n')}`);
     if (res.fullFaces !== mesh.report.faces) throw new Error(`${name}: ${res.fullFaces} faces drawn, the mesh has ${mesh.report.faces}`);
@@ -225,7 +234,7 @@ async function main() {
   const meshFile = prepareMesh(args.mesh);
   const load0 = os.loadavg()[0];
   const withPreview = await configuration(meshFile, 200000, args.frames);
-  const without = await configuration(meshFile, 0, args.frames);
+  const without = await configuration(meshFile, 0, args.frames, false); // the same full mesh: its orbit is the one above
   const { mesh } = withPreview;
   const cpus = os.cpus();
   console.log(`## Big meshes in the viewer: ${mesh.report.faces.toLocaleString('en')} triangles\n`);
@@ -239,6 +248,7 @@ async function main() {
   for (const [label, c] of [['preview at > 200k faces (default)', withPreview], ['previews off (--preview-faces 0)', without]]) {
     for (const name of ['cold', 'warm', 'orbit']) {
       const r = c.runs[name];
+      if (!r) continue;
       const note = name === 'orbit' ? 'orbit (3rd load)' : name;
       console.log(`| ${label} | ${note} | ${ms(r.previewMs)}${r.previewFaces ? ` (${r.previewFaces.toLocaleString('en')} faces)` : ''} | ${ms(r.fullMs)} | ${orbitCell(r.previewOrbit)} | ${orbitCell(r.fullOrbit)} |`);
     }
