@@ -54,6 +54,8 @@ const char* kHelp =
     "  --gl-platform P      EGL platform for render.png: auto (GPU device, else surfaceless llvmpipe),\n"
     "                       device or surfaceless (default auto; also CGVIEW_GL_PLATFORM)\n"
     "  --ws-chunk-kb N      largest binary WebSocket chunk (default 4096)\n"
+    "  --preview-faces N    meshes with more faces get a decimated preview first (default 200000; 0: none)\n"
+    "  --preview-target N   the preview's most faces (default 80000)\n"
     "  --worker PATH        the job worker executable (default: cgview-worker beside this program)\n"
     "  --job-workers N      jobs run at once, each in its own process (default: the number of cores)\n"
     "  --job-timeout-s N    time limit of a job in seconds (default 3600; 0: none)\n"
@@ -173,6 +175,8 @@ int main(int argc, char** argv) {
         if (v != "requeue" && v != "interrupt") throw std::invalid_argument("--on-restart is requeue or interrupt");
         config.jobs.requeue_on_restart = v == "requeue";
       } else if (a == "--ws-chunk-kb") config.chunk_bytes = std::size_t(number(1, 16 * 1024 - 1)) << 10;
+      else if (a == "--preview-faces") config.preview.threshold_faces = std::size_t(number(0, 1LL << 40));
+      else if (a == "--preview-target") config.preview.target_faces = std::size_t(number(1, 1LL << 40));
       else if (a == "--auth") {
         const std::string v = value();
         if (v != "auto" && v != "required") throw std::invalid_argument("--auth is auto or required");

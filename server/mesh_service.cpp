@@ -4,6 +4,7 @@
 #include <cctype>
 #include <nlohmann/json.hpp>
 
+#include "core/cluster_decimate.h"
 #include "core/errors.h"
 #include "core/mesh_report.h"
 #include "io/materials.h"
@@ -182,9 +183,8 @@ std::shared_ptr<const Mesh> MeshService::mesh(const MeshRecord& rec) {
   return m;
 }
 
-std::shared_ptr<const EncodedMesh> MeshService::draco(const MeshRecord& rec, int bits) {
-  if (bits < 1 || bits > 30) throw InvalidInput("quantization must be 1..30 bits, got " + std::to_string(bits));
-  const std::string key = rec.sha256 + "/" + std::to_string(bits);
+std::shared_ptr<const EncodedMesh> MeshService::cached(const std::string& key,
+                                                      const std::function<std::shared_ptr<const EncodedMesh>()>& make) {
   std::promise<std::shared_ptr<const EncodedMesh>> promise;
   std::shared_future<std::shared_ptr<const EncodedMesh>> pending;
   {
@@ -200,19 +200,9 @@ std::shared_ptr<const EncodedMesh> MeshService::draco(const MeshRecord& rec, int
   }
   if (pending.valid()) return pending.get();  // cached, or being computed by another request
   try {
-    auto m = mesh(rec);
-    auto enc = std::make_shared<EncodedMesh>();
-    WriteOptions wo;
-    wo.position_bits = bits;
-    enc->bytes = write_mesh_bytes(*m, MeshFormat::drc, wo);
-    enc->vertices = m->num_vertices();
-    enc->faces = m->num_faces();
-    enc->has_normals = m->has_normals();
-    enc->has_colors = m->has_colors();
-    std::shared_ptr<const EncodedMesh> result = enc;
+    std::shared_ptr<const EncodedMesh> result = make();
     promise.set_value(result);
     std::lock_guard lock(mutex_);
-    ++encodings_computed_;
     encodings_[key].bytes = result->bytes.size();
     used_bytes_ += result->bytes.size();
     while (used_bytes_ > cache_bytes_ && lru_.size() > 1) {
@@ -229,6 +219,64 @@ std::shared_ptr<const EncodedMesh> MeshService::draco(const MeshRecord& rec, int
     lru_.remove(key);
     throw;
   }
+}
+
+namespace {
+std::shared_ptr<const EncodedMesh> encode(const Mesh& m, int bits) {
+  auto enc = std::make_shared<EncodedMesh>();
+  WriteOptions wo;
+  wo.position_bits = bits;
+  enc->bytes = write_mesh_bytes(m, MeshFormat::drc, wo);
+  enc->vertices = m.num_vertices();
+  enc->faces = m.num_faces();
+  enc->has_normals = m.has_normals();
+  enc->has_colors = m.has_colors();
+  return enc;
+}
+}  // namespace
+
+std::shared_ptr<const EncodedMesh> MeshService::draco(const MeshRecord& rec, int bits) {
+  if (bits < 1 || bits > 30) throw InvalidInput("quantization must be 1..30 bits, got " + std::to_string(bits));
+  return cached(rec.sha256 + "/" + std::to_string(bits), [&] {
+    auto enc = encode(*mesh(rec), bits);
+    std::lock_guard lock(mutex_);
+    ++encodings_computed_;
+    return enc;
+  });
+}
+
+bool MeshService::has_preview(const MeshRecord& rec) const {
+  if (preview_.threshold_faces == 0) return false;
+  const nlohmann::json report = nlohmann::json::parse(rec.report_json, nullptr, false);
+  const nlohmann::json faces = report.is_object() ? report.value("faces", nlohmann::json()) : nlohmann::json();
+  return faces.is_number_unsigned() && faces.get<std::uint64_t>() > preview_.threshold_faces;
+}
+
+std::shared_ptr<const EncodedMesh> MeshService::preview(const MeshRecord& rec) {
+  if (!has_preview(rec))
+    throw InvalidInput("mesh " + rec.id + " has no preview (it has at most " + std::to_string(preview_.threshold_faces) +
+                       " faces)");
+  // Keyed by the mesh id too: the blob belongs to one stored mesh.
+  return cached(rec.sha256 + "/preview/" + rec.id, [&]() -> std::shared_ptr<const EncodedMesh> {
+    if (std::optional<std::string> bytes = store_.read_preview(rec)) {
+      try {
+        const Mesh m = read_mesh_bytes(*bytes, MeshFormat::drc, rec.id + ".preview.drc").mesh;
+        auto enc = std::make_shared<EncodedMesh>();
+        enc->bytes = std::move(*bytes);
+        enc->vertices = m.num_vertices();
+        enc->faces = m.num_faces();
+        enc->has_colors = m.has_colors();
+        return enc;
+      } catch (const std::exception&) {
+        // A damaged blob: make it again.
+      }
+    }
+    auto enc = encode(cluster_decimate(*mesh(rec), {preview_.target_faces}).mesh, 14);
+    store_.write_preview(rec, enc->bytes);
+    std::lock_guard lock(mutex_);
+    ++previews_computed_;
+    return enc;
+  });
 }
 
 std::string MeshService::download(const MeshRecord& rec, const std::string& format) {

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <future>
 #include <list>
 #include <map>
@@ -29,6 +30,13 @@ struct EncodedMesh {
   bool has_normals = false, has_colors = false;
 };
 
+// When a mesh gets a preview (a coarse version streamed before it): more
+// faces than threshold_faces (0: never), decimated to at most target_faces.
+struct PreviewConfig {
+  std::size_t threshold_faces = 200000;
+  std::size_t target_faces = 80000;
+};
+
 class MeshService {
  public:
   explicit MeshService(Store& store, std::size_t cache_bytes = std::size_t(512) << 20);
@@ -47,6 +55,13 @@ class MeshService {
   std::shared_ptr<const Mesh> mesh(const MeshRecord& record);
   // The Draco encoding at a position quantization (1..30 bits).
   std::shared_ptr<const EncodedMesh> draco(const MeshRecord& record, int position_bits);
+  // Whether the mesh is big enough to get a preview (its report's face count).
+  bool has_preview(const MeshRecord& record) const;
+  // The preview's Draco encoding (14 bits): the mesh decimated by vertex
+  // clustering (core/cluster_decimate.h), made on first request, stored as
+  // a blob of the mesh (Store::write_preview) and kept in the encoding cache.
+  // Throws InvalidInput when the mesh gets no preview.
+  std::shared_ptr<const EncodedMesh> preview(const MeshRecord& record);
   // The mesh in a writable format ("obj", "ply", ...): the stored bytes
   // when the format is the uploaded one, else a conversion.
   std::string download(const MeshRecord& record, const std::string& format);
@@ -58,9 +73,17 @@ class MeshService {
   Store& store() { return store_; }
   // The most bytes a zip upload may unpack to (the server's upload limit).
   void set_max_upload_bytes(std::size_t n) { max_upload_bytes_ = n; }
+  void set_preview(const PreviewConfig& c) { preview_ = c; }
+  const PreviewConfig& preview_config() const { return preview_; }
+  std::uint64_t previews_computed() const { return previews_computed_; }
   std::uint64_t encodings_computed() const { return encodings_computed_; }
 
  private:
+  // The cached encoding under `key`, computed once by `make` (concurrent
+  // requests share one computation; least recently used dropped first).
+  std::shared_ptr<const EncodedMesh> cached(const std::string& key,
+                                            const std::function<std::shared_ptr<const EncodedMesh>()>& make);
+
   Store& store_;
   std::mutex mutex_;
   // Draco encodings by (sha256, bits), least recently used first.
@@ -74,6 +97,8 @@ class MeshService {
   std::list<std::pair<std::string, std::shared_ptr<const Mesh>>> meshes_;  // by sha256, newest first
   std::uint64_t encodings_computed_ = 0;
   std::size_t max_upload_bytes_ = std::size_t(256) << 20;
+  PreviewConfig preview_;
+  std::uint64_t previews_computed_ = 0;
 };
 
 // The JSON object of a stored mesh (API.md's Mesh).

@@ -91,6 +91,7 @@ struct Shared {
         rate(c.rate_per_s, c.rate_burst),
         tls(tls_context(c)) {
     meshes.set_max_upload_bytes(c.max_upload_bytes);  // what a zip upload may unpack to
+    meshes.set_preview(c.preview);
     jobs->on_event = [r = &router](const json& e, const Access& readers) {
       if (r->on_event) r->on_event(e, readers);
     };
@@ -306,25 +307,39 @@ class WebSocketSession : public EventSink, public std::enable_shared_from_this<W
       }
       const auto rec = shared_->store.get_mesh(msg["mesh_id"], caller);
       if (!rec) return error(id, "not_found", "no mesh with id '" + msg["mesh_id"].get<std::string>() + "'");
-      const std::shared_ptr<const EncodedMesh> enc = shared_->meshes.draco(*rec, bits);
-      const std::uint32_t rid = std::uint32_t(id.get<std::uint64_t>());
-      const std::size_t chunk = shared_->config.chunk_bytes;
-      const std::size_t total = enc->bytes.size();
-      const std::size_t count = total == 0 ? 1 : (total + chunk - 1) / chunk;
-      send_json({{"type", "mesh_begin"}, {"request_id", id}, {"mesh_id", rec->id}, {"encoding", "draco"},
-                 {"bytes", total}, {"chunks", count}, {"vertices", enc->vertices}, {"faces", enc->faces},
-                 {"has_normals", enc->has_normals}, {"has_colors", enc->has_colors}});
-      for (std::size_t i = 0; i < count; ++i) {
-        const std::string_view part = std::string_view(enc->bytes).substr(i * chunk, chunk);
-        send({protocol::encode_frame_header({protocol::FrameKind::draco_mesh, rid, std::uint32_t(i), std::uint32_t(count), total}),
-              enc, part, true});
-      }
-      send_json({{"type", "mesh_end"}, {"request_id", id}});
+      // lod: "full" (the default, one reply), "preview" (the preview of a big
+      // mesh, else the mesh) or "progressive" (the preview of a big mesh,
+      // then the mesh: two replies).  API.md, "Big meshes".
+      const json lod_value = msg.value("lod", json("full"));
+      const std::string lod = lod_value.is_string() ? lod_value.get<std::string>() : lod_value.dump();
+      if (lod != "full" && lod != "preview" && lod != "progressive")
+        return error(id, "bad_request", "lod must be \"full\", \"preview\" or \"progressive\", got " + lod_value.dump());
+      if (bits < 1 || bits > 30) return error(id, "bad_request", "quantization must be 1..30 bits, got " + std::to_string(bits));
+      const bool preview = lod != "full" && shared_->meshes.has_preview(*rec);
+      if (preview) stream(*rec, shared_->meshes.preview(*rec), "preview", id);
+      if (!preview || lod == "progressive") stream(*rec, shared_->meshes.draco(*rec, bits), "full", id);
     } catch (const InvalidInput& e) {
       error(id, "bad_request", e.what());
     } catch (const std::exception& e) {
       error(id, "internal", e.what());
     }
+  }
+
+  // mesh_begin, the Draco bytes in chunks, mesh_end; level "preview" or "full".
+  void stream(const MeshRecord& rec, const std::shared_ptr<const EncodedMesh>& enc, const char* level, const json& id) {
+    const std::uint32_t rid = std::uint32_t(id.get<std::uint64_t>());
+    const std::size_t chunk = shared_->config.chunk_bytes;
+    const std::size_t total = enc->bytes.size();
+    const std::size_t count = total == 0 ? 1 : (total + chunk - 1) / chunk;
+    send_json({{"type", "mesh_begin"}, {"request_id", id}, {"mesh_id", rec.id}, {"encoding", "draco"}, {"level", level},
+               {"bytes", total}, {"chunks", count}, {"vertices", enc->vertices}, {"faces", enc->faces},
+               {"has_normals", enc->has_normals}, {"has_colors", enc->has_colors}});
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::string_view part = std::string_view(enc->bytes).substr(i * chunk, chunk);
+      send({protocol::encode_frame_header({protocol::FrameKind::draco_mesh, rid, std::uint32_t(i), std::uint32_t(count), total}),
+            enc, part, true});
+    }
+    send_json({{"type", "mesh_end"}, {"request_id", id}});
   }
 
   // get_animation: a job's animation artifact (chaos_animate's frames) as

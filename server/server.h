@@ -58,6 +58,7 @@ struct ServerConfig {
   bool auth_required = false;
   render::GlPlatform gl_platform = render::GlPlatform::automatic;  // EGL platform of render.png
   JobConfig jobs;  // the worker executable, pool size, limits
+  PreviewConfig preview;  // when get_mesh with lod "progressive" first streams a decimated preview
 };
 
 class Server {

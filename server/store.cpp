@@ -212,8 +212,22 @@ fs::path Store::texture_path(const std::string& id, std::size_t n) const {
 void Store::remove_blobs(const MeshRecord& r) const {
   std::error_code ec;
   fs::remove(blob_path(r), ec);
+  fs::remove(preview_path(r), ec);
   for (std::size_t n = 0; fs::remove(texture_path(r.id, n), ec); ++n) {
   }
+}
+
+fs::path Store::preview_path(const MeshRecord& r) const { return dir_ / "blobs" / (r.id + ".preview.drc"); }
+
+std::optional<std::string> Store::read_preview(const MeshRecord& r) const {
+  std::ifstream f(preview_path(r), std::ios::binary);
+  if (!f) return std::nullopt;
+  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+}
+
+void Store::write_preview(const MeshRecord& r, std::string_view bytes) const {
+  std::error_code ec;
+  if (fs::exists(blob_path(r), ec)) write_blob(preview_path(r), bytes);
 }
 
 MeshRecord Store::add_mesh(MeshRecord r, std::string_view bytes, const std::vector<std::string>& textures) {

@@ -100,6 +100,11 @@ class Store {
   std::string read_blob(const MeshRecord& record) const;
   // The bytes of a mesh's texture n; throws std::out_of_range when it has none such.
   std::string read_texture(const MeshRecord& record, std::size_t n) const;
+  // A mesh's cached preview (DATA/blobs/ID.preview.drc, a blob of the mesh,
+  // removed with it): nullopt when none was written.  write_preview does
+  // nothing when the mesh's file is gone (deleted meanwhile).
+  std::optional<std::string> read_preview(const MeshRecord& record) const;
+  void write_preview(const MeshRecord& record, std::string_view bytes) const;
   // The path of a mesh's stored file (for a worker process to read).
   std::filesystem::path blob_file(const MeshRecord& record) const { return blob_path(record); }
   std::size_t count() const { return count_; }
@@ -131,6 +136,7 @@ class Store {
  private:
   std::filesystem::path blob_path(const MeshRecord& r) const;
   std::filesystem::path texture_path(const std::string& id, std::size_t n) const;
+  std::filesystem::path preview_path(const MeshRecord& r) const;
   void remove_blobs(const MeshRecord& r) const;  // the mesh's file and its textures
   std::filesystem::path dir_;
   sqlite3* db_ = nullptr;

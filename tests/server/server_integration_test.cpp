@@ -49,9 +49,9 @@ struct MeshStream {
   std::string payload;
 };
 
-MeshStream get_mesh(WsClient& ws, const std::string& id, std::uint32_t request_id, int quantization = 14) {
+// One reply to get_mesh (a progressive request gets two).
+MeshStream read_mesh_stream(WsClient& ws, const std::string& id, std::uint32_t request_id) {
   MeshStream s;
-  EXPECT_FALSE(ws.send({{"type", "get_mesh"}, {"request_id", request_id}, {"mesh_id", id}, {"quantization", quantization}}));
   s.begin = ws.reply();
   EXPECT_EQ(s.begin.value("type", ""), "mesh_begin") << s.begin.dump();
   if (s.begin.value("type", "") != "mesh_begin") return s;
@@ -86,6 +86,14 @@ MeshStream get_mesh(WsClient& ws, const std::string& id, std::uint32_t request_i
   s.end = ws.reply();
   EXPECT_EQ(s.end, (json{{"type", "mesh_end"}, {"request_id", request_id}}));
   return s;
+}
+
+MeshStream get_mesh(WsClient& ws, const std::string& id, std::uint32_t request_id, int quantization = 14,
+                    const std::string& lod = "") {
+  json request = {{"type", "get_mesh"}, {"request_id", request_id}, {"mesh_id", id}, {"quantization", quantization}};
+  if (!lod.empty()) request["lod"] = lod;
+  EXPECT_FALSE(ws.send(request));
+  return read_mesh_stream(ws, id, request_id);
 }
 
 // Vertex and face counts of a Draco payload, decoded by Draco's own tool.
@@ -405,6 +413,8 @@ TEST_F(ServerIntegration, MalformedWebSocketMessagesGetErrorsAndTheConnectionSta
        "bad_request"},
       {"quantization 0", R"({"type":"get_mesh","request_id":14,"mesh_id":")" + id + R"(","quantization":0})", 14,
        "bad_request"},
+      {"lod unknown", R"({"type":"get_mesh","request_id":16,"mesh_id":")" + id + R"(","lod":"tiny"})", 16, "bad_request"},
+      {"lod a number", R"({"type":"get_mesh","request_id":17,"mesh_id":")" + id + R"(","lod":2})", 17, "bad_request"},
       {"quantization text", R"({"type":"get_mesh","request_id":15,"mesh_id":")" + id + R"(","quantization":"high"})", 15,
        "bad_request"},
   };
@@ -687,6 +697,65 @@ TEST_F(ServerIntegration, TokensOverHttpAndWebSocketAndRevokedAtOnce) {
   // Tokens are never logged.
   EXPECT_EQ(server_.stderr_text().find(alice.substr(21)), std::string::npos);
   EXPECT_EQ(users.find(bob.substr(21)), std::string::npos);
+}
+
+// A big mesh (over --preview-faces) asked with lod "progressive" streams a
+// decimated preview, then the full mesh, on the same request id; the preview
+// is stored once as a blob of the mesh and deleted with it.  Small meshes and
+// old clients (no lod) get the one full reply.
+TEST_F(ServerIntegration, BigMeshStreamsAPreviewThenTheFullMesh) {
+  ASSERT_TRUE(start({"--preview-faces", "3000", "--preview-target", "1000"}));
+  const json elephant = upload("elephant.off");  // 5558 faces
+  const json cube = upload("cube.off");
+  const std::string id = elephant["id"];
+  WsClient ws;
+  ASSERT_FALSE(ws.connect(port()));
+
+  const MeshStream preview = get_mesh(ws, id, 1, 14, "progressive");
+  EXPECT_EQ(preview.begin["level"], "preview");
+  const std::size_t faces = preview.begin["faces"];
+  EXPECT_LE(faces, 1000u);
+  EXPECT_GE(faces, 200u);
+  // Draco splits the vertices where the clustering made the preview non-manifold.
+  const auto [preview_vertices, preview_faces] = draco_counts(preview.payload, dir_, "preview");
+  EXPECT_EQ(preview_faces, faces);
+  EXPECT_GE(preview_vertices, preview.begin["vertices"].get<std::size_t>());
+  const MeshStream full = read_mesh_stream(ws, id, 1);
+  EXPECT_EQ(full.begin["level"], "full");
+  EXPECT_EQ(full.begin["faces"], 5558);
+  EXPECT_EQ(draco_counts(full.payload, dir_, "full"), std::make_pair(std::size_t(2775), std::size_t(5558)));
+  EXPECT_TRUE(ws.ping(2));  // nothing more came for request 1
+
+  const fs::path blob = data_ / "blobs" / (id + ".preview.drc");
+  ASSERT_TRUE(fs::exists(blob));
+  EXPECT_EQ(read_bytes(blob), preview.payload);
+
+  // lod "preview": only the preview, the same bytes.
+  const MeshStream again = get_mesh(ws, id, 3, 14, "preview");
+  EXPECT_EQ(again.begin["level"], "preview");
+  EXPECT_EQ(again.payload, preview.payload);
+  EXPECT_TRUE(ws.ping(4));
+  // No lod (an old client): the full mesh alone.
+  const MeshStream plain = get_mesh(ws, id, 5);
+  EXPECT_EQ(plain.begin["level"], "full");
+  EXPECT_EQ(plain.payload, full.payload);
+  EXPECT_TRUE(ws.ping(6));
+  // A small mesh has no preview: one full reply.
+  const MeshStream small = get_mesh(ws, cube["id"], 7, 14, "progressive");
+  EXPECT_EQ(small.begin["level"], "full");
+  EXPECT_TRUE(ws.ping(8));
+  EXPECT_FALSE(fs::exists(data_ / "blobs" / (cube["id"].get<std::string>() + ".preview.drc")));
+
+  // Restarted, the server reads the stored preview; deleting the mesh deletes it.
+  server_.kill_now();
+  ASSERT_TRUE(start({"--preview-faces", "3000", "--preview-target", "1000"}));
+  WsClient ws2;
+  ASSERT_FALSE(ws2.connect(port()));
+  EXPECT_EQ(get_mesh(ws2, id, 9, 14, "preview").payload, preview.payload);
+  const HttpResult del = http_call(port(), Method::delete_, "/api/v1/meshes/" + id, "");
+  EXPECT_EQ(del.status, 204u) << del.body;
+  EXPECT_FALSE(fs::exists(blob));
+  EXPECT_FALSE(fs::exists(data_ / "blobs" / (id + ".off")));
 }
 
 }  // namespace

@@ -21,7 +21,7 @@ import {
 import { parseSkeleton, type SkeletonData } from './api/skeleton.ts';
 import { jobMeshId } from './api/types.ts';
 import type { Algorithm, ArtifactInfo, Job, JobInput, JobProgress, Me, Mesh, ServerEvent } from './api/types.ts';
-import { CgviewSocket, ServerError } from './api/ws.ts';
+import { CgviewSocket, ServerError, type MeshTransfer } from './api/ws.ts';
 import { AccountPanel } from './panels/account.ts';
 import { AlgorithmsPanel } from './panels/algorithms.ts';
 import { JobsPanel } from './panels/jobs.ts';
@@ -52,6 +52,7 @@ import { buildSkeleton, SKELETON_COLORS } from './viewer/skeleton_renderer.ts';
 import { parsePly, type PlyMesh } from './viewer/ply.ts';
 import { buildScalarSurface, colourGeometry, finiteRange, type ScalarField } from './viewer/scalar_field_renderer.ts';
 import { buildPlainSurface, buildSurface, SURFACE_COLOR } from './viewer/surface_renderer.ts';
+import { orbitFrameTimes, type OrbitTimes } from './viewer/frame_timer.ts';
 import { LoadTimer, type LoadTimings } from './viewer/timings.ts';
 import { MeshTextures, type TextureState } from './viewer/textures.ts';
 import { Viewer } from './viewer/viewer.ts';
@@ -115,6 +116,14 @@ export interface TestHooks {
   lastScreenshot: { bytes: number } | null;
   /** The texture on the surface (a mesh with UVs), set after the first frame with it; null when none. */
   texture: TextureState | null;
+  /**
+   * The decimated preview of a big mesh, set after the first frame showing
+   * it, with the camera then; fullCamera: the camera after the first frame of
+   * the full mesh that replaced it (null until then).
+   */
+  lastPreview: { id: string; vertices: number; faces: number; camera: ViewState['camera']; fullCamera: ViewState['camera'] | null } | null;
+  /** Renders `frames` frames orbiting the shown object and times them (viewer/frame_timer.ts; for bench/frame_bench.mjs). */
+  orbit: (frames: number) => OrbitTimes;
 }
 
 declare global {
@@ -197,6 +206,8 @@ export class App {
     viewRestored: null,
     lastScreenshot: null,
     texture: null,
+    lastPreview: null,
+    orbit: (frames) => orbitFrameTimes(this.viewer, frames),
   };
   private readonly socket = new CgviewSocket();
   private readonly decoder = new DracoDecoder();
@@ -1066,39 +1077,71 @@ export class App {
     const load = { id: mesh.id, controller: new AbortController() };
     this.load = load;
     const current = () => this.load === load;
-    const timer = new LoadTimer();
+    const timer = new LoadTimer(); // of the full mesh
+    // A big mesh's preview (API.md "Big meshes") is shown while the full mesh
+    // streams and decodes, then replaced without moving the camera.
+    let inPreview = false;
+    let preview: THREE.Object3D | null = null;
+    let fullDecoded = false;
+    const stage = (what: string) => (preview ? `preview shown, ${what} full mesh` : what);
+    const showPreview = async (transfer: MeshTransfer) => {
+      inPreview = false;
+      const decoded = await this.decoder.decode(transfer.payload);
+      if (!current() || fullDecoded) return;
+      const object = buildSurface(decoded);
+      preview = object;
+      this.viewer.show(object, () => {
+        if (this.viewer.object !== object) return;
+        this.hooks.lastPreview = { id: mesh.id, vertices: decoded.vertices, faces: decoded.faces, camera: readCamera(this.viewer), fullCamera: null };
+      });
+      this.progress.show(stage('downloading'), null, mesh.name);
+    };
     try {
       this.progress.show('downloading', 0, mesh.name);
+      this.hooks.lastPreview = null;
       const transfer = await this.socket.getMesh(mesh.id, {
         signal: load.controller.signal,
         onSent: () => timer.mark('request'),
-        onBegin: () => timer.mark('first-byte'),
+        onBegin: (begin) => {
+          inPreview = begin.level === 'preview';
+          if (!inPreview) timer.mark('first-byte');
+        },
         onProgress: (received, total) => {
-          if (received > 0) timer.mark('first-chunk');
-          if (received >= total) timer.mark('last-chunk');
-          if (current()) this.progress.show('downloading', total > 0 ? received / total : 0, mesh.name);
+          if (!inPreview) {
+            if (received > 0) timer.mark('first-chunk');
+            if (received >= total) timer.mark('last-chunk');
+          }
+          if (current()) this.progress.show(inPreview ? 'downloading preview of' : stage('downloading'), total > 0 ? received / total : 0, mesh.name);
+        },
+        onPreview: (t) => {
+          showPreview(t).catch((e) => console.warn('cgview: the preview could not be shown', e));
         },
       });
       if (!current()) return;
-      this.progress.show('decoding', null, mesh.name);
+      this.progress.show(stage('decoding'), null, mesh.name);
       const bytes = transfer.payload.byteLength; // before the worker takes the buffer
       timer.mark('decode-start');
       const decoded = await this.decoder.decode(transfer.payload);
       if (!current()) return;
+      fullDecoded = true;
       timer.mark('decode-end');
       timer.setWorkerTiming(decoded.timing);
       const object = buildSurface(decoded);
       timer.mark('geometry-built');
       this.textures.attach(object, mesh);
-      this.viewer.show(object, () => {
+      const swap = preview !== null && this.viewer.object === preview;
+      const onShown = () => {
         if (this.viewer.object !== object) return;
         timer.mark('first-frame');
         this.hooks.timings = null;
         this.hooks.lastLoaded = { id: mesh.id, vertices: decoded.vertices, faces: decoded.faces, bytes };
+        if (swap && this.hooks.lastPreview?.id === mesh.id) this.hooks.lastPreview.fullCamera = readCamera(this.viewer);
         void timer.markGpuDone(this.viewer.renderer.getContext()).then(() => {
           if (this.viewer.object === object) this.hooks.timings = timer.finish();
         });
-      });
+      };
+      if (swap) this.viewer.replace(object, onShown);
+      else this.viewer.show(object, onShown);
       this.progress.hide();
     } catch (e) {
       if (isAbort(e) || !current()) return;

@@ -195,9 +195,10 @@ export const artifactsDir = path.join(repo, 'build', 'test-artifacts');
 // The set-up the end-to-end tests share: checks that the server, the built
 // client, chromium and `mesh` exist; starts the server, chromium and a page
 // on the viewer, recording the page's errors (and HTTP errors with
-// httpErrors) in `problems`; with `mesh`, uploads it and shows it.
+// httpErrors) in `problems`; with `mesh`, uploads it and shows it;
+// serverArgs are added to the server's command line.
 // Returns { server, browser, page, problems, describeProblems, meshId, close }.
-export async function openViewer({ tmpPrefix, mesh = null, httpErrors = true }) {
+export async function openViewer({ tmpPrefix, mesh = null, httpErrors = true, serverArgs = [] }) {
   const files = [
     ['the server', serverBin],
     ['the built web client', path.join(dist, 'index.html')],
@@ -208,7 +209,7 @@ export async function openViewer({ tmpPrefix, mesh = null, httpErrors = true }) 
     if (!fs.existsSync(file)) throw new Error(`${what} is missing: ${file}`);
   }
   fs.mkdirSync(artifactsDir, { recursive: true });
-  const server = await startServer({ tmpPrefix });
+  const server = await startServer({ tmpPrefix, extraArgs: serverArgs });
   const browser = await launchBrowser();
   const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
   const problems = [];

@@ -78,6 +78,8 @@ export interface MeshBegin {
   request_id: number;
   mesh_id: string;
   encoding: string;
+  /** "preview" (a decimated big mesh, followed by the full one) or "full"; absent from older servers. */
+  level?: 'preview' | 'full';
   bytes: number;
   chunks: number;
   vertices: number;

@@ -50,6 +50,12 @@ export interface GetMeshOptions {
   onSent?: () => void;
   /** Called when mesh_begin arrives. */
   onBegin?: (begin: MeshBegin) => void;
+  /**
+   * Asks for a big mesh's preview first (lod "progressive"): called with the
+   * decimated preview's transfer, before the full mesh arrives (then onBegin
+   * and onProgress start again for it).  Small meshes come in one reply.
+   */
+  onPreview?: (preview: MeshTransfer) => void;
   /** Aborting forgets the request; chunks still arriving for it are dropped. */
   signal?: AbortSignal;
 }
@@ -175,6 +181,7 @@ export class CgviewSocket {
     const id = this.takeId();
     const request: Record<string, unknown> = { type: 'get_mesh', request_id: id, mesh_id: meshId };
     if (options.quantization !== undefined) request.quantization = options.quantization;
+    if (options.onPreview) request.lod = 'progressive';
     return new Promise<MeshTransfer>((resolve, reject) => {
       const signal = options.signal;
       if (signal?.aborted) {
@@ -340,7 +347,8 @@ export class CgviewSocket {
       p.options.onBegin?.(begin);
       p.options.onProgress?.(p.assembler.bytesReceived, begin.bytes);
     } else if (type === 'mesh_end') {
-      this.pending.delete(id);
+      const preview = p.begin?.level === 'preview' && p.options.onPreview !== undefined;
+      if (!preview) this.pending.delete(id);
       try {
         if (!p.begin) throw new Error('mesh_end without mesh_begin');
         let payload: Uint8Array;
@@ -352,9 +360,18 @@ export class CgviewSocket {
         if (payload.byteLength !== p.begin.bytes) {
           throw new FrameError(`received ${payload.byteLength} bytes, mesh_begin announced ${p.begin.bytes}`);
         }
-        p.resolve({ begin: p.begin, payload });
+        if (preview) {
+          // The full mesh follows on the same request id.
+          const begin = p.begin;
+          p.begin = null;
+          p.assembler = new ChunkAssembler(id);
+          p.options.onPreview!({ begin, payload });
+        } else {
+          p.resolve({ begin: p.begin, payload });
+        }
       } catch (e) {
-        p.reject(e as Error);
+        if (preview) this.fail(id, e as Error);
+        else p.reject(e as Error);
       }
     }
   }
