@@ -49,6 +49,17 @@ struct Lattice {
   std::array<int, 3> ijk(std::size_t n) const {
     return {int(n % d[0]), int((n / d[0]) % d[1]), int(n / (std::size_t(d[0]) * d[1]))};
   }
+  // The 26 neighbours as linear offsets (with steps26's lengths), for
+  // voxels off the grid's border.
+  std::vector<std::ptrdiff_t> offsets() const {
+    std::vector<std::ptrdiff_t> o;
+    for (const Step& s : steps26()) o.push_back(s.di + std::ptrdiff_t(d[0]) * (s.dj + std::ptrdiff_t(d[1]) * s.dk));
+    return o;
+  }
+  bool on_border(std::size_t n) const {
+    const auto [i, j, k] = ijk(n);
+    return i == 0 || j == 0 || k == 0 || i == d[0] - 1 || j == d[1] - 1 || k == d[2] - 1;
+  }
   // Calls f(neighbour, step length) for the in-grid 26-neighbours.
   template <class F>
   void neighbours(std::size_t n, F&& f) const {
@@ -135,7 +146,6 @@ VoxelGrid vote(const std::vector<render::ViewCapture>& views, const BBox& box, c
   auto work = [&](int t) {
     std::vector<float>& acc = partial[t];
     std::vector<float>& acc_radius = partial_radius[t];
-    std::vector<std::size_t> seen;
     for (std::size_t v = std::size_t(t); v < views.size(); v += std::size_t(threads)) {
       if (t == 0 && ctx && ctx->cancelled()) return;
       const render::ViewCapture& a = views[v];
@@ -158,13 +168,15 @@ VoxelGrid vote(const std::vector<render::ViewCapture>& views, const BBox& box, c
             const Vec3 exit = b.camera.unproject(q.x, q.y, b.depth[std::size_t(by) * w + bx]);
             length = std::min(length, std::max(0.0, dot(exit - entry, dir)));
           }
-          seen.clear();
+          // A straight ray leaves a voxel for good: a sample in the voxel of
+          // the one before is the same vote.
+          std::size_t last = SIZE_MAX;
           for (double s = 0; s <= length; s += vs / 2) {
             const VoxelIndex c = grid.locate(entry + dir * s);
             if (!grid.contains(c)) continue;
             const std::size_t n = grid.linear(c);
-            if (std::find(seen.begin(), seen.end(), n) != seen.end()) continue;
-            seen.push_back(n);
+            if (n == last) continue;
+            last = n;
             acc[n] += 1.f;
             if (radius) acc_radius[n] += float(radius_world);
           }
@@ -198,10 +210,21 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   // The domain: every voted voxel (the inside, as far as the views tell);
   // the targets: the voxels voted enough, which branches must reach.
   std::vector<std::uint8_t> mask(L.size(), 0), target(L.size(), 0);
+  // The mask leaves the grid's border out (votes fall inside the bounding
+  // box, a voxel in from the border), so that the paths below step by
+  // linear offsets.
   for (std::size_t n = 0; n < L.size(); ++n) {
-    mask[n] = I[n] > 0;
+    if (!(I[n] > 0) || L.on_border(n)) continue;
+    mask[n] = 1;
     target[n] = I[n] >= p.threshold * top;
   }
+  // The intensity weight of a step onto a voxel.
+  const auto r2 = [&](std::size_t m) {
+    const double r = I[m] / top + 0.01;
+    return r * r;
+  };
+  const std::vector<std::ptrdiff_t> offset = L.offsets();
+  const std::vector<Step>& step = steps26();
   const double vs = votes.voxel_size();
   // The local radius of the shape, in voxels: the mean radius of the medial
   // discs that voted for the voxel (the vote set itself is thinner).
@@ -211,12 +234,12 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   const double diagonal = norm(ext);
   const double min_branch = p.min_branch * diagonal / vs;  // in voxels
 
-  std::vector<std::int64_t> node_of(L.size(), -1);  // skeleton node of a voxel
+  std::vector<std::int32_t> node_of(L.size(), -1);  // skeleton node of a voxel (grids up to 512³ fit 32 bits)
   // A node sits at the vote-weighted centre of its voxel's 3x3x3
   // neighbourhood: off the voxel lattice, towards the ridge of votes.
   const auto node = [&](std::size_t n) {
     if (node_of[n] < 0) {
-      node_of[n] = std::int64_t(s.nodes.size());
+      node_of[n] = std::int32_t(s.nodes.size());
       Vec3 sum = votes.center(votes.unlinear(n)) * double(I[n]);
       double weight = I[n];
       L.neighbours(n, [&](std::size_t m, double) {
@@ -229,8 +252,8 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   };
   std::vector<std::uint8_t> done(L.size(), 0);  // voxels of components already processed
   std::vector<double> cost(L.size(), HUGE_VAL), along(L.size(), 0);
-  std::vector<std::int64_t> parent(L.size(), -1);
-  std::vector<std::uint8_t> covered(L.size(), 0);
+  std::vector<std::int32_t> parent(L.size(), -1);
+  std::vector<std::uint8_t> covered(L.size(), 0), seen(L.size(), 0);
 
   // Components in order of their most voted voxel.
   std::vector<std::size_t> order;
@@ -239,29 +262,48 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return I[a] > I[b]; });
   for (std::size_t root : order) {
     if (done[root]) continue;
+    // The component's targets, counted (a breadth-first walk is cheaper than
+    // the shortest paths): those stop once every target has its path, as
+    // only the targets' paths are used, leaving the weakly voted rim of the
+    // votes unvisited.
+    std::size_t targets = 0;
+    {
+      std::vector<std::size_t> stack{root};
+      seen[root] = 1;
+      while (!stack.empty()) {
+        const std::size_t n = stack.back();
+        stack.pop_back();
+        targets += target[n];
+        for (std::size_t k = 0; k < 26; ++k) {
+          const std::size_t m = std::size_t(std::ptrdiff_t(n) + offset[k]);
+          if (mask[m] && !seen[m]) seen[m] = 1, stack.push_back(m);
+        }
+      }
+    }
     // Intensity-driven shortest paths from the root over the component.
     std::vector<std::size_t> members;
     using Item = std::pair<double, std::size_t>;
     std::priority_queue<Item, std::vector<Item>, std::greater<>> q;
     cost[root] = 0;
     q.push({0, root});
-    while (!q.empty()) {
+    while (!q.empty() && members.size() < targets) {
       const auto [c, n] = q.top();
       q.pop();
       if (c > cost[n] || done[n]) continue;
       done[n] = 1;
       if (target[n]) members.push_back(n);
-      L.neighbours(n, [&](std::size_t m, double len) {
-        if (!mask[m] || done[m]) return;
-        const double r = I[m] / top + 0.01;
-        const double nc = c + len / (r * r);
+      for (std::size_t k = 0; k < 26; ++k) {
+        const std::size_t m = std::size_t(std::ptrdiff_t(n) + offset[k]);
+        if (!mask[m] || done[m]) continue;
+        const double len = step[k].length;
+        const double nc = c + len / r2(m);
         if (nc < cost[m]) {
           cost[m] = nc;
-          parent[m] = std::int64_t(n);
+          parent[m] = std::int32_t(n);
           along[m] = along[n] + len;
           q.push({nc, m});
         }
-      });
+      }
     }
     if (members.size() < 8) continue;  // a speck of votes
     // TEASAR: the farthest uncovered voxel gives a branch, back to the skeleton.
@@ -296,9 +338,16 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
         const int r = int(std::ceil(1.5 * thick[v])) + 2;
         const auto [i, j, k] = L.ijk(v);
         for (int c = std::max(0, k - r); c <= std::min(L.d[2] - 1, k + r); ++c)
-          for (int b = std::max(0, j - r); b <= std::min(L.d[1] - 1, j + r); ++b)
-            for (int a = std::max(0, i - r); a <= std::min(L.d[0] - 1, i + r); ++a)
-              if ((a - i) * (a - i) + (b - j) * (b - j) + (c - k) * (c - k) <= r * r) covered[L.at(a, b, c)] = 1;
+          for (int b = std::max(0, j - r); b <= std::min(L.d[1] - 1, j + r); ++b) {
+            // The ball's row: |a - i| <= the integer square root of what is left.
+            const int left = r * r - (b - j) * (b - j) - (c - k) * (c - k);
+            if (left < 0) continue;
+            int dx = int(std::sqrt(double(left)));
+            while (dx * dx > left) --dx;
+            while ((dx + 1) * (dx + 1) <= left) ++dx;
+            const int a0 = std::max(0, i - dx), a1 = std::min(L.d[0] - 1, i + dx);
+            std::fill(covered.begin() + std::ptrdiff_t(L.at(a0, b, c)), covered.begin() + std::ptrdiff_t(L.at(a1, b, c)) + 1, 1);
+          }
       }
       covered[far] = 1;
     }
@@ -376,17 +425,17 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
         reached = true;
         break;
       }
-      L.neighbours(n, [&](std::size_t m, double len) {
-        if (!mask[m]) return;
-        const double r = I[m] / top + 0.01;
-        const double nc = cn + len / (r * r);
+      for (std::size_t k = 0; k < 26; ++k) {
+        const std::size_t m = std::size_t(std::ptrdiff_t(n) + offset[k]);
+        if (!mask[m]) continue;
+        const double nc = cn + step[k].length / r2(m);
         if (nc < cost[m]) {
           if (cost[m] == HUGE_VAL) touched.push_back(m);
           cost[m] = nc;
-          parent[m] = std::int64_t(n);
+          parent[m] = std::int32_t(n);
           q.push({nc, m});
         }
-      });
+      }
     }
     if (reached) {
       const auto link = [&](Index a, Index b) {
