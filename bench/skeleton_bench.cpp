@@ -55,23 +55,35 @@ Run run(const std::string& algorithm, const Mesh& mesh, int repeat, const std::m
   return r;
 }
 
-// The skeleton's ends by the length of their terminal branch (end to the
-// first junction), as fractions of the diagonal: how many are at least 2%,
-// 5%, 10% long.  MCF gives bumps and fingers a short branch each.
-std::string ends_by_length(const Skeleton& s, double diagonal) {
-  const std::vector<std::uint32_t> degree = node_degrees(s);
-  int n2 = 0, n5 = 0, n10 = 0, all = 0;
-  for (const std::vector<Index>& b : skeleton_branches(s)) {
-    if (b.size() < 2 || b.front() == b.back()) continue;
-    const int ends = (degree[b.front()] == 1) + (degree[b.back()] == 1);
-    if (!ends) continue;
-    double length = 0;
-    for (std::size_t k = 1; k < b.size(); ++k) length += norm(s.nodes[b[k]] - s.nodes[b[k - 1]]);
-    length /= diagonal;
-    all += ends, n2 += ends * (length >= 0.02), n5 += ends * (length >= 0.05), n10 += ends * (length >= 0.10);
+// The skeleton's ends once spurs are pruned: terminal branches (an end to a
+// branch node) shorter than `fraction` x the diagonal removed, again and
+// again until none is left (a hand's fingers go, then the arm ends at the
+// hand), so that two skeletons' limbs compare without their bumps.
+int ends_after_pruning(Skeleton s, double fraction, double diagonal) {
+  for (bool changed = true; changed;) {
+    changed = false;
+    const std::vector<std::uint32_t> degree = node_degrees(s);
+    std::vector<std::uint8_t> drop(s.nodes.size(), 0);
+    for (const std::vector<Index>& b : skeleton_branches(s)) {
+      if (b.size() < 2 || b.front() == b.back()) continue;
+      const bool spur = (degree[b.front()] == 1 && degree[b.back()] >= 3) || (degree[b.back()] == 1 && degree[b.front()] >= 3);
+      double length = 0;
+      for (std::size_t k = 1; k < b.size(); ++k) length += norm(s.nodes[b[k]] - s.nodes[b[k - 1]]);
+      if (!spur || length >= fraction * diagonal) continue;
+      for (Index n : b)
+        if (degree[n] < 3) drop[n] = 1;
+      changed = true;
+    }
+    std::erase_if(s.edges, [&](const std::array<Index, 2>& e) { return drop[e[0]] || drop[e[1]]; });
   }
+  const std::vector<std::uint32_t> degree = node_degrees(s);
+  return int(std::count(degree.begin(), degree.end(), 1u));
+}
+
+std::string ends_by_pruning(const Skeleton& s, double diagonal) {
   char buf[96];
-  std::snprintf(buf, sizeof buf, "%d / %d / %d / %d", all, n2, n5, n10);
+  std::snprintf(buf, sizeof buf, "%d / %d / %d / %d", ends_after_pruning(s, 0, diagonal), ends_after_pruning(s, 0.02, diagonal),
+                ends_after_pruning(s, 0.05, diagonal), ends_after_pruning(s, 0.10, diagonal));
   return buf;
 }
 
@@ -133,8 +145,8 @@ int main(int argc, char** argv) {
                 proj.metrics.at("vote_seconds"), proj.metrics.at("thin_seconds"));
     std::printf("%-17s CPU seconds (all threads; less disturbed by the load): MCF %.3f, projection %.3f, ratio %.1fx\n", "",
                 mcf.cpu_seconds, proj.cpu_seconds, mcf.cpu_seconds / proj.cpu_seconds);
-    std::printf("%-17s ends with a terminal branch of any length / >= 2%% / >= 5%% / >= 10%% of the diagonal: MCF %s, projection %s\n",
-                "", ends_by_length(mcf.skeleton, box.diagonal()).c_str(), ends_by_length(proj.skeleton, box.diagonal()).c_str());
+    std::printf("%-17s ends once spurs shorter than 0 / 2%% / 5%% / 10%% of the diagonal are pruned (repeatedly): MCF %s, projection %s\n",
+                "", ends_by_pruning(mcf.skeleton, box.diagonal()).c_str(), ends_by_pruning(proj.skeleton, box.diagonal()).c_str());
     std::fflush(stdout);
   }
   return 0;
