@@ -15,10 +15,12 @@
 #include <vector>
 
 #include "bench_util.h"
+#include "core/mesh_report.h"
 #include "io/mesh_io.h"
 #include "io/samples.h"
 #include "registry/registry.h"
 #include "skeleton/skeleton_metrics.h"
+#include "voxel/voxel_ops.h"
 
 using namespace cgview;
 
@@ -147,6 +149,21 @@ int main(int argc, char** argv) {
                 mcf.cpu_seconds, proj.cpu_seconds, mcf.cpu_seconds / proj.cpu_seconds);
     std::printf("%-17s ends once spurs shorter than 0 / 2%% / 5%% / 10%% of the diagonal are pruned (repeatedly): MCF %s, projection %s\n",
                 "", ends_by_pruning(mcf.skeleton, box.diagonal()).c_str(), ends_by_pruning(proj.skeleton, box.diagonal()).c_str());
+    // Tunnels: the mesh's genus, and those of the vote grid (a run of its
+    // own, keeping the votes), thresholded as the thinning's targets (0.25 x
+    // the most votes) and as its domain (any vote).
+    {
+      const MeshReport report = mesh_report(in.mesh);
+      Context ctx;
+      AlgorithmResult res = find_algorithm("skeleton_projection").run(in.mesh, {{"intermediate", ParamValue(true)}}, ctx);
+      for (const Artifact& a : res.artifacts)
+        if (const auto* g = std::get_if<VoxelGrid>(&a.value); g && a.name == "votes") {
+          const float top = value_range(*g).second;
+          std::printf("%-17s tunnels: mesh genus %lld; vote grid: %zu at >= 0.25 x the most votes, %zu at any vote\n", "",
+                      report.genus ? (long long)*report.genus : -1LL, voxel_topology(threshold(*g, 0.25f * top - 1e-6f)).tunnels,
+                      voxel_topology(threshold(*g, 0.f)).tunnels);
+        }
+    }
     std::fflush(stdout);
   }
   return 0;
