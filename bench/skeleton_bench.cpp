@@ -57,35 +57,10 @@ Run run(const std::string& algorithm, const Mesh& mesh, int repeat, const std::m
   return r;
 }
 
-// The skeleton's ends once spurs are pruned: terminal branches (an end to a
-// branch node) shorter than `fraction` x the diagonal removed, again and
-// again until none is left (a hand's fingers go, then the arm ends at the
-// hand), so that two skeletons' limbs compare without their bumps.
-int ends_after_pruning(Skeleton s, double fraction, double diagonal) {
-  for (bool changed = true; changed;) {
-    changed = false;
-    const std::vector<std::uint32_t> degree = node_degrees(s);
-    std::vector<std::uint8_t> drop(s.nodes.size(), 0);
-    for (const std::vector<Index>& b : skeleton_branches(s)) {
-      if (b.size() < 2 || b.front() == b.back()) continue;
-      const bool spur = (degree[b.front()] == 1 && degree[b.back()] >= 3) || (degree[b.back()] == 1 && degree[b.front()] >= 3);
-      double length = 0;
-      for (std::size_t k = 1; k < b.size(); ++k) length += norm(s.nodes[b[k]] - s.nodes[b[k - 1]]);
-      if (!spur || length >= fraction * diagonal) continue;
-      for (Index n : b)
-        if (degree[n] < 3) drop[n] = 1;
-      changed = true;
-    }
-    std::erase_if(s.edges, [&](const std::array<Index, 2>& e) { return drop[e[0]] || drop[e[1]]; });
-  }
-  const std::vector<std::uint32_t> degree = node_degrees(s);
-  return int(std::count(degree.begin(), degree.end(), 1u));
-}
-
 std::string ends_by_pruning(const Skeleton& s, double diagonal) {
   char buf[96];
-  std::snprintf(buf, sizeof buf, "%d / %d / %d / %d", ends_after_pruning(s, 0, diagonal), ends_after_pruning(s, 0.02, diagonal),
-                ends_after_pruning(s, 0.05, diagonal), ends_after_pruning(s, 0.10, diagonal));
+  std::snprintf(buf, sizeof buf, "%zu / %zu / %zu / %zu", endpoints_after_pruning(s, 0), endpoints_after_pruning(s, 0.02 * diagonal),
+                endpoints_after_pruning(s, 0.05 * diagonal), endpoints_after_pruning(s, 0.10 * diagonal));
   return buf;
 }
 
