@@ -8,6 +8,7 @@
 #include <queue>
 #include <thread>
 
+#include "core/mesh_report.h"
 #include "rays/ray_caster.h"
 #include "registry/registry.h"
 #include "render/renderer.h"
@@ -201,7 +202,8 @@ VoxelGrid vote(const std::vector<render::ViewCapture>& views, const BBox& box, c
   return grid;
 }
 
-Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const ProjectionParams& p) {
+Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const ProjectionParams& p, int max_loops,
+              const std::function<bool(const Vec3&)>& inside) {
   const Lattice L{votes.dims()};
   const std::vector<float>& I = votes.floats();
   const float top = I.empty() ? 0.f : *std::max_element(I.begin(), I.end());
@@ -363,12 +365,46 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
     if (node_of[n] >= 0) voxel_of[std::size_t(node_of[n])] = n;
   std::vector<std::array<Index, 2>> closing;
   std::vector<std::uint8_t> closed(s.nodes.size(), 0);  // ends already used by a loop
-  for (std::size_t e = 0; e < s.nodes.size(); ++e) {
+  // Tunnels (with the solid and its genus): an end looks for a gap twice as
+  // far, through the solid rather than the sparse votes; the gap closes a
+  // loop only if that loop goes around a hole (the fan of triangles from
+  // its centre crosses the outside), and at most `max_loops` gaps close,
+  // shortest first.
+  const bool tunnels = bool(inside) && max_loops >= 0;
+  struct Gap {
+    Index e, n;
+    double d;
+  };
+  std::vector<Gap> gaps;
+  const auto close_gap = [&](Index e, Index n, double reach) {
+    closing.push_back({e, n});
+    // The other end of the same gap closes the same loop: not twice.
+    for (std::size_t f = 0; f < s.nodes.size(); ++f)
+      if (degree[f] == 1 && norm(s.nodes[f] - s.nodes[e]) / vs <= reach) closed[f] = 1;
+  };
+  // Whether the loop (nodes in order) is around a hole: samples of the
+  // triangles from its centre to each of its edges, more than 5% outside.
+  const auto around_a_hole = [&](const std::vector<Vec3>& loop) {
+    Vec3 centre{};
+    for (const Vec3& v : loop) centre += v;
+    centre = centre / double(loop.size());
+    int out = 0, all = 0;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const Vec3& a = loop[k];
+      const Vec3& b = loop[(k + 1) % loop.size()];
+      for (int i = 1; i <= 6; ++i)  // i / 6 of the way from the centre to the edge a b
+        for (int j = 0; j < i; ++j, ++all) out += !inside(centre + (a - centre + (b - a) * (double(j) / i)) * (i / 6.0));
+    }
+    return out > 0.05 * all;
+  };
+  for (std::size_t e = 0; e < s.nodes.size() && !(tunnels && max_loops == 0); ++e) {
     if (degree[e] != 1 || closed[e]) continue;
-    // Twice as far as a branch's covering reaches.
-    const double reach = 2 * (1.5 * thick[voxel_of[e]] + 2);
+    // Twice as far as a branch's covering reaches (four times for tunnels).
+    const double cover = 1.5 * thick[voxel_of[e]] + 2;
+    const double reach = (tunnels ? 4 : 2) * cover;
     // Distances along the skeleton from e (Dijkstra over its edges).
     std::vector<double> g(s.nodes.size(), HUGE_VAL);
+    std::vector<std::int32_t> back(s.nodes.size(), -1);
     using Item = std::pair<double, std::size_t>;
     std::priority_queue<Item, std::vector<Item>, std::greater<>> q;
     q.push({g[e] = 0, e});
@@ -378,8 +414,25 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
       if (c > g[n]) continue;
       for (const std::uint32_t* m = adj.begin(n); m != adj.end(n); ++m) {
         const double nc = c + norm(s.nodes[*m] - s.nodes[n]) / vs;
-        if (nc < g[*m]) q.push({g[*m] = nc, *m});
+        if (nc < g[*m]) q.push({g[*m] = nc, *m}), back[*m] = std::int32_t(n);
       }
+    }
+    if (tunnels) {
+      std::size_t best = e;
+      double best_d = HUGE_VAL;
+      for (std::size_t n = 0; n < s.nodes.size(); ++n) {
+        const double d = norm(s.nodes[n] - s.nodes[e]) / vs;
+        if (d > reach || g[n] < 8 * cover || d >= best_d) continue;
+        // The gap goes through the solid (95% of its samples).
+        int in = 0, all = 0;
+        for (double t = 0; t <= 1; t += 0.25 / std::max(d, 1.0), ++all) in += inside(s.nodes[e] + (s.nodes[n] - s.nodes[e]) * t);
+        if (in < 0.95 * all) continue;
+        std::vector<Vec3> loop;
+        for (std::int64_t m = std::int64_t(n); m >= 0; m = back[std::size_t(m)]) loop.push_back(s.nodes[std::size_t(m)]);
+        if (around_a_hole(loop)) best = n, best_d = d;
+      }
+      if (best != e) gaps.push_back({Index(e), Index(best), best_d});
+      continue;
     }
     std::size_t best = e;
     double best_d = HUGE_VAL;
@@ -399,10 +452,12 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
       if (in >= 0.9 * all) best = n, best_d = d, best_is_end = is_end;
     }
     if (best == e) continue;
-    closing.push_back({Index(e), Index(best)});
-    // The other end of the same gap closes the same loop: not twice.
-    for (std::size_t f = 0; f < s.nodes.size(); ++f)
-      if (degree[f] == 1 && norm(s.nodes[f] - s.nodes[e]) / vs <= reach) closed[f] = 1;
+    close_gap(Index(e), Index(best), reach);
+  }
+  if (tunnels) {
+    std::sort(gaps.begin(), gaps.end(), [](const Gap& a, const Gap& b) { return a.d < b.d; });
+    for (const Gap& c : gaps)
+      if (int(closing.size()) < max_loops && !closed[c.e]) close_gap(c.e, c.n, 2 * (1.5 * thick[voxel_of[c.e]] + 2));
   }
   // Each loop is closed along the ridge of votes: the intensity-driven
   // shortest path between the two voxels, through voted voxels.
@@ -507,6 +562,23 @@ void simplify(Skeleton& s, double merge_length, int iterations, const std::funct
       break;  // branches and degrees changed: look again
     }
   }
+  // A collapse inside a loop can leave a short spur (a node whose two edges
+  // went to the same merged node): terminal branches shorter than
+  // merge_length go (thin keeps none shorter than min_branch otherwise).
+  if (merge_length > 0) {
+    const std::vector<std::uint32_t> degree = node_degrees(s);
+    std::vector<std::uint8_t> drop(s.nodes.size(), 0);
+    for (const std::vector<Index>& b : skeleton_branches(s)) {
+      if (b.size() < 2 || b.front() == b.back()) continue;
+      const bool spur = (degree[b.front()] == 1 && degree[b.back()] >= 3) || (degree[b.back()] == 1 && degree[b.front()] >= 3);
+      double length = 0;
+      for (std::size_t k = 1; k < b.size(); ++k) length += norm(s.nodes[b[k]] - s.nodes[b[k - 1]]);
+      if (!spur || length >= merge_length) continue;
+      for (Index n : b)
+        if (degree[n] < 3) drop[n] = 1;
+    }
+    std::erase_if(s.edges, [&](const std::array<Index, 2>& x) { return drop[x[0]] || drop[x[1]]; });
+  }
   // Drop the nodes no edge uses any more, renumbering.
   {
     std::vector<std::int64_t> keep(s.nodes.size(), -1);
@@ -563,9 +635,13 @@ ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mes
   out.vote_seconds = seconds_since(t);
   if (ctx) ctx->progress(0.8, "thinning");
   t = std::chrono::steady_clock::now();
-  out.skeleton = thin(out.votes, radius, p);
-  // Smoothing may not move a node out of the mesh.
+  // The loops the skeleton may have: the genus of a closed, oriented mesh
+  // (its tunnels), found through the solid; other meshes: as the votes say.
+  const MeshReport report = mesh_report(mesh);
+  out.genus = report.closed && report.oriented && report.genus ? int(*report.genus) : -1;
   const RayCaster caster(mesh);
+  out.skeleton = thin(out.votes, radius, p, out.genus, [&](const Vec3& q) { return caster.inside(q); });
+  // Smoothing may not move a node out of the mesh.
   simplify(out.skeleton, p.merge_distance * box.diagonal(), p.smoothing,
            [&](const Vec3& q) { return caster.inside(q); });
   // A node the votes put outside (a thin part, seen thicker than it is from

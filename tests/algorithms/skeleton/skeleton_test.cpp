@@ -290,6 +290,20 @@ TEST(SkeletonProjection, ManHasMcfsLimbsOnceSpursArePruned) {
   EXPECT_GT(endpoints_after_pruning(mcf, 0), mcf_ends + 5);  // MCF's raw count is mostly spurs
 }
 
+// Loops where the shape has tunnels, as many as its genus: the figure eight
+// (genus 2) gives two, the elephant (genus 3, as MCF's skeleton of it) three,
+// every node inside; man (genus 0) none.
+TEST(SkeletonProjection, LoopsAreTheShapesTunnels) {
+  for (const auto& [name, genus] : std::vector<std::pair<const char*, double>>{{"eight.off", 2}, {"elephant.off", 3}, {"man.off", 0}}) {
+    const Mesh mesh = read_mesh(test::sample(name));
+    const AlgorithmResult res = run_algorithm("skeleton_projection", mesh);
+    const Metrics& m = artifact<Metrics>(res, "metrics");
+    EXPECT_EQ(m.at("loops"), genus) << name << " " << metrics_json_for_test(m);
+    EXPECT_EQ(m.at("inside_fraction"), 1.0) << name;
+    EXPECT_EQ(m.at("components"), 1.0) << name;
+  }
+}
+
 TEST(SkeletonProjection, BadViewCounts) {
   const Mesh sphere = test::uv_sphere();
   for (long long views : {0LL, 3LL, 2000LL}) {
