@@ -6,15 +6,21 @@
 // skeletons (fractions of the mesh's bounding box diagonal).
 //
 //   build/bin/skeleton_bench [--repeat N] [--quick] [--only elephant,...,big]
+//                            [--proj NAME=VALUE]...  (skeleton_projection's parameters)
+#include <algorithm>
 #include <cstdio>
+#include <ctime>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "bench_util.h"
+#include "core/mesh_report.h"
 #include "io/mesh_io.h"
 #include "io/samples.h"
 #include "registry/registry.h"
 #include "skeleton/skeleton_metrics.h"
+#include "voxel/voxel_ops.h"
 
 using namespace cgview;
 
@@ -31,27 +37,57 @@ Mesh sample(const std::string& name) {
 
 struct Run {
   double seconds = 0;
+  double cpu_seconds = 1e300;  // the process's CPU time (all threads), least over the runs
   Skeleton skeleton;
   Metrics metrics;
 };
 
-Run run(const std::string& algorithm, const Mesh& mesh, int repeat) {
+Run run(const std::string& algorithm, const Mesh& mesh, int repeat, const std::map<std::string, ParamValue>& params = {}) {
   Run r;
   r.seconds = bench::best_seconds(repeat, [&] {
+    const std::clock_t c0 = std::clock();
     Context ctx;
-    AlgorithmResult res = find_algorithm(algorithm).run(mesh, {}, ctx);
+    AlgorithmResult res = find_algorithm(algorithm).run(mesh, params, ctx);
     for (Artifact& a : res.artifacts) {
       if (auto* s = std::get_if<Skeleton>(&a.value)) r.skeleton = std::move(*s);
       if (auto* m = std::get_if<Metrics>(&a.value)) r.metrics = std::move(*m);
     }
+    r.cpu_seconds = std::min(r.cpu_seconds, double(std::clock() - c0) / CLOCKS_PER_SEC);
   });
   return r;
+}
+
+std::string ends_by_pruning(const Skeleton& s, double diagonal) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%zu / %zu / %zu / %zu", endpoints_after_pruning(s, 0), endpoints_after_pruning(s, 0.02 * diagonal),
+                endpoints_after_pruning(s, 0.05 * diagonal), endpoints_after_pruning(s, 0.10 * diagonal));
+  return buf;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bench::Options opt = bench::parse_options(argc, argv, "skeleton_bench");
+  // --proj NAME=VALUE sets a parameter of skeleton_projection; the rest are
+  // the common options.
+  std::map<std::string, ParamValue> proj_params;
+  std::vector<char*> rest{argv[0]};
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--proj" && i + 1 < argc) {
+      const std::string kv = argv[++i];
+      const std::size_t eq = kv.find('=');
+      const auto& specs = find_algorithm("skeleton_projection").params;
+      const auto spec = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& s) { return s.name == kv.substr(0, eq); });
+      if (eq == std::string::npos || spec == specs.end()) {
+        std::fprintf(stderr, "skeleton_bench: --proj %s: not a parameter of skeleton_projection\n", kv.c_str());
+        return 2;
+      }
+      proj_params[spec->name] = parse_param(*spec, kv.substr(eq + 1));
+    } else {
+      rest.push_back(argv[i]);
+    }
+  }
+  const bench::Options opt = bench::parse_options(int(rest.size()), rest.data(), "skeleton_bench");
   struct Input {
     std::string name;
     Mesh mesh;
@@ -68,7 +104,7 @@ int main(int argc, char** argv) {
   for (const Input& in : inputs) {
     const bool big = in.mesh.faces.size() > 500000;
     const Run mcf = run("skeleton_mcf", in.mesh, big ? 1 : opt.repeat);
-    const Run proj = run("skeleton_projection", in.mesh, big ? 1 : opt.repeat);
+    const Run proj = run("skeleton_projection", in.mesh, big ? 1 : opt.repeat, proj_params);
     BBox box;
     for (const Vec3& p : in.mesh.positions) box.add(p);
     const SkeletonDistance d = skeleton_distance(mcf.skeleton, proj.skeleton);
@@ -84,6 +120,25 @@ int main(int argc, char** argv) {
     std::printf("%-17s centredness mean: MCF %.3f, projection %.3f; projection stages: render %.3f s, votes %.3f s, thinning %.3f s\n",
                 "", mcf.metrics.at("centredness_mean"), proj.metrics.at("centredness_mean"), proj.metrics.at("render_seconds"),
                 proj.metrics.at("vote_seconds"), proj.metrics.at("thin_seconds"));
+    std::printf("%-17s CPU seconds (all threads; less disturbed by the load): MCF %.3f, projection %.3f, ratio %.1fx\n", "",
+                mcf.cpu_seconds, proj.cpu_seconds, mcf.cpu_seconds / proj.cpu_seconds);
+    std::printf("%-17s ends once spurs shorter than 0 / 2%% / 5%% / 10%% of the diagonal are pruned (repeatedly): MCF %s, projection %s\n",
+                "", ends_by_pruning(mcf.skeleton, box.diagonal()).c_str(), ends_by_pruning(proj.skeleton, box.diagonal()).c_str());
+    // Tunnels: the mesh's genus, and those of the vote grid (a run of its
+    // own, keeping the votes), thresholded as the thinning's targets (0.25 x
+    // the most votes) and as its domain (any vote).
+    {
+      const MeshReport report = mesh_report(in.mesh);
+      Context ctx;
+      AlgorithmResult res = find_algorithm("skeleton_projection").run(in.mesh, {{"intermediate", ParamValue(true)}}, ctx);
+      for (const Artifact& a : res.artifacts)
+        if (const auto* g = std::get_if<VoxelGrid>(&a.value); g && a.name == "votes") {
+          const float top = value_range(*g).second;
+          std::printf("%-17s tunnels: mesh genus %lld; vote grid: %zu at >= 0.25 x the most votes, %zu at any vote\n", "",
+                      report.genus ? (long long)*report.genus : -1LL, voxel_topology(threshold(*g, 0.25f * top - 1e-6f)).tunnels,
+                      voxel_topology(threshold(*g, 0.f)).tunnels);
+        }
+    }
     std::fflush(stdout);
   }
   return 0;

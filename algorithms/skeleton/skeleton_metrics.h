@@ -39,6 +39,12 @@ SkeletonMetrics skeleton_shape_metrics(const Skeleton& s);
 // As a metrics table (the names above).
 Metrics metrics_table(const SkeletonMetrics& m);
 
+// The endpoints once spurs are pruned: terminal branches (from an end to a
+// branch node) shorter than `length` removed, again until none is left (a
+// hand's fingers go, then the arm ends at the hand), so that skeletons with
+// and without bumps compare by their limbs.
+std::size_t endpoints_after_pruning(Skeleton s, double length);
+
 struct SkeletonDistance {
   double hausdorff = 0, mean = 0;
 };

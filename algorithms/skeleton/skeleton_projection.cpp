@@ -8,6 +8,7 @@
 #include <queue>
 #include <thread>
 
+#include "core/mesh_report.h"
 #include "rays/ray_caster.h"
 #include "registry/registry.h"
 #include "render/renderer.h"
@@ -48,6 +49,17 @@ struct Lattice {
   std::size_t at(int i, int j, int k) const { return std::size_t(i) + std::size_t(d[0]) * (std::size_t(j) + std::size_t(d[1]) * k); }
   std::array<int, 3> ijk(std::size_t n) const {
     return {int(n % d[0]), int((n / d[0]) % d[1]), int(n / (std::size_t(d[0]) * d[1]))};
+  }
+  // The 26 neighbours as linear offsets (with steps26's lengths), for
+  // voxels off the grid's border.
+  std::vector<std::ptrdiff_t> offsets() const {
+    std::vector<std::ptrdiff_t> o;
+    for (const Step& s : steps26()) o.push_back(s.di + std::ptrdiff_t(d[0]) * (s.dj + std::ptrdiff_t(d[1]) * s.dk));
+    return o;
+  }
+  bool on_border(std::size_t n) const {
+    const auto [i, j, k] = ijk(n);
+    return i == 0 || j == 0 || k == 0 || i == d[0] - 1 || j == d[1] - 1 || k == d[2] - 1;
   }
   // Calls f(neighbour, step length) for the in-grid 26-neighbours.
   template <class F>
@@ -135,7 +147,6 @@ VoxelGrid vote(const std::vector<render::ViewCapture>& views, const BBox& box, c
   auto work = [&](int t) {
     std::vector<float>& acc = partial[t];
     std::vector<float>& acc_radius = partial_radius[t];
-    std::vector<std::size_t> seen;
     for (std::size_t v = std::size_t(t); v < views.size(); v += std::size_t(threads)) {
       if (t == 0 && ctx && ctx->cancelled()) return;
       const render::ViewCapture& a = views[v];
@@ -158,13 +169,15 @@ VoxelGrid vote(const std::vector<render::ViewCapture>& views, const BBox& box, c
             const Vec3 exit = b.camera.unproject(q.x, q.y, b.depth[std::size_t(by) * w + bx]);
             length = std::min(length, std::max(0.0, dot(exit - entry, dir)));
           }
-          seen.clear();
+          // A straight ray leaves a voxel for good: a sample in the voxel of
+          // the one before is the same vote.
+          std::size_t last = SIZE_MAX;
           for (double s = 0; s <= length; s += vs / 2) {
             const VoxelIndex c = grid.locate(entry + dir * s);
             if (!grid.contains(c)) continue;
             const std::size_t n = grid.linear(c);
-            if (std::find(seen.begin(), seen.end(), n) != seen.end()) continue;
-            seen.push_back(n);
+            if (n == last) continue;
+            last = n;
             acc[n] += 1.f;
             if (radius) acc_radius[n] += float(radius_world);
           }
@@ -189,7 +202,8 @@ VoxelGrid vote(const std::vector<render::ViewCapture>& views, const BBox& box, c
   return grid;
 }
 
-Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const ProjectionParams& p) {
+Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const ProjectionParams& p, int max_loops,
+              const std::function<bool(const Vec3&)>& inside) {
   const Lattice L{votes.dims()};
   const std::vector<float>& I = votes.floats();
   const float top = I.empty() ? 0.f : *std::max_element(I.begin(), I.end());
@@ -198,10 +212,21 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   // The domain: every voted voxel (the inside, as far as the views tell);
   // the targets: the voxels voted enough, which branches must reach.
   std::vector<std::uint8_t> mask(L.size(), 0), target(L.size(), 0);
+  // The mask leaves the grid's border out (votes fall inside the bounding
+  // box, a voxel in from the border), so that the paths below step by
+  // linear offsets.
   for (std::size_t n = 0; n < L.size(); ++n) {
-    mask[n] = I[n] > 0;
+    if (!(I[n] > 0) || L.on_border(n)) continue;
+    mask[n] = 1;
     target[n] = I[n] >= p.threshold * top;
   }
+  // The intensity weight of a step onto a voxel.
+  const auto r2 = [&](std::size_t m) {
+    const double r = I[m] / top + 0.01;
+    return r * r;
+  };
+  const std::vector<std::ptrdiff_t> offset = L.offsets();
+  const std::vector<Step>& step = steps26();
   const double vs = votes.voxel_size();
   // The local radius of the shape, in voxels: the mean radius of the medial
   // discs that voted for the voxel (the vote set itself is thinner).
@@ -211,12 +236,12 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   const double diagonal = norm(ext);
   const double min_branch = p.min_branch * diagonal / vs;  // in voxels
 
-  std::vector<std::int64_t> node_of(L.size(), -1);  // skeleton node of a voxel
+  std::vector<std::int32_t> node_of(L.size(), -1);  // skeleton node of a voxel (grids up to 512³ fit 32 bits)
   // A node sits at the vote-weighted centre of its voxel's 3x3x3
   // neighbourhood: off the voxel lattice, towards the ridge of votes.
   const auto node = [&](std::size_t n) {
     if (node_of[n] < 0) {
-      node_of[n] = std::int64_t(s.nodes.size());
+      node_of[n] = std::int32_t(s.nodes.size());
       Vec3 sum = votes.center(votes.unlinear(n)) * double(I[n]);
       double weight = I[n];
       L.neighbours(n, [&](std::size_t m, double) {
@@ -229,8 +254,8 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   };
   std::vector<std::uint8_t> done(L.size(), 0);  // voxels of components already processed
   std::vector<double> cost(L.size(), HUGE_VAL), along(L.size(), 0);
-  std::vector<std::int64_t> parent(L.size(), -1);
-  std::vector<std::uint8_t> covered(L.size(), 0);
+  std::vector<std::int32_t> parent(L.size(), -1);
+  std::vector<std::uint8_t> covered(L.size(), 0), seen(L.size(), 0);
 
   // Components in order of their most voted voxel.
   std::vector<std::size_t> order;
@@ -239,29 +264,48 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return I[a] > I[b]; });
   for (std::size_t root : order) {
     if (done[root]) continue;
+    // The component's targets, counted (a breadth-first walk is cheaper than
+    // the shortest paths): those stop once every target has its path, as
+    // only the targets' paths are used, leaving the weakly voted rim of the
+    // votes unvisited.
+    std::size_t targets = 0;
+    {
+      std::vector<std::size_t> stack{root};
+      seen[root] = 1;
+      while (!stack.empty()) {
+        const std::size_t n = stack.back();
+        stack.pop_back();
+        targets += target[n];
+        for (std::size_t k = 0; k < 26; ++k) {
+          const std::size_t m = std::size_t(std::ptrdiff_t(n) + offset[k]);
+          if (mask[m] && !seen[m]) seen[m] = 1, stack.push_back(m);
+        }
+      }
+    }
     // Intensity-driven shortest paths from the root over the component.
     std::vector<std::size_t> members;
     using Item = std::pair<double, std::size_t>;
     std::priority_queue<Item, std::vector<Item>, std::greater<>> q;
     cost[root] = 0;
     q.push({0, root});
-    while (!q.empty()) {
+    while (!q.empty() && members.size() < targets) {
       const auto [c, n] = q.top();
       q.pop();
       if (c > cost[n] || done[n]) continue;
       done[n] = 1;
       if (target[n]) members.push_back(n);
-      L.neighbours(n, [&](std::size_t m, double len) {
-        if (!mask[m] || done[m]) return;
-        const double r = I[m] / top + 0.01;
-        const double nc = c + len / (r * r);
+      for (std::size_t k = 0; k < 26; ++k) {
+        const std::size_t m = std::size_t(std::ptrdiff_t(n) + offset[k]);
+        if (!mask[m] || done[m]) continue;
+        const double len = step[k].length;
+        const double nc = c + len / r2(m);
         if (nc < cost[m]) {
           cost[m] = nc;
-          parent[m] = std::int64_t(n);
+          parent[m] = std::int32_t(n);
           along[m] = along[n] + len;
           q.push({nc, m});
         }
-      });
+      }
     }
     if (members.size() < 8) continue;  // a speck of votes
     // TEASAR: the farthest uncovered voxel gives a branch, back to the skeleton.
@@ -296,9 +340,16 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
         const int r = int(std::ceil(1.5 * thick[v])) + 2;
         const auto [i, j, k] = L.ijk(v);
         for (int c = std::max(0, k - r); c <= std::min(L.d[2] - 1, k + r); ++c)
-          for (int b = std::max(0, j - r); b <= std::min(L.d[1] - 1, j + r); ++b)
-            for (int a = std::max(0, i - r); a <= std::min(L.d[0] - 1, i + r); ++a)
-              if ((a - i) * (a - i) + (b - j) * (b - j) + (c - k) * (c - k) <= r * r) covered[L.at(a, b, c)] = 1;
+          for (int b = std::max(0, j - r); b <= std::min(L.d[1] - 1, j + r); ++b) {
+            // The ball's row: |a - i| <= the integer square root of what is left.
+            const int left = r * r - (b - j) * (b - j) - (c - k) * (c - k);
+            if (left < 0) continue;
+            int dx = int(std::sqrt(double(left)));
+            while (dx * dx > left) --dx;
+            while ((dx + 1) * (dx + 1) <= left) ++dx;
+            const int a0 = std::max(0, i - dx), a1 = std::min(L.d[0] - 1, i + dx);
+            std::fill(covered.begin() + std::ptrdiff_t(L.at(a0, b, c)), covered.begin() + std::ptrdiff_t(L.at(a1, b, c)) + 1, 1);
+          }
       }
       covered[far] = 1;
     }
@@ -314,12 +365,46 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
     if (node_of[n] >= 0) voxel_of[std::size_t(node_of[n])] = n;
   std::vector<std::array<Index, 2>> closing;
   std::vector<std::uint8_t> closed(s.nodes.size(), 0);  // ends already used by a loop
-  for (std::size_t e = 0; e < s.nodes.size(); ++e) {
+  // Tunnels (with the solid and its genus): an end looks for a gap twice as
+  // far, through the solid rather than the sparse votes; the gap closes a
+  // loop only if that loop goes around a hole (the fan of triangles from
+  // its centre crosses the outside), and at most `max_loops` gaps close,
+  // shortest first.
+  const bool tunnels = bool(inside) && max_loops >= 0;
+  struct Gap {
+    Index e, n;
+    double d;
+  };
+  std::vector<Gap> gaps;
+  const auto close_gap = [&](Index e, Index n, double reach) {
+    closing.push_back({e, n});
+    // The other end of the same gap closes the same loop: not twice.
+    for (std::size_t f = 0; f < s.nodes.size(); ++f)
+      if (degree[f] == 1 && norm(s.nodes[f] - s.nodes[e]) / vs <= reach) closed[f] = 1;
+  };
+  // Whether the loop (nodes in order) is around a hole: samples of the
+  // triangles from its centre to each of its edges, more than 5% outside.
+  const auto around_a_hole = [&](const std::vector<Vec3>& loop) {
+    Vec3 centre{};
+    for (const Vec3& v : loop) centre += v;
+    centre = centre / double(loop.size());
+    int out = 0, all = 0;
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const Vec3& a = loop[k];
+      const Vec3& b = loop[(k + 1) % loop.size()];
+      for (int i = 1; i <= 6; ++i)  // i / 6 of the way from the centre to the edge a b
+        for (int j = 0; j < i; ++j, ++all) out += !inside(centre + (a - centre + (b - a) * (double(j) / i)) * (i / 6.0));
+    }
+    return out > 0.05 * all;
+  };
+  for (std::size_t e = 0; e < s.nodes.size() && !(tunnels && max_loops == 0); ++e) {
     if (degree[e] != 1 || closed[e]) continue;
-    // Twice as far as a branch's covering reaches.
-    const double reach = 2 * (1.5 * thick[voxel_of[e]] + 2);
+    // Twice as far as a branch's covering reaches (four times for tunnels).
+    const double cover = 1.5 * thick[voxel_of[e]] + 2;
+    const double reach = (tunnels ? 4 : 2) * cover;
     // Distances along the skeleton from e (Dijkstra over its edges).
     std::vector<double> g(s.nodes.size(), HUGE_VAL);
+    std::vector<std::int32_t> back(s.nodes.size(), -1);
     using Item = std::pair<double, std::size_t>;
     std::priority_queue<Item, std::vector<Item>, std::greater<>> q;
     q.push({g[e] = 0, e});
@@ -329,8 +414,25 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
       if (c > g[n]) continue;
       for (const std::uint32_t* m = adj.begin(n); m != adj.end(n); ++m) {
         const double nc = c + norm(s.nodes[*m] - s.nodes[n]) / vs;
-        if (nc < g[*m]) q.push({g[*m] = nc, *m});
+        if (nc < g[*m]) q.push({g[*m] = nc, *m}), back[*m] = std::int32_t(n);
       }
+    }
+    if (tunnels) {
+      std::size_t best = e;
+      double best_d = HUGE_VAL;
+      for (std::size_t n = 0; n < s.nodes.size(); ++n) {
+        const double d = norm(s.nodes[n] - s.nodes[e]) / vs;
+        if (d > reach || g[n] < 8 * cover || d >= best_d) continue;
+        // The gap goes through the solid (95% of its samples).
+        int in = 0, all = 0;
+        for (double t = 0; t <= 1; t += 0.25 / std::max(d, 1.0), ++all) in += inside(s.nodes[e] + (s.nodes[n] - s.nodes[e]) * t);
+        if (in < 0.95 * all) continue;
+        std::vector<Vec3> loop;
+        for (std::int64_t m = std::int64_t(n); m >= 0; m = back[std::size_t(m)]) loop.push_back(s.nodes[std::size_t(m)]);
+        if (around_a_hole(loop)) best = n, best_d = d;
+      }
+      if (best != e) gaps.push_back({Index(e), Index(best), best_d});
+      continue;
     }
     std::size_t best = e;
     double best_d = HUGE_VAL;
@@ -350,10 +452,12 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
       if (in >= 0.9 * all) best = n, best_d = d, best_is_end = is_end;
     }
     if (best == e) continue;
-    closing.push_back({Index(e), Index(best)});
-    // The other end of the same gap closes the same loop: not twice.
-    for (std::size_t f = 0; f < s.nodes.size(); ++f)
-      if (degree[f] == 1 && norm(s.nodes[f] - s.nodes[e]) / vs <= reach) closed[f] = 1;
+    close_gap(Index(e), Index(best), reach);
+  }
+  if (tunnels) {
+    std::sort(gaps.begin(), gaps.end(), [](const Gap& a, const Gap& b) { return a.d < b.d; });
+    for (const Gap& c : gaps)
+      if (int(closing.size()) < max_loops && !closed[c.e]) close_gap(c.e, c.n, 2 * (1.5 * thick[voxel_of[c.e]] + 2));
   }
   // Each loop is closed along the ridge of votes: the intensity-driven
   // shortest path between the two voxels, through voted voxels.
@@ -376,17 +480,17 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
         reached = true;
         break;
       }
-      L.neighbours(n, [&](std::size_t m, double len) {
-        if (!mask[m]) return;
-        const double r = I[m] / top + 0.01;
-        const double nc = cn + len / (r * r);
+      for (std::size_t k = 0; k < 26; ++k) {
+        const std::size_t m = std::size_t(std::ptrdiff_t(n) + offset[k]);
+        if (!mask[m]) continue;
+        const double nc = cn + step[k].length / r2(m);
         if (nc < cost[m]) {
           if (cost[m] == HUGE_VAL) touched.push_back(m);
           cost[m] = nc;
-          parent[m] = std::int64_t(n);
+          parent[m] = std::int32_t(n);
           q.push({nc, m});
         }
-      });
+      }
     }
     if (reached) {
       const auto link = [&](Index a, Index b) {
@@ -458,6 +562,23 @@ void simplify(Skeleton& s, double merge_length, int iterations, const std::funct
       break;  // branches and degrees changed: look again
     }
   }
+  // A collapse inside a loop can leave a short spur (a node whose two edges
+  // went to the same merged node): terminal branches shorter than
+  // merge_length go (thin keeps none shorter than min_branch otherwise).
+  if (merge_length > 0) {
+    const std::vector<std::uint32_t> degree = node_degrees(s);
+    std::vector<std::uint8_t> drop(s.nodes.size(), 0);
+    for (const std::vector<Index>& b : skeleton_branches(s)) {
+      if (b.size() < 2 || b.front() == b.back()) continue;
+      const bool spur = (degree[b.front()] == 1 && degree[b.back()] >= 3) || (degree[b.back()] == 1 && degree[b.front()] >= 3);
+      double length = 0;
+      for (std::size_t k = 1; k < b.size(); ++k) length += norm(s.nodes[b[k]] - s.nodes[b[k - 1]]);
+      if (!spur || length >= merge_length) continue;
+      for (Index n : b)
+        if (degree[n] < 3) drop[n] = 1;
+    }
+    std::erase_if(s.edges, [&](const std::array<Index, 2>& x) { return drop[x[0]] || drop[x[1]]; });
+  }
   // Drop the nodes no edge uses any more, renumbering.
   {
     std::vector<std::int64_t> keep(s.nodes.size(), -1);
@@ -514,9 +635,13 @@ ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mes
   out.vote_seconds = seconds_since(t);
   if (ctx) ctx->progress(0.8, "thinning");
   t = std::chrono::steady_clock::now();
-  out.skeleton = thin(out.votes, radius, p);
-  // Smoothing may not move a node out of the mesh.
+  // The loops the skeleton may have: the genus of a closed, oriented mesh
+  // (its tunnels), found through the solid; other meshes: as the votes say.
+  const MeshReport report = mesh_report(mesh);
+  out.genus = report.closed && report.oriented && report.genus ? int(*report.genus) : -1;
   const RayCaster caster(mesh);
+  out.skeleton = thin(out.votes, radius, p, out.genus, [&](const Vec3& q) { return caster.inside(q); });
+  // Smoothing may not move a node out of the mesh.
   simplify(out.skeleton, p.merge_distance * box.diagonal(), p.smoothing,
            [&](const Vec3& q) { return caster.inside(q); });
   // A node the votes put outside (a thin part, seen thicker than it is from

@@ -24,7 +24,8 @@
 //     branches pruned), and the voxels within 1.5 x the local radius (the
 //     medial discs' that voted) around it are covered; then loops: two skeleton voxels joined
 //     through voted voxels but far apart along the skeleton close a loop
-//     (a tunnel of the shape);
+//     (a tunnel of the shape); for a closed mesh, gaps through the solid
+//     whose loop goes around a hole, at most its genus (see thin);
 // (e) simplify: internal arcs shorter than `merge_distance` collapsed (branch
 //     nodes that are too close merged), then endpoint-preserving Laplacian
 //     smoothing of the nodes inside branches, which frees them from voxel
@@ -82,7 +83,13 @@ VoxelGrid vote(const std::vector<render::ViewCapture>& views, const BBox& box, c
 // (d) The skeleton of the vote grid, nodes at voxel centres; `radius` (from
 // vote) sets how far a branch covers the voxels around it (1.5 x the radius
 // + 2 voxels, as TEASAR) and how far an end looks to close a loop.
-Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const ProjectionParams& p);
+// With `inside` (the solid) and `max_loops` >= 0 (its genus), loops are
+// tunnels: an end looks twice as far for a gap through the solid, the gap
+// closes a loop only if that loop goes around a hole (the triangles from its
+// centre to its edges cross the outside), and at most max_loops gaps close,
+// shortest first; otherwise a gap through voted voxels closes one.
+Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const ProjectionParams& p, int max_loops = -1,
+              const std::function<bool(const Vec3&)>& inside = {});
 
 // (e) Collapses internal arcs shorter than `merge_length` and smooths; a
 // smoothing step that would take a node where `allowed` says no (outside the
@@ -97,6 +104,7 @@ struct ProjectionResult {
   VoxelGrid votes;
   std::vector<std::uint8_t> first_view;  // 0 outside, 1 inside, 2 medial axis; image x image, rows from the top
   double render_seconds = 0, vote_seconds = 0, thin_seconds = 0;  // vote: medial axes and votes
+  int genus = -1;  // the mesh's, which bounds the loops; -1: not a closed, oriented mesh
 };
 ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mesh& mesh, const ProjectionParams& p,
                                            const Context* ctx = nullptr);

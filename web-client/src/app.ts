@@ -176,7 +176,13 @@ export class App {
   private readonly skeletons = new Map<string, { object: THREE.Object3D; data: SkeletonData; color: string; nodes: number; edges: number }>();
   /** skeleton_distance jobs submitted for the comparison table, by `${first key}|${other key}`. */
   private readonly distanceJobs = new Map<string, string>();
-  private readonly skeletonsPanel = new SkeletonsPanel(byId('skeletons'), () => void this.compareSkeletons());
+  private readonly skeletonsPanel = new SkeletonsPanel(
+    byId('skeletons'),
+    () => void this.compareSkeletons(),
+    (file) => void this.loadSkeletonFile(file),
+  );
+  /** skeleton_file jobs from "Load skeleton file…": their skeleton is drawn when done. */
+  private readonly drawWhenDone = new Set<string>();
   /** A job's output mesh that the next job runs on ("Run on this"), instead of the selected mesh. */
   private runTarget: { jobId: string; artifact: string; kind: string } | null = null;
   /** The scalar field drawn now (or being prepared: token). */
@@ -503,12 +509,17 @@ export class App {
         const field = merged.artifacts?.find((a) => a.kind === 'scalar_field');
         if (field) void this.showField(merged.id, field.name);
       }
+      if (this.drawWhenDone.delete(merged.id)) {
+        const skeleton = merged.artifacts?.find((a) => a.kind === 'skeleton');
+        if (skeleton && !this.skeletons.has(`${merged.id}/${skeleton.name}`)) void this.toggleSkeleton(merged.id, skeleton.name);
+      }
     } else if (merged.state === 'failed' && this.autoShow.has(merged.id)) {
       this.autoShow.delete(merged.id);
       this.error(`${merged.algorithm} failed: ${merged.error ?? 'no reason given'}`);
     } else if (App.FINAL.has(merged.state)) {
       this.autoShow.delete(merged.id);
     }
+    if (merged.state !== 'done' && App.FINAL.has(merged.state)) this.drawWhenDone.delete(merged.id);
     if (render) this.renderJobs();
   }
 
@@ -620,6 +631,7 @@ export class App {
           distance,
         };
       }),
+      this.selectedMesh() !== null,
     );
   }
 
@@ -728,6 +740,27 @@ export class App {
       this.renderJobs();
     } catch (e) {
       this.error(`Cannot show ${artifactName} of ${job.algorithm}: ${describe(e)}`);
+    }
+  }
+
+  /**
+   * "Load skeleton file…": the file's text goes to a skeleton_file job on the
+   * shown mesh (the server parses it: a bad file is refused naming its line),
+   * whose skeleton is drawn when it is done, measured and compared as any.
+   */
+  async loadSkeletonFile(file: File): Promise<void> {
+    const mesh = this.selectedMesh();
+    if (!mesh) return this.error('Choose a mesh first: a skeleton file is attached to the mesh shown.');
+    try {
+      const job = await submitJob('skeleton_file', { mesh: mesh.id }, { name: file.name, text: await file.text() });
+      this.drawWhenDone.add(job.id);
+      // A job_done event may have come before this answer: upsertJob keeps the
+      // later state, and a job done already is drawn now.
+      this.upsertJob(job);
+      const now = this.jobs.get(job.id);
+      if (now?.state === 'done' && this.drawWhenDone.has(job.id)) this.upsertJob(now);
+    } catch (e) {
+      this.error(`Cannot load the skeleton file ${file.name}: ${describe(e)}`);
     }
   }
 

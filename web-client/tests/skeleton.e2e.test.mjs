@@ -2,13 +2,17 @@
 // paper's skeleton from projections and CGAL's MCF skeleton of the elephant,
 // run from the algorithm form, drawn over the mesh at once in two colours
 // (the paper's Figure 5), compared in a table and side by side in two
-// synchronized panes, then one hidden again. The canvas is kept in
-// build/test-artifacts/e2e-skeletons-*.png.
+// synchronized panes, then one hidden again; then a skeleton file (.cg,
+// written here from MCF's skeleton, moved off it) loaded with "Load skeleton
+// file…" and drawn, and a malformed one refused naming its line. The canvas
+// is kept in build/test-artifacts/e2e-skeletons-*.png.
 //
 // Environment: CGVIEW_SERVER (default build/bin/cgview-server),
 // CHROMIUM (default /usr/bin/chromium).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import os from 'node:os';
 import path from 'node:path';
 import { artifactsDir as artifacts, useViewer, pngPixels, repo } from './harness.mjs';
 
@@ -115,4 +119,55 @@ test('two skeletons of the elephant drawn at once, each in its colour, then one 
   assert.ok(countColour(pixels2, hidden.color) < 20, `the hidden skeleton is gone: ${countColour(pixels2, hidden.color)} pixels of ${hidden.color}`);
   assert.ok(countColour(pixels2, left.color) > 200, 'the other stays');
   assert.deepEqual(v.problems, [], v.describeProblems());
+});
+
+test('a skeleton file chosen with "Load skeleton file…" is attached to the mesh and drawn', async () => {
+  // The file: MCF's skeleton of the elephant from the first test, as the .cg
+  // text of the mesh-contraction tools (1-based), written here, its nodes
+  // moved a little so that it is not the skeleton the server has already.
+  const { jobs } = await (await fetch(`${v.server.url}/api/v1/jobs`)).json();
+  const mcfJob = jobs.find((j) => j.algorithm === 'skeleton_mcf' && j.state === 'done');
+  assert.ok(mcfJob, 'the first test made an MCF skeleton');
+  const source = await (await fetch(`${v.server.url}/api/v1/jobs/${mcfJob.id}/artifacts/skeleton?format=json`)).json();
+  const nodes = source.nodes.map(([x, y, z]) => [x * 0.999, y * 0.999, z * 0.999]);
+  const cg = [`# D:3 NV:${nodes.length} NE:${source.edges.length}`, ...nodes.map((p) => `v ${p.join(' ')}`), ...source.edges.map(([a, b]) => `e ${a + 1} ${b + 1}`)];
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'cgview-e2e-skeleton-file-'));
+  const file = path.join(dir, 'elephant_tool.cg');
+  fs.writeFileSync(file, cg.join('\n') + '\n');
+  const before = await v.page.evaluate(() => window.__cgview.skeletons.map((s) => s.key));
+
+  await v.page.locator('#skeletons button.load-skeleton').waitFor();
+  await v.page.setInputFiles('#skeleton-file-input', file);
+  const li = v.page.locator('#jobs li.job[data-algorithm="skeleton_file"][data-state="done"]').first();
+  await li.waitFor({ timeout: 60000 }).catch((e) => {
+    throw new Error(`skeleton_file never showed done: ${e.message}${v.describeProblems()}\n${v.server.log()}`);
+  });
+  const jobId = await li.getAttribute('data-job-id');
+  await v.page.waitForFunction((n) => window.__cgview.skeletons.length === n, before.length + 1, { timeout: 30000 });
+  const drawn = (await v.page.evaluate(() => window.__cgview.skeletons)).find((s) => !before.includes(s.key));
+  assert.equal(drawn.key, `${jobId}/skeleton`);
+  assert.equal(drawn.nodes, nodes.length, 'every node of the file is drawn');
+  assert.equal(drawn.edges, source.edges.length, 'every edge of the file is drawn');
+  // It was sent to the server as the file: the job's parameters are its name and text.
+  const job = await (await fetch(`${v.server.url}/api/v1/jobs/${jobId}`)).json();
+  assert.equal(job.params.name, 'elephant_tool.cg');
+  // Its column in the comparison table, with the measures of its job.
+  const table = v.page.locator('#skeletons table.skeleton-table');
+  await table.locator(`th[data-skeleton="${jobId}/skeleton"]`).waitFor({ timeout: 30000 });
+  const png = await v.page.locator('#viewport canvas').screenshot({ path: path.join(artifacts, 'e2e-skeletons-file.png') });
+  assert.ok(countColour(await pngPixels(v.page, png), drawn.color) > 200, `the file's skeleton is drawn in ${drawn.color}`);
+
+  // A malformed file: refused, the page says which line, nothing drawn.
+  const bad = path.join(dir, 'broken.cg');
+  fs.writeFileSync(bad, '# D:3 NV:2 NE:1\nv 0 0 0\nv 1 0 0\ne 1 7\n');
+  const count = before.length + 1;
+  await v.page.setInputFiles('#skeleton-file-input', bad);
+  const message = v.page.locator('#messages .message.error', { hasText: 'broken.cg' });
+  await message.waitFor({ timeout: 30000 });
+  assert.match(await message.innerText(), /line 4/);
+  assert.equal(await v.page.evaluate(() => window.__cgview.skeletons.length), count);
+  // The refusal (the 400 and the browser's console line about it) is the one error of this test.
+  const problems = v.problems.splice(0);
+  assert.ok(problems.length > 0 && problems.every((p) => /400.*\/api\/v1\/jobs/.test(p)), problems.join('\n'));
+  fs.rmSync(dir, { recursive: true, force: true });
 });

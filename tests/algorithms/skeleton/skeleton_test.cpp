@@ -134,6 +134,25 @@ TEST(SkeletonMetrics, CircleInsideATorus) {
   EXPECT_DOUBLE_EQ(skeleton_metrics(circle(R + 2 * r, 64), torus).inside_fraction, 0.0);
 }
 
+// A body (two legs) and an arm whose hand has three short fingers.
+TEST(SkeletonMetrics, PruningSpursKeepsTheLimbs) {
+  Skeleton s;
+  const auto add = [&](Vec3 p) {
+    s.nodes.push_back(p);
+    return Index(s.nodes.size() - 1);
+  };
+  const Index body = add({0, 0, 0}), left = add({-5, -5, 0}), right = add({5, -5, 0});
+  const Index elbow = add({0, 5, 0}), hand = add({0, 10, 0});
+  s.edges = {{body, left}, {body, right}, {body, elbow}, {elbow, hand}};
+  for (double x : {-1.0, 0.0, 1.0}) s.edges.push_back({hand, add({x, 11, 0})});
+  EXPECT_EQ(endpoints_after_pruning(s, 0), 5u);    // two legs, three fingers
+  EXPECT_EQ(endpoints_after_pruning(s, 2), 3u);    // the fingers go: the arm ends at the hand
+  // Legs of 7.07 and fingers go at once; the arm (10) is then a lone path,
+  // which has no branch node to be a spur of: it stays, however long.
+  EXPECT_EQ(endpoints_after_pruning(s, 7.5), 2u);
+  EXPECT_EQ(endpoints_after_pruning(s, 100), 2u);
+}
+
 TEST(SkeletonMetrics, DistanceBetweenTwoCircles) {
   const SkeletonDistance d = skeleton_distance(circle(2.0, 200), circle(2.1, 200));
   EXPECT_NEAR(d.hausdorff, 0.1, 0.002);
@@ -250,6 +269,37 @@ TEST(SkeletonProjection, EveryNodeIsInsideTheSampleMeshes) {
     const AlgorithmResult res = run_algorithm("skeleton_projection", mesh);
     const Metrics& m = artifact<Metrics>(res, "metrics");
     EXPECT_EQ(m.at("inside_fraction"), 1.0) << name << " " << metrics_json_for_test(m);
+    EXPECT_EQ(m.at("components"), 1.0) << name;
+  }
+}
+
+// Issue 10's "same limbs": MCF gives fingers, toes and bumps a short branch
+// each (17-19 ends on man); with spurs under 5% of the diagonal pruned from
+// both, MCF's ends are within one of ours, and ours has no such spur.
+TEST(SkeletonProjection, ManHasMcfsLimbsOnceSpursArePruned) {
+  const Mesh mesh = read_mesh(test::sample("man.off"));
+  BBox box;
+  for (const Vec3& p : mesh.positions) box.add(p);
+  const double spur = 0.05 * box.diagonal();
+  const Skeleton ours = artifact<Skeleton>(run_algorithm("skeleton_projection", mesh), "skeleton");
+  const Skeleton mcf = artifact<Skeleton>(run_algorithm("skeleton_mcf", mesh), "skeleton");
+  const std::size_t our_ends = endpoints_after_pruning(ours, spur), mcf_ends = endpoints_after_pruning(mcf, spur);
+  EXPECT_EQ(our_ends, 5u);  // head, two hands, two feet
+  EXPECT_EQ(our_ends, endpoints_after_pruning(ours, 0));
+  EXPECT_LE(std::max(our_ends, mcf_ends) - std::min(our_ends, mcf_ends), 1u) << "MCF: " << mcf_ends;
+  EXPECT_GT(endpoints_after_pruning(mcf, 0), mcf_ends + 5);  // MCF's raw count is mostly spurs
+}
+
+// Loops where the shape has tunnels, as many as its genus: the figure eight
+// (genus 2) gives two, the elephant (genus 3, as MCF's skeleton of it) three,
+// every node inside; man (genus 0) none.
+TEST(SkeletonProjection, LoopsAreTheShapesTunnels) {
+  for (const auto& [name, genus] : std::vector<std::pair<const char*, double>>{{"eight.off", 2}, {"elephant.off", 3}, {"man.off", 0}}) {
+    const Mesh mesh = read_mesh(test::sample(name));
+    const AlgorithmResult res = run_algorithm("skeleton_projection", mesh);
+    const Metrics& m = artifact<Metrics>(res, "metrics");
+    EXPECT_EQ(m.at("loops"), genus) << name << " " << metrics_json_for_test(m);
+    EXPECT_EQ(m.at("inside_fraction"), 1.0) << name;
     EXPECT_EQ(m.at("components"), 1.0) << name;
   }
 }

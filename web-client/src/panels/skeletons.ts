@@ -31,17 +31,38 @@ function format(v: unknown): string {
   return Number.isInteger(v) ? String(v) : Number(v.toPrecision(4)).toString();
 }
 
+/** The skeleton files the server reads (io/skeleton_io.h: the extension names the format). */
+export const SKELETON_FILE_TYPES = '.cg,.polylines,.txt,.obj,.json';
+
 export class SkeletonsPanel {
-  /** onSideBySide: show the skeletons in synchronized panes, one each. */
+  /** A "Load skeleton file…" button and its hidden file input, kept across renders. */
+  private readonly load: HTMLElement;
+
+  /**
+   * onSideBySide: show the skeletons in synchronized panes, one each;
+   * onLoadFile: a skeleton file chosen with "Load skeleton file…", to attach to the shown mesh.
+   */
   constructor(
     private readonly root: HTMLElement,
     private readonly onSideBySide: () => void,
-  ) {}
+    onLoadFile: (file: File) => void,
+  ) {
+    const input = el('input', { type: 'file', id: 'skeleton-file-input', accept: SKELETON_FILE_TYPES, hidden: '' });
+    input.addEventListener('change', () => {
+      const file = input.files?.[0];
+      input.value = '';  // the same file chosen again is a change too
+      if (file) onLoadFile(file);
+    });
+    const button = el('button', { type: 'button', class: 'button small load-skeleton', title: 'A skeleton made by another tool: CGAL polylines, .cg, OBJ with l records or JSON' }, 'Load skeleton file…');
+    button.addEventListener('click', () => input.click());
+    this.load = el('div', { class: 'load-skeleton-row' }, button, input);
+  }
 
-  render(columns: readonly SkeletonColumn[]): void {
-    this.root.hidden = columns.length === 0;
+  /** hasMesh: a mesh is shown, which a skeleton file can be attached to. */
+  render(columns: readonly SkeletonColumn[], hasMesh = true): void {
+    this.root.hidden = columns.length === 0 && !hasMesh;
     if (!columns.length) {
-      this.root.replaceChildren();
+      this.root.replaceChildren(this.load);
       return;
     }
     const head = el('tr', {}, el('th', {}, ''));
@@ -58,6 +79,6 @@ export class SkeletonsPanel {
     const side = el('button', { type: 'button', class: 'button small side-by-side' }, 'Side by side');
     side.disabled = columns.length < 2;
     side.addEventListener('click', () => this.onSideBySide());
-    this.root.replaceChildren(el('table', { class: 'kv skeleton-table' }, head, ...rows, distance), side);
+    this.root.replaceChildren(el('table', { class: 'kv skeleton-table' }, head, ...rows, distance), side, this.load);
   }
 }
