@@ -1,6 +1,7 @@
 // The list of stored meshes: a thumbnail rendered by the server (render.png),
-// name, vertex and face counts; a click shows the mesh, the delete button
-// removes it from the server.
+// name, vertex and face counts; a click shows the mesh (alone), "+" adds it to
+// the scene beside the meshes shown, the delete button removes it from the
+// server.
 import { setImageSource } from '../api/auth.ts';
 import { renderUrl } from '../api/rest.ts';
 import type { Mesh } from '../api/types.ts';
@@ -11,6 +12,8 @@ const THUMBNAIL_PX = 96;
 
 export interface MeshListActions {
   select(id: string): void;
+  /** Shows the mesh beside those shown (the scene). */
+  addToScene(id: string): void;
   remove(id: string): void;
 }
 
@@ -25,7 +28,7 @@ export class MeshListPanel {
     this.actions = actions;
   }
 
-  render(meshes: readonly Mesh[], selectedId: string | null): void {
+  render(meshes: readonly Mesh[], selectedId: string | null, inScene: ReadonlySet<string> = new Set()): void {
     for (const id of this.thumbs.keys()) if (!meshes.some((m) => m.id === id)) this.thumbs.delete(id);
     if (meshes.length === 0) {
       this.root.replaceChildren(el('p', { class: 'empty' }, 'No meshes yet. Upload one, or drop a file on the page.'));
@@ -35,6 +38,11 @@ export class MeshListPanel {
       const counts = `${mesh.report.vertices} V · ${mesh.report.faces} F`;
       const remove = el('button', { class: 'delete', type: 'button', title: `Delete ${mesh.name}`, 'aria-label': `Delete ${mesh.name}` }, '✕');
       const thumb = this.thumbnail(mesh.id);
+      const add = el('button', { class: 'add-to-scene', type: 'button', title: `Add ${mesh.name} to the scene`, 'aria-label': `Add ${mesh.name} to the scene` }, '+');
+      add.addEventListener('click', (ev) => {
+        ev.stopPropagation();
+        this.actions.addToScene(mesh.id);
+      });
       remove.addEventListener('click', (ev) => {
         ev.stopPropagation();
         // A render still on its way would answer 404 once the mesh is gone: stop it first.
@@ -44,7 +52,7 @@ export class MeshListPanel {
       const item = el(
         'li',
         {
-          class: mesh.id === selectedId ? 'mesh selected' : 'mesh',
+          class: ['mesh', mesh.id === selectedId ? 'selected' : '', inScene.has(mesh.id) ? 'in-scene' : ''].filter(Boolean).join(' '),
           'data-mesh-id': mesh.id,
           tabindex: '0',
           role: 'button',
@@ -53,6 +61,7 @@ export class MeshListPanel {
         ...(thumb ? [thumb] : []),
         el('span', { class: 'mesh-name' }, mesh.name),
         el('span', { class: 'mesh-counts' }, counts),
+        add,
         remove,
       );
       item.addEventListener('click', () => this.actions.select(mesh.id));
