@@ -115,6 +115,8 @@ export interface TestHooks {
    */
   scene: {
     panes: number;
+    /** The object chosen in the Scene panel, whose overlays the Display panel draws. */
+    picked: number;
     objects: Array<SceneObjectState & { name: string; loaded: boolean; pane: number; box: [number, number, number, number] | null }>;
   };
 }
@@ -190,6 +192,8 @@ export class App {
   private scene: SceneEntry[] = [];
   /** Whether the scene's objects are side by side, one per pane. */
   private scenePanes = false;
+  /** The scene object chosen in the Scene panel: the Display panel's overlays are drawn over it. */
+  private picked = 0;
 
   private readonly hooks: TestHooks = {
     ready: false,
@@ -209,7 +213,7 @@ export class App {
     viewRestored: null,
     lastScreenshot: null,
     texture: null,
-    scene: { panes: 0, objects: [] },
+    scene: { panes: 0, picked: 0, objects: [] },
   };
   private readonly socket = new CgviewSocket();
   private readonly decoder = new DracoDecoder();
@@ -245,6 +249,7 @@ export class App {
       change: (i, patch) => this.changeSceneObject(i, patch),
       remove: (i) => this.removeSceneObject(i),
       fitAll: () => this.viewer.fitAll(),
+      pick: (i) => this.pickSceneObject(i),
       sideBySide: (on) => (on ? this.showSceneSideBySide() : this.leaveComparison()),
     });
     this.textures = new MeshTextures(
@@ -1013,6 +1018,7 @@ export class App {
     // A plain click shows this mesh alone: the scene starts again from it (show() clears the viewer's extras).
     this.leaveComparison();
     this.scene = [{ ...defaultSceneObject(id), name: mesh.name, object: null }];
+    this.pickSceneObject(0);
     this.renderScene();
     if (this.runTarget) {
       this.runTarget = null;
@@ -1138,6 +1144,7 @@ export class App {
       entry.object = object;
       applySceneTransform(object, entry);
       this.display.applyTo(object);
+      if (this.scene[this.picked] === entry) this.display.setOverlayObject(object);
       await new Promise<void>((resolve) => this.viewer.addExtra(object, resolve));
       if (this.scenePanes) this.showSceneSideBySide();
     } catch (e) {
@@ -1173,6 +1180,7 @@ export class App {
     if (object) {
       applySceneTransform(object, entry);
       if (patch.color !== undefined) this.display.applyTo(object);
+      if (index === this.picked) this.display.refreshOverlays();
     }
     this.viewer.requestRender();
   }
@@ -1181,6 +1189,8 @@ export class App {
     const entry = this.scene[index];
     if (!entry || index === 0) return;
     this.scene.splice(index, 1);
+    if (index === this.picked) this.pickSceneObject(0);
+    else if (index < this.picked) --this.picked;
     const wasPanes = this.scenePanes;
     if (wasPanes) this.leaveComparison();
     if (entry.object) this.viewer.removeExtra(entry.object);
@@ -1213,8 +1223,16 @@ export class App {
     this.renderScene();
   }
 
+  /** Chooses scene object `index` for the overlays (the first: the shown object, whatever it is). */
+  private pickSceneObject(index: number): void {
+    if (!this.scene[index]) index = 0;
+    this.picked = index;
+    this.display.setOverlayObject(index === 0 ? null : this.sceneObject(index));
+    this.renderScene();
+  }
+
   private renderScene(): void {
-    this.scenePanel.render(this.scene, this.scenePanes, this.display.state().display.color);
+    this.scenePanel.render(this.scene, this.scenePanes, this.display.state().display.color, this.picked);
     if (this.meshes.length) this.renderList();
   }
 
@@ -1226,7 +1244,7 @@ export class App {
       const { name, object: _, ...state } = e;
       return { ...state, position: [...e.position] as SceneObjectState['position'], rotation: [...e.rotation] as SceneObjectState['rotation'], name, loaded: !!object, pane, box: object ? projectedBox(object, this.viewer.camera) : null };
     });
-    return { panes: this.scenePanes ? objects.filter((o) => o.pane >= 0).length : 0, objects };
+    return { panes: this.scenePanes ? objects.filter((o) => o.pane >= 0).length : 0, picked: this.picked, objects };
   }
 
   private upsert(mesh: Mesh): void {

@@ -6,7 +6,8 @@
 // with "+": the scene's first colour, blue) are in the scene. The
 // icosahedron moved right (its x in the Scene panel) shows blue right of
 // the orange cube in the canvas; hidden, no blue is left; recoloured green,
-// green shows. "Fit all" frames both (their world boxes, projected by the
+// green shows; the bounding-box overlay measures the object picked in the
+// Scene panel, scaled. "Fit all" frames both (their world boxes, projected by the
 // page's camera and read from window.__cgview.scene, lie inside the
 // canvas). Side by side: each pane (half of the canvas) shows one object's
 // colour and not the other's, and a drag with the mouse changes both
@@ -137,6 +138,26 @@ test('a second mesh added with "+" shows beside the first, moves, hides and take
   assert.ok(colourStats(green, isBlue).n < 20, 'no blue left');
   objects = await sceneObjects(page);
   assert.deepEqual(objects.map((o) => o.mesh), [meshId, ico]);
+
+  // Overlays are those of the object picked in the Scene panel: the bounding box's size is the icosahedron's
+  // (1.7013 across: vertices at ±0.5257 and ±0.8507), then twice that once scaled by 2, then the cube's again.
+  const boxSize = (want) =>
+    page.waitForFunction((w) => {
+      const size = window.__cgview.display?.size;
+      return size && size.every((x) => Math.abs(x - w) < 1e-3);
+    }, want, { timeout: 10000 });
+  await page.locator('#overlay-bbox').check();
+  await boxSize(2);
+  await page.locator('#scene .scene-object[data-index="1"] .scene-name').click();
+  await page.waitForFunction(() => window.__cgview.scene.picked === 1);
+  await boxSize(1.7013);
+  await editRow(page, 1, 'scene-scale', 2);
+  await boxSize(3.4026);
+  await editRow(page, 1, 'scene-scale', 1);
+  await page.locator('#scene .scene-object[data-index="0"] .scene-name').click();
+  await boxSize(2);
+  await page.locator('#overlay-bbox').uncheck();
+  await page.waitForFunction(() => window.__cgview.display?.overlays.bbox === false);
   assert.deepEqual(v.problems, [], v.describeProblems());
 });
 

@@ -67,6 +67,8 @@ export class DisplayPanel {
   private overlays: OverlaySettings = { ...DEFAULT_OVERLAYS };
   private info: OverlayInfo = { size: null, boundaryEdges: null, nonManifoldEdges: null };
   private object: THREE.Object3D | null = null;
+  /** The scene object whose overlays are drawn, when not the shown one. */
+  private overlayObject: THREE.Object3D | null = null;
   private environment: THREE.Texture | null = null;
   private field: { range: [number, number]; full: [number, number]; values: Float32Array } | null = null;
 
@@ -257,7 +259,18 @@ export class DisplayPanel {
       edges: this.checks.edges.input.checked,
       normalLength: Number(this.normalLength.value),
     };
-    this.info = updateOverlays(this.viewer, this.object, this.overlays);
+    this.refreshOverlays();
+  }
+
+  /** Draws the overlays over `object` (a scene object chosen in the Scene panel); null: over the shown one. */
+  setOverlayObject(object: THREE.Object3D | null): void {
+    this.overlayObject = object;
+    this.refreshOverlays();
+  }
+
+  /** Builds the overlays again (their object moved). */
+  refreshOverlays(): void {
+    this.info = updateOverlays(this.viewer, this.overlayObject ?? this.object, this.overlays);
     this.report();
   }
 
@@ -282,14 +295,12 @@ export class DisplayPanel {
     this.object = object;
     if (object && (!isDefaultDisplay(this.settings) || this.callbacks.colorOf?.(object))) this.applyTo(object);
     this.vertexColors.row.hidden = !(isSurface(object) && object.geometry.getAttribute('color') && !object.name.startsWith('scalar:'));
-    this.info = updateOverlays(this.viewer, object, this.overlays);
-    this.report();
+    this.refreshOverlays();
   }
 
   private applyAll(): void {
     for (const o of this.targets()) this.applyTo(o);
-    this.info = updateOverlays(this.viewer, this.object, this.overlays);
-    this.report();
+    this.refreshOverlays();
   }
 
   /** Reflections for metals: a PMREM of three's room environment, made once, when first needed. */

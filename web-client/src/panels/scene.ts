@@ -2,7 +2,8 @@
 // then the meshes added with "+" in the mesh list): its name, a visibility
 // box, a colour swatch, its transform (translation x/y/z, rotation x/y/z in
 // degrees, uniform scale) and a remove button; "Fit all" frames every
-// visible object, "Side by side" draws each in its own pane. The app owns
+// visible object, "Side by side" draws each in its own pane. A click on an
+// object's name chooses it for the Display panel's overlays. The app owns
 // the scene (app.ts); the panel shows it and reports edits.
 import type { SceneObjectState, Vec3 } from '../viewer/scene_state.ts';
 import { el } from './dom.ts';
@@ -17,6 +18,8 @@ export interface SceneActions {
   /** Removes object `index` (never the first: another mesh replaces it with a click). */
   remove(index: number): void;
   fitAll(): void;
+  /** Object `index` is chosen (its overlays are drawn). */
+  pick(index: number): void;
   /** The objects side by side (true) or together (false). */
   sideBySide(on: boolean): void;
 }
@@ -42,7 +45,7 @@ export class ScenePanel {
   }
 
   /** Shows the rows; `materialColor` is the swatch of an object without its own colour. */
-  render(rows: readonly SceneRow[], panes: boolean, materialColor: string): void {
+  render(rows: readonly SceneRow[], panes: boolean, materialColor: string, picked = 0): void {
     this.panes = panes;
     this.sideBySide.classList.toggle('active', panes);
     this.sideBySide.setAttribute('aria-pressed', String(panes));
@@ -52,10 +55,10 @@ export class ScenePanel {
       this.list.replaceChildren(el('li', { class: 'empty' }, 'Click a mesh to show it; “+” adds it beside the others.'));
       return;
     }
-    this.list.replaceChildren(...rows.map((row, i) => this.row(row, i, materialColor)));
+    this.list.replaceChildren(...rows.map((row, i) => this.row(row, i, materialColor, i === picked)));
   }
 
-  private row(row: SceneRow, index: number, materialColor: string): HTMLLIElement {
+  private row(row: SceneRow, index: number, materialColor: string, picked: boolean): HTMLLIElement {
     const change = (patch: Partial<SceneObjectState>) => this.actions.change(index, patch);
     const visible = el('input', { type: 'checkbox', class: 'scene-visible', title: `Show ${row.name}`, 'aria-label': `Show ${row.name}` });
     visible.checked = row.visible;
@@ -80,10 +83,12 @@ export class ScenePanel {
     const remove = el('button', { type: 'button', class: 'scene-remove', title: `Remove ${row.name} from the scene`, 'aria-label': `Remove ${row.name} from the scene` }, '✕');
     remove.hidden = index === 0;
     remove.addEventListener('click', () => this.actions.remove(index));
+    const name = el('button', { type: 'button', class: 'scene-name', title: `${row.name}: click for its overlays` }, row.name);
+    name.addEventListener('click', () => this.actions.pick(index));
     return el(
       'li',
-      { class: 'scene-object', 'data-index': String(index), 'data-mesh-id': row.mesh },
-      el('div', { class: 'scene-head' }, visible, color, el('span', { class: 'scene-name', title: row.name }, row.name), remove),
+      { class: picked ? 'scene-object picked' : 'scene-object', 'data-index': String(index), 'data-mesh-id': row.mesh },
+      el('div', { class: 'scene-head' }, visible, color, name, remove),
       vec('scene-t', row.position, '0.1', 'Move', 'position'),
       vec('scene-r', row.rotation, '5', 'Turn°', 'rotation'),
       el('div', { class: 'scene-vec' }, el('span', { class: 'scene-vec-label' }, 'Scale'), scale),
