@@ -38,6 +38,7 @@ struct JobScheduler::Job {
   std::string state = "queued", stage, error, created, started, finished, artifacts = "[]", files;
   double progress = 0;
   bool cached = false;
+  std::uint64_t bytes = 0;  // of its directory once it ended (its owner's quota counts them)
   std::int64_t seq = 0;
   // while running
   pid_t pid = -1;
@@ -71,6 +72,15 @@ std::string signal_name(int sig) {
 
 json value_json(const ParamValue& v) {
   return std::visit([](const auto& x) { return json(x); }, v);
+}
+
+// The bytes of the files under a directory (0 when there is none).
+std::uint64_t dir_bytes(const fs::path& dir) {
+  std::uint64_t n = 0;
+  std::error_code ec;
+  for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (it->is_regular_file(ec)) n += it->file_size(ec);
+  return n;
 }
 
 std::string trim(std::string s) {
@@ -176,6 +186,7 @@ void JobScheduler::load() {
     j->artifacts = text(16);
     j->files = text(17);
     j->inputs = text(18);
+    if (j->state != "queued" && j->state != "running") j->bytes = dir_bytes(job_dir(j->id));
     seq_ = std::max(seq_, j->seq);
     jobs_[j->id] = j;
     order_.push_back(j->id);
@@ -234,6 +245,7 @@ json JobScheduler::job_json(const Job& j) const {
   if (!artifacts.is_array()) artifacts = json::array();
   for (auto& a : artifacts) a.erase("file");
   return {{"id", j.id},
+          {"owner", j.owner},
           {"algorithm", j.algorithm},
           {"inputs", job_inputs(j.inputs, j.mesh_id)},
           {"params", json::parse(j.params, nullptr, false)},
@@ -261,6 +273,7 @@ json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std
   if (!req.contains("algorithm") || !req["algorithm"].is_string()) throw InvalidInput("\"algorithm\" must be a string");
   const std::string algorithm = req["algorithm"].get<std::string>();
   if (!worker_algorithms_.count(algorithm)) throw std::out_of_range("no algorithm '" + algorithm + "'");
+  const UserLimits quota = limits(caller);
   // Each input the algorithm declares is a stored mesh: its id, or an earlier
   // job's output mesh {"job": id, "artifact": name}.
   const json inputs = req.value("inputs", json::object());
@@ -310,6 +323,9 @@ json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std
       const ArtifactBytes ply = artifact(from, artifact_name, "ply", caller);
       if (const auto known = meshes_.store().find_by_sha256(sha256_hex(ply.bytes), owner)) id = known->id;
       else {
+        // Refused before it stores anything (even where the job would be a cache hit).
+        if (quota.concurrent_jobs) check_jobs(quota, usage(owner));
+        check_storage(caller, ply.bytes.size(), "the mesh of " + from + "/" + artifact_name);
         id = meshes_.upload(from + "-" + artifact_name + ".ply", "ply", ply.bytes, owner).id;
         if (new_meshes) new_meshes->push_back(id);
       }
@@ -367,6 +383,7 @@ json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std
   // A one-mesh job keeps the key it always had (its cached results stay valid).
   j->cache_key = sha256_hex((mesh ? mesh->sha256 : std::string()) + input_shas + "\n" + algorithm + "\n" + j->params);
   j->created = now_iso8601();
+  const Usage use = quota.storage_bytes ? usage(owner) : Usage{};
   json out, event;
   {
     std::lock_guard lock(mutex_);
@@ -383,6 +400,11 @@ json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std
         j->files = o.files;
       }
     }
+    // A cached result runs nothing and stores nothing: only a job that runs counts.
+    if (!j->cached) {
+      check_jobs(quota, {0, active_locked(owner)});
+      check_room_for_results(quota, use);
+    }
     persist(*j);
     jobs_[j->id] = j;
     order_.push_back(j->id);
@@ -395,6 +417,27 @@ json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std
     wake();
   }
   return out;
+}
+
+int JobScheduler::active_locked(const std::string& owner) const {
+  int n = 0;
+  for (const auto& [id, j] : jobs_) n += j->owner == owner && (j->state == "queued" || j->state == "running");
+  return n;
+}
+
+Usage JobScheduler::usage(const std::string& user) const {
+  Usage u;
+  u.storage_bytes = meshes_.store().mesh_bytes(user);
+  std::lock_guard lock(mutex_);
+  for (const auto& [id, j] : jobs_)
+    if (j->owner == user) u.storage_bytes += j->bytes;
+  u.jobs_active = active_locked(user);
+  return u;
+}
+
+void JobScheduler::check_storage(const Caller& caller, std::uint64_t adding, const std::string& what) const {
+  const UserLimits quota = limits(caller);
+  if (quota.storage_bytes) server::check_storage(quota, usage(caller.user), adding, what);
 }
 
 bool JobScheduler::readable(const Job& j, const Caller& caller) const {
@@ -689,6 +732,7 @@ void JobScheduler::reap(Job& j, int status, std::vector<json>& events) {
   if (j.out_fd >= 0) ::close(j.out_fd);
   j.out_fd = -1;
   j.pid = -1;
+  j.bytes = dir_bytes(job_dir(j.id));
   if (j.cancelled) return;  // already cancelled (state, event)
   const fs::path dir = job_dir(j.id);
   std::string state = "failed";

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "mesh_service.h"
+#include "quota.h"
 
 struct sqlite3;
 
@@ -39,6 +40,7 @@ struct JobConfig {
   double timeout_s = 3600;       // per job; 0: none
   std::size_t memory_mb = 8192;  // address-space limit per job; 0: none
   bool requeue_on_restart = true;  // else: jobs of a previous run are marked interrupted
+  QuotaConfig quotas;  // per-user storage and concurrent-job limits
 };
 
 struct ArtifactBytes {
@@ -87,6 +89,15 @@ class JobScheduler {
 
   std::uint64_t workers_started() const { return workers_started_; }
 
+  // Quotas: a user's limits, and their use (the bytes of the meshes they own
+  // and of their jobs' artifacts, cached results not counted twice; their
+  // queued and running jobs).
+  UserLimits limits(const Caller& caller) const { return config_.quotas.limits(caller); }
+  Usage usage(const std::string& user) const;
+  // Throws QuotaExceeded (413) when `adding` bytes ("this upload") would take
+  // the caller over their storage quota.
+  void check_storage(const Caller& caller, std::uint64_t adding, const std::string& what) const;
+
  private:
   struct Job;
   void load();
@@ -122,6 +133,8 @@ class JobScheduler {
   std::map<std::string, std::string> cache_;  // cache key -> the done job whose files hold the result
   bool stopping_ = false;
   std::int64_t seq_ = 0;
+  // The jobs queued or running of the owner (under mutex_).
+  int active_locked(const std::string& owner) const;
   std::atomic<std::uint64_t> workers_started_{0};
   std::vector<std::string> running_ids_;
   int wake_pipe_[2] = {-1, -1};

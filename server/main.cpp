@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "auth.h"
+#include "config.h"
 #include "io/samples.h"
 #include "mesh_service.h"
 #include "server.h"
@@ -26,6 +27,8 @@ const char* kHelp =
     "  user revoke NAME     revoke every token of a user, at once, also on a running server\n"
     "  --admin              (user add) the user sees and changes everyone's data\n"
     "  --auth MODE          auto (default: tokens unless the address is loopback) or required\n"
+    "  --config FILE        settings and per-user quotas, JSON (default: DATA-DIR/config.json if\n"
+    "                       there); flags given here win over the file (docs/DEPLOYMENT.md, Quotas)\n"
     "\n"
     "  --host ADDR          address to listen on (default 127.0.0.1)\n"
     "  --port N             port (default 8080; 0 picks a free one)\n"
@@ -90,6 +93,18 @@ int main(int argc, char** argv) {
   std::vector<std::string> command;  // user add NAME ...
   bool admin = false;
   try {
+    // The config file first, so that the flags win over it (user commands need none).
+    std::filesystem::path config_file;
+    bool user_command_given = false;
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      if ((a == "--config" || a == "--data-dir") && i + 1 < argc) (a == "--config" ? config_file : config.data_dir) = argv[++i];
+      else if (a == "user") user_command_given = true;
+    }
+    if (!user_command_given) {
+      if (!config_file.empty()) server::load_config_file(config_file, config);
+      else if (std::filesystem::exists(config.data_dir / "config.json")) server::load_config_file(config.data_dir / "config.json", config);
+    }
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
       auto value = [&]() -> std::string {
@@ -110,6 +125,7 @@ int main(int argc, char** argv) {
       } else if (a == "--host") config.host = value();
       else if (a == "--port") config.port = static_cast<unsigned short>(number(0, 65535));
       else if (a == "--data-dir") config.data_dir = value();
+      else if (a == "--config") (void)value();  // read above
       else if (a == "--static-dir") config.static_dir = value();
       else if (a == "--samples") {
         samples = value();

@@ -158,6 +158,20 @@ Router::Router(MeshService& meshes, RouterConfig config)
                                                   {"meshes", count}, {"uptime_s", up}});
                      },
                      false});
+  routes_.push_back({"GET", "/api/v1/me", "The caller: user name, admin, storage and jobs used and their limits (null: none)", {},
+                     [this](const Params&, const HttpRequest&, const Caller& caller) {
+                       // Without a job scheduler (tests of the router alone) only meshes count, unlimited.
+                       const Usage use = config_.jobs ? config_.jobs->usage(caller.user)
+                                                      : Usage{meshes_.store().mesh_bytes(caller.user), 0};
+                       const UserLimits lim = config_.jobs ? config_.jobs->limits(caller) : UserLimits{};
+                       auto or_null = [](const auto& v) { return v ? json(*v) : json(nullptr); };
+                       return json_response(200, {{"user", caller.user}, {"admin", caller.admin},
+                                                  {"storage_bytes_used", use.storage_bytes},
+                                                  {"storage_bytes_limit", or_null(lim.storage_bytes)},
+                                                  {"jobs_active", use.jobs_active},
+                                                  {"jobs_limit", or_null(lim.concurrent_jobs)}});
+                     },
+                     false});
   routes_.push_back({"GET", "/api/v1/meshes", "List the stored meshes with their reports", {},
                      [this](const Params&, const HttpRequest&, const Caller& caller) {
                        json list = json::array();
@@ -172,6 +186,7 @@ Router::Router(MeshService& meshes, RouterConfig config)
                        const auto name = q.find("name");
                        if (name == q.end()) return error_response(400, "bad_request", "the query needs ?name=FILE.EXT");
                        const auto format = q.find("format");
+                       if (config_.jobs) config_.jobs->check_storage(caller, req.body.size(), "this upload");
                        const MeshRecord rec =
                            meshes_.upload(name->second, format == q.end() ? "" : format->second, req.body, caller.user);
                        json j = mesh_json(rec);
@@ -494,6 +509,10 @@ HttpResponse Router::handle(const HttpRequest& req) const {
     if (r.method != req.method) continue;
     try {
       return r.handler(params, req, caller.value_or(Caller::local()));
+    } catch (const QuotaExceeded& e) {
+      HttpResponse res = json_response(e.status, json{{"error", e.code}, {"detail", e.what()}, {"limit", e.limit}, {"used", e.used}});
+      if (e.status == 429) res.headers.push_back({"Retry-After", std::to_string(e.retry_after_s)});
+      return res;
     } catch (const Forbidden& e) {
       return error_response(403, "forbidden", e.what());
     } catch (const UnsupportedFormat& e) {
@@ -556,6 +575,8 @@ json Router::openapi() const {
       if (r.pattern == "/api/v1/jobs") {
         op["responses"].erase("200");
         op["responses"]["201"] = {{"description", "created"}};
+        op["responses"]["413"] = error_ref;  // no room left under the storage quota
+        op["responses"]["429"] = error_ref;  // the concurrent job limit
       } else {
         op["responses"]["403"] = error_ref;  // share, unshare: only the owner
       }

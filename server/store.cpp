@@ -253,6 +253,16 @@ std::vector<MeshRecord> Store::list_meshes(const Caller& caller) const {
   return out;
 }
 
+std::uint64_t Store::mesh_bytes(const std::string& owner) const {
+  std::lock_guard lock(mutex_);
+  // The mesh file and its texture images (blobs of the mesh, sized in its material).
+  Stmt s(db_,
+         "SELECT IFNULL(SUM(bytes + IFNULL((SELECT SUM(json_extract(t.value, '$.bytes'))"
+         " FROM json_each(material, '$.textures') AS t), 0)), 0) FROM meshes WHERE owner = ?1");
+  s.bind(1, owner);
+  return s.step() ? std::uint64_t(s.integer(0)) : 0;
+}
+
 std::optional<MeshRecord> Store::get_mesh(const std::string& id, const Caller& caller) const {
   std::lock_guard lock(mutex_);
   Stmt s(db_, mesh_query(" AND id = ?3").c_str());

@@ -103,6 +103,8 @@ class Store {
   // The path of a mesh's stored file (for a worker process to read).
   std::filesystem::path blob_file(const MeshRecord& record) const { return blob_path(record); }
   std::size_t count() const { return count_; }
+  // The bytes of the meshes `owner` owns, files and texture images (their quota counts them).
+  std::uint64_t mesh_bytes(const std::string& owner) const;
 
   // Shares an item with users (by name, or kEveryone), or stops sharing it
   // (shared false); kind is "mesh" or "job".

@@ -82,6 +82,43 @@ TEST(JobScheduler, RoundRobinAcrossOwners) {
 // a message embedded, stored as PLY by the worker, extracted by a chained job
 // and served as text; a wrong key fails the job with its message; an
 // animation is served in the .frames format.
+// Fair share while running: alice queues many jobs on the one worker, then
+// bob submits one; bob's starts next, before alice's queue drains.
+TEST(JobScheduler, ALateUserIsServedBeforeTheFirstUsersQueueDrains) {
+  Scheduler s("jobs-fair-share", "sphere.off");
+  std::mutex m;
+  std::condition_variable cv;
+  std::vector<std::string> started;
+  int ended = 0;
+  s.jobs.on_event = [&](const json& e, const Access&) {
+    std::lock_guard lock(m);
+    if (e["type"] == "job_progress" && e["job"]["state"] == "running" &&
+        std::find(started.begin(), started.end(), e["job"]["id"].get<std::string>()) == started.end())
+      started.push_back(e["job"]["id"]);
+    if (e["type"] == "job_done" || e["type"] == "job_failed") ++ended;
+    cv.notify_all();
+  };
+  s.jobs.start();
+  auto submit = [&](const std::string& owner, double seconds) {
+    return s.jobs.submit({{"algorithm", "test_sleep"}, {"inputs", {{"mesh", s.mesh.id}}}, {"params", {{"seconds", seconds}}}},
+                         Caller{owner, true})["id"].get<std::string>();
+  };
+  std::vector<std::string> alice;
+  for (int k = 0; k < 6; ++k) alice.push_back(submit("alice", 0.2 + 0.001 * k));
+  {
+    // Bob comes once alice's first job runs.
+    std::unique_lock lock(m);
+    ASSERT_TRUE(cv.wait_for(lock, 30s, [&] { return !started.empty(); }));
+  }
+  const std::string bob = submit("bob", 0.01);
+  std::unique_lock lock(m);
+  ASSERT_TRUE(cv.wait_for(lock, 60s, [&] { return ended == 7; }));
+  const auto at = std::find(started.begin(), started.end(), bob) - started.begin();
+  // At most the job running when he came and the next one of alice's before his.
+  EXPECT_LE(at, 2) << "bob's job started " << at << "th of 7";
+  EXPECT_EQ(started.back(), alice.back());
+}
+
 TEST(JobsChaos, EmbedExtractAndAnimateThroughTheWorker) {
   Scheduler s("jobs-chaos", "elephant.off");
   JobScheduler& jobs = s.jobs;

@@ -125,9 +125,12 @@ TEST_F(TextureUploadTest, ObjMtlAndImageKeepTheirTexture) {
     EXPECT_EQ(call("GET", "/api/v1/meshes/" + id + "/textures/" + n).status, 404) << n;
   EXPECT_EQ(call("GET", "/api/v1/meshes/0000000000000000/textures/0").status, 404);
 
-  // The texture is a blob of the mesh: it goes with it.
+  // The texture is a blob of the mesh: it goes with it, and the owner's storage counts it.
   EXPECT_TRUE(fs::exists(dir_ / "data" / "blobs" / (id + ".tex0")));
+  const std::string owner = mesh.at("owner");
+  EXPECT_EQ(store_->mesh_bytes(owner), kQuad.size() + jpeg_.size());
   EXPECT_EQ(call("DELETE", "/api/v1/meshes/" + id).status, 204);
+  EXPECT_EQ(store_->mesh_bytes(owner), 0u);
   EXPECT_FALSE(fs::exists(dir_ / "data" / "blobs" / (id + ".tex0")));
   EXPECT_FALSE(fs::exists(dir_ / "data" / "blobs" / (id + ".obj")));
 }

@@ -13,6 +13,7 @@ import {
   fetchArtifactJson,
   fetchMeshBytes,
   getJob,
+  getMe,
   listAlgorithms,
   listJobs,
   listMeshes,
@@ -21,14 +22,16 @@ import {
 } from './api/rest.ts';
 import { parseSkeleton, type SkeletonData } from './api/skeleton.ts';
 import { jobMeshId } from './api/types.ts';
-import type { Algorithm, ArtifactInfo, Job, JobInput, JobProgress, Mesh, ServerEvent } from './api/types.ts';
+import type { Algorithm, ArtifactInfo, Job, JobInput, JobProgress, Me, Mesh, ServerEvent } from './api/types.ts';
 import { CgviewSocket, ServerError } from './api/ws.ts';
+import { AccountPanel } from './panels/account.ts';
 import { AlgorithmsPanel } from './panels/algorithms.ts';
 import { JobsPanel } from './panels/jobs.ts';
 import { MeshListPanel } from './panels/mesh_list.ts';
 import { MessagesPanel } from './panels/messages.ts';
 import { ProgressPanel } from './panels/progress.ts';
 import { ReportPanel } from './panels/report.ts';
+import { openShareForm } from './panels/share.ts';
 import { UploadControl, uploadsOf } from './panels/upload.ts';
 import { VoxelSlicePanel } from './panels/voxel_slices.ts';
 import { SkeletonsPanel } from './panels/skeletons.ts';
@@ -234,6 +237,10 @@ export class App {
   private readonly display: DisplayPanel;
   private readonly textures: MeshTextures;
   private readonly scenePanel: ScenePanel;
+  /** The signed-in user and their quota use (GET /me), shown in the header. */
+  private me: Me | null = null;
+  private readonly account = new AccountPanel(byId('account'));
+  private accountTimer: ReturnType<typeof setTimeout> | null = null;
 
   constructor() {
     window.__cgview = this.hooks;
@@ -262,6 +269,8 @@ export class App {
       select: (id) => this.select(id),
       addToScene: (id) => void this.addToScene(id),
       remove: (id) => void this.remove(id),
+      share: (id) => openShareForm('meshes', id, this.meshes.find((m) => m.id === id)?.name ?? id),
+      mayChange: (owner) => this.mayChange(owner),
     });
     this.report = new ReportPanel(byId('report'));
     this.progress = new ProgressPanel(byId('progress'));
@@ -280,6 +289,7 @@ export class App {
       playAnimation: (jobId, artifact) => void this.showAnimation(jobId, artifact),
       showSlices: (jobId, artifact) => this.slicePanel.open(jobId, artifact),
       toggleSkeleton: (jobId, artifact) => void this.toggleSkeleton(jobId, artifact),
+      share: (jobId) => openShareForm('jobs', jobId, `job ${this.jobs.get(jobId)?.algorithm ?? ''} ${jobId.slice(0, 8)}`),
     });
     this.slicePanel = new VoxelSlicePanel(
       byId('voxel-slices'),
@@ -334,12 +344,38 @@ export class App {
       if (connected) connectedBefore = true;
     });
     this.socket.connect().catch(() => this.error('Cannot open the WebSocket to the server; retrying.'));
-    await Promise.all([this.refresh(), this.loadAlgorithms()]);
+    await Promise.all([this.refresh(), this.loadAlgorithms(), this.refreshAccount()]);
     this.hooks.ready = true;
     await this.restoreView();
   }
 
+  /** Asks the server again who the user is and what they use (soon after a change, once for a burst of them). */
+  private refreshAccountSoon(): void {
+    if (this.accountTimer) return;
+    this.accountTimer = setTimeout(() => {
+      this.accountTimer = null;
+      void this.refreshAccount();
+    }, 300);
+  }
+
+  async refreshAccount(): Promise<void> {
+    try {
+      const first = this.me === null;
+      this.me = await getMe();
+      this.account.render(this.me);
+      if (first) this.renderList(); // the share buttons depend on who asks
+    } catch {
+      // An older server without /me: no account line.
+    }
+  }
+
+  /** Whether the user may share or delete an item of that owner (the server decides in the end). */
+  private mayChange(owner: string | undefined): boolean {
+    return !this.me || this.me.admin || owner === undefined || owner === this.me.user;
+  }
+
   private onServerEvent(ev: ServerEvent): void {
+    if (ev.type !== 'job_progress') this.refreshAccountSoon(); // storage or jobs in use changed
     switch (ev.type) {
       case 'mesh_added':
         this.upsert(ev.mesh);
@@ -423,6 +459,7 @@ export class App {
     this.autoShow.add(job.id);
     // A job_done event may have come before this answer: upsertJob keeps the later state.
     this.upsertJob(job);
+    this.refreshAccountSoon(); // one more job in use
   }
 
   /** "Run on this": the next job's input is this job's output mesh. */
@@ -533,6 +570,7 @@ export class App {
       metrics: this.metrics,
       texts: this.texts,
       skeletons: new Map([...this.skeletons].map(([k, v]) => [k, v.color])),
+      mayChange: (owner) => this.mayChange(owner),
     });
     this.renderSkeletons();
   }

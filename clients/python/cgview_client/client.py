@@ -15,11 +15,14 @@ TERMINAL_STATES = ("done", "failed", "cancelled", "interrupted")
 
 class CGViewError(Exception):
     """An error answer of the server: HTTP status, error code, detail and,
-    for a bad parameter, its name."""
+    for a bad parameter, its name.  Over a quota (413 storage_quota, 429
+    job_limit) the detail names the limit and the use, .limit and .used are
+    the numbers, and for 429 .retry_after the seconds to wait."""
 
-    def __init__(self, status, error, detail, parameter=None):
+    def __init__(self, status, error, detail, parameter=None, limit=None, used=None, retry_after=None):
         super().__init__(f"HTTP {status} {error}: {detail}")
         self.status, self.error, self.detail, self.parameter = status, error, detail, parameter
+        self.limit, self.used, self.retry_after = limit, used, retry_after
 
 
 class JobFailed(Exception):
@@ -61,7 +64,9 @@ class Client:
                 err = json.loads(raw)
             except ValueError:
                 err = {"error": e.reason, "detail": raw.decode(errors="replace").strip()}
-            raise CGViewError(e.code, err.get("error"), err.get("detail"), err.get("parameter")) from None
+            retry = e.headers.get("Retry-After") if e.headers else None
+            raise CGViewError(e.code, err.get("error"), err.get("detail"), err.get("parameter"), err.get("limit"),
+                              err.get("used"), int(retry) if retry and retry.isdigit() else None) from None
 
     def get_json(self, path, query=None):
         return json.loads(self.request("GET", path, query=query)[0])
@@ -72,6 +77,17 @@ class Client:
     # --- meshes ---------------------------------------------------------
     def health(self):
         return self.get_json("/health")
+
+    def me(self):
+        """Who the token is: user, admin, storage_bytes_used and _limit,
+        jobs_active and jobs_limit (a limit is None where there is none)."""
+        return self.get_json("/me")
+
+    def share(self, kind, item_id, users=(), everyone=False, unshare=False):
+        """Shares a mesh or a job (kind "meshes" or "jobs") with users and/or
+        everyone, or takes that back; who reads it now."""
+        return self.send_json("POST", f"/{kind}/{quote(item_id)}/{'unshare' if unshare else 'share'}",
+                              {"users": list(users), "everyone": everyone})
 
     def meshes(self):
         return self.get_json("/meshes")["meshes"]

@@ -2,6 +2,7 @@
 import http.server
 import json
 import os
+import shutil
 import tempfile
 import threading
 import unittest
@@ -121,6 +122,45 @@ class ClientTest(unittest.TestCase):
             view = png.Image(60, 50, b"".join(sheet.rgba[4 * (y * 240 + 60 * i):4 * (y * 240 + 60 * i + 60)]
                                               for y in range(50)))
             self.assertGreater(harness.colourful(view), 50, f"view {i}")
+
+
+class QuotaTest(unittest.TestCase):
+    """A config file with quotas: the client surfaces 413 and 429 with the
+    server's message, the numbers and Retry-After."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.config_dir = tempfile.mkdtemp(prefix="cgview-pyclient-config-")
+        cls.addClassCleanup(shutil.rmtree, cls.config_dir, True)
+        config = os.path.join(cls.config_dir, "config.json")
+        with open(config, "w") as f:
+            json.dump({"limits": {"storage_mb": 0.2, "concurrent_jobs": 1}}, f)  # one elephant (170 KB)
+        cls.server = harness.Server(users=["erin"], args=["--auth", "required", "--config", config])
+        cls.addClassCleanup(cls.server.stop)
+        cls.client = Client(cls.server.url, token=cls.server.tokens["erin"])
+
+    def test_over_the_storage_quota_and_the_job_cap(self):
+        mesh = self.client.upload(harness.ELEPHANT)
+        size = os.path.getsize(harness.ELEPHANT)
+        me = self.client.me()
+        self.assertEqual((me["user"], me["storage_bytes_used"], me["jobs_limit"]), ("erin", size, 1))
+        with self.assertRaises(CGViewError) as caught:
+            self.client.upload(harness.ELEPHANT, name="again.off")
+        e = caught.exception
+        self.assertEqual((e.status, e.error, e.used, e.limit), (413, "storage_quota", size, round(0.2 * 2**20)))
+        self.assertIn("storage quota of 204.8 KB exceeded: 169.7 KB used, this upload is 169.7 KB", str(e))
+        self.assertEqual([m["id"] for m in self.client.meshes()], [mesh["id"]])
+
+        job = self.client.submit("voxelize", mesh["id"], {"resolution": 1000})
+        try:
+            with self.assertRaises(CGViewError) as caught:
+                self.client.submit("voxelize", mesh["id"], {"resolution": 999})
+            e = caught.exception
+            self.assertEqual((e.status, e.error, e.limit, e.used), (429, "job_limit", 1, 1))
+            self.assertIn("concurrent job limit of 1 reached", e.detail)
+            self.assertGreater(e.retry_after, 0)
+        finally:
+            self.client.cancel(job["id"])
 
 
 class AuthRequiredTest(unittest.TestCase):

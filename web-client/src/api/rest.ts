@@ -1,7 +1,8 @@
 // The REST half of protocol/API.md: list, upload, get, delete meshes; list
-// algorithms; submit, list, get and cancel jobs; fetch their artifacts.
+// algorithms; submit, list, get and cancel jobs; fetch their artifacts;
+// the caller's usage and limits; share and unshare meshes and jobs.
 import { authFetch } from './auth.ts';
-import type { Algorithm, ErrorBody, Health, Job, JobInput, Mesh } from './types.ts';
+import type { Algorithm, ErrorBody, Health, Job, JobInput, Me, Mesh, Sharing } from './types.ts';
 
 const BASE = '/api/v1';
 
@@ -176,4 +177,23 @@ export async function fetchMeshBytes(id: string, format: string, signal?: AbortS
 export async function fetchMeshTexture(id: string, n: number, signal?: AbortSignal): Promise<Blob> {
   const response = await fetchOk(`${BASE}/meshes/${encodeURIComponent(id)}/textures/${n}`, signal);
   return response.blob();
+}
+
+/** The caller: user name, storage and jobs used, and their limits (GET /me). */
+export function getMe(): Promise<Me> {
+  return request<Me>('/me');
+}
+
+/** Shares a mesh or a job with users and/or everyone, or takes that back (add false). */
+export function setSharing(
+  kind: 'meshes' | 'jobs',
+  id: string,
+  who: { users?: string[]; everyone?: boolean },
+  add: boolean,
+): Promise<Sharing> {
+  return request<Sharing>(`/${kind}/${encodeURIComponent(id)}/${add ? 'share' : 'unshare'}`, {
+    method: 'POST',
+    headers: { 'Content-Type': 'application/json' },
+    body: JSON.stringify(who),
+  });
 }

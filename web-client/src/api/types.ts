@@ -29,6 +29,8 @@ export interface Mesh {
   textures?: MeshTexture[];
   /** The diffuse colour (0..1) of its material, when an MTL gave one. */
   kd?: [number, number, number];
+  /** The user who uploaded it ("system" for the samples). */
+  owner?: string;
 }
 
 export interface MeshTexture {
@@ -37,6 +39,24 @@ export interface MeshTexture {
   bytes: number;
   material?: string;
   kd?: [number, number, number];
+}
+
+/** GET /api/v1/me: the caller, what they use and their limits (null: none). */
+export interface Me {
+  user: string;
+  admin: boolean;
+  storage_bytes_used: number;
+  storage_bytes_limit: number | null;
+  jobs_active: number;
+  jobs_limit: number | null;
+}
+
+/** What POST /meshes|jobs/{id}/share and /unshare answer: who reads the item now. */
+export interface Sharing {
+  id: string;
+  owner: string;
+  users: string[];
+  everyone: boolean;
 }
 
 export interface Health {
@@ -114,6 +134,7 @@ export type JobInput = string | { job: string; artifact: string };
 
 export interface Job {
   id: string;
+  owner?: string;
   algorithm: string;
   /** Each input: a mesh id, or an earlier job's artifact (a voxel grid). */
   inputs: Record<string, JobInput>;

@@ -29,6 +29,8 @@ export interface JobsActions {
   showSlices(jobId: string, artifact: string): void;
   /** Shows or hides a skeleton artifact over its mesh. */
   toggleSkeleton(jobId: string, artifact: string): void;
+  /** Opens the share form on a job (its state and artifacts, read-only for those it is shared with). */
+  share(jobId: string): void;
 }
 
 export interface JobsView {
@@ -49,6 +51,8 @@ export interface JobsView {
   texts: ReadonlyMap<string, string | undefined>;
   /** Skeleton artifacts drawn now, by `${jobId}/${name}`: their colour. */
   skeletons: ReadonlyMap<string, string>;
+  /** Whether the user may share a job of that owner. */
+  mayChange(owner: string | undefined): boolean;
 }
 
 const ACTIVE = new Set(['queued', 'running']);
@@ -175,6 +179,11 @@ export class JobsPanel {
         this.actions.cancel(job.id);
       });
       li.append(el('div', { class: 'job-actions' }, cancel));
+    }
+    if (view.mayChange(job.owner)) {
+      const share = el('button', { type: 'button', class: 'button small share', title: 'Share this job and its results' }, 'Share…');
+      share.addEventListener('click', () => this.actions.share(job.id));
+      li.append(el('div', { class: 'job-actions' }, share));
     }
     if (job.error) li.append(el('p', { class: 'job-error' }, job.error));
     if (job.state === 'done') {

@@ -1,7 +1,8 @@
 // The list of stored meshes: a thumbnail rendered by the server (render.png),
 // name, vertex and face counts; a click shows the mesh (alone), "+" adds it to
 // the scene beside the meshes shown, the delete button removes it from the
-// server.
+// server, the share button (⇪) opens the share form (on what the user may
+// change: their own meshes, or any for an admin).
 import { setImageSource } from '../api/auth.ts';
 import { renderUrl } from '../api/rest.ts';
 import type { Mesh } from '../api/types.ts';
@@ -15,6 +16,9 @@ export interface MeshListActions {
   /** Shows the mesh beside those shown (the scene). */
   addToScene(id: string): void;
   remove(id: string): void;
+  share(id: string): void;
+  /** Whether the user may share (and delete) a mesh of that owner. */
+  mayChange(owner: string | undefined): boolean;
 }
 
 export class MeshListPanel {
@@ -43,6 +47,14 @@ export class MeshListPanel {
         ev.stopPropagation();
         this.actions.addToScene(mesh.id);
       });
+      let share: HTMLButtonElement | null = null;
+      if (this.actions.mayChange(mesh.owner)) {
+        share = el('button', { class: 'share', type: 'button', title: `Share ${mesh.name}`, 'aria-label': `Share ${mesh.name}` }, '⇪');
+        share.addEventListener('click', (ev) => {
+          ev.stopPropagation();
+          this.actions.share(mesh.id);
+        });
+      }
       remove.addEventListener('click', (ev) => {
         ev.stopPropagation();
         // A render still on its way would answer 404 once the mesh is gone: stop it first.
@@ -62,6 +74,7 @@ export class MeshListPanel {
         el('span', { class: 'mesh-name' }, mesh.name),
         el('span', { class: 'mesh-counts' }, counts),
         add,
+        share,
         remove,
       );
       item.addEventListener('click', () => this.actions.select(mesh.id));

@@ -1,0 +1,134 @@
+#include "config.h"
+
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "auth.h"
+
+namespace cgview::server {
+
+using nlohmann::json;
+
+namespace {
+
+[[noreturn]] void bad(const std::string& key, const std::string& why) { throw std::invalid_argument(key + ": " + why); }
+
+std::int64_t integer(const json& v, const std::string& key, std::int64_t lo, std::int64_t hi) {
+  if (!v.is_number_integer() || v.get<std::int64_t>() < lo || v.get<std::int64_t>() > hi)
+    bad(key, "must be an integer " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " + v.dump());
+  return v.get<std::int64_t>();
+}
+
+std::string text(const json& v, const std::string& key) {
+  if (!v.is_string()) bad(key, "must be a string, got " + v.dump());
+  return v.get<std::string>();
+}
+
+const json& object(const json& v, const std::string& key) {
+  if (!v.is_object()) bad(key, "must be an object, got " + v.dump());
+  return v;
+}
+
+// The "server" section: ServerConfig's settings by the names of their flags.
+using Setter = std::function<void(const json&, const std::string& key, ServerConfig&)>;
+const std::map<std::string, Setter>& server_keys() {
+  static const std::map<std::string, Setter> keys = {
+      {"host", [](const json& v, const std::string& k, ServerConfig& c) { c.host = text(v, k); }},
+      {"port", [](const json& v, const std::string& k, ServerConfig& c) { c.port = static_cast<unsigned short>(integer(v, k, 0, 65535)); }},
+      {"static_dir", [](const json& v, const std::string& k, ServerConfig& c) { c.static_dir = text(v, k); }},
+      {"max_upload_mb", [](const json& v, const std::string& k, ServerConfig& c) { c.max_upload_bytes = std::size_t(integer(v, k, 1, 1 << 20)) << 20; }},
+      {"workers", [](const json& v, const std::string& k, ServerConfig& c) { c.workers = int(integer(v, k, 1, 256)); }},
+      {"ws_chunk_kb", [](const json& v, const std::string& k, ServerConfig& c) { c.chunk_bytes = std::size_t(integer(v, k, 1, 16 * 1024 - 1)) << 10; }},
+      {"auth", [](const json& v, const std::string& k, ServerConfig& c) {
+         const std::string m = text(v, k);
+         if (m != "auto" && m != "required") bad(k, "is \"auto\" or \"required\", got " + v.dump());
+         c.auth_required = m == "required";
+       }},
+      {"gl_platform", [](const json& v, const std::string& k, ServerConfig& c) { c.gl_platform = render::parse_gl_platform(text(v, k), k.c_str()); }},
+      {"worker", [](const json& v, const std::string& k, ServerConfig& c) { c.jobs.worker = text(v, k); }},
+      {"job_workers", [](const json& v, const std::string& k, ServerConfig& c) { c.jobs.max_workers = int(integer(v, k, 1, 1024)); }},
+      {"job_timeout_s", [](const json& v, const std::string& k, ServerConfig& c) { c.jobs.timeout_s = double(integer(v, k, 0, 100000000)); }},
+      {"job_memory_mb", [](const json& v, const std::string& k, ServerConfig& c) { c.jobs.memory_mb = std::size_t(integer(v, k, 0, 1 << 24)); }},
+      {"on_restart", [](const json& v, const std::string& k, ServerConfig& c) {
+         const std::string m = text(v, k);
+         if (m != "requeue" && m != "interrupt") bad(k, "is \"requeue\" or \"interrupt\", got " + v.dump());
+         c.jobs.requeue_on_restart = m == "requeue";
+       }},
+  };
+  return keys;
+}
+
+// storage_mb: a number of MB (fractions allowed), or null (unlimited).
+std::optional<std::uint64_t> storage(const json& v, const std::string& key) {
+  if (v.is_null()) return std::nullopt;
+  if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0 || v.get<double>() > 1e12)
+    bad(key, "must be a number of MB >= 0, or null (unlimited), got " + v.dump());
+  return std::uint64_t(std::llround(v.get<double>() * double(1 << 20)));
+}
+
+std::optional<int> jobs(const json& v, const std::string& key) {
+  if (v.is_null()) return std::nullopt;
+  return int(integer(v, key, 0, 1 << 20));
+}
+
+}  // namespace
+
+void apply_config(const json& doc, ServerConfig& config) {
+  object(doc, "the config");
+  for (const auto& [section, body] : doc.items()) {
+    if (section == "server") {
+      for (const auto& [key, v] : object(body, section).items()) {
+        const auto it = server_keys().find(key);
+        if (it == server_keys().end()) {
+          std::string known;
+          for (const auto& [k, s] : server_keys()) known += (known.empty() ? "" : ", ") + k;
+          bad("server." + key, "unknown key (the server section knows " + known + ")");
+        }
+        it->second(v, "server." + key, config);
+      }
+    } else if (section == "limits") {
+      for (const auto& [key, v] : object(body, section).items()) {
+        if (key == "storage_mb") config.jobs.quotas.defaults.storage_bytes = storage(v, "limits." + key);
+        else if (key == "concurrent_jobs") config.jobs.quotas.defaults.concurrent_jobs = jobs(v, "limits." + key);
+        else bad("limits." + key, "unknown key (limits are storage_mb and concurrent_jobs)");
+      }
+    } else if (section == "users") {
+      for (const auto& [name, limits] : object(body, section).items()) {
+        const std::string where = "users." + name;
+        if (name != "local" && !valid_user_name(name)) bad(where, "'" + name + "' is not a user name");
+        UserOverride& o = config.jobs.quotas.users[name];
+        for (const auto& [key, v] : object(limits, where).items()) {
+          if (key == "storage_mb") o.storage_bytes = storage(v, where + "." + key);
+          else if (key == "concurrent_jobs") o.concurrent_jobs = jobs(v, where + "." + key);
+          else bad(where + "." + key, "unknown key (a user's limits are storage_mb and concurrent_jobs)");
+        }
+      }
+    } else {
+      bad(section, "unknown key (the sections are server, limits and users)");
+    }
+  }
+}
+
+void load_config_file(const std::filesystem::path& file, ServerConfig& config) {
+  std::ifstream f(file, std::ios::binary);
+  if (!f) throw std::invalid_argument(file.string() + ": cannot read the config file");
+  std::stringstream s;
+  s << f.rdbuf();
+  json doc;
+  try {
+    doc = json::parse(s.str());
+  } catch (const json::parse_error& e) {
+    throw std::invalid_argument(file.string() + ": not JSON: " + e.what());
+  }
+  try {
+    apply_config(doc, config);
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(file.string() + ": " + e.what());
+  }
+}
+
+}  // namespace cgview::server
