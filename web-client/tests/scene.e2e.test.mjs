@@ -7,12 +7,14 @@
 // icosahedron moved right (its x in the Scene panel) shows blue right of
 // the orange cube in the canvas; hidden, no blue is left; recoloured green,
 // green shows; the bounding-box overlay measures the object picked in the
-// Scene panel, scaled. "Fit all" frames both (their world boxes, projected by the
+// Scene panel, scaled; in wireframe mode both are drawn as lines. "Fit all" frames both (their world boxes, projected by the
 // page's camera and read from window.__cgview.scene, lie inside the
 // canvas). Side by side: each pane (half of the canvas) shows one object's
 // colour and not the other's, and a drag with the mouse changes both
 // halves. A view link made then reopens both meshes with their transform,
-// colour and the panes, and draws the same picture.
+// colour and the panes, and draws the same picture. A plain click shows one
+// mesh alone again, a ctrl-click adds one; a link whose scene does not begin
+// with its mesh is reported.
 //
 // Environment: CGVIEW_SERVER, CGVIEW_SAMPLES (default build/samples), CHROMIUM.
 import { test } from 'node:test';
@@ -139,6 +141,17 @@ test('a second mesh added with "+" shows beside the first, moves, hides and take
   objects = await sceneObjects(page);
   assert.deepEqual(objects.map((o) => o.mesh), [meshId, ico]);
 
+  // The display mode is the scene's: in wireframe both objects are drawn as lines, each in its colour.
+  await page.selectOption('#display-mode', 'wireframe');
+  await page.waitForFunction(() => window.__cgview.display?.mode === 'wireframe');
+  const wire = await canvasPixels(page, 'wireframe');
+  const wg = colourStats(wire, isGreen).n;
+  const wo = colourStats(wire, isMeshOrange).n;
+  assert.ok(wg > 0 && wg < 0.5 * g.n, `the icosahedron in green lines: ${wg} pixels (${g.n} shaded)`);
+  assert.ok(wo > 0 && wo < 0.5 * orange.n, `the cube in orange lines: ${wo} pixels (${orange.n} shaded)`);
+  await page.selectOption('#display-mode', 'smooth');
+  await page.waitForFunction(() => window.__cgview.display?.mode === 'smooth');
+
   // Overlays are those of the object picked in the Scene panel: the bounding box's size is the icosahedron's
   // (1.7013 across: vertices at ±0.5257 and ±0.8507), then twice that once scaled by 2, then the cube's again.
   const boxSize = (want) =>
@@ -230,7 +243,7 @@ test('a view link reopens both meshes with their transform, colour and panes, an
   assert.deepEqual(v.problems, [], v.describeProblems());
 });
 
-test('a plain click shows one mesh alone again; a link with a bad scene is reported', async () => {
+test('a plain click shows one mesh alone again, a ctrl-click adds one; a link with a bad scene is reported', async () => {
   const { page, server, meshId } = v;
   await page.locator(`#mesh-list li.mesh[data-mesh-id="${ico}"]`).click();
   await page.waitForFunction((id) => window.__cgview.lastLoaded?.id === id, ico, { timeout: 30000 });
@@ -238,6 +251,10 @@ test('a plain click shows one mesh alone again; a link with a bad scene is repor
   const alone = await canvasPixels(page, 'alone');
   assert.ok(colourStats(alone, isMeshOrange).n > 300, 'the icosahedron alone, in the material colour');
   assert.ok(colourStats(alone, isGreen).n < 20 && colourStats(alone, isBlue).n < 20);
+  // A ctrl-click adds to the scene, as "+" does.
+  await page.locator(`#mesh-list li.mesh[data-mesh-id="${meshId}"]`).click({ modifiers: ['Control'] });
+  await page.waitForFunction((id) => window.__cgview.scene.objects.length === 2 && window.__cgview.scene.objects[1].mesh === id && window.__cgview.scene.objects[1].loaded, meshId, { timeout: 30000 });
+  assert.equal(await page.evaluate(() => window.__cgview.lastLoaded.id), ico, 'the shown mesh stays');
 
   const bad = { v: 1, mesh: meshId, camera: { position: [0, 0, 5], target: [0, 0, 0], up: [0, 1, 0], fov: 40 }, scene: [{ mesh: ico }] };
   const hash = '#view=' + Buffer.from(JSON.stringify(bad)).toString('base64url');

@@ -1,5 +1,6 @@
 // The list of stored meshes: a thumbnail rendered by the server (render.png),
-// name, vertex and face counts; a click shows the mesh (alone), "+" adds it to
+// name, vertex and face counts; a click shows the mesh (alone), "+" (or a
+// ctrl-click) adds it to
 // the scene beside the meshes shown, the delete button removes it from the
 // server, the share button (⇪) opens the share form (on what the user may
 // change: their own meshes, or any for an admin).
@@ -77,7 +78,8 @@ export class MeshListPanel {
         share,
         remove,
       );
-      item.addEventListener('click', () => this.actions.select(mesh.id));
+      // Ctrl-click (⌘-click) adds to the scene, as "+" does.
+      item.addEventListener('click', (ev) => (ev.ctrlKey || ev.metaKey ? this.actions.addToScene(mesh.id) : this.actions.select(mesh.id)));
       item.addEventListener('keydown', (ev) => {
         if (ev.key === 'Enter' || ev.key === ' ') {
           ev.preventDefault();
