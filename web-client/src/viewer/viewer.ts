@@ -10,6 +10,8 @@
 // GL pays for each), the lights and overlays are shared, and the views are
 // synchronized by construction, since the orbit controls move the one camera
 // that every pane is drawn with; nothing copies camera state between views.
+// The scene's objects side by side use the same panes with objects already
+// shown (setPanes(..., owned = false)).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 
@@ -35,7 +37,7 @@ export class Viewer {
   private readonly options: ViewerOptions;
   private readonly resizeObserver: ResizeObserver;
   private shown: THREE.Object3D | null = null;
-  /** Objects shown beside the main one (mesh artifacts of jobs); cleared by show(). */
+  /** Objects shown beside the main one (mesh artifacts of jobs, the scene's other meshes); cleared by show(). */
   private readonly extras = new THREE.Group();
   /** Objects drawn each in its own pane, in place of the shown one and the extras; empty: one view. */
   private panes: THREE.Object3D[] = [];
