@@ -39,6 +39,7 @@ TEST_APT_PACKAGES=(
   assimp-testmodels assimp-utils
   chromium wrk
   python3 python3-websocket
+  openssl
 )
 [ "$TESTS" = 0 ] || APT_PACKAGES+=("${TEST_APT_PACKAGES[@]}")
 

@@ -22,6 +22,14 @@ json to_json(const Algorithm& a) {
       case ParamType::boolean: s["type"] = "boolean"; break;
       case ParamType::choice: s["type"] = "string"; s["enum"] = p.info.choices; break;
       case ParamType::text: s["type"] = "string"; break;
+      case ParamType::faces:
+      case ParamType::vertices:
+        // A selection of the first input mesh: the viewer offers its current one.
+        s["type"] = "array";
+        s["items"] = {{"type", "integer"}, {"minimum", 0}};
+        s["uniqueItems"] = true;
+        s["x-cgview-selection"] = to_string(p.type);
+        break;
     }
     s["title"] = p.info.label;
     if (!p.info.help.empty()) s["description"] = p.info.help;
@@ -63,7 +71,15 @@ std::map<std::string, ParamValue> params_from_json(const Algorithm& a, const jso
     else if (v.is_number_integer()) value = v.get<long long>();
     else if (v.is_number()) value = v.get<double>();
     else if (v.is_string()) value = v.get<std::string>();
-    else throw InvalidInput("parameter '" + name + "': must be a " + std::string(to_string(spec->type)) + ", got " + v.dump());
+    else if (v.is_array() && is_selection(spec->type)) {
+      Ids ids;
+      for (const auto& e : v) {
+        if (!e.is_number_integer() || e.get<long long>() < 0 || e.get<long long>() > 0xffffffffLL)
+          throw InvalidInput("parameter '" + name + "': ids must be non-negative integers, got " + e.dump());
+        ids.push_back(Index(e.get<long long>()));
+      }
+      value = std::move(ids);
+    } else throw InvalidInput("parameter '" + name + "': must be a " + std::string(to_string(spec->type)) + ", got " + v.dump());
     out[name] = check_param(*spec, value);
   }
   return out;

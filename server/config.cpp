@@ -1,5 +1,6 @@
 #include "config.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -53,6 +54,27 @@ const std::map<std::string, Setter>& server_keys() {
       {"job_workers", [](const json& v, const std::string& k, ServerConfig& c) { c.jobs.max_workers = int(integer(v, k, 1, 1024)); }},
       {"job_timeout_s", [](const json& v, const std::string& k, ServerConfig& c) { c.jobs.timeout_s = double(integer(v, k, 0, 100000000)); }},
       {"job_memory_mb", [](const json& v, const std::string& k, ServerConfig& c) { c.jobs.memory_mb = std::size_t(integer(v, k, 0, 1 << 24)); }},
+      {"max_header_kb", [](const json& v, const std::string& k, ServerConfig& c) { c.max_header_bytes = std::size_t(integer(v, k, 1, 1 << 20)) << 10; }},
+      {"max_ws_message_kb", [](const json& v, const std::string& k, ServerConfig& c) { c.max_ws_message_bytes = std::size_t(integer(v, k, 1, 1 << 20)) << 10; }},
+      {"request_timeout_s", [](const json& v, const std::string& k, ServerConfig& c) { c.request_timeout_s = double(integer(v, k, 1, 86400)); }},
+      {"min_body_rate_kb", [](const json& v, const std::string& k, ServerConfig& c) { c.min_body_rate = double(integer(v, k, 1, 1 << 20)) * 1024; }},
+      {"idle_timeout_s", [](const json& v, const std::string& k, ServerConfig& c) { c.idle_timeout_s = double(integer(v, k, 1, 86400)); }},
+      {"ws_idle_timeout_s", [](const json& v, const std::string& k, ServerConfig& c) { c.ws_idle_timeout_s = double(integer(v, k, 2, 86400)); }},
+      {"max_connections_per_ip", [](const json& v, const std::string& k, ServerConfig& c) { c.max_connections_per_ip = int(integer(v, k, 0, 1 << 20)); }},
+      // {"rate": R, "burst": B} (requests per second per token; rate 0: no limit).
+      {"rate_limit", [](const json& v, const std::string& k, ServerConfig& c) {
+         bool burst = false;
+         for (const auto& [key, x] : object(v, k).items()) {
+           if (!x.is_number() || !std::isfinite(x.get<double>()) || x.get<double>() < (key == "burst" ? 1 : 0))
+             bad(k + "." + key, "must be a number (rate >= 0, burst >= 1), got " + x.dump());
+           if (key == "rate") c.rate_per_s = x.get<double>();
+           else if (key == "burst") c.rate_burst = x.get<double>(), burst = true;
+           else bad(k + "." + key, "unknown key (rate_limit has rate and burst)");
+         }
+         if (!burst) c.rate_burst = std::max(1.0, c.rate_per_s * 4);  // as --rate-limit R
+       }},
+      {"tls_cert", [](const json& v, const std::string& k, ServerConfig& c) { c.tls_cert = text(v, k); }},
+      {"tls_key", [](const json& v, const std::string& k, ServerConfig& c) { c.tls_key = text(v, k); }},
       {"on_restart", [](const json& v, const std::string& k, ServerConfig& c) {
          const std::string m = text(v, k);
          if (m != "requeue" && m != "interrupt") bad(k, "is \"requeue\" or \"interrupt\", got " + v.dump());

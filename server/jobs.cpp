@@ -366,6 +366,8 @@ json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std
       const auto v = values.find(p.name);
       canonical[p.name] = value_json(v == values.end() ? p.default_value : v->second);
     }
+    if (const auto in = summaries.find("mesh"); in != summaries.end())
+      check_selections(it->second.params, values, in->second.vertices, in->second.faces);
     if (it->second.precheck) it->second.precheck(summaries, values);
   } else {
     // Only the worker knows it (a test algorithm): the worker checks.
@@ -694,7 +696,17 @@ bool JobScheduler::launch(Job& j) {
   std::string worker = config_.worker.string(), spec = (dir / "job.json").string(), err = (dir / "stderr.txt").string();
   char* argv[] = {worker.data(), spec.data(), nullptr};
   const rlim_t limit = rlim_t(config_.memory_mb) << 20;
+  // Until it execs, the child is a copy of the server, Asio's signal handler
+  // included: a SIGTERM then (a job cancelled at once) would go through the
+  // server's own signal pipe and stop the server.  The child starts with
+  // SIGTERM and SIGINT blocked, resets them to the default, then unblocks.
+  sigset_t term, old_mask;
+  sigemptyset(&term);
+  sigaddset(&term, SIGTERM);
+  sigaddset(&term, SIGINT);
+  ::pthread_sigmask(SIG_BLOCK, &term, &old_mask);
   const pid_t pid = ::fork();
+  if (pid != 0) ::pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
   if (pid < 0) {
     ::close(fds[0]);
     ::close(fds[1]);
@@ -702,6 +714,9 @@ bool JobScheduler::launch(Job& j) {
     return false;
   }
   if (pid == 0) {
+    ::signal(SIGTERM, SIG_DFL);
+    ::signal(SIGINT, SIG_DFL);
+    ::pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // a killed server leaves no worker behind
     ::setpgid(0, 0);
     if (limit > 0) {

@@ -36,6 +36,20 @@ const char* kHelp =
     "  --static-dir DIR     the built web client (default: web-client/dist of the source tree)\n"
     "  --samples SET        sample meshes to load at start: default, all or none (default: default)\n"
     "  --max-upload-mb N    largest accepted upload (default 256)\n"
+    "\n"
+    "Limits (docs/DEPLOYMENT.md; over a limit: 431, 413, 408, 429 or 503 and the connection closed):\n"
+    "  --max-header-kb N    request line and headers (default 64)\n"
+    "  --max-ws-message-kb N  a WebSocket message from a client (default 1024)\n"
+    "  --request-timeout-s N  a request's headers must arrive within N s of its first byte (default 30)\n"
+    "  --min-body-rate-kb N   then its body at N KB/s on average (default 64)\n"
+    "  --idle-timeout-s N   a keep-alive connection with no request for N s is closed (default 60)\n"
+    "  --ws-idle-timeout-s N  a silent WebSocket is pinged at N/2 s, closed at N s without a pong (default 60)\n"
+    "  --max-connections-per-ip N  open connections of one address (default 0: no cap)\n"
+    "  --rate-limit R[/B]   requests per second per token, or per address without one (not the\n"
+    "                       loopback local user), in bursts of B (default 50/200; 0: none)\n"
+    "  --tls-cert FILE      serve https:// and wss:// with this PEM certificate chain ...\n"
+    "  --tls-key FILE       ... and its PEM private key (default: plain HTTP; or a proxy, docker/Caddyfile)\n"
+    "\n"
     "  --workers N          worker threads for geometry (default 2)\n"
     "  --gl-platform P      EGL platform for render.png: auto (GPU device, else surfaceless llvmpipe),\n"
     "                       device or surfaceless (default auto; also CGVIEW_GL_PLATFORM)\n"
@@ -132,6 +146,22 @@ int main(int argc, char** argv) {
         if (samples != "default" && samples != "all" && samples != "none")
           throw std::invalid_argument("--samples is default, all or none");
       } else if (a == "--max-upload-mb") config.max_upload_bytes = std::size_t(number(1, 1 << 20)) << 20;
+      else if (a == "--max-header-kb") config.max_header_bytes = std::size_t(number(1, 1 << 20)) << 10;
+      else if (a == "--max-ws-message-kb") config.max_ws_message_bytes = std::size_t(number(1, 1 << 20)) << 10;
+      else if (a == "--request-timeout-s") config.request_timeout_s = double(number(1, 86400));
+      else if (a == "--min-body-rate-kb") config.min_body_rate = double(number(1, 1 << 20)) * 1024;
+      else if (a == "--idle-timeout-s") config.idle_timeout_s = double(number(1, 86400));
+      else if (a == "--ws-idle-timeout-s") config.ws_idle_timeout_s = double(number(2, 86400));
+      else if (a == "--max-connections-per-ip") config.max_connections_per_ip = int(number(0, 1 << 20));
+      else if (a == "--rate-limit") {
+        const std::string v = value();
+        char* end = nullptr;
+        config.rate_per_s = std::strtod(v.c_str(), &end);
+        config.rate_burst = *end == '/' ? std::strtod(end + 1, &end) : std::max(1.0, config.rate_per_s * 4);
+        if (v.empty() || *end || !(config.rate_per_s >= 0) || !(config.rate_burst >= 1) || config.rate_per_s > 1e9 || config.rate_burst > 1e9)
+          throw std::invalid_argument("--rate-limit is RATE or RATE/BURST (requests per second, burst >= 1), got '" + v + "'");
+      } else if (a == "--tls-cert") config.tls_cert = value();
+      else if (a == "--tls-key") config.tls_key = value();
       else if (a == "--workers") config.workers = int(number(1, 256));
       else if (a == "--worker") config.jobs.worker = value();
       else if (a == "--gl-platform") config.gl_platform = render::parse_gl_platform(value(), "--gl-platform");
@@ -151,6 +181,7 @@ int main(int argc, char** argv) {
       else if (!a.starts_with("-") && (a == "user" || !command.empty())) command.push_back(a);
       else throw std::invalid_argument("unknown option " + a);
     }
+    if (config.tls_cert.empty() != config.tls_key.empty()) throw std::invalid_argument("--tls-cert and --tls-key go together");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "cgview-server: %s (see --help)\n", e.what());
     return 2;
@@ -179,7 +210,7 @@ int main(int argc, char** argv) {
           files.push_back(f);
       srv.meshes().import_samples(files, config.max_upload_bytes);
     }
-    std::printf("CGView serving http://%s:%u/ (data in %s, %zu meshes)\n", config.host.c_str(), unsigned(srv.port()),
+    std::printf("CGView serving %s://%s:%u/ (data in %s, %zu meshes)\n", srv.tls() ? "https" : "http", config.host.c_str(), unsigned(srv.port()),
                 config.data_dir.c_str(), srv.meshes().store().count());
     std::fflush(stdout);
     srv.run();

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cctype>
 #include <fstream>
 
 #include "core/errors.h"
@@ -60,6 +61,16 @@ bool match(const std::string& pattern, const std::string& path, std::map<std::st
     }
   }
   return p == pattern.size() && q == path.size();
+}
+
+// Ids and names in a route's path are never paths: only what an id or an
+// artifact name can be ([A-Za-z0-9_.-], not "." or ".."), so that "..",
+// a decoded "%2F" or a NUL is refused before any handler (or file) sees it.
+bool valid_path_param(const std::string& v) {
+  if (v.empty() || v.size() > 128 || v == "." || v == "..") return false;
+  for (unsigned char c : v)
+    if (!std::isalnum(c) && c != '_' && c != '.' && c != '-') return false;
+  return true;
 }
 
 HttpResponse json_response(int status, const json& body) {
@@ -507,6 +518,9 @@ HttpResponse Router::handle(const HttpRequest& req) const {
     if (!match(r.pattern, path, params)) continue;
     path_known = true;
     if (r.method != req.method) continue;
+    for (const auto& [name, value] : params)
+      if (!valid_path_param(value))
+        return error_response(400, "bad_request", "'" + name + "' is not a valid " + name + ": letters, digits, '_', '.' or '-'");
     try {
       return r.handler(params, req, caller.value_or(Caller::local()));
     } catch (const QuotaExceeded& e) {

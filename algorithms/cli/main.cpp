@@ -314,7 +314,11 @@ int cmd_run(const std::vector<std::string>& args) {
         if (p.name == name) spec = &p;
       if (!spec) throw Usage("run: " + args[0] + " has no parameter --" + name + " (see cgview run " + args[0] + " --help)");
       if (i + 1 >= args.size()) throw Usage("run: --" + name + " needs a value");
-      values[name] = parse_param(*spec, args[++i]);
+      const std::string& v = args[++i];
+      // A selection may be long: --faces @ids.txt reads it from a file.
+      values[name] = parse_param(*spec, is_selection(spec->type) && v.starts_with("@")
+                                            ? read_file_bytes(v.substr(1), std::uint64_t(1) << 30)
+                                            : v);
     } else if (mesh_arg.empty()) mesh_arg = a;
     else throw Usage("run: unexpected argument '" + a + "'");
   }

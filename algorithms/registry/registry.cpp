@@ -1,5 +1,7 @@
 #include "registry/registry.h"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -50,8 +52,29 @@ const char* to_string(ParamType t) {
     case ParamType::boolean: return "boolean";
     case ParamType::choice: return "choice";
     case ParamType::text: return "text";
+    case ParamType::faces: return "faces";
+    case ParamType::vertices: return "vertices";
   }
   return "?";
+}
+
+bool is_selection(ParamType t) { return t == ParamType::faces || t == ParamType::vertices; }
+
+void check_selections(const std::vector<ParamSpec>& specs, const std::map<std::string, ParamValue>& values,
+                      std::size_t vertices, std::size_t faces) {
+  for (const ParamSpec& s : specs) {
+    if (!is_selection(s.type)) continue;
+    const auto it = values.find(s.name);
+    if (it == values.end()) continue;
+    const auto* ids = std::get_if<Ids>(&it->second);
+    if (!ids) continue;  // check_param refuses it
+    const bool f = s.type == ParamType::faces;
+    const std::size_t n = f ? faces : vertices;
+    for (const Index id : *ids)
+      if (id >= n)
+        bad(s, std::string(f ? "face" : "vertex") + " id " + std::to_string(id) + " is out of range (the mesh has " +
+                   std::to_string(n) + (f ? " faces)" : " vertices)"));
+  }
 }
 
 const char* to_string(OutputKind k) {
@@ -74,7 +97,14 @@ std::string to_string(const ParamValue& v) {
         if constexpr (std::is_same_v<T, bool>) return x ? "true" : "false";
         else if constexpr (std::is_same_v<T, std::string>) return x;
         else if constexpr (std::is_same_v<T, double>) return number_text(x);
-        else return std::to_string(x);
+        else if constexpr (std::is_same_v<T, Ids>) {
+          std::string s;
+          for (const Index id : x) {
+            if (!s.empty()) s += ',';
+            s += std::to_string(id);
+          }
+          return s;
+        } else return std::to_string(x);
       },
       v);
 }
@@ -118,6 +148,15 @@ ParamValue check_param(const ParamSpec& spec, const ParamValue& value) {
     case ParamType::text:
       if (!std::holds_alternative<std::string>(value)) bad(spec, "must be text, got " + to_string(value));
       return value;
+    case ParamType::faces:
+    case ParamType::vertices: {
+      const auto* ids = std::get_if<Ids>(&value);
+      if (!ids) bad(spec, "must be a list of " + std::string(spec.type == ParamType::faces ? "face" : "vertex") + " ids, got " + to_string(value));
+      Ids sorted = *ids;
+      std::sort(sorted.begin(), sorted.end());
+      sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+      return sorted;
+    }
   }
   return value;
 }
@@ -143,6 +182,22 @@ ParamValue parse_param(const ParamSpec& spec, const std::string& text) {
     case ParamType::choice:
     case ParamType::text:
       return check_param(spec, text);
+    case ParamType::faces:
+    case ParamType::vertices: {
+      Ids ids;
+      const char* p = text.data();
+      const char* const end = p + text.size();
+      while (p < end) {
+        if (*p == ',' || std::isspace((unsigned char)*p)) { ++p; continue; }
+        unsigned long long n = 0;
+        const auto [q, ec] = std::from_chars(p, end, n);
+        if (ec != std::errc() || n > 0xffffffffULL || (q < end && *q != ',' && !std::isspace((unsigned char)*q)))
+          bad(spec, "must be ids separated by commas, got '" + text.substr(std::size_t(p - text.data()), 20) + "'");
+        ids.push_back(Index(n));
+        p = q;
+      }
+      return check_param(spec, ids);
+    }
   }
   return text;
 }

@@ -44,8 +44,13 @@ class Cancelled : public Error {
   Cancelled() : Error("cancelled") {}
 };
 
-enum class ParamType { integer, number, boolean, choice, text };
-using ParamValue = std::variant<long long, double, bool, std::string>;
+// faces / vertices: a selection, a set of ids of the first input mesh's
+// faces or vertices (what the viewer's selection tool sends), sorted and
+// unique once checked; empty by default.  Ids out of range are refused
+// (check_selections) before the algorithm runs.
+enum class ParamType { integer, number, boolean, choice, text, faces, vertices };
+using Ids = std::vector<Index>;
+using ParamValue = std::variant<long long, double, bool, std::string, Ids>;
 
 // Every member has an initializer so that a designated initializer naming
 // only some ({.label = ..., .help = ...}) draws no -Wmissing-field-initializers.
@@ -181,6 +186,7 @@ const Algorithm& find_algorithm(const std::string& name);
 void register_algorithm(Algorithm algorithm);
 
 // Converts text (a CLI argument) to a parameter's type; throws InvalidInput.
+// A selection is a list of ids separated by commas or white space ("1,2,3").
 ParamValue parse_param(const ParamSpec& spec, const std::string& text);
 // Checks a value against its spec (type, range, choices); returns it
 // normalized (an integer given for a number becomes a double); throws
@@ -189,6 +195,12 @@ ParamValue check_param(const ParamSpec& spec, const ParamValue& value);
 std::string to_string(const ParamValue& v);
 const char* to_string(ParamType t);
 const char* to_string(OutputKind k);
+bool is_selection(ParamType t);
+// Throws InvalidInput naming the first selection id (a faces or vertices
+// parameter) out of range for a mesh of that many vertices and faces:
+// "parameter 'faces': face id 12 is out of range (the mesh has 12 faces)".
+void check_selections(const std::vector<ParamSpec>& specs, const std::map<std::string, ParamValue>& values,
+                      std::size_t vertices, std::size_t faces);
 
 namespace detail {
 
@@ -201,6 +213,8 @@ struct SpecCollector {
   void boolean(const char* n, bool& v, ParamInfo i = {}) { add(n, ParamType::boolean, v, i); }
   void choice(const char* n, std::string& v, ParamInfo i) { add(n, ParamType::choice, v, i); }
   void text(const char* n, std::string& v, ParamInfo i = {}) { add(n, ParamType::text, v, i); }
+  void faces(const char* n, Ids& v, ParamInfo i = {}) { add(n, ParamType::faces, v, i); }
+  void vertices(const char* n, Ids& v, ParamInfo i = {}) { add(n, ParamType::vertices, v, i); }
   void add(const char* n, ParamType t, ParamValue v, ParamInfo i) {
     if (i.label.empty()) i.label = n;
     specs.push_back({n, t, std::move(v), std::move(i)});
@@ -226,6 +240,8 @@ struct ValueAssigner {
   void boolean(const char* n, bool& v, const ParamInfo& = {}) { set(n, v); }
   void choice(const char* n, std::string& v, const ParamInfo&) { set(n, v); }
   void text(const char* n, std::string& v, const ParamInfo& = {}) { set(n, v); }
+  void faces(const char* n, Ids& v, const ParamInfo& = {}) { set(n, v); }
+  void vertices(const char* n, Ids& v, const ParamInfo& = {}) { set(n, v); }
 };
 
 void check_names(const std::string& algorithm, const std::map<std::string, ParamValue>& values,
@@ -243,6 +259,7 @@ Algorithm make_algorithm(std::string name, AlgorithmInfo info, Fn fn) {
   a.run = [fn, specs = collect.specs, algo = a.info.name](const Inputs& in, const std::map<std::string, ParamValue>& values,
                                                           Context& ctx) {
     check_names(algo, values, specs);
+    if (in.has("mesh")) check_selections(specs, values, in.mesh().num_vertices(), in.mesh().num_faces());
     Params p;
     ValueAssigner assign{values, specs};
     p.describe(assign);

@@ -399,6 +399,25 @@ TEST(CliTest, RunBadParameterIsOneLineNamingIt) {
                         "vtk");
 }
 
+TEST(CliTest, RunTakesASelectionAsListOrFile) {
+  const fs::path dir = test::temp_dir("cli-run-selection");
+  const fs::path out = dir / "part.off", ids = dir / "ids.txt";
+  Result r = cgview("run extract_faces elephant --faces 10,3,7 -o " + quote(out.string()));
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::ifstream m(dir / "part-metrics.json");
+  EXPECT_EQ(nlohmann::json::parse(m)["faces"], 3);
+  {
+    std::ofstream f(ids);
+    f << "1 2\n3,4\n5\n";
+  }
+  r = cgview("run extract_faces elephant --faces @" + quote(ids.string()) + " --invert true -o " + quote(out.string()));
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::ifstream m2(dir / "part-metrics.json");
+  EXPECT_EQ(nlohmann::json::parse(m2)["faces"], 5558 - 5);
+  expect_one_line_error("run extract_faces elephant --faces 1,99999", "face id 99999 is out of range (the mesh has 5558 faces)");
+  expect_one_line_error("run extract_faces elephant --faces 1,x", "parameter 'faces'");
+}
+
 TEST(CliTest, RunUnknownAlgorithmHints) {
   expect_one_line_error("run no_such_algo elephant", "no_such_algo");
   const Result r = cgview_stderr("run no_such_algo elephant");

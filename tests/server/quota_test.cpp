@@ -72,6 +72,26 @@ TEST(QuotaConfig, SectionsAndOverrides) {
   EXPECT_EQ(q.limits({"root", true}).storage_bytes, std::nullopt);
 }
 
+// The hardening limits are keys of the server section too, named after their flags.
+TEST(QuotaConfig, HardeningLimitsInTheServerSection) {
+  ServerConfig c;
+  apply_config(json::parse(R"({"server": {"max_header_kb": 16, "max_ws_message_kb": 256, "request_timeout_s": 10,
+    "min_body_rate_kb": 32, "idle_timeout_s": 20, "ws_idle_timeout_s": 40, "max_connections_per_ip": 8,
+    "rate_limit": {"rate": 5}, "tls_cert": "c.pem", "tls_key": "k.pem"}})"), c);
+  EXPECT_EQ(c.max_header_bytes, std::size_t(16) << 10);
+  EXPECT_EQ(c.max_ws_message_bytes, std::size_t(256) << 10);
+  EXPECT_EQ(c.request_timeout_s, 10);
+  EXPECT_EQ(c.min_body_rate, 32 * 1024);
+  EXPECT_EQ(c.idle_timeout_s, 20);
+  EXPECT_EQ(c.ws_idle_timeout_s, 40);
+  EXPECT_EQ(c.max_connections_per_ip, 8);
+  EXPECT_EQ(c.rate_per_s, 5);
+  EXPECT_EQ(c.rate_burst, 20) << "as --rate-limit 5: a burst of four seconds";
+  EXPECT_EQ(c.tls_cert, "c.pem");
+  EXPECT_NE(config_error({{"server", {{"rate_limit", {{"rate", 5}, {"burst", 0}}}}}}).find("server.rate_limit.burst"), std::string::npos);
+  EXPECT_NE(config_error({{"server", {{"rate_limit", {{"per_s", 5}}}}}}).find("unknown key"), std::string::npos);
+}
+
 TEST(QuotaConfig, ErrorsNameTheKey) {
   EXPECT_NE(config_error({{"limits", {{"storage_bytes", 5}}}}).find("limits.storage_bytes: unknown key"), std::string::npos);
   EXPECT_NE(config_error({{"server", {{"wrokers", 2}}}}).find("server.wrokers: unknown key"), std::string::npos);

@@ -73,7 +73,7 @@ bool ServerProcess::start(const fs::path& data_dir, const std::vector<std::strin
     ::execv(argv[0], argv.data());
     ::_exit(127);
   }
-  const std::regex line_re(R"(CGView serving http://([^/:]+):([0-9]+)/)");
+  const std::regex line_re(R"(CGView serving https?://([^/:]+):([0-9]+)/)");
   const auto deadline = Clock::now() + 30s;
   while (Clock::now() < deadline) {
     std::smatch m;

@@ -35,6 +35,10 @@ import { openShareForm } from './panels/share.ts';
 import { UploadControl, uploadsOf } from './panels/upload.ts';
 import { VoxelSlicePanel } from './panels/voxel_slices.ts';
 import { SkeletonsPanel } from './panels/skeletons.ts';
+import { NavigationPanel } from './panels/navigation.ts';
+import { SelectionPanel } from './panels/selection.ts';
+import { Navigation, type CameraState } from './viewer/navigation.ts';
+import { SelectionTool } from './viewer/selection_tool.ts';
 import { DisplayPanel, type DisplayReport } from './panels/display.ts';
 import { ScenePanel } from './panels/scene.ts';
 import { defaultSceneObject, isIdentity, MAX_SCENE_OBJECTS, sanitizeScene, sceneColor, type SceneObjectState } from './viewer/scene_state.ts';
@@ -100,6 +104,12 @@ export interface TestHooks {
   lastAnimation: { jobId: string; artifact: string; frame: number; frames: number; vertices: number; first: [number, number, number]; sum: number } | null;
   /** The skeletons drawn over the mesh, set after the first frame with each change: key, colour, nodes, edges. */
   skeletons: Array<{ key: string; color: string; nodes: number; edges: number }>;
+  /** The selection (ids of the stored mesh), set after the frame that draws it. */
+  selection?: { meshId: string | null; ready: boolean; kind: string; count: number; ids: number[]; area: number | null };
+  /** The camera now: position, view direction, up, orbit centre, navigation mode. */
+  camera?: () => CameraState;
+  /** The camera's view for the selection: canvas size in CSS pixels, projection × view (column-major). */
+  selectionView?: () => { width: number; height: number; viewProjection: number[] };
   /** The display mode, material and overlays of the shown object, set after the first frame with each change (panels/display.ts). */
   display: DisplayReport | null;
   /** The last view link made with "Copy link". */
@@ -234,6 +244,8 @@ export class App {
   private readonly player: AnimationPlayer;
   private animationToken = 0;
   private readonly status: HTMLElement;
+  private readonly navigation: Navigation;
+  private readonly selectionTool: SelectionTool;
   private readonly display: DisplayPanel;
   private readonly textures: MeshTextures;
   private readonly scenePanel: ScenePanel;
@@ -278,6 +290,7 @@ export class App {
     this.status = byId('connection');
     this.algorithmsPanel = new AlgorithmsPanel(byId('algorithms'), {
       run: (algorithm, params, inputs) => this.runJob(algorithm, params, inputs),
+      selection: (kind) => this.selectionFor(kind),
     });
     this.jobsPanel = new JobsPanel(byId('jobs'), {
       cancel: (id) => void this.cancel(id),
@@ -314,6 +327,22 @@ export class App {
     this.player = new AnimationPlayer(byId('viewport'));
     new UploadControl(byId<HTMLInputElement>('file-input'), document.body, (files) => void this.upload(files));
     byId('fit').addEventListener('click', () => this.viewer.fitToView());
+    this.navigation = new Navigation(this.viewer);
+    new NavigationPanel(byId('navigation'), this.navigation, (text) => this.error(text));
+    let selectionPanel: SelectionPanel | null = null;
+    this.selectionTool = new SelectionTool(
+      this.viewer,
+      byId('viewport'),
+      (state) => {
+        selectionPanel?.render(state);
+        this.algorithmsPanel.setSelection(state.kind, state.ids.length);
+        this.hooks.selection = { meshId: state.meshId, ready: state.ready, kind: state.kind, count: state.ids.length, ids: state.ids, area: state.area };
+      },
+      (enabled) => this.navigation.setEnabled(enabled),
+    );
+    selectionPanel = new SelectionPanel(byId('selection'), this.selectionTool, () => this.navigation.mode !== 'fly');
+    this.hooks.camera = () => this.navigation.state();
+    this.hooks.selectionView = () => this.selectionTool.view();
     this.display = new DisplayPanel(byId('display'), this.viewer, {
       setFieldRange: (range) => this.setFieldRange(range),
       drawn: (report) => (this.hooks.display = report),
@@ -460,6 +489,21 @@ export class App {
     // A job_done event may have come before this answer: upsertJob keeps the later state.
     this.upsertJob(job);
     this.refreshAccountSoon(); // one more job in use
+  }
+
+  /**
+   * The selection to send as a job's faces or vertices parameter: its ids (the
+   * stored mesh's), when it is of that kind and on the mesh the job runs on.
+   */
+  private selectionFor(kind: string): number[] {
+    const state = this.selectionTool.state();
+    if (this.runTarget || state.meshId !== this.selectedId || state.kind !== kind) return [];
+    // Vertices split at attribute seams in the PLY are not the stored ones (docs/DESIGN.md).
+    if (kind === 'vertices' && state.ids.length && this.selectionTool.vertexCount !== this.selectedMesh()?.report.vertices) {
+      this.error('This mesh has seams (separate normal or UV indices): its vertex selection cannot be sent as stored ids.');
+      return [];
+    }
+    return state.ids;
   }
 
   /** "Run on this": the next job's input is this job's output mesh. */
@@ -1065,6 +1109,7 @@ export class App {
     this.renderList();
     this.report.render(mesh);
     this.algorithmsPanel.setMesh(mesh.name);
+    this.selectionTool.setSource(id, (meshId) => this.meshPly(meshId));
     this.showing = this.show(mesh);
   }
 
@@ -1302,6 +1347,7 @@ export class App {
     if (this.selectedId === id) {
       this.selectedId = null;
       this.algorithmsPanel.setMesh(null);
+      this.selectionTool.setSource(null, (meshId) => this.meshPly(meshId));
       this.leaveComparison();
       if (this.field) this.dropField();
       if (this.load?.id === id) {

@@ -13,7 +13,7 @@ from .views import render_around
 
 def main(argv=None):
     options = parser().parse_args(argv)
-    client = Client(options.url, options.token)
+    client = Client(options.url, options.token, ca_file=options.ca_file)
     try:
         return options.command(client, options) or 0
     except (CGViewError, JobFailed, LookupError, OSError, TimeoutError, ValueError) as e:

@@ -4,10 +4,11 @@ import json
 
 
 def connection_args():
-    """A parent parser with --url and --token."""
+    """A parent parser with --url, --token and --ca-file."""
     p = argparse.ArgumentParser(add_help=False)
     p.add_argument("--url", help="the server (default $CGVIEW_URL, else http://127.0.0.1:8080)")
     p.add_argument("--token", help="a bearer token (default $CGVIEW_TOKEN)")
+    p.add_argument("--ca-file", help="PEM certificate(s) to trust for https:// (default $CGVIEW_CA_FILE, else the system's)")
     return p
 
 

@@ -2,6 +2,7 @@
 import json
 import os
 import re
+import ssl
 import time
 import urllib.error
 import urllib.parse
@@ -34,14 +35,19 @@ class JobFailed(Exception):
 
 
 class Client:
-    """One server.  url: its address (default $CGVIEW_URL, else
-    http://127.0.0.1:8080); token: a bearer token (default $CGVIEW_TOKEN; the
-    server needs none from loopback unless it runs with --auth required)."""
+    """One server.  url: its address, http:// or https:// (default
+    $CGVIEW_URL, else http://127.0.0.1:8080); token: a bearer token (default
+    $CGVIEW_TOKEN; the server needs none from loopback unless it runs with
+    --auth required); ca_file: the PEM certificate(s) to trust for https://
+    instead of the system's (default $CGVIEW_CA_FILE), e.g. a self-signed
+    server's own."""
 
-    def __init__(self, url=None, token=None, timeout=300):
+    def __init__(self, url=None, token=None, timeout=300, ca_file=None):
         self.url = (url or os.environ.get("CGVIEW_URL") or DEFAULT_URL).rstrip("/")
         self.token = token if token is not None else os.environ.get("CGVIEW_TOKEN") or None
         self.timeout = timeout
+        self.ca_file = ca_file or os.environ.get("CGVIEW_CA_FILE") or None
+        self.ssl_context = ssl.create_default_context(cafile=self.ca_file) if self.ca_file else None
 
     # --- HTTP -----------------------------------------------------------
     def request(self, method, path, body=None, query=None, content_type=None):
@@ -56,7 +62,7 @@ class Client:
             headers["Content-Type"] = content_type
         req = urllib.request.Request(url, data=body, method=method, headers=headers)
         try:
-            with urllib.request.urlopen(req, timeout=self.timeout) as r:
+            with urllib.request.urlopen(req, timeout=self.timeout, context=self.ssl_context) as r:
                 return r.read(), r.headers
         except urllib.error.HTTPError as e:
             raw = e.read()
@@ -146,7 +152,7 @@ class Client:
         on_progress(job) is called on each change: from the WebSocket's events
         when python3-websocket is there, else by polling."""
         deadline = None if timeout is None else time.monotonic() + timeout
-        events = live.JobEvents(self.url, self.token) if use_websocket else None
+        events = live.JobEvents(self.url, self.token, self.ca_file) if use_websocket else None
         try:
             if events is not None and not events.open():
                 events = None

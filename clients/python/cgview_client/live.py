@@ -25,8 +25,8 @@ def authenticate(ws, token):
 class JobEvents:
     """The job events of one connection: job_progress, job_done, job_failed, job_cancelled."""
 
-    def __init__(self, url, token=None):
-        self.url, self.token, self.ws = url, token, None
+    def __init__(self, url, token=None, ca_file=None):
+        self.url, self.token, self.ca_file, self.ws = url, token, ca_file, None
 
     def open(self):
         """Connects; False when it cannot (no python3-websocket, no WebSocket there)."""
@@ -34,7 +34,8 @@ class JobEvents:
             return False
         headers = [f"Authorization: Bearer {self.token}"] if self.token else []
         try:
-            self.ws = websocket.create_connection(ws_url(self.url), timeout=10, header=headers)
+            sslopt = {"ca_certs": self.ca_file} if self.ca_file else None
+            self.ws = websocket.create_connection(ws_url(self.url), timeout=10, header=headers, sslopt=sslopt)
             if self.token:
                 authenticate(self.ws, self.token)
         except (OSError, websocket.WebSocketException):

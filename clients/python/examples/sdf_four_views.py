@@ -30,7 +30,7 @@ def main(argv=None):
     p.add_argument("--mode", default="smooth", help="shading: flat, smooth (default) or toon")
     p.add_argument("-o", "--output", help="the PNG (default MESH-ARTIFACT.png)")
     a = p.parse_args(argv)
-    client = Client(a.url, a.token)
+    client = Client(a.url, a.token, ca_file=a.ca_file)
     try:
         mesh = client.find_mesh(a.mesh)
         job = client.run(a.algorithm, mesh["id"], args.params(a.param), on_progress=ProgressBar())

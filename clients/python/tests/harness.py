@@ -7,6 +7,7 @@ import json
 import os
 import re
 import shutil
+import ssl
 import subprocess
 import tempfile
 import threading
@@ -21,6 +22,15 @@ SAMPLES = os.environ.get("CGVIEW_SAMPLES") or os.path.join(REPO, "build", "sampl
 ELEPHANT = os.path.join(SAMPLES, "elephant.off")
 
 
+def self_signed(directory):
+    """A certificate for localhost and 127.0.0.1 and its key (openssl): their paths."""
+    cert, key = os.path.join(directory, "cert.pem"), os.path.join(directory, "key.pem")
+    subprocess.run(["openssl", "req", "-x509", "-newkey", "rsa:2048", "-nodes", "-days", "2", "-subj", "/CN=localhost",
+                    "-addext", "subjectAltName=DNS:localhost,IP:127.0.0.1", "-keyout", key, "-out", cert],
+                   check=True, capture_output=True)
+    return cert, key
+
+
 def add_user(data_dir, name):
     """`cgview-server user add NAME` on a data directory: the new token."""
     out = subprocess.run([SERVER, "--data-dir", data_dir, "user", "add", name], check=True, capture_output=True, text=True)
@@ -31,7 +41,7 @@ class Server:
     """`users`: names to create before the start, their tokens in self.tokens;
     `args`: more flags (--auth required)."""
 
-    def __init__(self, timeout=30, users=(), args=()):
+    def __init__(self, timeout=30, users=(), args=(), ca_file=None):
         for path in (SERVER, ELEPHANT):
             if not os.path.exists(path):
                 raise FileNotFoundError(f"{path} is missing: build first (cmake --build build)")
@@ -47,7 +57,8 @@ class Server:
         if not served.wait(timeout):
             self.stop()
             raise RuntimeError(f"cgview-server did not say where it serves within {timeout} s:\n{self.log()}")
-        self.url = re.search(r"CGView serving (http://[^/\s]+)/", self.log()).group(1)
+        self.url = re.search(r"CGView serving (https?://[^/\s]+)/", self.log()).group(1)
+        self.context = ssl.create_default_context(cafile=ca_file) if ca_file else None
         self._wait_healthy(timeout)
 
     def _read(self, served):
@@ -65,7 +76,7 @@ class Server:
                 request = urllib.request.Request(self.url + "/api/v1/health")
                 if self.tokens:
                     request.add_header("Authorization", "Bearer " + next(iter(self.tokens.values())))
-                with urllib.request.urlopen(request, timeout=2) as r:
+                with urllib.request.urlopen(request, timeout=2, context=self.context) as r:
                     if json.load(r).get("status") == "ok":
                         return
             except OSError:

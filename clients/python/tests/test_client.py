@@ -163,6 +163,39 @@ class QuotaTest(unittest.TestCase):
             self.client.cancel(job["id"])
 
 
+class TlsTest(unittest.TestCase):
+    """A server with its own TLS (--tls-cert, --tls-key) and a self-signed
+    certificate: the client trusts it with ca_file, over REST and the
+    WebSocket; without it, the certificate is refused."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = tempfile.mkdtemp(prefix="cgview-tls-")
+        cls.addClassCleanup(shutil.rmtree, cls.dir, True)
+        cls.cert, key = harness.self_signed(cls.dir)
+        cls.server = harness.Server(args=["--tls-cert", cls.cert, "--tls-key", key], ca_file=cls.cert)
+        cls.addClassCleanup(cls.server.stop)
+
+    def test_https_and_wss_with_the_servers_certificate(self):
+        self.assertTrue(self.server.url.startswith("https://"), self.server.url)
+        client = Client(self.server.url, ca_file=self.cert)
+        self.assertEqual(client.health()["status"], "ok")
+        mesh = client.upload(harness.ELEPHANT)
+        job = client.wait(client.submit("centroid_distance", mesh["id"])["id"], timeout=120,
+                          use_websocket=live.websocket is not None)
+        self.assertEqual(job["state"], "done", job)
+        if live.websocket is not None:
+            events = live.JobEvents(self.server.url, ca_file=self.cert)
+            self.assertTrue(events.open(), "the WebSocket over TLS did not open")
+            events.close()
+
+    def test_an_untrusted_certificate_is_refused(self):
+        with mock.patch.dict(os.environ, {"CGVIEW_CA_FILE": "", "SSL_CERT_FILE": "/nonexistent"}):
+            with self.assertRaises(OSError) as caught:
+                Client(self.server.url).health()
+        self.assertIn("CERTIFICATE_VERIFY_FAILED", str(caught.exception))
+
+
 class AuthRequiredTest(unittest.TestCase):
     """A server with --auth required: the client's token opens it, over REST
     and the WebSocket; without one, or with a wrong one, 401."""

@@ -1,7 +1,9 @@
 // The algorithm menu and, for the chosen algorithm, a form generated from its
 // params JSON Schema (API.md "Algorithms and jobs"): integer / number → a
 // number input with min, max, step and the default; boolean → a checkbox;
-// enum → a select; string → a text input. Titles are the labels,
+// enum → a select; string → a text input; a selection (an array with
+// x-cgview-selection: faces or vertices) → "use current selection (N faces)",
+// which sends the viewer's selection's ids. Titles are the labels,
 // descriptions the help text. Run submits a job on the selected mesh; the
 // server's validation errors (400 detail) are shown beside the form. An
 // algorithm of several inputs (hausdorff's `reference`) gets a mesh chooser
@@ -16,6 +18,8 @@ export interface AlgorithmsActions {
    * first. Resolves when it is submitted, rejects with a sentence to show beside the form.
    */
   run(algorithm: Algorithm, params: Record<string, unknown>, inputs: Record<string, string>): Promise<void>;
+  /** The ids of the current selection of that kind ('faces', 'vertices') on the mesh jobs run on (empty: none). */
+  selection?(kind: string): number[];
 }
 
 export interface MeshChoice {
@@ -42,7 +46,20 @@ function stepFor(schema: ParamSchema): string {
   return 'any';
 }
 
-function control(name: string, schema: ParamSchema, id: string): { input: HTMLElement; read: () => unknown } {
+function control(
+  name: string,
+  schema: ParamSchema,
+  id: string,
+  selection: (kind: string) => number[],
+): { input: HTMLElement; read: () => unknown } {
+  const kind = schema['x-cgview-selection'];
+  if (typeof kind === 'string') {
+    const box = el('input', { id, name, type: 'checkbox', 'data-param': name, 'data-selection': kind });
+    box.checked = true;
+    const text = el('span', { class: 'selection-use', 'data-selection-kind': kind }, `use current selection (${selection(kind).length} ${kind})`);
+    const label = el('label', { class: 'check' }, box, ' ', text);
+    return { input: label, read: () => (box.checked ? selection(kind) : undefined) };
+  }
   if (Array.isArray(schema.enum)) {
     const values = schema.enum;
     const select = el('select', { id, name, 'data-param': name });
@@ -145,6 +162,14 @@ export class AlgorithmsPanel {
     this.updateRun();
   }
 
+  /** The selection changed: the selection parameters' labels show its size. */
+  setSelection(kind: string, count: number): void {
+    for (const span of this.root.querySelectorAll<HTMLElement>('[data-selection-kind]')) {
+      const k = span.dataset.selectionKind!;
+      span.textContent = `use current selection (${k === kind ? count : 0} ${k})`;
+    }
+  }
+
   /** The meshes an extra input may name (the server's mesh list). */
   setMeshes(meshes: MeshChoice[]): void {
     this.meshes = meshes;
@@ -182,7 +207,7 @@ export class AlgorithmsPanel {
     const properties = algorithm.params?.properties ?? {};
     for (const [name, schema] of Object.entries(properties)) {
       const id = `param-${algorithm.name}-${name}`;
-      const { input, read } = control(name, schema, id);
+      const { input, read } = control(name, schema, id, (kind) => this.actions.selection?.(kind) ?? []);
       fields.push({ name, schema, read });
       const label = el('label', { for: id, class: 'param-label' }, schema.title || name);
       const help = schema.description ? el('small', { class: 'param-help' }, schema.description) : null;

@@ -299,7 +299,9 @@ export class Viewer {
     this.frameRequested = false;
     // With damping, update() keeps moving the camera for a few frames after
     // the pointer stops; it fires 'change', which asks for the next frame.
-    if (!this.controls.update()) this.settleControls();
+    // Off while another navigation mode or the selection tool has the mouse
+    // (its update() would turn the camera back to the orbit target).
+    if (this.controls.enabled && !this.controls.update()) this.settleControls();
     if (this.panes.length) this.renderPanes();
     else this.renderer.render(this.scene, this.camera);
     this.options.onFrame?.();

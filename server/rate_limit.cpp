@@ -1,0 +1,49 @@
+#include "rate_limit.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+
+namespace cgview::server {
+
+std::optional<double> RateLimiter::take(const std::string& key, Clock::time_point now) {
+  if (!enabled() || key.empty()) return std::nullopt;
+  std::lock_guard lock(mutex_);
+  // Full buckets carry no state: dropped now and then, so that a client
+  // inventing tokens or addresses cannot grow the map without bound.
+  if (buckets_.size() > 10000)
+    std::erase_if(buckets_, [&](const auto& kv) {
+      return kv.second.tokens + std::chrono::duration<double>(now - kv.second.at).count() * rate_ >= burst_;
+    });
+  auto [it, fresh] = buckets_.try_emplace(key, Bucket{burst_, now});
+  Bucket& b = it->second;
+  if (!fresh) {
+    b.tokens = std::min(burst_, b.tokens + std::chrono::duration<double>(now - b.at).count() * rate_);
+    b.at = std::max(b.at, now);
+  }
+  if (b.tokens >= 1) {
+    b.tokens -= 1;
+    return std::nullopt;
+  }
+  return (1 - b.tokens) / rate_;
+}
+
+std::string RateLimiter::describe() const {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%g requests per second, bursts of %g", rate_, burst_);
+  return buf;
+}
+
+std::string rate_key(std::string_view authorization, const std::string& address, bool loopback) {
+  constexpr std::string_view bearer = "bearer cgv_";
+  if (authorization.size() > bearer.size() + 16) {
+    bool is_bearer = true;
+    for (std::size_t i = 0; i < bearer.size(); ++i)
+      is_bearer = is_bearer && std::tolower(static_cast<unsigned char>(authorization[i])) == bearer[i];
+    if (is_bearer) return "token:" + std::string(authorization.substr(bearer.size(), 16));
+  }
+  if (authorization.empty() && loopback) return {};
+  return "ip:" + address;
+}
+
+}  // namespace cgview::server
