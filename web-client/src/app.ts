@@ -1,6 +1,8 @@
 // The one place that owns the view state: the list of meshes, the chosen
-// mesh, the load in progress and what the viewer shows. Panels render from
-// it and call its actions; nothing else changes it.
+// mesh, the scene (the meshes shown at once, the chosen one first, with their
+// visibility, colour and transform), the load in progress and what the
+// viewer shows. Panels render from it and call its actions; nothing else
+// changes it.
 import * as THREE from 'three';
 import {
   ApiError,
@@ -38,6 +40,9 @@ import { SelectionPanel } from './panels/selection.ts';
 import { Navigation, type CameraState } from './viewer/navigation.ts';
 import { SelectionTool } from './viewer/selection_tool.ts';
 import { DisplayPanel, type DisplayReport } from './panels/display.ts';
+import { ScenePanel } from './panels/scene.ts';
+import { defaultSceneObject, isIdentity, MAX_SCENE_OBJECTS, sanitizeScene, sceneColor, type SceneObjectState } from './viewer/scene_state.ts';
+import { applySceneTransform, projectedBox } from './viewer/scene_objects.ts';
 import { applyCamera, readCamera } from './viewer/camera_state.ts';
 import { decodeViewHash, encodeViewHash, type ViewState } from './viewer/view_state.ts';
 import { buildSlicePlane, sliceClipPlane } from './viewer/slice_plane.ts';
@@ -124,6 +129,24 @@ export interface TestHooks {
   lastPreview: { id: string; vertices: number; faces: number; camera: ViewState['camera']; fullCamera: ViewState['camera'] | null } | null;
   /** Renders `frames` frames orbiting the shown object and times them (viewer/frame_timer.ts; for bench/frame_bench.mjs). */
   orbit: (frames: number) => OrbitTimes;
+  /**
+   * The scene as the last frame drew it: each object (the shown mesh first)
+   * with its state, whether it is drawn (loaded), the pane it is in (-1: the
+   * one view) and its world box projected into that pane or the canvas in
+   * normalized device coordinates ([-1, 1], y up); panes: how many.
+   */
+  scene: {
+    panes: number;
+    /** The object chosen in the Scene panel, whose overlays the Display panel draws. */
+    picked: number;
+    objects: Array<SceneObjectState & { name: string; loaded: boolean; pane: number; box: [number, number, number, number] | null }>;
+  };
+}
+
+/** An object of the scene: its state, its mesh's name, and (for those beside the first) the surface drawn once loaded. */
+interface SceneEntry extends SceneObjectState {
+  name: string;
+  object: THREE.Mesh | null;
 }
 
 declare global {
@@ -193,6 +216,12 @@ export class App {
   private compared: Array<{ jobId: string; artifact: string }> = [];
   private compareToken = 0;
   private readonly plyCache = new Map<string, Promise<PlyMesh>>();
+  /** The scene: the selected mesh first (drawn as the viewer's shown object), then the meshes added beside it (the viewer's extras). */
+  private scene: SceneEntry[] = [];
+  /** Whether the scene's objects are side by side, one per pane. */
+  private scenePanes = false;
+  /** The scene object chosen in the Scene panel: the Display panel's overlays are drawn over it. */
+  private picked = 0;
 
   private readonly hooks: TestHooks = {
     ready: false,
@@ -214,6 +243,7 @@ export class App {
     texture: null,
     lastPreview: null,
     orbit: (frames) => orbitFrameTimes(this.viewer, frames),
+    scene: { panes: 0, picked: 0, objects: [] },
   };
   private readonly socket = new CgviewSocket();
   private readonly decoder = new DracoDecoder();
@@ -235,6 +265,7 @@ export class App {
   private readonly selectionTool: SelectionTool;
   private readonly display: DisplayPanel;
   private readonly textures: MeshTextures;
+  private readonly scenePanel: ScenePanel;
   /** The signed-in user and their quota use (GET /me), shown in the header. */
   private me: Me | null = null;
   private readonly account = new AccountPanel(byId('account'));
@@ -242,7 +273,21 @@ export class App {
 
   constructor() {
     window.__cgview = this.hooks;
-    this.viewer = new Viewer(byId('viewport'), { onFrame: () => ++this.hooks.frames });
+    this.viewer = new Viewer(byId('viewport'), {
+      onFrame: () => {
+        ++this.hooks.frames;
+        this.hooks.scene = this.sceneReport();
+      },
+    });
+    // Before the Display panel's listener: the overlays measure the object where the scene puts it.
+    this.viewer.onShownChange((object) => this.shownChanged(object));
+    this.scenePanel = new ScenePanel(byId('scene'), {
+      change: (i, patch) => this.changeSceneObject(i, patch),
+      remove: (i) => this.removeSceneObject(i),
+      fitAll: () => this.viewer.fitAll(),
+      pick: (i) => this.pickSceneObject(i),
+      sideBySide: (on) => (on ? this.showSceneSideBySide() : this.leaveComparison()),
+    });
     this.textures = new MeshTextures(
       byId('texture-panel'),
       (onDrawn) => this.viewer.redraw(onDrawn),
@@ -251,6 +296,7 @@ export class App {
     );
     this.list = new MeshListPanel(byId('mesh-list'), {
       select: (id) => this.select(id),
+      addToScene: (id) => void this.addToScene(id),
       remove: (id) => void this.remove(id),
       share: (id) => openShareForm('meshes', id, this.meshes.find((m) => m.id === id)?.name ?? id),
       mayChange: (owner) => this.mayChange(owner),
@@ -317,6 +363,8 @@ export class App {
     this.display = new DisplayPanel(byId('display'), this.viewer, {
       setFieldRange: (range) => this.setFieldRange(range),
       drawn: (report) => (this.hooks.display = report),
+      others: () => this.scene.slice(1).flatMap((e) => (e.object ? [e.object] : [])),
+      colorOf: (object) => this.sceneEntryOf(object)?.color ?? null,
     });
     byId('screenshot').addEventListener('click', () => {
       const name = (this.selectedMesh()?.name ?? 'view').replace(/\.[^.]*$/, '');
@@ -803,6 +851,7 @@ export class App {
       const loaded = await Promise.all(sources.map((s) => this.loadField(s.job.id, s.artifact, meshId)));
       if (token !== this.compareToken || this.selectedId !== meshId) return;
       this.compared = list;
+      this.endSceneSideBySide();
       this.hooks.lastCompare = null;
       this.legend.hide();
       this.comparison.show(
@@ -827,6 +876,7 @@ export class App {
       const ply = await this.meshPly(meshId);
       if (token !== this.compareToken || this.selectedId !== meshId) return;
       this.compared = list.map(([key]) => splitKey(key));
+      this.endSceneSideBySide();
       this.hooks.lastCompare = null;
       this.legend.hide();
       this.comparison.showObjects(
@@ -848,8 +898,12 @@ export class App {
   /** Back to one view: the field drawn before the comparison (if any) with its legend. */
   leaveComparison(): void {
     ++this.compareToken;
-    if (!this.compared.length) return;
+    if (!this.compared.length && !this.scenePanes) return;
     this.compared = [];
+    if (this.scenePanes) {
+      this.scenePanes = false;
+      this.renderScene();
+    }
     this.hooks.lastCompare = null;
     this.comparison.clear();
     this.leaveCompare.hidden = true;
@@ -985,6 +1039,10 @@ export class App {
     if (!meshId) return this.error('Choose a mesh first: a view link reopens a mesh.');
     const { display, overlays } = this.display.state();
     const state: ViewState = { v: 1, mesh: meshId, camera: readCamera(this.viewer), display: { ...display }, overlays: { ...overlays } };
+    // The scene, when there is more to it than the mesh as it was loaded (old readers see the mesh alone).
+    const scene = this.scene.map(({ name: _n, object: _o, ...e }) => ({ ...e }));
+    if (scene.length > 1 || scene.some((e) => !e.visible || e.color !== null || !isIdentity(e))) state.scene = scene;
+    if (this.scenePanes) state.panes = true;
     const f = this.field;
     if (f && f.meshId === meshId) state.field = { job: f.jobId, artifact: f.artifact, map: f.map, range: f.data.range };
     // Never the token: it stays in this browser's storage (api/auth.ts).
@@ -1013,14 +1071,26 @@ export class App {
       this.hooks.viewRestored = { error };
       return this.error(`Cannot open the view link: ${error}`);
     }
+    let scene: SceneObjectState[] = [];
+    try {
+      scene = state.scene ? sanitizeScene(state.scene) : [];
+    } catch (e) {
+      this.hooks.viewRestored = { error: describe(e) };
+      return this.error(`Cannot open the view link: ${describe(e)}`);
+    }
     this.select(state.mesh);
+    if (scene[0]) this.changeSceneObject(0, scene[0]);
     await this.showing;
+    const missing = scene.slice(1).filter((o) => !this.meshes.some((m) => m.id === o.mesh));
+    if (missing.length) this.error(`The view link's meshes ${missing.map((o) => o.mesh).join(', ')} no longer exist; the scene is shown without them.`);
+    await Promise.all(scene.slice(1).filter((o) => !missing.includes(o)).map((o) => this.addToScene(o.mesh, o)));
     this.display.restore(state.display, state.overlays);
     if (state.field) {
       this.mapName = state.field.map;
       await this.showField(state.field.job, state.field.artifact);
       if (this.field) this.setFieldRange(state.field.range);
     }
+    if (state.panes && this.scene.length > 1) this.showSceneSideBySide();
     applyCamera(this.viewer, state.camera);
     const mode = this.display.state().display.mode;
     this.viewer.redraw(() => (this.hooks.viewRestored = { camera: readCamera(this.viewer), mode }));
@@ -1071,6 +1141,11 @@ export class App {
     const mesh = this.meshes.find((m) => m.id === id);
     if (!mesh) return;
     this.selectedId = id;
+    // A plain click shows this mesh alone: the scene starts again from it (show() clears the viewer's extras).
+    this.leaveComparison();
+    this.scene = [{ ...defaultSceneObject(id), name: mesh.name, object: null }];
+    this.pickSceneObject(0);
+    this.renderScene();
     if (this.runTarget) {
       this.runTarget = null;
       this.renderJobs();
@@ -1185,6 +1260,168 @@ export class App {
     }
   }
 
+  /**
+   * Downloads a mesh over the WebSocket (with the progress bar while
+   * `current()`) and decodes it in the worker; null when no longer current.
+   */
+  private async downloadMesh(mesh: Mesh, signal: AbortSignal, current: () => boolean, timer: LoadTimer): Promise<{ decoded: Awaited<ReturnType<DracoDecoder['decode']>>; bytes: number } | null> {
+    this.progress.show('downloading', 0, mesh.name);
+    const transfer = await this.socket.getMesh(mesh.id, {
+      signal,
+      onSent: () => timer.mark('request'),
+      onBegin: () => timer.mark('first-byte'),
+      onProgress: (received, total) => {
+        if (received > 0) timer.mark('first-chunk');
+        if (received >= total) timer.mark('last-chunk');
+        if (current()) this.progress.show('downloading', total > 0 ? received / total : 0, mesh.name);
+      },
+    });
+    if (!current()) return null;
+    this.progress.show('decoding', null, mesh.name);
+    const bytes = transfer.payload.byteLength; // before the worker takes the buffer
+    timer.mark('decode-start');
+    const decoded = await this.decoder.decode(transfer.payload);
+    if (!current()) return null;
+    timer.mark('decode-end');
+    timer.setWorkerTiming(decoded.timing);
+    return { decoded, bytes };
+  }
+
+  // The scene: several meshes at once.
+
+  /**
+   * "+" in the mesh list: draws the mesh beside the scene's objects, in the
+   * next colour and the display mode of the others (with nothing shown, it
+   * is shown as a click would). `state` (a view link's) gives its visibility,
+   * colour and transform. Resolves once it is drawn (or has failed).
+   */
+  async addToScene(id: string, state?: SceneObjectState): Promise<void> {
+    const mesh = this.meshes.find((m) => m.id === id);
+    if (!mesh) return;
+    if (!this.scene.length) {
+      this.select(id);
+      return;
+    }
+    if (this.scene.length >= MAX_SCENE_OBJECTS) return this.error(`A scene holds at most ${MAX_SCENE_OBJECTS} objects.`);
+    const entry: SceneEntry = { ...(state ?? defaultSceneObject(id, sceneColor(this.scene.length - 1))), mesh: id, name: mesh.name, object: null };
+    this.scene.push(entry);
+    this.renderScene();
+    const inScene = () => this.scene.includes(entry);
+    try {
+      await this.showing; // the first object's show() clears the viewer's extras
+      if (!inScene()) return;
+      const controller = new AbortController();
+      const loaded = await this.downloadMesh(mesh, controller.signal, inScene, new LoadTimer());
+      this.progress.hide();
+      if (!loaded || !inScene()) return;
+      const object = buildSurface(loaded.decoded);
+      object.name = `scene:${mesh.name}`;
+      entry.object = object;
+      applySceneTransform(object, entry);
+      this.display.applyTo(object);
+      if (this.scene[this.picked] === entry) this.display.setOverlayObject(object);
+      await new Promise<void>((resolve) => this.viewer.addExtra(object, resolve));
+      if (this.scenePanes) this.showSceneSideBySide();
+    } catch (e) {
+      this.progress.hide();
+      if (!inScene()) return;
+      this.scene.splice(this.scene.indexOf(entry), 1);
+      this.renderScene();
+      this.error(`Cannot add ${mesh.name} to the scene: ${describe(e)}`);
+    }
+  }
+
+  /** The drawn object of scene entry `e` (the first: whatever the viewer shows for the selected mesh). */
+  private sceneObject(index: number): THREE.Object3D | null {
+    return index === 0 ? this.viewer.object : (this.scene[index]?.object ?? null);
+  }
+
+  private sceneEntryOf(object: THREE.Object3D): SceneEntry | null {
+    const i = this.scene.findIndex((_, k) => this.sceneObject(k) === object);
+    return i >= 0 ? this.scene[i]! : null;
+  }
+
+  /** A new shown object (the selected mesh, its field, an animation) takes the first scene object's place and transform. */
+  private shownChanged(object: THREE.Object3D | null): void {
+    const first = this.scene[0];
+    if (object && first && first.mesh === this.selectedId) applySceneTransform(object, first);
+  }
+
+  private changeSceneObject(index: number, patch: Partial<SceneObjectState>): void {
+    const entry = this.scene[index];
+    if (!entry) return;
+    Object.assign(entry, patch);
+    const object = this.sceneObject(index);
+    if (object) {
+      applySceneTransform(object, entry);
+      if (patch.color !== undefined) this.display.applyTo(object);
+      if (index === this.picked) this.display.refreshOverlays();
+    }
+    this.viewer.requestRender();
+  }
+
+  private removeSceneObject(index: number): void {
+    const entry = this.scene[index];
+    if (!entry || index === 0) return;
+    this.scene.splice(index, 1);
+    if (index === this.picked) this.pickSceneObject(0);
+    else if (index < this.picked) --this.picked;
+    const wasPanes = this.scenePanes;
+    if (wasPanes) this.leaveComparison();
+    if (entry.object) this.viewer.removeExtra(entry.object);
+    if (wasPanes && this.scene.length >= 2) this.showSceneSideBySide();
+    this.renderScene();
+  }
+
+  /** The scene's objects side by side, one per pane, all through the one camera; framed together. */
+  private showSceneSideBySide(): void {
+    const items = this.scene.flatMap((e, i) => {
+      const object = this.sceneObject(i);
+      return object ? [{ key: `scene:${i}`, title: e.name, object, color: e.color ?? this.display.state().display.color }] : [];
+    });
+    if (items.length < 2) return this.error('Side by side needs two objects in the scene: add one with “+” in the mesh list.');
+    ++this.compareToken;
+    this.compared = [];
+    this.hooks.lastCompare = null;
+    this.legend.hide();
+    this.comparison.showObjects(items, false);
+    this.scenePanes = true;
+    this.leaveCompare.hidden = false;
+    this.viewer.fitAll();
+    this.renderScene();
+  }
+
+  /** Forgets that the scene is side by side (a comparison of fields takes the panes). */
+  private endSceneSideBySide(): void {
+    if (!this.scenePanes) return;
+    this.scenePanes = false;
+    this.renderScene();
+  }
+
+  /** Chooses scene object `index` for the overlays (the first: the shown object, whatever it is). */
+  private pickSceneObject(index: number): void {
+    if (!this.scene[index]) index = 0;
+    this.picked = index;
+    this.display.setOverlayObject(index === 0 ? null : this.sceneObject(index));
+    this.renderScene();
+  }
+
+  private renderScene(): void {
+    this.scenePanel.render(this.scene, this.scenePanes, this.display.state().display.color, this.picked);
+    if (this.meshes.length) this.renderList();
+  }
+
+  private sceneReport(): TestHooks['scene'] {
+    // Drawn per pane with the pane's aspect (viewer.resize), or over the canvas.
+    const objects = this.scene.map((e, i) => {
+      const object = this.sceneObject(i);
+      const pane = object ? this.viewer.paneOf(object) : -1;
+      const { name, object: _, ...state } = e;
+      return { ...state, position: [...e.position] as SceneObjectState['position'], rotation: [...e.rotation] as SceneObjectState['rotation'], name, loaded: !!object, pane, box: object ? projectedBox(object, this.viewer.camera) : null };
+    });
+    return { panes: this.scenePanes ? objects.filter((o) => o.pane >= 0).length : 0, picked: this.picked, objects };
+  }
+
   private upsert(mesh: Mesh): void {
     this.plyCache.delete(mesh.id);
     const i = this.meshes.findIndex((m) => m.id === mesh.id);
@@ -1197,6 +1434,7 @@ export class App {
   /** Drops a mesh that no longer exists on the server; clears the view if it was shown. */
   private forget(id: string): void {
     this.meshes = this.meshes.filter((m) => m.id !== id);
+    for (let i = this.scene.length - 1; i > 0; --i) if (this.scene[i]!.mesh === id) this.removeSceneObject(i);
     this.plyCache.delete(id);
     if (this.selectedId === id) {
       this.selectedId = null;
@@ -1218,12 +1456,15 @@ export class App {
       this.hooks.lastLoaded = null;
       this.hooks.timings = null;
       this.report.render(null);
+      this.scene = [];
+      this.scenePanes = false;
+      this.renderScene();
     }
     this.renderList();
   }
 
   private renderList(): void {
-    this.list.render(this.meshes, this.selectedId);
+    this.list.render(this.meshes, this.selectedId, new Set(this.scene.map((e) => e.mesh)));
     this.algorithmsPanel.setMeshes(this.meshes.map((m) => ({ id: m.id, name: m.name })));
     if (this.jobs.size) this.renderJobs(); // mesh names in the job panel
   }

@@ -53,7 +53,10 @@ const v = useViewer({ tmpPrefix: 'cgview-display-', mesh: path.join(samples, 'ei
 /** Pins the viewport (and so the canvas) to VIEW_SIZE, over the page, whatever the layout around it. */
 async function pinViewport(page) {
   await page.addStyleTag({
-    content: `#viewport { position: fixed !important; left: 0; top: 0; z-index: 1000;
+    // The header over it, so that its buttons (Fit view, a wide navigation toolbar before them) stay clickable;
+    // the pictures are the canvas's own pixels (the Screenshot button), which the header does not cover.
+    content: `header.topbar { position: relative; z-index: 1001; }
+      #viewport { position: fixed !important; left: 0; top: 0; z-index: 1000;
       width: ${VIEW_SIZE.width}px !important; height: ${VIEW_SIZE.height}px !important; }`,
   });
   await page.waitForFunction(

@@ -136,6 +136,26 @@ test('an OBJ, its MTL and a PNG chosen together show the texture face-on, and th
     assert.ok(max > 60 && max - Math.min(...got) > 0.5 * max, `${where}: ${got.map(Math.round)} is not a saturated colour`);
   }
 
+  // The shaded display modes replace the material but keep the texture; wireframe draws the plain colour.
+  for (const mode of ['flat', 'toon', 'hidden-line', 'wireframe']) {
+    await v.page.selectOption('#display-mode', mode);
+    await v.page.waitForFunction((m) => window.__cgview.display?.mode === m, mode, { timeout: 10000 });
+    const shaded = await canvasPixels(`quad-${mode}`);
+    const hues = Object.entries(QUADRANTS).map(([where, [fx, fy]]) => [where, sample(shaded, fx, fy)]);
+    if (mode === 'wireframe') {
+      const textured = hues.filter(([where, got]) => hue(got) !== null && hueDistance(hue(got), hue(TEXELS[where])) <= 20 && Math.max(...got) > 60);
+      assert.ok(textured.length < 4, `wireframe draws no texture: ${JSON.stringify(hues)}`);
+      continue;
+    }
+    for (const [where, got] of hues) {
+      const h = hue(got);
+      // Toon's few bands of light shift the hues a little more.
+      assert.ok(h !== null && hueDistance(h, hue(TEXELS[where])) <= (mode === 'toon' ? 30 : 20), `${mode}, ${where}: hue of ${got.map(Math.round)} is not that of ${TEXELS[where]}`);
+    }
+  }
+  await v.page.selectOption('#display-mode', 'smooth');
+  await v.page.waitForFunction(() => window.__cgview.display?.mode === 'smooth', null, { timeout: 10000 });
+
   await v.page.selectOption('#texture-mode', 'checkerboard');
   await v.page.locator('#texture-squares').fill('2');
   await v.page.waitForFunction(() => window.__cgview.texture?.mode === 'checkerboard' && window.__cgview.texture.squares === 2, null, { timeout: 10000 });

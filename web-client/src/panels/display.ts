@@ -2,7 +2,9 @@
 // over it, the range of the scalar field drawn on it, and the view link's
 // text. It owns the display and overlay settings and applies them to
 // whatever the viewer shows (viewer.onShownChange), so that a mesh shown
-// later keeps the mode chosen.
+// later keeps the mode chosen. With several meshes in the scene, the mode and
+// material apply to every object of it, each in its own colour where the
+// scene gives one (panels/scene.ts); the overlays are of the shown (first) one.
 import * as THREE from 'three';
 import { RoomEnvironment } from 'three/addons/environments/RoomEnvironment.js';
 import {
@@ -32,6 +34,10 @@ export interface DisplayCallbacks {
   setFieldRange: (range: [number, number] | null) => void;
   /** Called after a frame shows the settings. */
   drawn: (report: DisplayReport) => void;
+  /** The scene's other objects, drawn in the same mode (none by default). */
+  others?: () => THREE.Object3D[];
+  /** An object's own colour in the scene, in place of the material's; null: the material's. */
+  colorOf?: (object: THREE.Object3D) => string | null;
 }
 
 const MODE_LABELS: Record<string, string> = {
@@ -61,6 +67,8 @@ export class DisplayPanel {
   private overlays: OverlaySettings = { ...DEFAULT_OVERLAYS };
   private info: OverlayInfo = { size: null, boundaryEdges: null, nonManifoldEdges: null };
   private object: THREE.Object3D | null = null;
+  /** The scene object whose overlays are drawn, when not the shown one. */
+  private overlayObject: THREE.Object3D | null = null;
   private environment: THREE.Texture | null = null;
   private field: { range: [number, number]; full: [number, number]; values: Float32Array } | null = null;
 
@@ -213,8 +221,19 @@ export class DisplayPanel {
   private setDisplay(s: DisplaySettings): void {
     this.settings = s;
     this.syncInputs();
-    if (isSurface(this.object)) applyDisplay(this.object, this.settings, () => this.env());
+    for (const o of this.targets()) this.applyTo(o);
     this.report();
+  }
+
+  /** Draws `object` (one of the scene's) in the mode and material, in its own colour. */
+  applyTo(object: THREE.Object3D | null): void {
+    if (!isSurface(object)) return;
+    const color = this.callbacks.colorOf?.(object) ?? null;
+    applyDisplay(object, color ? { ...this.settings, color } : this.settings, () => this.env());
+  }
+
+  private targets(): THREE.Object3D[] {
+    return [...(this.object ? [this.object] : []), ...(this.callbacks.others?.() ?? [])];
   }
 
   private readInputs(): void {
@@ -240,7 +259,18 @@ export class DisplayPanel {
       edges: this.checks.edges.input.checked,
       normalLength: Number(this.normalLength.value),
     };
-    this.info = updateOverlays(this.viewer, this.object, this.overlays);
+    this.refreshOverlays();
+  }
+
+  /** Draws the overlays over `object` (a scene object chosen in the Scene panel); null: over the shown one. */
+  setOverlayObject(object: THREE.Object3D | null): void {
+    this.overlayObject = object;
+    this.refreshOverlays();
+  }
+
+  /** Builds the overlays again (their object moved). */
+  refreshOverlays(): void {
+    this.info = updateOverlays(this.viewer, this.overlayObject ?? this.object, this.overlays);
     this.report();
   }
 
@@ -263,16 +293,14 @@ export class DisplayPanel {
   /** A new shown object: the mode and the overlays follow it (a default display leaves it as built). */
   private attach(object: THREE.Object3D | null): void {
     this.object = object;
-    if (isSurface(object) && !isDefaultDisplay(this.settings)) applyDisplay(object, this.settings, () => this.env());
+    if (object && (!isDefaultDisplay(this.settings) || this.callbacks.colorOf?.(object))) this.applyTo(object);
     this.vertexColors.row.hidden = !(isSurface(object) && object.geometry.getAttribute('color') && !object.name.startsWith('scalar:'));
-    this.info = updateOverlays(this.viewer, object, this.overlays);
-    this.report();
+    this.refreshOverlays();
   }
 
   private applyAll(): void {
-    if (isSurface(this.object)) applyDisplay(this.object, this.settings, () => this.env());
-    this.info = updateOverlays(this.viewer, this.object, this.overlays);
-    this.report();
+    for (const o of this.targets()) this.applyTo(o);
+    this.refreshOverlays();
   }
 
   /** Reflections for metals: a PMREM of three's room environment, made once, when first needed. */

@@ -1,7 +1,9 @@
 // The list of stored meshes: a thumbnail rendered by the server (render.png),
-// name, vertex and face counts; a click shows the mesh, the delete button
-// removes it from the server, the share button (⇪) opens the share form (on what the
-// user may change: their own meshes, or any for an admin).
+// name, vertex and face counts; a click shows the mesh (alone), "+" (or a
+// ctrl-click) adds it to
+// the scene beside the meshes shown, the delete button removes it from the
+// server, the share button (⇪) opens the share form (on what the user may
+// change: their own meshes, or any for an admin).
 import { setImageSource } from '../api/auth.ts';
 import { renderUrl } from '../api/rest.ts';
 import type { Mesh } from '../api/types.ts';
@@ -12,6 +14,8 @@ const THUMBNAIL_PX = 96;
 
 export interface MeshListActions {
   select(id: string): void;
+  /** Shows the mesh beside those shown (the scene). */
+  addToScene(id: string): void;
   remove(id: string): void;
   share(id: string): void;
   /** Whether the user may share (and delete) a mesh of that owner. */
@@ -29,7 +33,7 @@ export class MeshListPanel {
     this.actions = actions;
   }
 
-  render(meshes: readonly Mesh[], selectedId: string | null): void {
+  render(meshes: readonly Mesh[], selectedId: string | null, inScene: ReadonlySet<string> = new Set()): void {
     for (const id of this.thumbs.keys()) if (!meshes.some((m) => m.id === id)) this.thumbs.delete(id);
     if (meshes.length === 0) {
       this.root.replaceChildren(el('p', { class: 'empty' }, 'No meshes yet. Upload one, or drop a file on the page.'));
@@ -39,6 +43,11 @@ export class MeshListPanel {
       const counts = `${mesh.report.vertices} V · ${mesh.report.faces} F`;
       const remove = el('button', { class: 'delete', type: 'button', title: `Delete ${mesh.name}`, 'aria-label': `Delete ${mesh.name}` }, '✕');
       const thumb = this.thumbnail(mesh.id);
+      const add = el('button', { class: 'add-to-scene', type: 'button', title: `Add ${mesh.name} to the scene`, 'aria-label': `Add ${mesh.name} to the scene` }, '+');
+      add.addEventListener('click', (ev) => {
+        ev.stopPropagation();
+        this.actions.addToScene(mesh.id);
+      });
       let share: HTMLButtonElement | null = null;
       if (this.actions.mayChange(mesh.owner)) {
         share = el('button', { class: 'share', type: 'button', title: `Share ${mesh.name}`, 'aria-label': `Share ${mesh.name}` }, '⇪');
@@ -56,7 +65,7 @@ export class MeshListPanel {
       const item = el(
         'li',
         {
-          class: mesh.id === selectedId ? 'mesh selected' : 'mesh',
+          class: ['mesh', mesh.id === selectedId ? 'selected' : '', inScene.has(mesh.id) ? 'in-scene' : ''].filter(Boolean).join(' '),
           'data-mesh-id': mesh.id,
           tabindex: '0',
           role: 'button',
@@ -65,10 +74,12 @@ export class MeshListPanel {
         ...(thumb ? [thumb] : []),
         el('span', { class: 'mesh-name' }, mesh.name),
         el('span', { class: 'mesh-counts' }, counts),
+        add,
         share,
         remove,
       );
-      item.addEventListener('click', () => this.actions.select(mesh.id));
+      // Ctrl-click (⌘-click) adds to the scene, as "+" does.
+      item.addEventListener('click', (ev) => (ev.ctrlKey || ev.metaKey ? this.actions.addToScene(mesh.id) : this.actions.select(mesh.id)));
       item.addEventListener('keydown', (ev) => {
         if (ev.key === 'Enter' || ev.key === ' ') {
           ev.preventDefault();

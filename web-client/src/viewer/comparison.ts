@@ -53,8 +53,10 @@ export class ComparisonView {
    * Shows prepared objects side by side (a skeleton over the plain surface in
    * each pane, say), each under a title with an optional colour swatch;
    * replaces any comparison.  The same panes, camera and way back as fields.
+   * With `owned` false the objects are already shown (the scene's): drawn
+   * in the panes, and left shown, not disposed, when the comparison ends.
    */
-  showObjects(items: Array<{ key: string; title: string; object: THREE.Object3D; color?: string }>): void {
+  showObjects(items: Array<{ key: string; title: string; object: THREE.Object3D; color?: string }>, owned = true): void {
     this.removeOverlay();
     this.panes = [];
     const { cols, rows } = paneGrid(items.length);
@@ -72,6 +74,7 @@ export class ComparisonView {
     this.viewer.setPanes(
       items.map((it) => it.object),
       drawn,
+      owned,
     );
   }
 

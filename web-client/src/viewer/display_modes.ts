@@ -5,7 +5,10 @@
 // material and adds what it draws beside the faces as children of the mesh
 // that share its geometry (the points, the lines, the outline), so that the
 // viewer's disposal of the shown object frees them too. A scalar field's
-// surface keeps its colours in every mode.
+// surface keeps its colours in every mode. A textured surface (its texture
+// or the UV checkerboard in userData.map, set by viewer/textures.ts) keeps it
+// in the shaded modes (smooth, flat, hidden-line, toon); points and wireframe
+// draw the plain colour.
 //
 // Toon outlines are an inverted hull (the back faces of the surface pushed
 // out along the normals, drawn black) rather than three's OutlineEffect: one
@@ -144,6 +147,12 @@ function disposeMaterial(material: THREE.Material | THREE.Material[] | undefined
   }
 }
 
+/** The texture on a textured surface (viewer/textures.ts keeps it in userData.map), or null. */
+export function textureMap(mesh: THREE.Object3D): THREE.Texture | null {
+  const map = mesh.userData.map as THREE.Texture | null | undefined;
+  return map && map.isTexture ? map : null;
+}
+
 /** Whether the object is a surface that display modes apply to (not points, lines or a group). */
 export function isSurface(object: THREE.Object3D | null): object is THREE.Mesh {
   return !!object && (object as THREE.Mesh).isMesh === true;
@@ -160,8 +169,11 @@ export function applyDisplay(mesh: THREE.Mesh, s: DisplaySettings, environment: 
   const isField = mesh.name.startsWith('scalar:');
   const vertexColors = hasColors && (isField || s.vertexColors);
   const color = new THREE.Color(vertexColors ? 0xffffff : s.color);
+  const map = textureMap(mesh);
+  // The image shows its own colours (as viewer/textures.ts draws it).
+  const shaded = { color: map ? new THREE.Color(0xffffff) : color, map };
   const lit = {
-    color,
+    ...shaded,
     vertexColors,
     roughness: s.roughness,
     metalness: s.metalness,
@@ -192,7 +204,7 @@ export function applyDisplay(mesh: THREE.Mesh, s: DisplaySettings, environment: 
       break;
     }
     case 'toon': {
-      material = new THREE.MeshToonMaterial({ color, vertexColors, gradientMap: toonGradient(s.toonBands), side: THREE.DoubleSide });
+      material = new THREE.MeshToonMaterial({ ...shaded, vertexColors, gradientMap: toonGradient(s.toonBands), side: THREE.DoubleSide });
       if (!geometry.boundingSphere) geometry.computeBoundingSphere();
       const thickness = (geometry.boundingSphere?.radius ?? 1) * 0.008;
       mesh.add(decoration(new THREE.Mesh(geometry, outlineMaterial(thickness))));

@@ -187,6 +187,14 @@ export function edgeClassesOf(geometry: THREE.BufferGeometry): EdgeClasses {
   return classes;
 }
 
+/** `overlay` drawn with `mesh`'s world transform (it is not the mesh's child: the viewer owns overlays). */
+function placed(overlay: THREE.Object3D, mesh: THREE.Object3D): THREE.Object3D {
+  mesh.updateWorldMatrix(true, false);
+  overlay.matrixAutoUpdate = false;
+  overlay.matrix.copy(mesh.matrixWorld);
+  return overlay;
+}
+
 export const OVERLAY_NAMES = ['bbox', 'axes', 'vertex-normals', 'face-normals', 'edges'] as const;
 
 /**
@@ -217,7 +225,9 @@ export function updateOverlays(viewer: Viewer, object: THREE.Object3D | null, s:
         const helper = new VertexNormalsHelper(mesh, length, new THREE.Color(VERTEX_NORMAL_COLOR).getHex());
         built['vertex-normals'] = helper;
       }
-      if (s.faceNormals) built['face-normals'] = faceNormals(mesh.geometry, length);
+      // Built in the mesh's own coordinates, placed where the mesh stands (a scene object moved, turned or scaled).
+      const scale = Math.max(mesh.matrixWorld.getMaxScaleOnAxis(), 1e-9);
+      if (s.faceNormals) built['face-normals'] = placed(faceNormals(mesh.geometry, length / scale), mesh);
       if (s.edges) {
         const classes = edgeClassesOf(mesh.geometry);
         info.boundaryEdges = classes.boundary.length / 2;
@@ -225,7 +235,7 @@ export function updateOverlays(viewer: Viewer, object: THREE.Object3D | null, s:
         const group = new THREE.Group();
         const pos = mesh.geometry.getAttribute('position');
         group.add(edgeLines(pos, classes.boundary, EDGE_COLORS.boundary), edgeLines(pos, classes.nonManifold, EDGE_COLORS.nonManifold));
-        built.edges = group;
+        built.edges = placed(group, mesh);
       }
     }
   }

@@ -164,15 +164,20 @@ export class MeshTextures {
       }
       map = this.checker.texture;
     }
+    // Kept on the surface too, so that the display modes that replace its material keep it (display_modes.ts).
+    surface.userData.map = map;
     const material = surface.material as THREE.MeshStandardMaterial;
-    material.map = map;
-    // The image shows its own colours; without one the surface keeps its colour.
-    if (map) material.color.set(0xffffff);
-    else material.color.copy(this.baseColor);
-    material.needsUpdate = true;
+    // Points and wireframe (a basic material) draw no texture.
+    if (!(material as THREE.Material as THREE.MeshBasicMaterial).isMeshBasicMaterial) {
+      material.map = map;
+      // The image shows its own colours; without one the surface keeps its colour.
+      if (map) material.color.set(0xffffff);
+      else material.color.copy(this.baseColor);
+      material.needsUpdate = true;
+    }
     const image = mode === 'texture' ? (mesh.textures?.[0]?.name ?? null) : null;
     this.redraw(() => {
-      if (this.surface === surface && material.map === map) this.onShown({ meshId: mesh.id, mode, squares, image });
+      if (this.surface === surface && surface.userData.map === map) this.onShown({ meshId: mesh.id, mode, squares, image });
     });
   }
 }

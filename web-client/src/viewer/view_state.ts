@@ -1,5 +1,6 @@
 // The view link: what the viewer shows (camera, mesh, display mode and
-// material, overlays, the scalar field with its colour map and range) as
+// material, overlays, the scalar field with its colour map and range, the
+// scene's objects with their transforms and whether they are side by side) as
 // base64url JSON in the page's hash, `#view=...`, so that opening the link
 // shows the same view. Pure (no DOM, no three.js), so that node's unit tests
 // load it. Never holds the auth token: a link is something users share.
@@ -20,6 +21,14 @@ export interface ViewState {
   overlays?: Record<string, unknown>;
   /** The scalar field drawn, with its colour map and range. */
   field?: { job: string; artifact: string; map: string; range: [number, number] };
+  /**
+   * The scene's objects (viewer/scene_state.ts), the first one `mesh`'s,
+   * each kept as given (the reader checks them); absent: `mesh` alone, as in
+   * links made before scenes.
+   */
+  scene?: Array<Record<string, unknown>>;
+  /** The scene's objects side by side, one per pane. */
+  panes?: boolean;
 }
 
 function toBase64Url(text: string): string {
@@ -100,6 +109,18 @@ export function decodeViewHash(hash: string): ViewState | null {
       throw new Error('the view link\'s field needs job, artifact, map and a range of two numbers');
     }
     state.field = { job: f.job, artifact: f.artifact, map: f.map, range: [f.range[0], f.range[1]] };
+  }
+  if (raw.scene !== undefined) {
+    const scene = raw.scene;
+    if (!Array.isArray(scene) || !scene.every((o) => isObject(o) && typeof o.mesh === 'string' && o.mesh !== '')) {
+      throw new Error('the view link\'s scene must be a list of objects that each name a mesh');
+    }
+    if (scene.length === 0 || (scene[0] as Record<string, unknown>).mesh !== raw.mesh) throw new Error('the view link\'s scene must begin with its mesh');
+    state.scene = scene as Array<Record<string, unknown>>;
+  }
+  if (raw.panes !== undefined) {
+    if (typeof raw.panes !== 'boolean') throw new Error('the view link\'s panes is not true or false');
+    state.panes = raw.panes;
   }
   return state;
 }

@@ -10,6 +10,8 @@
 // GL pays for each), the lights and overlays are shared, and the views are
 // synchronized by construction, since the orbit controls move the one camera
 // that every pane is drawn with; nothing copies camera state between views.
+// The scene's objects side by side use the same panes with objects already
+// shown (setPanes(..., owned = false)).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 
@@ -35,10 +37,12 @@ export class Viewer {
   private readonly options: ViewerOptions;
   private readonly resizeObserver: ResizeObserver;
   private shown: THREE.Object3D | null = null;
-  /** Objects shown beside the main one (mesh artifacts of jobs); cleared by show(). */
+  /** Objects shown beside the main one (mesh artifacts of jobs, the scene's other meshes); cleared by show(). */
   private readonly extras = new THREE.Group();
   /** Objects drawn each in its own pane, in place of the shown one and the extras; empty: one view. */
   private panes: THREE.Object3D[] = [];
+  /** Whether the panes are the viewer's own (added for them, disposed with them) or objects already shown (the scene's). */
+  private panesOwned = true;
   private frameRequested = false;
   private afterFrame: Array<() => void> = [];
   /** Called when the shown object changes (display modes and overlays follow it). */
@@ -170,15 +174,21 @@ export class Viewer {
    * Draws `objects` side by side, each in its own pane through the shared
    * camera, in place of the shown object and the extras (kept, hidden, until
    * setPanes([]) ends the comparison); the previous panes are disposed.
+   * With `owned` false the objects are some already shown (the shown one
+   * and extras: the scene side by side), drawn one per pane and left in
+   * place, not disposed, when the panes end; one hidden stays hidden.
    */
-  setPanes(objects: THREE.Object3D[], onShown?: () => void): void {
-    for (const o of this.panes) {
-      this.scene.remove(o);
-      disposeObject(o);
+  setPanes(objects: THREE.Object3D[], onShown?: () => void, owned = true): void {
+    if (this.panesOwned) {
+      for (const o of this.panes) {
+        this.scene.remove(o);
+        disposeObject(o);
+      }
     }
     const cols = paneGrid(this.panes.length).cols;
     this.panes = objects;
-    for (const o of objects) this.scene.add(o);
+    this.panesOwned = owned;
+    if (owned) for (const o of objects) this.scene.add(o);
     this.resize();
     // Panes of another width: frame the surface again so that it fits them.
     if (paneGrid(objects.length).cols !== cols) this.fitToView();
@@ -213,16 +223,32 @@ export class Viewer {
 
   /** Removes the shown object, everything beside it and the panes. */
   clearAll(): void {
+    this.setPanes([]);
     this.clear();
     this.clearExtras();
-    this.setPanes([]);
   }
 
   /** Frames the camera on the shown object's bounding sphere, looking from the front-right-above. */
   fitToView(): void {
     const target = this.shown ?? this.panes[0];
-    if (!target) return;
-    const box = new THREE.Box3().setFromObject(target);
+    if (target) this.fitBox(new THREE.Box3().setFromObject(target));
+  }
+
+  /** Frames every visible object: the shown one, the extras beside it (the scene's objects) and the panes. */
+  fitAll(): void {
+    this.fitBox(this.visibleBox());
+  }
+
+  /** The world box of the visible objects (the shown one, the extras, the panes), empty when none. */
+  visibleBox(): THREE.Box3 {
+    const box = new THREE.Box3();
+    const objects = [this.shown, ...this.extras.children, ...this.panes];
+    for (const o of new Set(objects)) if (o && o.visible) box.union(new THREE.Box3().setFromObject(o));
+    return box;
+  }
+
+  /** Frames `box`'s bounding sphere, looking from the front-right-above. */
+  private fitBox(box: THREE.Box3): void {
     if (box.isEmpty()) return;
     const sphere = box.getBoundingSphere(new THREE.Sphere());
     const radius = Math.max(sphere.radius, 1e-6);
@@ -297,30 +323,49 @@ export class Viewer {
     this.controls.enableDamping = true;
   }
 
-  /** Draws each pane in its cell of the grid, the others hidden (the clear, too, is scissored to the cell). */
-  private renderPanes(): void {
+  /** Pane `i`'s cell of the canvas, in GL's pixels (origin at the bottom left; row 0 is the top); null: no such pane. */
+  paneRect(i: number): { x: number; y: number; width: number; height: number } | null {
+    if (i < 0 || i >= this.panes.length) return null;
     const { x: width, y: height } = this.renderer.getSize(new THREE.Vector2());
     const { cols, rows } = paneGrid(this.panes.length);
-    const single = [this.shown, this.extras].filter((o) => o !== null);
-    const wasVisible = single.map((o) => o.visible);
-    for (const o of single) o.visible = false;
+    const col = i % cols;
+    const row = Math.floor(i / cols);
+    const x0 = Math.round((col * width) / cols);
+    const x1 = Math.round(((col + 1) * width) / cols);
+    const y0 = Math.round(height - ((row + 1) * height) / rows);
+    const y1 = Math.round(height - (row * height) / rows);
+    return { x: x0, y: y0, width: x1 - x0, height: y1 - y0 };
+  }
+
+  /** The pane that draws `object` (or one of its ancestors), or -1. */
+  paneOf(object: THREE.Object3D): number {
+    return this.panes.findIndex((p) => p === object || p.getObjectById(object.id) !== undefined);
+  }
+
+  /**
+   * Draws each pane in its cell of the grid, everything else hidden (the
+   * clear, too, is scissored to the cell). A pane that was hidden (a scene
+   * object switched off) draws an empty cell.
+   */
+  private renderPanes(): void {
+    const { x: width, y: height } = this.renderer.getSize(new THREE.Vector2());
+    const all = [...new Set([this.shown, this.extras, ...this.extras.children, ...this.panes])].filter((o) => o !== null);
+    const wasVisible = new Map(all.map((o) => [o, o.visible]));
+    for (const o of all) o.visible = false;
+    // Panes among the extras (the scene's) need their group drawn.
+    if (!this.panesOwned) this.extras.visible = true;
     this.renderer.setScissorTest(true);
     this.panes.forEach((pane, i) => {
-      const col = i % cols;
-      const row = Math.floor(i / cols);
-      const x0 = Math.round((col * width) / cols);
-      const x1 = Math.round(((col + 1) * width) / cols);
-      // GL's origin is the bottom left; row 0 is the top.
-      const y0 = Math.round(height - ((row + 1) * height) / rows);
-      const y1 = Math.round(height - (row * height) / rows);
-      for (const p of this.panes) p.visible = p === pane;
-      this.renderer.setViewport(x0, y0, x1 - x0, y1 - y0);
-      this.renderer.setScissor(x0, y0, x1 - x0, y1 - y0);
+      const r = this.paneRect(i)!;
+      pane.visible = wasVisible.get(pane)!;
+      this.renderer.setViewport(r.x, r.y, r.width, r.height);
+      this.renderer.setScissor(r.x, r.y, r.width, r.height);
       this.renderer.render(this.scene, this.camera);
+      pane.visible = false;
     });
     this.renderer.setScissorTest(false);
     this.renderer.setViewport(0, 0, width, height);
-    single.forEach((o, i) => (o.visible = wasVisible[i]!));
+    for (const [o, v] of wasVisible) o.visible = v;
   }
 }
 
