@@ -1,5 +1,5 @@
-// Textures on the shown surface: the mesh's own image (from its MTL's map_Kd
-// or its PLY's TextureFile), none, or a checkerboard to inspect its UVs; and
+// Textures on the shown surface: the mesh's own images (each material's map_Kd, or its PLY's
+// TextureFile), none, or a checkerboard to inspect its UVs; and
 // the small panel that picks one, shown only for a mesh with UVs.
 import * as THREE from 'three';
 import { fetchMeshTexture } from '../api/rest.ts';
