@@ -227,7 +227,7 @@ function assertStrip(img, what, tolerance = 20) {
   });
 }
 
-test('several materials on one mesh: each quad shows its own texture or colour, in the display modes too', async () => {
+test('several materials on one mesh: each quad shows its own texture or colour, in the display modes too, and its Kd with textures off', async () => {
   const red = await quadPng({ topLeft: STRIP[0][1], topRight: STRIP[0][1], bottomLeft: STRIP[0][1], bottomRight: STRIP[0][1] });
   const blue = await quadPng({ topLeft: STRIP[2][1], topRight: STRIP[2][1], bottomLeft: STRIP[2][1], bottomRight: STRIP[2][1] });
   const mesh = await pick([file('strip.obj', stripObj()), file('strip.mtl', STRIP_MTL),
@@ -250,6 +250,14 @@ test('several materials on one mesh: each quad shows its own texture or colour, 
   assert.equal(await v.page.evaluate(() => window.__cgview.texture.materials), 1);
   for (const c of stripColours(await canvasPixels('strip-checkerboard')))
     assert.ok(Math.max(...c) - Math.min(...c) < 40, `the checkerboard is grey, got ${c.map(Math.round)}`);
+
+  // Textures off: each material shows its Kd (white, green, white).
+  await v.page.selectOption('#texture-mode', 'off');
+  await v.page.waitForFunction(() => window.__cgview.texture?.mode === 'off', null, { timeout: 10000 });
+  assert.equal(await v.page.evaluate(() => window.__cgview.texture.materials), 3);
+  const [left, middle, right] = stripColours(await canvasPixels('strip-off'));
+  for (const c of [left, right]) assert.ok(Math.max(...c) - Math.min(...c) < 40 && Math.max(...c) > 100, `a white Kd, got ${c.map(Math.round)}`);
+  assert.ok(hue(middle) !== null && hueDistance(hue(middle), 120) <= 20, `the green Kd, got ${middle.map(Math.round)}`);
   assert.deepEqual(v.problems, [], v.describeProblems());
 });
 

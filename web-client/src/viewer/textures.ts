@@ -55,6 +55,13 @@ export async function loadMeshTexture(meshId: string, n: number, signal?: AbortS
   }
 }
 
+/** Each material's Kd colour (no texture) on a surface with several materials, or null (none has a Kd, or vertex colours show). */
+function colourLooks(mesh: Mesh, surface: THREE.Mesh, material: THREE.MeshStandardMaterial): GroupLook[] | null {
+  const materials = mesh.materials ?? [];
+  if (materials.length < 2 || surface.geometry.groups.length === 0 || material.vertexColors) return null;
+  return materials.some((m) => m.kd) ? materials.map((m) => ({ map: null, color: m.kd })) : null;
+}
+
 /** What is drawn, for tests: set after the first frame that shows it. */
 export interface TextureState {
   meshId: string;
@@ -112,6 +119,9 @@ export class MeshTextures {
     this.baseColor.copy(material.color);
     this.panel.hidden = !uvs;
     if (!uvs) {
+      // No texture to show, but several materials still show their Kd colours.
+      surface.userData.looks = colourLooks(mesh, surface, material);
+      surface.material = withGroupLooks(material, surface.userData.looks as GroupLook[] | null, this.baseColor);
       this.onShown(null);
       return;
     }
@@ -159,6 +169,10 @@ export class MeshTextures {
       return;
     }
     let map: THREE.Texture | null = null;
+    // One material again (the first of a per-material array), then one per material when there are looks.
+    const current = surface.material;
+    const material = (Array.isArray(current) ? current[0] : current) as THREE.MeshStandardMaterial;
+    if (Array.isArray(current)) for (const m of current.slice(1)) m.dispose();
     let looks: GroupLook[] | null = null;
     if (mode === 'texture') {
       const textures = this.image!.textures;
@@ -168,6 +182,7 @@ export class MeshTextures {
         looks = mesh.materials!.map((m) => ({ map: m.texture === null ? null : (textures[m.texture] ?? null), color: m.kd }));
       }
     }
+    if (mode === 'off') looks = colourLooks(mesh, surface, material);
     if (mode === 'checkerboard') {
       if (this.checker?.squares !== squares) {
         this.checker?.texture.dispose();
@@ -178,10 +193,6 @@ export class MeshTextures {
     // Kept on the surface too, so that the display modes that replace its material keep it (display_modes.ts).
     surface.userData.map = map;
     surface.userData.looks = looks;
-    // One material again (the first of a per-material array), then one per material when there are looks.
-    const current = surface.material;
-    const material = (Array.isArray(current) ? current[0] : current) as THREE.MeshStandardMaterial;
-    if (Array.isArray(current)) for (const m of current.slice(1)) m.dispose();
     // Points and wireframe (a basic material) draw no texture.
     if (!(material as THREE.Material as THREE.MeshBasicMaterial).isMeshBasicMaterial) {
       material.map = map;
