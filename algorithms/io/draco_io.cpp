@@ -99,11 +99,8 @@ std::unique_ptr<draco::Mesh> to_draco(const Mesh& input, std::span<const std::ui
   }
   if (!identity) {
     const std::uint32_t materials = *std::max_element(face_material.begin(), face_material.end()) + 1;
-    draco::PointAttribute* mat = add(draco::GeometryAttribute::GENERIC, 1, draco::DT_UINT16, false, 2, materials);
-    for (std::uint32_t m = 0; m < materials; ++m) {
-      const std::uint16_t value = std::uint16_t(m);
-      mat->SetAttributeValue(draco::AttributeValueIndex(m), &value);
-    }
+    draco::PointAttribute* mat = add(draco::GeometryAttribute::GENERIC, 1, draco::DT_UINT32, false, 4, materials);
+    for (std::uint32_t m = 0; m < materials; ++m) mat->SetAttributeValue(draco::AttributeValueIndex(m), &m);
     auto metadata = std::make_unique<draco::AttributeMetadata>();
     metadata->AddEntryString("name", kDracoMaterialAttribute);
     metadata->set_att_unique_id(mat->unique_id());
