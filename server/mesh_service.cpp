@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cctype>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <span>
 
 #include "core/cluster_decimate.h"
 #include "core/errors.h"
 #include "core/mesh_report.h"
+#include "io/draco_io.h"
 #include "io/materials.h"
 #include "io/mesh_io.h"
 #include "mesh_report_json.h"
@@ -57,79 +60,98 @@ const BundleFile& mesh_file_of(const std::vector<BundleFile>& files) {
 }
 
 struct Textures {
-  nlohmann::json material = nlohmann::json::object();  // has_uvs, textures, kd
+  nlohmann::json material = nlohmann::json::object();  // has_uvs, textures, kd, materials
   std::vector<std::string> blobs;                      // one per material["textures"] entry
 };
 
-// The texture (and diffuse colour) of a mesh from the files uploaded with it.
+// The texture named `image` among the uploaded files as a textures[] entry
+// and its blob, or a warning saying why it is not shown.
+std::optional<std::size_t> add_texture(Textures& t, const ReadResult& r, const std::vector<BundleFile>& files,
+                                       bool bundle, const std::string& image, std::vector<std::string>& warnings) {
+  const BundleFile* f = find_file(files, image);
+  if (!f) {
+    warnings.push_back("the texture '" + image + "' is not in the upload: its faces show untextured" +
+                       (bundle ? "" : " (upload a zip of the mesh and its images)"));
+    return std::nullopt;
+  }
+  const std::string mime = image_mime_type(f->bytes);
+  if (mime.empty()) {
+    warnings.push_back("the texture '" + image + "' is not a PNG or JPEG image: its faces show untextured");
+    return std::nullopt;
+  }
+  if (!r.mesh.has_uvs()) {
+    warnings.push_back("the mesh has no texture coordinates: its texture '" + image + "' is not shown");
+    return std::nullopt;
+  }
+  const std::string name = file_base_name(f->name);
+  for (std::size_t i = 0; i < t.blobs.size(); ++i)
+    if (t.material["textures"][i]["name"] == name) return i;  // two materials, one image: one blob
+  t.material["textures"].push_back({{"name", name}, {"mime", mime}, {"bytes", f->bytes.size()}});
+  t.blobs.push_back(f->bytes);
+  return t.blobs.size() - 1;
+}
+
+// The textures and diffuse colours of a mesh from the files uploaded with it:
+// for an OBJ, `materials` lists the materials its faces use in order of first
+// use (the order of the material ids in its Draco stream), each with its Kd
+// and the index of its texture in `textures`, or null.
 Textures find_textures(const ReadResult& r, std::string_view mesh_bytes, const std::vector<BundleFile>& files,
                        bool bundle, std::vector<std::string>& warnings) {
   Textures t;
   t.material["has_uvs"] = r.mesh.has_uvs();
   t.material["textures"] = nlohmann::json::array();
-  std::string image, material_name;
-  std::optional<std::array<float, 3>> kd;
   if (r.format == MeshFormat::obj) {
     const ObjMaterialUse use = obj_material_use(mesh_bytes);
-    std::vector<Material> materials;
+    std::vector<Material> mtl;
     for (const auto& lib : use.libraries) {
       if (const BundleFile* f = find_file(files, lib)) {
-        for (auto& m : parse_mtl(f->bytes)) materials.push_back(std::move(m));
+        for (auto& m : parse_mtl(f->bytes)) mtl.push_back(std::move(m));
       } else {
         warnings.push_back(bundle ? "the material library '" + lib + "' is not in the zip: the mesh shows untextured"
                                   : "the OBJ names the material library '" + lib +
                                         "': upload a zip of the OBJ, the MTL and its images to see its textures");
       }
     }
-    const auto faces_of = [&](const Material& m) {
-      const auto it = use.faces.find(m.name);
-      return it == use.faces.end() ? std::size_t(0) : it->second;
-    };
-    const Material* best = nullptr;
-    std::size_t textured = 0;
-    for (const auto& m : materials) {
-      if (faces_of(m) == 0) continue;
-      if (!m.map_kd.empty()) ++textured;
-      // A textured material beats an untextured one, then the one on more faces.
-      if (!best || (!m.map_kd.empty() && best->map_kd.empty()) ||
-          (m.map_kd.empty() == best->map_kd.empty() && faces_of(m) > faces_of(*best)))
-        best = &m;
+    if (use.face_material.size() != r.mesh.num_faces()) return t;  // not the faces read_obj read: draw it plain
+    // Textures in order of the faces they cover, so textures[0] is the main one.
+    std::vector<std::size_t> order(use.names.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return use.faces.at(use.names[a]) > use.faces.at(use.names[b]); });
+    std::vector<nlohmann::json> entries(use.names.size());
+    for (const std::size_t i : order) {
+      const std::string& name = use.names[i];
+      const auto m = std::find_if(mtl.begin(), mtl.end(), [&](const Material& x) { return x.name == name; });
+      nlohmann::json e = {{"name", name}, {"faces", use.faces.at(name)}, {"kd", nullptr}, {"texture", nullptr}};
+      if (m != mtl.end() && m->kd) e["kd"] = *m->kd;
+      if (m != mtl.end() && !m->map_kd.empty())
+        if (const auto tex = add_texture(t, r, files, bundle, m->map_kd, warnings)) {
+          e["texture"] = *tex;
+          auto& te = t.material["textures"][*tex];
+          if (!te.contains("material")) {
+            te["material"] = name;
+            if (m->kd) te["kd"] = *m->kd;
+          }
+        }
+      if (!t.material.contains("kd") && m != mtl.end() && m->kd) t.material["kd"] = *m->kd;
+      entries[i] = std::move(e);
     }
-    if (best) {
-      material_name = best->name;
-      kd = best->kd;
-      image = best->map_kd;
-      if (textured > 1)
-        warnings.push_back(std::to_string(textured) + " materials have textures: one texture per mesh is shown, '" +
-                           best->map_kd + "' of material '" + best->name + "' (on " + std::to_string(faces_of(*best)) +
-                           " of " + std::to_string(r.mesh.num_faces()) + " faces)");
-    }
+    t.material["materials"] = entries;
   } else if (r.format == MeshFormat::ply) {
-    image = ply_texture_file(mesh_bytes);
+    const std::string image = ply_texture_file(mesh_bytes);
+    if (!image.empty()) add_texture(t, r, files, bundle, image, warnings);
   }
-  if (kd) t.material["kd"] = *kd;
-  if (image.empty()) return t;
-  const BundleFile* f = find_file(files, image);
-  if (!f) {
-    warnings.push_back("the texture '" + image + "' is not in the upload: the mesh shows untextured" +
-                       (bundle ? "" : " (upload a zip of the mesh and its images)"));
-    return t;
-  }
-  const std::string mime = image_mime_type(f->bytes);
-  if (mime.empty()) {
-    warnings.push_back("the texture '" + image + "' is not a PNG or JPEG image: the mesh shows untextured");
-    return t;
-  }
-  if (!r.mesh.has_uvs()) {
-    warnings.push_back("the mesh has no texture coordinates: its texture '" + image + "' is not shown");
-    return t;
-  }
-  nlohmann::json tex = {{"name", file_base_name(f->name)}, {"mime", mime}, {"bytes", f->bytes.size()}};
-  if (!material_name.empty()) tex["material"] = material_name;
-  if (kd) tex["kd"] = *kd;
-  t.material["textures"].push_back(tex);
-  t.blobs.push_back(f->bytes);
   return t;
+}
+
+// Each face's index into the stored mesh's `materials`, when its faces use
+// more than one (an OBJ's usemtl groups); empty otherwise.  It depends on the
+// mesh file's bytes only, so encodings stay keyed by the file's sha256.
+std::vector<std::uint32_t> face_materials(Store& store, const MeshRecord& rec, std::size_t faces) {
+  if (rec.format != "obj") return {};
+  ObjMaterialUse use = obj_material_use(store.read_blob(rec));
+  if (use.names.size() < 2 || use.face_material.size() != faces) return {};
+  return std::move(use.face_material);
 }
 }  // namespace
 
@@ -222,11 +244,11 @@ std::shared_ptr<const EncodedMesh> MeshService::cached(const std::string& key,
 }
 
 namespace {
-std::shared_ptr<const EncodedMesh> encode(const Mesh& m, int bits) {
+std::shared_ptr<const EncodedMesh> encode(const Mesh& m, int bits, std::span<const std::uint32_t> face_material = {}) {
   auto enc = std::make_shared<EncodedMesh>();
   WriteOptions wo;
   wo.position_bits = bits;
-  enc->bytes = write_mesh_bytes(m, MeshFormat::drc, wo);
+  enc->bytes = write_draco_with_materials(m, face_material, wo);
   enc->vertices = m.num_vertices();
   enc->faces = m.num_faces();
   enc->has_normals = m.has_normals();
@@ -238,7 +260,8 @@ std::shared_ptr<const EncodedMesh> encode(const Mesh& m, int bits) {
 std::shared_ptr<const EncodedMesh> MeshService::draco(const MeshRecord& rec, int bits) {
   if (bits < 1 || bits > 30) throw InvalidInput("quantization must be 1..30 bits, got " + std::to_string(bits));
   return cached(rec.sha256 + "/" + std::to_string(bits), [&] {
-    auto enc = encode(*mesh(rec), bits);
+    const std::shared_ptr<const Mesh> m = mesh(rec);
+    auto enc = encode(*m, bits, face_materials(store_, rec, m->num_faces()));
     std::lock_guard lock(mutex_);
     ++encodings_computed_;
     return enc;

@@ -44,11 +44,10 @@ class MeshService {
   // Parses the bytes (format given, or from the name's extension), computes
   // the report and stores it, owned by `owner`.  Throws InvalidInput (bad
   // name, format or file).  A zip ("x.zip" or format "zip") holds one mesh
-  // file and what it refers to: an OBJ's MTL and its map_Kd image, a PLY's
-  // `comment TextureFile` image; the image is stored as a blob of the mesh
-  // (one texture per mesh: of several textured materials, the one on the
-  // most faces).  A referenced file that is missing is a warning, not an
-  // error.  Throws TooLarge when the zip unpacks past max_upload_bytes.
+  // file and what it refers to: an OBJ's MTL and its materials' map_Kd
+  // images, a PLY's `comment TextureFile` image; each image is stored as a
+  // blob of the mesh, and an OBJ's `materials` say which faces use which.
+  // A referenced file that is missing is a warning, not an error.  Throws TooLarge when the zip unpacks past max_upload_bytes.
   MeshRecord upload(const std::string& name, const std::string& format, std::string_view bytes,
                     const std::string& owner = "local");
   // The mesh, parsed from its stored bytes (the last few are kept in memory).

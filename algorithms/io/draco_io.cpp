@@ -12,35 +12,70 @@
 #include <deque>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <span>
+#include <unordered_map>
 
 #include "core/errors.h"
+#include "io/draco_io.h"
 #include "io/readers.h"
 
 namespace cgview::detail {
 
 namespace {
 
-// A draco::Mesh with one point per vertex (attributes made per vertex first).
-std::unique_ptr<draco::Mesh> to_draco(const Mesh& input) {
+// A draco::Mesh with one point per vertex (attributes made per vertex
+// first), or, given each face's material, one point per (vertex, material)
+// pair: a vertex on a material boundary becomes one point per material, all
+// pointing at the vertex's attribute values, and a GENERIC attribute named
+// kDracoMaterialAttribute holds each point's material.
+std::unique_ptr<draco::Mesh> to_draco(const Mesh& input, std::span<const std::uint32_t> face_material = {}) {
   const Mesh mesh = with_per_vertex_attributes(input);
+  if (!face_material.empty() && face_material.size() != mesh.num_faces())
+    throw InvalidInput("the material list has " + std::to_string(face_material.size()) + " faces, the mesh " +
+                       std::to_string(mesh.num_faces()));
   auto out = std::make_unique<draco::Mesh>();
   const std::size_t n = mesh.num_vertices();
-  out->set_num_points(draco::PointIndex::ValueType(n));
+  std::vector<std::uint32_t> point_vertex, point_material;
+  std::vector<std::array<std::uint32_t, 3>> face_points(mesh.num_faces());
+  if (face_material.empty()) {
+    for (std::size_t f = 0; f < mesh.num_faces(); ++f)
+      face_points[f] = {std::uint32_t(mesh.faces[f][0]), std::uint32_t(mesh.faces[f][1]), std::uint32_t(mesh.faces[f][2])};
+  } else {
+    std::unordered_map<std::uint64_t, std::uint32_t> point_of;
+    for (std::size_t f = 0; f < mesh.num_faces(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint64_t v = mesh.faces[f][k];
+        const auto [it, fresh] = point_of.try_emplace(v << 32 | face_material[f], std::uint32_t(point_vertex.size()));
+        if (fresh) {
+          point_vertex.push_back(std::uint32_t(v));
+          point_material.push_back(face_material[f]);
+        }
+        face_points[f][k] = it->second;
+      }
+  }
+  const bool identity = face_material.empty();
+  out->set_num_points(draco::PointIndex::ValueType(identity ? n : point_vertex.size()));
   auto add = [&](draco::GeometryAttribute::Type type, int components, draco::DataType dt, bool normalized,
-                 int bytes_each) {
+                 int bytes_each, std::size_t values) {
     draco::GeometryAttribute ga;
     ga.Init(type, nullptr, std::uint8_t(components), dt, normalized, bytes_each * components, 0);
-    const int id = out->AddAttribute(ga, true, draco::AttributeValueIndex::ValueType(n));
-    return out->attribute(id);
+    const int id = out->AddAttribute(ga, identity, draco::AttributeValueIndex::ValueType(values));
+    draco::PointAttribute* a = out->attribute(id);
+    if (!identity)
+      for (std::size_t p = 0; p < point_vertex.size(); ++p)
+        a->SetPointMapEntry(draco::PointIndex(draco::PointIndex::ValueType(p)),
+                            draco::AttributeValueIndex(draco::AttributeValueIndex::ValueType(
+                                type == draco::GeometryAttribute::GENERIC ? point_material[p] : point_vertex[p])));
+    return a;
   };
-  draco::PointAttribute* pos = add(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32, false, 4);
+  draco::PointAttribute* pos = add(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32, false, 4, n);
   for (std::size_t v = 0; v < n; ++v) {
     const Vec3f p = to_float(mesh.positions[v]);
     const float xyz[3] = {p.x, p.y, p.z};
     pos->SetAttributeValue(draco::AttributeValueIndex(draco::AttributeValueIndex::ValueType(v)), xyz);
   }
   if (mesh.has_normals()) {
-    draco::PointAttribute* nrm = add(draco::GeometryAttribute::NORMAL, 3, draco::DT_FLOAT32, false, 4);
+    draco::PointAttribute* nrm = add(draco::GeometryAttribute::NORMAL, 3, draco::DT_FLOAT32, false, 4, n);
     for (std::size_t v = 0; v < n; ++v) {
       const Vec3f q = normalized(mesh.normals[v]);
       const float xyz[3] = {q.x, q.y, q.z};
@@ -48,23 +83,32 @@ std::unique_ptr<draco::Mesh> to_draco(const Mesh& input) {
     }
   }
   if (mesh.has_uvs()) {
-    draco::PointAttribute* tex = add(draco::GeometryAttribute::TEX_COORD, 2, draco::DT_FLOAT32, false, 4);
+    draco::PointAttribute* tex = add(draco::GeometryAttribute::TEX_COORD, 2, draco::DT_FLOAT32, false, 4, n);
     for (std::size_t v = 0; v < n; ++v) {
       const float uv[2] = {mesh.uvs[v].u, mesh.uvs[v].v};
       tex->SetAttributeValue(draco::AttributeValueIndex(draco::AttributeValueIndex::ValueType(v)), uv);
     }
   }
   if (mesh.has_colors()) {
-    draco::PointAttribute* col = add(draco::GeometryAttribute::COLOR, 4, draco::DT_UINT8, true, 1);
+    draco::PointAttribute* col = add(draco::GeometryAttribute::COLOR, 4, draco::DT_UINT8, true, 1, n);
     for (std::size_t v = 0; v < n; ++v) {
       const Color c = mesh.colors[v];
       const std::uint8_t rgba[4] = {c.r, c.g, c.b, c.a};
       col->SetAttributeValue(draco::AttributeValueIndex(draco::AttributeValueIndex::ValueType(v)), rgba);
     }
   }
+  if (!identity) {
+    const std::uint32_t materials = *std::max_element(face_material.begin(), face_material.end()) + 1;
+    draco::PointAttribute* mat = add(draco::GeometryAttribute::GENERIC, 1, draco::DT_UINT32, false, 4, materials);
+    for (std::uint32_t m = 0; m < materials; ++m) mat->SetAttributeValue(draco::AttributeValueIndex(m), &m);
+    auto metadata = std::make_unique<draco::AttributeMetadata>();
+    metadata->AddEntryString("name", kDracoMaterialAttribute);
+    metadata->set_att_unique_id(mat->unique_id());
+    out->AddAttributeMetadata(out->num_attributes() - 1, std::move(metadata));
+  }
   out->SetNumFaces(mesh.num_faces());
   for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
-    const Tri& t = mesh.faces[f];
+    const auto& t = face_points[f];
     out->SetFace(draco::FaceIndex(draco::FaceIndex::ValueType(f)),
                  {draco::PointIndex(t[0]), draco::PointIndex(t[1]), draco::PointIndex(t[2])});
   }
@@ -739,8 +783,8 @@ void read_gltf(std::string_view bytes, const std::string& name, bool binary, Rea
   GltfReader(bytes, name, result).read(binary);
 }
 
-std::string write_draco(const Mesh& mesh, const WriteOptions& options) {
-  auto dm = to_draco(mesh);
+std::string write_draco(const Mesh& mesh, const WriteOptions& options, std::span<const std::uint32_t> face_material) {
+  auto dm = to_draco(mesh, face_material);
   draco::Encoder encoder;
   encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, options.position_bits);
   encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, options.normal_bits);
@@ -753,6 +797,8 @@ std::string write_draco(const Mesh& mesh, const WriteOptions& options) {
   return to_string(buf);
 }
 
+std::string write_draco(const Mesh& mesh, const WriteOptions& options) { return write_draco(mesh, options, {}); }
+
 std::string write_glb(const Mesh& mesh) {
   auto dm = to_draco(mesh);
   draco::GltfEncoder encoder;
@@ -763,3 +809,12 @@ std::string write_glb(const Mesh& mesh) {
 }
 
 }  // namespace cgview::detail
+
+namespace cgview {
+
+std::string write_draco_with_materials(const Mesh& mesh, std::span<const std::uint32_t> face_material,
+                                       const WriteOptions& options) {
+  return detail::write_draco(mesh, options, face_material);
+}
+
+}  // namespace cgview

@@ -77,13 +77,26 @@ std::vector<Material> parse_mtl(std::string_view bytes) {
 ObjMaterialUse obj_material_use(std::string_view obj_bytes) {
   ObjMaterialUse use;
   std::string current;
-  std::size_t* count = nullptr;
+  std::optional<std::uint32_t> index;  // of current in use.names, once a face uses it
   for_each_line(obj_bytes, [&](std::string_view line) {
     std::size_t i = 0;
     while (i < line.size() && is_space(line[i])) ++i;
-    if (i + 1 < line.size() && line[i] == 'f' && is_space(line[i + 1])) {
-      if (!count) count = &use.faces[current];
-      ++*count;
+    const bool f = i + 1 < line.size() && line[i] == 'f' && is_space(line[i + 1]);
+    const bool fo = i + 2 < line.size() && line[i] == 'f' && line[i + 1] == 'o' && is_space(line[i + 2]);
+    if (f || fo) {
+      // As read_obj: a polygon of n corners is n - 2 triangles; a comment ends the corners.
+      std::string_view corners = line.substr(i + (f ? 1 : 2));
+      corners = corners.substr(0, corners.find('#'));
+      const std::size_t n = words(corners).size();
+      if (n < 3) return true;
+      if (!index) {
+        index = std::uint32_t(use.names.size());
+        for (std::size_t k = 0; k < use.names.size(); ++k)
+          if (use.names[k] == current) index = std::uint32_t(k);
+        if (*index == use.names.size()) use.names.push_back(current);
+      }
+      use.faces[current] += n - 2;
+      use.face_material.insert(use.face_material.end(), n - 2, *index);
       return true;
     }
     if (i >= line.size() || (line[i] != 'm' && line[i] != 'u')) return true;
@@ -92,7 +105,7 @@ ObjMaterialUse obj_material_use(std::string_view obj_bytes) {
       for (const auto w : words(rest)) use.libraries.emplace_back(w);
     } else if (key == "usemtl") {
       current = std::string(rest);
-      count = &use.faces[current];
+      index.reset();
     }
     return true;
   });

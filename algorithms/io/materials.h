@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -25,11 +26,15 @@ struct Material {
 // The materials of an MTL file, in file order (unknown statements are skipped).
 std::vector<Material> parse_mtl(std::string_view bytes);
 
-// What an OBJ says about materials: its `mtllib` files and how many faces
-// each `usemtl` name covers (faces before any usemtl count under "").
+// What an OBJ says about materials: its `mtllib` files, how many triangles
+// each `usemtl` name covers (faces before any usemtl count under ""), and
+// the material of every triangle.  Polygons count as the triangles
+// read_obj fans them into, so face_material follows the read mesh's faces.
 struct ObjMaterialUse {
   std::vector<std::string> libraries;
   std::map<std::string, std::size_t> faces;
+  std::vector<std::string> names;            // the materials used, in order of first use
+  std::vector<std::uint32_t> face_material;  // per triangle: an index into names
 };
 ObjMaterialUse obj_material_use(std::string_view obj_bytes);
 

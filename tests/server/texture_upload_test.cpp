@@ -8,10 +8,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
+#include <map>
 #include <fstream>
 #include <sstream>
 
+#include "draco_faces.h"
+#include "io/materials.h"
 #include "mesh_service.h"
 #include "router.h"
 #include "store.h"
@@ -133,6 +137,49 @@ TEST_F(TextureUploadTest, ObjMtlAndImageKeepTheirTexture) {
   EXPECT_EQ(store_->mesh_bytes(owner), 0u);
   EXPECT_FALSE(fs::exists(dir_ / "data" / "blobs" / (id + ".tex0")));
   EXPECT_FALSE(fs::exists(dir_ / "data" / "blobs" / (id + ".obj")));
+}
+
+// Assimp's spider: four materials on its faces (the MTL's fifth is on none),
+// each with its own JPEG, all stored and
+// served, and its Draco stream gives each face its material.
+TEST_F(TextureUploadTest, SpiderKeepsEveryMaterialsTexture) {
+  const fs::path dir = "/usr/share/assimp/models/OBJ";
+  std::vector<std::pair<std::string, std::string>> files = {{"spider.obj", read_bytes(dir / "spider.obj")},
+                                                            {"spider.mtl", read_bytes(dir / "spider.mtl")}};
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ".jpg") files.emplace_back(e.path().filename().string(), read_bytes(e.path()));
+  const json mesh = upload("spider.zip", make_zip(files));
+  EXPECT_EQ(mesh["warnings"].dump().find("textur"), std::string::npos) << mesh["warnings"];
+  const std::vector<Material> mtl = parse_mtl(files[1].second);
+  const ObjMaterialUse use = obj_material_use(files[0].second);
+  ASSERT_EQ(mesh["materials"].size(), 4u) << mesh;
+  ASSERT_EQ(mesh["textures"].size(), 4u) << "one image per material";
+  EXPECT_EQ(mesh["textures"][0]["name"], "drkwood2.jpg") << "the texture on the most faces first";
+  const std::string id = mesh["id"];
+  for (std::size_t i = 0; i < use.names.size(); ++i) {
+    const json& m = mesh["materials"][i];
+    EXPECT_EQ(m["name"], use.names[i]) << "materials in the order of the ids in the Draco stream";
+    EXPECT_EQ(m["faces"], use.faces.at(use.names[i]));
+    const auto it = std::find_if(mtl.begin(), mtl.end(), [&](const Material& x) { return x.name == use.names[i]; });
+    ASSERT_NE(it, mtl.end());
+    ASSERT_TRUE(m["texture"].is_number()) << m;
+    const std::size_t t = m["texture"];
+    const std::string image = file_base_name(it->map_kd);
+    EXPECT_EQ(mesh["textures"][t]["name"], image);
+    EXPECT_EQ(mesh["textures"][t]["material"], use.names[i]);
+    const HttpResponse served = call("GET", "/api/v1/meshes/" + id + "/textures/" + std::to_string(t));
+    ASSERT_EQ(served.status, 200);
+    EXPECT_TRUE(served.body == read_bytes(dir / image)) << image << " comes back byte for byte";
+  }
+  const HttpResponse drc = call("GET", "/api/v1/meshes/" + id + "/download?format=drc");
+  ASSERT_EQ(drc.status, 200);
+  std::map<std::uint32_t, std::size_t> per_material;
+  for (const auto& f : test::draco_faces(drc.body)) {
+    EXPECT_TRUE(f.one_material);
+    ++per_material[f.material];
+  }
+  ASSERT_EQ(per_material.size(), 4u);
+  for (std::size_t i = 0; i < use.names.size(); ++i) EXPECT_EQ(per_material[std::uint32_t(i)], mesh["materials"][i]["faces"]);
 }
 
 TEST_F(TextureUploadTest, MissingImageIsAWarning) {

@@ -4,8 +4,11 @@
 // texture's four colours in the right quadrants (the PNG is drawn by the
 // page's own canvas, an independent reference); the checkerboard mode shows
 // alternating dark and light squares; a missing image leaves the mesh
-// untextured with a warning; assimp's spider (OBJ + MTL + JPEGs, Debian's
-// assimp-testmodels) shows its leg texture's colour; and a PLY with UVs
+// untextured with a warning; three quads of one OBJ with three materials (a
+// red texture, a green Kd, a blue texture) show their own colours, also in
+// the flat, toon and smooth display modes; assimp's spider (OBJ + MTL +
+// JPEGs, Debian's assimp-testmodels) is drawn with its four materials'
+// textures and shows its leg texture's colour; and a PLY with UVs
 // (Blender's cube_uv.ply) gets the checkerboard.  Screenshots go to
 // build/test-artifacts/e2e-texture-*.png.
 //
@@ -21,14 +24,19 @@ const assimp = '/usr/share/assimp/models';
 const v = useViewer({ tmpPrefix: 'cgview-e2e-texture-', httpErrors: false });
 
 // The viewer's camera looks from (0.55, 0.35, 1) with +y up (Viewer.fitToView):
-// a unit quad facing it, its u along the screen's right and v along its up.
-function faceOnQuadObj(mtl) {
+// the point at (sx, sy) of the plane facing it, sx along the screen's right and sy along its up.
+function faceOnCorner(sx, sy) {
   const norm = (a) => a.map((x) => x / Math.hypot(...a));
   const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
   const z = norm([0.55, 0.35, 1]);
   const x = norm(cross([0, 1, 0], z));
   const y = cross(z, x);
-  const corner = (sx, sy) => [0, 1, 2].map((i) => sx * x[i] + sy * y[i]).join(' ');
+  return [0, 1, 2].map((i) => sx * x[i] + sy * y[i]).join(' ');
+}
+
+// A unit quad facing the camera, its u along the screen's right and v along its up.
+function faceOnQuadObj(mtl) {
+  const corner = faceOnCorner;
   return [
     mtl ? `mtllib ${mtl}` : '',
     `v ${corner(-1, -1)}`, `v ${corner(1, -1)}`, `v ${corner(1, 1)}`, `v ${corner(-1, 1)}`,
@@ -77,7 +85,7 @@ function sample(img, fx, fy) {
 const QUADRANTS = { topLeft: [-0.25, -0.25], topRight: [0.25, -0.25], bottomLeft: [-0.25, 0.25], bottomRight: [0.25, 0.25] };
 
 // A PNG of the 2×2 texels, made by the page's canvas (not by CGView).
-async function quadPng() {
+async function quadPng(texels = TEXELS) {
   const b64 = await v.page.evaluate((texels) => {
     const c = document.createElement('canvas');
     c.width = c.height = 2;
@@ -91,7 +99,7 @@ async function quadPng() {
     put(0, 1, texels.bottomLeft);
     put(1, 1, texels.bottomRight);
     return c.toDataURL('image/png').split(',')[1];
-  }, TEXELS);
+  }, texels);
   return Buffer.from(b64, 'base64');
 }
 
@@ -177,6 +185,82 @@ test('an OBJ, its MTL and a PNG chosen together show the texture face-on, and th
   assert.deepEqual(v.problems, [], v.describeProblems());
 });
 
+// Three unit quads side by side facing the camera, one material each: a red
+// texture, a green Kd without a map, a blue texture.
+const STRIP = [['red', [255, 0, 0]], ['green', [0, 255, 0]], ['blue', [0, 0, 255]]];
+function stripObj() {
+  const lines = ['mtllib strip.mtl', 'vt 0 0', 'vt 1 0', 'vt 1 1', 'vt 0 1'];
+  STRIP.forEach(([name], i) => {
+    const x0 = i - 1.5;
+    lines.push(`v ${faceOnCorner(x0, -0.5)}`, `v ${faceOnCorner(x0 + 1, -0.5)}`, `v ${faceOnCorner(x0 + 1, 0.5)}`, `v ${faceOnCorner(x0, 0.5)}`);
+    const v = 4 * i;
+    lines.push(`usemtl ${name}`, `f ${v + 1}/1 ${v + 2}/2 ${v + 3}/3 ${v + 4}/4`);
+  });
+  return lines.join('\n') + '\n';
+}
+const STRIP_MTL = 'newmtl red\nKd 1 1 1\nmap_Kd red.png\nnewmtl green\nKd 0 1 0\nnewmtl blue\nKd 1 1 1\nmap_Kd blue.png\n';
+
+// The mean colours at the middles of the strip's three quads: found along the
+// canvas's middle row as the thirds of the span that is not background.
+function stripColours(img) {
+  const y = Math.round(img.height / 2);
+  const lit = (x) => {
+    const i = (y * img.width + x) * 4;
+    const px = [img.data[i], img.data[i + 1], img.data[i + 2]];
+    return Math.abs(px[0] - 0x1b) + Math.abs(px[1] - 0x1d) + Math.abs(px[2] - 0x22) > 30;
+  };
+  let left = 0;
+  while (left < img.width && !lit(left)) ++left;
+  let right = img.width - 1;
+  while (right > left && !lit(right)) --right;
+  assert.ok(right - left > img.width / 4, `the strip spans ${left}..${right} of ${img.width} pixels`);
+  const half = Math.min(img.width, img.height) / 2;
+  return [1, 3, 5].map((k) => sample(img, (left + ((right - left) * k) / 6 - img.width / 2) / half, 0));
+}
+
+function assertStrip(img, what, tolerance = 20) {
+  stripColours(img).forEach((got, i) => {
+    const [name, want] = STRIP[i];
+    const h = hue(got);
+    assert.ok(h !== null && hueDistance(h, hue(want)) <= tolerance && Math.max(...got) > 60,
+      `${what}: the ${name} quad shows ${got.map(Math.round)}`);
+  });
+}
+
+test('several materials on one mesh: each quad shows its own texture or colour, in the display modes too, and its Kd with textures off', async () => {
+  const red = await quadPng({ topLeft: STRIP[0][1], topRight: STRIP[0][1], bottomLeft: STRIP[0][1], bottomRight: STRIP[0][1] });
+  const blue = await quadPng({ topLeft: STRIP[2][1], topRight: STRIP[2][1], bottomLeft: STRIP[2][1], bottomRight: STRIP[2][1] });
+  const mesh = await pick([file('strip.obj', stripObj()), file('strip.mtl', STRIP_MTL),
+    { name: 'red.png', mimeType: 'image/png', buffer: red }, { name: 'blue.png', mimeType: 'image/png', buffer: blue }], 'texture');
+  assert.deepEqual(mesh.materials.map((m) => [m.name, m.faces, m.texture === null ? null : mesh.textures[m.texture].name]),
+    [['red', 2, 'red.png'], ['green', 2, null], ['blue', 2, 'blue.png']]);
+  assert.ok(!mesh.warnings.some((w) => /textur|material/.test(w)), JSON.stringify(mesh.warnings));
+  await v.page.waitForFunction(() => window.__cgview.texture?.materials === 3, null, { timeout: 10000 });
+  assertStrip(await canvasPixels('strip'), 'texture');
+
+  for (const mode of ['flat', 'toon', 'smooth']) {
+    await v.page.selectOption('#display-mode', mode);
+    await v.page.waitForFunction((m) => window.__cgview.display?.mode === m, mode, { timeout: 10000 });
+    assertStrip(await canvasPixels(`strip-${mode}`), mode, mode === 'toon' ? 30 : 20);
+  }
+
+  // The checkerboard replaces every material's look.
+  await v.page.selectOption('#texture-mode', 'checkerboard');
+  await v.page.waitForFunction(() => window.__cgview.texture?.mode === 'checkerboard', null, { timeout: 10000 });
+  assert.equal(await v.page.evaluate(() => window.__cgview.texture.materials), 1);
+  for (const c of stripColours(await canvasPixels('strip-checkerboard')))
+    assert.ok(Math.max(...c) - Math.min(...c) < 40, `the checkerboard is grey, got ${c.map(Math.round)}`);
+
+  // Textures off: each material shows its Kd (white, green, white).
+  await v.page.selectOption('#texture-mode', 'off');
+  await v.page.waitForFunction(() => window.__cgview.texture?.mode === 'off', null, { timeout: 10000 });
+  assert.equal(await v.page.evaluate(() => window.__cgview.texture.materials), 3);
+  const [left, middle, right] = stripColours(await canvasPixels('strip-off'));
+  for (const c of [left, right]) assert.ok(Math.max(...c) - Math.min(...c) < 40 && Math.max(...c) > 100, `a white Kd, got ${c.map(Math.round)}`);
+  assert.ok(hue(middle) !== null && hueDistance(hue(middle), 120) <= 20, `the green Kd, got ${middle.map(Math.round)}`);
+  assert.deepEqual(v.problems, [], v.describeProblems());
+});
+
 test('a missing texture image: the mesh shows untextured, with a warning in the page', async () => {
   const mesh = await pick([file('bare.obj', faceOnQuadObj('bare.mtl')), file('bare.mtl', QUAD_MTL)], 'checkerboard');
   assert.equal(mesh.textures.length, 0);
@@ -190,6 +274,10 @@ test("assimp's spider (OBJ, MTL, JPEGs) shows its texture's colour", async () =>
   const names = ['spider.obj', 'spider.mtl', ...fs.readdirSync(dir).filter((n) => n.endsWith('.jpg'))];
   const mesh = await pick(names.map((n) => path.join(dir, n)), 'texture');
   assert.equal(mesh.textures[0].name, 'drkwood2.jpg', 'the texture of the material on most faces');
+  // Every material on its faces gets its own texture (the MTL's fifth, Brusttex, is on no face).
+  assert.deepEqual(mesh.materials.map((m) => mesh.textures[m.texture].name).sort(),
+    ['SpiderTex.jpg', 'drkwood2.jpg', 'engineflare1.jpg', 'wal67ar_small.jpg']);
+  await v.page.waitForFunction(() => window.__cgview.texture?.materials === 4, null, { timeout: 10000 });
   // The reference: the JPEG's mean colour as the page's own decoder reads it.
   const jpeg = fs.readFileSync(path.join(dir, 'drkwood2.jpg')).toString('base64');
   const mean = await v.page.evaluate(async (b64) => {

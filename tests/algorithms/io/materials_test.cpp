@@ -4,8 +4,13 @@
 // cube_uv.ply with s/t texture coordinates).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <map>
 
+#include "core/errors.h"
+#include "draco_faces.h"
+#include "io/draco_io.h"
 #include "io/materials.h"
 #include "io/mesh_io.h"
 
@@ -37,6 +42,19 @@ TEST(Materials, CountsFacesPerUsemtl) {
   EXPECT_EQ(u.faces.at(""), 1u);
   EXPECT_EQ(u.faces.at("x"), 3u);
   EXPECT_EQ(u.faces.at("y"), 1u);
+  EXPECT_EQ(u.names, (std::vector<std::string>{"", "x", "y"})) << "in order of first use";
+  EXPECT_EQ(u.face_material, (std::vector<std::uint32_t>{0, 1, 1, 2, 1}));
+}
+
+TEST(Materials, PolygonsCountAsTheirTriangles) {
+  // As read_obj fans them: a quad is two triangles, a pentagon three; a comment ends the corners.
+  const std::string obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv -1 1 0\nusemtl a\nf 1 2 3 4 # a quad\n"
+                          "usemtl unused\nusemtl b\nfo 1/1 2/2 3/3 4/4 5/5\nusemtl a\nf 1 2 3\n";
+  const auto u = obj_material_use(obj);
+  EXPECT_EQ(u.names, (std::vector<std::string>{"a", "b"})) << "a usemtl without faces is no material";
+  EXPECT_EQ(u.face_material, (std::vector<std::uint32_t>{0, 0, 1, 1, 1, 0}));
+  EXPECT_EQ(u.faces.at("a"), 3u);
+  EXPECT_FALSE(u.faces.contains("unused"));
 }
 
 TEST(Materials, PlyTextureFileAndImageTypes) {
@@ -60,6 +78,13 @@ TEST(Materials, AssimpSpider) {
   const Mesh mesh = read_mesh(obj);
   EXPECT_EQ(faces, mesh.num_faces()) << "every face is counted under one material";
   EXPECT_EQ(use.faces.at("BeinTex"), 952u);
+  // Every face has its material: the counts per material again.
+  ASSERT_EQ(use.face_material.size(), mesh.num_faces());
+  EXPECT_EQ(use.names, (std::vector<std::string>{"HLeibTex", "Skin", "BeinTex", "Augentex"}))
+      << "Brusttex of the MTL is on no face";
+  std::map<std::string, std::size_t> per_name;
+  for (const std::uint32_t m : use.face_material) ++per_name[use.names.at(m)];
+  EXPECT_EQ(per_name, use.faces);
   const auto materials = parse_mtl(read_file_bytes(mtl, 1 << 20));
   ASSERT_EQ(materials.size(), 5u);
   EXPECT_EQ(materials[3].name, "BeinTex");
@@ -67,6 +92,57 @@ TEST(Materials, AssimpSpider) {
   EXPECT_EQ(image_mime_type(read_file_bytes(kAssimp / "OBJ" / "drkwood2.jpg", 1 << 20)), "image/jpeg");
   EXPECT_TRUE(mesh.has_uvs());
   EXPECT_EQ(mesh.uv_faces.size(), mesh.num_faces()) << "OBJ's f v/vt keeps its own UV indices";
+}
+
+// Draco keeps each face's material through its own decoder, though it
+// reorders faces and splits vertices: each decoded face is matched with the
+// written face nearest to its centroid.
+TEST(Materials, DracoKeepsTheSpidersFaceMaterials) {
+  const fs::path obj = kAssimp / "OBJ" / "spider.obj";
+  if (!fs::exists(obj)) GTEST_FAIL() << "missing " << obj << " (install Debian's assimp-testmodels)";
+  const Mesh mesh = read_mesh(obj);
+  const auto use = obj_material_use(read_file_bytes(obj, 1 << 24));
+  ASSERT_EQ(use.face_material.size(), mesh.num_faces());
+  const auto faces = test::draco_faces(write_draco_with_materials(mesh, use.face_material));
+  ASSERT_EQ(faces.size(), mesh.num_faces());
+  const auto centroid = [](const std::array<std::array<double, 3>, 3>& c) {
+    return std::array<double, 3>{(c[0][0] + c[1][0] + c[2][0]) / 3, (c[0][1] + c[1][1] + c[2][1]) / 3,
+                                 (c[0][2] + c[1][2] + c[2][2]) / 3};
+  };
+  std::vector<std::array<double, 3>> written(mesh.num_faces());
+  for (std::size_t f = 0; f < mesh.num_faces(); ++f) {
+    std::array<std::array<double, 3>, 3> c;
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 3; ++i) c[k][i] = mesh.positions[mesh.faces[f][k]][i];
+    written[f] = centroid(c);
+  }
+  std::map<std::uint32_t, std::size_t> decoded_per_material;
+  std::size_t mismatched = 0, mixed = 0;
+  double worst = 0;
+  for (const auto& face : faces) {
+    std::array<std::array<double, 3>, 3> c;
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 3; ++i) c[k][i] = face.corners[k][i];
+    const auto q = centroid(c);
+    std::size_t best = 0;
+    double best_d = 1e300;
+    for (std::size_t f = 0; f < written.size(); ++f) {
+      const double d = std::hypot(written[f][0] - q[0], written[f][1] - q[1], written[f][2] - q[2]);
+      if (d < best_d) best_d = d, best = f;
+    }
+    worst = std::max(worst, best_d);
+    if (face.material != use.face_material[best]) ++mismatched;
+    if (!face.one_material) ++mixed;
+    ++decoded_per_material[face.material];
+  }
+  EXPECT_LT(worst, 0.01) << "each decoded face lies on a written one";
+  EXPECT_EQ(mismatched, 0u);
+  EXPECT_EQ(mixed, 0u) << "the three corners of a face have its material";
+  for (std::uint32_t m = 0; m < use.names.size(); ++m)
+    EXPECT_EQ(decoded_per_material[m], use.faces.at(use.names[m])) << use.names[m];
+  // Without materials the stream has no material attribute.
+  EXPECT_EQ(test::draco_faces(write_mesh_bytes(mesh, MeshFormat::drc)).at(0).material, test::kNoMaterial);
+  EXPECT_THROW(write_draco_with_materials(mesh, std::vector<std::uint32_t>{0, 1}), InvalidInput);
 }
 
 TEST(Materials, PlyUvsFromBlender) {

@@ -25,12 +25,22 @@ export interface Mesh {
   warnings?: string[];
   /** Whether the mesh has texture coordinates. */
   has_uvs?: boolean;
-  /** Its texture images (at most one for now), fetched from /meshes/{id}/textures/{n}. */
+  /** Its texture images, fetched from /meshes/{id}/textures/{n}; the one on the most faces first. */
   textures?: MeshTexture[];
+  /** An OBJ's materials in the order of the material ids of its Draco stream (its groups). */
+  materials?: MeshMaterial[];
   /** The diffuse colour (0..1) of its material, when an MTL gave one. */
   kd?: [number, number, number];
   /** The user who uploaded it ("system" for the samples). */
   owner?: string;
+}
+
+export interface MeshMaterial {
+  name: string;
+  faces: number;
+  kd: [number, number, number] | null;
+  /** An index into the mesh's textures, or null. */
+  texture: number | null;
 }
 
 export interface MeshTexture {

@@ -19,6 +19,8 @@ declare module 'draco3d/draco_decoder_nodejs.js' {
     GetEncodedGeometryType(array: Int8Array): number;
     DecodeArrayToMesh(array: Int8Array, byteLength: number, mesh: DracoMesh): DracoStatus;
     GetAttributeId(mesh: DracoMesh, type: number): number;
+    /** The attribute whose metadata entry "name" is `name`, or -1. */
+    GetAttributeIdByName(mesh: DracoMesh, name: string): number;
     GetAttribute(mesh: DracoMesh, id: number): DracoAttribute;
     GetAttributeDataArrayForAllPoints(
       mesh: DracoMesh,

@@ -10,6 +10,12 @@ export interface DecodedColors {
   normalized: boolean;
 }
 
+export interface MaterialGroup {
+  start: number;
+  count: number;
+  material: number;
+}
+
 export interface DecodedMesh {
   /** xyz per vertex. */
   positions: Float32Array;
@@ -20,6 +26,13 @@ export interface DecodedMesh {
   colors: DecodedColors | null;
   /** uv per vertex (OBJ's convention: v = 0 at the image's bottom), or null when the payload has none. */
   uvs: Float32Array | null;
+  /**
+   * Runs of faces by material (the server's "material" attribute, for a mesh
+   * with several materials), the indices sorted so each material's faces are
+   * contiguous: start and count in indices, material an index into the
+   * mesh's `materials`. Null for a one-material mesh.
+   */
+  groups: MaterialGroup[] | null;
   vertices: number;
   faces: number;
   /** How long the worker took, measured inside it. */

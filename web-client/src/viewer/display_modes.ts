@@ -153,6 +153,43 @@ export function textureMap(mesh: THREE.Object3D): THREE.Texture | null {
   return map && map.isTexture ? map : null;
 }
 
+/** How one material's faces look: its texture, else its MTL colour (sRGB 0..1), else the surface's colour. */
+export interface GroupLook {
+  map: THREE.Texture | null;
+  color: [number, number, number] | null;
+}
+
+/** The per-material looks of a surface with several materials (viewer/textures.ts keeps them in userData.looks), or null. */
+export function groupLooks(mesh: THREE.Object3D): GroupLook[] | null {
+  const looks = mesh.userData.looks as GroupLook[] | null | undefined;
+  return looks && looks.length > 0 ? looks : null;
+}
+
+/**
+ * `material` as one material per geometry group, each with its look's texture
+ * or colour (`fallback` for a material with neither); `material` itself when
+ * there are no looks or it draws no texture (wireframe, points). A replaced
+ * `material` is disposed.
+ */
+export function withGroupLooks(
+  material: THREE.Material,
+  looks: GroupLook[] | null,
+  fallback: THREE.Color,
+): THREE.Material | THREE.Material[] {
+  const textured = material as THREE.MeshStandardMaterial;
+  if (!looks || !('map' in textured) || (material as THREE.MeshBasicMaterial).isMeshBasicMaterial) return material;
+  const out = looks.map((look) => {
+    const m = textured.clone();
+    m.map = look.map;
+    if (look.map) m.color.set(0xffffff);
+    else if (look.color) m.color.setRGB(look.color[0], look.color[1], look.color[2], THREE.SRGBColorSpace);
+    else m.color.copy(fallback);
+    return m;
+  });
+  material.dispose();
+  return out;
+}
+
 /** Whether the object is a surface that display modes apply to (not points, lines or a group). */
 export function isSurface(object: THREE.Object3D | null): object is THREE.Mesh {
   return !!object && (object as THREE.Mesh).isMesh === true;
@@ -212,5 +249,6 @@ export function applyDisplay(mesh: THREE.Mesh, s: DisplaySettings, environment: 
     }
   }
   disposeMaterial(mesh.material);
-  mesh.material = material;
+  // Several materials: each group keeps its own texture or colour.
+  mesh.material = withGroupLooks(material, groupLooks(mesh), color);
 }

@@ -4,7 +4,7 @@
 import createDecoderModule from 'draco3d/draco_decoder_nodejs.js';
 import type { DracoAttribute, DracoDecoder, DracoDecoderModule, DracoMesh } from 'draco3d/draco_decoder_nodejs.js';
 import wasmUrl from 'draco3d/draco_decoder.wasm?url';
-import type { DecodeRequest, DecodeResponse, DecodedColors, DecodedMesh } from './decoded_mesh.ts';
+import type { DecodeRequest, DecodeResponse, DecodedColors, DecodedMesh, MaterialGroup } from './decoded_mesh.ts';
 
 interface WorkerScope {
   onmessage: ((ev: MessageEvent<DecodeRequest>) => void) | null;
@@ -76,6 +76,49 @@ function readColors(draco: DracoDecoderModule, decoder: DracoDecoder, mesh: Drac
   return { array: readFloat32(draco, decoder, mesh, attr), itemSize, normalized: false };
 }
 
+/**
+ * The faces sorted by material (a counting sort, stable within a material)
+ * and their runs, from the per-point material ids: a face's material is its
+ * first corner's (the server splits vertices at material boundaries).
+ */
+function groupByMaterial(
+  draco: DracoDecoderModule,
+  decoder: DracoDecoder,
+  mesh: DracoMesh,
+  attr: DracoAttribute,
+  indices: Uint32Array,
+): { indices: Uint32Array; groups: MaterialGroup[] } {
+  const points = mesh.num_points();
+  const ptr = draco._malloc(points * 4);
+  let ids: Uint32Array;
+  try {
+    if (!decoder.GetAttributeDataArrayForAllPoints(mesh, attr, draco.DT_UINT32, points * 4, ptr)) {
+      throw new Error('Draco: cannot read the material ids');
+    }
+    ids = new Uint32Array(draco.HEAPF32.buffer, ptr, points).slice();
+  } finally {
+    draco._free(ptr);
+  }
+  const faces = indices.length / 3;
+  let materials = 0;
+  for (let f = 0; f < faces; ++f) materials = Math.max(materials, ids[indices[3 * f]] + 1);
+  const next = new Uint32Array(materials + 1);
+  for (let f = 0; f < faces; ++f) ++next[ids[indices[3 * f]] + 1];
+  for (let m = 0; m < materials; ++m) next[m + 1] += next[m];
+  const groups: MaterialGroup[] = [];
+  for (let m = 0; m < materials; ++m) {
+    if (next[m + 1] > next[m]) groups.push({ start: 3 * next[m], count: 3 * (next[m + 1] - next[m]), material: m });
+  }
+  const sorted = new Uint32Array(indices.length);
+  for (let f = 0; f < faces; ++f) {
+    const at = 3 * next[ids[indices[3 * f]]]++;
+    sorted[at] = indices[3 * f];
+    sorted[at + 1] = indices[3 * f + 1];
+    sorted[at + 2] = indices[3 * f + 2];
+  }
+  return { indices: sorted, groups };
+}
+
 function decode(draco: DracoDecoderModule, payload: ArrayBuffer): Omit<DecodedMesh, 'timing'> {
   const data = new Int8Array(payload);
   const decoder = new draco.Decoder();
@@ -122,7 +165,13 @@ function decode(draco: DracoDecoderModule, payload: ArrayBuffer): Omit<DecodedMe
       const attr = decoder.GetAttribute(mesh, uvId);
       if (attr.num_components() === 2) uvs = readFloat32(draco, decoder, mesh, attr);
     }
-    return { positions, indices, normals, colors, uvs, vertices: mesh.num_points(), faces };
+    let groups: MaterialGroup[] | null = null;
+    const materialId = decoder.GetAttributeIdByName(mesh, 'material');
+    if (materialId >= 0) {
+      const attr = decoder.GetAttribute(mesh, materialId);
+      if (attr.num_components() === 1) ({ indices, groups } = groupByMaterial(draco, decoder, mesh, attr, indices));
+    }
+    return { positions, indices, normals, colors, uvs, groups, vertices: mesh.num_points(), faces };
   } finally {
     draco.destroy(mesh);
     draco.destroy(decoder);

@@ -30,6 +30,8 @@ export function buildSurface(decoded: DecodedMesh): THREE.Mesh {
   const geometry = new THREE.BufferGeometry();
   geometry.setAttribute('position', new THREE.BufferAttribute(decoded.positions, 3));
   geometry.setIndex(new THREE.BufferAttribute(decoded.indices, 1));
+  // Drawn per material only with an array of materials (viewer/textures.ts); one material draws them all.
+  for (const g of decoded.groups ?? []) geometry.addGroup(g.start, g.count, g.material);
   if (decoded.normals) {
     geometry.setAttribute('normal', new THREE.BufferAttribute(decoded.normals, 3));
   } else {

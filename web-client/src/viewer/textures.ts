@@ -1,10 +1,11 @@
-// Textures on the shown surface: the mesh's own image (from its MTL's map_Kd
-// or its PLY's TextureFile), none, or a checkerboard to inspect its UVs; and
+// Textures on the shown surface: the mesh's own images (each material's map_Kd, or its PLY's
+// TextureFile), none, or a checkerboard to inspect its UVs; and
 // the small panel that picks one, shown only for a mesh with UVs.
 import * as THREE from 'three';
 import { fetchMeshTexture } from '../api/rest.ts';
 import type { Mesh } from '../api/types.ts';
 import { el } from '../panels/dom.ts';
+import { withGroupLooks, type GroupLook } from './display_modes.ts';
 
 export type TextureMode = 'texture' | 'off' | 'checkerboard';
 
@@ -54,14 +55,23 @@ export async function loadMeshTexture(meshId: string, n: number, signal?: AbortS
   }
 }
 
+/** Each material's Kd colour (no texture) on a surface with several materials, or null (none has a Kd, or vertex colours show). */
+function colourLooks(mesh: Mesh, surface: THREE.Mesh, material: THREE.MeshStandardMaterial): GroupLook[] | null {
+  const materials = mesh.materials ?? [];
+  if (materials.length < 2 || surface.geometry.groups.length === 0 || material.vertexColors) return null;
+  return materials.some((m) => m.kd) ? materials.map((m) => ({ map: null, color: m.kd })) : null;
+}
+
 /** What is drawn, for tests: set after the first frame that shows it. */
 export interface TextureState {
   meshId: string;
   mode: TextureMode;
   /** Squares across the checkerboard texture. */
   squares: number;
-  /** The image shown in 'texture' mode, or null. */
+  /** The image shown in 'texture' mode (the one on the most faces), or null. */
   image: string | null;
+  /** How many materials the surface is drawn with (one per material of a mesh with several, in 'texture' mode). */
+  materials: number;
 }
 
 /**
@@ -75,7 +85,7 @@ export class MeshTextures {
   private surface: THREE.Mesh | null = null;
   private mesh: Mesh | null = null;
   private baseColor = new THREE.Color();
-  private image: { meshId: string; texture: THREE.Texture } | null = null;
+  private image: { meshId: string; textures: THREE.Texture[] } | null = null;
   private checker: { squares: number; texture: THREE.CanvasTexture } | null = null;
   private loading: AbortController | null = null;
 
@@ -103,12 +113,15 @@ export class MeshTextures {
     this.loading = null;
     this.surface = surface;
     this.mesh = mesh;
-    const material = surface.material as THREE.MeshStandardMaterial;
+    const material = (Array.isArray(surface.material) ? surface.material[0] : surface.material) as THREE.MeshStandardMaterial;
     const uvs = surface.geometry.getAttribute('uv') !== undefined;
     if (mesh.kd && !material.vertexColors) material.color.setRGB(mesh.kd[0], mesh.kd[1], mesh.kd[2], THREE.SRGBColorSpace);
     this.baseColor.copy(material.color);
     this.panel.hidden = !uvs;
     if (!uvs) {
+      // No texture to show, but several materials still show their Kd colours.
+      surface.userData.looks = colourLooks(mesh, surface, material);
+      surface.material = withGroupLooks(material, surface.userData.looks as GroupLook[] | null, this.baseColor);
       this.onShown(null);
       return;
     }
@@ -138,14 +151,14 @@ export class MeshTextures {
       this.loading?.abort();
       const controller = new AbortController();
       this.loading = controller;
-      loadMeshTexture(mesh.id, 0, controller.signal)
-        .then((texture) => {
+      Promise.all((mesh.textures ?? []).map((_, n) => loadMeshTexture(mesh.id, n, controller.signal)))
+        .then((textures) => {
           if (controller.signal.aborted) {
-            texture.dispose();
+            for (const t of textures) t.dispose();
             return;
           }
-          this.image?.texture.dispose();
-          this.image = { meshId: mesh.id, texture };
+          for (const t of this.image?.textures ?? []) t.dispose();
+          this.image = { meshId: mesh.id, textures };
           this.loading = null;
           this.apply();
         })
@@ -156,7 +169,20 @@ export class MeshTextures {
       return;
     }
     let map: THREE.Texture | null = null;
-    if (mode === 'texture') map = this.image!.texture;
+    // One material again (the first of a per-material array), then one per material when there are looks.
+    const current = surface.material;
+    const material = (Array.isArray(current) ? current[0] : current) as THREE.MeshStandardMaterial;
+    if (Array.isArray(current)) for (const m of current.slice(1)) m.dispose();
+    let looks: GroupLook[] | null = null;
+    if (mode === 'texture') {
+      const textures = this.image!.textures;
+      map = textures[0] ?? null;
+      // Several materials (geometry groups from the worker): each its own texture or MTL colour.
+      if ((mesh.materials?.length ?? 0) > 1 && surface.geometry.groups.length > 0) {
+        looks = mesh.materials!.map((m) => ({ map: m.texture === null ? null : (textures[m.texture] ?? null), color: m.kd }));
+      }
+    }
+    if (mode === 'off') looks = colourLooks(mesh, surface, material);
     if (mode === 'checkerboard') {
       if (this.checker?.squares !== squares) {
         this.checker?.texture.dispose();
@@ -166,7 +192,7 @@ export class MeshTextures {
     }
     // Kept on the surface too, so that the display modes that replace its material keep it (display_modes.ts).
     surface.userData.map = map;
-    const material = surface.material as THREE.MeshStandardMaterial;
+    surface.userData.looks = looks;
     // Points and wireframe (a basic material) draw no texture.
     if (!(material as THREE.Material as THREE.MeshBasicMaterial).isMeshBasicMaterial) {
       material.map = map;
@@ -175,9 +201,12 @@ export class MeshTextures {
       else material.color.copy(this.baseColor);
       material.needsUpdate = true;
     }
+    surface.material = withGroupLooks(material, looks, this.baseColor);
+    const materials = Array.isArray(surface.material) ? surface.material.length : 1;
     const image = mode === 'texture' ? (mesh.textures?.[0]?.name ?? null) : null;
     this.redraw(() => {
-      if (this.surface === surface && surface.userData.map === map) this.onShown({ meshId: mesh.id, mode, squares, image });
+      if (this.surface === surface && surface.userData.map === map)
+        this.onShown({ meshId: mesh.id, mode, squares, image, materials });
     });
   }
 }
