@@ -1,6 +1,7 @@
 // The real cgview-server as a child process, and timed HTTP and WebSocket
-// clients for it, shared by the server's integration suites
-// (server_integration_test, jobs_test).  Boost.Beast stays in the .cpp:
+// clients for it, and the fixture that starts it, shared by the server's
+// integration suites (server_integration_test, jobs_test, hardening_test,
+// render_endpoint_test).  Boost.Beast stays in the .cpp:
 // results are plain strings, ints and std::error_code.
 #pragma once
 
