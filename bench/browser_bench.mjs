@@ -22,58 +22,17 @@ import { spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { chromiumBin, dist, isMeshOrange, launchBrowser, pngPixels, repo, serverBin, startServer } from '../web-client/tests/harness.mjs';
+import { isMeshOrange, launchBrowser, pngPixels, repo, startServer } from '../web-client/tests/harness.mjs';
+import { benchPage, checkPrerequisites, givenMesh, held, meshItem, parseBenchArgs, runBench, uploadMesh } from './bench_browser_util.mjs';
 
 const wsBenchBin = process.env.CGVIEW_WS_BENCH ?? path.join(repo, 'build', 'bin', 'ws_bench');
 const DEFAULT_MESH = '/tmp/cgview_bunny_1m.ply';
 const LOAD_TIMEOUT_MS = 300_000;
 
-function usage(message) {
-  if (message) console.error(`browser_bench: ${message}`);
-  console.error('usage: node bench/browser_bench.mjs [--mesh FILE.ply] [--runs N]   (N >= 1, default 3)');
-  process.exit(2);
-}
-
-function parseArgs(argv) {
-  const args = { mesh: null, runs: 3 };
-  for (let i = 0; i < argv.length; ++i) {
-    const a = argv[i];
-    const value = () => (i + 1 < argv.length ? argv[++i] : usage(`${a} needs a value`));
-    if (a === '--mesh') args.mesh = value();
-    else if (a === '--runs') {
-      args.runs = Number(value());
-      if (!Number.isInteger(args.runs) || args.runs < 1) usage('--runs must be a whole number >= 1');
-    } else if (a === '-h' || a === '--help') usage();
-    else usage(`unknown argument ${a}`);
-  }
-  return args;
-}
-
-// ---- the things to clean up, whatever happens ----
-let server = null;
-let browser = null;
-
-async function cleanup() {
-  try {
-    if (browser) await browser.close().catch(() => {});
-  } finally {
-    browser = null;
-    if (server) await server.stop();
-  }
-}
-
-for (const signal of ['SIGINT', 'SIGTERM']) {
-  process.on(signal, () => {
-    void cleanup().finally(() => process.exit(130));
-  });
-}
-
 // ---- setup ----
 function prepareMesh(file) {
-  if (file) {
-    if (!fs.existsSync(file)) throw new Error(`--mesh ${file}: no such file`);
-    return path.resolve(file);
-  }
+  const given = givenMesh(file);
+  if (given) return given;
   if (!fs.existsSync(wsBenchBin)) throw new Error(`${wsBenchBin} is missing (cmake --build build)`);
   const r = spawnSync(wsBenchBin, ['--clients', '0', '--save-mesh', DEFAULT_MESH], { cwd: repo, encoding: 'utf8' });
   if (r.status !== 0 || !fs.existsSync(DEFAULT_MESH)) {
@@ -82,27 +41,9 @@ function prepareMesh(file) {
   return DEFAULT_MESH;
 }
 
-async function upload(baseUrl, file) {
-  const body = fs.readFileSync(file);
-  const name = path.basename(file) === path.basename(DEFAULT_MESH) ? 'bunny_1m.ply' : path.basename(file);
-  const t0 = performance.now();
-  const r = await fetch(`${baseUrl}/api/v1/meshes?name=${encodeURIComponent(name)}`, { method: 'POST', body });
-  const text = await r.text();
-  if (r.status !== 201) throw new Error(`upload of ${file}: HTTP ${r.status} ${text}`);
-  return { mesh: JSON.parse(text), fileBytes: body.byteLength, uploadMs: performance.now() - t0 };
-}
-
 // ---- one run: reload, click, wait for the first frame ----
 async function run(page, baseUrl, mesh, index, problems, wsBytes) {
-  if (index === 1) await page.goto(`${baseUrl}/`);
-  else await page.reload();
-  await page.waitForFunction(() => window.__cgview?.ready === true, null, { timeout: 30_000 });
-  const item = page.locator(`#mesh-list li.mesh[data-mesh-id="${mesh.id}"]`);
-  await item.waitFor({ timeout: 30_000 });
-  await page.evaluate(() => {
-    window.__benchClick = null;
-    document.addEventListener('click', () => (window.__benchClick ??= performance.now()), { capture: true });
-  });
+  const item = await meshItem(page, baseUrl, mesh, index === 1);
 
   wsBytes.reset();
   await item.click();
@@ -226,27 +167,17 @@ function table(results) {
 
 // ---- main ----
 async function main() {
-  const args = parseArgs(process.argv.slice(2));
-  for (const [what, file, hint] of [
-    ['the server', serverBin, 'cmake --build build'],
-    ['the built web client', path.join(dist, 'index.html'), 'cd web-client && npm run build'],
-    ['chromium', chromiumBin, 'apt-get install chromium'],
-  ]) {
-    if (!fs.existsSync(file)) throw new Error(`${what} is missing: ${file} (${hint})`);
-  }
+  const args = parseBenchArgs(process.argv.slice(2), { name: 'browser_bench', usage: '[--mesh FILE.ply] [--runs N]', count: 'runs', defaultCount: 3, min: 1 });
+  checkPrerequisites();
   const meshFile = prepareMesh(args.mesh);
-  server = await startServer({ tmpPrefix: 'cgview-browser-bench-', extraArgs: ['--samples', 'none'] });
-  const baseUrl = server.url;
-  const { mesh, fileBytes, uploadMs } = await upload(baseUrl, meshFile);
+  held.server = await startServer({ tmpPrefix: 'cgview-browser-bench-', extraArgs: ['--samples', 'none'] });
+  const baseUrl = held.server.url;
+  const name = path.basename(meshFile) === path.basename(DEFAULT_MESH) ? 'bunny_1m.ply' : path.basename(meshFile);
+  const { mesh, fileBytes, uploadMs } = await uploadMesh(baseUrl, meshFile, name);
 
-  browser = await launchBrowser();
-  const version = browser.version();
-  const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
-  const problems = [];
-  page.on('pageerror', (e) => problems.push(`pageerror: ${e.message}`));
-  page.on('console', (m) => {
-    if (m.type() === 'error') problems.push(`console.error: ${m.text()}`);
-  });
+  held.browser = await launchBrowser();
+  const version = held.browser.version();
+  const { page, problems } = await benchPage(held.browser);
   page.on('requestfailed', (r) => problems.push(`request failed: ${r.url()} ${r.failure()?.errorText ?? ''}`));
   // Bytes of the WebSocket messages the page receives (playwright sees them over CDP).
   const wsBytes = {
@@ -298,13 +229,4 @@ async function main() {
   );
 }
 
-let exitCode = 0;
-try {
-  await main();
-} catch (e) {
-  console.error(`browser_bench: ${e instanceof Error ? e.message : e}`);
-  exitCode = 1;
-} finally {
-  await cleanup();
-}
-process.exit(exitCode);
+await runBench('browser_bench', main);

@@ -28,32 +28,12 @@
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { chromiumBin, dist, launchBrowser, repo, serverBin, startServer } from '../web-client/tests/harness.mjs';
+import { launchBrowser, repo, startServer } from '../web-client/tests/harness.mjs';
+import { benchPage, checkPrerequisites, cleanup, givenMesh, held, meshItem, parseBenchArgs, runBench, uploadMesh } from './bench_browser_util.mjs';
 
 const DEFAULT_MESH = '/tmp/cgview_man_2m.ply';
 const samples = process.env.CGVIEW_SAMPLES ?? path.join(repo, 'build', 'samples');
 const TIMEOUT_MS = 600_000;
-
-function usage(message) {
-  if (message) console.error(`frame_bench: ${message}`);
-  console.error('usage: node bench/frame_bench.mjs [--mesh FILE] [--frames N]   (N >= 10, default 30)');
-  process.exit(2);
-}
-
-function parseArgs(argv) {
-  const args = { mesh: null, frames: 30 };
-  for (let i = 0; i < argv.length; ++i) {
-    const a = argv[i];
-    const value = () => (i + 1 < argv.length ? argv[++i] : usage(`${a} needs a value`));
-    if (a === '--mesh') args.mesh = value();
-    else if (a === '--frames') {
-      args.frames = Number(value());
-      if (!Number.isInteger(args.frames) || args.frames < 10) usage('--frames must be a whole number >= 10');
-    } else if (a === '-h' || a === '--help') usage();
-    else usage(`unknown argument ${a}`);
-  }
-  return args;
-}
 
 // ---- the 2M-triangle mesh: an OFF sample, midpoint-subdivided, as binary PLY ----
 function readOff(file) {
@@ -117,10 +97,8 @@ function writePly(file, { positions, faces }) {
 }
 
 function prepareMesh(file) {
-  if (file) {
-    if (!fs.existsSync(file)) throw new Error(`--mesh ${file}: no such file`);
-    return path.resolve(file);
-  }
+  const given = givenMesh(file);
+  if (given) return given;
   if (!fs.existsSync(DEFAULT_MESH)) {
     let m = readOff(path.join(samples, 'man.off'));
     for (let i = 0; i < 3; ++i) m = subdivide(m);
@@ -129,33 +107,11 @@ function prepareMesh(file) {
   return DEFAULT_MESH;
 }
 
-// ---- cleanup, whatever happens ----
-let server = null;
-let browser = null;
-async function cleanup() {
-  try {
-    if (browser) await browser.close().catch(() => {});
-  } finally {
-    browser = null;
-    if (server) await server.stop();
-    server = null;
-  }
-}
-for (const signal of ['SIGINT', 'SIGTERM']) process.on(signal, () => void cleanup().finally(() => process.exit(130)));
-
 // ---- one load: click the mesh, note when the preview and the full mesh are first drawn ----
 // With orbitFrames, times the orbit as soon as the preview is drawn (while the
 // full mesh is still coming), then again once the full mesh is drawn.
 async function load(page, baseUrl, mesh, first, orbitFrames = 0) {
-  if (first) await page.goto(`${baseUrl}/`);
-  else await page.reload();
-  await page.waitForFunction(() => window.__cgview?.ready === true, null, { timeout: 30_000 });
-  const item = page.locator(`#mesh-list li.mesh[data-mesh-id="${mesh.id}"]`);
-  await item.waitFor({ timeout: 30_000 });
-  await page.evaluate(() => {
-    window.__benchClick = null;
-    document.addEventListener('click', () => (window.__benchClick ??= performance.now()), { capture: true });
-  });
+  const item = await meshItem(page, baseUrl, mesh, first);
   await item.click();
   return page.evaluate(
     ({ id, timeoutMs, orbitFrames }) =>
@@ -190,24 +146,17 @@ async function load(page, baseUrl, mesh, first, orbitFrames = 0) {
 }
 
 async function configuration(meshFile, previewFaces, frames, orbitRun = true) {
-  server = await startServer({
+  const server = (held.server = await startServer({
     tmpPrefix: 'cgview-frame-bench-',
     extraArgs: ['--samples', 'none', '--preview-faces', String(previewFaces)],
     timeoutMs: 60_000,
-  });
-  const t0 = performance.now();
-  const r = await fetch(`${server.url}/api/v1/meshes?name=${path.basename(meshFile)}`, { method: 'POST', body: fs.readFileSync(meshFile) });
-  const text = await r.text();
-  if (r.status !== 201) throw new Error(`upload: HTTP ${r.status} ${text}`);
-  const mesh = JSON.parse(text);
-  const uploadMs = performance.now() - t0;
-  browser = await launchBrowser();
-  const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
-  const problems = [];
-  page.on('pageerror', (e) => problems.push(`pageerror: ${e.message}`));
-  page.on('console', (m) => {
-    if (m.type() === 'error') problems.push(`console.error: ${m.text()}`);
-    else if (m.text().includes('orbit')) console.error(m.text());
+  }));
+  const { mesh, uploadMs } = await uploadMesh(server.url, meshFile);
+  const browser = (held.browser = await launchBrowser());
+  const { page, problems } = await benchPage(browser, {
+    onConsole: (m) => {
+      if (m.text().includes('orbit')) console.error(m.text());
+    },
   });
   const runs = {};
   for (const [name, orbit] of [['cold', 0], ['warm', 0], ...(orbitRun ? [['orbit', frames]] : [])]) {
@@ -227,10 +176,8 @@ const ms = (x) => (x === null || x === undefined ? '–' : `${Math.round(x).toLo
 const orbitCell = (o) => (o ? `${o.medianMs.toFixed(1)} / ${o.p95Ms.toFixed(1)} ms (${o.triangles.toLocaleString('en')} triangles drawn)` : '–');
 
 async function main() {
-  const args = parseArgs(process.argv.slice(2));
-  for (const [what, file] of [['the server', serverBin], ['the built web client', path.join(dist, 'index.html')], ['chromium', chromiumBin]]) {
-    if (!fs.existsSync(file)) throw new Error(`${what} is missing: ${file}`);
-  }
+  const args = parseBenchArgs(process.argv.slice(2), { name: 'frame_bench', usage: '[--mesh FILE] [--frames N]', count: 'frames', defaultCount: 30, min: 10 });
+  checkPrerequisites();
   const meshFile = prepareMesh(args.mesh);
   const load0 = os.loadavg()[0];
   const withPreview = await configuration(meshFile, 200000, args.frames);
@@ -255,13 +202,4 @@ async function main() {
   }
 }
 
-let exitCode = 0;
-try {
-  await main();
-} catch (e) {
-  console.error(`frame_bench: ${e instanceof Error ? e.message : e}`);
-  exitCode = 1;
-} finally {
-  await cleanup();
-}
-process.exit(exitCode);
+await runBench('frame_bench', main);

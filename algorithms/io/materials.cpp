@@ -77,7 +77,8 @@ std::vector<Material> parse_mtl(std::string_view bytes) {
 ObjMaterialUse obj_material_use(std::string_view obj_bytes) {
   ObjMaterialUse use;
   std::string current;
-  std::optional<std::uint32_t> index;  // of current in use.names, once a face uses it
+  constexpr std::uint32_t kUnknown = ~std::uint32_t(0);
+  std::uint32_t index = kUnknown;  // of current in use.names, once a face uses it
   for_each_line(obj_bytes, [&](std::string_view line) {
     std::size_t i = 0;
     while (i < line.size() && is_space(line[i])) ++i;
@@ -89,14 +90,14 @@ ObjMaterialUse obj_material_use(std::string_view obj_bytes) {
       corners = corners.substr(0, corners.find('#'));
       const std::size_t n = words(corners).size();
       if (n < 3) return true;
-      if (!index) {
+      if (index == kUnknown) {
         index = std::uint32_t(use.names.size());
         for (std::size_t k = 0; k < use.names.size(); ++k)
           if (use.names[k] == current) index = std::uint32_t(k);
-        if (*index == use.names.size()) use.names.push_back(current);
+        if (index == use.names.size()) use.names.push_back(current);
       }
       use.faces[current] += n - 2;
-      use.face_material.insert(use.face_material.end(), n - 2, *index);
+      use.face_material.insert(use.face_material.end(), n - 2, index);
       return true;
     }
     if (i >= line.size() || (line[i] != 'm' && line[i] != 'u')) return true;
@@ -105,7 +106,7 @@ ObjMaterialUse obj_material_use(std::string_view obj_bytes) {
       for (const auto w : words(rest)) use.libraries.emplace_back(w);
     } else if (key == "usemtl") {
       current = std::string(rest);
-      index.reset();
+      index = kUnknown;
     }
     return true;
   });

@@ -17,6 +17,7 @@
 #include "core/errors.h"
 #include "jobs.h"
 #include "mesh_service.h"
+#include "router_harness.h"
 #include "router.h"
 #include "store.h"
 #include "test_support.h"
@@ -27,35 +28,14 @@ namespace {
 using nlohmann::json;
 using namespace std::chrono_literals;
 
-class AuthTest : public ::testing::Test {
+class AuthTest : public test::RouterFixture {
  protected:
   void SetUp() override {
-    const std::string tag = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    dir_ = test::temp_dir("auth-" + tag);
-    store_ = std::make_unique<Store>(dir_);
-    meshes_ = std::make_unique<MeshService>(*store_);
+    make_dir("auth-");
     JobConfig jc;
-    jc.worker = test::bin("cgview-worker-test");
     jc.max_workers = 2;
-    jobs_ = std::make_unique<JobScheduler>(*meshes_, jc);
-    jobs_->start();
-    RouterConfig rc;
-    rc.jobs = jobs_.get();
-    rc.auth_required = true;
-    router_ = std::make_unique<Router>(*meshes_, rc);
-    Auth auth(*store_, true);
-    alice_ = auth.add_user("alice", false);
-    bob_ = auth.add_user("bob", false);
-    admin_ = auth.add_user("root", true);
-  }
-
-  void TearDown() override {
-    router_.reset();
-    jobs_.reset();
-    meshes_.reset();
-    store_.reset();
-    std::error_code ec;
-    if (!HasFailure()) std::filesystem::remove_all(dir_, ec);
+    open_with_users(dir_, jc);
+    admin_ = Auth(*store_, true).add_user("root", true);
   }
 
   HttpResponse call(const std::string& token, const std::string& method, const std::string& target, std::string body = "") {
@@ -63,10 +43,7 @@ class AuthTest : public ::testing::Test {
   }
 
   std::string upload(const std::string& token, const std::string& sample = "cube.off") {
-    std::ifstream f(test::sample(sample), std::ios::binary);
-    std::stringstream bytes;
-    bytes << f.rdbuf();
-    const HttpResponse r = call(token, "POST", "/api/v1/meshes?name=" + sample, bytes.str());
+    const HttpResponse r = call(token, "POST", "/api/v1/meshes?name=" + sample, test::read_bytes(test::sample(sample)));
     EXPECT_EQ(r.status, 201) << r.body;
     return json::parse(r.body).value("id", "");
   }
@@ -86,12 +63,7 @@ class AuthTest : public ::testing::Test {
     return id;
   }
 
-  std::filesystem::path dir_;
-  std::unique_ptr<Store> store_;
-  std::unique_ptr<MeshService> meshes_;
-  std::unique_ptr<JobScheduler> jobs_;
-  std::unique_ptr<Router> router_;
-  std::string alice_, bob_, admin_;
+  std::string admin_;
 };
 
 std::string replace_all(std::string s, const std::string& from, const std::string& to) {

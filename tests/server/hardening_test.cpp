@@ -43,20 +43,13 @@
 #include "store.h"
 #include "test_support.h"
 
-namespace cgview {
+namespace cgview::test {
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
-using test::http_call;
-using test::http_get;
-using test::http_raw;
-using test::HttpResult;
-using test::Method;
-using test::ServerProcess;
-using test::WsClient;
 
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
@@ -121,22 +114,14 @@ json body_of(const std::string& response) {
 
 // ---------------------------------------------------------------- fixture
 
-class Hardening : public ::testing::Test {
+class Hardening : public test::ServerFixture {
  protected:
+  Hardening() : ServerFixture("hardening-") {}
   void SetUp() override {
-    const std::string tag = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    dir_ = test::temp_dir("hardening-" + tag);
-    data_ = dir_ / "data";
+    ServerFixture::SetUp();
     fs::create_directories(data_);
   }
-  void TearDown() override {
-    if (HasFailure() && server_.pid() > 0) std::cerr << "server stderr:\n" << server_.stderr_text();
-    server_.kill_now();
-    std::error_code ec;
-    if (!HasFailure()) fs::remove_all(dir_, ec);
-  }
   bool start(const std::vector<std::string>& extra) { return server_.start(data_, extra, dir_); }
-  unsigned short port() const { return server_.port(); }
 
   // A new user's token (cgview-server user add, before the server starts).
   std::string add_user(const std::string& name) {
@@ -150,24 +135,6 @@ class Hardening : public ::testing::Test {
     return http_raw(port(), "GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\nAuthorization: Bearer " + token +
                                 "\r\nConnection: close\r\n\r\n");
   }
-
-  void expect_healthy() {
-    const HttpResult h = http_get(port(), "/api/v1/health");
-    ASSERT_FALSE(h.ec) << "health: " << h.ec.message();
-    EXPECT_EQ(h.status, 200u);
-    EXPECT_EQ(h.body_json().value("status", ""), "ok");
-  }
-  static void expect_error(const HttpResult& r, unsigned status, const std::string& code) {
-    ASSERT_FALSE(r.ec) << r.ec.message();
-    EXPECT_EQ(r.status, status) << r.body;
-    EXPECT_EQ(r.header("Content-Type"), "application/json");
-    const json j = r.body_json();
-    EXPECT_EQ(j.value("error", ""), code) << r.body;
-    EXPECT_TRUE(j.contains("detail") && j["detail"].is_string()) << r.body;
-  }
-
-  fs::path dir_, data_;
-  ServerProcess server_;
 };
 
 // ---------------------------------------------------------------- slow and idle clients
@@ -573,4 +540,4 @@ TEST_F(Hardening, TlsWithAMissingOrMismatchedFileDoesNotStart) {
 }
 
 }  // namespace
-}  // namespace cgview
+}  // namespace cgview::test

@@ -44,38 +44,46 @@ struct Scheduler {
   MeshService meshes;
   MeshRecord mesh;
   JobScheduler jobs;
+
+  // Submits a test_sleep job on the mesh for OWNER; its id.
+  std::string submit_sleep(const std::string& owner, double seconds) {
+    return jobs.submit({{"algorithm", "test_sleep"}, {"inputs", {{"mesh", mesh.id}}}, {"params", {{"seconds", seconds}}}},
+                       Caller{owner, true})["id"].get<std::string>();
+  }
 };
 
-TEST(JobScheduler, RoundRobinAcrossOwners) {
-  Scheduler s("jobs-fairness", "sphere.off");
-  JobScheduler& jobs = s.jobs;
-  const MeshRecord& mesh = s.mesh;
+// The order in which a scheduler's jobs start and how many have ended, from
+// its events (set as its on_event); read them under the lock.
+struct StartOrder {
+  explicit StartOrder(JobScheduler& jobs) {
+    jobs.on_event = [this](const json& e, const Access&) {
+      std::lock_guard lock(m);
+      // A job's first running event marks its start (a slow worker may report
+      // progress 0 again before its first step).
+      if (e["type"] == "job_progress" && e["job"]["state"] == "running" &&
+          std::find(started.begin(), started.end(), e["job"]["id"].get<std::string>()) == started.end())
+        started.push_back(e["job"]["id"]);
+      if (e["type"] == "job_done" || e["type"] == "job_failed") ++ended;
+      cv.notify_all();
+    };
+  }
   std::mutex m;
   std::condition_variable cv;
   std::vector<std::string> started;
   int ended = 0;
-  jobs.on_event = [&](const json& e, const Access&) {
-    std::lock_guard lock(m);
-    // A job's first running event marks its start (a slow worker may report
-    // progress 0 again before its first step).
-    if (e["type"] == "job_progress" && e["job"]["state"] == "running" &&
-        std::find(started.begin(), started.end(), e["job"]["id"].get<std::string>()) == started.end())
-      started.push_back(e["job"]["id"]);
-    if (e["type"] == "job_done" || e["type"] == "job_failed") ++ended;
-    cv.notify_all();
-  };
-  auto submit = [&](const std::string& owner, double seconds) {
-    return jobs.submit({{"algorithm", "test_sleep"}, {"inputs", {{"mesh", mesh.id}}}, {"params", {{"seconds", seconds}}}},
-                       Caller{owner, true})["id"].get<std::string>();
-  };
+};
+
+TEST(JobScheduler, RoundRobinAcrossOwners) {
+  Scheduler s("jobs-fairness", "sphere.off");
+  StartOrder o(s.jobs);
   // Queued before the scheduler starts: alice has three, bob one, carol one.
-  const std::string a1 = submit("alice", 0.01), a2 = submit("alice", 0.02), a3 = submit("alice", 0.03);
-  const std::string b1 = submit("bob", 0.01), c1 = submit("carol", 0.01);
-  jobs.start();
-  std::unique_lock lock(m);
-  ASSERT_TRUE(cv.wait_for(lock, 30s, [&] { return ended == 5; }));
-  EXPECT_EQ(started, (std::vector<std::string>{a1, b1, c1, a2, a3}));
-  EXPECT_EQ(jobs.workers_started(), 5u);
+  const std::string a1 = s.submit_sleep("alice", 0.01), a2 = s.submit_sleep("alice", 0.02), a3 = s.submit_sleep("alice", 0.03);
+  const std::string b1 = s.submit_sleep("bob", 0.01), c1 = s.submit_sleep("carol", 0.01);
+  s.jobs.start();
+  std::unique_lock lock(o.m);
+  ASSERT_TRUE(o.cv.wait_for(lock, 30s, [&] { return o.ended == 5; }));
+  EXPECT_EQ(o.started, (std::vector<std::string>{a1, b1, c1, a2, a3}));
+  EXPECT_EQ(s.jobs.workers_started(), 5u);
 }
 
 // The chaos algorithms' artifacts through the real worker process (issue 9):
@@ -86,37 +94,22 @@ TEST(JobScheduler, RoundRobinAcrossOwners) {
 // bob submits one; bob's starts next, before alice's queue drains.
 TEST(JobScheduler, ALateUserIsServedBeforeTheFirstUsersQueueDrains) {
   Scheduler s("jobs-fair-share", "sphere.off");
-  std::mutex m;
-  std::condition_variable cv;
-  std::vector<std::string> started;
-  int ended = 0;
-  s.jobs.on_event = [&](const json& e, const Access&) {
-    std::lock_guard lock(m);
-    if (e["type"] == "job_progress" && e["job"]["state"] == "running" &&
-        std::find(started.begin(), started.end(), e["job"]["id"].get<std::string>()) == started.end())
-      started.push_back(e["job"]["id"]);
-    if (e["type"] == "job_done" || e["type"] == "job_failed") ++ended;
-    cv.notify_all();
-  };
+  StartOrder o(s.jobs);
   s.jobs.start();
-  auto submit = [&](const std::string& owner, double seconds) {
-    return s.jobs.submit({{"algorithm", "test_sleep"}, {"inputs", {{"mesh", s.mesh.id}}}, {"params", {{"seconds", seconds}}}},
-                         Caller{owner, true})["id"].get<std::string>();
-  };
   std::vector<std::string> alice;
-  for (int k = 0; k < 6; ++k) alice.push_back(submit("alice", 0.2 + 0.001 * k));
+  for (int k = 0; k < 6; ++k) alice.push_back(s.submit_sleep("alice", 0.2 + 0.001 * k));
   {
     // Bob comes once alice's first job runs.
-    std::unique_lock lock(m);
-    ASSERT_TRUE(cv.wait_for(lock, 30s, [&] { return !started.empty(); }));
+    std::unique_lock lock(o.m);
+    ASSERT_TRUE(o.cv.wait_for(lock, 30s, [&] { return !o.started.empty(); }));
   }
-  const std::string bob = submit("bob", 0.01);
-  std::unique_lock lock(m);
-  ASSERT_TRUE(cv.wait_for(lock, 60s, [&] { return ended == 7; }));
-  const auto at = std::find(started.begin(), started.end(), bob) - started.begin();
+  const std::string bob = s.submit_sleep("bob", 0.01);
+  std::unique_lock lock(o.m);
+  ASSERT_TRUE(o.cv.wait_for(lock, 60s, [&] { return o.ended == 7; }));
+  const auto at = std::find(o.started.begin(), o.started.end(), bob) - o.started.begin();
   // At most the job running when he came and the next one of alice's before his.
   EXPECT_LE(at, 2) << "bob's job started " << at << "th of 7";
-  EXPECT_EQ(started.back(), alice.back());
+  EXPECT_EQ(o.started.back(), alice.back());
 }
 
 TEST(JobsChaos, EmbedExtractAndAnimateThroughTheWorker) {

@@ -18,6 +18,7 @@
 #include "jobs.h"
 #include "mesh_service.h"
 #include "router.h"
+#include "router_harness.h"
 #include "store.h"
 #include "test_support.h"
 
@@ -27,12 +28,7 @@ namespace {
 using nlohmann::json;
 using namespace std::chrono_literals;
 
-std::string sample_bytes(const std::string& name) {
-  std::ifstream f(test::sample(name), std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+std::string sample_bytes(const std::string& name) { return test::read_bytes(test::sample(name)); }
 
 std::string config_error(const json& doc) {
   ServerConfig c;
@@ -137,36 +133,15 @@ TEST(QuotaConfig, TheServerRefusesABadFileNamingTheKey) {
   EXPECT_NE(out.find("config.json: users.alice.storage: unknown key"), std::string::npos) << out;
 }
 
-class QuotaTest : public ::testing::Test {
+class QuotaTest : public test::RouterFixture {
  protected:
   void start(const json& config_doc) {
-    const std::string tag = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    dir_ = test::temp_dir("quota-" + tag);
+    make_dir("quota-");
     ServerConfig sc;
     apply_config(config_doc, sc);
-    store_ = std::make_unique<Store>(dir_);
-    meshes_ = std::make_unique<MeshService>(*store_);
     JobConfig jc = sc.jobs;
-    jc.worker = test::bin("cgview-worker-test");
     jc.max_workers = 4;  // alice's two long jobs leave room for bob's
-    jobs_ = std::make_unique<JobScheduler>(*meshes_, jc);
-    jobs_->start();
-    RouterConfig rc;
-    rc.jobs = jobs_.get();
-    rc.auth_required = true;
-    router_ = std::make_unique<Router>(*meshes_, rc);
-    Auth auth(*store_, true);
-    alice_ = auth.add_user("alice", false);
-    bob_ = auth.add_user("bob", false);
-  }
-
-  void TearDown() override {
-    router_.reset();
-    jobs_.reset();
-    meshes_.reset();
-    store_.reset();
-    std::error_code ec;
-    if (!HasFailure()) std::filesystem::remove_all(dir_, ec);
+    open_with_users(dir_, jc);
   }
 
   HttpResponse call(const std::string& token, const std::string& method, const std::string& target, std::string body = "") {
@@ -191,12 +166,6 @@ class QuotaTest : public ::testing::Test {
     return {};
   }
 
-  std::filesystem::path dir_;
-  std::unique_ptr<Store> store_;
-  std::unique_ptr<MeshService> meshes_;
-  std::unique_ptr<JobScheduler> jobs_;
-  std::unique_ptr<Router> router_;
-  std::string alice_, bob_;
 };
 
 TEST_F(QuotaTest, AnUploadOverTheStorageQuotaIs413NamingTheLimitAndTheUse) {

@@ -15,6 +15,7 @@
 #include "io/mesh_io.h"
 #include "mesh_service.h"
 #include "router.h"
+#include "router_harness.h"
 #include "store.h"
 #include "test_support.h"
 
@@ -24,12 +25,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-std::string read_bytes(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using test::read_bytes;
 
 std::string header(const HttpResponse& r, const std::string& name) {
   for (const auto& [k, v] : r.headers)
@@ -49,27 +45,16 @@ json expect_error(const HttpResponse& r, int status, const std::string& code) {
   return j;
 }
 
-class RouterTest : public ::testing::Test {
+class RouterTest : public test::RouterFixture {
  protected:
   void SetUp() override {
-    const std::string tag = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    dir_ = test::temp_dir("router-" + tag);
+    make_dir("router-");
     static_dir_ = dir_ / "static";
     fs::create_directories(static_dir_ / "assets");
     test::write_text(static_dir_ / "index.html", "<!doctype html><title>CGView</title>");
     test::write_text(static_dir_ / "assets" / "app.js", "console.log('cgview')");
-    store_ = std::make_unique<Store>(dir_ / "data");
-    service_ = std::make_unique<MeshService>(*store_);
-    router_ = std::make_unique<Router>(*service_, RouterConfig{static_dir_, "0.1.0"});
+    open(dir_ / "data", std::nullopt, RouterConfig{static_dir_, "0.1.0"});
     router_->on_event = [this](const json& e, const Access&) { events_.push_back(e); };
-  }
-
-  void TearDown() override {
-    router_.reset();
-    service_.reset();
-    store_.reset();
-    std::error_code ec;
-    if (!HasFailure()) fs::remove_all(dir_, ec);
   }
 
   HttpResponse call(const std::string& method, const std::string& target, std::string body = "") {
@@ -83,10 +68,7 @@ class RouterTest : public ::testing::Test {
     return json::parse(r.body);
   }
 
-  fs::path dir_, static_dir_;
-  std::unique_ptr<Store> store_;
-  std::unique_ptr<MeshService> service_;
-  std::unique_ptr<Router> router_;
+  fs::path static_dir_;
   std::vector<json> events_;
 };
 
@@ -282,7 +264,7 @@ TEST_F(RouterTest, RefusesPathTraversal) {
 }
 
 TEST_F(RouterTest, NoStaticDirMeans404) {
-  Router bare(*service_, RouterConfig{});
+  Router bare(*meshes_, RouterConfig{});
   expect_error(bare.handle({"GET", "/", "", ""}), 404, "not_found");
   expect_error(bare.handle({"GET", "/index.html", "", ""}), 404, "not_found");
 }

@@ -14,6 +14,7 @@
 #include <csignal>
 #include <fstream>
 #include <functional>
+#include <iostream>
 #include <limits>
 #include <regex>
 #include <sstream>
@@ -370,6 +371,36 @@ void WsClient::abort() {
   beast::error_code ec;
   impl_->ws.next_layer().set_option(net::socket_base::linger(true, 0), ec);
   impl_->ws.next_layer().close(ec);
+}
+
+// ---------------------------------------------------------------- fixture
+
+void ServerFixture::SetUp() {
+  dir_ = temp_dir(tag_ + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  data_ = dir_ / "data";
+}
+
+void ServerFixture::TearDown() {
+  if (HasFailure() && server_.pid() > 0) std::cerr << "server stderr:\n" << server_.stderr_text();
+  server_.kill_now();
+  std::error_code ec;
+  if (!HasFailure()) fs::remove_all(dir_, ec);  // kept for a look after a failure
+}
+
+void ServerFixture::expect_healthy() {
+  const HttpResult h = http_get(port(), "/api/v1/health");
+  ASSERT_FALSE(h.ec) << "health: " << h.ec.message();
+  EXPECT_EQ(h.status, 200u);
+  EXPECT_EQ(h.body_json().value("status", ""), "ok");
+}
+
+void ServerFixture::expect_error(const HttpResult& r, unsigned status, const std::string& code) {
+  ASSERT_FALSE(r.ec) << r.ec.message();
+  EXPECT_EQ(r.status, status) << r.body;
+  EXPECT_EQ(r.header("Content-Type"), "application/json");
+  const json j = r.body_json();
+  EXPECT_EQ(j.value("error", ""), code) << r.body;
+  EXPECT_TRUE(j.contains("detail") && j["detail"].is_string()) << r.body;
 }
 
 }  // namespace cgview::test

@@ -1,8 +1,11 @@
 // The real cgview-server as a child process, and timed HTTP and WebSocket
-// clients for it, shared by the server's integration suites
-// (server_integration_test, jobs_test).  Boost.Beast stays in the .cpp:
+// clients for it, and the fixture that starts it, shared by the server's
+// integration suites (server_integration_test, jobs_test, hardening_test,
+// render_endpoint_test).  Boost.Beast stays in the .cpp:
 // results are plain strings, ints and std::error_code.
 #pragma once
+
+#include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
@@ -14,6 +17,7 @@
 #include <optional>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include <sys/types.h>
@@ -147,6 +151,30 @@ class WsClient {
   std::unique_ptr<Impl> impl_;
   std::error_code last_;
   std::vector<nlohmann::json> events_;
+};
+
+// ---------------------------------------------------------------- fixture
+
+// The fixture of the suites that start the real server: dir_ (a fresh temp
+// directory named TAG + the test's name), data_ (dir_/data, not created) and
+// server_.  After a failure the server's stderr is printed and dir_ kept.
+class ServerFixture : public ::testing::Test {
+ protected:
+  explicit ServerFixture(std::string tag) : tag_(std::move(tag)) {}
+  void SetUp() override;
+  void TearDown() override;
+  unsigned short port() const { return server_.port(); }
+
+  // GET /api/v1/health answers 200 {"status": "ok"}.
+  void expect_healthy();
+  // R is an error: STATUS with a JSON {"error": CODE, "detail": "..."} body.
+  static void expect_error(const HttpResult& r, unsigned status, const std::string& code);
+
+  std::filesystem::path dir_, data_;
+  ServerProcess server_;
+
+ private:
+  std::string tag_;
 };
 
 }  // namespace cgview::test

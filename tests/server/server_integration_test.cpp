@@ -111,28 +111,19 @@ std::pair<std::size_t, std::size_t> draco_counts(const std::string& drc, const f
 
 // ---------------------------------------------------------------- fixture
 
-class ServerIntegration : public ::testing::Test {
+class ServerIntegration : public test::ServerFixture {
  protected:
+  ServerIntegration() : ServerFixture("server-") {}
   void SetUp() override {
-    const std::string tag = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    dir_ = test::temp_dir("server-" + tag);
-    data_ = dir_ / "data";
+    ServerFixture::SetUp();
     static_ = dir_ / "static";
     fs::create_directories(static_);
     test::write_text(static_ / "index.html", "<!doctype html><title>CGView test</title>");
   }
-  void TearDown() override {
-    if (HasFailure() && server_.pid() > 0) std::cerr << "server stderr:\n" << server_.stderr_text();
-    server_.kill_now();
-    std::error_code ec;
-    if (!HasFailure()) fs::remove_all(dir_, ec);  // kept for a look after a failure
-  }
-
   bool start(std::vector<std::string> extra = {}) {
     extra.insert(extra.end(), {"--static-dir", static_.string()});
     return server_.start(data_, extra, dir_);
   }
-  unsigned short port() const { return server_.port(); }
 
   json upload(const std::string& sample) {
     const HttpResult r = http_call(port(), Method::post, "/api/v1/meshes?name=" + sample, read_bytes(test::sample(sample)));
@@ -141,24 +132,7 @@ class ServerIntegration : public ::testing::Test {
     return r.body_json();
   }
 
-  void expect_healthy() {
-    const HttpResult h = http_get(port(), "/api/v1/health");
-    ASSERT_FALSE(h.ec) << "health: " << h.ec.message();
-    EXPECT_EQ(h.status, 200u);
-    EXPECT_EQ(h.body_json().value("status", ""), "ok");
-  }
-
-  static void expect_error(const HttpResult& r, unsigned status, const std::string& code) {
-    ASSERT_FALSE(r.ec) << r.ec.message();
-    EXPECT_EQ(r.status, status) << r.body;
-    EXPECT_EQ(r.header("Content-Type"), "application/json");
-    const json j = r.body_json();
-    EXPECT_EQ(j.value("error", ""), code) << r.body;
-    EXPECT_TRUE(j.contains("detail") && j["detail"].is_string()) << r.body;
-  }
-
-  fs::path dir_, data_, static_;
-  ServerProcess server_;
+  fs::path static_;
 };
 
 // ---------------------------------------------------------------- HTTP

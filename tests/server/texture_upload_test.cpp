@@ -18,6 +18,7 @@
 #include "io/materials.h"
 #include "mesh_service.h"
 #include "router.h"
+#include "router_harness.h"
 #include "store.h"
 #include "test_support.h"
 
@@ -27,12 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-std::string read_bytes(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using test::read_bytes;
 
 const std::string kQuad =
     "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
@@ -40,24 +36,14 @@ const std::string kQuad =
 // Written on Windows: a backslash path in other case than the file's.
 const std::string kMtl = "newmtl skin\nKd 0.5 0.25 1\nmap_Kd .\\Maps\\WOOD.JPG\n";
 
-class TextureUploadTest : public ::testing::Test {
+class TextureUploadTest : public test::RouterFixture {
  protected:
   void SetUp() override {
-    dir_ = test::temp_dir(std::string("texture-") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    store_ = std::make_unique<Store>(dir_ / "data");
-    service_ = std::make_unique<MeshService>(*store_);
-    router_ = std::make_unique<Router>(*service_, RouterConfig{dir_ / "static", "0.1.0"});
+    make_dir("texture-");
+    open(dir_ / "data", std::nullopt, RouterConfig{dir_ / "static", "0.1.0"});
     jpeg_ = read_bytes("/usr/share/assimp/models/OBJ/drkwood2.jpg");
     ASSERT_FALSE(jpeg_.empty()) << "install Debian's assimp-testmodels";
   }
-  void TearDown() override {
-    router_.reset();
-    service_.reset();
-    store_.reset();
-    std::error_code ec;
-    if (!HasFailure()) fs::remove_all(dir_, ec);
-  }
-
   // A zip of (name, bytes) entries, written by libzip.
   std::string make_zip(const std::vector<std::pair<std::string, std::string>>& files, bool compress = true) {
     const fs::path p = dir_ / "made.zip";
@@ -92,10 +78,6 @@ class TextureUploadTest : public ::testing::Test {
     EXPECT_EQ(store_->list_meshes().size(), 0u) << "nothing stored";
   }
 
-  fs::path dir_;
-  std::unique_ptr<Store> store_;
-  std::unique_ptr<MeshService> service_;
-  std::unique_ptr<Router> router_;
   std::string jpeg_;
 };
 
@@ -229,7 +211,7 @@ TEST_F(TextureUploadTest, RefusedZips) {
   refused("bad.zip", make_zip({{"quad.obj", "v 0 0 0\nf 1 2 3\n"}}), 400, "quad.obj");
 
   // A zip bomb in small: 1 MB of zeros deflates to about a kilobyte.
-  service_->set_max_upload_bytes(100000);
+  meshes_->set_max_upload_bytes(100000);
   const std::string bomb = make_zip({{"quad.obj", kQuad + std::string(1 << 20, ' ')}});
   ASSERT_LT(bomb.size(), 20000u);
   const json j = upload("bomb.zip", bomb, 413);

@@ -36,7 +36,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { artifactsDir, hueStats, pngPixels, repo, useViewer, webClient } from './harness.mjs';
+import { artifactsDir, hueStats, pngPixels, repo, settle, useViewer, webClient } from './harness.mjs';
 
 const samples = process.env.CGVIEW_SAMPLES ?? path.join(repo, 'build', 'samples');
 const referenceDir = path.join(webClient, 'tests', 'reference');
@@ -66,17 +66,6 @@ async function pinViewport(page) {
     },
     VIEW_SIZE,
   );
-}
-
-/** Waits until no frame has been drawn for `quietMs` (orbit damping has settled). */
-async function settle(page, quietMs = 400) {
-  let last = -1;
-  for (;;) {
-    const frames = await page.evaluate(() => window.__cgview.frames);
-    if (frames === last) return;
-    last = frames;
-    await new Promise((r) => setTimeout(r, quietMs));
-  }
 }
 
 /** The canvas as a PNG, through the page's Screenshot button (a download). */

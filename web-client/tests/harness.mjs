@@ -31,6 +31,17 @@ export const CHROMIUM_ARGS = [
 
 export const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 
+/** Waits until the page has drawn no frame for `quietMs` (window.__cgview.frames; orbit damping has settled). */
+export async function settle(page, quietMs = 400) {
+  let last = -1;
+  for (;;) {
+    const frames = await page.evaluate(() => window.__cgview.frames);
+    if (frames === last) return;
+    last = frames;
+    await sleep(quietMs);
+  }
+}
+
 // Servers still running and data directories not yet removed: the safety net
 // below deals with them if the process exits without stop().
 const leftovers = new Set();

@@ -21,21 +21,10 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { artifactsDir, isMeshOrange, pngPixels, repo, useViewer } from './harness.mjs';
+import { artifactsDir, isMeshOrange, pngPixels, repo, settle, useViewer } from './harness.mjs';
 
 const samples = process.env.CGVIEW_SAMPLES ?? path.join(repo, 'build', 'samples');
 const v = useViewer({ tmpPrefix: 'cgview-scene-', mesh: path.join(samples, 'cube.off') });
-
-/** Waits until no frame has been drawn for `quietMs` (orbit damping has settled). */
-async function settle(page, quietMs = 400) {
-  let last = -1;
-  for (;;) {
-    const frames = await page.evaluate(() => window.__cgview.frames);
-    if (frames === last) return;
-    last = frames;
-    await new Promise((r) => setTimeout(r, quietMs));
-  }
-}
 
 async function canvasPixels(page, name) {
   await settle(page);

@@ -9,6 +9,7 @@
 
 #include "algorithm_json.h"
 #include "algorithm_support.h"
+#include "invalid_input.h"
 #include "registry/registry.h"
 #include "test_support.h"
 
@@ -24,15 +25,7 @@ const ParamSpec& faces_spec() {
   throw std::runtime_error("no faces parameter");
 }
 
-template <class Fn>
-std::string invalid_input_message(Fn fn) {
-  try {
-    fn();
-  } catch (const InvalidInput& e) {
-    return e.what();
-  }
-  return "(no InvalidInput)";
-}
+using test::invalid_input_message;
 
 TEST(SelectionParam, DeclaredAsFacesAndShownInTheSchema) {
   EXPECT_EQ(faces_spec().type, ParamType::faces);

@@ -10,6 +10,7 @@
 #include "filters/curvature.h"
 #include "registry/registry.h"
 #include "algorithm_support.h"
+#include "invalid_input.h"
 #include "test_support.h"
 
 namespace cgview {
@@ -40,16 +41,7 @@ Mesh fin() {
   return m;
 }
 
-template <class Fn>
-std::string invalid_input_message(Fn fn) {
-  try {
-    fn();
-  } catch (const InvalidInput& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InvalidInput thrown";
-  return {};
-}
+using test::invalid_input_message;
 
 TEST(Curvature, SphereIsOneOverRAndOneOverRSquared) {
   const double r = 2.0;

@@ -20,6 +20,7 @@
 
 #include "algorithm_json.h"
 #include "io/mesh_io.h"
+#include "invalid_input.h"
 #include "registry/artifact_io.h"
 #include "registry/registry.h"
 #include "test_support.h"
@@ -36,17 +37,7 @@ const ParamSpec& spec_of(const Algorithm& a, const std::string& name) {
   throw std::out_of_range("no parameter " + name);
 }
 
-// The message of the InvalidInput that fn throws ("" when it throws none).
-template <class Fn>
-std::string invalid_input_message(Fn fn) {
-  try {
-    fn();
-  } catch (const InvalidInput& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InvalidInput thrown";
-  return "";
-}
+using test::invalid_input_message;
 
 // A copy: the result is often a temporary.
 ScalarField field_of(const AlgorithmResult& r, std::size_t k = 0) {

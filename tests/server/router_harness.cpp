@@ -1,0 +1,45 @@
+#include "router_harness.h"
+
+#include <system_error>
+#include <utility>
+
+#include "auth.h"
+#include "test_support.h"
+
+namespace cgview::test {
+
+void RouterFixture::make_dir(const std::string& tag) {
+  dir_ = temp_dir(tag + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+}
+
+void RouterFixture::open(const std::filesystem::path& store_dir, std::optional<server::JobConfig> jobs, server::RouterConfig rc) {
+  store_ = std::make_unique<server::Store>(store_dir);
+  meshes_ = std::make_unique<server::MeshService>(*store_);
+  if (jobs) {
+    jobs->worker = bin("cgview-worker-test");
+    jobs_ = std::make_unique<server::JobScheduler>(*meshes_, std::move(*jobs));
+    jobs_->start();
+    rc.jobs = jobs_.get();
+  }
+  router_ = std::make_unique<server::Router>(*meshes_, std::move(rc));
+}
+
+void RouterFixture::open_with_users(const std::filesystem::path& dir, server::JobConfig jobs) {
+  server::RouterConfig rc;
+  rc.auth_required = true;
+  open(dir, std::move(jobs), std::move(rc));
+  server::Auth auth(*store_, true);
+  alice_ = auth.add_user("alice", false);
+  bob_ = auth.add_user("bob", false);
+}
+
+void RouterFixture::TearDown() {
+  router_.reset();
+  jobs_.reset();
+  meshes_.reset();
+  store_.reset();
+  std::error_code ec;
+  if (!HasFailure() && !dir_.empty()) std::filesystem::remove_all(dir_, ec);
+}
+
+}  // namespace cgview::test
