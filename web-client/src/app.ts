@@ -1188,12 +1188,10 @@ export class App {
     const timer = new LoadTimer(); // of the full mesh
     // A big mesh's preview (API.md "Big meshes") is shown while the full mesh
     // streams and decodes, then replaced without moving the camera.
-    let inPreview = false;
     let preview: THREE.Object3D | null = null;
     let fullDecoded = false;
     const stage = (what: string) => (preview ? `preview shown, ${what} full mesh` : what);
     const showPreview = async (transfer: MeshTransfer) => {
-      inPreview = false;
       const decoded = await this.decoder.decode(transfer.payload);
       if (!current() || fullDecoded) return;
       const object = buildSurface(decoded);
@@ -1205,35 +1203,16 @@ export class App {
       this.progress.show(stage('downloading'), null, mesh.name);
     };
     try {
-      this.progress.show('downloading', 0, mesh.name);
       this.hooks.lastPreview = null;
-      const transfer = await this.socket.getMesh(mesh.id, {
-        signal: load.controller.signal,
-        onSent: () => timer.mark('request'),
-        onBegin: (begin) => {
-          inPreview = begin.level === 'preview';
-          if (!inPreview) timer.mark('first-byte');
-        },
-        onProgress: (received, total) => {
-          if (!inPreview) {
-            if (received > 0) timer.mark('first-chunk');
-            if (received >= total) timer.mark('last-chunk');
-          }
-          if (current()) this.progress.show(inPreview ? 'downloading preview of' : stage('downloading'), total > 0 ? received / total : 0, mesh.name);
-        },
+      const loaded = await this.downloadMesh(mesh, load.controller.signal, current, timer, {
+        stage,
         onPreview: (t) => {
           showPreview(t).catch((e) => console.warn('cgview: the preview could not be shown', e));
         },
       });
-      if (!current()) return;
-      this.progress.show(stage('decoding'), null, mesh.name);
-      const bytes = transfer.payload.byteLength; // before the worker takes the buffer
-      timer.mark('decode-start');
-      const decoded = await this.decoder.decode(transfer.payload);
-      if (!current()) return;
+      if (!loaded) return;
       fullDecoded = true;
-      timer.mark('decode-end');
-      timer.setWorkerTiming(decoded.timing);
+      const { decoded, bytes } = loaded;
       const object = buildSurface(decoded);
       timer.mark('geometry-built');
       this.textures.attach(object, mesh);
@@ -1263,21 +1242,43 @@ export class App {
   /**
    * Downloads a mesh over the WebSocket (with the progress bar while
    * `current()`) and decodes it in the worker; null when no longer current.
+   * With `preview`, a big mesh's decimated preview is asked for first and
+   * handed to `preview.onPreview`; `preview.stage` words the full mesh's
+   * stages (once the preview is shown). `timer` times the full mesh only.
    */
-  private async downloadMesh(mesh: Mesh, signal: AbortSignal, current: () => boolean, timer: LoadTimer): Promise<{ decoded: Awaited<ReturnType<DracoDecoder['decode']>>; bytes: number } | null> {
+  private async downloadMesh(
+    mesh: Mesh,
+    signal: AbortSignal,
+    current: () => boolean,
+    timer: LoadTimer,
+    preview?: { onPreview: (transfer: MeshTransfer) => void; stage: (what: string) => string },
+  ): Promise<{ decoded: Awaited<ReturnType<DracoDecoder['decode']>>; bytes: number } | null> {
+    const stage = preview?.stage ?? ((what: string) => what);
+    let inPreview = false;
     this.progress.show('downloading', 0, mesh.name);
     const transfer = await this.socket.getMesh(mesh.id, {
       signal,
       onSent: () => timer.mark('request'),
-      onBegin: () => timer.mark('first-byte'),
-      onProgress: (received, total) => {
-        if (received > 0) timer.mark('first-chunk');
-        if (received >= total) timer.mark('last-chunk');
-        if (current()) this.progress.show('downloading', total > 0 ? received / total : 0, mesh.name);
+      onBegin: (begin) => {
+        inPreview = begin.level === 'preview';
+        if (!inPreview) timer.mark('first-byte');
       },
+      onProgress: (received, total) => {
+        if (!inPreview) {
+          if (received > 0) timer.mark('first-chunk');
+          if (received >= total) timer.mark('last-chunk');
+        }
+        if (current()) this.progress.show(inPreview ? 'downloading preview of' : stage('downloading'), total > 0 ? received / total : 0, mesh.name);
+      },
+      ...(preview && {
+        onPreview: (t: MeshTransfer) => {
+          inPreview = false;
+          preview.onPreview(t);
+        },
+      }),
     });
     if (!current()) return null;
-    this.progress.show('decoding', null, mesh.name);
+    this.progress.show(stage('decoding'), null, mesh.name);
     const bytes = transfer.payload.byteLength; // before the worker takes the buffer
     timer.mark('decode-start');
     const decoded = await this.decoder.decode(transfer.payload);
