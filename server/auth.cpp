@@ -3,6 +3,7 @@
 #include <openssl/crypto.h>
 #include <openssl/rand.h>
 
+#include <cctype>
 #include <vector>
 
 #include "core/errors.h"
@@ -21,6 +22,13 @@ std::string random_hex(std::size_t bytes) {
 
 }  // namespace
 
+bool starts_with_nocase(std::string_view s, std::string_view prefix) {
+  if (s.size() < prefix.size()) return false;
+  for (std::size_t i = 0; i < prefix.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(s[i])) != std::tolower(static_cast<unsigned char>(prefix[i]))) return false;
+  return true;
+}
+
 bool valid_user_name(const std::string& name) {
   if (name.empty() || name.size() > 64 || name == "local" || name == kSystemOwner) return false;
   for (unsigned char c : name)
@@ -31,10 +39,8 @@ bool valid_user_name(const std::string& name) {
 std::optional<Caller> Auth::authenticate(std::string_view authorization) const {
   if (authorization.empty()) return required_ ? std::nullopt : std::optional(Caller::local());
   constexpr std::string_view bearer = "Bearer ";
-  if (authorization.size() <= bearer.size()) return std::nullopt;
-  for (std::size_t i = 0; i < bearer.size(); ++i)  // the scheme is case-insensitive (RFC 7235)
-    if (std::tolower(static_cast<unsigned char>(authorization[i])) != std::tolower(static_cast<unsigned char>(bearer[i])))
-      return std::nullopt;
+  // the scheme is case-insensitive (RFC 7235)
+  if (authorization.size() <= bearer.size() || !starts_with_nocase(authorization, bearer)) return std::nullopt;
   return check_token(authorization.substr(bearer.size()));
 }
 

@@ -34,6 +34,9 @@ class Auth {
   bool required_;
 };
 
+// True when s begins with prefix, ASCII case ignored (an HTTP auth scheme).
+bool starts_with_nocase(std::string_view s, std::string_view prefix);
+
 // True for a user name: 1..64 of [A-Za-z0-9_.-], not "local" or "system".
 bool valid_user_name(const std::string& name);
 

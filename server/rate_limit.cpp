@@ -1,8 +1,9 @@
 #include "rate_limit.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
+
+#include "auth.h"
 
 namespace cgview::server {
 
@@ -36,12 +37,8 @@ std::string RateLimiter::describe() const {
 
 std::string rate_key(std::string_view authorization, const std::string& address, bool loopback) {
   constexpr std::string_view bearer = "bearer cgv_";
-  if (authorization.size() > bearer.size() + 16) {
-    bool is_bearer = true;
-    for (std::size_t i = 0; i < bearer.size(); ++i)
-      is_bearer = is_bearer && std::tolower(static_cast<unsigned char>(authorization[i])) == bearer[i];
-    if (is_bearer) return "token:" + std::string(authorization.substr(bearer.size(), 16));
-  }
+  if (authorization.size() > bearer.size() + 16 && starts_with_nocase(authorization, bearer))
+    return "token:" + std::string(authorization.substr(bearer.size(), 16));
   if (authorization.empty() && loopback) return {};
   return "ip:" + address;
 }
