@@ -125,15 +125,10 @@ class Hardening : public test::ServerFixture {
 
   // A new user's token (cgview-server user add, before the server starts).
   std::string add_user(const std::string& name) {
-    std::string out;  // stdout and stderr: the token is its own line
-    test::run("'" + test::bin("cgview-server") + "' --data-dir '" + data_.string() + "' user add " + name, &out);
+    const std::string out = server_command(data_, "user add " + name);
     std::smatch m;
     EXPECT_TRUE(std::regex_search(out, m, std::regex("cgv_[0-9a-f]{16}_[0-9a-f]{64}"))) << out;
     return m.empty() ? "" : m.str();
-  }
-  HttpResult get_as(const std::string& token, const std::string& target) {
-    return http_raw(port(), "GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\nAuthorization: Bearer " + token +
-                                "\r\nConnection: close\r\n\r\n");
   }
 };
 
@@ -351,16 +346,16 @@ TEST(RateLimiter, KeysAreTokenIdsOrAddresses) {
 TEST_F(Hardening, OverTheRateLimitIs429ThenServedAfterRetryAfter) {
   const std::string alice = add_user("alice"), bob = add_user("bob");
   ASSERT_TRUE(start({"--rate-limit", "2/3", "--auth", "required"}));
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(get_as(alice, "/api/v1/health").status, 200u) << i;
-  const HttpResult over = get_as(alice, "/api/v1/health");
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(call_as(port(), alice, "GET", "/api/v1/health").status, 200u) << i;
+  const HttpResult over = call_as(port(), alice, "GET", "/api/v1/health");
   expect_error(over, 429, "rate_limited");
   EXPECT_NE(over.body_json().value("detail", "").find("2 requests per second, bursts of 3"), std::string::npos) << over.body;
   const int retry = std::atoi(over.header("Retry-After").c_str());
   EXPECT_GE(retry, 1) << over.header("Retry-After");
   // Another token has its own bucket.
-  EXPECT_EQ(get_as(bob, "/api/v1/health").status, 200u);
+  EXPECT_EQ(call_as(port(), bob, "GET", "/api/v1/health").status, 200u);
   std::this_thread::sleep_for(std::chrono::seconds(retry) + 100ms);
-  EXPECT_EQ(get_as(alice, "/api/v1/health").status, 200u);
+  EXPECT_EQ(call_as(port(), alice, "GET", "/api/v1/health").status, 200u);
 
   // WebSocket messages count too, against the token of the session: of
   // six pings at once, the burst is served and the rest refused.

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cctype>
 #include <csignal>
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <iostream>
@@ -401,6 +402,25 @@ void ServerFixture::expect_error(const HttpResult& r, unsigned status, const std
   const json j = r.body_json();
   EXPECT_EQ(j.value("error", ""), code) << r.body;
   EXPECT_TRUE(j.contains("detail") && j["detail"].is_string()) << r.body;
+}
+
+HttpResult call_as(unsigned short port, const std::string& token, const std::string& method, const std::string& target,
+                   const std::string& body) {
+  return http_raw(port, method + " " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\nAuthorization: Bearer " + token +
+                            "\r\nContent-Length: " + std::to_string(body.size()) + "\r\nConnection: close\r\n\r\n" + body);
+}
+
+std::string server_command(const fs::path& data, const std::string& args) {
+  std::ostringstream cmd;  // (one + chain of strings here trips GCC 12's -Wrestrict)
+  cmd << "'" << bin("cgview-server") << "' --data-dir '" << data.string() << "' " << args << " 2>/dev/null";
+  std::string out;
+  if (FILE* p = ::popen(cmd.str().c_str(), "r")) {
+    char buf[512];
+    for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
+    ::pclose(p);
+  }
+  while (!out.empty() && out.back() == '\n') out.pop_back();
+  return out;
 }
 
 }  // namespace cgview::test

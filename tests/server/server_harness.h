@@ -93,6 +93,13 @@ HttpResult http_get(unsigned short port, const std::string& target);
 // HTTP response read.
 HttpResult http_raw(unsigned short port, const std::string& bytes,
                     std::chrono::milliseconds limit = std::chrono::seconds(10));
+// One request with "Authorization: Bearer TOKEN" (http_raw, Connection: close).
+HttpResult call_as(unsigned short port, const std::string& token, const std::string& method, const std::string& target,
+                   const std::string& body = "");
+
+// cgview-server ARGS... on a data directory (user add, user revoke, ...); its
+// stdout without the final newlines.
+std::string server_command(const std::filesystem::path& data, const std::string& args);
 
 // One keep-alive connection for several GET requests.
 class HttpConnection {

@@ -32,7 +32,9 @@ using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 using test::http_call;
 using test::http_get;
+using test::call_as;
 using test::http_raw;
+using test::server_command;
 using test::HttpConnection;
 using test::HttpResult;
 using test::Method;
@@ -583,27 +585,6 @@ TEST_F(ServerIntegration, MeshesSurviveARestart) {
 }
 
 // ---------------------------------------------------------------- users
-
-// cgview-server ARGS... on the test's data directory; its stdout.
-std::string server_command(const fs::path& data, const std::string& args) {
-  std::ostringstream cmd;  // (one + chain of strings here trips GCC 12's -Wrestrict)
-  cmd << "'" << test::bin("cgview-server") << "' --data-dir '" << data.string() << "' " << args << " 2>/dev/null";
-  std::string out;
-  if (FILE* p = ::popen(cmd.str().c_str(), "r")) {
-    char buf[512];
-    for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
-    ::pclose(p);
-  }
-  while (!out.empty() && out.back() == '\n') out.pop_back();
-  return out;
-}
-
-// One request with "Authorization: Bearer TOKEN".
-HttpResult call_as(unsigned short port, const std::string& token, const std::string& method, const std::string& target,
-                   const std::string& body = "") {
-  return http_raw(port, method + " " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\nAuthorization: Bearer " + token +
-                            "\r\nContent-Length: " + std::to_string(body.size()) + "\r\nConnection: close\r\n\r\n" + body);
-}
 
 TEST_F(ServerIntegration, TokensOverHttpAndWebSocketAndRevokedAtOnce) {
   fs::create_directories(data_);
