@@ -116,6 +116,25 @@ std::vector<std::vector<Index>> skeleton_branches(const Skeleton& s) {
   return out;
 }
 
+bool prune_spurs(Skeleton& s, const std::function<bool(const std::vector<Index>& branch, double length, Index tip)>& drop) {
+  const std::vector<std::uint32_t> degree = node_degrees(s);
+  std::vector<std::uint8_t> unused(s.nodes.size(), 0);
+  bool changed = false;
+  for (const std::vector<Index>& b : skeleton_branches(s)) {
+    if (b.size() < 2 || b.front() == b.back()) continue;
+    const bool spur = (degree[b.front()] == 1 && degree[b.back()] >= 3) || (degree[b.back()] == 1 && degree[b.front()] >= 3);
+    if (!spur) continue;
+    double length = 0;
+    for (std::size_t k = 1; k < b.size(); ++k) length += norm(s.nodes[b[k]] - s.nodes[b[k - 1]]);
+    if (!drop(b, length, degree[b.front()] == 1 ? b.front() : b.back())) continue;
+    for (Index n : b)
+      if (degree[n] < 3) unused[n] = 1;
+    changed = true;
+  }
+  std::erase_if(s.edges, [&](const std::array<Index, 2>& e) { return unused[e[0]] || unused[e[1]]; });
+  return changed;
+}
+
 BBox bounding_box(const Skeleton& s) {
   BBox b;
   for (const Vec3& p : s.nodes) b.add(p);

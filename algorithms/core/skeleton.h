@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/mesh.h"
@@ -37,6 +38,11 @@ std::uint32_t skeleton_components(const Skeleton& s, std::vector<std::uint32_t>&
 // node sequence from one end or junction to another; a cycle with no
 // junction comes back as one closed path (first node repeated at the end).
 std::vector<std::vector<Index>> skeleton_branches(const Skeleton& s);
+// One pass of spur pruning: every terminal branch (from an end to a
+// junction) for which drop(branch, length, tip) holds loses its edges; its
+// nodes below degree 3 are left unused (not renumbered).  tip is the
+// branch's end of degree 1.  Returns whether any branch went.
+bool prune_spurs(Skeleton& s, const std::function<bool(const std::vector<Index>& branch, double length, Index tip)>& drop);
 BBox bounding_box(const Skeleton& s);
 
 }  // namespace cgview

@@ -137,21 +137,7 @@ SkeletonDistance skeleton_distance(const Skeleton& a, const Skeleton& b, double 
 }
 
 std::size_t endpoints_after_pruning(Skeleton s, double length) {
-  for (bool changed = true; changed;) {
-    changed = false;
-    const std::vector<std::uint32_t> degree = node_degrees(s);
-    std::vector<std::uint8_t> drop(s.nodes.size(), 0);
-    for (const std::vector<Index>& b : skeleton_branches(s)) {
-      if (b.size() < 2 || b.front() == b.back()) continue;
-      const bool spur = (degree[b.front()] == 1 && degree[b.back()] >= 3) || (degree[b.back()] == 1 && degree[b.front()] >= 3);
-      double l = 0;
-      for (std::size_t k = 1; k < b.size(); ++k) l += norm(s.nodes[b[k]] - s.nodes[b[k - 1]]);
-      if (!spur || l >= length) continue;
-      for (Index n : b)
-        if (degree[n] < 3) drop[n] = 1;
-      changed = true;
-    }
-    std::erase_if(s.edges, [&](const std::array<Index, 2>& e) { return drop[e[0]] || drop[e[1]]; });
+  while (prune_spurs(s, [&](const std::vector<Index>&, double l, Index) { return l < length; })) {
   }
   const std::vector<std::uint32_t> degree = node_degrees(s);
   return std::size_t(std::count(degree.begin(), degree.end(), 1u));

@@ -511,24 +511,13 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   }
   // The closing path may run into a branch short of its end, which is left
   // as a spur: terminal branches shorter than min_branch go.
-  if (!closing.empty()) {
-    const std::vector<std::uint32_t> deg = node_degrees(s);
-    std::vector<std::uint8_t> drop(s.nodes.size(), 0);
-    for (const std::vector<Index>& b : skeleton_branches(s)) {
-      if (b.size() < 2 || b.front() == b.back()) continue;
-      const bool spur = (deg[b.front()] == 1 && deg[b.back()] >= 3) || (deg[b.back()] == 1 && deg[b.front()] >= 3);
-      double length = 0;
-      for (std::size_t k = 1; k < b.size(); ++k) length += norm(s.nodes[b[k]] - s.nodes[b[k - 1]]);
+  if (!closing.empty())
+    prune_spurs(s, [&](const std::vector<Index>&, double length, Index tip) {
       // A spur that ends where a loop was closed is what remains of the
       // other side of the gap.
-      const Index tip = deg[b.front()] == 1 ? b.front() : b.back();
       const bool gap_side = tip < closed.size() && closed[tip];
-      if (!spur || (length >= min_branch * vs && !gap_side)) continue;
-      for (Index n : b)
-        if (deg[n] < 3) drop[n] = 1;
-    }
-    std::erase_if(s.edges, [&](const std::array<Index, 2>& x) { return drop[x[0]] || drop[x[1]]; });
-  }
+      return length < min_branch * vs || gap_side;
+    });
   return s;
 }
 
@@ -565,20 +554,7 @@ void simplify(Skeleton& s, double merge_length, int iterations, const std::funct
   // A collapse inside a loop can leave a short spur (a node whose two edges
   // went to the same merged node): terminal branches shorter than
   // merge_length go (thin keeps none shorter than min_branch otherwise).
-  if (merge_length > 0) {
-    const std::vector<std::uint32_t> degree = node_degrees(s);
-    std::vector<std::uint8_t> drop(s.nodes.size(), 0);
-    for (const std::vector<Index>& b : skeleton_branches(s)) {
-      if (b.size() < 2 || b.front() == b.back()) continue;
-      const bool spur = (degree[b.front()] == 1 && degree[b.back()] >= 3) || (degree[b.back()] == 1 && degree[b.front()] >= 3);
-      double length = 0;
-      for (std::size_t k = 1; k < b.size(); ++k) length += norm(s.nodes[b[k]] - s.nodes[b[k - 1]]);
-      if (!spur || length >= merge_length) continue;
-      for (Index n : b)
-        if (degree[n] < 3) drop[n] = 1;
-    }
-    std::erase_if(s.edges, [&](const std::array<Index, 2>& x) { return drop[x[0]] || drop[x[1]]; });
-  }
+  if (merge_length > 0) prune_spurs(s, [&](const std::vector<Index>&, double length, Index) { return length < merge_length; });
   // Drop the nodes no edge uses any more, renumbering.
   {
     std::vector<std::int64_t> keep(s.nodes.size(), -1);
