@@ -1188,7 +1188,12 @@ export class App {
     const timer = new LoadTimer(); // of the full mesh
     // A big mesh's preview (API.md "Big meshes") is shown while the full mesh
     // streams and decodes, then replaced without moving the camera.
+    // The preview and the full mesh decode in that order in the one worker, so
+    // the preview is in the viewer before the full mesh is decoded; the swap
+    // waits for the preview's first frame (settled at the next frame), so the
+    // preview is always drawn once, however fast the full mesh comes.
     let preview: THREE.Object3D | null = null;
+    let previewDrawn: Promise<void> = Promise.resolve();
     let fullDecoded = false;
     const stage = (what: string) => (preview ? `preview shown, ${what} full mesh` : what);
     const showPreview = async (transfer: MeshTransfer) => {
@@ -1196,10 +1201,13 @@ export class App {
       if (!current() || fullDecoded) return;
       const object = buildSurface(decoded);
       preview = object;
-      this.viewer.show(object, () => {
-        if (this.viewer.object !== object) return;
-        this.hooks.lastPreview = { id: mesh.id, vertices: decoded.vertices, faces: decoded.faces, camera: readCamera(this.viewer), fullCamera: null };
-      });
+      previewDrawn = new Promise<void>((drawn) =>
+        this.viewer.show(object, () => {
+          drawn();
+          if (this.viewer.object !== object) return;
+          this.hooks.lastPreview = { id: mesh.id, vertices: decoded.vertices, faces: decoded.faces, camera: readCamera(this.viewer), fullCamera: null };
+        }),
+      );
       this.progress.show(stage('downloading'), null, mesh.name);
     };
     try {
@@ -1216,6 +1224,8 @@ export class App {
       const object = buildSurface(decoded);
       timer.mark('geometry-built');
       this.textures.attach(object, mesh);
+      await previewDrawn;
+      if (!current()) return;
       const swap = preview !== null && this.viewer.object === preview;
       const onShown = () => {
         if (this.viewer.object !== object) return;

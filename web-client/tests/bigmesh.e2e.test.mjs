@@ -49,7 +49,7 @@ async function upload(name, body) {
 }
 
 // Records in the page, every frame, what the viewer shows: the face counts of
-// the preview and full mesh hooks, and the progress badge's text.
+// the preview and full mesh hooks, and the progress badge's text (each change).
 async function watch() {
   await v.page.evaluate(() => {
     const seen = [];
@@ -63,7 +63,7 @@ async function watch() {
         badge: stage && !stage.hidden ? stage.querySelector('.stage').textContent : null,
       };
       const last = seen[seen.length - 1];
-      if (!last || last.preview !== state.preview || last.full !== state.full || (state.badge && !last.badge)) seen.push(state);
+      if (!last || last.preview !== state.preview || last.full !== state.full || (state.badge && state.badge !== last.badge)) seen.push(state);
       requestAnimationFrame(tick);
     };
     tick();
@@ -87,8 +87,11 @@ test('a big mesh shows its preview first, then the full mesh, with the camera un
   const previewAt = hooks.seen.findIndex((s) => s.preview === hooks.preview.faces && s.full === null);
   const fullAt = hooks.seen.findIndex((s) => s.full === faces);
   assert.ok(previewAt >= 0 && fullAt > previewAt, JSON.stringify(hooks.seen));
+  // The badge is set with the preview, so the frame that draws the preview
+  // shows it; the recorder (a frame callback that may run before the
+  // viewer's in that frame) can see it a frame before the preview's hook.
   assert.ok(
-    hooks.seen.slice(previewAt, fullAt).some((s) => s.badge && s.badge.includes('preview shown')),
+    hooks.seen.slice(0, fullAt).some((s) => s.badge && s.badge.includes('preview shown')),
     `no "preview shown" badge: ${JSON.stringify(hooks.seen)}`,
   );
   // The swap kept the camera.
