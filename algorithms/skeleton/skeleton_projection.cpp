@@ -8,6 +8,7 @@
 #include <queue>
 #include <thread>
 
+
 #include "core/mesh_report.h"
 #include "rays/ray_caster.h"
 #include "registry/registry.h"
@@ -91,45 +92,44 @@ void ProjectionParams::check() const {
 
 std::vector<std::uint16_t> chamfer_34(const std::vector<std::uint8_t>& mask, int w, int h) {
   constexpr std::uint16_t far = 60000;
-  std::vector<std::uint16_t> d(std::size_t(w) * h, 0);
-  const auto in = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h; };
-  const auto get = [&](int x, int y) -> int { return in(x, y) ? d[std::size_t(y) * w + x] : 0; };
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      if (!mask[std::size_t(y) * w + x]) continue;
-      int v = far;
-      v = std::min({v, get(x - 1, y) + 3, get(x, y - 1) + 3, get(x - 1, y - 1) + 4, get(x + 1, y - 1) + 4});
-      d[std::size_t(y) * w + x] = std::uint16_t(v);
-    }
-  for (int y = h - 1; y >= 0; --y)
-    for (int x = w - 1; x >= 0; --x) {
-      if (!mask[std::size_t(y) * w + x]) continue;
-      int v = d[std::size_t(y) * w + x];
-      v = std::min({v, get(x + 1, y) + 3, get(x, y + 1) + 3, get(x + 1, y + 1) + 4, get(x - 1, y + 1) + 4});
-      d[std::size_t(y) * w + x] = std::uint16_t(v);
-    }
-  return d;
+  // On a copy with one pixel of outside around it, so that no neighbour
+  // needs a bounds check.
+  const int pw = w + 2;
+  std::vector<std::uint16_t> d(std::size_t(pw) * (h + 2), 0);
+  for (int y = 0; y < h; ++y) {
+    const std::uint8_t* m = &mask[std::size_t(y) * w];
+    std::uint16_t* row = &d[std::size_t(y + 1) * pw + 1];
+    for (int x = 0; x < w; ++x) row[x] = m[x] ? far : 0;
+  }
+  for (int y = 1; y <= h; ++y) {
+    std::uint16_t* r = &d[std::size_t(y) * pw];
+    const std::uint16_t* up = r - pw;
+    for (int x = 1; x <= w; ++x)
+      if (r[x]) r[x] = std::uint16_t(std::min({int(r[x]), r[x - 1] + 3, up[x] + 3, up[x - 1] + 4, up[x + 1] + 4}));
+  }
+  for (int y = h; y >= 1; --y) {
+    std::uint16_t* r = &d[std::size_t(y) * pw];
+    const std::uint16_t* down = r + pw;
+    for (int x = w; x >= 1; --x)
+      if (r[x]) r[x] = std::uint16_t(std::min({int(r[x]), r[x + 1] + 3, down[x] + 3, down[x + 1] + 4, down[x - 1] + 4}));
+  }
+  std::vector<std::uint16_t> out(std::size_t(w) * h);
+  for (int y = 0; y < h; ++y) std::copy_n(&d[std::size_t(y + 1) * pw + 1], w, &out[std::size_t(y) * w]);
+  return out;
 }
 
 std::vector<std::uint8_t> medial_axis(const std::vector<std::uint16_t>& dt, int w, int h, int min_radius) {
   std::vector<std::uint8_t> axis(dt.size(), 0);
   const int least = std::max(1, 3 * min_radius);
+  const auto at = [&](int x, int y) -> int { return x < 0 || y < 0 || x >= w || y >= h ? 0 : dt[std::size_t(y) * w + x]; };
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const int v = dt[std::size_t(y) * w + x];
       if (v < least) continue;
-      bool maximal = true;
-      for (int dy = -1; dy <= 1 && maximal; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          if (!dx && !dy) continue;
-          const int nx = x + dx, ny = y + dy;
-          if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-          if (dt[std::size_t(ny) * w + nx] >= v + ((dx && dy) ? 4 : 3)) {
-            maximal = false;
-            break;
-          }
-        }
-      axis[std::size_t(y) * w + x] = maximal;
+      // A neighbour off the image is outside (0), never a bigger disc.
+      axis[std::size_t(y) * w + x] = at(x - 1, y) < v + 3 && at(x + 1, y) < v + 3 && at(x, y - 1) < v + 3 && at(x, y + 1) < v + 3 &&
+                                     at(x - 1, y - 1) < v + 4 && at(x + 1, y - 1) < v + 4 && at(x - 1, y + 1) < v + 4 &&
+                                     at(x + 1, y + 1) < v + 4;
     }
   return axis;
 }
@@ -140,7 +140,8 @@ VoxelGrid vote(const std::vector<render::ViewCapture>& views, const BBox& box, c
   const double longest = std::max({size.x, size.y, size.z, 1e-12});
   const double vs = longest / p.grid;
   const std::array<int, 3> dims{int(std::ceil(size.x / vs)) + 2, int(std::ceil(size.y / vs)) + 2, int(std::ceil(size.z / vs)) + 2};
-  VoxelGrid grid(dims, box.min - Vec3{vs, vs, vs}, vs, VoxelType::float32);
+  const Vec3 origin = box.min - Vec3{vs, vs, vs};
+  VoxelGrid grid(dims, origin, vs, VoxelType::float32);
   const int threads = std::max(1, std::min<int>(int(std::thread::hardware_concurrency()), int(views.size())));
   std::vector<std::vector<float>> partial(threads, std::vector<float>(grid.size(), 0.f));
   std::vector<std::vector<float>> partial_radius(threads, std::vector<float>(radius ? grid.size() : 0, 0.f));
@@ -156,26 +157,39 @@ VoxelGrid vote(const std::vector<render::ViewCapture>& views, const BBox& box, c
       const std::vector<std::uint8_t> axis = medial_axis(dt, w, h, p.min_radius);
       const Vec3 dir = a.camera.forward();
       const double pixel = a.camera.pixel_size_at(0);
+      // The cameras' matrices once per view (unproject would invert its
+      // matrix at every pixel).
+      const render::Mat4 from_a = render::inverse(a.camera.view_projection());
+      const render::Mat4 from_b = render::inverse(b.camera.view_projection());
+      const render::Mat4 to_b = b.camera.view_projection();
+      const auto unproject = [](const render::Mat4& inv, const render::CameraMatrices& c, double x, double y, float depth) {
+        return render::transform_point(inv, Vec3{2 * x / c.width - 1, 1 - 2 * y / c.height, 2 * double(depth) - 1});
+      };
+      // The ray's samples, every half voxel, in voxel units from the grid's origin.
+      const Vec3 half_step = dir * 0.5;
       for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
           const std::size_t i = std::size_t(y) * w + x;
           if (!axis[i] || a.depth[i] >= 1.f) continue;
-          const Vec3 entry = a.camera.unproject(x + 0.5, y + 0.5, a.depth[i]);
+          const Vec3 entry = unproject(from_a, a.camera, x + 0.5, y + 0.5, a.depth[i]);
           const double radius_world = dt[i] / 3.0 * pixel;
           double length = 2 * radius_world;
-          const Vec3 q = b.camera.project(entry);
-          const int bx = int(std::floor(q.x)), by = int(std::floor(q.y));
+          const Vec3 ndc = render::transform_point(to_b, entry);
+          const double qx = (ndc.x + 1) * 0.5 * w, qy = (1 - ndc.y) * 0.5 * h;
+          const int bx = int(std::floor(qx)), by = int(std::floor(qy));
           if (bx >= 0 && by >= 0 && bx < w && by < h && b.depth[std::size_t(by) * w + bx] < 1.f) {
-            const Vec3 exit = b.camera.unproject(q.x, q.y, b.depth[std::size_t(by) * w + bx]);
+            const Vec3 exit = unproject(from_b, b.camera, qx, qy, b.depth[std::size_t(by) * w + bx]);
             length = std::min(length, std::max(0.0, dot(exit - entry, dir)));
           }
           // A straight ray leaves a voxel for good: a sample in the voxel of
           // the one before is the same vote.
           std::size_t last = SIZE_MAX;
-          for (double s = 0; s <= length; s += vs / 2) {
-            const VoxelIndex c = grid.locate(entry + dir * s);
-            if (!grid.contains(c)) continue;
-            const std::size_t n = grid.linear(c);
+          Vec3 g = (entry - origin) / vs;
+          const int samples = int(std::floor(length / (vs / 2))) + 1;
+          for (int k = 0; k < samples; ++k, g += half_step) {
+            const double fx = std::floor(g.x), fy = std::floor(g.y), fz = std::floor(g.z);
+            if (!(fx >= 0 && fy >= 0 && fz >= 0 && fx < dims[0] && fy < dims[1] && fz < dims[2])) continue;
+            const std::size_t n = std::size_t(fx) + std::size_t(dims[0]) * (std::size_t(fy) + std::size_t(dims[1]) * std::size_t(fz));
             if (n == last) continue;
             last = n;
             acc[n] += 1.f;
@@ -209,39 +223,70 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   const float top = I.empty() ? 0.f : *std::max_element(I.begin(), I.end());
   Skeleton s;
   if (!(top > 0)) return s;
-  // The domain: every voted voxel (the inside, as far as the views tell);
-  // the targets: the voxels voted enough, which branches must reach.
-  std::vector<std::uint8_t> mask(L.size(), 0), target(L.size(), 0);
-  // The mask leaves the grid's border out (votes fall inside the bounding
-  // box, a voxel in from the border), so that the paths below step by
-  // linear offsets.
-  for (std::size_t n = 0; n < L.size(); ++n) {
-    if (!(I[n] > 0) || L.on_border(n)) continue;
-    mask[n] = 1;
-    target[n] = I[n] >= p.threshold * top;
-  }
+  // The domain: every voted voxel (the inside, as far as the views tell),
+  // numbered (a tenth of the grid or less: the arrays below are over these);
+  // the targets: the voxels voted enough, which branches must reach.  The
+  // domain leaves the grid's border out (votes fall inside the bounding box,
+  // a voxel in from the border), so that the paths below step by linear
+  // offsets.
+  std::vector<std::int32_t> id(L.size(), -1);  // a voxel's number in the domain (grids up to 512³ fit 32 bits)
+  std::vector<std::size_t> vox;                 // a number's voxel
+  for (std::size_t n = 0; n < L.size(); ++n)
+    if (I[n] > 0 && !L.on_border(n)) id[n] = std::int32_t(vox.size()), vox.push_back(n);
+  const std::size_t count = vox.size();
+  std::vector<std::uint8_t> target(count);
   // The intensity weight of a step onto a voxel.
-  const auto r2 = [&](std::size_t m) {
-    const double r = I[m] / top + 0.01;
-    return r * r;
-  };
-  const std::vector<std::ptrdiff_t> offset = L.offsets();
-  const std::vector<Step>& step = steps26();
-  const double vs = votes.voxel_size();
+  std::vector<double> r2(count);
   // The local radius of the shape, in voxels: the mean radius of the medial
   // discs that voted for the voxel (the vote set itself is thinner).
-  std::vector<float> thick(L.size(), 0.f);
-  for (std::size_t n = 0; n < L.size(); ++n) thick[n] = radius.empty() ? 1.f : float(radius[n] / vs);
+  std::vector<float> thick(count, 1.f);
+  const double vs = votes.voxel_size();
+  for (std::size_t c = 0; c < count; ++c) {
+    const float v = I[vox[c]];
+    target[c] = v >= p.threshold * top;
+    const double r = v / top + 0.01;
+    r2[c] = r * r;
+    if (!radius.empty()) thick[c] = float(radius[vox[c]] / vs);
+  }
+  const std::vector<std::ptrdiff_t> offset = L.offsets();
+  const std::vector<Step>& step = steps26();
+  // The domain's 26-neighbours of each numbered voxel, looked up once (the
+  // walks below visit them again and again): f(number, step k).
+  // The components at the same time (union-find; each joined to its lowest
+  // number), with the targets each has.
+  std::vector<std::int32_t> next(count * 26);
+  std::vector<std::int32_t> up(count);
+  std::iota(up.begin(), up.end(), 0);
+  const auto find = [&](std::int32_t c) {
+    while (up[std::size_t(c)] != c) c = up[std::size_t(c)] = up[std::size_t(up[std::size_t(c)])];
+    return c;
+  };
+  for (std::size_t c = 0; c < count; ++c)
+    for (std::size_t k = 0; k < 26; ++k) {
+      const std::int32_t m = next[c * 26 + k] = id[std::size_t(std::ptrdiff_t(vox[c]) + offset[k])];
+      if (m > std::int32_t(c)) {
+        const std::int32_t a = find(std::int32_t(c)), b = find(m);
+        if (a != b) up[std::size_t(std::max(a, b))] = std::min(a, b);
+      }
+    }
+  std::vector<std::uint32_t> targets_of(count, 0);  // of a component, at its lowest number
+  for (std::size_t c = 0; c < count; ++c) targets_of[std::size_t(find(std::int32_t(c)))] += target[c];
+  const auto neighbours = [&](std::size_t c, auto&& f) {
+    const std::int32_t* m = &next[c * 26];
+    for (std::size_t k = 0; k < 26; ++k)
+      if (m[k] >= 0) f(std::size_t(m[k]), k);
+  };
   const Vec3 ext = Vec3{double(L.d[0]), double(L.d[1]), double(L.d[2])} * vs;
   const double diagonal = norm(ext);
   const double min_branch = p.min_branch * diagonal / vs;  // in voxels
 
-  std::vector<std::int32_t> node_of(L.size(), -1);  // skeleton node of a voxel (grids up to 512³ fit 32 bits)
+  std::vector<std::int32_t> node_of(count, -1);  // skeleton node of a numbered voxel
   // A node sits at the vote-weighted centre of its voxel's 3x3x3
   // neighbourhood: off the voxel lattice, towards the ridge of votes.
-  const auto node = [&](std::size_t n) {
-    if (node_of[n] < 0) {
-      node_of[n] = std::int32_t(s.nodes.size());
+  const auto node = [&](std::size_t c) {
+    if (node_of[c] < 0) {
+      node_of[c] = std::int32_t(s.nodes.size());
+      const std::size_t n = vox[c];
       Vec3 sum = votes.center(votes.unlinear(n)) * double(I[n]);
       double weight = I[n];
       L.neighbours(n, [&](std::size_t m, double) {
@@ -250,62 +295,60 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
       });
       s.nodes.push_back(weight > 0 ? sum / weight : votes.center(votes.unlinear(n)));
     }
-    return Index(node_of[n]);
+    return Index(node_of[c]);
   };
-  std::vector<std::uint8_t> done(L.size(), 0);  // voxels of components already processed
-  std::vector<double> cost(L.size(), HUGE_VAL), along(L.size(), 0);
-  std::vector<std::int32_t> parent(L.size(), -1);
-  std::vector<std::uint8_t> covered(L.size(), 0), seen(L.size(), 0);
+  std::vector<std::uint8_t> done(count, 0);  // voxels of components already processed
+  std::vector<double> cost(count, HUGE_VAL), along(count, 0);
+  std::vector<std::int32_t> parent(count, -1);
+  // The voxels a branch covers: those within 1.5 x the local radius + 2
+  // (in voxels, rounded up) of its voxels, kept as the balls (centre,
+  // squared radius); only targets are ever asked about.
+  std::vector<std::array<int, 4>> balls;
+  std::vector<std::uint8_t> reached(count, 0);  // targets that started a branch
+  const auto covered = [&](std::size_t c) {
+    if (reached[c]) return true;
+    const auto [i, j, k] = L.ijk(vox[c]);
+    return std::any_of(balls.rbegin(), balls.rend(), [&, i = i, j = j, k = k](const std::array<int, 4>& b) {
+      return (i - b[0]) * (i - b[0]) + (j - b[1]) * (j - b[1]) + (k - b[2]) * (k - b[2]) <= b[3];
+    });
+  };
 
   // Components in order of their most voted voxel.
   std::vector<std::size_t> order;
-  for (std::size_t n = 0; n < L.size(); ++n)
-    if (target[n]) order.push_back(n);
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return I[a] > I[b]; });
+  for (std::size_t c = 0; c < count; ++c)
+    if (target[c]) order.push_back(c);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return I[vox[a]] > I[vox[b]]; });
+  // The shortest paths' queue: (cost, voxel), least first.
+  using Item = std::pair<double, std::uint32_t>;
+  using Queue = std::priority_queue<Item, std::vector<Item>, std::greater<>>;
   for (std::size_t root : order) {
     if (done[root]) continue;
-    // The component's targets, counted (a breadth-first walk is cheaper than
-    // the shortest paths): those stop once every target has its path, as
-    // only the targets' paths are used, leaving the weakly voted rim of the
-    // votes unvisited.
-    std::size_t targets = 0;
-    {
-      std::vector<std::size_t> stack{root};
-      seen[root] = 1;
-      while (!stack.empty()) {
-        const std::size_t n = stack.back();
-        stack.pop_back();
-        targets += target[n];
-        for (std::size_t k = 0; k < 26; ++k) {
-          const std::size_t m = std::size_t(std::ptrdiff_t(n) + offset[k]);
-          if (mask[m] && !seen[m]) seen[m] = 1, stack.push_back(m);
-        }
-      }
-    }
+    // The shortest paths stop once every target of the component has its
+    // path, as only the targets' paths are used, leaving the weakly voted
+    // rim of the votes unvisited.
+    const std::size_t targets = targets_of[std::size_t(find(std::int32_t(root)))];
     // Intensity-driven shortest paths from the root over the component.
     std::vector<std::size_t> members;
-    using Item = std::pair<double, std::size_t>;
-    std::priority_queue<Item, std::vector<Item>, std::greater<>> q;
+    Queue q;
     cost[root] = 0;
-    q.push({0, root});
+    q.push({0, std::uint32_t(root)});
     while (!q.empty() && members.size() < targets) {
       const auto [c, n] = q.top();
       q.pop();
       if (c > cost[n] || done[n]) continue;
       done[n] = 1;
       if (target[n]) members.push_back(n);
-      for (std::size_t k = 0; k < 26; ++k) {
-        const std::size_t m = std::size_t(std::ptrdiff_t(n) + offset[k]);
-        if (!mask[m] || done[m]) continue;
+      neighbours(n, [&, c = c, n = n](std::size_t m, std::size_t k) {
+        if (done[m]) return;
         const double len = step[k].length;
-        const double nc = c + len / r2(m);
+        const double nc = c + len / r2[m];
         if (nc < cost[m]) {
           cost[m] = nc;
           parent[m] = std::int32_t(n);
           along[m] = along[n] + len;
-          q.push({nc, m});
+          q.push({nc, std::uint32_t(m)});
         }
-      }
+      });
     }
     if (members.size() < 8) continue;  // a speck of votes
     // TEASAR: the farthest uncovered voxel gives a branch, back to the skeleton.
@@ -314,7 +357,7 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
     node(root);
     std::vector<std::size_t> path;
     for (std::size_t far : members) {
-      if (covered[far] || node_of[far] >= 0) continue;
+      if (node_of[far] >= 0 || covered(far)) continue;
       path.clear();
       std::size_t n = far;
       while (node_of[n] < 0 && parent[n] >= 0) {
@@ -323,7 +366,7 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
       }
       const std::size_t join = n;
       double mean = 0;
-      for (std::size_t v : path) mean += I[v];
+      for (std::size_t v : path) mean += I[vox[v]];
       mean /= double(std::max<std::size_t>(path.size(), 1));
       const bool keep = along[far] - along[join] >= min_branch && (main_votes < 0 || mean >= p.branch_votes * main_votes);
       if (keep) {
@@ -338,20 +381,10 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
       // Cover the voxels within the local thickness of the path.
       for (std::size_t v : path) {
         const int r = int(std::ceil(1.5 * thick[v])) + 2;
-        const auto [i, j, k] = L.ijk(v);
-        for (int c = std::max(0, k - r); c <= std::min(L.d[2] - 1, k + r); ++c)
-          for (int b = std::max(0, j - r); b <= std::min(L.d[1] - 1, j + r); ++b) {
-            // The ball's row: |a - i| <= the integer square root of what is left.
-            const int left = r * r - (b - j) * (b - j) - (c - k) * (c - k);
-            if (left < 0) continue;
-            int dx = int(std::sqrt(double(left)));
-            while (dx * dx > left) --dx;
-            while ((dx + 1) * (dx + 1) <= left) ++dx;
-            const int a0 = std::max(0, i - dx), a1 = std::min(L.d[0] - 1, i + dx);
-            std::fill(covered.begin() + std::ptrdiff_t(L.at(a0, b, c)), covered.begin() + std::ptrdiff_t(L.at(a1, b, c)) + 1, 1);
-          }
+        const auto [i, j, k] = L.ijk(vox[v]);
+        balls.push_back({i, j, k, r * r});
       }
-      covered[far] = 1;
+      reached[far] = 1;
     }
   }
   if (s.edges.empty()) return s;
@@ -360,9 +393,9 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   // that is far along the skeleton closes a tunnel.
   const Adjacency adj = skeleton_adjacency(s);
   const std::vector<std::uint32_t> degree = node_degrees(s);
-  std::vector<std::size_t> voxel_of(s.nodes.size());
-  for (std::size_t n = 0; n < L.size(); ++n)
-    if (node_of[n] >= 0) voxel_of[std::size_t(node_of[n])] = n;
+  std::vector<std::size_t> voxel_of(s.nodes.size());  // a node's numbered voxel
+  for (std::size_t c = 0; c < count; ++c)
+    if (node_of[c] >= 0) voxel_of[std::size_t(node_of[c])] = c;
   std::vector<std::array<Index, 2>> closing;
   std::vector<std::uint8_t> closed(s.nodes.size(), 0);  // ends already used by a loop
   // Tunnels (with the solid and its genus): an end looks for a gap twice as
@@ -447,7 +480,7 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
       int in = 0, all = 0;
       for (double t = 0; t <= 1; t += 0.25 / std::max(d, 1.0), ++all) {
         const VoxelIndex c = votes.locate(s.nodes[e] + (s.nodes[n] - s.nodes[e]) * t);
-        in += votes.contains(c) && mask[votes.linear(c)];
+        in += votes.contains(c) && id[votes.linear(c)] >= 0;
       }
       if (in >= 0.9 * all) best = n, best_d = d, best_is_end = is_end;
     }
@@ -465,12 +498,11 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   for (const auto& c : closing) {
     const std::size_t from = voxel_of[c[0]], to = voxel_of[c[1]];
     std::vector<std::size_t> touched;
-    using Item = std::pair<double, std::size_t>;
-    std::priority_queue<Item, std::vector<Item>, std::greater<>> q;
+    Queue q;
     cost[from] = 0;
     parent[from] = -1;
     touched.push_back(from);
-    q.push({0, from});
+    q.push({0, std::uint32_t(from)});
     bool reached = false;
     while (!q.empty()) {
       const auto [cn, n] = q.top();
@@ -480,17 +512,15 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
         reached = true;
         break;
       }
-      for (std::size_t k = 0; k < 26; ++k) {
-        const std::size_t m = std::size_t(std::ptrdiff_t(n) + offset[k]);
-        if (!mask[m]) continue;
-        const double nc = cn + step[k].length / r2(m);
+      neighbours(n, [&, cn = cn, n = n](std::size_t m, std::size_t k) {
+        const double nc = cn + step[k].length / r2[m];
         if (nc < cost[m]) {
           if (cost[m] == HUGE_VAL) touched.push_back(m);
           cost[m] = nc;
           parent[m] = std::int32_t(n);
-          q.push({nc, m});
+          q.push({nc, std::uint32_t(m)});
         }
-      }
+      });
     }
     if (reached) {
       const auto link = [&](Index a, Index b) {
