@@ -90,10 +90,12 @@ bool RayCaster::inside(const Vec3& p) const {
   // Directions away from the axes, so that a grid-aligned mesh's edges are
   // not grazed.
   static const Vec3 dirs[3] = {{0.5773, 0.5774, 0.5775}, {-0.8017, 0.2673, 0.5345}, {0.2182, -0.8729, 0.4364}};
+  // The majority of three: the third ray only when the first two disagree.
   int votes = 0;
-  for (const Vec3& d : dirs) {
-    const Hit h = first_hit(p, d);
-    if (h && dot(d, normals_[h.face]) > 0) ++votes;
+  for (int k = 0; k < 3; ++k) {
+    const Hit h = first_hit(p, dirs[k]);
+    if (h && dot(dirs[k], normals_[h.face]) > 0) ++votes;
+    if (votes == 2 || votes == k - 1) break;  // two in, or two out
   }
   return votes >= 2;
 }

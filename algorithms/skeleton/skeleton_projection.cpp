@@ -143,11 +143,16 @@ VoxelGrid vote(const std::vector<render::ViewCapture>& views, const BBox& box, c
   const Vec3 origin = box.min - Vec3{vs, vs, vs};
   VoxelGrid grid(dims, origin, vs, VoxelType::float32);
   const int threads = std::max(1, std::min<int>(int(std::thread::hardware_concurrency()), int(views.size())));
-  std::vector<std::vector<float>> partial(threads, std::vector<float>(grid.size(), 0.f));
-  std::vector<std::vector<float>> partial_radius(threads, std::vector<float>(radius ? grid.size() : 0, 0.f));
+  // The first thread votes into the grid itself, the others into grids of
+  // their own, added after.
+  std::vector<float>& out = grid.floats();
+  std::vector<float> no_radius;
+  if (radius) radius->assign(grid.size(), 0.f);
+  std::vector<std::vector<float>> partial(threads - 1, std::vector<float>(grid.size(), 0.f));
+  std::vector<std::vector<float>> partial_radius(threads - 1, std::vector<float>(radius ? grid.size() : 0, 0.f));
   auto work = [&](int t) {
-    std::vector<float>& acc = partial[t];
-    std::vector<float>& acc_radius = partial_radius[t];
+    std::vector<float>& acc = t ? partial[t - 1] : out;
+    std::vector<float>& acc_radius = t ? partial_radius[t - 1] : radius ? *radius : no_radius;
     for (std::size_t v = std::size_t(t); v < views.size(); v += std::size_t(threads)) {
       if (t == 0 && ctx && ctx->cancelled()) return;
       const render::ViewCapture& a = views[v];
@@ -203,11 +208,9 @@ VoxelGrid vote(const std::vector<render::ViewCapture>& views, const BBox& box, c
   work(0);
   for (auto& th : pool) th.join();
   if (ctx) ctx->check_cancelled();
-  std::vector<float>& out = grid.floats();
   for (const auto& part : partial)
     for (std::size_t n = 0; n < out.size(); ++n) out[n] += part[n];
   if (radius) {
-    radius->assign(grid.size(), 0.f);
     for (const auto& part : partial_radius)
       for (std::size_t n = 0; n < out.size(); ++n) (*radius)[n] += part[n];
     for (std::size_t n = 0; n < out.size(); ++n)
