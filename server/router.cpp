@@ -243,7 +243,7 @@ Router::Router(MeshService& meshes, RouterConfig config)
   routes_.push_back({"GET", "/api/v1/meshes/{id}/textures/{n}", "A texture image of a mesh (n: its index in the mesh's textures)", {},
                      [this, find](const Params& p, const HttpRequest&, const Caller& caller) {
                        const MeshRecord rec = find(p, caller);
-                       const json textures = mesh_json(rec)["textures"];
+                       const json textures = material_of(rec)["textures"];
                        const std::string& n = p.at("n");
                        if (n.empty() || n.size() > 3 || n.find_first_not_of("0123456789") != std::string::npos ||
                            std::stoul(n) >= textures.size())
