@@ -38,7 +38,7 @@ struct JobScheduler::Job {
   std::string state = "queued", stage, error, created, started, finished, artifacts = "[]", files;
   double progress = 0;
   bool cached = false;
-  std::uint64_t bytes = 0;  // of its directory once it ended (its owner's quota counts them)
+  std::uint64_t bytes = 0;  // of its directory once it ended, stored with it (its owner's quota counts them)
   std::int64_t seq = 0;
   // while running
   pid_t pid = -1;
@@ -122,11 +122,13 @@ JobScheduler::JobScheduler(MeshService& meshes, JobConfig config) : meshes_(mesh
            " mesh_id TEXT NOT NULL, mesh_sha TEXT NOT NULL, params TEXT NOT NULL, cache_key TEXT NOT NULL,"
            " state TEXT NOT NULL, stage TEXT NOT NULL, progress REAL NOT NULL, error TEXT NOT NULL,"
            " cached INTEGER NOT NULL, created TEXT NOT NULL, started TEXT NOT NULL, finished TEXT NOT NULL,"
-           " artifacts TEXT NOT NULL, files TEXT NOT NULL, inputs TEXT NOT NULL DEFAULT '{}');"
+           " artifacts TEXT NOT NULL, files TEXT NOT NULL, inputs TEXT NOT NULL DEFAULT '{}', bytes INTEGER);"
            "CREATE INDEX IF NOT EXISTS jobs_cache ON jobs(cache_key);",
            "jobs");
   // A database from before algorithms of several inputs lacks the column.
   add_missing_column(db_, "jobs", "inputs", "TEXT NOT NULL DEFAULT '{}'", "jobs");
+  // One from before result sizes were stored: NULL until load sizes the job once.
+  add_missing_column(db_, "jobs", "bytes", "INTEGER", "jobs");
   load();
   if (::pipe2(wake_pipe_, O_CLOEXEC | O_NONBLOCK) != 0) throw IoError("jobs: pipe failed");
 }
@@ -158,13 +160,13 @@ void JobScheduler::load() {
   sqlite3_stmt* s = nullptr;
   sqlite3_prepare_v2(db_,
                      "SELECT id, seq, owner, algorithm, mesh_id, mesh_sha, params, cache_key, state, stage, progress,"
-                     " error, cached, created, started, finished, artifacts, files, inputs FROM jobs ORDER BY seq",
+                     " error, cached, created, started, finished, artifacts, files, inputs, bytes FROM jobs ORDER BY seq",
                      -1, &s, nullptr);
   auto text = [&](int c) {
     const auto* p = sqlite3_column_text(s, c);
     return p ? std::string(reinterpret_cast<const char*>(p)) : std::string();
   };
-  std::vector<std::shared_ptr<Job>> restart;
+  std::vector<std::shared_ptr<Job>> restart, unsized;
   while (sqlite3_step(s) == SQLITE_ROW) {
     auto j = std::make_shared<Job>();
     j->id = text(0);
@@ -186,7 +188,9 @@ void JobScheduler::load() {
     j->artifacts = text(16);
     j->files = text(17);
     j->inputs = text(18);
-    if (j->state != "queued" && j->state != "running") j->bytes = dir_bytes(job_dir(j->id));
+    const bool ended = j->state != "queued" && j->state != "running";
+    if (sqlite3_column_type(s, 19) != SQLITE_NULL) j->bytes = std::uint64_t(sqlite3_column_int64(s, 19));
+    else if (ended) unsized.push_back(j);
     seq_ = std::max(seq_, j->seq);
     jobs_[j->id] = j;
     order_.push_back(j->id);
@@ -194,6 +198,15 @@ void JobScheduler::load() {
     if (j->state == "done" && !j->cached) cache_[j->cache_key] = j->id;
   }
   sqlite3_finalize(s);
+  // Sized once (walking its directory), then stored: later starts read the column.
+  if (!unsized.empty()) {
+    exec_sql(db_, "BEGIN", "jobs");
+    for (auto& j : unsized) {
+      j->bytes = dir_bytes(job_dir(j->id));
+      persist(*j);
+    }
+    exec_sql(db_, "COMMIT", "jobs");
+  }
   for (auto& j : restart) {
     j->progress = 0;
     j->stage.clear();
@@ -205,6 +218,7 @@ void JobScheduler::load() {
       j->error = "the server stopped while the job was " + j->state;
       j->state = "interrupted";
       j->finished = now_iso8601();
+      j->bytes = dir_bytes(job_dir(j->id));
     }
     persist(*j);
   }
@@ -214,8 +228,8 @@ void JobScheduler::persist(const Job& j) {
   sqlite3_stmt* s = nullptr;
   if (sqlite3_prepare_v2(db_,
                          "INSERT OR REPLACE INTO jobs (id, seq, owner, algorithm, mesh_id, mesh_sha, params, cache_key,"
-                         " state, stage, progress, error, cached, created, started, finished, artifacts, files, inputs)"
-                         " VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19)",
+                         " state, stage, progress, error, cached, created, started, finished, artifacts, files, inputs, bytes)"
+                         " VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20)",
                          -1, &s, nullptr) != SQLITE_OK)
     throw IoError(std::string("jobs: ") + sqlite3_errmsg(db_));
   int i = 0;
@@ -227,6 +241,7 @@ void JobScheduler::persist(const Job& j) {
   t(j.error);
   sqlite3_bind_int(s, ++i, j.cached ? 1 : 0);
   t(j.created), t(j.started), t(j.finished), t(j.artifacts), t(j.files), t(j.inputs);
+  sqlite3_bind_int64(s, ++i, std::int64_t(j.bytes));
   const int rc = sqlite3_step(s);
   sqlite3_finalize(s);
   if (rc != SQLITE_DONE) throw IoError(std::string("jobs: ") + sqlite3_errmsg(db_));
@@ -748,7 +763,10 @@ void JobScheduler::reap(Job& j, int status, std::vector<json>& events) {
   j.out_fd = -1;
   j.pid = -1;
   j.bytes = dir_bytes(job_dir(j.id));
-  if (j.cancelled) return;  // already cancelled (state, event)
+  if (j.cancelled) {  // already cancelled (state, event): only its size is new
+    persist(j);
+    return;
+  }
   const fs::path dir = job_dir(j.id);
   std::string state = "failed";
   if (j.timed_out) {
@@ -812,6 +830,7 @@ void JobScheduler::loop() {
         } else {
           j.state = "failed";
           j.finished = now_iso8601();
+          j.bytes = dir_bytes(job_dir(j.id));
           persist(j);
           events.push_back({{"type", "job_failed"}, {"job", job_json(j)}});
         }

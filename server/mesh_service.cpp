@@ -326,9 +326,6 @@ int MeshService::import_samples(const std::vector<std::filesystem::path>& files,
   return added;
 }
 
-namespace {
-// has_uvs, textures and (when the material gives one) kd; a mesh stored
-// before textures existed reads as untextured.
 nlohmann::json material_of(const MeshRecord& r) {
   nlohmann::json m = nlohmann::json::parse(r.material_json, nullptr, false);
   if (!m.is_object()) m = nlohmann::json::object();
@@ -337,6 +334,7 @@ nlohmann::json material_of(const MeshRecord& r) {
   return m;
 }
 
+namespace {
 nlohmann::json mesh_head(const MeshRecord& r) {
   return {{"id", r.id}, {"name", r.name}, {"format", r.format}, {"bytes", r.bytes}, {"created", r.created}, {"sha256", r.sha256},
           {"owner", r.owner}};

@@ -100,6 +100,10 @@ class MeshService {
   std::uint64_t previews_computed_ = 0;
 };
 
+// The material part of a stored mesh's JSON: has_uvs, textures (one per
+// texture blob: name, mime, bytes, ...) and, when the material gives them,
+// kd and materials; a mesh stored before textures existed reads as untextured.
+nlohmann::json material_of(const MeshRecord& record);
 // The JSON object of a stored mesh (API.md's Mesh).
 nlohmann::json mesh_json(const MeshRecord& record);
 // The same, serialized, without parsing the stored report again.

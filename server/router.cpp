@@ -164,9 +164,8 @@ Router::Router(MeshService& meshes, RouterConfig config)
   routes_.push_back({"GET", "/api/v1/health", "Server health: status, version, mesh count, uptime", {},
                      [this](const Params&, const HttpRequest&, const Caller& caller) {
                        const double up = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-                       const std::size_t count = caller.admin ? meshes_.store().count() : meshes_.store().list_meshes(caller).size();
                        return json_response(200, {{"status", "ok"}, {"version", config_.version},
-                                                  {"meshes", count}, {"uptime_s", up}});
+                                                  {"meshes", meshes_.store().count(caller)}, {"uptime_s", up}});
                      },
                      false});
   routes_.push_back({"GET", "/api/v1/me", "The caller: user name, admin, storage and jobs used and their limits (null: none)", {},
@@ -243,7 +242,7 @@ Router::Router(MeshService& meshes, RouterConfig config)
   routes_.push_back({"GET", "/api/v1/meshes/{id}/textures/{n}", "A texture image of a mesh (n: its index in the mesh's textures)", {},
                      [this, find](const Params& p, const HttpRequest&, const Caller& caller) {
                        const MeshRecord rec = find(p, caller);
-                       const json textures = mesh_json(rec)["textures"];
+                       const json textures = material_of(rec)["textures"];
                        const std::string& n = p.at("n");
                        if (n.empty() || n.size() > 3 || n.find_first_not_of("0123456789") != std::string::npos ||
                            std::stoul(n) >= textures.size())

@@ -267,6 +267,14 @@ std::vector<MeshRecord> Store::list_meshes(const Caller& caller) const {
   return out;
 }
 
+std::size_t Store::count(const Caller& caller) const {
+  if (caller.admin) return count_;
+  std::lock_guard lock(mutex_);
+  Stmt s(db_, (std::string("SELECT COUNT(*) FROM meshes WHERE ") + kReadable).c_str());
+  s.bind(1, caller.user).bind(2, std::int64_t(caller.admin));
+  return s.step() ? std::size_t(s.integer(0)) : 0;
+}
+
 std::uint64_t Store::mesh_bytes(const std::string& owner) const {
   std::lock_guard lock(mutex_);
   // The mesh file and its texture images (blobs of the mesh, sized in its material).

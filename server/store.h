@@ -108,6 +108,9 @@ class Store {
   // The path of a mesh's stored file (for a worker process to read).
   std::filesystem::path blob_file(const MeshRecord& record) const { return blob_path(record); }
   std::size_t count() const { return count_; }
+  // How many meshes the caller may read (list_meshes(caller).size(), by one
+  // COUNT query; an admin's is count()).
+  std::size_t count(const Caller& caller) const;
   // The bytes of the meshes `owner` owns, files and texture images (their quota counts them).
   std::uint64_t mesh_bytes(const std::string& owner) const;
 

@@ -11,6 +11,7 @@
 #include <csignal>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -565,6 +566,72 @@ TEST_F(JobsTest, ServerKilledMidJobRunsItAgainAfterRestart) {
   EXPECT_EQ(get(finished["id"])["state"], "done");
   EXPECT_EQ(server_.stop(SIGTERM), 0);
   EXPECT_EQ(integrity_check(data_ / "cgview.db"), "ok");
+}
+
+// The files under a directory, in bytes: the test's own count of a job's results.
+std::uint64_t bytes_under(const fs::path& dir) {
+  std::uint64_t n = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) n += e.file_size();
+  return n;
+}
+
+// Runs SQL on the server's database (stopped); the first column of the last row, or "NULL".
+std::string sql(const fs::path& db_path, const std::string& statement) {
+  sqlite3* db = nullptr;
+  if (sqlite3_open_v2(db_path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK) return "cannot open";
+  std::string result;
+  char* err = nullptr;
+  sqlite3_exec(
+      db, statement.c_str(),
+      [](void* out, int, char** values, char**) {
+        *static_cast<std::string*>(out) = values[0] ? values[0] : "NULL";
+        return 0;
+      },
+      &result, &err);
+  if (err) result = std::string("error: ") + err;
+  sqlite3_free(err);
+  sqlite3_close(db);
+  return result;
+}
+
+TEST_F(JobsTest, AFinishedJobsResultSizeIsStoredWithItAndCountedAfterARestart) {
+  auto used = [&] { return http_get(server_.port(), "/api/v1/me").body_json()["storage_bytes_used"].get<std::uint64_t>(); };
+  const std::uint64_t meshes = used();
+  const json job = submit("centroid_distance", {{"exponent", 0.5}});
+  ASSERT_EQ(wait_end(job["id"])["state"], "done");
+  const std::string id = job["id"];
+  const fs::path results = data_ / "jobs" / id;
+  const std::uint64_t size = bytes_under(results);
+  ASSERT_GT(size, 0u);
+  EXPECT_EQ(used(), meshes + size);
+  EXPECT_EQ(server_.stop(SIGTERM), 0);
+  const fs::path db = data_ / "cgview.db";
+  const std::string size_column = "SELECT bytes FROM jobs WHERE id = '" + id + "'";
+  EXPECT_EQ(sql(db, size_column), std::to_string(size));
+
+  // The next start reads the stored size: a file added meanwhile is not walked.
+  std::string extra(1000, 'x');
+  {
+    std::ofstream f(results / "extra.bin", std::ios::binary);
+    f << extra;
+  }
+  ASSERT_TRUE(start());
+  EXPECT_EQ(used(), meshes + size);
+  EXPECT_EQ(get(id)["state"], "done");
+  EXPECT_EQ(server_.stop(SIGTERM), 0);
+
+  // A database from before the column: it loads, sizes the job once from its
+  // directory, and stores it.
+  EXPECT_EQ(sql(db, "ALTER TABLE jobs DROP COLUMN bytes"), "");
+  EXPECT_EQ(sql(db, size_column).rfind("error: no such column", 0), 0u);
+  ASSERT_TRUE(start());
+  EXPECT_EQ(used(), meshes + size + extra.size());
+  EXPECT_EQ(get(id)["state"], "done");
+  EXPECT_EQ(artifact(id, "distance", "f32").size(), 4 * 162u) << "one float per vertex of the sphere";
+  EXPECT_EQ(server_.stop(SIGTERM), 0);
+  EXPECT_EQ(sql(db, size_column), std::to_string(size + extra.size()));
+  EXPECT_EQ(integrity_check(db), "ok");
 }
 
 }  // namespace

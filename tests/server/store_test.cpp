@@ -121,6 +121,35 @@ TEST(Store, AddListGetRemove) {
   EXPECT_EQ(store.count(), 1u);
 }
 
+TEST(Store, CountIsOfTheMeshesTheCallerMayRead) {
+  Store store(test::temp_dir("store-count"));
+  auto add = [&](const std::string& owner, int k) {
+    const std::string bytes = box_off(k, 1);
+    MeshRecord r = record("m.off", "off", bytes);
+    r.owner = owner;
+    return store.add_mesh(std::move(r), bytes).id;
+  };
+  add("alice", 1);
+  add("alice", 2);
+  const std::string bobs = add("bob", 3), carols = add("carol", 4);
+  store.set_shared("mesh", bobs, {"alice"}, true);
+  store.set_shared("mesh", carols, {kEveryone}, true);
+  const Caller alice{"alice"}, bob{"bob"}, carol{"carol"}, dave{"dave"}, admin{"root", true};
+  // Her own two, bob's shared with her, carol's shared with everyone.
+  EXPECT_EQ(store.count(alice), 4u);
+  EXPECT_EQ(store.count(bob), 2u);
+  EXPECT_EQ(store.count(carol), 1u);
+  EXPECT_EQ(store.count(dave), 1u);
+  EXPECT_EQ(store.count(admin), 4u);
+  for (const Caller& c : {alice, bob, carol, dave, admin}) EXPECT_EQ(store.count(c), store.list_meshes(c).size()) << c.user;
+  store.set_shared("mesh", bobs, {"alice"}, false);
+  EXPECT_EQ(store.count(alice), 3u);
+  EXPECT_TRUE(store.remove_mesh(carols));
+  EXPECT_EQ(store.count(alice), 2u);
+  EXPECT_EQ(store.count(dave), 0u);
+  EXPECT_EQ(store.count(admin), 3u);
+}
+
 TEST(Store, RefusesAnUnsafeFormatName) {
   Store store(test::temp_dir("store-unsafe"));
   EXPECT_THROW(store.add_mesh(record("x", "../x", "abc"), "abc"), InvalidInput);
