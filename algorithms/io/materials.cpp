@@ -1,17 +1,21 @@
 #include "io/materials.h"
 
-#include <cctype>
 #include <charconv>
+
+#include "io/text_scanner.h"
 
 namespace cgview {
 
 namespace {
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+using detail::TextScanner;
+
+// The name a TextScanner reports errors under: splitting a line into words never fails.
+const std::string kLine = "line";
 
 std::string_view trim(std::string_view s) {
-  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
-  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
+  while (!s.empty() && TextScanner::is_space(s.front())) s.remove_prefix(1);
+  while (!s.empty() && TextScanner::is_space(s.back())) s.remove_suffix(1);
   return s;
 }
 
@@ -29,22 +33,24 @@ void for_each_line(std::string_view bytes, F&& f) {
 
 // Splits "keyword rest of line" into its keyword and its trimmed rest.
 std::pair<std::string_view, std::string_view> keyword(std::string_view line) {
-  line = trim(line);
-  std::size_t k = 0;
-  while (k < line.size() && !is_space(line[k])) ++k;
-  return {line.substr(0, k), trim(line.substr(k))};
+  TextScanner in(line, kLine);
+  const std::string_view key = in.word();
+  return {key, trim({in.pos(), in.remaining()})};
 }
 
-std::vector<std::string_view> words(std::string_view s) {
+// The words of one line, split as the mesh readers split them.
+std::vector<std::string_view> words(std::string_view line) {
+  TextScanner in(line, kLine);
   std::vector<std::string_view> out;
-  std::size_t i = 0;
-  while (i < s.size()) {
-    while (i < s.size() && is_space(s[i])) ++i;
-    const std::size_t b = i;
-    while (i < s.size() && !is_space(s[i])) ++i;
-    if (i > b) out.push_back(s.substr(b, i - b));
-  }
+  for (std::string_view w = in.word(); !w.empty(); w = in.word()) out.push_back(w);
   return out;
+}
+
+std::size_t word_count(std::string_view line) {
+  TextScanner in(line, kLine);
+  std::size_t n = 0;
+  while (!in.word().empty()) ++n;
+  return n;
 }
 
 }  // namespace
@@ -80,15 +86,10 @@ ObjMaterialUse obj_material_use(std::string_view obj_bytes) {
   constexpr std::uint32_t kUnknown = ~std::uint32_t(0);
   std::uint32_t index = kUnknown;  // of current in use.names, once a face uses it
   for_each_line(obj_bytes, [&](std::string_view line) {
-    std::size_t i = 0;
-    while (i < line.size() && is_space(line[i])) ++i;
-    const bool f = i + 1 < line.size() && line[i] == 'f' && is_space(line[i + 1]);
-    const bool fo = i + 2 < line.size() && line[i] == 'f' && line[i + 1] == 'o' && is_space(line[i + 2]);
-    if (f || fo) {
+    const auto [key, rest] = keyword(line);
+    if (key == "f" || key == "fo") {
       // As read_obj: a polygon of n corners is n - 2 triangles; a comment ends the corners.
-      std::string_view corners = line.substr(i + (f ? 1 : 2));
-      corners = corners.substr(0, corners.find('#'));
-      const std::size_t n = words(corners).size();
+      const std::size_t n = word_count(rest.substr(0, rest.find('#')));
       if (n < 3) return true;
       if (index == kUnknown) {
         index = std::uint32_t(use.names.size());
@@ -98,11 +99,7 @@ ObjMaterialUse obj_material_use(std::string_view obj_bytes) {
       }
       use.faces[current] += n - 2;
       use.face_material.insert(use.face_material.end(), n - 2, index);
-      return true;
-    }
-    if (i >= line.size() || (line[i] != 'm' && line[i] != 'u')) return true;
-    const auto [key, rest] = keyword(line);
-    if (key == "mtllib") {
+    } else if (key == "mtllib") {
       for (const auto w : words(rest)) use.libraries.emplace_back(w);
     } else if (key == "usemtl") {
       current = std::string(rest);

@@ -57,6 +57,20 @@ TEST(Materials, PolygonsCountAsTheirTriangles) {
   EXPECT_FALSE(u.faces.contains("unused"));
 }
 
+TEST(Materials, ObjLinesSplitAtTabsAndCarriageReturnsAsTheReadersSplitThem) {
+  // Words are split by io/text_scanner.h's spaces: tabs, \r, \f, \v as well as ' '.
+  const auto u = obj_material_use("mtllib\ta.mtl \t b.mtl\r\n\tusemtl\tx\r\n\tf\t1 2 3\r\n  fo 1\f2\v3 4\r\n"
+                                  "f\r\nf 1 2\nfoo 1 2 3\nf1 2 3\nface 1 2 3\n");
+  EXPECT_EQ(u.libraries, (std::vector<std::string>{"a.mtl", "b.mtl"}));
+  EXPECT_EQ(u.names, (std::vector<std::string>{"x"}));
+  EXPECT_EQ(u.face_material, (std::vector<std::uint32_t>{0, 0, 0})) << "a triangle and a quad; the rest are no faces";
+  const auto m = parse_mtl("newmtl\tred \r\nKd\t1\t0 0.5\r\n");
+  ASSERT_EQ(m.size(), 1u);
+  EXPECT_EQ(m[0].name, "red");
+  ASSERT_TRUE(m[0].kd.has_value());
+  EXPECT_FLOAT_EQ((*m[0].kd)[2], 0.5f);
+}
+
 TEST(Materials, PlyTextureFileAndImageTypes) {
   EXPECT_EQ(ply_texture_file("ply\nformat ascii 1.0\ncomment TextureFile my tex.png\nelement vertex 0\nend_header\n"),
             "my tex.png");

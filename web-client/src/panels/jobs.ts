@@ -10,6 +10,7 @@ import { artifactUrl } from '../api/rest.ts';
 import { jobMeshId } from '../api/types.ts';
 import type { ArtifactInfo, Job } from '../api/types.ts';
 import { el } from './dom.ts';
+import { formatValue } from './format.ts';
 
 export interface JobsActions {
   cancel(id: string): void;
@@ -57,14 +58,6 @@ export interface JobsView {
 
 const ACTIVE = new Set(['queued', 'running']);
 
-function formatMetric(value: unknown): string {
-  if (typeof value === 'number') return Number.isInteger(value) ? String(value) : Number(value.toPrecision(6)).toString();
-  if (typeof value === 'boolean') return value ? 'yes' : 'no';
-  if (value === null || value === undefined) return '—';
-  if (typeof value === 'string') return value;
-  return JSON.stringify(value);
-}
-
 function metricsTable(data: unknown): HTMLElement {
   if (typeof data === 'string') return el('p', { class: 'form-error' }, data);
   const rows: HTMLTableRowElement[] = [];
@@ -72,7 +65,7 @@ function metricsTable(data: unknown): HTMLElement {
     if (value && typeof value === 'object' && !Array.isArray(value)) {
       for (const [k, v] of Object.entries(value as Record<string, unknown>)) add(prefix ? `${prefix} ${k}` : k, v);
     } else {
-      rows.push(el('tr', {}, el('th', { scope: 'row' }, prefix.replace(/_/g, ' ')), el('td', {}, formatMetric(value))));
+      rows.push(el('tr', {}, el('th', { scope: 'row' }, prefix.replace(/_/g, ' ')), el('td', {}, formatValue(value))));
     }
   };
   add('', data);

@@ -3,27 +3,12 @@
 import { downloadUrl } from '../api/rest.ts';
 import type { Mesh } from '../api/types.ts';
 import { el, formatBytes } from './dom.ts';
+import { formatValue } from './format.ts';
 
 const DOWNLOAD_FORMATS = ['obj', 'off', 'ply', 'stl', 'glb', 'drc'];
 
 function label(key: string): string {
   return key.replace(/_/g, ' ');
-}
-
-function formatNumber(n: number): string {
-  if (Number.isInteger(n)) return String(n);
-  return Number(n.toPrecision(6)).toString();
-}
-
-function formatValue(value: unknown): string {
-  if (value === null || value === undefined) return '—';
-  if (typeof value === 'boolean') return value ? 'yes' : 'no';
-  if (typeof value === 'number') return formatNumber(value);
-  if (typeof value === 'string') return value;
-  if (Array.isArray(value)) {
-    return value.every((v) => typeof v === 'number') ? `(${value.map(formatNumber).join(', ')})` : value.map(formatValue).join(', ');
-  }
-  return JSON.stringify(value);
 }
 
 // The keys protocol/API.md names come first, in its order; then the rest as sent.

@@ -4,6 +4,7 @@
 // first, measured by the server's skeleton_distance (symmetric Hausdorff and
 // mean), so that the numbers are the API's.
 import { el } from './dom.ts';
+import { formatNumber, formatValue } from './format.ts';
 
 export interface SkeletonColumn {
   key: string;
@@ -25,11 +26,6 @@ const ROWS: Array<[string, string]> = [
   ['inside_fraction', 'nodes inside'],
   ['centredness_mean', 'centredness (mean)'],
 ];
-
-function format(v: unknown): string {
-  if (typeof v !== 'number') return '—';
-  return Number.isInteger(v) ? String(v) : Number(v.toPrecision(4)).toString();
-}
 
 /** The skeleton files the server reads (io/skeleton_io.h: the extension names the format). */
 export const SKELETON_FILE_TYPES = '.cg,.polylines,.txt,.obj,.json';
@@ -70,12 +66,12 @@ export class SkeletonsPanel {
       head.append(el('th', { 'data-skeleton': c.key }, el('span', { class: 'swatch', style: `background:${c.color}` }), ' ', c.algorithm));
     const rows = ROWS.map(([name, label]) => {
       const tr = el('tr', { 'data-metric': name }, el('th', { scope: 'row' }, label));
-      for (const c of columns) tr.append(el('td', {}, c.metrics === undefined ? '…' : format(c.metrics[name])));
+      for (const c of columns) tr.append(el('td', {}, c.metrics === undefined ? '…' : formatValue(c.metrics[name])));
       return tr;
     });
     const distance = el('tr', { 'data-metric': 'distance' }, el('th', { scope: 'row' }, 'distance to the first (Hausdorff / mean)'));
     for (const c of columns)
-      distance.append(el('td', {}, c.distance === null ? '—' : c.distance === undefined ? '…' : `${format(c.distance.hausdorff)} / ${format(c.distance.mean)}`));
+      distance.append(el('td', {}, c.distance === null ? '—' : c.distance === undefined ? '…' : `${formatNumber(c.distance.hausdorff)} / ${formatNumber(c.distance.mean)}`));
     const side = el('button', { type: 'button', class: 'button small side-by-side' }, 'Side by side');
     side.disabled = columns.length < 2;
     side.addEventListener('click', () => this.onSideBySide());
