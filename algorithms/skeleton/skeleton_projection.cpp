@@ -143,16 +143,13 @@ VoxelGrid vote(const std::vector<render::ViewCapture>& views, const BBox& box, c
   const Vec3 origin = box.min - Vec3{vs, vs, vs};
   VoxelGrid grid(dims, origin, vs, VoxelType::float32);
   const int threads = std::max(1, std::min<int>(int(std::thread::hardware_concurrency()), int(views.size())));
-  // The first thread votes into the grid itself, the others into grids of
-  // their own, added after.
-  std::vector<float>& out = grid.floats();
-  std::vector<float> no_radius;
-  if (radius) radius->assign(grid.size(), 0.f);
-  std::vector<std::vector<float>> partial(threads - 1, std::vector<float>(grid.size(), 0.f));
-  std::vector<std::vector<float>> partial_radius(threads - 1, std::vector<float>(radius ? grid.size() : 0, 0.f));
+  // Each thread votes into a grid of its own, a voxel's votes beside the
+  // sum of their radii (a ray's samples are far apart in memory: one cache
+  // line for both), added after.
+  std::vector<std::vector<std::array<float, 2>>> partial(threads);
   auto work = [&](int t) {
-    std::vector<float>& acc = t ? partial[t - 1] : out;
-    std::vector<float>& acc_radius = t ? partial_radius[t - 1] : radius ? *radius : no_radius;
+    std::vector<std::array<float, 2>>& acc = partial[t];
+    acc.assign(grid.size(), {0.f, 0.f});
     for (std::size_t v = std::size_t(t); v < views.size(); v += std::size_t(threads)) {
       if (t == 0 && ctx && ctx->cancelled()) return;
       const render::ViewCapture& a = views[v];
@@ -197,8 +194,8 @@ VoxelGrid vote(const std::vector<render::ViewCapture>& views, const BBox& box, c
             const std::size_t n = std::size_t(fx) + std::size_t(dims[0]) * (std::size_t(fy) + std::size_t(dims[1]) * std::size_t(fz));
             if (n == last) continue;
             last = n;
-            acc[n] += 1.f;
-            if (radius) acc_radius[n] += float(radius_world);
+            acc[n][0] += 1.f;
+            acc[n][1] += float(radius_world);
           }
         }
     }
@@ -208,14 +205,16 @@ VoxelGrid vote(const std::vector<render::ViewCapture>& views, const BBox& box, c
   work(0);
   for (auto& th : pool) th.join();
   if (ctx) ctx->check_cancelled();
+  std::vector<float>& out = grid.floats();
+  if (radius) radius->assign(grid.size(), 0.f);
   for (const auto& part : partial)
-    for (std::size_t n = 0; n < out.size(); ++n) out[n] += part[n];
-  if (radius) {
-    for (const auto& part : partial_radius)
-      for (std::size_t n = 0; n < out.size(); ++n) (*radius)[n] += part[n];
+    for (std::size_t n = 0; n < part.size(); ++n) {
+      out[n] += part[n][0];
+      if (radius) (*radius)[n] += part[n][1];
+    }
+  if (radius)
     for (std::size_t n = 0; n < out.size(); ++n)
       if (out[n] > 0) (*radius)[n] /= out[n];
-  }
   return grid;
 }
 
