@@ -58,10 +58,6 @@ struct Lattice {
     for (const Step& s : steps26()) o.push_back(s.di + std::ptrdiff_t(d[0]) * (s.dj + std::ptrdiff_t(d[1]) * s.dk));
     return o;
   }
-  bool on_border(std::size_t n) const {
-    const auto [i, j, k] = ijk(n);
-    return i == 0 || j == 0 || k == 0 || i == d[0] - 1 || j == d[1] - 1 || k == d[2] - 1;
-  }
   // Calls f(neighbour, step length) for the in-grid 26-neighbours.
   template <class F>
   void neighbours(std::size_t n, F&& f) const {
@@ -233,8 +229,10 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   // offsets.
   std::vector<std::int32_t> id(L.size(), -1);  // a voxel's number in the domain (grids up to 512³ fit 32 bits)
   std::vector<std::size_t> vox;                 // a number's voxel
-  for (std::size_t n = 0; n < L.size(); ++n)
-    if (I[n] > 0 && !L.on_border(n)) id[n] = std::int32_t(vox.size()), vox.push_back(n);
+  for (int k = 1; k + 1 < L.d[2]; ++k)
+    for (int j = 1; j + 1 < L.d[1]; ++j)
+      for (std::size_t n = L.at(1, j, k), end = L.at(L.d[0] - 1, j, k); n < end; ++n)
+        if (I[n] > 0) id[n] = std::int32_t(vox.size()), vox.push_back(n);
   const std::size_t count = vox.size();
   std::vector<std::uint8_t> target(count);
   // The intensity weight of a step onto a voxel.
