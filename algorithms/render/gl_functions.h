@@ -11,7 +11,6 @@
   X(PFNGLGETERRORPROC, glGetError)                                                                       \
   X(PFNGLGETINTEGERVPROC, glGetIntegerv)                                                                 \
   X(PFNGLVIEWPORTPROC, glViewport)                                                                       \
-  X(PFNGLSCISSORPROC, glScissor)                                                                         \
   X(PFNGLCLEARPROC, glClear)                                                                             \
   X(PFNGLCLEARCOLORPROC, glClearColor)                                                                   \
   X(PFNGLCLEARDEPTHPROC, glClearDepth)                                                                   \
@@ -50,16 +49,12 @@
   X(PFNGLBINDTEXTUREPROC, glBindTexture)                                                                 \
   X(PFNGLACTIVETEXTUREPROC, glActiveTexture)                                                             \
   X(PFNGLTEXBUFFERPROC, glTexBuffer)                                                                     \
-  X(PFNGLTEXIMAGE3DPROC, glTexImage3D)                                                                   \
-  X(PFNGLTEXPARAMETERIPROC, glTexParameteri)                                                             \
-  X(PFNGLGETTEXIMAGEPROC, glGetTexImage)                                                                 \
   X(PFNGLISTEXTUREPROC, glIsTexture)                                                                     \
   X(PFNGLGENFRAMEBUFFERSPROC, glGenFramebuffers)                                                         \
   X(PFNGLDELETEFRAMEBUFFERSPROC, glDeleteFramebuffers)                                                   \
   X(PFNGLBINDFRAMEBUFFERPROC, glBindFramebuffer)                                                         \
   X(PFNGLISFRAMEBUFFERPROC, glIsFramebuffer)                                                             \
   X(PFNGLFRAMEBUFFERRENDERBUFFERPROC, glFramebufferRenderbuffer)                                         \
-  X(PFNGLFRAMEBUFFERTEXTUREPROC, glFramebufferTexture)                                                   \
   X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, glCheckFramebufferStatus)                                           \
   X(PFNGLGENRENDERBUFFERSPROC, glGenRenderbuffers)                                                       \
   X(PFNGLDELETERENDERBUFFERSPROC, glDeleteRenderbuffers)                                                 \

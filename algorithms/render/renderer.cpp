@@ -94,21 +94,7 @@ void main() {
 }
 )";
 
-// Views for algorithms: each view drawn into its own layer of an array
-// framebuffer (gl_Layer from the vertex shader, ARB_shader_viewport_layer_array),
-// so that many views need one flush and one read-back.
-const char* kLayerVertex = R"(#version 330 core
-#extension GL_ARB_shader_viewport_layer_array : require
-layout(location = 0) in vec3 a_pos;
-uniform mat4 u_mvp;
-uniform int u_layer;
-void main() {
-  gl_Position = u_mvp * vec4(a_pos, 1.0);
-  gl_Layer = u_layer;
-}
-)";
-
-// Depth and face ids only, the cheapest fragment work.
+// Views for algorithms: depth and face ids only, the cheapest fragment work.
 const char* kCaptureFragment = R"(#version 330 core
 layout(location = 1) out uint o_face;
 void main() { o_face = uint(gl_PrimitiveID); }
@@ -129,9 +115,6 @@ uniform vec4 u_color;
 layout(location = 0) out vec4 o_color;
 void main() { o_color = u_color; }
 )";
-
-// The most pixels of one capture's layers together (16 MB of depth; 32 MB with face ids).
-constexpr std::size_t kLayersPixels = std::size_t(1) << 22;
 
 std::array<float, 16> to_float(const Mat4& m) {
   std::array<float, 16> f;
@@ -208,11 +191,6 @@ struct Renderer::Impl {
   GLuint mesh_program = 0, line_program = 0, capture_program = 0, depth_program = 0;
   GLuint fbo = 0, rb_color = 0, rb_face = 0, rb_depth = 0;
   int fbo_w = 0, fbo_h = 0;
-  // capture()'s framebuffer: a layer per view (array textures), depth and
-  // (when asked) face ids only.  max_layers stays 1 where GL cannot choose
-  // the layer in the vertex shader: then each view is drawn and read alone.
-  GLuint layers_fbo = 0, layers_depth = 0, layers_face = 0;
-  int layers_w = 0, layers_h = 0, layers_n = 0, max_layers = 1;
   GlObjectCounts counts;
   std::set<GLuint> ever_buffers, ever_arrays, ever_textures, ever_fbos, ever_rbs, ever_programs;
 
@@ -317,25 +295,13 @@ struct Renderer::Impl {
     Current cur(context);
     mesh_program = link(kMeshVertex, kMeshFragment);
     line_program = link(kLineVertex, kLineFragment);
-    try {
-      capture_program = link(kLayerVertex, kCaptureFragment);
-      depth_program = link(kLayerVertex, kDepthFragment);
-      GLint n = 1;
-      gl.glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &n);
-      max_layers = std::max(1, int(n));
-    } catch (const Error&) {
-      // No ARB_shader_viewport_layer_array: u_layer is ignored, one view a flush.
-      if (capture_program) gl.glDeleteProgram(capture_program), --counts.programs;
-      capture_program = link(kLineVertex, kCaptureFragment);
-      depth_program = link(kLineVertex, kDepthFragment);
-      max_layers = 1;
-    }
+    capture_program = link(kLineVertex, kCaptureFragment);
+    depth_program = link(kLineVertex, kDepthFragment);
   }
 
   void teardown() {
     Current cur(context);
     free_framebuffer();
-    free_layers();
     if (mesh_program) gl.glDeleteProgram(mesh_program), --counts.programs;
     if (line_program) gl.glDeleteProgram(line_program), --counts.programs;
     if (capture_program) gl.glDeleteProgram(capture_program), --counts.programs;
@@ -379,49 +345,6 @@ struct Renderer::Impl {
     }
     fbo_w = w;
     fbo_h = h;
-  }
-
-  void free_layers() {
-    if (layers_fbo) {
-      gl.glDeleteFramebuffers(1, &layers_fbo);
-      --counts.framebuffers;
-      layers_fbo = 0;
-    }
-    delete_texture(layers_depth);
-    delete_texture(layers_face);
-    layers_w = layers_h = layers_n = 0;
-  }
-
-  // n layers of w x h, with face ids when asked; kept between calls of the same size.
-  void ensure_layers(int w, int h, int n, bool face_ids) {
-    if (layers_fbo && layers_w == w && layers_h == h && layers_n == n && (layers_face || !face_ids)) return;
-    free_layers();
-    gl.glGenFramebuffers(1, &layers_fbo);
-    ++counts.framebuffers;
-    ever_fbos.insert(layers_fbo);
-    gl.glBindFramebuffer(GL_FRAMEBUFFER, layers_fbo);
-    auto attach = [&](GLuint& tex, GLint format, GLenum pixel_format, GLenum type, GLenum point) {
-      tex = gen_texture();
-      gl.glBindTexture(GL_TEXTURE_2D_ARRAY, tex);
-      gl.glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-      gl.glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-      gl.glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, format, w, h, n, 0, pixel_format, type, nullptr);
-      gl.glFramebufferTexture(GL_FRAMEBUFFER, point, tex, 0);
-    };
-    attach(layers_depth, GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, GL_DEPTH_ATTACHMENT);
-    // At attachment 1, where the capture shader writes its face ids.
-    if (face_ids) attach(layers_face, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, GL_COLOR_ATTACHMENT1);
-    gl.glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
-    gl.glReadBuffer(GL_NONE);
-    const GLenum status = gl.glCheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE) {
-      free_layers();
-      throw Error("render: the capture framebuffer of " + std::to_string(n) + " layers of " + std::to_string(w) +
-                  "x" + std::to_string(h) + " is incomplete (GL status " + std::to_string(status) + ")");
-    }
-    layers_w = w;
-    layers_h = h;
-    layers_n = n;
   }
 
   // A mesh's buffers on the GPU: positions relative to `origin` (floats keep
@@ -595,7 +518,6 @@ struct Renderer::Impl {
     const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     gl.glDrawBuffers(2, both);
     gl.glViewport(0, 0, w, h);
-    gl.glDisable(GL_SCISSOR_TEST);
     const GLfloat c[4] = {bg.r / 255.f, bg.g / 255.f, bg.b / 255.f, bg.a / 255.f};
     const GLuint none[4] = {kNoFace, 0, 0, 0};
     gl.glClearBufferfv(GL_COLOR, 0, c);
@@ -622,27 +544,22 @@ struct Renderer::Impl {
     }
   }
 
-  // One value per pixel of the framebuffer's w x h corner, rows as GL gives them (bottom first).
-  template <class T>
-  std::vector<T> read_raw(int w, int h, GLenum format, GLenum type) {
-    std::vector<T> v(std::size_t(w) * h);
-    gl.glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    gl.glReadPixels(0, 0, w, h, format, type, v.data());
-    return v;
-  }
   std::vector<float> read_depth(int w, int h) {
-    std::vector<float> d = read_raw<float>(w, h, GL_DEPTH_COMPONENT, GL_FLOAT);
+    std::vector<float> d(std::size_t(w) * h);
+    gl.glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.glReadPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, d.data());
     flip_rows(d, w, h, 1);
     return d;
   }
   std::vector<std::uint32_t> read_ids(int w, int h) {
+    std::vector<std::uint32_t> ids(std::size_t(w) * h);
+    gl.glPixelStorei(GL_PACK_ALIGNMENT, 1);
     gl.glReadBuffer(GL_COLOR_ATTACHMENT1);
-    std::vector<std::uint32_t> ids = read_raw<std::uint32_t>(w, h, GL_RED_INTEGER, GL_UNSIGNED_INT);
+    gl.glReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT, ids.data());
     gl.glReadBuffer(GL_COLOR_ATTACHMENT0);
     flip_rows(ids, w, h, 1);
     return ids;
   }
-
   Image read_color(int w, int h) {
     Image im{w, h, std::vector<std::uint8_t>(std::size_t(4) * w * h)};
     gl.glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -650,77 +567,6 @@ struct Renderer::Impl {
     gl.glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, im.rgba.data());
     flip_rows(im.rgba, w, h, 4);
     return im;
-  }
-
-  // Every layer of an array texture, rows as GL gives them (bottom first).
-  template <class T>
-  std::vector<T> read_layers(GLuint texture, int w, int h, int n, GLenum format, GLenum type) {
-    std::vector<T> v(std::size_t(w) * h * n);
-    gl.glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    gl.glBindTexture(GL_TEXTURE_2D_ARRAY, texture);
-    gl.glGetTexImage(GL_TEXTURE_2D_ARRAY, 0, format, type, v.data());
-    gl.glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
-    return v;
-  }
-  // Layer k of those, rows from the top.
-  template <class T>
-  static std::vector<T> layer_image(const std::vector<T>& layers, int w, int h, int k) {
-    std::vector<T> out(std::size_t(w) * h);
-    const T* layer = layers.data() + std::size_t(k) * w * h;
-    for (int y = 0; y < h; ++y)
-      std::memcpy(out.data() + std::size_t(y) * w, layer + std::size_t(h - 1 - y) * w, std::size_t(w) * sizeof(T));
-    return out;
-  }
-
-  // Draws each view into its own layer (the same pixels, depth and coverage
-  // as in a framebuffer of its own: only the layer differs), then reads all
-  // layers back at once: one pipeline flush for all of them, not one a view.
-  void capture_layers(const GpuMesh& g, Vec3 origin, const CameraMatrices* cams, int count, bool face_ids,
-                      std::vector<ViewCapture>& out) {
-    const int w = cams[0].width, h = cams[0].height;
-    ensure_layers(w, h, count, face_ids);
-    gl.glBindFramebuffer(GL_FRAMEBUFFER, layers_fbo);
-    // Only the face ids (when asked) and depth are written.
-    const GLenum buffers[2] = {GL_NONE, GLenum(face_ids ? GL_COLOR_ATTACHMENT1 : GL_NONE)};
-    gl.glDrawBuffers(2, buffers);
-    gl.glViewport(0, 0, w, h);
-    gl.glDisable(GL_SCISSOR_TEST);
-    // Clearing a layered framebuffer clears every layer.
-    const GLfloat far_depth = 1.0f;
-    gl.glClearBufferfv(GL_DEPTH, 0, &far_depth);
-    if (face_ids) {
-      const GLuint none[4] = {kNoFace, 0, 0, 0};
-      gl.glClearBufferuiv(GL_COLOR, 1, none);
-    }
-    gl.glEnable(GL_DEPTH_TEST);
-    gl.glDepthFunc(GL_LESS);
-    gl.glDepthMask(GL_TRUE);
-    gl.glDisable(GL_CULL_FACE);
-    gl.glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-    // Without face ids the fragment shader is empty: only depth is written.
-    const GLuint program = face_ids ? capture_program : depth_program;
-    gl.glUseProgram(program);
-    const GLint mvp_at = loc(program, "u_mvp"), layer_at = loc(program, "u_layer");
-    gl.glBindVertexArray(g.vao);
-    for (int k = 0; k < count; ++k) {
-      const Mat4 mvp = cams[k].projection * cams[k].view * translation(origin);
-      gl.glUniformMatrix4fv(mvp_at, 1, GL_FALSE, to_float(mvp).data());
-      if (layer_at >= 0) gl.glUniform1i(layer_at, k);
-      gl.glDrawElements(GL_TRIANGLES, g.index_count, GL_UNSIGNED_INT, nullptr);
-    }
-    gl.glBindVertexArray(0);
-    const std::vector<float> depth = read_layers<float>(layers_depth, w, h, count, GL_DEPTH_COMPONENT, GL_FLOAT);
-    std::vector<std::uint32_t> ids;
-    if (face_ids) ids = read_layers<std::uint32_t>(layers_face, w, h, count, GL_RED_INTEGER, GL_UNSIGNED_INT);
-    for (int k = 0; k < count; ++k) {
-      ViewCapture v;
-      v.camera = cams[k];
-      v.depth = layer_image(depth, w, h, k);
-      if (face_ids) v.face_ids = layer_image(ids, w, h, k);
-      v.silhouette.resize(v.depth.size());
-      for (std::size_t i = 0; i < v.depth.size(); ++i) v.silhouette[i] = v.depth[i] < 1.0f ? 1 : 0;
-      out.push_back(std::move(v));
-    }
   }
 
   void check_errors(const char* where) {
@@ -839,13 +685,41 @@ std::vector<ViewCapture> Renderer::capture(const Mesh& mesh, const std::vector<C
   std::vector<ViewCapture> out;
   out.reserve(cameras.size());
   try {
-    // As many views a batch as GL's layer limit and kLayersPixels allow (at least one).
-    const std::size_t per_batch = std::min({std::size_t(im.max_layers),
-                                            std::max<std::size_t>(1, kLayersPixels / (std::size_t(w) * h)),
-                                            cameras.size()});
-    for (std::size_t first = 0; first < cameras.size(); first += per_batch)
-      im.capture_layers(g, origin, cameras.data() + first, int(std::min(per_batch, cameras.size() - first)),
-                        face_ids, out);
+    im.ensure_framebuffer(w, h);
+    im.gl.glBindFramebuffer(GL_FRAMEBUFFER, im.fbo);
+    // Only the face ids (when asked) and depth are written, so only they are
+    // cleared: the colour renderbuffer is not touched (render() clears it).
+    const GLenum buffers[2] = {GL_NONE, GLenum(face_ids ? GL_COLOR_ATTACHMENT1 : GL_NONE)};
+    im.gl.glDrawBuffers(2, buffers);
+    im.gl.glViewport(0, 0, w, h);
+    im.gl.glEnable(GL_DEPTH_TEST);
+    im.gl.glDepthFunc(GL_LESS);
+    im.gl.glDepthMask(GL_TRUE);
+    im.gl.glDisable(GL_CULL_FACE);
+    // Without face ids the fragment shader is empty: only depth is written.
+    const GLuint program = face_ids ? im.capture_program : im.depth_program;
+    im.gl.glUseProgram(program);
+    const GLint mvp_at = im.loc(program, "u_mvp");
+    im.gl.glBindVertexArray(g.vao);
+    for (const CameraMatrices& cam : cameras) {
+      const GLfloat far_depth = 1.0f;
+      im.gl.glClearBufferfv(GL_DEPTH, 0, &far_depth);
+      if (face_ids) {
+        const GLuint none[4] = {kNoFace, 0, 0, 0};
+        im.gl.glClearBufferuiv(GL_COLOR, 1, none);
+      }
+      const Mat4 mvp = cam.projection * cam.view * translation(origin);
+      im.gl.glUniformMatrix4fv(mvp_at, 1, GL_FALSE, to_float(mvp).data());
+      im.gl.glDrawElements(GL_TRIANGLES, g.index_count, GL_UNSIGNED_INT, nullptr);
+      ViewCapture v;
+      v.camera = cam;
+      v.depth = im.read_depth(w, h);
+      if (face_ids) v.face_ids = im.read_ids(w, h);
+      v.silhouette.resize(v.depth.size());
+      for (std::size_t i = 0; i < v.depth.size(); ++i) v.silhouette[i] = v.depth[i] < 1.0f ? 1 : 0;
+      out.push_back(std::move(v));
+    }
+    im.gl.glBindVertexArray(0);
     im.check_errors("capture");
   } catch (...) {
     im.release_mesh(g);

@@ -489,10 +489,10 @@ TEST(RenderViews, SeveralContextsGiveTheSameViews) {
   EXPECT_THROW(capture_views(shared_renderer(), torus, p), InvalidInput);
 }
 
-// Many views in one call (drawn as tiles of atlases) are bit for bit the
-// views captured one at a time, each alone in its own framebuffer: 48
-// skeleton_projection views of the elephant; face ids on a torus in
-// non-square views, several rows of tiles; and views too large for one atlas.
+// Many views in one call are bit for bit the views captured one at a time,
+// each in a call of its own: 48 skeleton_projection views of the
+// elephant, face ids on a torus in small non-square views and in large ones
+// (what one view leaves in the framebuffer must not reach the next).
 TEST(RenderViews, ManyViewsEqualOneViewAtATime) {
   struct Case {
     Mesh mesh;
@@ -528,15 +528,22 @@ TEST(RenderViews, ManyViewsEqualOneViewAtATime) {
     // The views do show the mesh.
     EXPECT_GT(seen, long(cams.size()) * c.width * c.height / 50);
   }
-  // And with two contexts, as skeleton_projection draws them.
-  const auto& elephant = cases[0];
-  std::vector<CameraMatrices> cams;
-  for (const Vec3& d : sphere_directions(elephant.directions))
-    cams.push_back(orthographic_view(d, bounding_box(elephant.mesh), elephant.width, elephant.height));
-  const auto one_context = shared_renderer().capture(elephant.mesh, cams);
-  const auto two_contexts = capture_cameras(shared_renderer(), elephant.mesh, cams, 2);
-  ASSERT_EQ(one_context.size(), two_contexts.size());
-  for (std::size_t v = 0; v < cams.size(); ++v) EXPECT_EQ(one_context[v].depth, two_contexts[v].depth) << v;
+  // And with two contexts, as skeleton_projection draws them; the second
+  // context is kept for the next call, which must not see the last one's
+  // size, face ids or views.
+  for (const Case& c : {cases[0], cases[1], cases[0]}) {
+    std::vector<CameraMatrices> cams;
+    for (const Vec3& d : sphere_directions(c.directions))
+      cams.push_back(orthographic_view(d, bounding_box(c.mesh), c.width, c.height));
+    const auto one_context = shared_renderer().capture(c.mesh, cams, c.face_ids);
+    const auto two_contexts = capture_cameras(shared_renderer(), c.mesh, cams, 2, c.face_ids);
+    ASSERT_EQ(one_context.size(), two_contexts.size());
+    for (std::size_t v = 0; v < cams.size(); ++v) {
+      EXPECT_EQ(one_context[v].depth, two_contexts[v].depth) << v;
+      EXPECT_EQ(one_context[v].silhouette, two_contexts[v].silhouette) << v;
+      EXPECT_EQ(one_context[v].face_ids, two_contexts[v].face_ids) << v;
+    }
+  }
 }
 
 // One renderer per thread: every thread gets the same picture as one alone.
