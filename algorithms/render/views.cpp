@@ -76,7 +76,8 @@ class ExtraContexts {
     }
     return std::make_unique<Renderer>(platform);
   }
-  // After a call that succeeded; one that threw is dropped with its context.
+  // After a call that succeeded; one that threw is dropped with its context,
+  // and so is one beyond kMaxIdle (destroyed here, outside the lock).
   void give_back(GlPlatform platform, std::unique_ptr<Renderer> r) {
     std::lock_guard<std::mutex> lock(mutex_);
     if (idle_.size() < kMaxIdle) idle_.emplace_back(platform, std::move(r));
