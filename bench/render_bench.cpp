@@ -8,6 +8,15 @@
 // Prints a Markdown table with the ratio and how far the two answers agree.
 //
 //   build/bin/render_bench [--views N] [--quick] [--large-only]
+//
+// With --small-views: what skeleton_projection asks of the renderer, 48
+// orthographic 256x256 depth views (24 directions, each d and -d) through
+// capture_cameras with 1 and 2 contexts, on elephant, armadillo and (with
+// --large) refined_elephant subdivided twice; the median of --repeat runs
+// (default 7), wall clock and CPU-seconds; fails if a run's views differ
+// from the first run's by one bit.  --only: that sample mesh alone.
+//
+//   build/bin/render_bench --small-views [--repeat N] [--large] [--only elephant.off]
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
@@ -90,20 +99,101 @@ std::vector<CpuView> cpu_cast(const Tree& tree, const std::vector<CameraMatrices
   return out;
 }
 
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+int small_views(int repeat, bool large, const std::string& only) {
+  struct Input {
+    std::string name;
+    Mesh mesh;
+  };
+  std::vector<Input> inputs;
+  std::vector<std::string> names = {"elephant.off", "armadillo.off"};
+  if (!only.empty()) names = {only};
+  for (const std::string& name : names) {
+    const auto path = resolve_mesh_path(name);
+    if (!path) {
+      std::fprintf(stderr, "render_bench: the sample mesh %s is missing (build/samples)\n", name.c_str());
+      return 1;
+    }
+    inputs.push_back({name, read_mesh(*path)});
+  }
+  if (large && only.empty()) {
+    const auto path = resolve_mesh_path("refined_elephant.off");
+    if (!path) return 1;
+    inputs.push_back({"refined_elephant subdivided twice", subdivide_midpoint(subdivide_midpoint(read_mesh(*path)))});
+  }
+  Renderer renderer;
+  std::printf("renderer: %s (%s platform); 48 views of 256x256, depth only; median of %d runs\n\n",
+              renderer.info().gl_renderer.c_str(), renderer.info().platform.c_str(), repeat);
+  std::printf("| mesh | faces | 1 context: wall | CPU-s | 2 contexts: wall | CPU-s | new Renderer + 2 contexts: wall |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|\n");
+  for (const Input& in : inputs) {
+    const BBox box = bounding_box(in.mesh);
+    std::vector<CameraMatrices> cams;
+    for (const Vec3& d : sphere_directions(24)) {
+      cams.push_back(orthographic_view(d, box, 256, 256));
+      cams.push_back(orthographic_view(d * -1.0, box, 256, 256));
+    }
+    const std::vector<ViewCapture> reference = capture_cameras(renderer, in.mesh, cams, 1);  // warm-up
+    // A hash of every depth bit, to compare builds of the renderer.
+    std::uint64_t hash = 1469598103934665603ull;
+    for (const ViewCapture& v : reference)
+      for (float d : v.depth) {
+        std::uint32_t bits;
+        std::memcpy(&bits, &d, 4);
+        hash = (hash ^ bits) * 1099511628211ull;
+      }
+    std::fprintf(stderr, "%s: depth hash %016llx\n", in.name.c_str(), (unsigned long long)hash);
+    std::vector<double> wall[3], cpu[2];
+    for (int r = 0; r < repeat; ++r) {
+      // Alternated, so that the load of a shared machine falls on all three alike.
+      for (int contexts : {1, 2}) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const double c0 = cpu_seconds();
+        const std::vector<ViewCapture> v = capture_cameras(renderer, in.mesh, cams, contexts);
+        wall[contexts - 1].push_back(seconds_since(t0));
+        cpu[contexts - 1].push_back(cpu_seconds() - c0);
+        for (std::size_t k = 0; k < v.size(); ++k)
+          if (v[k].depth != reference[k].depth || v[k].silhouette != reference[k].silhouette) {
+            std::fprintf(stderr, "render_bench: view %zu of %d contexts differs from the first run's\n", k, contexts);
+            return 1;
+          }
+      }
+      const auto t0 = std::chrono::steady_clock::now();
+      Renderer fresh;
+      capture_cameras(fresh, in.mesh, cams, 2);
+      wall[2].push_back(seconds_since(t0));
+    }
+    std::printf("| %s | %zu | %.1f ms | %.3f | %.1f ms | %.3f | %.1f ms |\n", in.name.c_str(), in.mesh.faces.size(),
+                median(wall[0]) * 1e3, median(cpu[0]), median(wall[1]) * 1e3, median(cpu[1]), median(wall[2]) * 1e3);
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool quick = false, large_only = false;
-  int views = 100;
+  bool quick = false, large_only = false, small = false, large = false;
+  std::string only;
+  int views = 100, repeat = 7;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--quick")) quick = true;
+    else if (!std::strcmp(argv[i], "--small-views")) small = true;
+    else if (!std::strcmp(argv[i], "--large")) large = true;
+    else if (!std::strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
+    else if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--views") && i + 1 < argc) views = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--large-only")) large_only = true;
     else {
-      std::fprintf(stderr, "usage: render_bench [--views N] [--quick] [--large-only]\n");
+      std::fprintf(stderr, "usage: render_bench [--views N] [--quick] [--large-only] | --small-views [--repeat N] [--large] [--only MESH.off]\n");
       return 2;
     }
   }
+  if (small) return small_views(repeat, large, only);
   if (quick) views = std::min(views, 10);
   set_render_log([](const std::string& m) { std::fprintf(stderr, "%s\n", m.c_str()); });
   Renderer renderer;

@@ -685,19 +685,32 @@ std::vector<ViewCapture> Renderer::capture(const Mesh& mesh, const std::vector<C
   std::vector<ViewCapture> out;
   out.reserve(cameras.size());
   try {
+    im.ensure_framebuffer(w, h);
+    im.gl.glBindFramebuffer(GL_FRAMEBUFFER, im.fbo);
+    // Only the face ids (when asked) and depth are written, so only they are
+    // cleared: the colour renderbuffer is not touched (render() clears it).
+    const GLenum buffers[2] = {GL_NONE, GLenum(face_ids ? GL_COLOR_ATTACHMENT1 : GL_NONE)};
+    im.gl.glDrawBuffers(2, buffers);
+    im.gl.glViewport(0, 0, w, h);
+    im.gl.glEnable(GL_DEPTH_TEST);
+    im.gl.glDepthFunc(GL_LESS);
+    im.gl.glDepthMask(GL_TRUE);
+    im.gl.glDisable(GL_CULL_FACE);
+    // Without face ids the fragment shader is empty: only depth is written.
+    const GLuint program = face_ids ? im.capture_program : im.depth_program;
+    im.gl.glUseProgram(program);
+    const GLint mvp_at = im.loc(program, "u_mvp");
+    im.gl.glBindVertexArray(g.vao);
     for (const CameraMatrices& cam : cameras) {
-      im.begin_frame(w, h, Color{0, 0, 0, 0});
-      // Only the face ids (when asked) and depth are written.
-      const GLenum buffers[2] = {GL_NONE, GLenum(face_ids ? GL_COLOR_ATTACHMENT1 : GL_NONE)};
-      im.gl.glDrawBuffers(2, buffers);
+      const GLfloat far_depth = 1.0f;
+      im.gl.glClearBufferfv(GL_DEPTH, 0, &far_depth);
+      if (face_ids) {
+        const GLuint none[4] = {kNoFace, 0, 0, 0};
+        im.gl.glClearBufferuiv(GL_COLOR, 1, none);
+      }
       const Mat4 mvp = cam.projection * cam.view * translation(origin);
-      // Without face ids the fragment shader is empty: only depth is written.
-      const GLuint program = face_ids ? im.capture_program : im.depth_program;
-      im.gl.glUseProgram(program);
-      im.gl.glUniformMatrix4fv(im.loc(program, "u_mvp"), 1, GL_FALSE, to_float(mvp).data());
-      im.gl.glBindVertexArray(g.vao);
+      im.gl.glUniformMatrix4fv(mvp_at, 1, GL_FALSE, to_float(mvp).data());
       im.gl.glDrawElements(GL_TRIANGLES, g.index_count, GL_UNSIGNED_INT, nullptr);
-      im.gl.glBindVertexArray(0);
       ViewCapture v;
       v.camera = cam;
       v.depth = im.read_depth(w, h);
@@ -706,6 +719,7 @@ std::vector<ViewCapture> Renderer::capture(const Mesh& mesh, const std::vector<C
       for (std::size_t i = 0; i < v.depth.size(); ++i) v.silhouette[i] = v.depth[i] < 1.0f ? 1 : 0;
       out.push_back(std::move(v));
     }
+    im.gl.glBindVertexArray(0);
     im.check_errors("capture");
   } catch (...) {
     im.release_mesh(g);

@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -486,6 +487,63 @@ TEST(RenderViews, SeveralContextsGiveTheSameViews) {
   }
   p.contexts = 0;
   EXPECT_THROW(capture_views(shared_renderer(), torus, p), InvalidInput);
+}
+
+// Many views in one call are bit for bit the views captured one at a time,
+// each in a call of its own: 48 skeleton_projection views of the
+// elephant, face ids on a torus in small non-square views and in large ones
+// (what one view leaves in the framebuffer must not reach the next).
+TEST(RenderViews, ManyViewsEqualOneViewAtATime) {
+  struct Case {
+    Mesh mesh;
+    int width, height, directions;
+    bool face_ids;
+  };
+  const std::vector<Case> cases = {{read_mesh(test::sample("elephant.off")), 256, 256, 24, false},
+                                   {test::torus(), 72, 40, 25, true},
+                                   {test::torus(), 1500, 900, 4, true}};
+  for (const Case& c : cases) {
+    const BBox box = bounding_box(c.mesh);
+    std::vector<CameraMatrices> cams;
+    for (const Vec3& d : sphere_directions(c.directions)) {
+      cams.push_back(orthographic_view(d, box, c.width, c.height));
+      cams.push_back(orthographic_view(d * -1.0, box, c.width, c.height));
+    }
+    const auto many = shared_renderer().capture(c.mesh, cams, c.face_ids);
+    ASSERT_EQ(many.size(), cams.size());
+    Renderer alone;
+    long seen = 0;
+    for (std::size_t v = 0; v < cams.size(); ++v) {
+      const auto one = alone.capture(c.mesh, {cams[v]}, c.face_ids);
+      ASSERT_EQ(one.size(), 1u);
+      EXPECT_EQ(many[v].camera.view_projection().m, cams[v].view_projection().m) << v;
+      ASSERT_EQ(many[v].depth.size(), one[0].depth.size()) << v;
+      EXPECT_EQ(std::memcmp(many[v].depth.data(), one[0].depth.data(), one[0].depth.size() * sizeof(float)), 0)
+          << "depth of view " << v << " of " << c.width << "x" << c.height;
+      EXPECT_EQ(many[v].silhouette, one[0].silhouette) << v;
+      EXPECT_EQ(many[v].face_ids, one[0].face_ids) << v;
+      EXPECT_EQ(many[v].face_ids.empty(), !c.face_ids);
+      for (auto s : one[0].silhouette) seen += s;
+    }
+    // The views do show the mesh.
+    EXPECT_GT(seen, long(cams.size()) * c.width * c.height / 50);
+  }
+  // And with two contexts, as skeleton_projection draws them; the second
+  // context is kept for the next call, which must not see the last one's
+  // size, face ids or views.
+  for (const Case& c : {cases[0], cases[1], cases[0]}) {
+    std::vector<CameraMatrices> cams;
+    for (const Vec3& d : sphere_directions(c.directions))
+      cams.push_back(orthographic_view(d, bounding_box(c.mesh), c.width, c.height));
+    const auto one_context = shared_renderer().capture(c.mesh, cams, c.face_ids);
+    const auto two_contexts = capture_cameras(shared_renderer(), c.mesh, cams, 2, c.face_ids);
+    ASSERT_EQ(one_context.size(), two_contexts.size());
+    for (std::size_t v = 0; v < cams.size(); ++v) {
+      EXPECT_EQ(one_context[v].depth, two_contexts[v].depth) << v;
+      EXPECT_EQ(one_context[v].silhouette, two_contexts[v].silhouette) << v;
+      EXPECT_EQ(one_context[v].face_ids, two_contexts[v].face_ids) << v;
+    }
+  }
 }
 
 // One renderer per thread: every thread gets the same picture as one alone.
