@@ -117,9 +117,11 @@ int main(int argc, char** argv) {
     std::printf("%-17s %8zu %9.3f %9.3f %6.1fx | %-28s | %-28s | %.3f / %.3f\n", in.name.c_str(), in.mesh.faces.size(),
                 mcf.seconds, proj.seconds, mcf.seconds / proj.seconds, row(mcf.metrics).c_str(), row(proj.metrics).c_str(),
                 d.hausdorff / box.diagonal(), d.mean / box.diagonal());
-    std::printf("%-17s centredness mean: MCF %.3f, projection %.3f; projection stages: render %.3f s, votes %.3f s, thinning %.3f s\n",
+    std::printf("%-17s centredness mean: MCF %.3f, projection %.3f; projection stages, wall / CPU (last run): render %.3f / %.3f s, "
+                "votes %.3f / %.3f s, thinning %.3f / %.3f s\n",
                 "", mcf.metrics.at("centredness_mean"), proj.metrics.at("centredness_mean"), proj.metrics.at("render_seconds"),
-                proj.metrics.at("vote_seconds"), proj.metrics.at("thin_seconds"));
+                proj.metrics.at("render_cpu_seconds"), proj.metrics.at("vote_seconds"), proj.metrics.at("vote_cpu_seconds"),
+                proj.metrics.at("thin_seconds"), proj.metrics.at("thin_cpu_seconds"));
     std::printf("%-17s CPU seconds (all threads; less disturbed by the load): MCF %.3f, projection %.3f, ratio %.1fx\n", "",
                 mcf.cpu_seconds, proj.cpu_seconds, mcf.cpu_seconds / proj.cpu_seconds);
     std::printf("%-17s ends once spurs shorter than 0 / 2%% / 5%% / 10%% of the diagonal are pruned (repeatedly): MCF %s, projection %s\n",

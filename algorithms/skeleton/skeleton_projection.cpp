@@ -4,6 +4,7 @@
 #include <chrono>
 #include <functional>
 #include <cmath>
+#include <ctime>
 #include <numeric>
 #include <queue>
 #include <thread>
@@ -18,9 +19,21 @@
 namespace cgview::skeleton {
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
+// A stage's wall and process CPU seconds (all threads: the views and the
+// votes use several).
+struct Stopwatch {
+  std::chrono::steady_clock::time_point wall = std::chrono::steady_clock::now();
+  std::clock_t cpu = std::clock();
+  // The time since the start (or the last stop), and starts again.
+  void stop(double& wall_seconds, double& cpu_seconds) {
+    const auto w = std::chrono::steady_clock::now();
+    const std::clock_t c = std::clock();
+    wall_seconds = std::chrono::duration<double>(w - wall).count();
+    cpu_seconds = double(c - cpu) / CLOCKS_PER_SEC;
+    wall = w;
+    cpu = c;
+  }
+};
 
 void need(bool ok, const std::string& what) {
   if (!ok) throw InvalidInput(what);
@@ -616,7 +629,7 @@ ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mes
   BBox box;
   for (const Vec3& v : mesh.positions) box.add(v);
   ProjectionResult out;
-  auto t = std::chrono::steady_clock::now();
+  Stopwatch watch;
   if (ctx) ctx->progress(0.0, "rendering silhouettes");
   std::vector<render::CameraMatrices> cameras;
   for (const Vec3& d : render::sphere_directions(p.views / 2)) {
@@ -624,7 +637,7 @@ ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mes
     cameras.push_back(render::orthographic_view(d * -1.0, box, p.image, p.image));
   }
   const std::vector<render::ViewCapture> views = render::capture_cameras(renderer, mesh, cameras, p.contexts);
-  out.render_seconds = seconds_since(t);
+  watch.stop(out.render_seconds, out.render_cpu_seconds);
   if (ctx) {
     ctx->check_cancelled();
     ctx->progress(0.4, "medial axes and votes");
@@ -635,12 +648,11 @@ ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mes
     out.first_view.resize(axis.size());
     for (std::size_t i = 0; i < axis.size(); ++i) out.first_view[i] = axis[i] ? 2 : v.silhouette[i];
   }
-  t = std::chrono::steady_clock::now();
+  watch = Stopwatch{};  // restarted: the first view's medial axis (an artifact) is not a stage
   std::vector<float> radius;
   out.votes = vote(views, box, p, &radius, ctx);
-  out.vote_seconds = seconds_since(t);
+  watch.stop(out.vote_seconds, out.vote_cpu_seconds);
   if (ctx) ctx->progress(0.8, "thinning");
-  t = std::chrono::steady_clock::now();
   // The loops the skeleton may have: the genus of a closed, oriented mesh
   // (its tunnels), found through the solid; other meshes: as the votes say.
   const MeshReport report = mesh_report(mesh);
@@ -668,7 +680,7 @@ ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mes
         }
       }
     }
-  out.thin_seconds = seconds_since(t);
+  watch.stop(out.thin_seconds, out.thin_cpu_seconds);
   return out;
 }
 

@@ -104,6 +104,7 @@ struct ProjectionResult {
   VoxelGrid votes;
   std::vector<std::uint8_t> first_view;  // 0 outside, 1 inside, 2 medial axis; image x image, rows from the top
   double render_seconds = 0, vote_seconds = 0, thin_seconds = 0;  // vote: medial axes and votes
+  double render_cpu_seconds = 0, vote_cpu_seconds = 0, thin_cpu_seconds = 0;  // the process's CPU time (all threads)
   int genus = -1;  // the mesh's, which bounds the loops; -1: not a closed, oriented mesh
 };
 ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mesh& mesh, const ProjectionParams& p,

@@ -42,6 +42,9 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   m["render_seconds"] = r.render_seconds;
   m["vote_seconds"] = r.vote_seconds;
   m["thin_seconds"] = r.thin_seconds;
+  m["render_cpu_seconds"] = r.render_cpu_seconds;
+  m["vote_cpu_seconds"] = r.vote_cpu_seconds;
+  m["thin_cpu_seconds"] = r.thin_cpu_seconds;
   AlgorithmResult out;
   out.artifacts.push_back({"skeleton", std::move(r.skeleton)});
   out.artifacts.push_back({"metrics", std::move(m)});
