@@ -10,6 +10,7 @@
 #include <thread>
 
 
+#include "core/cluster_decimate.h"
 #include "core/mesh_report.h"
 #include "rays/ray_caster.h"
 #include "registry/registry.h"
@@ -97,6 +98,7 @@ void ProjectionParams::check() const {
   need(merge_distance >= 0 && merge_distance < 1, "parameter 'merge_distance' must be in [0, 1)");
   need(smoothing >= 0 && smoothing <= 1000, "parameter 'smoothing' is outside 0..1000");
   need(contexts >= 1 && contexts <= 64, "parameter 'contexts' is outside 1..64");
+  need(render_faces >= 0, "parameter 'render_faces' must be >= 0");
 }
 
 std::vector<std::uint16_t> chamfer_34(const std::vector<std::uint8_t>& mask, int w, int h) {
@@ -636,7 +638,13 @@ ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mes
     cameras.push_back(render::orthographic_view(d, box, p.image, p.image));
     cameras.push_back(render::orthographic_view(d * -1.0, box, p.image, p.image));
   }
-  const std::vector<render::ViewCapture> views = render::capture_cameras(renderer, mesh, cameras, p.contexts);
+  // The silhouettes of a big mesh from a decimated copy (the bounding box,
+  // the cameras and the inside tests stay the full mesh's).
+  Mesh decimated;
+  if (p.render_faces > 0 && mesh.faces.size() > std::size_t(p.render_faces))
+    decimated = cluster_decimate(mesh, {std::size_t(p.render_faces)}).mesh;
+  const std::vector<render::ViewCapture> views =
+      render::capture_cameras(renderer, decimated.faces.empty() ? mesh : decimated, cameras, p.contexts);
   watch.stop(out.render_seconds, out.render_cpu_seconds);
   if (ctx) {
     ctx->check_cancelled();

@@ -4,7 +4,10 @@
 // (a) `views` orthographic directions in antipodal pairs (d and -d, d on a
 //     Fibonacci sphere), silhouettes and depth from the EGL renderer
 //     (render/views.h); the pair gives each pixel's ray both where it enters
-//     the shape (depth from d) and where it leaves it (depth from -d);
+//     the shape (depth from d) and where it leaves it (depth from -d).  A
+//     mesh of more than `render_faces` faces is drawn decimated by vertex
+//     clustering (core/cluster_decimate.h): its cells are far below a pixel,
+//     and the drawing costs by the triangle;
 // (b) medial_axis: the (3,4) chamfer distance transform of each silhouette
 //     (Borgefors 1986; Sanniti di Baja 1994's skeletons), whose centres of
 //     maximal discs are the medial axis: a pixel p such that no neighbour q
@@ -62,6 +65,7 @@ struct ProjectionParams {
   double merge_distance = 0.03;  // internal arcs shorter than this x the diagonal are collapsed
   int smoothing = 20;            // Laplacian iterations (lambda 0.5)
   int contexts = 2;              // rendering contexts at once (render/views.h)
+  int render_faces = 200000;     // a mesh with more faces is drawn decimated to at most these (vertex clustering); 0: never
   // Throws InvalidInput naming the parameter out of range.
   void check() const;
 };

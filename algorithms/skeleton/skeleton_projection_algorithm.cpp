@@ -29,6 +29,8 @@ struct Params : ProjectionParams {
              {.label = "Merge distance", .min = 0, .max = 0.99, .help = "internal arcs shorter than this x the diagonal are collapsed"});
     v.integer("smoothing", smoothing, {.label = "Smoothing", .min = 0, .max = 1000, .help = "Laplacian iterations; ends and junctions stay"});
     v.integer("contexts", contexts, {.label = "Render contexts", .min = 1, .max = 64, .help = "EGL contexts drawing at once"});
+    v.integer("render_faces", render_faces,
+              {.label = "Faces drawn", .min = 0, .max = 1 << 30, .help = "bigger meshes are drawn decimated (vertex clustering); 0: never"});
     v.boolean("intermediate", intermediate,
               {.label = "Keep intermediate results", .help = "also the vote grid and the first view's silhouette with its medial axis"});
   }

@@ -223,6 +223,26 @@ TEST(SkeletonProjection, TorusGivesOneLoopAtItsCoreRadius) {
   }
 }
 
+TEST(SkeletonProjection, ABigMeshDrawnDecimatedGivesTheSameSkeleton) {
+  // 49k faces drawn whole and drawn as at most 8000 (render_faces): the
+  // same loop, at the core radius, within two voxels of the other.
+  const double R = 2, r = 0.5;
+  const Mesh torus = test::torus(R, r, 256, 96);
+  const AlgorithmResult whole = run_algorithm("skeleton_projection", torus, {{"render_faces", 0LL}});
+  const AlgorithmResult decimated = run_algorithm("skeleton_projection", torus, {{"render_faces", 8000LL}});
+  const Skeleton& a = artifact<Skeleton>(whole, "skeleton");
+  const Skeleton& b = artifact<Skeleton>(decimated, "skeleton");
+  const Metrics& m = artifact<Metrics>(decimated, "metrics");
+  EXPECT_EQ(m.at("loops"), 1.0) << metrics_json_for_test(m);
+  EXPECT_EQ(m.at("endpoints"), 0.0);
+  for (const Vec3& p : b.nodes) {
+    EXPECT_NEAR(std::hypot(p.x, p.y), R, 0.02 * R);
+    EXPECT_NEAR(p.z, 0.0, 0.02 * R);
+  }
+  const double voxel = 2 * (R + r) / 128;  // the default grid over the longest side
+  EXPECT_LT(skeleton_distance(a, b).hausdorff, 2 * voxel);
+}
+
 TEST(SkeletonProjection, CapsuleGivesOneSegmentAlongItsAxis) {
   const double r = 0.5, h = 4;
   const AlgorithmResult res = run_algorithm("skeleton_projection", capsule(r, h));
