@@ -2,8 +2,10 @@
 //   --repeat N       best of N runs (default 3)
 //   --quick          the small inputs only
 //   --only A[,B...]  only the rows (filters, formats) of these names
-// and the best-of-N timing.
+// the best-of-N timing, and the process's CPU time.
 #pragma once
+
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
@@ -63,6 +65,14 @@ inline double best_seconds(int repeat, const std::function<void()>& setup, const
 }
 inline double best_seconds(int repeat, const std::function<void()>& f) {
   return best_seconds(repeat, [] {}, f);
+}
+
+// CPU seconds of the whole process (every thread: llvmpipe's, the ray
+// casters', the votes'): steadier than the wall clock on a shared machine.
+inline double cpu_seconds() {
+  rusage u;
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
 }  // namespace cgview::bench

@@ -32,8 +32,7 @@
 #include <thread>
 #include <vector>
 
-#include <sys/resource.h>
-
+#include "bench_util.h"
 #include "io/mesh_io.h"
 #include "io/samples.h"
 #include "render/views.h"
@@ -47,13 +46,6 @@ using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Triangles = std::vector<K::Triangle_3>;
 using Primitive = CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
-
-// CPU seconds of the whole process (every thread: llvmpipe's and the ray casters').
-double cpu_seconds() {
-  rusage u;
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -152,10 +144,10 @@ int small_views(int repeat, bool large, const std::string& only) {
       // Alternated, so that the load of a shared machine falls on all three alike.
       for (int contexts : {1, 2}) {
         const auto t0 = std::chrono::steady_clock::now();
-        const double c0 = cpu_seconds();
+        const double c0 = bench::cpu_seconds();
         const std::vector<ViewCapture> v = capture_cameras(renderer, in.mesh, cams, contexts);
         wall[contexts - 1].push_back(seconds_since(t0));
-        cpu[contexts - 1].push_back(cpu_seconds() - c0);
+        cpu[contexts - 1].push_back(bench::cpu_seconds() - c0);
         for (std::size_t k = 0; k < v.size(); ++k)
           if (v[k].depth != reference[k].depth || v[k].silhouette != reference[k].silhouette) {
             std::fprintf(stderr, "render_bench: view %zu of %d contexts differs from the first run's\n", k, contexts);
@@ -240,9 +232,9 @@ int main(int argc, char** argv) {
       renderer.capture(in.mesh, {cams[0]});
       const double one_s = seconds_since(t0);
       t0 = std::chrono::steady_clock::now();
-      double c0 = cpu_seconds();
+      double c0 = bench::cpu_seconds();
       const std::vector<ViewCapture> gpu = renderer.capture(in.mesh, cams);
-      const double gpu_s = seconds_since(t0), gpu_cpu = cpu_seconds() - c0;
+      const double gpu_s = seconds_since(t0), gpu_cpu = bench::cpu_seconds() - c0;
       // The same views split over one context per core.
       const int contexts = cores;
       ViewsParams vp;
@@ -250,15 +242,15 @@ int main(int argc, char** argv) {
       vp.width = vp.height = size;
       vp.contexts = contexts;
       t0 = std::chrono::steady_clock::now();
-      c0 = cpu_seconds();
+      c0 = bench::cpu_seconds();
       const std::vector<ViewCapture> gpu_n = capture_views(renderer, in.mesh, vp);
-      const double gpu_n_s = seconds_since(t0), gpu_n_cpu = cpu_seconds() - c0;
+      const double gpu_n_s = seconds_since(t0), gpu_n_cpu = bench::cpu_seconds() - c0;
       if (gpu_n.size() != gpu.size() || gpu_n.back().depth != gpu.back().depth)
         std::fprintf(stderr, "render_bench: the views of %d contexts differ from those of one\n", contexts);
       t0 = std::chrono::steady_clock::now();
-      c0 = cpu_seconds();
+      c0 = bench::cpu_seconds();
       const std::vector<CpuView> cpu = cpu_cast(tree, cams);
-      const double cpu_s = seconds_since(t0), cpu_cpu = cpu_seconds() - c0;
+      const double cpu_s = seconds_since(t0), cpu_cpu = bench::cpu_seconds() - c0;
       // Agreement: silhouette pixels equal; depth difference in pixel sizes where both hit.
       std::size_t same = 0, total = 0, both = 0;
       double depth_err = 0;

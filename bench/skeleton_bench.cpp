@@ -45,14 +45,14 @@ struct Run {
 Run run(const std::string& algorithm, const Mesh& mesh, int repeat, const std::map<std::string, ParamValue>& params = {}) {
   Run r;
   r.seconds = bench::best_seconds(repeat, [&] {
-    const std::clock_t c0 = std::clock();
+    const double c0 = bench::cpu_seconds();
     Context ctx;
     AlgorithmResult res = find_algorithm(algorithm).run(mesh, params, ctx);
     for (Artifact& a : res.artifacts) {
       if (auto* s = std::get_if<Skeleton>(&a.value)) r.skeleton = std::move(*s);
       if (auto* m = std::get_if<Metrics>(&a.value)) r.metrics = std::move(*m);
     }
-    r.cpu_seconds = std::min(r.cpu_seconds, double(std::clock() - c0) / CLOCKS_PER_SEC);
+    r.cpu_seconds = std::min(r.cpu_seconds, bench::cpu_seconds() - c0);
   });
   return r;
 }

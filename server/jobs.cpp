@@ -194,16 +194,21 @@ void JobScheduler::load() {
     seq_ = std::max(seq_, j->seq);
     jobs_[j->id] = j;
     order_.push_back(j->id);
-    if (j->state == "queued" || j->state == "running") restart.push_back(j);
+    if (!ended) restart.push_back(j);
     if (j->state == "done" && !j->cached) cache_[j->cache_key] = j->id;
   }
   sqlite3_finalize(s);
   // Sized once (walking its directory), then stored: later starts read the column.
   if (!unsized.empty()) {
     exec_sql(db_, "BEGIN", "jobs");
-    for (auto& j : unsized) {
-      j->bytes = dir_bytes(job_dir(j->id));
-      persist(*j);
+    try {
+      for (auto& j : unsized) {
+        j->bytes = dir_bytes(job_dir(j->id));
+        persist(*j);
+      }
+    } catch (...) {
+      exec_sql(db_, "ROLLBACK", "jobs");
+      throw;
     }
     exec_sql(db_, "COMMIT", "jobs");
   }
@@ -241,7 +246,10 @@ void JobScheduler::persist(const Job& j) {
   t(j.error);
   sqlite3_bind_int(s, ++i, j.cached ? 1 : 0);
   t(j.created), t(j.started), t(j.finished), t(j.artifacts), t(j.files), t(j.inputs);
-  sqlite3_bind_int64(s, ++i, std::int64_t(j.bytes));
+  // Unsized (NULL) while its worker may still write: a start after a crash
+  // sizes it then (a running job cancelled is sized when reaped).
+  if (j.state == "queued" || j.state == "running" || j.pid > 0) sqlite3_bind_null(s, ++i);
+  else sqlite3_bind_int64(s, ++i, std::int64_t(j.bytes));
   const int rc = sqlite3_step(s);
   sqlite3_finalize(s);
   if (rc != SQLITE_DONE) throw IoError(std::string("jobs: ") + sqlite3_errmsg(db_));

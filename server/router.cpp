@@ -244,13 +244,14 @@ Router::Router(MeshService& meshes, RouterConfig config)
                        const MeshRecord rec = find(p, caller);
                        const json textures = material_of(rec)["textures"];
                        const std::string& n = p.at("n");
-                       if (n.empty() || n.size() > 3 || n.find_first_not_of("0123456789") != std::string::npos ||
-                           std::stoul(n) >= textures.size())
+                       const bool number = !n.empty() && n.size() <= 3 && n.find_first_not_of("0123456789") == std::string::npos;
+                       const std::size_t k = number ? std::stoul(n) : textures.size();
+                       if (k >= textures.size())
                          throw std::out_of_range("mesh " + rec.id + " has no texture '" + n + "' (it has " +
                                                  std::to_string(textures.size()) + ")");
                        HttpResponse r;
-                       r.body = meshes_.store().read_texture(rec, std::stoul(n));
-                       r.content_type = textures[std::stoul(n)].value("mime", "application/octet-stream");
+                       r.body = meshes_.store().read_texture(rec, k);
+                       r.content_type = textures[k].value("mime", "application/octet-stream");
                        return r;
                      }});
   // Offscreen renders (algorithms/render): a PNG of one mesh, for scripts and the viewer's thumbnails.

@@ -95,7 +95,7 @@ bool RayCaster::inside(const Vec3& p) const {
   for (int k = 0; k < 3; ++k) {
     const Hit h = first_hit(p, dirs[k]);
     if (h && dot(dirs[k], normals_[h.face]) > 0) ++votes;
-    if (votes == 2 || votes == k - 1) break;  // two in, or two out
+    if (k == 1 && votes != 1) break;  // the first two agree
   }
   return votes >= 2;
 }

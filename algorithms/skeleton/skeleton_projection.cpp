@@ -145,8 +145,7 @@ std::vector<std::uint8_t> medial_axis(const std::vector<std::uint16_t>& dt, int 
   return axis;
 }
 
-VoxelGrid vote(const std::vector<render::ViewCapture>& views, const BBox& box, const ProjectionParams& p,
-               std::vector<float>* radius, const Context* ctx) {
+Votes vote(const std::vector<render::ViewCapture>& views, const BBox& box, const ProjectionParams& p, const Context* ctx) {
   const Vec3 size = box.size();
   const double longest = std::max({size.x, size.y, size.z, 1e-12});
   const double vs = longest / p.grid;
@@ -217,16 +216,15 @@ VoxelGrid vote(const std::vector<render::ViewCapture>& views, const BBox& box, c
   for (auto& th : pool) th.join();
   if (ctx) ctx->check_cancelled();
   std::vector<float>& out = grid.floats();
-  if (radius) radius->assign(grid.size(), 0.f);
+  std::vector<float> radius(grid.size(), 0.f);
   for (const auto& part : partial)
     for (std::size_t n = 0; n < part.size(); ++n) {
       out[n] += part[n][0];
-      if (radius) (*radius)[n] += part[n][1];
+      radius[n] += part[n][1];
     }
-  if (radius)
-    for (std::size_t n = 0; n < out.size(); ++n)
-      if (out[n] > 0) (*radius)[n] /= out[n];
-  return grid;
+  for (std::size_t n = 0; n < out.size(); ++n)
+    if (out[n] > 0) radius[n] /= out[n];
+  return {std::move(grid), std::move(radius)};
 }
 
 Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const ProjectionParams& p, int max_loops,
@@ -643,8 +641,9 @@ ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mes
   Mesh decimated;
   if (p.render_faces > 0 && mesh.faces.size() > std::size_t(p.render_faces))
     decimated = cluster_decimate(mesh, {std::size_t(p.render_faces)}).mesh;
-  const std::vector<render::ViewCapture> views =
-      render::capture_cameras(renderer, decimated.faces.empty() ? mesh : decimated, cameras, p.contexts);
+  const Mesh& drawn = decimated.faces.empty() ? mesh : decimated;
+  out.faces_drawn = drawn.faces.size();
+  const std::vector<render::ViewCapture> views = render::capture_cameras(renderer, drawn, cameras, p.contexts);
   watch.stop(out.render_seconds, out.render_cpu_seconds);
   if (ctx) {
     ctx->check_cancelled();
@@ -657,8 +656,9 @@ ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mes
     for (std::size_t i = 0; i < axis.size(); ++i) out.first_view[i] = axis[i] ? 2 : v.silhouette[i];
   }
   watch = Stopwatch{};  // restarted: the first view's medial axis (an artifact) is not a stage
-  std::vector<float> radius;
-  out.votes = vote(views, box, p, &radius, ctx);
+  Votes votes = vote(views, box, p, ctx);
+  out.votes = std::move(votes.grid);
+  const std::vector<float>& radius = votes.radius;
   watch.stop(out.vote_seconds, out.vote_cpu_seconds);
   if (ctx) ctx->progress(0.8, "thinning");
   // The loops the skeleton may have: the genus of a closed, oriented mesh

@@ -78,11 +78,14 @@ std::vector<std::uint8_t> medial_axis(const std::vector<std::uint16_t>& dt, int 
 
 // (c) Votes (a float grid over the mesh's bounding box, `grid` voxels along
 // its longest side, one voxel of margin) from views given as antipodal pairs
-// (view 2k and 2k + 1 look along opposite directions).  `radius`, when not
-// null, gets the mean radius (world units) of the medial discs that voted
-// for each voxel.
-VoxelGrid vote(const std::vector<render::ViewCapture>& views, const BBox& box, const ProjectionParams& p,
-               std::vector<float>* radius = nullptr, const Context* ctx = nullptr);
+// (view 2k and 2k + 1 look along opposite directions), and for each voxel
+// the mean radius (world units) of the medial discs that voted for it.
+struct Votes {
+  VoxelGrid grid;
+  std::vector<float> radius;
+};
+Votes vote(const std::vector<render::ViewCapture>& views, const BBox& box, const ProjectionParams& p,
+           const Context* ctx = nullptr);
 
 // (d) The skeleton of the vote grid, nodes at voxel centres; `radius` (from
 // vote) sets how far a branch covers the voxels around it (1.5 x the radius
@@ -110,6 +113,7 @@ struct ProjectionResult {
   double render_seconds = 0, vote_seconds = 0, thin_seconds = 0;  // vote: medial axes and votes
   double render_cpu_seconds = 0, vote_cpu_seconds = 0, thin_cpu_seconds = 0;  // the process's CPU time (all threads)
   int genus = -1;  // the mesh's, which bounds the loops; -1: not a closed, oriented mesh
+  std::size_t faces_drawn = 0;  // the mesh's, or its decimated copy's (render_faces)
 };
 ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mesh& mesh, const ProjectionParams& p,
                                            const Context* ctx = nullptr);

@@ -41,6 +41,7 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   render::Renderer renderer;
   ProjectionResult r = skeleton_from_projections(renderer, mesh, p, &ctx);
   Metrics m = metrics_table(skeleton_metrics(r.skeleton, mesh));
+  m["faces_drawn"] = double(r.faces_drawn);
   m["render_seconds"] = r.render_seconds;
   m["vote_seconds"] = r.vote_seconds;
   m["thin_seconds"] = r.thin_seconds;

@@ -27,6 +27,7 @@
 #include "frames.h"
 #include "voxel/voxel_io.h"
 #include "voxel_slice.h"
+#include "sqlite_query.h"
 #include "test_support.h"
 
 #include <sqlite3.h>
@@ -521,21 +522,6 @@ TEST_F(JobsTest, WebSocketEvents) {
   }
 }
 
-std::string integrity_check(const fs::path& db_path) {
-  sqlite3* db = nullptr;
-  if (sqlite3_open_v2(db_path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) return "cannot open";
-  std::string result;
-  sqlite3_exec(
-      db, "PRAGMA integrity_check",
-      [](void* out, int, char** values, char**) {
-        *static_cast<std::string*>(out) += values[0] ? values[0] : "";
-        return 0;
-      },
-      &result, nullptr);
-  sqlite3_close(db);
-  return result;
-}
-
 TEST_F(JobsTest, ServerKilledMidJobRunsItAgainAfterRestart) {
   const json finished = submit("centroid_distance", {{"exponent", 0.5}});
   ASSERT_EQ(wait_end(finished["id"])["state"], "done");
@@ -546,7 +532,7 @@ TEST_F(JobsTest, ServerKilledMidJobRunsItAgainAfterRestart) {
   EXPECT_EQ(server_.stop(SIGKILL), 128 + SIGKILL);
   std::this_thread::sleep_for(100ms);
   EXPECT_EQ(worker_processes(slow["id"]), 0) << "the worker outlived its server";
-  EXPECT_EQ(integrity_check(data_ / "cgview.db"), "ok");
+  EXPECT_EQ(test::integrity_check(data_ / "cgview.db"), "ok");
 
   ASSERT_TRUE(start());
   EXPECT_EQ(get(finished["id"])["state"], "done");
@@ -565,7 +551,7 @@ TEST_F(JobsTest, ServerKilledMidJobRunsItAgainAfterRestart) {
   EXPECT_NE(j["error"], nullptr);
   EXPECT_EQ(get(finished["id"])["state"], "done");
   EXPECT_EQ(server_.stop(SIGTERM), 0);
-  EXPECT_EQ(integrity_check(data_ / "cgview.db"), "ok");
+  EXPECT_EQ(test::integrity_check(data_ / "cgview.db"), "ok");
 }
 
 // The files under a directory, in bytes: the test's own count of a job's results.
@@ -574,25 +560,6 @@ std::uint64_t bytes_under(const fs::path& dir) {
   for (const auto& e : fs::recursive_directory_iterator(dir))
     if (e.is_regular_file()) n += e.file_size();
   return n;
-}
-
-// Runs SQL on the server's database (stopped); the first column of the last row, or "NULL".
-std::string sql(const fs::path& db_path, const std::string& statement) {
-  sqlite3* db = nullptr;
-  if (sqlite3_open_v2(db_path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK) return "cannot open";
-  std::string result;
-  char* err = nullptr;
-  sqlite3_exec(
-      db, statement.c_str(),
-      [](void* out, int, char** values, char**) {
-        *static_cast<std::string*>(out) = values[0] ? values[0] : "NULL";
-        return 0;
-      },
-      &result, &err);
-  if (err) result = std::string("error: ") + err;
-  sqlite3_free(err);
-  sqlite3_close(db);
-  return result;
 }
 
 TEST_F(JobsTest, AFinishedJobsResultSizeIsStoredWithItAndCountedAfterARestart) {
@@ -608,7 +575,7 @@ TEST_F(JobsTest, AFinishedJobsResultSizeIsStoredWithItAndCountedAfterARestart) {
   EXPECT_EQ(server_.stop(SIGTERM), 0);
   const fs::path db = data_ / "cgview.db";
   const std::string size_column = "SELECT bytes FROM jobs WHERE id = '" + id + "'";
-  EXPECT_EQ(sql(db, size_column), std::to_string(size));
+  EXPECT_EQ(test::sqlite_query(db, size_column), std::to_string(size));
 
   // The next start reads the stored size: a file added meanwhile is not walked.
   std::string extra(1000, 'x');
@@ -623,15 +590,15 @@ TEST_F(JobsTest, AFinishedJobsResultSizeIsStoredWithItAndCountedAfterARestart) {
 
   // A database from before the column: it loads, sizes the job once from its
   // directory, and stores it.
-  EXPECT_EQ(sql(db, "ALTER TABLE jobs DROP COLUMN bytes"), "");
-  EXPECT_EQ(sql(db, size_column).rfind("error: no such column", 0), 0u);
+  EXPECT_EQ(test::sqlite_query(db, "ALTER TABLE jobs DROP COLUMN bytes"), "");
+  EXPECT_EQ(test::sqlite_query(db, size_column).rfind("error: no such column", 0), 0u);
   ASSERT_TRUE(start());
   EXPECT_EQ(used(), meshes + size + extra.size());
   EXPECT_EQ(get(id)["state"], "done");
   EXPECT_EQ(artifact(id, "distance", "f32").size(), 4 * 162u) << "one float per vertex of the sphere";
   EXPECT_EQ(server_.stop(SIGTERM), 0);
-  EXPECT_EQ(sql(db, size_column), std::to_string(size + extra.size()));
-  EXPECT_EQ(integrity_check(db), "ok");
+  EXPECT_EQ(test::sqlite_query(db, size_column), std::to_string(size + extra.size()));
+  EXPECT_EQ(test::integrity_check(db), "ok");
 }
 
 }  // namespace

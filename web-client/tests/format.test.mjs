@@ -53,7 +53,8 @@ test('a list of numbers is a tuple, any other list is comma-separated', () => {
   assert.equal(formatValue([]), '');
 });
 
-test('an object is key: value pairs, its numbers rounded the same way', () => {
-  assert.equal(formatValue({ mean_edge: 0.0123456, count: 7 }), 'mean edge: 0.01235, count: 7');
-  assert.equal(formatValue({}), '');
+test('an object is braced key: value pairs, its numbers rounded the same way', () => {
+  assert.equal(formatValue({ mean_edge: 0.0123456, count: 7 }), '{mean edge: 0.01235, count: 7}');
+  assert.equal(formatValue({}), '{}');
+  assert.equal(formatValue([{ a: 1, b: 2 }, { a: 3, b: 4 }]), '{a: 1, b: 2}, {a: 3, b: 4}');
 });

@@ -233,6 +233,9 @@ TEST(SkeletonProjection, ABigMeshDrawnDecimatedGivesTheSameSkeleton) {
   const Skeleton& a = artifact<Skeleton>(whole, "skeleton");
   const Skeleton& b = artifact<Skeleton>(decimated, "skeleton");
   const Metrics& m = artifact<Metrics>(decimated, "metrics");
+  EXPECT_EQ(artifact<Metrics>(whole, "metrics").at("faces_drawn"), double(torus.faces.size()));
+  EXPECT_LE(m.at("faces_drawn"), 8000.0);
+  EXPECT_GE(m.at("faces_drawn"), 2000.0);
   EXPECT_EQ(m.at("loops"), 1.0) << metrics_json_for_test(m);
   EXPECT_EQ(m.at("endpoints"), 0.0);
   for (const Vec3& p : b.nodes) {

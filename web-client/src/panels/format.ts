@@ -14,7 +14,8 @@ export function formatNumber(n: number): string {
 /**
  * Any JSON value as one line of text: numbers by formatNumber, booleans as
  * "yes"/"no", null or a missing value as "—", a list of numbers (a point, a
- * vector) as "(x, y, z)", any other list as "a, b, c", an object as "key: value" pairs.
+ * vector) as "(x, y, z)", any other list as "a, b, c", an object as
+ * "{key: value, ...}" (braced, so that a list of objects reads unambiguously).
  */
 export function formatValue(value: unknown): string {
   if (value === null || value === undefined) return '—';
@@ -26,9 +27,8 @@ export function formatValue(value: unknown): string {
     return value.length > 0 && value.every((v) => typeof v === 'number') ? `(${items})` : items;
   }
   if (typeof value === 'object') {
-    return Object.entries(value as Record<string, unknown>)
-      .map(([k, v]) => `${k.replace(/_/g, ' ')}: ${formatValue(v)}`)
-      .join(', ');
+    const pairs = Object.entries(value as Record<string, unknown>).map(([k, v]) => `${k.replace(/_/g, ' ')}: ${formatValue(v)}`);
+    return `{${pairs.join(', ')}}`;
   }
   return String(value);
 }
