@@ -1,20 +1,16 @@
 // Renders for the server (GET /api/v1/meshes/{id}/render.png, the viewer's
-// thumbnails): a pool of offscreen renderers, each with its own EGL context,
-// handed to one request at a time.  Requests run on the HTTP worker threads
+// thumbnails): a pool of offscreen renderers (render/renderer_pool.h), each
+// with its own EGL context, handed to one request at a time.  Requests run on the HTTP worker threads
 // (never the I/O threads); at most `max_renderers` render at once, the others
 // wait for a free one.  Renderers start on first use, so a server that never
 // renders never opens EGL.
 #pragma once
 
-#include <condition_variable>
-#include <memory>
-#include <mutex>
 #include <string>
-#include <vector>
 
 #include "core/mesh.h"
 #include "core/scalar_field.h"
-#include "render/renderer.h"
+#include "render/renderer_pool.h"
 
 namespace cgview::server {
 
@@ -29,18 +25,10 @@ class RenderService {
   // InvalidInput (bad parameters) or Error (no EGL platform starts).
   std::string png(const Mesh& mesh, const ScalarField* field, const render::RenderParams& params);
 
-  int renderers_started() const;
+  int renderers_started() const { return pool_.started(); }
 
  private:
-  std::unique_ptr<render::Renderer> acquire();
-  void release(std::unique_ptr<render::Renderer> r);
-
-  render::GlPlatform platform_;
-  int max_;
-  mutable std::mutex mutex_;
-  std::condition_variable cv_;
-  std::vector<std::unique_ptr<render::Renderer>> idle_;
-  int started_ = 0;
+  render::RendererPool pool_;  // at most max_renderers, all kept
 };
 
 }  // namespace cgview::server

@@ -5,12 +5,12 @@
 #include <exception>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <thread>
 #include <utility>
 
 #include "core/errors.h"
+#include "render/renderer_pool.h"
 
 namespace cgview::render {
 
@@ -59,42 +59,6 @@ std::vector<Vec3> icosahedron(int at_least) {
   return v;
 }
 
-// The renderers of the extra contexts, kept between calls: starting a
-// context and compiling its shaders (llvmpipe compiles them at the first
-// draw) costs about 20 ms, as much as drawing 48 small views of a 5k-face mesh.
-class ExtraContexts {
- public:
-  std::unique_ptr<Renderer> take(GlPlatform platform) {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      for (auto it = idle_.begin(); it != idle_.end(); ++it)
-        if (it->first == platform) {
-          std::unique_ptr<Renderer> r = std::move(it->second);
-          idle_.erase(it);
-          return r;
-        }
-    }
-    return std::make_unique<Renderer>(platform);
-  }
-  // After a call that succeeded; one that threw is dropped with its context,
-  // and so is one beyond kMaxIdle (destroyed here, outside the lock).
-  void give_back(GlPlatform platform, std::unique_ptr<Renderer> r) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (idle_.size() < kMaxIdle) idle_.emplace_back(platform, std::move(r));
-  }
-
- private:
-  static constexpr std::size_t kMaxIdle = 4;
-  std::mutex mutex_;
-  std::vector<std::pair<GlPlatform, std::unique_ptr<Renderer>>> idle_;
-};
-
-ExtraContexts& extra_contexts() {
-  // Never destroyed: at exit the EGL library may be gone before static destructors run.
-  static ExtraContexts* pool = new ExtraContexts;
-  return *pool;
-}
-
 }  // namespace
 
 std::vector<Vec3> sphere_directions(int n, SphereSampling sampling) {
@@ -130,13 +94,18 @@ std::vector<ViewCapture> capture_cameras(Renderer& renderer, const Mesh& mesh, c
   std::vector<std::thread> threads;
   for (int k = 1; k < n; ++k)
     threads.emplace_back([&, k] {
+      // The extra contexts come from the process's pool (renderer_pool.h);
+      // one whose capture threw is given up.
+      RendererPool& pool = shared_pool(platform);
+      std::unique_ptr<Renderer> extra;
       try {
-        std::unique_ptr<Renderer> extra = extra_contexts().take(platform);
+        extra = pool.take();
         parts[k] = extra->capture(mesh, block(k), face_ids);
-        extra_contexts().give_back(platform, std::move(extra));
       } catch (...) {
         errors[k] = std::current_exception();
+        extra.reset();
       }
+      pool.give_back(std::move(extra));
     });
   try {
     parts[0] = renderer.capture(mesh, block(0), face_ids);

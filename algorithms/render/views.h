@@ -31,8 +31,8 @@ struct ViewsParams {
   // mesh (the given renderer is the first).  llvmpipe runs vertex processing
   // and triangle setup on one thread per context, so on a CPU as many
   // contexts as cores render large meshes faster; a GPU needs 1.  The extra
-  // contexts are kept for the next call (a process-wide pool of at most 4
-  // idle ones): starting one costs about 20 ms on llvmpipe.
+  // contexts are kept for the next call (render::shared_pool,
+  // renderer_pool.h): starting one costs about 20 ms on llvmpipe.
   int contexts = 1;
 };
 

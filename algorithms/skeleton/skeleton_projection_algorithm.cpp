@@ -3,7 +3,7 @@
 // triangle soup (silhouettes need no manifold); open meshes give votes
 // only where both depth buffers see the inside.
 #include "registry/registry.h"
-#include "render/renderer.h"
+#include "render/renderer_pool.h"
 #include "skeleton/skeleton_metrics.h"
 #include "skeleton/skeleton_projection.h"
 
@@ -38,8 +38,18 @@ struct Params : ProjectionParams {
 
 AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   p.check();
-  render::Renderer renderer;
-  ProjectionResult r = skeleton_from_projections(renderer, mesh, p, &ctx);
+  // The first context from the process's pool too (the others are, in
+  // capture_cameras): a process that runs several jobs starts it once.
+  render::RendererPool& pool = render::shared_pool(render::GlPlatform::automatic);
+  std::unique_ptr<render::Renderer> renderer = pool.take();
+  ProjectionResult r;
+  try {
+    r = skeleton_from_projections(*renderer, mesh, p, &ctx);
+  } catch (...) {
+    pool.give_back(nullptr);  // given up with its context, as capture_cameras does
+    throw;
+  }
+  pool.give_back(std::move(renderer));
   Metrics m = metrics_table(skeleton_metrics(r.skeleton, mesh));
   m["faces_drawn"] = double(r.faces_drawn);
   m["render_seconds"] = r.render_seconds;

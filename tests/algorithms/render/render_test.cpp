@@ -8,6 +8,8 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -22,6 +24,7 @@
 #include "core/errors.h"
 #include "io/mesh_io.h"
 #include "render/renderer.h"
+#include "render/renderer_pool.h"
 #include "render/views.h"
 #include "test_support.h"
 
@@ -561,4 +564,45 @@ TEST(RenderResources, RenderersOnSeveralThreads) {
     });
   for (auto& th : threads) th.join();
   for (int m : mismatches) EXPECT_EQ(m, 0);
+}
+
+TEST(RenderResources, APoolLendsItsRenderersAndKeepsItsBound) {
+  const Mesh torus = test::torus();
+  const Image expected = shared_renderer().render(torus, reference_params()).color;
+  RendererPool pool(GlPlatform::automatic, 1, 1);
+  std::unique_ptr<Renderer> first = pool.take();
+  const Renderer* lent = first.get();
+  EXPECT_EQ(pool.started(), 1);
+  // With one out, a second take waits until it comes back, then gets the same one.
+  std::atomic<bool> taken{false};
+  const Renderer* second_lent = nullptr;
+  std::thread other([&] {
+    std::unique_ptr<Renderer> second = pool.take();
+    taken = true;
+    second_lent = second.get();
+    EXPECT_EQ(second->render(torus, reference_params()).color.rgba, expected.rgba);
+    pool.give_back(std::move(second));
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_FALSE(taken);
+  pool.give_back(std::move(first));
+  other.join();
+  EXPECT_TRUE(taken);
+  EXPECT_EQ(second_lent, lent);
+  EXPECT_EQ(pool.started(), 1);
+  // A renderer given up (null) frees its place: the next take starts a new one.
+  std::unique_ptr<Renderer> r = pool.take();
+  pool.give_back(nullptr);
+  EXPECT_EQ(pool.started(), 0);
+  r = pool.take();
+  EXPECT_EQ(pool.started(), 1);
+  EXPECT_EQ(r->render(torus, reference_params()).color.rgba, expected.rgba);
+  pool.give_back(std::move(r));
+  // Beyond max_idle, a renderer given back is destroyed.
+  RendererPool open(GlPlatform::automatic, 0, 1);
+  std::unique_ptr<Renderer> a = open.take(), b = open.take();
+  EXPECT_EQ(open.started(), 2);
+  open.give_back(std::move(a));
+  open.give_back(std::move(b));
+  EXPECT_EQ(open.started(), 1);
 }
