@@ -100,12 +100,17 @@ std::vector<ViewCapture> capture_cameras(Renderer& renderer, const Mesh& mesh, c
       std::unique_ptr<Renderer> extra;
       try {
         extra = pool.take();
+      } catch (...) {  // no context started: nothing to give back
+        errors[k] = std::current_exception();
+        return;
+      }
+      try {
         parts[k] = extra->capture(mesh, block(k), face_ids);
+        pool.give_back(std::move(extra));
       } catch (...) {
         errors[k] = std::current_exception();
-        extra.reset();
+        pool.give_back(nullptr);
       }
-      pool.give_back(std::move(extra));
     });
   try {
     parts[0] = renderer.capture(mesh, block(0), face_ids);
