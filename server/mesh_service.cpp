@@ -257,8 +257,12 @@ std::shared_ptr<const EncodedMesh> encode(const Mesh& m, int bits, std::span<con
 }
 }  // namespace
 
-std::shared_ptr<const EncodedMesh> MeshService::draco(const MeshRecord& rec, int bits) {
+void check_quantization_bits(int bits) {
   if (bits < 1 || bits > 30) throw InvalidInput("quantization must be 1..30 bits, got " + std::to_string(bits));
+}
+
+std::shared_ptr<const EncodedMesh> MeshService::draco(const MeshRecord& rec, int bits) {
+  check_quantization_bits(bits);
   return cached(rec.sha256 + "/" + std::to_string(bits), [&] {
     const std::shared_ptr<const Mesh> m = mesh(rec);
     auto enc = encode(*m, bits, face_materials(store_, rec, m->num_faces()));

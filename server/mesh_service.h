@@ -37,6 +37,9 @@ struct PreviewConfig {
   std::size_t target_faces = 80000;
 };
 
+// Throws InvalidInput unless bits is a Draco position quantization (1..30).
+void check_quantization_bits(int bits);
+
 class MeshService {
  public:
   explicit MeshService(Store& store, std::size_t cache_bytes = std::size_t(512) << 20);

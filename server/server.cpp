@@ -314,7 +314,7 @@ class WebSocketSession : public EventSink, public std::enable_shared_from_this<W
       const std::string lod = lod_value.is_string() ? lod_value.get<std::string>() : lod_value.dump();
       if (lod != "full" && lod != "preview" && lod != "progressive")
         return error(id, "bad_request", "lod must be \"full\", \"preview\" or \"progressive\", got " + lod_value.dump());
-      if (bits < 1 || bits > 30) return error(id, "bad_request", "quantization must be 1..30 bits, got " + std::to_string(bits));
+      check_quantization_bits(bits);  // before a preview is streamed
       const bool preview = lod != "full" && shared_->meshes.has_preview(*rec);
       if (preview) stream(*rec, shared_->meshes.preview(*rec), "preview", id);
       if (!preview || lod == "progressive") stream(*rec, shared_->meshes.draco(*rec, bits), "full", id);

@@ -203,6 +203,13 @@ void write_blob(const fs::path& final_path, std::string_view bytes) {
   fs::rename(tmp, final_path, ec);
   if (ec) throw IoError("store: cannot write " + final_path.string() + ": " + ec.message());
 }
+
+// A blob's whole bytes, or none when the file is not there.
+std::optional<std::string> read_whole(const fs::path& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) return std::nullopt;
+  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+}
 }  // namespace
 
 fs::path Store::texture_path(const std::string& id, std::size_t n) const {
@@ -219,11 +226,7 @@ void Store::remove_blobs(const MeshRecord& r) const {
 
 fs::path Store::preview_path(const MeshRecord& r) const { return dir_ / "blobs" / (r.id + ".preview.drc"); }
 
-std::optional<std::string> Store::read_preview(const MeshRecord& r) const {
-  std::ifstream f(preview_path(r), std::ios::binary);
-  if (!f) return std::nullopt;
-  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
-}
+std::optional<std::string> Store::read_preview(const MeshRecord& r) const { return read_whole(preview_path(r)); }
 
 void Store::write_preview(const MeshRecord& r, std::string_view bytes) const {
   std::error_code ec;
@@ -329,9 +332,9 @@ std::string Store::read_blob(const MeshRecord& r) const {
 }
 
 std::string Store::read_texture(const MeshRecord& r, std::size_t n) const {
-  std::ifstream f(texture_path(r.id, n), std::ios::binary);
-  if (!f) throw std::out_of_range("mesh " + r.id + " has no texture " + std::to_string(n));
-  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+  std::optional<std::string> bytes = read_whole(texture_path(r.id, n));
+  if (!bytes) throw std::out_of_range("mesh " + r.id + " has no texture " + std::to_string(n));
+  return std::move(*bytes);
 }
 
 void Store::set_shared(const std::string& kind, const std::string& id, const std::vector<std::string>& users, bool shared) {

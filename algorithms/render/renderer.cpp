@@ -512,22 +512,35 @@ struct Renderer::Impl {
     delete_buffer(ebo);
   }
 
-  void begin_frame(int w, int h, Color bg) {
+  // The w x h framebuffer bound, with the depth test every draw uses
+  // (depth writes on before any clear: a depth clear obeys the mask).
+  void bind_target(int w, int h) {
     ensure_framebuffer(w, h);
     gl.glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    gl.glDrawBuffers(2, both);
     gl.glViewport(0, 0, w, h);
-    const GLfloat c[4] = {bg.r / 255.f, bg.g / 255.f, bg.b / 255.f, bg.a / 255.f};
-    const GLuint none[4] = {kNoFace, 0, 0, 0};
-    gl.glClearBufferfv(GL_COLOR, 0, c);
-    gl.glClearBufferuiv(GL_COLOR, 1, none);
-    const GLfloat far_depth = 1.0f;
-    gl.glClearBufferfv(GL_DEPTH, 0, &far_depth);
     gl.glEnable(GL_DEPTH_TEST);
     gl.glDepthFunc(GL_LESS);
     gl.glDepthMask(GL_TRUE);
     gl.glDisable(GL_CULL_FACE);
+  }
+
+  // Depth to the far plane; with `ids`, the face-id buffer to "no face".
+  void clear_depth(bool ids) {
+    const GLfloat far_depth = 1.0f;
+    gl.glClearBufferfv(GL_DEPTH, 0, &far_depth);
+    if (ids) {
+      const GLuint none[4] = {kNoFace, 0, 0, 0};
+      gl.glClearBufferuiv(GL_COLOR, 1, none);
+    }
+  }
+
+  void begin_frame(int w, int h, Color bg) {
+    bind_target(w, h);
+    const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    gl.glDrawBuffers(2, both);
+    const GLfloat c[4] = {bg.r / 255.f, bg.g / 255.f, bg.b / 255.f, bg.a / 255.f};
+    gl.glClearBufferfv(GL_COLOR, 0, c);
+    clear_depth(true);
   }
 
   // Rows come from GL bottom first; flip them to the top-first order of images.
@@ -685,29 +698,18 @@ std::vector<ViewCapture> Renderer::capture(const Mesh& mesh, const std::vector<C
   std::vector<ViewCapture> out;
   out.reserve(cameras.size());
   try {
-    im.ensure_framebuffer(w, h);
-    im.gl.glBindFramebuffer(GL_FRAMEBUFFER, im.fbo);
+    im.bind_target(w, h);
     // Only the face ids (when asked) and depth are written, so only they are
     // cleared: the colour renderbuffer is not touched (render() clears it).
     const GLenum buffers[2] = {GL_NONE, GLenum(face_ids ? GL_COLOR_ATTACHMENT1 : GL_NONE)};
     im.gl.glDrawBuffers(2, buffers);
-    im.gl.glViewport(0, 0, w, h);
-    im.gl.glEnable(GL_DEPTH_TEST);
-    im.gl.glDepthFunc(GL_LESS);
-    im.gl.glDepthMask(GL_TRUE);
-    im.gl.glDisable(GL_CULL_FACE);
     // Without face ids the fragment shader is empty: only depth is written.
     const GLuint program = face_ids ? im.capture_program : im.depth_program;
     im.gl.glUseProgram(program);
     const GLint mvp_at = im.loc(program, "u_mvp");
     im.gl.glBindVertexArray(g.vao);
     for (const CameraMatrices& cam : cameras) {
-      const GLfloat far_depth = 1.0f;
-      im.gl.glClearBufferfv(GL_DEPTH, 0, &far_depth);
-      if (face_ids) {
-        const GLuint none[4] = {kNoFace, 0, 0, 0};
-        im.gl.glClearBufferuiv(GL_COLOR, 1, none);
-      }
+      im.clear_depth(face_ids);
       const Mat4 mvp = cam.projection * cam.view * translation(origin);
       im.gl.glUniformMatrix4fv(mvp_at, 1, GL_FALSE, to_float(mvp).data());
       im.gl.glDrawElements(GL_TRIANGLES, g.index_count, GL_UNSIGNED_INT, nullptr);
