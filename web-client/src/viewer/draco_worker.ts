@@ -40,38 +40,49 @@ function loadModule(): Promise<DracoDecoderModule> {
   return modulePromise;
 }
 
-function readFloat32(draco: DracoDecoderModule, decoder: DracoDecoder, mesh: DracoMesh, attr: DracoAttribute): Float32Array {
+/** The typed arrays an attribute is read into. */
+type AttributeArray = Float32Array | Uint32Array | Uint16Array | Uint8Array;
+interface AttributeArrayType<T extends AttributeArray> {
+  new (buffer: ArrayBufferLike, byteOffset: number, length: number): T;
+  readonly BYTES_PER_ELEMENT: number;
+}
+
+/** An attribute's values for every point, as `dracoType` (one of draco.DT_*) into an array of `Type`. */
+function readAttribute<T extends AttributeArray>(
+  draco: DracoDecoderModule,
+  decoder: DracoDecoder,
+  mesh: DracoMesh,
+  attr: DracoAttribute,
+  dracoType: number,
+  Type: AttributeArrayType<T>,
+  what: string,
+): T {
   const n = mesh.num_points() * attr.num_components();
-  const bytes = n * 4;
+  const bytes = n * Type.BYTES_PER_ELEMENT;
   const ptr = draco._malloc(bytes);
   try {
-    if (!decoder.GetAttributeDataArrayForAllPoints(mesh, attr, draco.DT_FLOAT32, bytes, ptr)) {
-      throw new Error('Draco: cannot read an attribute as float32');
+    if (!decoder.GetAttributeDataArrayForAllPoints(mesh, attr, dracoType, bytes, ptr)) {
+      throw new Error(`Draco: cannot read ${what}`);
     }
-    return new Float32Array(draco.HEAPF32.buffer, ptr, n).slice();
+    return new Type(draco.HEAPF32.buffer, ptr, n).slice() as T;
   } finally {
     draco._free(ptr);
   }
 }
 
+function readFloat32(draco: DracoDecoderModule, decoder: DracoDecoder, mesh: DracoMesh, attr: DracoAttribute): Float32Array {
+  return readAttribute(draco, decoder, mesh, attr, draco.DT_FLOAT32, Float32Array, 'an attribute as float32');
+}
+
 function readColors(draco: DracoDecoderModule, decoder: DracoDecoder, mesh: DracoMesh, attr: DracoAttribute): DecodedColors {
   const itemSize = attr.num_components();
-  const n = mesh.num_points() * itemSize;
   const type = attr.data_type();
   if (type === draco.DT_UINT8 || type === draco.DT_UINT16) {
-    const wide = type === draco.DT_UINT16;
-    const bytes = n * (wide ? 2 : 1);
-    const ptr = draco._malloc(bytes);
-    try {
-      if (!decoder.GetAttributeDataArrayForAllPoints(mesh, attr, type, bytes, ptr)) {
-        throw new Error('Draco: cannot read the colours');
-      }
-      const heap = draco.HEAPF32.buffer;
-      const array = wide ? new Uint16Array(heap, ptr, n).slice() : new Uint8Array(heap, ptr, n).slice();
-      return { array, itemSize, normalized: true };
-    } finally {
-      draco._free(ptr);
-    }
+    const array =
+      type === draco.DT_UINT16
+        ? readAttribute(draco, decoder, mesh, attr, type, Uint16Array, 'the colours')
+        : readAttribute(draco, decoder, mesh, attr, type, Uint8Array, 'the colours');
+    return { array, itemSize, normalized: true };
   }
   return { array: readFloat32(draco, decoder, mesh, attr), itemSize, normalized: false };
 }
@@ -88,17 +99,7 @@ function groupByMaterial(
   attr: DracoAttribute,
   indices: Uint32Array,
 ): { indices: Uint32Array; groups: MaterialGroup[] } {
-  const points = mesh.num_points();
-  const ptr = draco._malloc(points * 4);
-  let ids: Uint32Array;
-  try {
-    if (!decoder.GetAttributeDataArrayForAllPoints(mesh, attr, draco.DT_UINT32, points * 4, ptr)) {
-      throw new Error('Draco: cannot read the material ids');
-    }
-    ids = new Uint32Array(draco.HEAPF32.buffer, ptr, points).slice();
-  } finally {
-    draco._free(ptr);
-  }
+  const ids = readAttribute(draco, decoder, mesh, attr, draco.DT_UINT32, Uint32Array, 'the material ids');
   const faces = indices.length / 3;
   let materials = 0;
   for (let f = 0; f < faces; ++f) materials = Math.max(materials, ids[indices[3 * f]] + 1);
