@@ -21,6 +21,7 @@
   X(PFNGLDISABLEPROC, glDisable)                                                                         \
   X(PFNGLDEPTHFUNCPROC, glDepthFunc)                                                                     \
   X(PFNGLDEPTHMASKPROC, glDepthMask)                                                                     \
+  X(PFNGLBLENDEQUATIONPROC, glBlendEquation)                                                             \
   X(PFNGLPOLYGONMODEPROC, glPolygonMode)                                                                 \
   X(PFNGLPOLYGONOFFSETPROC, glPolygonOffset)                                                             \
   X(PFNGLPOINTSIZEPROC, glPointSize)                                                                     \

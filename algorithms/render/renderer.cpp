@@ -104,6 +104,14 @@ const char* kDepthFragment = R"(#version 330 core
 void main() {}
 )";
 
+// Both depths at once (capture's back_depth): every fragment, no depth test,
+// blended by MIN into (z, -z), so a pixel keeps the nearest z and minus the
+// farthest.
+const char* kRangeFragment = R"(#version 330 core
+layout(location = 2) out vec2 o_range;
+void main() { o_range = vec2(gl_FragCoord.z, -gl_FragCoord.z); }
+)";
+
 const char* kLineVertex = R"(#version 330 core
 layout(location = 0) in vec3 a_pos;
 uniform mat4 u_mvp;
@@ -188,8 +196,9 @@ void check_image_size(int width, int height) {
 struct Renderer::Impl {
   EglContext context;
   const GlFunctions& gl;
-  GLuint mesh_program = 0, line_program = 0, capture_program = 0, depth_program = 0;
+  GLuint mesh_program = 0, line_program = 0, capture_program = 0, depth_program = 0, range_program = 0;
   GLuint fbo = 0, rb_color = 0, rb_face = 0, rb_depth = 0;
+  GLuint rb_range = 0;  // RG32F, attached (as colour 2) only when a capture asks for back depth
   int fbo_w = 0, fbo_h = 0;
   GlObjectCounts counts;
   std::set<GLuint> ever_buffers, ever_arrays, ever_textures, ever_fbos, ever_rbs, ever_programs;
@@ -297,6 +306,7 @@ struct Renderer::Impl {
     line_program = link(kLineVertex, kLineFragment);
     capture_program = link(kLineVertex, kCaptureFragment);
     depth_program = link(kLineVertex, kDepthFragment);
+    range_program = link(kLineVertex, kRangeFragment);
   }
 
   void teardown() {
@@ -306,7 +316,8 @@ struct Renderer::Impl {
     if (line_program) gl.glDeleteProgram(line_program), --counts.programs;
     if (capture_program) gl.glDeleteProgram(capture_program), --counts.programs;
     if (depth_program) gl.glDeleteProgram(depth_program), --counts.programs;
-    mesh_program = line_program = capture_program = depth_program = 0;
+    if (range_program) gl.glDeleteProgram(range_program), --counts.programs;
+    mesh_program = line_program = capture_program = depth_program = range_program = 0;
   }
 
   void free_framebuffer() {
@@ -318,6 +329,7 @@ struct Renderer::Impl {
     delete_renderbuffer(rb_color);
     delete_renderbuffer(rb_face);
     delete_renderbuffer(rb_depth);
+    delete_renderbuffer(rb_range);
     fbo_w = fbo_h = 0;
   }
 
@@ -328,23 +340,36 @@ struct Renderer::Impl {
     ++counts.framebuffers;
     ever_fbos.insert(fbo);
     gl.glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    auto attach = [&](GLuint& rb, GLenum format, GLenum point) {
-      rb = gen_renderbuffer();
-      gl.glBindRenderbuffer(GL_RENDERBUFFER, rb);
-      gl.glRenderbufferStorage(GL_RENDERBUFFER, format, w, h);
-      gl.glFramebufferRenderbuffer(GL_FRAMEBUFFER, point, GL_RENDERBUFFER, rb);
-    };
-    attach(rb_color, GL_RGBA8, GL_COLOR_ATTACHMENT0);
-    attach(rb_face, GL_R32UI, GL_COLOR_ATTACHMENT1);
-    attach(rb_depth, GL_DEPTH_COMPONENT32F, GL_DEPTH_ATTACHMENT);
+    attach(rb_color, GL_RGBA8, GL_COLOR_ATTACHMENT0, w, h);
+    attach(rb_face, GL_R32UI, GL_COLOR_ATTACHMENT1, w, h);
+    attach(rb_depth, GL_DEPTH_COMPONENT32F, GL_DEPTH_ATTACHMENT, w, h);
+    check_framebuffer(w, h);
+    fbo_w = w;
+    fbo_h = h;
+  }
+
+  // The bound framebuffer's RG32F attachment for both depths, made the first
+  // time a capture asks for them at this size.
+  void ensure_range_buffer() {
+    if (rb_range) return;
+    attach(rb_range, GL_RG32F, GL_COLOR_ATTACHMENT2, fbo_w, fbo_h);
+    check_framebuffer(fbo_w, fbo_h);
+  }
+
+  void attach(GLuint& rb, GLenum format, GLenum point, int w, int h) {
+    rb = gen_renderbuffer();
+    gl.glBindRenderbuffer(GL_RENDERBUFFER, rb);
+    gl.glRenderbufferStorage(GL_RENDERBUFFER, format, w, h);
+    gl.glFramebufferRenderbuffer(GL_FRAMEBUFFER, point, GL_RENDERBUFFER, rb);
+  }
+
+  void check_framebuffer(int w, int h) {
     const GLenum status = gl.glCheckFramebufferStatus(GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE) {
       free_framebuffer();
       throw Error("render: the framebuffer of " + std::to_string(w) + "x" + std::to_string(h) +
                   " is incomplete (GL status " + std::to_string(status) + ")");
     }
-    fbo_w = w;
-    fbo_h = h;
   }
 
   // A mesh's buffers on the GPU: positions relative to `origin` (floats keep
@@ -564,6 +589,16 @@ struct Renderer::Impl {
     flip_rows(d, w, h, 1);
     return d;
   }
+  // The range buffer: (nearest z, minus the farthest z) per pixel.
+  std::vector<float> read_range(int w, int h) {
+    std::vector<float> rg(std::size_t(2) * w * h);
+    gl.glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.glReadBuffer(GL_COLOR_ATTACHMENT2);
+    gl.glReadPixels(0, 0, w, h, GL_RG, GL_FLOAT, rg.data());
+    gl.glReadBuffer(GL_COLOR_ATTACHMENT0);
+    flip_rows(rg, w, h, 2);
+    return rg;
+  }
   std::vector<std::uint32_t> read_ids(int w, int h) {
     std::vector<std::uint32_t> ids(std::size_t(w) * h);
     gl.glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -683,8 +718,10 @@ RenderResult Renderer::render(const std::vector<RenderItem>& items, const Render
 }
 
 std::vector<ViewCapture> Renderer::capture(const Mesh& mesh, const std::vector<CameraMatrices>& cameras,
-                                           bool face_ids) {
+                                           const CaptureOptions& options) {
   if (mesh.faces.empty()) throw InvalidInput("capture: the mesh has no faces");
+  if (options.face_ids && options.back_depth)
+    throw InvalidInput("capture: face ids and back depth cannot be asked together (back depth draws with no depth test)");
   mesh.validate();
   if (cameras.empty()) return {};
   const int w = cameras[0].width, h = cameras[0].height;
@@ -697,33 +734,59 @@ std::vector<ViewCapture> Renderer::capture(const Mesh& mesh, const std::vector<C
   Impl::GpuMesh g = im.upload(mesh, origin, false, nullptr);
   std::vector<ViewCapture> out;
   out.reserve(cameras.size());
+  const bool ids = options.face_ids, range = options.back_depth;
   try {
     im.bind_target(w, h);
-    // Only the face ids (when asked) and depth are written, so only they are
-    // cleared: the colour renderbuffer is not touched (render() clears it).
-    const GLenum buffers[2] = {GL_NONE, GLenum(face_ids ? GL_COLOR_ATTACHMENT1 : GL_NONE)};
-    im.gl.glDrawBuffers(2, buffers);
-    // Without face ids the fragment shader is empty: only depth is written.
-    const GLuint program = face_ids ? im.capture_program : im.depth_program;
+    // Only what is asked for is written, so only it is cleared: the colour
+    // renderbuffer is not touched (render() clears it).  Depth alone: an
+    // empty fragment shader and the depth test; both depths: every fragment
+    // blended by MIN into the RG32F buffer, the depth test off.
+    if (range) {
+      im.ensure_range_buffer();
+      im.gl.glDisable(GL_DEPTH_TEST);
+      im.gl.glEnable(GL_BLEND);
+      im.gl.glBlendEquation(GL_MIN);
+    }
+    const GLenum buffers[3] = {GL_NONE, GLenum(ids ? GL_COLOR_ATTACHMENT1 : GL_NONE),
+                               GLenum(range ? GL_COLOR_ATTACHMENT2 : GL_NONE)};
+    im.gl.glDrawBuffers(3, buffers);
+    const GLuint program = range ? im.range_program : ids ? im.capture_program : im.depth_program;
     im.gl.glUseProgram(program);
     const GLint mvp_at = im.loc(program, "u_mvp");
     im.gl.glBindVertexArray(g.vao);
     for (const CameraMatrices& cam : cameras) {
-      im.clear_depth(face_ids);
+      if (range) {
+        const GLfloat nothing[4] = {1.f, 1.f, 0.f, 0.f};
+        im.gl.glClearBufferfv(GL_COLOR, 2, nothing);
+      } else {
+        im.clear_depth(ids);
+      }
       const Mat4 mvp = cam.projection * cam.view * translation(origin);
       im.gl.glUniformMatrix4fv(mvp_at, 1, GL_FALSE, to_float(mvp).data());
       im.gl.glDrawElements(GL_TRIANGLES, g.index_count, GL_UNSIGNED_INT, nullptr);
       ViewCapture v;
       v.camera = cam;
-      v.depth = im.read_depth(w, h);
-      if (face_ids) v.face_ids = im.read_ids(w, h);
+      if (range) {
+        const std::vector<float> rg = im.read_range(w, h);
+        v.depth.resize(std::size_t(w) * h);
+        v.back_depth.resize(v.depth.size());
+        for (std::size_t i = 0; i < v.depth.size(); ++i) {
+          v.depth[i] = rg[2 * i];
+          v.back_depth[i] = rg[2 * i] < 1.f ? -rg[2 * i + 1] : 1.f;
+        }
+      } else {
+        v.depth = im.read_depth(w, h);
+      }
+      if (ids) v.face_ids = im.read_ids(w, h);
       v.silhouette.resize(v.depth.size());
       for (std::size_t i = 0; i < v.depth.size(); ++i) v.silhouette[i] = v.depth[i] < 1.0f ? 1 : 0;
       out.push_back(std::move(v));
     }
     im.gl.glBindVertexArray(0);
+    if (range) im.gl.glDisable(GL_BLEND);
     im.check_errors("capture");
   } catch (...) {
+    if (range) im.gl.glDisable(GL_BLEND);
     im.release_mesh(g);
     throw;
   }

@@ -74,7 +74,16 @@ struct ViewCapture {
   CameraMatrices camera;
   std::vector<std::uint8_t> silhouette;  // 1 inside, 0 outside; rows from the top
   std::vector<float> depth;              // window depth; 1 outside.  Linear in distance for orthographic views
+  std::vector<float> back_depth;         // when asked: the farthest surface's window depth; 1 outside
   std::vector<std::uint32_t> face_ids;   // when asked; kNoFace outside
+};
+
+// What a capture reads back besides silhouette and depth.  Back depth (where
+// each pixel's ray leaves the shape: an orthographic view and its antipode in
+// one drawing) and face ids cannot be asked together.
+struct CaptureOptions {
+  bool face_ids = false;
+  bool back_depth = false;
 };
 
 class Renderer {
@@ -92,8 +101,10 @@ class Renderer {
   RenderResult render(const Mesh& mesh, const RenderParams& params) { return render({RenderItem{&mesh}}, params); }
 
   // The mesh is uploaded once and drawn from each camera; silhouette and depth
-  // always, face ids when asked.  All cameras must have the same size.
-  std::vector<ViewCapture> capture(const Mesh& mesh, const std::vector<CameraMatrices>& cameras, bool face_ids = false);
+  // always, face ids and back depth when asked.  All cameras must have the
+  // same size.
+  std::vector<ViewCapture> capture(const Mesh& mesh, const std::vector<CameraMatrices>& cameras,
+                                   const CaptureOptions& options = {});
 
   const EglInfo& info() const;
   GlObjectCounts live_objects() const;

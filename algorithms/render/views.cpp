@@ -74,14 +74,14 @@ std::vector<ViewCapture> capture_views(Renderer& renderer, const Mesh& mesh, con
   std::vector<CameraMatrices> cameras;
   cameras.reserve(dirs.size());
   for (const Vec3& d : dirs) cameras.push_back(orthographic_view(d, box, params.width, params.height));
-  return capture_cameras(renderer, mesh, cameras, params.contexts, params.face_ids);
+  return capture_cameras(renderer, mesh, cameras, params.contexts, {.face_ids = params.face_ids});
 }
 
 std::vector<ViewCapture> capture_cameras(Renderer& renderer, const Mesh& mesh, const std::vector<CameraMatrices>& cameras,
-                                         int contexts, bool face_ids) {
+                                         int contexts, const CaptureOptions& options) {
   if (contexts < 1 || contexts > 64) throw InvalidInput("contexts must be in [1, 64], got " + std::to_string(contexts));
   const int n = std::min<int>(contexts, int(cameras.size()));
-  if (n <= 1) return renderer.capture(mesh, cameras, face_ids);
+  if (n <= 1) return renderer.capture(mesh, cameras, options);
 
   // Contiguous blocks of views, one per context; the first on this thread.
   const GlPlatform platform = renderer.info().platform == "surfaceless" ? GlPlatform::surfaceless : GlPlatform::device;
@@ -105,7 +105,7 @@ std::vector<ViewCapture> capture_cameras(Renderer& renderer, const Mesh& mesh, c
         return;
       }
       try {
-        parts[k] = extra->capture(mesh, block(k), face_ids);
+        parts[k] = extra->capture(mesh, block(k), options);
         pool.give_back(std::move(extra));
       } catch (...) {
         errors[k] = std::current_exception();
@@ -113,7 +113,7 @@ std::vector<ViewCapture> capture_cameras(Renderer& renderer, const Mesh& mesh, c
       }
     });
   try {
-    parts[0] = renderer.capture(mesh, block(0), face_ids);
+    parts[0] = renderer.capture(mesh, block(0), options);
   } catch (...) {
     errors[0] = std::current_exception();
   }

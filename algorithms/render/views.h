@@ -41,8 +41,8 @@ struct ViewsParams {
 // Throws InvalidInput for a bad size, view count or contexts < 1.
 std::vector<ViewCapture> capture_views(Renderer& renderer, const Mesh& mesh, const ViewsParams& params = {});
 // The same from cameras of the caller's choosing (all of one size), drawn by
-// `contexts` contexts at once.
+// `contexts` contexts at once, with what `options` asks (Renderer::capture).
 std::vector<ViewCapture> capture_cameras(Renderer& renderer, const Mesh& mesh, const std::vector<CameraMatrices>& cameras,
-                                         int contexts = 1, bool face_ids = false);
+                                         int contexts = 1, const CaptureOptions& options = {});
 
 }  // namespace cgview::render

@@ -3,8 +3,10 @@
 //
 // (a) `views` orthographic directions in antipodal pairs (d and -d, d on a
 //     Fibonacci sphere), silhouettes and depth from the EGL renderer
-//     (render/views.h); the pair gives each pixel's ray both where it enters
-//     the shape (depth from d) and where it leaves it (depth from -d).  A
+//     (render/views.h), one drawing per pair: its depth is where each
+//     pixel's ray enters the shape (depth from d), its back depth where the
+//     ray leaves it (the depth from -d), and -d's silhouette is d's
+//     mirrored, so its medial axis casts the same rays.  A
 //     mesh of more than `render_faces` faces is drawn decimated by vertex
 //     clustering (core/cluster_decimate.h): its cells are far below a pixel,
 //     and the drawing costs by the triangle;
@@ -55,7 +57,7 @@ struct ViewCapture;
 namespace skeleton {
 
 struct ProjectionParams {
-  int views = 48;                // an even number in [2, 1000]: views / 2 antipodal pairs
+  int views = 48;                // an even number in [2, 1000]: views / 2 antipodal pairs, one drawing each
   int image = 256;               // pixels on a side, [32, 2048]
   int grid = 128;                // voxels along the bounding box's longest side, [16, 512]
   int min_radius = 2;            // medial pixels nearer the border are dropped
@@ -77,8 +79,8 @@ std::vector<std::uint16_t> chamfer_34(const std::vector<std::uint8_t>& mask, int
 std::vector<std::uint8_t> medial_axis(const std::vector<std::uint16_t>& dt, int width, int height, int min_radius);
 
 // (c) Votes (a float grid over the mesh's bounding box, `grid` voxels along
-// its longest side, one voxel of margin) from views given as antipodal pairs
-// (view 2k and 2k + 1 look along opposite directions), and for each voxel
+// its longest side, one voxel of margin) from views captured with their back
+// depth (render::CaptureOptions; InvalidInput without), and for each voxel
 // the mean radius (world units) of the medial discs that voted for it.
 struct Votes {
   VoxelGrid grid;

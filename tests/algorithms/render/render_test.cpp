@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <tuple>
 
@@ -57,6 +58,16 @@ struct TriangleTree {
     return hit ? std::uint32_t(*hit - triangles.begin()) : kNoFace;
   }
   double distance(Vec3 p) const { return std::sqrt(tree.squared_distance(K::Point_3(p.x, p.y, p.z))); }
+  // Where a ray first meets the mesh, if it does.
+  std::optional<Vec3> first_point(const Ray& r) const {
+    const K::Ray_3 ray(K::Point_3(r.origin.x, r.origin.y, r.origin.z),
+                       K::Vector_3(r.direction.x, r.direction.y, r.direction.z));
+    const auto hit = tree.first_intersection(ray);
+    if (!hit) return std::nullopt;
+    const K::Point_3* p = boost::get<K::Point_3>(&hit->first);  // CGAL 5.5: a boost::variant
+    if (!p) return std::nullopt;  // along a triangle's plane
+    return Vec3{p->x(), p->y(), p->z()};
+  }
 };
 
 // One renderer for the suite: starting a context costs tens of milliseconds.
@@ -243,6 +254,54 @@ TEST(RenderViews, DepthUnprojectsOntoTheSurface) {
       EXPECT_LT(worst, pixel) << "pixel size " << pixel;
     }
   }
+}
+
+// Back depth: where each pixel's ray leaves the mesh, against CGAL's AABB
+// tree shooting the ray backwards from beyond the mesh; the silhouette and
+// front depth stay those of a plain capture, bit for bit.
+TEST(RenderViews, BackDepthIsWhereEachPixelsRayLeavesTheMesh) {
+  const std::vector<Mesh> meshes = {test::torus(), test::uv_sphere(1.5, 24, 48), read_mesh(test::sample("elephant.off"))};
+  for (const Mesh& mesh : meshes) {
+    const TriangleTree tree(mesh);
+    const BBox box = bounding_box(mesh);
+    std::vector<CameraMatrices> cams;
+    for (const Vec3& d : sphere_directions(5)) cams.push_back(orthographic_view(d, box, 96, 96));
+    const auto plain = shared_renderer().capture(mesh, cams);
+    const auto both = capture_cameras(shared_renderer(), mesh, cams, 2, {.back_depth = true});
+    ASSERT_EQ(both.size(), cams.size());
+    long n = 0, far = 0;
+    for (std::size_t v = 0; v < cams.size(); ++v) {
+      const ViewCapture& c = both[v];
+      EXPECT_EQ(c.silhouette, plain[v].silhouette) << v;
+      EXPECT_EQ(c.depth, plain[v].depth) << v;
+      EXPECT_TRUE(plain[v].back_depth.empty());
+      ASSERT_EQ(c.back_depth.size(), c.depth.size());
+      const double pixel = c.camera.pixel_size_at(0);
+      const Vec3 dir = c.camera.forward();
+      for (int y = 0; y < 96; ++y)
+        for (int x = 0; x < 96; ++x) {
+          const std::size_t i = std::size_t(y) * 96 + x;
+          if (!c.silhouette[i]) {
+            EXPECT_EQ(c.back_depth[i], 1.f);
+            continue;
+          }
+          EXPECT_GE(c.back_depth[i], c.depth[i]);
+          const Vec3 exit = c.camera.unproject(x + 0.5, y + 0.5, c.back_depth[i]);
+          const Vec3 beyond = c.camera.unproject(x + 0.5, y + 0.5, 1.f) + dir * box.diagonal();
+          const std::optional<Vec3> hit = tree.first_point(Ray{beyond, dir * -1.0});
+          if (!hit) continue;  // grazing a silhouette edge
+          ++n;
+          // Depth is exact along the ray; a pixel's centre may fall just off
+          // a triangle that a GL sample covers, near the outline.
+          if (norm(*hit - exit) > pixel) ++far;
+        }
+    }
+    EXPECT_GT(n, 1000);
+    EXPECT_LT(double(far), 0.01 * double(n)) << far << " of " << n << " pixels' exits more than a pixel from CGAL's";
+  }
+  EXPECT_THROW(shared_renderer().capture(test::torus(), {orthographic_view({0, 0, 1}, bounding_box(test::torus()), 32, 32)},
+                                         {.face_ids = true, .back_depth = true}),
+               InvalidInput);
 }
 
 TEST(RenderViews, FaceIdsAgreeWithAabbTreeRayShooting) {
@@ -467,8 +526,9 @@ TEST(RenderResources, ThousandRendersDoNotGrow) {
   EXPECT_EQ(r.live_objects(), live);
   EXPECT_EQ(r.gl_objects_alive(), alive);
   EXPECT_EQ(alive, live);
-  // The framebuffer, its 3 renderbuffers and 4 programs stay; nothing else.
-  EXPECT_EQ(live.total(), 1 + 3 + 4);
+  // The framebuffer, its 3 renderbuffers and 5 programs stay; nothing else
+  // (the back-depth buffer is made only by a capture that asks for it).
+  EXPECT_EQ(live.total(), 1 + 3 + 5);
   EXPECT_LT(rss1 - rss0, 8 * 1024) << "kB grown: " << rss0 << " -> " << rss1;
   std::printf("rss %ld kB -> %ld kB after 1000 renders\n", rss0, rss1);
 }
@@ -512,12 +572,12 @@ TEST(RenderViews, ManyViewsEqualOneViewAtATime) {
       cams.push_back(orthographic_view(d, box, c.width, c.height));
       cams.push_back(orthographic_view(d * -1.0, box, c.width, c.height));
     }
-    const auto many = shared_renderer().capture(c.mesh, cams, c.face_ids);
+    const auto many = shared_renderer().capture(c.mesh, cams, {.face_ids = c.face_ids});
     ASSERT_EQ(many.size(), cams.size());
     Renderer alone;
     long seen = 0;
     for (std::size_t v = 0; v < cams.size(); ++v) {
-      const auto one = alone.capture(c.mesh, {cams[v]}, c.face_ids);
+      const auto one = alone.capture(c.mesh, {cams[v]}, {.face_ids = c.face_ids});
       ASSERT_EQ(one.size(), 1u);
       EXPECT_EQ(many[v].camera.view_projection().m, cams[v].view_projection().m) << v;
       ASSERT_EQ(many[v].depth.size(), one[0].depth.size()) << v;
@@ -538,8 +598,8 @@ TEST(RenderViews, ManyViewsEqualOneViewAtATime) {
     std::vector<CameraMatrices> cams;
     for (const Vec3& d : sphere_directions(c.directions))
       cams.push_back(orthographic_view(d, bounding_box(c.mesh), c.width, c.height));
-    const auto one_context = shared_renderer().capture(c.mesh, cams, c.face_ids);
-    const auto two_contexts = capture_cameras(shared_renderer(), c.mesh, cams, 2, c.face_ids);
+    const auto one_context = shared_renderer().capture(c.mesh, cams, {.face_ids = c.face_ids});
+    const auto two_contexts = capture_cameras(shared_renderer(), c.mesh, cams, 2, {.face_ids = c.face_ids});
     ASSERT_EQ(one_context.size(), two_contexts.size());
     for (std::size_t v = 0; v < cams.size(); ++v) {
       EXPECT_EQ(one_context[v].depth, two_contexts[v].depth) << v;
