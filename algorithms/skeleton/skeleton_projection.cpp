@@ -389,8 +389,9 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
       if (c > cost[n] || done[n]) continue;
       done[n] = 1;
       if (target[n]) members.push_back(n);
+      // A settled neighbour is never improved (its cost is at most c), nor is
+      // one of another component (not a neighbour): no need to ask `done`.
       neighbours(n, [&, c = c, n = n](std::size_t m, std::size_t k) {
-        if (done[m]) return;
         const double len = step[k].length;
         const double nc = c + len / r2[m];
         if (nc < cost[m]) {
