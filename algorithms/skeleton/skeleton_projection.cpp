@@ -274,18 +274,55 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   const float top = I.empty() ? 0.f : *std::max_element(I.begin(), I.end());
   Skeleton s;
   if (!(top > 0)) return s;
-  // The domain: every voted voxel (the inside, as far as the views tell),
-  // numbered (a tenth of the grid or less: the arrays below are over these);
-  // the targets: the voxels voted enough, which branches must reach.  The
-  // domain leaves the grid's border out (votes fall inside the bounding box,
-  // a voxel in from the border), so that the paths below step by linear
-  // offsets.
+  // The domain, numbered (the arrays below are over it): the voxels with at
+  // least a fifth of the targets' votes (5% of the most, by default: half
+  // the voted voxels on the elephant, and the weakly voted rim that no
+  // path of the skeleton takes), unless that splits the targets into
+  // several components: then every voted voxel (the inside, as far as the
+  // views tell).  The targets: the voxels voted enough, which branches must
+  // reach.  The domain leaves the grid's border out (votes fall inside the
+  // bounding box, a voxel in from the border), so that the paths below step
+  // by linear offsets.
+  const double least_target = p.threshold * top;
   std::vector<std::int32_t> id(L.size(), -1);  // a voxel's number in the domain (grids up to 512³ fit 32 bits)
   std::vector<std::size_t> vox;                 // a number's voxel
-  for (int k = 1; k + 1 < L.d[2]; ++k)
-    for (int j = 1; j + 1 < L.d[1]; ++j)
-      for (std::size_t n = L.at(1, j, k), end = L.at(L.d[0] - 1, j, k); n < end; ++n)
-        if (I[n] > 0) id[n] = std::int32_t(vox.size()), vox.push_back(n);
+  const std::vector<std::ptrdiff_t> offset = L.offsets();
+  const std::vector<Step>& step = steps26();
+  // The components (union-find over the 13 neighbours ahead in the scan
+  // order; each joined to its lowest number).
+  std::vector<std::int32_t> up;
+  const auto find = [&](std::int32_t c) {
+    while (up[std::size_t(c)] != c) c = up[std::size_t(c)] = up[std::size_t(up[std::size_t(c)])];
+    return c;
+  };
+  for (const double least : {0.2 * least_target, 0.0}) {
+    for (std::size_t n : vox) id[n] = -1;
+    vox.clear();
+    for (int k = 1; k + 1 < L.d[2]; ++k)
+      for (int j = 1; j + 1 < L.d[1]; ++j)
+        for (std::size_t n = L.at(1, j, k), end = L.at(L.d[0] - 1, j, k); n < end; ++n)
+          if (I[n] > least) id[n] = std::int32_t(vox.size()), vox.push_back(n);
+    up.resize(vox.size());
+    std::iota(up.begin(), up.end(), 0);
+    for (std::size_t c = 0; c < vox.size(); ++c) {
+      const std::int32_t* here = &id[vox[c]];
+      for (std::size_t k = 13; k < 26; ++k) {  // steps26 goes k from -1 to 1: the second half is ahead
+        const std::int32_t m = here[offset[k]];
+        if (m < 0) continue;
+        const std::int32_t a = find(std::int32_t(c)), b = find(m);
+        if (a != b) up[std::size_t(std::max(a, b))] = std::min(a, b);
+      }
+    }
+    std::int32_t first = -1;
+    bool split = false;
+    for (std::size_t c = 0; c < vox.size() && !split; ++c)
+      if (I[vox[c]] >= least_target) {
+        const std::int32_t r = find(std::int32_t(c));
+        split = first >= 0 && r != first;
+        first = r;
+      }
+    if (!split) break;
+  }
   const std::size_t count = vox.size();
   std::vector<std::uint8_t> target(count);
   // The intensity weight of a step onto a voxel.
@@ -296,29 +333,10 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   const double vs = votes.voxel_size();
   for (std::size_t c = 0; c < count; ++c) {
     const float v = I[vox[c]];
-    target[c] = v >= p.threshold * top;
+    target[c] = v >= least_target;
     const double r = v / top + 0.01;
     r2[c] = r * r;
     if (!radius.empty()) thick[c] = float(radius[vox[c]] / vs);
-  }
-  const std::vector<std::ptrdiff_t> offset = L.offsets();
-  const std::vector<Step>& step = steps26();
-  // The components (union-find over the 13 neighbours ahead in the scan
-  // order; each joined to its lowest number), with the targets each has.
-  std::vector<std::int32_t> up(count);
-  std::iota(up.begin(), up.end(), 0);
-  const auto find = [&](std::int32_t c) {
-    while (up[std::size_t(c)] != c) c = up[std::size_t(c)] = up[std::size_t(up[std::size_t(c)])];
-    return c;
-  };
-  for (std::size_t c = 0; c < count; ++c) {
-    const std::int32_t* here = &id[vox[c]];
-    for (std::size_t k = 13; k < 26; ++k) {  // steps26 goes k from -1 to 1: the second half is ahead
-      const std::int32_t m = here[offset[k]];
-      if (m < 0) continue;
-      const std::int32_t a = find(std::int32_t(c)), b = find(m);
-      if (a != b) up[std::size_t(std::max(a, b))] = std::min(a, b);
-    }
   }
   std::vector<std::uint32_t> targets_of(count, 0);  // of a component, at its lowest number
   for (std::size_t c = 0; c < count; ++c) targets_of[std::size_t(find(std::int32_t(c)))] += target[c];

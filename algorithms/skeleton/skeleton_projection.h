@@ -20,8 +20,9 @@
 //     where it enters the shape to min(where it leaves, entry + 2 w) get a
 //     vote (inside the shape by the depth buffers, and no deeper than the
 //     disc the pixel is the centre of);
-// (d) thin: the voxels with at least `threshold` x the most votes; an
-//     intensity-driven shortest-path tree from the most voted voxel (a step
+// (d) thin: the voxels with at least `threshold` x the most votes, reached
+//     through those with a fifth of that (every voted voxel where that would
+//     part them); an intensity-driven shortest-path tree from the most voted voxel (a step
 //     costs its length over the voxel's normalized votes squared, so paths
 //     run along the ridge of votes, cf. Yim et al. 2000); branches taken as
 //     in TEASAR (Sato et al. 2000): the farthest voxel not yet covered gives a

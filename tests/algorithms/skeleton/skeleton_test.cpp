@@ -327,6 +327,25 @@ TEST(SkeletonProjection, LoopsAreTheShapesTunnels) {
   }
 }
 
+// The thinning leaves out the weakest votes (under a fifth of the targets')
+// unless that splits the targets: two strongly voted bars joined only by a
+// bridge of 3% of the most votes give one skeleton from end to end.
+TEST(SkeletonProjection, PartsJoinedOnlyByWeakVotesStayJoined) {
+  VoxelGrid votes({60, 12, 12}, Vec3{0, 0, 0}, 1.0, VoxelType::float32);
+  std::vector<float>& v = votes.floats();
+  for (int x = 5; x < 55; ++x)
+    for (int y = 5; y < 8; ++y)
+      for (int z = 5; z < 8; ++z) v[votes.linear({x, y, z})] = x >= 26 && x < 34 ? 3.f : 100.f;
+  const std::vector<float> radius(votes.size(), 1.5f);
+  const Skeleton s = skeleton::thin(votes, radius, skeleton::ProjectionParams{});
+  std::vector<std::uint32_t> component;
+  EXPECT_EQ(skeleton_components(s, component), 1u);
+  double lo = 1e9, hi = -1e9;
+  for (const Vec3& n : s.nodes) lo = std::min(lo, n.x), hi = std::max(hi, n.x);
+  EXPECT_LT(lo, 10);
+  EXPECT_GT(hi, 50);
+}
+
 TEST(SkeletonProjection, BadViewCounts) {
   const Mesh sphere = test::uv_sphere();
   for (long long views : {0LL, 3LL, 2000LL}) {
