@@ -250,20 +250,28 @@ Votes vote(const std::vector<render::ViewCapture>& views, const BBox& box, const
         }
     }
   };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
-  work(0);
-  for (auto& th : pool) th.join();
+  // f(t) for each thread t, the first on this one.
+  const auto on_threads = [threads](const auto& f) {
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(f, t);
+    f(0);
+    for (auto& th : pool) th.join();
+  };
+  on_threads(work);
   if (ctx) ctx->check_cancelled();
+  // The threads' grids added up, a range of voxels each.
   std::vector<float>& out = grid.floats();
   std::vector<float> radius(grid.size(), 0.f);
-  for (const auto& part : partial)
-    for (std::size_t n = 0; n < part.size(); ++n) {
-      out[n] += part[n][0];
-      radius[n] += part[n][1];
+  on_threads([&](int t) {
+    const std::size_t a = grid.size() * std::size_t(t) / std::size_t(threads);
+    const std::size_t b = grid.size() * std::size_t(t + 1) / std::size_t(threads);
+    for (std::size_t n = a; n < b; ++n) {
+      float v = 0, r = 0;
+      for (const auto& part : partial) v += part[n][0], r += part[n][1];
+      out[n] = v;
+      radius[n] = v > 0 ? r / v : 0.f;
     }
-  for (std::size_t n = 0; n < out.size(); ++n)
-    if (out[n] > 0) radius[n] /= out[n];
+  });
   return {std::move(grid), std::move(radius)};
 }
 
