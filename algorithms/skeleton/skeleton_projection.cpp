@@ -126,6 +126,13 @@ class RadixHeap {
   std::size_t size_ = 0;
 };
 
+double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double len2 = dot(ab, ab);
+  const double t = len2 > 0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+  return norm(p - (a + ab * t));
+}
+
 }  // namespace
 
 void ProjectionParams::check() const {
@@ -584,10 +591,15 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
       if (int(closing.size()) < max_loops && !closed[c.e]) close_gap(c.e, c.n, 2 * (1.5 * thick[voxel_of[c.e]] + 2));
   }
   // Each loop is closed along the ridge of votes: the intensity-driven
-  // shortest path between the two voxels, through voted voxels.
+  // shortest path between the two voxels, through voted voxels; a tunnel's
+  // within its covering radius of the gap's straight segment (which was
+  // found inside the solid), so that the loop added is the one found to go
+  // around a hole, not a path that meets the skeleton on its way.
   std::fill(cost.begin(), cost.end(), HUGE_VAL);
   for (const auto& c : closing) {
     const std::size_t from = voxel_of[c[0]], to = voxel_of[c[1]];
+    const Vec3 gap_a = s.nodes[c[0]], gap_b = s.nodes[c[1]];
+    const double tube = (1.5 * thick[from] + 2) * vs;
     std::vector<std::size_t> touched;
     RadixHeap q;
     cost[from] = 0;
@@ -605,6 +617,7 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
       neighbours(n, [&, cn = cn, n = n](std::size_t m, std::size_t k) {
         const double nc = cn + step[k].length / r2[m];
         if (nc < cost[m]) {
+          if (tunnels && distance_to_segment(votes.center(votes.unlinear(vox[m])), gap_a, gap_b) > tube) return;
           if (cost[m] == HUGE_VAL) touched.push_back(m);
           cost[m] = nc;
           parent[m] = std::int32_t(n);
