@@ -120,14 +120,18 @@ int small_views(int repeat, bool large, const std::string& only) {
   Renderer renderer;
   std::printf("renderer: %s (%s platform); 48 views of 256x256, depth only; median of %d runs\n\n",
               renderer.info().gl_renderer.c_str(), renderer.info().platform.c_str(), repeat);
-  std::printf("| mesh | faces | 1 context: wall | CPU-s | 2 contexts: wall | CPU-s | new Renderer + 2 contexts: wall |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|\n");
+  std::printf("| mesh | faces | 1 context: wall | CPU-s | 2 contexts: wall | CPU-s | new Renderer + 2 contexts: wall | "
+              "24 pairs with back depth, 2 contexts: wall | CPU-s |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Input& in : inputs) {
     const BBox box = bounding_box(in.mesh);
-    std::vector<CameraMatrices> cams;
+    // The 48 views as 24 antipodal pairs, as skeleton_projection takes them:
+    // drawn one by one, or one drawing a pair with back depth.
+    std::vector<CameraMatrices> cams, pairs;
     for (const Vec3& d : sphere_directions(24)) {
       cams.push_back(orthographic_view(d, box, 256, 256));
       cams.push_back(orthographic_view(d * -1.0, box, 256, 256));
+      pairs.push_back(cams[cams.size() - 2]);
     }
     const std::vector<ViewCapture> reference = capture_cameras(renderer, in.mesh, cams, 1);  // warm-up
     // A hash of every depth bit, to compare builds of the renderer.
@@ -139,7 +143,7 @@ int small_views(int repeat, bool large, const std::string& only) {
         hash = (hash ^ bits) * 1099511628211ull;
       }
     std::fprintf(stderr, "%s: depth hash %016llx\n", in.name.c_str(), (unsigned long long)hash);
-    std::vector<double> wall[3], cpu[2];
+    std::vector<double> wall[4], cpu[3];
     for (int r = 0; r < repeat; ++r) {
       // Alternated, so that the load of a shared machine falls on all three alike.
       for (int contexts : {1, 2}) {
@@ -158,9 +162,20 @@ int small_views(int repeat, bool large, const std::string& only) {
       Renderer fresh;
       capture_cameras(fresh, in.mesh, cams, 2);
       wall[2].push_back(seconds_since(t0));
+      const auto t1 = std::chrono::steady_clock::now();
+      const double c1 = bench::cpu_seconds();
+      const std::vector<ViewCapture> both = capture_cameras(renderer, in.mesh, pairs, 2, {.back_depth = true});
+      wall[3].push_back(seconds_since(t1));
+      cpu[2].push_back(bench::cpu_seconds() - c1);
+      for (std::size_t k = 0; k < both.size(); ++k)
+        if (both[k].depth != reference[2 * k].depth) {
+          std::fprintf(stderr, "render_bench: pair %zu's front depth differs from its view's\n", k);
+          return 1;
+        }
     }
-    std::printf("| %s | %zu | %.1f ms | %.3f | %.1f ms | %.3f | %.1f ms |\n", in.name.c_str(), in.mesh.faces.size(),
-                median(wall[0]) * 1e3, median(cpu[0]), median(wall[1]) * 1e3, median(cpu[1]), median(wall[2]) * 1e3);
+    std::printf("| %s | %zu | %.1f ms | %.3f | %.1f ms | %.3f | %.1f ms | %.1f ms | %.3f |\n", in.name.c_str(),
+                in.mesh.faces.size(), median(wall[0]) * 1e3, median(cpu[0]), median(wall[1]) * 1e3, median(cpu[1]),
+                median(wall[2]) * 1e3, median(wall[3]) * 1e3, median(cpu[2]));
     std::fflush(stdout);
   }
   return 0;

@@ -31,7 +31,7 @@
 //     medial discs' that voted) around it are covered; then loops: two skeleton voxels joined
 //     through voted voxels but far apart along the skeleton close a loop
 //     (a tunnel of the shape); for a closed mesh, gaps through the solid
-//     whose loop goes around a hole, at most its genus, each closed along
+//     whose loop goes around a hole, at most its genus, each closed near
 //     its gap (see thin);
 // (e) simplify: internal arcs shorter than `merge_distance` collapsed (branch
 //     nodes that are too close merged), then endpoint-preserving Laplacian
