@@ -82,6 +82,13 @@ std::vector<Vec3> face_normals(const Mesh& mesh) {
   return out;
 }
 
+double signed_volume(const Mesh& mesh) {
+  const auto& P = mesh.positions;
+  double six_v = 0;
+  for (const Tri& t : mesh.faces) six_v += dot(P[t[0]], cross(P[t[1]], P[t[2]]));
+  return six_v / 6.0;
+}
+
 std::vector<Vec3> vertex_normals(const Mesh& mesh, NormalWeighting w) {
   std::vector<Vec3> out(mesh.positions.size());
   const auto& P = mesh.positions;

@@ -60,6 +60,10 @@ inline Vec3 face_cross(const Mesh& mesh, std::size_t f) {
 std::vector<Vec3> face_normals(const Mesh& mesh);
 // The area of each face.  One per face.
 std::vector<double> face_areas(const Mesh& mesh);
+// The volume a closed, consistently oriented mesh encloses: positive when its
+// faces are counter-clockwise seen from outside, negative when they face in
+// (the divergence theorem; meaningless for an open mesh).
+double signed_volume(const Mesh& mesh);
 
 enum class NormalWeighting { uniform, area, angle };
 // Unit vertex normals, the face normals averaged with the given weights

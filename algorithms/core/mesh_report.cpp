@@ -115,11 +115,7 @@ MeshReport mesh_report(const Mesh& mesh) {
                                std::int64_t(r.boundary_loops);
     if (twice >= 0 && twice % 2 == 0) r.genus = twice / 2;
   }
-  if (r.closed && r.oriented) {
-    double six_v = 0;
-    for (const Tri& t : F) six_v += dot(P[t[0]], cross(P[t[1]], P[t[2]]));
-    r.volume = six_v / 6.0;
-  }
+  if (r.closed && r.oriented) r.volume = signed_volume(mesh);
   return r;
 }
 

@@ -33,7 +33,8 @@ struct RayCaster::Impl {
   }
 };
 
-RayCaster::RayCaster(const Mesh& mesh) : impl_(std::make_unique<Impl>()), normals_(face_normals(mesh)) {
+RayCaster::RayCaster(const Mesh& mesh)
+    : impl_(std::make_unique<Impl>()), normals_(face_normals(mesh)), faces_out_(signed_volume(mesh) >= 0) {
   Impl& s = *impl_;
   s.device = rtcNewDevice(nullptr);
   if (!s.device) throw Error("Embree could not start: error " + std::to_string(int(rtcGetDeviceError(nullptr))));
@@ -94,7 +95,7 @@ bool RayCaster::inside(const Vec3& p) const {
   int votes = 0;
   for (int k = 0; k < 3; ++k) {
     const Hit h = first_hit(p, dirs[k]);
-    if (h && dot(dirs[k], normals_[h.face]) > 0) ++votes;
+    if (h && (dot(dirs[k], normals_[h.face]) > 0) == faces_out_) ++votes;
     if (k == 1 && votes != 1) break;  // the first two agree
   }
   return votes >= 2;

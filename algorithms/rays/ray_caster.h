@@ -35,14 +35,16 @@ class RayCaster {
                 double max_distance = std::numeric_limits<double>::infinity()) const;
   // Unit normal of each face (zero for a degenerate one), as face_normals().
   const std::vector<Vec3>& normals() const { return normals_; }
-  // Whether p is inside a closed, outward-oriented mesh: along a majority of
-  // three fixed directions the first face met is seen from behind.
+  // Whether p is inside a closed, consistently oriented mesh: along a
+  // majority of three fixed directions the first face met is seen from
+  // behind (from in front where the faces face in: a negative volume).
   bool inside(const Vec3& p) const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::vector<Vec3> normals_;
+  bool faces_out_ = true;  // signed_volume >= 0
 };
 
 }  // namespace cgview

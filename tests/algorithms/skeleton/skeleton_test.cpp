@@ -135,6 +135,28 @@ TEST(SkeletonMetrics, CircleInsideATorus) {
 }
 
 // A body (two legs) and an arm whose hand has three short fingers.
+// Inside is inside whichever way a closed mesh's faces face: a segment
+// through a box counts as inside, and one beside it as outside, with the
+// faces turned in as well (CGAL's tetrahedron.off faces in); so does the
+// skeleton of that tetrahedron.
+TEST(SkeletonMetrics, InsideWhicheverWayTheFacesFace) {
+  Mesh box = test::box({0, 0, 0}, {4, 1, 1});
+  Skeleton through, beside;
+  through.nodes = {{0.5, 0.5, 0.5}, {2, 0.5, 0.5}, {3.5, 0.5, 0.5}};
+  through.edges = {{0, 1}, {1, 2}};
+  beside = through;
+  for (Vec3& n : beside.nodes) n.y += 2;
+  for (int turn = 0; turn < 2; ++turn) {
+    EXPECT_DOUBLE_EQ(skeleton_metrics(through, box).inside_fraction, 1.0) << turn;
+    EXPECT_DOUBLE_EQ(skeleton_metrics(beside, box).inside_fraction, 0.0) << turn;
+    for (Tri& t : box.faces) std::swap(t[1], t[2]);
+  }
+  const Mesh tetrahedron = read_mesh(test::sample("tetrahedron.off"));
+  ASSERT_LT(signed_volume(tetrahedron), 0);
+  const Metrics& m = artifact<Metrics>(run_algorithm("skeleton_projection", tetrahedron), "metrics");
+  EXPECT_EQ(m.at("inside_fraction"), 1.0) << metrics_json_for_test(m);
+}
+
 TEST(SkeletonMetrics, PruningSpursKeepsTheLimbs) {
   Skeleton s;
   const auto add = [&](Vec3 p) {
