@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <functional>
+#include <future>
+#include <optional>
 #include <cmath>
 #include <cstring>
 #include <ctime>
@@ -14,6 +16,7 @@
 #include "core/cluster_decimate.h"
 #include "core/mesh_report.h"
 #include "rays/ray_caster.h"
+#include "voxel/voxelize.h"
 #include "registry/registry.h"
 #include "render/renderer.h"
 #include "render/views.h"
@@ -133,6 +136,12 @@ double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
   return norm(p - (a + ab * t));
 }
 
+// The vote grid's voxel: `grid` of them along the box's longest side.
+double vote_voxel_size(const BBox& box, const ProjectionParams& p) {
+  const Vec3 size = box.size();
+  return std::max({size.x, size.y, size.z, 1e-12}) / p.grid;
+}
+
 }  // namespace
 
 void ProjectionParams::check() const {
@@ -198,8 +207,7 @@ Votes vote(const std::vector<render::ViewCapture>& views, const BBox& box, const
   for (const render::ViewCapture& v : views)
     if (v.back_depth.size() != v.depth.size()) throw InvalidInput("vote: every view needs its back depth");
   const Vec3 size = box.size();
-  const double longest = std::max({size.x, size.y, size.z, 1e-12});
-  const double vs = longest / p.grid;
+  const double vs = vote_voxel_size(box, p);
   const std::array<int, 3> dims{int(std::ceil(size.x / vs)) + 2, int(std::ceil(size.y / vs)) + 2, int(std::ceil(size.z / vs)) + 2};
   const Vec3 origin = box.min - Vec3{vs, vs, vs};
   VoxelGrid grid(dims, origin, vs, VoxelType::float32);
@@ -732,6 +740,24 @@ ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mes
     decimated = cluster_decimate(mesh, {std::size_t(p.render_faces)}).mesh;
   const Mesh& drawn = decimated.faces.empty() ? mesh : decimated;
   out.faces_drawn = drawn.faces.size();
+  // The mesh's report (whether it is closed, its genus) and, for a closed
+  // mesh, its solid at the votes' voxel size (the drawn copy: the surface's
+  // voxels and those it encloses), on a thread of their own while the views
+  // are drawn.
+  struct Solid {
+    MeshReport report;
+    std::optional<VoxelGrid> grid;
+  };
+  std::future<Solid> solid_future = std::async(std::launch::async, [&] {
+    Solid solid{mesh_report(mesh), std::nullopt};
+    if (solid.report.closed) {
+      VoxelizeParams vp;
+      vp.voxel_size = vote_voxel_size(box, p);
+      vp.threads = 1;
+      solid.grid = voxelize(drawn, vp, ctx).grid;
+    }
+    return solid;
+  });
   const std::vector<render::ViewCapture> views =
       render::capture_cameras(renderer, drawn, cameras, p.contexts, {.back_depth = true});
   watch.stop(out.render_seconds, out.render_cpu_seconds);
@@ -749,12 +775,25 @@ ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mes
   Votes votes = vote(views, box, p, ctx);
   out.votes = std::move(votes.grid);
   const std::vector<float>& radius = votes.radius;
-  watch.stop(out.vote_seconds, out.vote_cpu_seconds);
-  if (ctx) ctx->progress(0.8, "thinning");
+  const Solid solid = solid_future.get();
   // The loops the skeleton may have: the genus of a closed, oriented mesh
   // (its tunnels), found through the solid; other meshes: as the votes say.
-  const MeshReport report = mesh_report(mesh);
+  const MeshReport& report = solid.report;
   out.genus = report.closed && report.oriented && report.genus ? int(*report.genus) : -1;
+  // A ray knows only where it enters the shape and where it leaves it, so
+  // it votes across whatever lies between (the hole of a ring seen edge-on,
+  // the gap between two arms): a closed mesh's votes are kept to its solid.
+  if (solid.grid) {
+    const VoxelGrid& g = *solid.grid;
+    std::vector<float>& v = out.votes.floats();
+    for (std::size_t n = 0; n < v.size(); ++n)
+      if (v[n] > 0) {
+        const VoxelIndex at = g.locate(out.votes.center(out.votes.unlinear(n)));
+        if (!g.contains(at) || !g.bytes()[g.linear(at)]) v[n] = 0;
+      }
+  }
+  watch.stop(out.vote_seconds, out.vote_cpu_seconds);
+  if (ctx) ctx->progress(0.8, "thinning");
   const RayCaster caster(mesh);
   out.skeleton = thin(out.votes, radius, p, out.genus, [&](const Vec3& q) { return caster.inside(q); });
   // Smoothing may not move a node out of the mesh.

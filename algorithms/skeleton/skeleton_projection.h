@@ -18,8 +18,12 @@
 //     spurious branches of a noisy outline);
 // (c) vote: each medial pixel of radius w casts its ray; the voxels from
 //     where it enters the shape to min(where it leaves, entry + 2 w) get a
-//     vote (inside the shape by the depth buffers, and no deeper than the
-//     disc the pixel is the centre of);
+//     vote, and as the antipode's ray those from where it leaves back to
+//     max(entry, exit - 2 w) (inside the shape by the depth buffers, and no
+//     deeper than the disc the pixel is the centre of); a ray knows only
+//     its first and last surfaces, so for a closed mesh the votes are then
+//     kept to its solid (voxelize, at the votes' voxel size: the hollow of
+//     a pipe seen from the side is voted across otherwise);
 // (d) thin: the voxels with at least `threshold` x the most votes, reached
 //     through those with a fifth of that (every voted voxel where that would
 //     part them); an intensity-driven shortest-path tree from the most voted voxel (a step

@@ -338,6 +338,44 @@ TEST(SkeletonProjection, ManHasMcfsLimbsOnceSpursArePruned) {
 // Loops where the shape has tunnels, as many as its genus: the figure eight
 // (genus 2) gives two, the elephant (genus 3, as MCF's skeleton of it) three,
 // every node inside; man (genus 0) none.
+// A closed polygon of the (r, z) half-plane, counter-clockwise, swept about
+// the z axis: a ring whose cross-section it is (outward-oriented, genus 1).
+Mesh swept(const std::vector<std::pair<double, double>>& section, int rings) {
+  Mesh m;
+  const int k = int(section.size());
+  for (int i = 0; i < rings; ++i)
+    for (const auto& [r, z] : section) {
+      const double a = 2 * std::numbers::pi * i / rings;
+      m.positions.push_back({r * std::cos(a), r * std::sin(a), z});
+    }
+  const auto id = [&](int i, int j) { return Index((i % rings) * k + (j % k)); };
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < k; ++j) {
+      m.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+
+// A pipe as long as it is wide: a side view's medial axis runs along its
+// middle, and the rays from it cross the hollow between the walls (they
+// know only where they enter and leave the pipe); the votes are kept to the
+// solid, so every node is inside the walls (before, the skeleton ran along
+// the axis, in the hollow).  Its loop is not closed: the radius the votes
+// record is the side views' (the pipe's half length, not its wall's), so
+// an end looks for a gap only far along the skeleton, further than the
+// circle is long (docs/BENCHMARKS.md).
+TEST(SkeletonProjection, APipesSkeletonStaysInItsWalls) {
+  const Mesh pipe = swept({{1.0, -1.0}, {1.0, 1.0}, {0.6, 1.0}, {0.6, -1.0}}, 64);
+  ASSERT_GT(signed_volume(pipe), 0);
+  const AlgorithmResult res = run_algorithm("skeleton_projection", pipe);
+  const Metrics& m = artifact<Metrics>(res, "metrics");
+  EXPECT_EQ(m.at("inside_fraction"), 1.0) << metrics_json_for_test(m);
+  const Skeleton& s = artifact<Skeleton>(res, "skeleton");
+  ASSERT_GT(s.nodes.size(), 10u);
+  for (const Vec3& n : s.nodes) EXPECT_GT(std::hypot(n.x, n.y), 0.6 - 0.05) << n.x << " " << n.y << " " << n.z;
+}
+
 // The centres of a skeleton's independent loops: the cycles that its edges
 // outside a breadth-first spanning tree close.
 std::vector<Vec3> loop_centres(const Skeleton& s) {
