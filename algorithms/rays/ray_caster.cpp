@@ -9,6 +9,10 @@
 namespace cgview {
 namespace {
 
+// Directions away from the axes, so that a grid-aligned mesh's edges are not
+// grazed.
+const Vec3 kInsideDirections[3] = {{0.5773, 0.5774, 0.5775}, {-0.8017, 0.2673, 0.5345}, {0.2182, -0.8729, 0.4364}};
+
 // An intersection context that remembers the face a ray starts from, so that
 // the filter below can skip it (CGAL's SkipPrimitiveFunctor).
 struct SkipContext {
@@ -33,8 +37,7 @@ struct RayCaster::Impl {
   }
 };
 
-RayCaster::RayCaster(const Mesh& mesh)
-    : impl_(std::make_unique<Impl>()), normals_(face_normals(mesh)), faces_out_(signed_volume(mesh) >= 0) {
+RayCaster::RayCaster(const Mesh& mesh) : impl_(std::make_unique<Impl>()), normals_(face_normals(mesh)) {
   Impl& s = *impl_;
   s.device = rtcNewDevice(nullptr);
   if (!s.device) throw Error("Embree could not start: error " + std::to_string(int(rtcGetDeviceError(nullptr))));
@@ -62,6 +65,13 @@ RayCaster::RayCaster(const Mesh& mesh)
   rtcReleaseGeometry(g);
   rtcCommitScene(s.scene);
   if (rtcGetDeviceError(s.device) != RTC_ERROR_NONE) throw Error("Embree could not build the mesh's BVH");
+  // Which way the faces face: from outside the bounding box along each
+  // direction, whether the first face met faces the ray's origin.
+  const BBox box = bounding_box(mesh);
+  int out = 0, in = 0;
+  for (const Vec3& d : kInsideDirections)
+    if (const Hit h = first_hit(box.center() - d * (box.diagonal() + 1), d)) ++(dot(d, normals_[h.face]) < 0 ? out : in);
+  faces_out_ = out >= in;
 }
 
 RayCaster::~RayCaster() = default;
@@ -88,14 +98,11 @@ RayCaster::Hit RayCaster::first_hit(const Vec3& origin, const Vec3& direction, s
 }
 
 bool RayCaster::inside(const Vec3& p) const {
-  // Directions away from the axes, so that a grid-aligned mesh's edges are
-  // not grazed.
-  static const Vec3 dirs[3] = {{0.5773, 0.5774, 0.5775}, {-0.8017, 0.2673, 0.5345}, {0.2182, -0.8729, 0.4364}};
   // The majority of three: the third ray only when the first two disagree.
   int votes = 0;
   for (int k = 0; k < 3; ++k) {
-    const Hit h = first_hit(p, dirs[k]);
-    if (h && (dot(dirs[k], normals_[h.face]) > 0) == faces_out_) ++votes;
+    const Hit h = first_hit(p, kInsideDirections[k]);
+    if (h && (dot(kInsideDirections[k], normals_[h.face]) > 0) == faces_out_) ++votes;
     if (k == 1 && votes != 1) break;  // the first two agree
   }
   return votes >= 2;

@@ -37,14 +37,15 @@ class RayCaster {
   const std::vector<Vec3>& normals() const { return normals_; }
   // Whether p is inside a closed, consistently oriented mesh: along a
   // majority of three fixed directions the first face met is seen from
-  // behind (from in front where the faces face in: a negative volume).
+  // behind (from in front where the faces face in, as the first faces met
+  // from outside the bounding box tell).
   bool inside(const Vec3& p) const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::vector<Vec3> normals_;
-  bool faces_out_ = true;  // signed_volume >= 0
+  bool faces_out_ = true;  // the faces face out
 };
 
 }  // namespace cgview

@@ -356,6 +356,13 @@ struct Renderer::Impl {
     check_framebuffer(fbo_w, fbo_h);
   }
 
+  // Blending back to its defaults after a capture with back depth (the
+  // depth test is set by bind_target for every draw).
+  void end_range() {
+    gl.glDisable(GL_BLEND);
+    gl.glBlendEquation(GL_FUNC_ADD);
+  }
+
   void attach(GLuint& rb, GLenum format, GLenum point, int w, int h) {
     rb = gen_renderbuffer();
     gl.glBindRenderbuffer(GL_RENDERBUFFER, rb);
@@ -783,10 +790,10 @@ std::vector<ViewCapture> Renderer::capture(const Mesh& mesh, const std::vector<C
       out.push_back(std::move(v));
     }
     im.gl.glBindVertexArray(0);
-    if (range) im.gl.glDisable(GL_BLEND);
+    if (range) im.end_range();
     im.check_errors("capture");
   } catch (...) {
-    if (range) im.gl.glDisable(GL_BLEND);
+    if (range) im.end_range();
     im.release_mesh(g);
     throw;
   }

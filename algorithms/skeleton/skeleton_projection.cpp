@@ -1,12 +1,12 @@
 #include "skeleton/skeleton_projection.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <functional>
 #include <future>
 #include <optional>
 #include <cmath>
-#include <cstring>
 #include <ctime>
 #include <numeric>
 #include <queue>
@@ -112,29 +112,16 @@ class RadixHeap {
     const auto item = buckets_[0].back();
     buckets_[0].pop_back();
     --size_;
-    double key;
-    std::memcpy(&key, &item.first, sizeof key);
-    return {key, item.second};
+    return {std::bit_cast<double>(item.first), item.second};
   }
 
  private:
-  static std::uint64_t bits(double key) {
-    std::uint64_t k;
-    std::memcpy(&k, &key, sizeof k);
-    return k;
-  }
-  std::size_t bucket(std::uint64_t k) const { return k == last_ ? 0 : 64 - std::size_t(__builtin_clzll(k ^ last_)); }
+  static std::uint64_t bits(double key) { return std::bit_cast<std::uint64_t>(key); }
+  std::size_t bucket(std::uint64_t k) const { return std::size_t(std::bit_width(k ^ last_)); }
   std::array<std::vector<std::pair<std::uint64_t, std::uint32_t>>, 65> buckets_;
   std::uint64_t last_ = 0;
   std::size_t size_ = 0;
 };
-
-double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double len2 = dot(ab, ab);
-  const double t = len2 > 0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-  return norm(p - (a + ab * t));
-}
 
 // The vote grid's voxel: `grid` of them along the box's longest side.
 double vote_voxel_size(const BBox& box, const ProjectionParams& p) {
@@ -532,11 +519,10 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   // segment a b pass `test`; stops at the first sample that settles it.
   const auto mostly = [](const Vec3& a, const Vec3& b, double length, double share, auto&& test) {
     const double dt = 0.25 / std::max(length, 1.0);
-    int all = 0;
-    for (double t = 0; t <= 1; t += dt) ++all;
+    const int all = int(std::floor(1 / dt)) + 1;
     int failed = 0;
-    for (double t = 0; t <= 1; t += dt)
-      if (!test(a + (b - a) * t) && double(all - ++failed) < share * all) return false;
+    for (int k = 0; k < all; ++k)
+      if (!test(a + (b - a) * (k * dt)) && double(all - ++failed) < share * all) return false;
     return true;
   };
   for (std::size_t e = 0; e < s.nodes.size() && !(tunnels && max_loops == 0); ++e) {
@@ -586,7 +572,7 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
       // of its samples).
       const auto voted = [&](const Vec3& q) {
         const VoxelIndex c = votes.locate(q);
-        return votes.contains(c) && id[votes.linear(c)] >= 0;
+        return votes.contains(c) && I[votes.linear(c)] > 0;
       };
       if (mostly(s.nodes[e], s.nodes[n], d, 0.9, voted)) best = n, best_d = d, best_is_end = is_end;
     }
@@ -609,29 +595,38 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
     const Vec3 gap_a = s.nodes[c[0]], gap_b = s.nodes[c[1]];
     const double tube = (1.5 * thick[from] + 2) * vs;
     std::vector<std::size_t> touched;
-    RadixHeap q;
-    cost[from] = 0;
-    parent[from] = -1;
-    touched.push_back(from);
-    q.push(0, std::uint32_t(from));
     bool reached = false;
-    while (!q.empty()) {
-      const auto [cn, n] = q.pop();
-      if (cn > cost[n]) continue;
-      if (n == to) {
-        reached = true;
-        break;
-      }
-      neighbours(n, [&, cn = cn, n = n](std::size_t m, std::size_t k) {
-        const double nc = cn + step[k].length / r2[m];
-        if (nc < cost[m]) {
-          if (tunnels && distance_to_segment(votes.center(votes.unlinear(vox[m])), gap_a, gap_b) > tube) return;
-          if (cost[m] == HUGE_VAL) touched.push_back(m);
-          cost[m] = nc;
-          parent[m] = std::int32_t(n);
-          q.push(nc, std::uint32_t(m));
+    // A tunnel's path within the tube first; if the votes do not join the
+    // gap's ends there, anywhere (the gap was found, so the loop closes).
+    for (const bool in_tube : {tunnels, false}) {
+      for (std::size_t n : touched) cost[n] = HUGE_VAL;
+      touched = {from};
+      RadixHeap q;
+      cost[from] = 0;
+      parent[from] = -1;
+      q.push(0, std::uint32_t(from));
+      while (!q.empty()) {
+        const auto [cn, n] = q.pop();
+        if (cn > cost[n]) continue;
+        if (n == to) {
+          reached = true;
+          break;
         }
-      });
+        neighbours(n, [&, cn = cn, n = n](std::size_t m, std::size_t k) {
+          const double nc = cn + step[k].length / r2[m];
+          if (nc < cost[m]) {
+            if (in_tube) {
+              const Vec3 v = votes.center(votes.unlinear(vox[m]));
+              if (norm(v - closest_point_on_segment(v, gap_a, gap_b)) > tube) return;
+            }
+            if (cost[m] == HUGE_VAL) touched.push_back(m);
+            cost[m] = nc;
+            parent[m] = std::int32_t(n);
+            q.push(nc, std::uint32_t(m));
+          }
+        });
+      }
+      if (reached || !in_tube) break;
     }
     if (reached) {
       const auto link = [&](Index a, Index b) {
@@ -748,13 +743,16 @@ ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mes
     MeshReport report;
     std::optional<VoxelGrid> grid;
   };
+  // Its context passes cancellation on, not progress: the job's progress
+  // is this thread's.
+  const Context solid_ctx(nullptr, [ctx] { return ctx && ctx->cancelled(); });
   std::future<Solid> solid_future = std::async(std::launch::async, [&] {
     Solid solid{mesh_report(mesh), std::nullopt};
     if (solid.report.closed) {
       VoxelizeParams vp;
       vp.voxel_size = vote_voxel_size(box, p);
       vp.threads = 1;
-      solid.grid = voxelize(drawn, vp, ctx).grid;
+      solid.grid = voxelize(drawn, vp, &solid_ctx).grid;
     }
     return solid;
   });

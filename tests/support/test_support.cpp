@@ -54,16 +54,25 @@ Mesh uv_sphere(double r, int rings, int segments) {
 }
 
 Mesh torus(double R, double r, int rings, int segments) {
+  std::vector<std::pair<double, double>> circle;
+  for (int j = 0; j < segments; ++j) {
+    const double v = 2 * std::numbers::pi * j / segments;
+    circle.push_back({R + r * std::cos(v), r * std::sin(v)});
+  }
+  return swept(circle, rings);
+}
+
+Mesh swept(const std::vector<std::pair<double, double>>& section, int rings) {
   Mesh m;
-  const double pi = std::numbers::pi;
+  const int k = int(section.size());
   for (int i = 0; i < rings; ++i)
-    for (int j = 0; j < segments; ++j) {
-      const double u = 2 * pi * i / rings, v = 2 * pi * j / segments;
-      m.positions.push_back({(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
+    for (const auto& [r, z] : section) {
+      const double u = 2 * std::numbers::pi * i / rings;
+      m.positions.push_back({r * std::cos(u), r * std::sin(u), z});
     }
-  auto id = [&](int i, int j) { return Index((i % rings) * segments + (j % segments)); };
+  const auto id = [&](int i, int j) { return Index((i % rings) * k + (j % k)); };
   for (int i = 0; i < rings; ++i)
-    for (int j = 0; j < segments; ++j) {
+    for (int j = 0; j < k; ++j) {
       m.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
       m.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }

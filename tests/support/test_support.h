@@ -21,6 +21,10 @@ Mesh uv_sphere(double r = 1.0, int rings = 16, int segments = 32);
 Mesh revolve(const std::vector<std::pair<double, double>>& profile, int segments);
 // A torus (major radius R, minor radius r): closed, genus 1.
 Mesh torus(double R = 2.0, double r = 0.5, int rings = 24, int segments = 12);
+// A closed polygon of the (r, z) half-plane, counter-clockwise, swept about
+// the z axis in `rings` steps: the ring whose cross-section it is
+// (outward-oriented, genus 1).  torus() sweeps a circle.
+Mesh swept(const std::vector<std::pair<double, double>>& section, int rings);
 // A flat n x n grid of squares in the z = 0 plane: one boundary loop, genus 0.
 Mesh grid(int n = 4);
 

@@ -134,7 +134,6 @@ TEST(SkeletonMetrics, CircleInsideATorus) {
   EXPECT_DOUBLE_EQ(skeleton_metrics(circle(R + 2 * r, 64), torus).inside_fraction, 0.0);
 }
 
-// A body (two legs) and an arm whose hand has three short fingers.
 // Inside is inside whichever way a closed mesh's faces face: a segment
 // through a box counts as inside, and one beside it as outside, with the
 // faces turned in as well (CGAL's tetrahedron.off faces in); so does the
@@ -157,6 +156,7 @@ TEST(SkeletonMetrics, InsideWhicheverWayTheFacesFace) {
   EXPECT_EQ(m.at("inside_fraction"), 1.0) << metrics_json_for_test(m);
 }
 
+// A body (two legs) and an arm whose hand has three short fingers.
 TEST(SkeletonMetrics, PruningSpursKeepsTheLimbs) {
   Skeleton s;
   const auto add = [&](Vec3 p) {
@@ -335,28 +335,6 @@ TEST(SkeletonProjection, ManHasMcfsLimbsOnceSpursArePruned) {
   EXPECT_GT(endpoints_after_pruning(mcf, 0), mcf_ends + 5);  // MCF's raw count is mostly spurs
 }
 
-// Loops where the shape has tunnels, as many as its genus: the figure eight
-// (genus 2) gives two, the elephant (genus 3, as MCF's skeleton of it) three,
-// every node inside; man (genus 0) none.
-// A closed polygon of the (r, z) half-plane, counter-clockwise, swept about
-// the z axis: a ring whose cross-section it is (outward-oriented, genus 1).
-Mesh swept(const std::vector<std::pair<double, double>>& section, int rings) {
-  Mesh m;
-  const int k = int(section.size());
-  for (int i = 0; i < rings; ++i)
-    for (const auto& [r, z] : section) {
-      const double a = 2 * std::numbers::pi * i / rings;
-      m.positions.push_back({r * std::cos(a), r * std::sin(a), z});
-    }
-  const auto id = [&](int i, int j) { return Index((i % rings) * k + (j % k)); };
-  for (int i = 0; i < rings; ++i)
-    for (int j = 0; j < k; ++j) {
-      m.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return m;
-}
-
 // A pipe as long as it is wide: a side view's medial axis runs along its
 // middle, and the rays from it cross the hollow between the walls (they
 // know only where they enter and leave the pipe); the votes are kept to the
@@ -366,7 +344,7 @@ Mesh swept(const std::vector<std::pair<double, double>>& section, int rings) {
 // an end looks for a gap only far along the skeleton, further than the
 // circle is long (docs/BENCHMARKS.md).
 TEST(SkeletonProjection, APipesSkeletonStaysInItsWalls) {
-  const Mesh pipe = swept({{1.0, -1.0}, {1.0, 1.0}, {0.6, 1.0}, {0.6, -1.0}}, 64);
+  const Mesh pipe = test::swept({{1.0, -1.0}, {1.0, 1.0}, {0.6, 1.0}, {0.6, -1.0}}, 64);
   ASSERT_GT(signed_volume(pipe), 0);
   const AlgorithmResult res = run_algorithm("skeleton_projection", pipe);
   const Metrics& m = artifact<Metrics>(res, "metrics");
