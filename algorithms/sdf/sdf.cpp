@@ -8,6 +8,7 @@
 #include <numbers>
 #include <thread>
 
+#include "core/threads.h"
 #include "rays/ray_caster.h"
 #include "registry/registry.h"
 
@@ -46,10 +47,7 @@ void parallel_blocks(std::size_t n, std::size_t block, int threads, const Contex
       done += e - b;
     }
   };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(work, false);
-  work(true);
-  for (auto& th : pool) th.join();
+  on_threads(threads, [&](int t) { work(t == 0); });
   if (ctx) ctx->check_cancelled();
 }
 

@@ -14,6 +14,7 @@
 
 
 #include "core/cluster_decimate.h"
+#include "core/threads.h"
 #include "core/mesh_report.h"
 #include "rays/ray_caster.h"
 #include "voxel/voxelize.h"
@@ -252,19 +253,12 @@ Votes vote(const std::vector<render::ViewCapture>& views, const BBox& box, const
         }
     }
   };
-  // f(t) for each thread t, the first on this one.
-  const auto on_threads = [threads](const auto& f) {
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(f, t);
-    f(0);
-    for (auto& th : pool) th.join();
-  };
-  on_threads(work);
+  on_threads(threads, work);
   if (ctx) ctx->check_cancelled();
   // The threads' grids added up, a range of voxels each.
   std::vector<float>& out = grid.floats();
   std::vector<float> radius(grid.size(), 0.f);
-  on_threads([&](int t) {
+  on_threads(threads, [&](int t) {
     const std::size_t a = grid.size() * std::size_t(t) / std::size_t(threads);
     const std::size_t b = grid.size() * std::size_t(t + 1) / std::size_t(threads);
     for (std::size_t n = a; n < b; ++n) {

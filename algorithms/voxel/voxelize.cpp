@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "core/errors.h"
+#include "core/threads.h"
 #include "registry/registry.h"
 
 namespace cgview {
@@ -109,12 +110,7 @@ std::size_t fill_interior(VoxelGrid& g, int threads, const Context* ctx) {
       counts.push_back(std::uint32_t(runs.size() - before));
     }
   };
-  {
-    std::vector<std::thread> pool;
-    for (int t = 1; t < nt; ++t) pool.emplace_back(build, t);
-    build(0);
-    for (auto& th : pool) th.join();
-  }
+  on_threads(nt, build);
   if (ctx) ctx->check_cancelled();
   std::vector<std::size_t> offset(rows + 1, 0);
   std::vector<Run> runs;
@@ -287,12 +283,7 @@ VoxelizeResult voxelize(const Mesh& mesh, const VoxelizeParams& p, const Context
       }
     }
   };
-  {
-    std::vector<std::thread> pool;
-    for (int t = 1; t < nt; ++t) pool.emplace_back(work, t);
-    work(0);
-    for (auto& th : pool) th.join();
-  }
+  on_threads(nt, work);
   if (stop) throw Cancelled();
   result.surface_voxels = result.grid.count_occupied();
   result.solid_voxels = result.surface_voxels;
