@@ -596,32 +596,25 @@ struct Renderer::Impl {
     flip_rows(d, w, h, 1);
     return d;
   }
-  // The range buffer: (nearest z, minus the farthest z) per pixel.
-  std::vector<float> read_range(int w, int h) {
-    std::vector<float> rg(std::size_t(2) * w * h);
+  // A colour attachment read back (`channels` values of T a pixel), rows
+  // flipped to the top-first order.
+  template <class T>
+  std::vector<T> read_attachment(GLenum attachment, GLenum format, GLenum type, int channels, int w, int h) {
+    std::vector<T> v(std::size_t(channels) * w * h);
     gl.glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    gl.glReadBuffer(GL_COLOR_ATTACHMENT2);
-    gl.glReadPixels(0, 0, w, h, GL_RG, GL_FLOAT, rg.data());
+    gl.glReadBuffer(attachment);
+    gl.glReadPixels(0, 0, w, h, format, type, v.data());
     gl.glReadBuffer(GL_COLOR_ATTACHMENT0);
-    flip_rows(rg, w, h, 2);
-    return rg;
+    flip_rows(v, w, h, channels);
+    return v;
   }
+  // The range buffer: (nearest z, minus the farthest z) per pixel.
+  std::vector<float> read_range(int w, int h) { return read_attachment<float>(GL_COLOR_ATTACHMENT2, GL_RG, GL_FLOAT, 2, w, h); }
   std::vector<std::uint32_t> read_ids(int w, int h) {
-    std::vector<std::uint32_t> ids(std::size_t(w) * h);
-    gl.glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    gl.glReadBuffer(GL_COLOR_ATTACHMENT1);
-    gl.glReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT, ids.data());
-    gl.glReadBuffer(GL_COLOR_ATTACHMENT0);
-    flip_rows(ids, w, h, 1);
-    return ids;
+    return read_attachment<std::uint32_t>(GL_COLOR_ATTACHMENT1, GL_RED_INTEGER, GL_UNSIGNED_INT, 1, w, h);
   }
   Image read_color(int w, int h) {
-    Image im{w, h, std::vector<std::uint8_t>(std::size_t(4) * w * h)};
-    gl.glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    gl.glReadBuffer(GL_COLOR_ATTACHMENT0);
-    gl.glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, im.rgba.data());
-    flip_rows(im.rgba, w, h, 4);
-    return im;
+    return Image{w, h, read_attachment<std::uint8_t>(GL_COLOR_ATTACHMENT0, GL_RGBA, GL_UNSIGNED_BYTE, 4, w, h)};
   }
 
   void check_errors(const char* where) {
