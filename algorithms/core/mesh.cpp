@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "core/errors.h"
+#include "core/union_find.h"
 
 namespace cgview {
 
@@ -211,27 +212,10 @@ Adjacency face_neighbors(const Mesh& mesh, const EdgeTopology& topo) {
 }
 
 std::uint32_t vertex_components(const Mesh& mesh, std::vector<std::uint32_t>& component) {
-  const std::size_t n = mesh.positions.size();
-  std::vector<std::uint32_t> parent(n);
-  std::iota(parent.begin(), parent.end(), 0u);
-  auto find = [&](std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  UnionFind sets(mesh.positions.size());
   for (const Tri& t : mesh.faces)
-    for (int k = 1; k < 3; ++k) {
-      std::uint32_t a = find(t[0]), b = find(t[k]);
-      if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
-  component.assign(n, 0);
-  std::vector<std::uint32_t> label(n, kNone);
-  std::uint32_t count = 0;
-  for (std::uint32_t v = 0; v < n; ++v) {
-    std::uint32_t r = find(v);
-    if (label[r] == kNone) label[r] = count++;
-    component[v] = label[r];
-  }
-  return count;
+    for (int k = 1; k < 3; ++k) sets.unite(t[0], t[k]);
+  return sets.labels(component);
 }
 
 Mesh with_per_vertex_attributes(const Mesh& mesh) {

@@ -4,24 +4,12 @@
 #include <limits>
 #include <numeric>
 
+#include "core/union_find.h"
+
 namespace cgview {
 
 namespace {
 constexpr Index kNone = std::numeric_limits<Index>::max();
-
-struct UnionFind {
-  std::vector<std::uint32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 int corner_of(const Tri& t, Index v) { return t[0] == v ? 0 : (t[1] == v ? 1 : 2); }
 }  // namespace

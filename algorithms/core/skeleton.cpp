@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/union_find.h"
 
 namespace cgview {
 
@@ -55,25 +56,9 @@ double total_length(const Skeleton& s) {
 }
 
 std::uint32_t skeleton_components(const Skeleton& s, std::vector<std::uint32_t>& component) {
-  std::vector<std::uint32_t> parent(s.nodes.size());
-  std::iota(parent.begin(), parent.end(), 0u);
-  auto find = [&](std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (const auto& e : s.edges) {
-    std::uint32_t a = find(e[0]), b = find(e[1]);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-  std::vector<std::uint32_t> label(s.nodes.size(), UINT32_MAX);
-  component.resize(s.nodes.size());
-  std::uint32_t n = 0;
-  for (std::uint32_t v = 0; v < s.nodes.size(); ++v) {
-    std::uint32_t r = find(v);
-    if (label[r] == UINT32_MAX) label[r] = n++;
-    component[v] = label[r];
-  }
-  return n;
+  UnionFind sets(s.nodes.size());
+  for (const auto& e : s.edges) sets.unite(e[0], e[1]);
+  return sets.labels(component);
 }
 
 std::vector<std::vector<Index>> skeleton_branches(const Skeleton& s) {

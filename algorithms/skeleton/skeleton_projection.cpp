@@ -15,6 +15,7 @@
 
 #include "core/cluster_decimate.h"
 #include "core/threads.h"
+#include "core/union_find.h"
 #include "core/mesh_report.h"
 #include "rays/ray_caster.h"
 #include "voxel/voxelize.h"
@@ -294,11 +295,7 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   const std::vector<Step>& step = steps26();
   // The components (union-find over the 13 neighbours ahead in the scan
   // order; each joined to its lowest number).
-  std::vector<std::int32_t> up;
-  const auto find = [&](std::int32_t c) {
-    while (up[std::size_t(c)] != c) c = up[std::size_t(c)] = up[std::size_t(up[std::size_t(c)])];
-    return c;
-  };
+  UnionFind sets;
   for (const double least : {0.2 * least_target, 0.0}) {
     for (std::size_t n : vox) id[n] = -1;
     vox.clear();
@@ -306,22 +303,20 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
       for (int j = 1; j + 1 < L.d[1]; ++j)
         for (std::size_t n = L.at(1, j, k), end = L.at(L.d[0] - 1, j, k); n < end; ++n)
           if (I[n] > least) id[n] = std::int32_t(vox.size()), vox.push_back(n);
-    up.resize(vox.size());
-    std::iota(up.begin(), up.end(), 0);
+    sets = UnionFind(vox.size());
     for (std::size_t c = 0; c < vox.size(); ++c) {
       const std::int32_t* here = &id[vox[c]];
       for (std::size_t k = 13; k < 26; ++k) {  // steps26 goes k from -1 to 1: the second half is ahead
         const std::int32_t m = here[offset[k]];
         if (m < 0) continue;
-        const std::int32_t a = find(std::int32_t(c)), b = find(m);
-        if (a != b) up[std::size_t(std::max(a, b))] = std::min(a, b);
+        sets.unite(std::uint32_t(c), std::uint32_t(m));
       }
     }
-    std::int32_t first = -1;
+    std::int64_t first = -1;
     bool split = false;
     for (std::size_t c = 0; c < vox.size() && !split; ++c)
       if (I[vox[c]] >= least_target) {
-        const std::int32_t r = find(std::int32_t(c));
+        const std::int64_t r = sets.find(std::uint32_t(c));
         split = first >= 0 && r != first;
         first = r;
       }
@@ -343,7 +338,7 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
     if (!radius.empty()) thick[c] = float(radius[vox[c]] / vs);
   }
   std::vector<std::uint32_t> targets_of(count, 0);  // of a component, at its lowest number
-  for (std::size_t c = 0; c < count; ++c) targets_of[std::size_t(find(std::int32_t(c)))] += target[c];
+  for (std::size_t c = 0; c < count; ++c) targets_of[sets.find(std::uint32_t(c))] += target[c];
   // The domain's 26-neighbours of a numbered voxel: f(number, step k).  Looked
   // up in the grid's numbering each time: the walks below visit about half
   // the domain once, so a table of all of them would cost more than it saves.
@@ -399,7 +394,7 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
     // The shortest paths stop once every target of the component has its
     // path, as only the targets' paths are used, leaving the weakly voted
     // rim of the votes unvisited.
-    const std::size_t targets = targets_of[std::size_t(find(std::int32_t(root)))];
+    const std::size_t targets = targets_of[sets.find(std::uint32_t(root))];
     // Intensity-driven shortest paths from the root over the component
     // (Dijkstra, with a radix heap: a third less time than a binary heap).
     std::vector<std::size_t> members;

@@ -8,6 +8,7 @@
 #include <numeric>
 #include <thread>
 
+#include "core/union_find.h"
 #include "core/errors.h"
 #include "core/threads.h"
 #include "registry/registry.h"
@@ -59,16 +60,11 @@ void count_boundary(const Mesh& mesh, std::size_t& edges, std::size_t& loops) {
   for (const auto& [p, q] : border) verts.push_back(p), verts.push_back(q);
   std::sort(verts.begin(), verts.end());
   verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
-  std::vector<std::uint32_t> parent(verts.size());
-  std::iota(parent.begin(), parent.end(), 0u);
+  UnionFind sets(verts.size());
   auto id = [&](std::uint32_t v) { return std::uint32_t(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin()); };
-  auto find = [&](std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (const auto& [p, q] : border) parent[find(id(p))] = find(id(q));
+  for (const auto& [p, q] : border) sets.unite(id(p), id(q));
   loops = 0;
-  for (std::uint32_t v = 0; v < parent.size(); ++v) loops += find(v) == v;
+  for (std::uint32_t v = 0; v < sets.parent.size(); ++v) loops += sets.find(v) == v;
 }
 
 // A run of empty voxels [x0, x1] in one row (j, k) of the grid.
