@@ -4,6 +4,7 @@
 #include <bit>
 #include <chrono>
 #include <functional>
+#include <memory>
 #include <future>
 #include <optional>
 #include <cmath>
@@ -724,19 +725,20 @@ ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mes
     decimated = cluster_decimate(mesh, {std::size_t(p.render_faces)}).mesh;
   const Mesh& drawn = decimated.faces.empty() ? mesh : decimated;
   out.faces_drawn = drawn.faces.size();
-  // The mesh's report (whether it is closed, its genus) and, for a closed
-  // mesh, its solid at the votes' voxel size (the drawn copy: the surface's
-  // voxels and those it encloses), on a thread of their own while the views
-  // are drawn.
+  // What needs the mesh alone, on a thread of its own while the views are
+  // drawn: its report (whether it is closed, its genus), its ray caster (the
+  // inside tests) and, for a closed mesh, its solid at the votes' voxel size
+  // (the drawn copy: the surface's voxels and those it encloses).
   struct Solid {
     MeshReport report;
+    std::unique_ptr<RayCaster> caster;
     std::optional<VoxelGrid> grid;
   };
   // Its context passes cancellation on, not progress: the job's progress
   // is this thread's.
   const Context solid_ctx(nullptr, [ctx] { return ctx && ctx->cancelled(); });
   std::future<Solid> solid_future = std::async(std::launch::async, [&] {
-    Solid solid{mesh_report(mesh), std::nullopt};
+    Solid solid{mesh_report(mesh), std::make_unique<RayCaster>(mesh), std::nullopt};
     if (solid.report.closed) {
       VoxelizeParams vp;
       vp.voxel_size = vote_voxel_size(box, p);
@@ -781,7 +783,7 @@ ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mes
   }
   watch.stop(out.vote_seconds, out.vote_cpu_seconds);
   if (ctx) ctx->progress(0.8, "thinning");
-  const RayCaster caster(mesh);
+  const RayCaster& caster = *solid.caster;
   out.skeleton = thin(out.votes, radius, p, out.genus, [&](const Vec3& q) { return caster.inside(q); });
   // Smoothing may not move a node out of the mesh.
   simplify(out.skeleton, p.merge_distance * box.diagonal(), p.smoothing,
