@@ -11,6 +11,8 @@
 #include <ctime>
 #include <numeric>
 #include <queue>
+#include <tuple>
+#include <unordered_map>
 #include <thread>
 
 
@@ -402,7 +404,7 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
     RadixHeap q;
     cost[root] = 0;
     q.push(0, std::uint32_t(root));
-    while (!q.empty() && members.size() < targets) {
+    while (!q.empty() && (members.size() < targets || max_loops > 0)) {
       const auto [c, n] = q.pop();
       if (c > cost[n] || done[n]) continue;
       done[n] = 1;
@@ -459,41 +461,53 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   }
   if (s.edges.empty()) return s;
 
-  // Loops: an end of the skeleton next to (through voted voxels) a part of it
-  // that is far along the skeleton closes a tunnel.
-  const Adjacency adj = skeleton_adjacency(s);
-  const std::vector<std::uint32_t> degree = node_degrees(s);
+  // Loops.  The skeleton so far is a tree; a loop closes where the shape
+  // has a tunnel.
   std::vector<std::size_t> voxel_of(s.nodes.size());  // a node's numbered voxel
   for (std::size_t c = 0; c < count; ++c)
     if (node_of[c] >= 0) voxel_of[std::size_t(node_of[c])] = c;
-  std::vector<std::array<Index, 2>> closing;
-  std::vector<std::uint8_t> closed(s.nodes.size(), 0);  // ends already used by a loop
-  // Tunnels (with the solid and its genus): an end looks for a gap twice as
-  // far, through the solid rather than the sparse votes; the gap closes a
-  // loop only if that loop goes around a hole (the fan of triangles from
-  // its centre crosses the outside), and at most `max_loops` gaps close,
-  // shortest first.
-  const bool tunnels = bool(inside) && max_loops >= 0;
-  struct Gap {
-    Index e, n;
-    double d;
+  const std::vector<std::uint32_t> degree = node_degrees(s);  // the tree's
+  const std::size_t tree_edges = s.edges.size();
+  std::vector<std::uint8_t> closed(s.nodes.size(), 0);  // the tree's ends beside a loop's closing
+  // How far a branch through a voxel covers, in voxels.
+  const auto cover = [&](std::size_t c) { return 1.5 * thick[c] + 2; };
+  const auto link = [&](Index a, Index b) {
+    const bool twice = a == b || std::any_of(s.edges.begin(), s.edges.end(), [&](const std::array<Index, 2>& x) {
+                         return (x[0] == a && x[1] == b) || (x[0] == b && x[1] == a);
+                       });
+    if (!twice) s.edges.push_back({a, b});
   };
-  std::vector<Gap> gaps;
-  const auto close_gap = [&](Index e, Index n, double reach) {
-    closing.push_back({e, n});
-    // The other end of the same gap closes the same loop: not twice.
-    for (std::size_t f = 0; f < s.nodes.size(); ++f)
-      if (degree[f] == 1 && norm(s.nodes[f] - s.nodes[e]) / vs <= reach) closed[f] = 1;
+  // Distances along the skeleton from `from` (Dijkstra over its edges, in
+  // voxels), with the way back.
+  std::vector<double> g;
+  std::vector<std::int32_t> back;
+  Adjacency adj;
+  std::size_t adj_edges = 0;  // the edges adj was made from
+  const auto along_skeleton = [&](Index from) {
+    if (adj.offsets.empty() || adj_edges != s.edges.size()) adj = skeleton_adjacency(s), adj_edges = s.edges.size();
+    g.assign(s.nodes.size(), HUGE_VAL);
+    back.assign(s.nodes.size(), -1);
+    using Item = std::pair<double, std::size_t>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<>> q;
+    q.push({g[from] = 0, from});
+    while (!q.empty()) {
+      const auto [c, n] = q.top();
+      q.pop();
+      if (c > g[n]) continue;
+      for (const std::uint32_t* m = adj.begin(n); m != adj.end(n); ++m) {
+        const double nc = c + norm(s.nodes[*m] - s.nodes[n]) / vs;
+        if (nc < g[*m]) q.push({g[*m] = nc, *m}), back[*m] = std::int32_t(n);
+      }
+    }
   };
-  // Whether the loop (nodes in order) is around a hole: samples of the
-  // triangles from its centre to each of its edges, more than 5% outside.
+  // Whether the loop (points in order) goes around a hole: more than 5%
+  // of the samples of the triangles from its centre to its edges are
+  // outside (21 a triangle: i / 6 of the way from the centre to the edge,
+  // i = 1..6, at i points along it); the first sample past 5% answers.
   const auto around_a_hole = [&](const std::vector<Vec3>& loop) {
     Vec3 centre{};
     for (const Vec3& v : loop) centre += v;
     centre = centre / double(loop.size());
-    // 21 samples a triangle (i / 6 of the way from the centre to the edge
-    // a b, i = 1..6, at i points along it); the first sample past 5% outside
-    // answers.
     const double enough = 0.05 * double(21 * loop.size());
     int out = 0;
     for (std::size_t k = 0; k < loop.size(); ++k) {
@@ -505,139 +519,208 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
     }
     return false;
   };
-  // Whether at least `share` of the samples every quarter voxel along the
-  // segment a b pass `test`; stops at the first sample that settles it.
-  const auto mostly = [](const Vec3& a, const Vec3& b, double length, double share, auto&& test) {
-    const double dt = 0.25 / std::max(length, 1.0);
-    const int all = int(std::floor(1 / dt)) + 1;
-    int failed = 0;
-    for (int k = 0; k < all; ++k)
-      if (!test(a + (b - a) * (k * dt)) && double(all - ++failed) < share * all) return false;
-    return true;
-  };
-  for (std::size_t e = 0; e < s.nodes.size() && !(tunnels && max_loops == 0); ++e) {
-    if (degree[e] != 1 || closed[e]) continue;
-    // Twice as far as a branch's covering reaches (four times for tunnels).
-    const double cover = 1.5 * thick[voxel_of[e]] + 2;
-    const double reach = (tunnels ? 4 : 2) * cover;
-    // Distances along the skeleton from e (Dijkstra over its edges).
-    std::vector<double> g(s.nodes.size(), HUGE_VAL);
-    std::vector<std::int32_t> back(s.nodes.size(), -1);
-    using Item = std::pair<double, std::size_t>;
-    std::priority_queue<Item, std::vector<Item>, std::greater<>> q;
-    q.push({g[e] = 0, e});
-    while (!q.empty()) {
-      const auto [c, n] = q.top();
-      q.pop();
-      if (c > g[n]) continue;
-      for (const std::uint32_t* m = adj.begin(n); m != adj.end(n); ++m) {
-        const double nc = c + norm(s.nodes[*m] - s.nodes[n]) / vs;
-        if (nc < g[*m]) q.push({g[*m] = nc, *m}), back[*m] = std::int32_t(n);
+  int loops = 0;
+  const bool tunnels = inside && max_loops >= 0;  // a closed mesh: its loops are its tunnels, at most its genus
+  if (tunnels && max_loops > 0) {
+    // The tunnels.  The shortest-path trees meet themselves around a
+    // tunnel: neighbouring voxels whose paths join the skeleton at nodes a
+    // and b further apart along it than their two covering radii.  The
+    // meetings across one tunnel touch one another, a cut through it: one
+    // loop a cut, closed by the best voted meeting whose loop (its two
+    // voxels' paths, the step between them and the skeleton's way from b
+    // to a) goes around a hole, the best voted cuts first.
+    std::vector<std::int32_t> joins(count, -1);  // the node where a settled voxel's path joins the skeleton
+    std::vector<std::size_t> chain;
+    for (std::size_t c = 0; c < count; ++c) {
+      if (!done[c] || joins[c] >= 0) continue;
+      chain.clear();
+      std::size_t n = c;
+      while (node_of[n] < 0 && joins[n] < 0 && parent[n] >= 0) chain.push_back(n), n = std::size_t(parent[n]);
+      const std::int32_t j = node_of[n] >= 0 ? node_of[n] : joins[n];
+      for (std::size_t v : chain) joins[v] = j;
+      joins[n] = j;
+    }
+    struct Meeting {
+      std::size_t u, v;  // the two voxels: u's path joins at a, v's at b
+      Index a, b;
+      float votes;  // the weaker voxel's
+    };
+    // The tree (a forest): each node's parent and its distance from its
+    // root along it; two nodes are far apart if the way between them, up to
+    // where their ways to the root meet, is longer than their two covers.
+    std::vector<std::int32_t> up(s.nodes.size(), -2);
+    std::vector<double> depth(s.nodes.size(), 0);
+    {
+      const Adjacency tree = skeleton_adjacency(s);
+      std::vector<std::size_t> queue;
+      for (std::size_t r = 0; r < s.nodes.size(); ++r) {
+        if (up[r] != -2) continue;
+        up[r] = -1;
+        queue.assign(1, r);
+        for (std::size_t q = 0; q < queue.size(); ++q)
+          for (const std::uint32_t* m = tree.begin(queue[q]); m != tree.end(queue[q]); ++m)
+            if (up[*m] == -2) {
+              up[*m] = std::int32_t(queue[q]);
+              depth[*m] = depth[queue[q]] + norm(s.nodes[*m] - s.nodes[queue[q]]) / vs;
+              queue.push_back(*m);
+            }
       }
     }
-    if (tunnels) {
+    const auto far_apart = [&](std::int32_t x, std::int32_t y) {
+      const double limit = cover(voxel_of[std::size_t(x)]) + cover(voxel_of[std::size_t(y)]);
+      for (double d = 0; x != y;) {
+        if (depth[std::size_t(x)] < depth[std::size_t(y)]) std::swap(x, y);
+        if (up[std::size_t(x)] < 0) return true;  // two trees
+        d += depth[std::size_t(x)] - depth[std::size_t(up[std::size_t(x)])];
+        if (d > limit) return true;
+        x = up[std::size_t(x)];
+      }
+      return false;
+    };
+    std::vector<Meeting> meetings;
+    for (std::size_t c = 0; c < count; ++c) {
+      if (!done[c] || joins[c] < 0) continue;
+      const std::int32_t* here = &id[vox[c]];
+      for (std::size_t k = 13; k < 26; ++k) {  // the neighbours ahead (numbered after c): each pair once
+        const std::int32_t m = here[offset[k]];
+        if (m < 0 || !done[std::size_t(m)] || joins[std::size_t(m)] < 0 || joins[std::size_t(m)] == joins[c] ||
+            !far_apart(joins[c], joins[std::size_t(m)]))
+          continue;
+        const bool c_first = joins[c] < joins[std::size_t(m)];
+        const std::size_t u = c_first ? c : std::size_t(m), v = c_first ? std::size_t(m) : c;
+        meetings.push_back({u, v, Index(joins[u]), Index(joins[v]), std::min(I[vox[u]], I[vox[v]])});
+      }
+    }
+    std::vector<std::uint8_t> cut(count, 0);  // the voxels of far meetings
+    for (const Meeting& x : meetings) cut[x.u] = cut[x.v] = 1;
+    // The cuts: the meetings' voxels, joined where they touch.
+    UnionFind cuts(count);
+    for (const Meeting& x : meetings) {
+      cuts.unite(std::uint32_t(x.u), std::uint32_t(x.v));
+      for (const std::size_t c : {x.u, x.v})
+        neighbours(c, [&](std::size_t m, std::size_t) {
+          if (cut[m]) cuts.unite(std::uint32_t(c), std::uint32_t(m));
+        });
+    }
+    std::vector<std::uint32_t> cut_of(meetings.size());
+    for (std::size_t k = 0; k < meetings.size(); ++k) cut_of[k] = cuts.find(std::uint32_t(meetings[k].u));
+    // The best voted meetings first; a cut's best voted meeting first.
+    std::vector<std::size_t> order(meetings.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+      const Meeting &p = meetings[x], &q = meetings[y];
+      return std::tie(q.votes, p.a, p.b, p.u) < std::tie(p.votes, q.a, q.b, q.u);
+    });
+    // A settled voxel's path up to the skeleton as it is now (a loop closed
+    // may have met it on its way), and the voxel where it joins.
+    const auto path_of = [&](std::size_t c, std::vector<std::size_t>& path) {
+      path.clear();
+      for (; node_of[c] < 0; c = std::size_t(parent[c])) path.push_back(c);
+      return c;
+    };
+    std::vector<std::size_t> pu, pv;
+    std::unordered_map<std::uint32_t, int> tries;  // a cut's meetings tried; -1 once it closed a loop
+    for (std::size_t k : order) {
+      if (loops >= max_loops) break;
+      int& tried = tries[cut_of[k]];
+      if (tried < 0 || tried >= 8) continue;  // closed, or no hole behind its best voted meetings
+      ++tried;
+      // Where the meeting's paths join the skeleton now: still far apart
+      // along it?  (A meeting across a tunnel already closed now joins the
+      // loop's own path on both sides.)
+      const std::size_t ju = path_of(meetings[k].u, pu), jv = path_of(meetings[k].v, pv);
+      const Index a = Index(node_of[ju]), b = Index(node_of[jv]);
+      along_skeleton(a);
+      if (!(g[b] > cover(ju) + cover(jv))) continue;
+      // The loop: along the skeleton from b to a, then u's path down from
+      // a, the step to v and v's path up to b.
+      std::vector<Vec3> loop;
+      for (std::int64_t n = b; n >= 0; n = back[std::size_t(n)]) loop.push_back(s.nodes[std::size_t(n)]);
+      for (auto it = pu.rbegin(); it != pu.rend(); ++it) loop.push_back(votes.center(votes.unlinear(vox[*it])));
+      for (std::size_t c : pv) loop.push_back(votes.center(votes.unlinear(vox[c])));
+      if (!around_a_hole(loop)) continue;
+      // The tree's ends within two of their covering radii of a or b along
+      // it are what remains past the loop: spurs.
+      for (const Index n : {a, b}) {
+        along_skeleton(n);
+        for (std::size_t f = 0; f < degree.size(); ++f)
+          if (degree[f] == 1 && g[f] <= 2 * cover(voxel_of[f])) closed[f] = 1;
+      }
+      Index prev = a;
+      for (auto it = pu.rbegin(); it != pu.rend(); ++it) link(prev, node(*it)), prev = node(*it);
+      for (std::size_t c : pv) link(prev, node(c)), prev = node(c);
+      link(prev, b);
+      tried = -1;
+      ++loops;
+    }
+  } else if (!tunnels) {
+    // Other meshes: an end next to (through voted voxels: 90% of the
+    // samples every quarter voxel, as votes are sparse) a part of the
+    // skeleton far along it closes a loop, twice as far as its branch
+    // covers; another end is preferred (the two close it cleanly).
+    std::vector<std::array<Index, 2>> gaps;
+    for (std::size_t e = 0; e < degree.size(); ++e) {
+      if (degree[e] != 1 || closed[e]) continue;
+      const double reach = 2 * cover(voxel_of[e]);
+      along_skeleton(Index(e));
       std::size_t best = e;
       double best_d = HUGE_VAL;
-      for (std::size_t n = 0; n < s.nodes.size(); ++n) {
+      bool best_is_end = false;
+      for (std::size_t n = 0; n < degree.size(); ++n) {
         const double d = norm(s.nodes[n] - s.nodes[e]) / vs;
-        if (d > reach || g[n] < 8 * cover || d >= best_d) continue;
-        // The gap goes through the solid (95% of its samples).
-        if (!mostly(s.nodes[e], s.nodes[n], d, 0.95, inside)) continue;
-        std::vector<Vec3> loop;
-        for (std::int64_t m = std::int64_t(n); m >= 0; m = back[std::size_t(m)]) loop.push_back(s.nodes[std::size_t(m)]);
-        if (around_a_hole(loop)) best = n, best_d = d;
+        const bool is_end = degree[n] == 1;
+        if (d > reach || g[n] < 4 * reach || (best_is_end && !is_end) || (is_end == best_is_end && d >= best_d)) continue;
+        const int samples = int(std::floor(4 * std::max(d, 1.0))) + 1;
+        int voted = 0;
+        for (int k = 0; k < samples; ++k) {
+          const VoxelIndex c = votes.locate(s.nodes[e] + (s.nodes[n] - s.nodes[e]) * (double(k) / (samples - 1)));
+          voted += votes.contains(c) && I[votes.linear(c)] > 0;
+        }
+        if (voted >= 0.9 * samples) best = n, best_d = d, best_is_end = is_end;
       }
-      if (best != e) gaps.push_back({Index(e), Index(best), best_d});
-      continue;
+      if (best == e) continue;
+      gaps.push_back({Index(e), Index(best)});
+      // The other end of the same gap closes the same loop: not twice.
+      for (std::size_t f = 0; f < degree.size(); ++f)
+        if (degree[f] == 1 && norm(s.nodes[f] - s.nodes[e]) / vs <= reach) closed[f] = 1;
     }
-    std::size_t best = e;
-    double best_d = HUGE_VAL;
-    bool best_is_end = false;  // another end is preferred: the two close the loop cleanly
-
-    for (std::size_t n = 0; n < s.nodes.size(); ++n) {
-      const double d = norm(s.nodes[n] - s.nodes[e]) / vs;
-      const bool is_end = degree[n] == 1;
-      if (d > reach || g[n] < 4 * reach || (best_is_end && !is_end) || (is_end == best_is_end && d >= best_d)) continue;
-      // The straight way must stay in voted voxels (votes are sparse: 90%
-      // of its samples).
-      const auto voted = [&](const Vec3& q) {
-        const VoxelIndex c = votes.locate(q);
-        return votes.contains(c) && I[votes.linear(c)] > 0;
-      };
-      if (mostly(s.nodes[e], s.nodes[n], d, 0.9, voted)) best = n, best_d = d, best_is_end = is_end;
-    }
-    if (best == e) continue;
-    close_gap(Index(e), Index(best), reach);
-  }
-  if (tunnels) {
-    std::sort(gaps.begin(), gaps.end(), [](const Gap& a, const Gap& b) { return a.d < b.d; });
-    for (const Gap& c : gaps)
-      if (int(closing.size()) < max_loops && !closed[c.e]) close_gap(c.e, c.n, 2 * (1.5 * thick[voxel_of[c.e]] + 2));
-  }
-  // Each loop is closed along the ridge of votes: the intensity-driven
-  // shortest path between the two voxels, through voted voxels; a tunnel's
-  // within its covering radius of the gap's straight segment (which was
-  // found inside the solid), so that the loop added is the one found to go
-  // around a hole, not a path that meets the skeleton on its way.
-  std::fill(cost.begin(), cost.end(), HUGE_VAL);
-  for (const auto& c : closing) {
-    const std::size_t from = voxel_of[c[0]], to = voxel_of[c[1]];
-    const Vec3 gap_a = s.nodes[c[0]], gap_b = s.nodes[c[1]];
-    const double tube = (1.5 * thick[from] + 2) * vs;
-    std::vector<std::size_t> touched;
-    bool reached = false;
-    // A tunnel's path within the tube first; if the votes do not join the
-    // gap's ends there, anywhere (the gap was found, so the loop closes).
-    for (const bool in_tube : {tunnels, false}) {
-      for (std::size_t n : touched) cost[n] = HUGE_VAL;
-      touched = {from};
+    // Each gap closes along the ridge of votes: the intensity-driven
+    // shortest path between its two voxels, not through the skeleton (a
+    // path touching it on its way would close small loops there too).
+    std::fill(cost.begin(), cost.end(), HUGE_VAL);
+    for (const auto& [e, n] : gaps) {
+      const std::size_t from = voxel_of[e], to = voxel_of[n];
+      std::vector<std::size_t> touched{from};
       RadixHeap q;
       cost[from] = 0;
       parent[from] = -1;
       q.push(0, std::uint32_t(from));
       while (!q.empty()) {
-        const auto [cn, n] = q.pop();
-        if (cn > cost[n]) continue;
-        if (n == to) {
-          reached = true;
+        const auto [cn, c] = q.pop();
+        if (cn > cost[c]) continue;
+        if (c == to) {
+          Index prev = n;
+          for (std::int64_t m = parent[to]; m >= 0 && std::size_t(m) != from; m = parent[std::size_t(m)])
+            link(prev, node(std::size_t(m))), prev = node(std::size_t(m));
+          link(prev, e);
           break;
         }
-        neighbours(n, [&, cn = cn, n = n](std::size_t m, std::size_t k) {
+        neighbours(c, [&, cn = cn, c = c](std::size_t m, std::size_t k) {
+          if (node_of[m] >= 0 && m != to) return;
           const double nc = cn + step[k].length / r2[m];
-          if (nc < cost[m]) {
-            if (in_tube) {
-              const Vec3 v = votes.center(votes.unlinear(vox[m]));
-              if (norm(v - closest_point_on_segment(v, gap_a, gap_b)) > tube) return;
-            }
-            if (cost[m] == HUGE_VAL) touched.push_back(m);
-            cost[m] = nc;
-            parent[m] = std::int32_t(n);
-            q.push(nc, std::uint32_t(m));
-          }
+          if (nc >= cost[m]) return;
+          if (cost[m] == HUGE_VAL) touched.push_back(m);
+          cost[m] = nc;
+          parent[m] = std::int32_t(c);
+          q.push(nc, std::uint32_t(m));
         });
       }
-      if (reached || !in_tube) break;
+      for (std::size_t m : touched) cost[m] = HUGE_VAL;
     }
-    if (reached) {
-      const auto link = [&](Index a, Index b) {
-        const bool twice = a == b || std::any_of(s.edges.begin(), s.edges.end(), [&](const std::array<Index, 2>& x) {
-                             return (x[0] == a && x[1] == b) || (x[0] == b && x[1] == a);
-                           });
-        if (!twice) s.edges.push_back({a, b});
-      };
-      Index prev = c[1];
-      for (std::int64_t n = parent[to]; n >= 0 && std::size_t(n) != from; n = parent[std::size_t(n)]) {
-        const Index cur = node(std::size_t(n));
-        link(prev, cur);
-        prev = cur;
-      }
-      link(prev, c[0]);
-    }
-    for (std::size_t n : touched) cost[n] = HUGE_VAL;
   }
   // The closing path may run into a branch short of its end, which is left
   // as a spur: terminal branches shorter than min_branch go.
-  if (!closing.empty())
+  if (s.edges.size() > tree_edges)
     prune_spurs(s, [&](const std::vector<Index>&, double length, Index tip) {
       // A spur that ends where a loop was closed is what remains of the
       // other side of the gap.

@@ -32,11 +32,13 @@
 //     in TEASAR (Sato et al. 2000): the farthest voxel not yet covered gives a
 //     path back to the tree, kept if long enough and voted enough (low-valued
 //     branches pruned), and the voxels within 1.5 x the local radius (the
-//     medial discs' that voted) around it are covered; then loops: two skeleton voxels joined
-//     through voted voxels but far apart along the skeleton close a loop
-//     (a tunnel of the shape); for a closed mesh, gaps through the solid
-//     whose loop goes around a hole, at most its genus, each closed near
-//     its gap (see thin);
+//     medial discs' that voted) around it are covered; then loops: for a
+//     closed mesh, its tunnels (at most its genus): the shortest-path
+//     trees meet themselves around a tunnel, two neighbouring voxels whose
+//     paths join the skeleton far apart along it; one loop for each cut of
+//     such meetings, through the best voted meeting whose loop goes around
+//     a hole; for other meshes, an end near (through voted voxels) a part
+//     of the skeleton far along it (see thin);
 // (e) simplify: internal arcs shorter than `merge_distance` collapsed (branch
 //     nodes that are too close merged), then endpoint-preserving Laplacian
 //     smoothing of the nodes inside branches, which frees them from voxel
@@ -99,10 +101,13 @@ Votes vote(const std::vector<render::ViewCapture>& views, const BBox& box, const
 // vote) sets how far a branch covers the voxels around it (1.5 x the radius
 // + 2 voxels, as TEASAR) and how far an end looks to close a loop.
 // With `inside` (the solid) and `max_loops` >= 0 (its genus), loops are
-// tunnels: an end looks twice as far for a gap through the solid, the gap
-// closes a loop only if that loop goes around a hole (the triangles from its
-// centre to its edges cross the outside), and at most max_loops gaps close,
-// shortest first; otherwise a gap through voted voxels closes one.
+// tunnels: where the shortest-path trees meet themselves (neighbouring
+// voxels whose paths join the skeleton further apart along it than their
+// covering radii), the meetings that touch one another form a cut through
+// a tunnel; each cut closes one loop, through its best voted meeting whose
+// loop goes around a hole (the triangles from its centre to its edges cross
+// the outside), the best voted cuts first, at most max_loops.  Otherwise an
+// end next to a far part of the skeleton through voted voxels closes one.
 Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const ProjectionParams& p, int max_loops = -1,
               const std::function<bool(const Vec3&)>& inside = {});
 
