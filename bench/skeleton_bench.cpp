@@ -126,6 +126,14 @@ int main(int argc, char** argv) {
                 mcf.cpu_seconds, proj.cpu_seconds, mcf.cpu_seconds / proj.cpu_seconds);
     std::printf("%-17s ends once spurs shorter than 0 / 2%% / 5%% / 10%% of the diagonal are pruned (repeatedly): MCF %s, projection %s\n",
                 "", ends_by_pruning(mcf.skeleton, box.diagonal()).c_str(), ends_by_pruning(proj.skeleton, box.diagonal()).c_str());
+    // The limbs both have: at 5%, the ends within 10% of the diagonal of a
+    // different end of the other's.
+    {
+      const std::vector<Vec3> ours = ends_after_pruning(proj.skeleton, 0.05 * box.diagonal());
+      const std::vector<Vec3> theirs = ends_after_pruning(mcf.skeleton, 0.05 * box.diagonal());
+      std::printf("%-17s limbs: at 5%%, %zu of the projection's %zu ends are within 10%% of the diagonal of one of MCF's %zu\n", "",
+                  matched_ends(ours, theirs, 0.10 * box.diagonal()), ours.size(), theirs.size());
+    }
     // Tunnels: the mesh's genus, and those of the vote grid (a run of its
     // own, keeping the votes), thresholded as the thinning's targets (0.25 x
     // the most votes) and as its domain (any vote).

@@ -1,6 +1,7 @@
 #include "skeleton/skeleton_metrics.h"
 
 #include <algorithm>
+#include <tuple>
 #include <cmath>
 #include <numbers>
 
@@ -136,11 +137,29 @@ SkeletonDistance skeleton_distance(const Skeleton& a, const Skeleton& b, double 
   return {std::max(hab, hba), (mab + mba) / 2};
 }
 
-std::size_t endpoints_after_pruning(Skeleton s, double length) {
+std::size_t endpoints_after_pruning(Skeleton s, double length) { return ends_after_pruning(std::move(s), length).size(); }
+
+std::vector<Vec3> ends_after_pruning(Skeleton s, double length) {
   while (prune_spurs(s, [&](const std::vector<Index>&, double l, Index) { return l < length; })) {
   }
   const std::vector<std::uint32_t> degree = node_degrees(s);
-  return std::size_t(std::count(degree.begin(), degree.end(), 1u));
+  std::vector<Vec3> ends;
+  for (std::size_t n = 0; n < degree.size(); ++n)
+    if (degree[n] == 1) ends.push_back(s.nodes[n]);
+  return ends;
+}
+
+std::size_t matched_ends(const std::vector<Vec3>& a, const std::vector<Vec3>& b, double near) {
+  std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j)
+      if (const double d = norm(a[i] - b[j]); d <= near) pairs.emplace_back(d, i, j);
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<bool> used_a(a.size()), used_b(b.size());
+  std::size_t matched = 0;
+  for (const auto& [d, i, j] : pairs)
+    if (!used_a[i] && !used_b[j]) used_a[i] = used_b[j] = true, ++matched;
+  return matched;
 }
 
 }  // namespace cgview

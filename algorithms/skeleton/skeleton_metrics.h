@@ -44,6 +44,11 @@ Metrics metrics_table(const SkeletonMetrics& m);
 // hand's fingers go, then the arm ends at the hand), so that skeletons with
 // and without bumps compare by their limbs.
 std::size_t endpoints_after_pruning(Skeleton s, double length);
+// Where those ends are.
+std::vector<Vec3> ends_after_pruning(Skeleton s, double length);
+// How many ends of `a` pair with a different end of `b` no further than
+// `near` (the closest pairs first): the limbs two skeletons share.
+std::size_t matched_ends(const std::vector<Vec3>& a, const std::vector<Vec3>& b, double near);
 
 struct SkeletonDistance {
   double hausdorff = 0, mean = 0;

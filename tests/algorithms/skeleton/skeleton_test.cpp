@@ -321,7 +321,8 @@ TEST(SkeletonProjection, EveryNodeIsInsideTheSampleMeshes) {
 
 // Issue 10's "same limbs": MCF gives fingers, toes and bumps a short branch
 // each (17-19 ends on man); with spurs under 5% of the diagonal pruned from
-// both, MCF's ends are within one of ours, and ours has no such spur.
+// both, MCF's ends are within one of ours, ours has no such spur, and each
+// of ours is within 10% of the diagonal of a different one of MCF's.
 TEST(SkeletonProjection, ManHasMcfsLimbsOnceSpursArePruned) {
   const Mesh mesh = read_mesh(test::sample("man.off"));
   BBox box;
@@ -334,6 +335,7 @@ TEST(SkeletonProjection, ManHasMcfsLimbsOnceSpursArePruned) {
   EXPECT_EQ(our_ends, endpoints_after_pruning(ours, 0));
   EXPECT_LE(std::max(our_ends, mcf_ends) - std::min(our_ends, mcf_ends), 1u) << "MCF: " << mcf_ends;
   EXPECT_GT(endpoints_after_pruning(mcf, 0), mcf_ends + 5);  // MCF's raw count is mostly spurs
+  EXPECT_EQ(matched_ends(ends_after_pruning(ours, spur), ends_after_pruning(mcf, spur), 2 * spur), our_ends);
 }
 
 // A pipe as long as it is wide: a side view's medial axis runs along its
