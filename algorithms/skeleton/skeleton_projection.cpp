@@ -825,6 +825,7 @@ ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mes
     if (solid.report.closed) {
       VoxelizeParams vp;
       vp.voxel_size = vote_voxel_size(box, p);
+      vp.box = box;  // the votes' grid, voxel for voxel (a decimated copy's own box is smaller)
       vp.threads = 1;
       solid.grid = voxelize(drawn, vp, &solid_ctx).grid;
     }

@@ -230,6 +230,12 @@ VoxelizeResult voxelize(const Mesh& mesh, const VoxelizeParams& p, const Context
   BBox box;
   for (const Tri& t : mesh.faces)
     for (Index v : t) box.add(mesh.positions[v]);
+  if (p.box) {
+    for (int a = 0; a < 3; ++a)
+      if (box.min[a] < p.box->min[a] || box.max[a] > p.box->max[a])
+        throw InvalidInput("voxelize: the given box does not hold the mesh's faces");
+    box = *p.box;
+  }
   const auto [dims, size, need] = voxelize_geometry(box, p);
   // The cells the box spans on each axis (dims without the padding).
   const double cells_of[3] = {double(dims[0] - 2 * p.padding), double(dims[1] - 2 * p.padding),

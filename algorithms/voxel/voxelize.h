@@ -35,6 +35,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,9 @@ struct VoxelizeParams {
   int padding = 1;             // empty voxels added on every side
   double max_memory_mb = 2048; // refuse grids that would need more
   int threads = 0;             // 0: std::thread::hardware_concurrency()
+  // The box the grid covers (with the padding around it), when it must match
+  // another grid's; it must hold the faces.  Default: the faces' own box.
+  std::optional<BBox> box;
 };
 
 struct VoxelizeResult {

@@ -76,6 +76,27 @@ TEST(VoxelizeTest, AxisAlignedBoxGivesItsExactVoxelCount) {
   EXPECT_EQ(off.solid_voxels, 27u);
 }
 
+// A grid over a given box (to match another grid voxel for voxel): a 2 x 2
+// x 2 box inside a 4 x 4 x 4 one at voxel size 0.5 fills exactly its 4 x 4
+// x 4 voxels, where the bigger box puts them; a box that leaves faces out
+// is refused.
+TEST(VoxelizeTest, AGivenBoxSetsTheGrid) {
+  VoxelizeParams p;
+  p.voxel_size = 0.5;
+  p.box = BBox{{-1, -1, -1}, {3, 3, 3}};
+  const VoxelizeResult r = voxelize(test::box({0, 0, 0}, {2, 2, 2}), p);
+  EXPECT_EQ(r.grid.dims(), (std::array<int, 3>{10, 10, 10}));
+  EXPECT_EQ(r.grid.origin().x, -1.5);
+  EXPECT_EQ(r.solid_voxels, 64u);
+  for (std::size_t n = 0; n < r.grid.size(); ++n) {
+    const Vec3 c = r.grid.center(r.grid.unlinear(n));
+    const bool in = c.x > 0 && c.x < 2 && c.y > 0 && c.y < 2 && c.z > 0 && c.z < 2;
+    ASSERT_EQ(bool(r.grid.bytes()[n]), in) << c.x << " " << c.y << " " << c.z;
+  }
+  p.box = BBox{{0.5, 0, 0}, {3, 3, 3}};
+  EXPECT_THROW(voxelize(test::box({0, 0, 0}, {2, 2, 2}), p), InvalidInput);
+}
+
 TEST(VoxelizeTest, PaddingStaysEmpty) {
   // refined_elephant's coordinates are not dyadic: rounding must not reach the padding.
   const Mesh m = read_mesh(test::sample("elephant.off"));
