@@ -105,8 +105,7 @@ int main(int argc, char** argv) {
     const bool big = in.mesh.faces.size() > 500000;
     const Run mcf = run("skeleton_mcf", in.mesh, big ? 1 : opt.repeat);
     const Run proj = run("skeleton_projection", in.mesh, big ? 1 : opt.repeat, proj_params);
-    BBox box;
-    for (const Vec3& p : in.mesh.positions) box.add(p);
+    const BBox box = bounding_box(in.mesh);
     const SkeletonDistance d = skeleton_distance(mcf.skeleton, proj.skeleton);
     const auto row = [](const Metrics& m) {
       char buf[64];

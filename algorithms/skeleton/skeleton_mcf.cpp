@@ -50,8 +50,7 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   if (!CGAL::is_closed(sm))
     throw InvalidInput(std::string("skeleton_mcf needs a closed mesh: this one has borders (") + remedy + ")");
   if (!CGAL::is_triangle_mesh(sm)) throw InvalidInput("skeleton_mcf needs a triangle mesh");
-  BBox box;
-  for (const Vec3& q : mesh.positions) box.add(q);
+  const BBox box = bounding_box(mesh);
   Skeletonization mcs(sm);
   mcs.set_max_triangle_angle(p.max_triangle_angle * std::numbers::pi / 180.0);
   mcs.set_min_edge_length(p.min_edge_length * box.diagonal());

@@ -792,8 +792,7 @@ ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mes
                                            const Context* ctx) {
   p.check();
   if (mesh.faces.empty()) throw InvalidInput("the mesh has no faces: it has no silhouette");
-  BBox box;
-  for (const Vec3& v : mesh.positions) box.add(v);
+  const BBox box = bounding_box(mesh);
   ProjectionResult out;
   Stopwatch watch;
   if (ctx) ctx->progress(0.0, "rendering silhouettes");

@@ -325,8 +325,7 @@ TEST(SkeletonProjection, EveryNodeIsInsideTheSampleMeshes) {
 // of ours is within 10% of the diagonal of a different one of MCF's.
 TEST(SkeletonProjection, ManHasMcfsLimbsOnceSpursArePruned) {
   const Mesh mesh = read_mesh(test::sample("man.off"));
-  BBox box;
-  for (const Vec3& p : mesh.positions) box.add(p);
+  const BBox box = bounding_box(mesh);
   const double spur = 0.05 * box.diagonal();
   const Skeleton ours = artifact<Skeleton>(run_algorithm("skeleton_projection", mesh), "skeleton");
   const Skeleton mcf = artifact<Skeleton>(run_algorithm("skeleton_mcf", mesh), "skeleton");
