@@ -387,6 +387,7 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
     });
   };
 
+  const bool tunnels = inside && max_loops >= 0;  // a closed mesh: its loops are its tunnels, at most its genus
   // Components in order of their most voted voxel.
   std::vector<std::size_t> order;
   for (std::size_t c = 0; c < count; ++c)
@@ -396,7 +397,7 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
     if (done[root]) continue;
     // The shortest paths stop once every target of the component has its
     // path, as only the targets' paths are used, leaving the weakly voted
-    // rim of the votes unvisited; unless loops may close (max_loops > 0):
+    // rim of the votes unvisited; unless tunnels may close loops:
     // the trees then go on to meet around the tunnels (one of the
     // elephant's three loops is found only so).
     const std::size_t targets = targets_of[sets.find(std::uint32_t(root))];
@@ -406,7 +407,7 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
     RadixHeap q;
     cost[root] = 0;
     q.push(0, std::uint32_t(root));
-    while (!q.empty() && (members.size() < targets || max_loops > 0)) {
+    while (!q.empty() && (members.size() < targets || (tunnels && max_loops > 0))) {
       const auto [c, n] = q.pop();
       if (c > cost[n] || done[n]) continue;
       done[n] = 1;
@@ -473,12 +474,6 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   std::vector<std::uint8_t> closed(s.nodes.size(), 0);  // the tree's ends beside a loop's closing
   // How far a branch through a voxel covers, in voxels.
   const auto cover = [&](std::size_t c) { return 1.5 * thick[c] + 2; };
-  const auto link = [&](Index a, Index b) {
-    const bool twice = a == b || std::any_of(s.edges.begin(), s.edges.end(), [&](const std::array<Index, 2>& x) {
-                         return (x[0] == a && x[1] == b) || (x[0] == b && x[1] == a);
-                       });
-    if (!twice) s.edges.push_back({a, b});
-  };
   // Distances along the skeleton from `from` (Dijkstra over its edges, in
   // voxels), with the way back.
   std::vector<double> g;
@@ -522,7 +517,6 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
     return false;
   };
   int loops = 0;
-  const bool tunnels = inside && max_loops >= 0;  // a closed mesh: its loops are its tunnels, at most its genus
   if (tunnels && max_loops > 0) {
     // The tunnels.  The shortest-path trees meet themselves around a
     // tunnel: neighbouring voxels whose paths join the skeleton at nodes a
@@ -550,7 +544,7 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
     // The tree (a forest): each node's parent and its distance from its
     // root along it; two nodes are far apart if the way between them, up to
     // where their ways to the root meet, is longer than their two covers.
-    std::vector<std::int32_t> up(s.nodes.size(), -2);
+    std::vector<std::int32_t> up(s.nodes.size(), -2), level(s.nodes.size(), 0);
     std::vector<double> depth(s.nodes.size(), 0);
     {
       const Adjacency tree = skeleton_adjacency(s);
@@ -563,6 +557,7 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
           for (const std::uint32_t* m = tree.begin(queue[q]); m != tree.end(queue[q]); ++m)
             if (up[*m] == -2) {
               up[*m] = std::int32_t(queue[q]);
+              level[*m] = level[queue[q]] + 1;
               depth[*m] = depth[queue[q]] + norm(s.nodes[*m] - s.nodes[queue[q]]) / vs;
               queue.push_back(*m);
             }
@@ -571,7 +566,7 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
     const auto far_apart = [&](std::int32_t x, std::int32_t y) {
       const double limit = cover(voxel_of[std::size_t(x)]) + cover(voxel_of[std::size_t(y)]);
       for (double d = 0; x != y;) {
-        if (depth[std::size_t(x)] < depth[std::size_t(y)]) std::swap(x, y);
+        if (level[std::size_t(x)] < level[std::size_t(y)]) std::swap(x, y);
         if (up[std::size_t(x)] < 0) return true;  // two trees
         d += depth[std::size_t(x)] - depth[std::size_t(up[std::size_t(x)])];
         if (d > limit) return true;
@@ -603,23 +598,22 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
     }
     std::vector<std::uint8_t> cut(count, 0);  // the voxels of far meetings
     for (const Meeting& x : meetings) cut[x.u] = cut[x.v] = 1;
-    // The cuts: the meetings' voxels, joined where they touch.
+    // The cuts: the meetings' voxels, joined where they touch (a meeting's
+    // two voxels touch).
     UnionFind cuts(count);
-    for (const Meeting& x : meetings) {
-      cuts.unite(std::uint32_t(x.u), std::uint32_t(x.v));
-      for (const std::size_t c : {x.u, x.v})
+    for (std::size_t c = 0; c < count; ++c)
+      if (cut[c])
         neighbours(c, [&](std::size_t m, std::size_t) {
           if (cut[m]) cuts.unite(std::uint32_t(c), std::uint32_t(m));
         });
-    }
     std::vector<std::uint32_t> cut_of(meetings.size());
     for (std::size_t k = 0; k < meetings.size(); ++k) cut_of[k] = cuts.find(std::uint32_t(meetings[k].u));
     // The best voted meetings first; a cut's best voted meeting first.
-    std::vector<std::size_t> order(meetings.size());
-    std::iota(order.begin(), order.end(), std::size_t(0));
-    std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
-      const Meeting &p = meetings[x], &q = meetings[y];
-      return std::tie(q.votes, p.a, p.b, p.u) < std::tie(p.votes, q.a, q.b, q.u);
+    std::vector<std::size_t> best(meetings.size());
+    std::iota(best.begin(), best.end(), std::size_t(0));
+    std::sort(best.begin(), best.end(), [&](std::size_t i, std::size_t j) {
+      const Meeting &x = meetings[i], &y = meetings[j];
+      return std::tie(y.votes, x.a, x.b, x.u) < std::tie(x.votes, y.a, y.b, y.u);
     });
     // A settled voxel's path up to the skeleton as it is now (a loop closed
     // may have met it on its way), and the voxel where it joins.
@@ -629,12 +623,11 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
       return c;
     };
     std::vector<std::size_t> pu, pv;
-    std::unordered_map<std::uint32_t, int> tries;  // a cut's meetings tried; -1 once it closed a loop
-    for (std::size_t k : order) {
+    std::vector<std::int8_t> holeless(count, 0);  // a cut's meetings found around no hole; -1 once it closed a loop
+    for (std::size_t k : best) {
       if (loops >= max_loops) break;
-      int& tried = tries[cut_of[k]];
-      if (tried < 0 || tried >= 8) continue;  // closed, or no hole behind its best voted meetings
-      ++tried;
+      std::int8_t& tried = holeless[cut_of[k]];
+      if (tried < 0 || tried >= 8) continue;  // closed, or no hole behind its 8 best voted meetings
       // Where the meeting's paths join the skeleton now: still far apart
       // along it?  (A meeting across a tunnel already closed now joins the
       // loop's own path on both sides.)
@@ -648,18 +641,31 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
       for (std::int64_t n = b; n >= 0; n = back[std::size_t(n)]) loop.push_back(s.nodes[std::size_t(n)]);
       for (auto it = pu.rbegin(); it != pu.rend(); ++it) loop.push_back(votes.center(votes.unlinear(vox[*it])));
       for (std::size_t c : pv) loop.push_back(votes.center(votes.unlinear(vox[c])));
-      if (!around_a_hole(loop)) continue;
+      if (!around_a_hole(loop)) {
+        ++tried;
+        continue;
+      }
       // The tree's ends within two of their covering radii of a or b along
       // it are what remains past the loop: spurs.
       for (const Index n : {a, b}) {
-        along_skeleton(n);
+        if (n == b) along_skeleton(b);
         for (std::size_t f = 0; f < degree.size(); ++f)
           if (degree[f] == 1 && g[f] <= 2 * cover(voxel_of[f])) closed[f] = 1;
       }
+      // The loop's edges are all new (its voxels were no nodes, and a and b
+      // are far apart).
       Index prev = a;
-      for (auto it = pu.rbegin(); it != pu.rend(); ++it) link(prev, node(*it)), prev = node(*it);
-      for (std::size_t c : pv) link(prev, node(c)), prev = node(c);
-      link(prev, b);
+      for (auto it = pu.rbegin(); it != pu.rend(); ++it) {
+        const Index n = node(*it);
+        s.edges.push_back({prev, n});
+        prev = n;
+      }
+      for (std::size_t c : pv) {
+        const Index n = node(c);
+        s.edges.push_back({prev, n});
+        prev = n;
+      }
+      s.edges.push_back({prev, b});
       tried = -1;
       ++loops;
     }
@@ -667,10 +673,20 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
     // Other meshes: an end next to (through voted voxels: 90% of the
     // samples every quarter voxel, as votes are sparse) a part of the
     // skeleton far along it closes a loop, twice as far as its branch
-    // covers; another end is preferred (the two close it cleanly).
-    std::vector<std::array<Index, 2>> gaps;
+    // covers; another end is preferred (the two close it cleanly), and the
+    // ends within that reach are its gap's other side: not a gap again.
+    struct Gap {
+      Index e, n;
+      double reach;
+    };
+    std::vector<Gap> gaps;
+    std::vector<std::uint8_t> taken(degree.size(), 0);
+    const auto beside = [&](const Gap& x, std::vector<std::uint8_t>& ends) {
+      for (std::size_t f = 0; f < degree.size(); ++f)
+        if (degree[f] == 1 && norm(s.nodes[f] - s.nodes[x.e]) / vs <= x.reach) ends[f] = 1;
+    };
     for (std::size_t e = 0; e < degree.size(); ++e) {
-      if (degree[e] != 1 || closed[e]) continue;
+      if (degree[e] != 1 || taken[e]) continue;
       const double reach = 2 * cover(voxel_of[e]);
       along_skeleton(Index(e));
       std::size_t best = e;
@@ -689,17 +705,15 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
         if (voted >= 0.9 * samples) best = n, best_d = d, best_is_end = is_end;
       }
       if (best == e) continue;
-      gaps.push_back({Index(e), Index(best)});
-      // The other end of the same gap closes the same loop: not twice.
-      for (std::size_t f = 0; f < degree.size(); ++f)
-        if (degree[f] == 1 && norm(s.nodes[f] - s.nodes[e]) / vs <= reach) closed[f] = 1;
+      gaps.push_back({Index(e), Index(best), reach});
+      beside(gaps.back(), taken);
     }
     // Each gap closes along the ridge of votes: the intensity-driven
     // shortest path between its two voxels, not through the skeleton (a
     // path touching it on its way would close small loops there too).
     std::fill(cost.begin(), cost.end(), HUGE_VAL);
-    for (const auto& [e, n] : gaps) {
-      const std::size_t from = voxel_of[e], to = voxel_of[n];
+    for (const Gap& x : gaps) {
+      const std::size_t from = voxel_of[x.e], to = voxel_of[x.n];
       std::vector<std::size_t> touched{from};
       RadixHeap q;
       cost[from] = 0;
@@ -709,10 +723,16 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
         const auto [cn, c] = q.pop();
         if (cn > cost[c]) continue;
         if (c == to) {
-          Index prev = n;
-          for (std::int64_t m = parent[to]; m >= 0 && std::size_t(m) != from; m = parent[std::size_t(m)])
-            link(prev, node(std::size_t(m))), prev = node(std::size_t(m));
-          link(prev, e);
+          // All new edges: the path's voxels were no nodes, and the gap's
+          // two nodes are far apart along the skeleton.
+          Index prev = x.n;
+          for (std::int64_t m = parent[to]; m >= 0 && std::size_t(m) != from; m = parent[std::size_t(m)]) {
+            const Index n = node(std::size_t(m));
+            s.edges.push_back({prev, n});
+            prev = n;
+          }
+          s.edges.push_back({prev, x.e});
+          beside(x, closed);
           break;
         }
         neighbours(c, [&, cn = cn, c = c](std::size_t m, std::size_t k) {

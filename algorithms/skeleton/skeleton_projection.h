@@ -99,14 +99,17 @@ Votes vote(const std::vector<render::ViewCapture>& views, const BBox& box, const
 
 // (d) The skeleton of the vote grid, nodes at voxel centres; `radius` (from
 // vote) sets how far a branch covers the voxels around it (1.5 x the radius
-// + 2 voxels, as TEASAR) and how far an end looks to close a loop.
+// + 2 voxels, as TEASAR), how far apart along the skeleton the nodes where
+// two meeting paths join must be (tunnels), and how far an end looks to
+// close a loop (other meshes).
 // With `inside` (the solid) and `max_loops` >= 0 (its genus), loops are
 // tunnels: where the shortest-path trees meet themselves (neighbouring
 // voxels whose paths join the skeleton further apart along it than their
 // covering radii), the meetings that touch one another form a cut through
 // a tunnel; each cut closes one loop, through its best voted meeting whose
 // loop goes around a hole (the triangles from its centre to its edges cross
-// the outside), the best voted cuts first, at most max_loops.  Otherwise an
+// the outside; a cut whose 8 best voted meetings go around none closes
+// none), the best voted cuts first, at most max_loops.  Otherwise an
 // end next to a far part of the skeleton through voted voxels closes one.
 Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const ProjectionParams& p, int max_loops = -1,
               const std::function<bool(const Vec3&)>& inside = {});

@@ -231,8 +231,11 @@ VoxelizeResult voxelize(const Mesh& mesh, const VoxelizeParams& p, const Context
   for (const Tri& t : mesh.faces)
     for (Index v : t) box.add(mesh.positions[v]);
   if (p.box) {
+    // Up to rounding (a decimated copy's vertices, means of the full mesh's,
+    // can be an ulp past its box; the clamp below keeps them in).
+    const double slack = 1e-9 * norm(p.box->size());
     for (int a = 0; a < 3; ++a)
-      if (box.min[a] < p.box->min[a] || box.max[a] > p.box->max[a])
+      if (box.min[a] < p.box->min[a] - slack || box.max[a] > p.box->max[a] + slack)
         throw InvalidInput("voxelize: the given box does not hold the mesh's faces");
     box = *p.box;
   }
