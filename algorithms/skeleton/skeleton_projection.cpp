@@ -626,8 +626,8 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
     std::vector<std::int8_t> holeless(count, 0);  // a cut's meetings found around no hole; -1 once it closed a loop
     for (std::size_t k : best) {
       if (loops >= max_loops) break;
-      std::int8_t& tried = holeless[cut_of[k]];
-      if (tried < 0 || tried >= 8) continue;  // closed, or no hole behind its 8 best voted meetings
+      std::int8_t& failed = holeless[cut_of[k]];
+      if (failed < 0 || failed >= 8) continue;  // closed, or no hole behind its 8 best voted meetings
       // Where the meeting's paths join the skeleton now: still far apart
       // along it?  (A meeting across a tunnel already closed now joins the
       // loop's own path on both sides.)
@@ -642,16 +642,19 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
       for (auto it = pu.rbegin(); it != pu.rend(); ++it) loop.push_back(votes.center(votes.unlinear(vox[*it])));
       for (std::size_t c : pv) loop.push_back(votes.center(votes.unlinear(vox[c])));
       if (!around_a_hole(loop)) {
-        ++tried;
+        ++failed;
         continue;
       }
       // The tree's ends within two of their covering radii of a or b along
-      // it are what remains past the loop: spurs.
-      for (const Index n : {a, b}) {
-        if (n == b) along_skeleton(b);
+      // it (g: the walk from a, then from b) are what remains past the
+      // loop: spurs.
+      const auto mark_spurs = [&] {
         for (std::size_t f = 0; f < degree.size(); ++f)
           if (degree[f] == 1 && g[f] <= 2 * cover(voxel_of[f])) closed[f] = 1;
-      }
+      };
+      mark_spurs();
+      along_skeleton(b);
+      mark_spurs();
       // The loop's edges are all new (its voxels were no nodes, and a and b
       // are far apart).
       Index prev = a;
@@ -666,7 +669,7 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
         prev = n;
       }
       s.edges.push_back({prev, b});
-      tried = -1;
+      failed = -1;
       ++loops;
     }
   } else if (!tunnels) {
