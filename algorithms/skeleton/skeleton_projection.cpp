@@ -296,8 +296,19 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   std::vector<std::size_t> vox;                 // a number's voxel
   const std::vector<std::ptrdiff_t> offset = L.offsets();
   const std::vector<Step>& step = steps26();
-  // The components (union-find over the 13 neighbours ahead in the scan
-  // order; each joined to its lowest number).
+  // The domain's 26-neighbours of a numbered voxel: f(number, step k); from
+  // step 13 on, only those ahead in the scan order (numbered after it: each
+  // pair once; steps26 goes k from -1 to 1).  Looked up in the grid's
+  // numbering each time: the walks below visit about half the domain once,
+  // so a table of all of them would cost more than it saves.
+  const auto neighbours = [&](std::size_t c, auto&& f, std::size_t first = 0) {
+    const std::int32_t* here = &id[vox[c]];
+    for (std::size_t k = first; k < 26; ++k)
+      if (const std::int32_t m = here[offset[k]]; m >= 0) f(std::size_t(m), k);
+  };
+  constexpr std::size_t ahead = 13;
+  // The components (union-find over the neighbours ahead; each joined to its
+  // lowest number).
   UnionFind sets;
   for (const double least : {0.2 * least_target, 0.0}) {
     for (std::size_t n : vox) id[n] = -1;
@@ -307,14 +318,8 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
         for (std::size_t n = L.at(1, j, k), end = L.at(L.d[0] - 1, j, k); n < end; ++n)
           if (I[n] > least) id[n] = std::int32_t(vox.size()), vox.push_back(n);
     sets = UnionFind(vox.size());
-    for (std::size_t c = 0; c < vox.size(); ++c) {
-      const std::int32_t* here = &id[vox[c]];
-      for (std::size_t k = 13; k < 26; ++k) {  // steps26 goes k from -1 to 1: the second half is ahead
-        const std::int32_t m = here[offset[k]];
-        if (m < 0) continue;
-        sets.unite(std::uint32_t(c), std::uint32_t(m));
-      }
-    }
+    for (std::size_t c = 0; c < vox.size(); ++c)
+      neighbours(c, [&](std::size_t m, std::size_t) { sets.unite(std::uint32_t(c), std::uint32_t(m)); }, ahead);
     std::int64_t first = -1;
     bool split = false;
     for (std::size_t c = 0; c < vox.size() && !split; ++c)
@@ -342,14 +347,6 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   }
   std::vector<std::uint32_t> targets_of(count, 0);  // of a component, at its lowest number
   for (std::size_t c = 0; c < count; ++c) targets_of[sets.find(std::uint32_t(c))] += target[c];
-  // The domain's 26-neighbours of a numbered voxel: f(number, step k).  Looked
-  // up in the grid's numbering each time: the walks below visit about half
-  // the domain once, so a table of all of them would cost more than it saves.
-  const auto neighbours = [&](std::size_t c, auto&& f) {
-    const std::int32_t* here = &id[vox[c]];
-    for (std::size_t k = 0; k < 26; ++k)
-      if (const std::int32_t m = here[offset[k]]; m >= 0) f(std::size_t(m), k);
-  };
   const Vec3 ext = Vec3{double(L.d[0]), double(L.d[1]), double(L.d[2])} * vs;
   const double diagonal = norm(ext);
   const double min_branch = p.min_branch * diagonal / vs;  // in voxels
@@ -585,16 +582,15 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
     std::vector<Meeting> meetings;
     for (std::size_t c = 0; c < count; ++c) {
       if (!done[c] || joins[c] < 0) continue;
-      const std::int32_t* here = &id[vox[c]];
-      for (std::size_t k = 13; k < 26; ++k) {  // the neighbours ahead (numbered after c): each pair once
-        const std::int32_t m = here[offset[k]];
-        if (m < 0 || !done[std::size_t(m)] || joins[std::size_t(m)] < 0 || joins[std::size_t(m)] == joins[c] ||
-            !far(std::min(joins[c], joins[std::size_t(m)]), std::max(joins[c], joins[std::size_t(m)])))
-          continue;
-        const bool c_first = joins[c] < joins[std::size_t(m)];
-        const std::size_t u = c_first ? c : std::size_t(m), v = c_first ? std::size_t(m) : c;
-        meetings.push_back({u, v, Index(joins[u]), Index(joins[v]), std::min(I[vox[u]], I[vox[v]])});
-      }
+      neighbours(
+          c,
+          [&](std::size_t m, std::size_t) {
+            if (!done[m] || joins[m] < 0 || joins[m] == joins[c] || !far(std::min(joins[c], joins[m]), std::max(joins[c], joins[m])))
+              return;
+            const std::size_t u = joins[c] < joins[m] ? c : m, v = u == c ? m : c;
+            meetings.push_back({u, v, Index(joins[u]), Index(joins[v]), std::min(I[vox[u]], I[vox[v]])});
+          },
+          ahead);
     }
     std::vector<std::uint8_t> cut(count, 0);  // the voxels of far meetings
     for (const Meeting& x : meetings) cut[x.u] = cut[x.v] = 1;
@@ -603,9 +599,12 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
     UnionFind cuts(count);
     for (std::size_t c = 0; c < count; ++c)
       if (cut[c])
-        neighbours(c, [&](std::size_t m, std::size_t) {
-          if (cut[m]) cuts.unite(std::uint32_t(c), std::uint32_t(m));
-        });
+        neighbours(
+            c,
+            [&](std::size_t m, std::size_t) {
+              if (cut[m]) cuts.unite(std::uint32_t(c), std::uint32_t(m));
+            },
+            ahead);
     std::vector<std::uint32_t> cut_of(meetings.size());
     for (std::size_t k = 0; k < meetings.size(); ++k) cut_of[k] = cuts.find(std::uint32_t(meetings[k].u));
     // The best voted meetings first; a cut's best voted meeting first.
