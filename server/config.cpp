@@ -9,6 +9,8 @@
 #include <stdexcept>
 
 #include "auth.h"
+#include "core/errors.h"
+#include "io/parse_json.h"
 
 namespace cgview::server {
 
@@ -54,6 +56,8 @@ const std::map<std::string, Setter>& server_keys() {
       {"job_workers", [](const json& v, const std::string& k, ServerConfig& c) { c.jobs.max_workers = int(integer(v, k, 1, 1024)); }},
       {"job_timeout_s", [](const json& v, const std::string& k, ServerConfig& c) { c.jobs.timeout_s = double(integer(v, k, 0, 100000000)); }},
       {"job_memory_mb", [](const json& v, const std::string& k, ServerConfig& c) { c.jobs.memory_mb = std::size_t(integer(v, k, 0, 1 << 24)); }},
+      {"reader", [](const json& v, const std::string& k, ServerConfig& c) { c.reader = text(v, k); }},
+      {"upload_timeout_s", [](const json& v, const std::string& k, ServerConfig& c) { c.upload_timeout_s = double(integer(v, k, 1, 86400)); }},
       {"max_header_kb", [](const json& v, const std::string& k, ServerConfig& c) { c.max_header_bytes = std::size_t(integer(v, k, 1, 1 << 20)) << 10; }},
       {"max_ws_message_kb", [](const json& v, const std::string& k, ServerConfig& c) { c.max_ws_message_bytes = std::size_t(integer(v, k, 1, 1 << 20)) << 10; }},
       {"request_timeout_s", [](const json& v, const std::string& k, ServerConfig& c) { c.request_timeout_s = double(integer(v, k, 1, 86400)); }},
@@ -142,9 +146,11 @@ void load_config_file(const std::filesystem::path& file, ServerConfig& config) {
   s << f.rdbuf();
   json doc;
   try {
-    doc = json::parse(s.str());
+    doc = parse_json(s.str(), file.string());
   } catch (const json::parse_error& e) {
     throw std::invalid_argument(file.string() + ": not JSON: " + e.what());
+  } catch (const InvalidInput& e) {
+    throw std::invalid_argument(e.what());
   }
   try {
     apply_config(doc, config);

@@ -4,8 +4,6 @@
 #include <poll.h>
 #include <signal.h>
 #include <sqlite3.h>
-#include <sys/prctl.h>
-#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -19,6 +17,7 @@
 #include <sstream>
 
 #include "algorithm_json.h"
+#include "child_process.h"
 #include "core/errors.h"
 #include "io/mesh_io.h"
 #include "io/skeleton_io.h"
@@ -55,19 +54,6 @@ std::string read_file(const fs::path& p) {
   std::ostringstream s;
   s << f.rdbuf();
   return s.str();
-}
-
-std::string signal_name(int sig) {
-  switch (sig) {
-    case SIGSEGV: return "SIGSEGV";
-    case SIGABRT: return "SIGABRT";
-    case SIGKILL: return "SIGKILL";
-    case SIGTERM: return "SIGTERM";
-    case SIGBUS: return "SIGBUS";
-    case SIGFPE: return "SIGFPE";
-    case SIGILL: return "SIGILL";
-    default: return "signal " + std::to_string(sig);
-  }
 }
 
 json value_json(const ParamValue& v) {
@@ -716,43 +702,16 @@ bool JobScheduler::launch(Job& j) {
     j.error = "pipe failed";
     return false;
   }
-  std::string worker = config_.worker.string(), spec = (dir / "job.json").string(), err = (dir / "stderr.txt").string();
-  char* argv[] = {worker.data(), spec.data(), nullptr};
-  const rlim_t limit = rlim_t(config_.memory_mb) << 20;
-  // Until it execs, the child is a copy of the server, Asio's signal handler
-  // included: a SIGTERM then (a job cancelled at once) would go through the
-  // server's own signal pipe and stop the server.  The child starts with
-  // SIGTERM and SIGINT blocked, resets them to the default, then unblocks.
-  sigset_t term, old_mask;
-  sigemptyset(&term);
-  sigaddset(&term, SIGTERM);
-  sigaddset(&term, SIGINT);
-  ::pthread_sigmask(SIG_BLOCK, &term, &old_mask);
-  const pid_t pid = ::fork();
-  if (pid != 0) ::pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
+  ChildOptions child;
+  child.memory_mb = config_.memory_mb;
+  child.stdout_fd = fds[1];
+  child.stderr_file = dir / "stderr.txt";
+  const pid_t pid = spawn_child({config_.worker.string(), (dir / "job.json").string()}, child);
   if (pid < 0) {
     ::close(fds[0]);
     ::close(fds[1]);
     j.error = "fork failed";
     return false;
-  }
-  if (pid == 0) {
-    ::signal(SIGTERM, SIG_DFL);
-    ::signal(SIGINT, SIG_DFL);
-    ::pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
-    ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // a killed server leaves no worker behind
-    ::setpgid(0, 0);
-    if (limit > 0) {
-      struct rlimit rl{limit, limit};
-      ::setrlimit(RLIMIT_AS, &rl);
-    }
-    struct rlimit core{0, 0};
-    ::setrlimit(RLIMIT_CORE, &core);
-    ::dup2(fds[1], 1);
-    const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (e >= 0) ::dup2(e, 2);
-    ::execv(argv[0], argv);
-    ::_exit(127);
   }
   ::close(fds[1]);
   ::fcntl(fds[0], F_SETFL, O_NONBLOCK);

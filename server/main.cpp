@@ -59,7 +59,10 @@ const char* kHelp =
     "  --worker PATH        the job worker executable (default: cgview-worker beside this program)\n"
     "  --job-workers N      jobs run at once, each in its own process (default: the number of cores)\n"
     "  --job-timeout-s N    time limit of a job in seconds (default 3600; 0: none)\n"
-    "  --job-memory-mb N    address-space limit of a job's process in MB (default 8192; 0: none)\n"
+    "  --job-memory-mb N    address-space limit of a job's process in MB (default 8192; 0: none);\n"
+    "                       also of the process that reads each upload (over it: 413)\n"
+    "  --reader PATH        the upload reader executable (default: cgview-read beside this program)\n"
+    "  --upload-timeout-s N  time limit of reading one upload, in its own process (default 120; over: 413)\n"
     "  --on-restart WHAT    jobs left queued or running by a previous run: requeue (default) or interrupt\n"
     "  -h, --help           this help\n";
 
@@ -166,10 +169,12 @@ int main(int argc, char** argv) {
       else if (a == "--tls-key") config.tls_key = value();
       else if (a == "--workers") config.workers = int(number(1, 256));
       else if (a == "--worker") config.jobs.worker = value();
+      else if (a == "--reader") config.reader = value();
       else if (a == "--gl-platform") config.gl_platform = render::parse_gl_platform(value(), "--gl-platform");
       else if (a == "--job-workers") config.jobs.max_workers = int(number(1, 1024));
       else if (a == "--job-timeout-s") config.jobs.timeout_s = double(number(0, 100000000));
       else if (a == "--job-memory-mb") config.jobs.memory_mb = std::size_t(number(0, 1 << 24));
+      else if (a == "--upload-timeout-s") config.upload_timeout_s = double(number(1, 86400));
       else if (a == "--on-restart") {
         const std::string v = value();
         if (v != "requeue" && v != "interrupt") throw std::invalid_argument("--on-restart is requeue or interrupt");
@@ -202,6 +207,11 @@ int main(int argc, char** argv) {
     std::error_code ec;
     const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
     config.jobs.worker = (ec ? std::filesystem::path(argv[0]) : self).parent_path() / "cgview-worker";
+  }
+  if (config.reader.empty()) {
+    std::error_code ec;
+    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    config.reader = (ec ? std::filesystem::path(argv[0]) : self).parent_path() / "cgview-read";
   }
   // The renderer says once when only a software renderer is there.
   render::set_render_log([](const std::string& m) { std::fprintf(stderr, "cgview-server: %s\n", m.c_str()); });

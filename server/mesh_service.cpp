@@ -8,141 +8,15 @@
 
 #include "core/cluster_decimate.h"
 #include "core/errors.h"
-#include "core/mesh_report.h"
 #include "io/draco_io.h"
 #include "io/materials.h"
 #include "io/mesh_io.h"
-#include "mesh_report_json.h"
-#include "zip_bundle.h"
+#include "upload_read.h"
 
 namespace cgview::server {
 
 namespace {
 constexpr std::size_t kMeshesKept = 8;
-
-std::string clean_name(const std::string& name) {
-  if (name.empty()) throw InvalidInput("the mesh needs a name (?name=FILE.EXT)");
-  if (name.size() > 255) throw InvalidInput("the name is longer than 255 characters");
-  for (unsigned char c : name)
-    if (c < 32 || c == '/' || c == '\\' || c == 127) throw InvalidInput("the name may not hold '/', '\\' or control characters");
-  return name;
-}
-
-std::string lower(std::string s) {
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
-// The uploaded file that a mesh or MTL names, matched by base name without
-// case (files written on Windows name ".\\Tex.JPG" for "tex.jpg").
-const BundleFile* find_file(const std::vector<BundleFile>& files, const std::string& referenced) {
-  const std::string want = lower(file_base_name(referenced));
-  for (const auto& f : files)
-    if (lower(file_base_name(f.name)) == want) return &f;
-  return nullptr;
-}
-
-// The one mesh file among a zip's files.
-const BundleFile& mesh_file_of(const std::vector<BundleFile>& files) {
-  std::vector<const BundleFile*> meshes;
-  for (const auto& f : files) {
-    try {
-      if (can_read(format_from_name(f.name))) meshes.push_back(&f);
-    } catch (const UnsupportedFormat&) {
-      // an MTL, an image, a readme
-    }
-  }
-  if (meshes.empty()) throw InvalidInput("the zip holds no mesh file (readable: " + readable_formats() + ")");
-  if (meshes.size() > 1)
-    throw InvalidInput("the zip holds several mesh files ('" + meshes[0]->name + "', '" + meshes[1]->name +
-                       "', ...): upload one mesh per zip");
-  return *meshes.front();
-}
-
-struct Textures {
-  nlohmann::json material = nlohmann::json::object();  // has_uvs, textures, kd, materials
-  std::vector<std::string> blobs;                      // one per material["textures"] entry
-};
-
-// The texture named `image` among the uploaded files as a textures[] entry
-// and its blob, or a warning saying why it is not shown.
-std::optional<std::size_t> add_texture(Textures& t, const ReadResult& r, const std::vector<BundleFile>& files,
-                                       bool bundle, const std::string& image, std::vector<std::string>& warnings) {
-  const BundleFile* f = find_file(files, image);
-  if (!f) {
-    warnings.push_back("the texture '" + image + "' is not in the upload: its faces show untextured" +
-                       (bundle ? "" : " (upload a zip of the mesh and its images)"));
-    return std::nullopt;
-  }
-  const std::string mime = image_mime_type(f->bytes);
-  if (mime.empty()) {
-    warnings.push_back("the texture '" + image + "' is not a PNG or JPEG image: its faces show untextured");
-    return std::nullopt;
-  }
-  if (!r.mesh.has_uvs()) {
-    warnings.push_back("the mesh has no texture coordinates: its texture '" + image + "' is not shown");
-    return std::nullopt;
-  }
-  const std::string name = file_base_name(f->name);
-  for (std::size_t i = 0; i < t.blobs.size(); ++i)
-    if (t.material["textures"][i]["name"] == name) return i;  // two materials, one image: one blob
-  t.material["textures"].push_back({{"name", name}, {"mime", mime}, {"bytes", f->bytes.size()}});
-  t.blobs.push_back(f->bytes);
-  return t.blobs.size() - 1;
-}
-
-// The textures and diffuse colours of a mesh from the files uploaded with it:
-// for an OBJ, `materials` lists the materials its faces use in order of first
-// use (the order of the material ids in its Draco stream), each with its Kd
-// and the index of its texture in `textures`, or null.
-Textures find_textures(const ReadResult& r, std::string_view mesh_bytes, const std::vector<BundleFile>& files,
-                       bool bundle, std::vector<std::string>& warnings) {
-  Textures t;
-  t.material["has_uvs"] = r.mesh.has_uvs();
-  t.material["textures"] = nlohmann::json::array();
-  if (r.format == MeshFormat::obj) {
-    const ObjMaterialUse use = obj_material_use(mesh_bytes);
-    std::vector<Material> mtl;
-    for (const auto& lib : use.libraries) {
-      if (const BundleFile* f = find_file(files, lib)) {
-        for (auto& m : parse_mtl(f->bytes)) mtl.push_back(std::move(m));
-      } else {
-        warnings.push_back(bundle ? "the material library '" + lib + "' is not in the zip: the mesh shows untextured"
-                                  : "the OBJ names the material library '" + lib +
-                                        "': upload a zip of the OBJ, the MTL and its images to see its textures");
-      }
-    }
-    if (use.face_material.size() != r.mesh.num_faces()) return t;  // not the faces read_obj read: draw it plain
-    // Textures in order of the faces they cover, so textures[0] is the main one.
-    std::vector<std::size_t> order(use.names.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return use.faces.at(use.names[a]) > use.faces.at(use.names[b]); });
-    std::vector<nlohmann::json> entries(use.names.size());
-    for (const std::size_t i : order) {
-      const std::string& name = use.names[i];
-      const auto m = std::find_if(mtl.begin(), mtl.end(), [&](const Material& x) { return x.name == name; });
-      nlohmann::json e = {{"name", name}, {"faces", use.faces.at(name)}, {"kd", nullptr}, {"texture", nullptr}};
-      if (m != mtl.end() && m->kd) e["kd"] = *m->kd;
-      if (m != mtl.end() && !m->map_kd.empty())
-        if (const auto tex = add_texture(t, r, files, bundle, m->map_kd, warnings)) {
-          e["texture"] = *tex;
-          auto& te = t.material["textures"][*tex];
-          if (!te.contains("material")) {
-            te["material"] = name;
-            if (m->kd) te["kd"] = *m->kd;
-          }
-        }
-      if (!t.material.contains("kd") && m != mtl.end() && m->kd) t.material["kd"] = *m->kd;
-      entries[i] = std::move(e);
-    }
-    t.material["materials"] = entries;
-  } else if (r.format == MeshFormat::ply) {
-    const std::string image = ply_texture_file(mesh_bytes);
-    if (!image.empty()) add_texture(t, r, files, bundle, image, warnings);
-  }
-  return t;
-}
 
 // Each face's index into the stored mesh's `materials`, when its faces use
 // more than one (an OBJ's usemtl groups); empty otherwise.  It depends on the
@@ -159,33 +33,33 @@ MeshService::MeshService(Store& store, std::size_t cache_bytes) : store_(store),
 
 MeshRecord MeshService::upload(const std::string& name, const std::string& format, std::string_view bytes,
                                const std::string& owner) {
-  std::string n = clean_name(name);
-  const bool bundle = format == "zip" || (format.empty() && lower(n).ends_with(".zip"));
-  std::vector<BundleFile> files;
-  std::string_view mesh_bytes = bytes;
-  if (bundle) {
-    files = unzip_bundle(bytes, max_upload_bytes_);
-    const BundleFile& m = mesh_file_of(files);
-    n = clean_name(file_base_name(m.name));
-    mesh_bytes = m.bytes;
-  }
-  const MeshFormat f = format_from_name(format.empty() || bundle ? n : "x." + format);
-  ReadResult r = read_mesh_bytes(mesh_bytes, f, n);
-  if (r.mesh.num_faces() == 0) throw InvalidInput(n + ": the mesh has no faces");
-  Textures textures = find_textures(r, mesh_bytes, files, bundle, r.warnings);
+  UploadRead r = reader_.program.empty() ? read_upload(name, format, bytes, max_upload_bytes_)
+                                         : read_upload_in_child(reader_, name, format, bytes, max_upload_bytes_);
+  const std::string_view mesh_bytes = r.unpacked_mesh.empty() ? bytes : std::string_view(r.unpacked_mesh);
   MeshRecord rec;
-  rec.name = n;
-  rec.format = to_string(f);
+  rec.name = r.name;
+  rec.format = r.format;
   rec.sha256 = sha256_hex(mesh_bytes);
-  rec.report_json = protocol::to_json(mesh_report(r.mesh)).dump();
-  rec.warnings_json = nlohmann::json(r.warnings).dump();
-  rec.material_json = textures.material.dump();
+  rec.report_json = std::move(r.report_json);
+  rec.warnings_json = std::move(r.warnings_json);
+  rec.material_json = std::move(r.material_json);
   rec.owner = owner;
-  rec = store_.add_mesh(std::move(rec), mesh_bytes, textures.blobs);
-  std::lock_guard lock(mutex_);
-  meshes_.emplace_front(rec.sha256, std::make_shared<const Mesh>(std::move(r.mesh)));
-  if (meshes_.size() > kMeshesKept) meshes_.pop_back();
+  rec = store_.add_mesh(std::move(rec), mesh_bytes, r.textures);
+  if (r.mesh) {
+    std::lock_guard lock(mutex_);
+    meshes_.emplace_front(rec.sha256, std::move(r.mesh));
+    if (meshes_.size() > kMeshesKept) meshes_.pop_back();
+  }
   return rec;
+}
+
+void MeshService::set_reader(const UploadReader& reader) {
+  reader_ = reader;
+  if (reader_.program.empty()) return;
+  // What a killed server left of uploads being read.
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(reader_.temp_dir, ec))
+    if (e.path().filename().string().starts_with("upload-")) std::filesystem::remove_all(e.path(), ec);
 }
 
 std::shared_ptr<const Mesh> MeshService::mesh(const MeshRecord& rec) {

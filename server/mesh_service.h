@@ -21,6 +21,7 @@
 
 #include "core/mesh.h"
 #include "store.h"
+#include "upload_read.h"
 
 namespace cgview::server {
 
@@ -44,13 +45,16 @@ class MeshService {
  public:
   explicit MeshService(Store& store, std::size_t cache_bytes = std::size_t(512) << 20);
 
-  // Parses the bytes (format given, or from the name's extension), computes
-  // the report and stores it, owned by `owner`.  Throws InvalidInput (bad
+  // Parses the bytes (format given, or from the name's extension; in a child
+  // process when set_reader gave a program), computes the report and stores
+  // it, owned by `owner`.  Throws InvalidInput (bad
   // name, format or file).  A zip ("x.zip" or format "zip") holds one mesh
   // file and what it refers to: an OBJ's MTL and its materials' map_Kd
   // images, a PLY's `comment TextureFile` image; each image is stored as a
   // blob of the mesh, and an OBJ's `materials` say which faces use which.
-  // A referenced file that is missing is a warning, not an error.  Throws TooLarge when the zip unpacks past max_upload_bytes.
+  // A referenced file that is missing is a warning, not an error.  Throws
+  // TooLarge when the zip unpacks past max_upload_bytes, or its reading goes
+  // past the reader's memory or time limit (upload_read.h).
   MeshRecord upload(const std::string& name, const std::string& format, std::string_view bytes,
                     const std::string& owner = "local");
   // The mesh, parsed from its stored bytes (the last few are kept in memory).
@@ -75,6 +79,10 @@ class MeshService {
   Store& store() { return store_; }
   // The most bytes a zip upload may unpack to (the server's upload limit).
   void set_max_upload_bytes(std::size_t n) { max_upload_bytes_ = n; }
+  // Uploads are read by reader.program in a child process (the server's
+  // set-up); without one, in this process.  Removes what earlier runs left
+  // in reader.temp_dir.
+  void set_reader(const UploadReader& reader);
   void set_preview(const PreviewConfig& c) { preview_ = c; }
   const PreviewConfig& preview_config() const { return preview_; }
   std::uint64_t previews_computed() const { return previews_computed_; }
@@ -101,6 +109,7 @@ class MeshService {
   std::size_t max_upload_bytes_ = std::size_t(256) << 20;
   PreviewConfig preview_;
   std::uint64_t previews_computed_ = 0;
+  UploadReader reader_;
 };
 
 // The material part of a stored mesh's JSON: has_uvs, textures (one per

@@ -7,6 +7,7 @@
 
 #include "core/errors.h"
 #include "io/mesh_io.h"
+#include "io/parse_json.h"
 #include "jobs.h"
 #include "render_service.h"
 #include "zip_bundle.h"
@@ -287,7 +288,7 @@ Router::Router(MeshService& meshes, RouterConfig config)
                      false});
   routes_.push_back({"POST", "/api/v1/jobs", "Submit a job: {\"algorithm\",\"inputs\":{\"mesh\":id or {\"job\":id,\"artifact\":name},...},\"params\":{...}}", {},
                      [this, jobs](const Params&, const HttpRequest& req, const Caller& caller) {
-                       const json body = json::parse(req.body, nullptr, false);
+                       const json body = parse_json_or_discarded(req.body);
                        if (body.is_discarded()) return error_response(400, "bad_request", "the body is not JSON");
                        json job;
                        std::vector<std::string> new_meshes;
@@ -428,7 +429,7 @@ HttpResponse Router::render_png(const MeshRecord& rec, const HttpRequest& req, c
 
 HttpResponse Router::share(const std::string& kind, const std::string& id, const std::string& owner, const HttpRequest& req,
                            bool add) const {
-  const json body = json::parse(req.body, nullptr, false);
+  const json body = parse_json_or_discarded(req.body);
   const char* shape = "the body is {\"users\": [NAME, ...]} and/or {\"everyone\": true}";
   if (!body.is_object()) return error_response(400, "bad_request", shape);
   std::vector<std::string> users;

@@ -20,6 +20,7 @@
 #include <unordered_map>
 
 #include "core/errors.h"
+#include "io/parse_json.h"
 #include "animation_frames.h"
 #include "frames.h"
 #include "mesh_service.h"
@@ -91,6 +92,9 @@ struct Shared {
         rate(c.rate_per_s, c.rate_burst),
         tls(tls_context(c)) {
     meshes.set_max_upload_bytes(c.max_upload_bytes);  // what a zip upload may unpack to
+    if (!c.reader.empty())
+      meshes.set_reader({c.reader, c.data_dir / "tmp", c.jobs.memory_mb,
+                         std::chrono::milliseconds(std::llround(c.upload_timeout_s * 1000))});
     meshes.set_preview(c.preview);
     jobs->on_event = [r = &router](const json& e, const Access& readers) {
       if (r->on_event) r->on_event(e, readers);
@@ -256,9 +260,11 @@ class WebSocketSession : public EventSink, public std::enable_shared_from_this<W
   void handle(const std::string& text) {
     json msg;
     try {
-      msg = json::parse(text);
+      msg = parse_json(text, "the message");
     } catch (const json::exception&) {
       return error(nullptr, "bad_request", "the message is not JSON");
+    } catch (const InvalidInput& e) {
+      return error(nullptr, "bad_request", e.what());
     }
     if (!msg.is_object()) return error(nullptr, "bad_request", "the message must be a JSON object");
     json id = msg.contains("request_id") ? msg["request_id"] : json(nullptr);

@@ -58,6 +58,12 @@ struct ServerConfig {
   bool auth_required = false;
   render::GlPlatform gl_platform = render::GlPlatform::automatic;  // EGL platform of render.png
   JobConfig jobs;  // the worker executable, pool size, limits
+  // Uploads are read in a child process (this program, cgview-read), with
+  // the jobs' memory limit and this time limit: a file over either is a 413,
+  // one that crashes its reader a 400, and the server goes on.  Empty: read
+  // in the server's own process.
+  std::filesystem::path reader;
+  double upload_timeout_s = 120;
   PreviewConfig preview;  // when get_mesh with lod "progressive" first streams a decimated preview
 };
 

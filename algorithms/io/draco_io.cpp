@@ -17,6 +17,7 @@
 
 #include "core/errors.h"
 #include "io/draco_io.h"
+#include "io/parse_json.h"
 #include "io/readers.h"
 
 namespace cgview::detail {
@@ -162,7 +163,126 @@ void from_draco(const draco::Mesh& dm, const std::string& name, ReadResult& resu
 
 std::string to_string(const draco::EncoderBuffer& buf) { return std::string(buf.data(), buf.size()); }
 
+// The counts a Draco mesh's connectivity header claims, read as Draco 1.5's
+// decoder reads them (header, metadata, edgebreaker's traversal byte, then
+// the counts: uint32s before bitstream 2.0, varints after).
+struct DracoClaims {
+  bool edgebreaker = false;
+  std::uint64_t faces = 0, vertices = 0;
+};
+
+class DracoHeaderReader {
+ public:
+  explicit DracoHeaderReader(std::string_view b) : b_(b) {}
+  bool byte(std::uint8_t& v) {
+    if (at_ >= b_.size()) return false;
+    v = std::uint8_t(b_[at_++]);
+    return true;
+  }
+  bool skip(std::uint64_t n) {
+    if (n > b_.size() - at_) return false;
+    at_ += std::size_t(n);
+    return true;
+  }
+  bool varint(std::uint64_t& v) {
+    v = 0;
+    for (int shift = 0; shift < 35; shift += 7) {
+      std::uint8_t c;
+      if (!byte(c)) return false;
+      v |= std::uint64_t(c & 0x7f) << shift;
+      if (!(c & 0x80)) return true;
+    }
+    return false;
+  }
+  bool u32(std::uint64_t& v) {
+    if (b_.size() - at_ < 4) return false;
+    const auto* u = reinterpret_cast<const unsigned char*>(b_.data() + at_);
+    v = std::uint32_t(u[0]) | std::uint32_t(u[1]) << 8 | std::uint32_t(u[2]) << 16 | std::uint32_t(u[3]) << 24;
+    at_ += 4;
+    return true;
+  }
+  // A metadata block and its sub-blocks, depth first, as MetadataDecoder reads them.
+  bool metadata() {
+    for (std::uint64_t pending = 1, first = 1; pending > 0; --pending, first = 0) {
+      std::uint8_t len;
+      if (!first && (!byte(len) || !skip(len))) return false;  // a sub-block's name
+      std::uint64_t entries, subs;
+      if (!varint(entries)) return false;
+      for (std::uint64_t e = 0; e < entries; ++e) {
+        std::uint64_t size;
+        if (!byte(len) || !skip(len) || !varint(size) || !skip(size)) return false;
+      }
+      if (!varint(subs) || subs > b_.size() - at_) return false;
+      pending += subs;
+    }
+    return true;
+  }
+
+ private:
+  std::string_view b_;
+  std::size_t at_ = 0;
+};
+
+// nullopt when the bytes end inside the header (Draco's decoder says what is wrong then).
+std::optional<DracoClaims> draco_claims(std::string_view bytes) {
+  DracoHeaderReader r(bytes);
+  std::uint8_t major, minor, type, method, flags_lo, flags_hi;
+  if (!r.skip(5) || !r.byte(major) || !r.byte(minor) || !r.byte(type) || !r.byte(method) || !r.byte(flags_lo) ||
+      !r.byte(flags_hi))
+    return std::nullopt;
+  const int version = major * 256 + minor;
+  if (version >= 0x0103 && (flags_hi & 0x80)) {  // METADATA_FLAG_MASK 0x8000
+    std::uint64_t attributes, id;
+    if (!r.varint(attributes)) return std::nullopt;
+    for (std::uint64_t i = 0; i < attributes; ++i)
+      if (!r.varint(id) || !r.metadata()) return std::nullopt;
+    if (!r.metadata()) return std::nullopt;
+  }
+  auto count = [&](std::uint64_t& v) { return version < 0x0200 ? r.u32(v) : r.varint(v); };
+  DracoClaims c;
+  c.edgebreaker = method == 1;
+  if (c.edgebreaker) {
+    std::uint8_t traversal;
+    std::uint64_t new_vertices;
+    if (!r.byte(traversal)) return std::nullopt;
+    if (version < 0x0202 && !count(new_vertices)) return std::nullopt;
+    if (!count(c.vertices) || !count(c.faces)) return std::nullopt;
+  } else {
+    if (!(version < 0x0202 ? r.u32(c.faces) && r.u32(c.vertices) : r.varint(c.faces) && r.varint(c.vertices)))
+      return std::nullopt;
+  }
+  return c;
+}
+
 }  // namespace
+
+// Draco's edgebreaker decoder sizes its corner table from the face count the
+// header claims (up to 1.4 billion: tens of GB) before any byte backs it; the
+// sequential one checks the count against the bytes left.  Refused here when
+// the claim is more than kDracoFacesPerByte faces a byte of the stream, with
+// a million faces always allowed.  Measured with Draco 1.5.5 at its best
+// compression: scanned meshes hold 0.6-1.2 faces a byte at 14-bit positions
+// and up to 12 at 4 bits; a regular grid, whose every vertex is predicted
+// exactly, 6.5 at 14 bits, 115 at 4 and 715 (3.9 million faces) at 1 bit
+// (test TheDensestHonestDracoStreamIsUnderTheBoundAndLoads).  A bigger file
+// whose claim passes is stopped by the reader's memory limit (upload_read.h).
+void check_draco_counts(std::string_view bytes, const std::string& name) {
+  constexpr std::uint64_t kDracoFacesPerByte = 1024, kAlwaysAllowed = std::uint64_t(1) << 20;
+  const std::optional<DracoClaims> c = draco_claims(bytes);
+  if (!c) return;
+  const std::uint64_t most = std::max<std::uint64_t>(kAlwaysAllowed, kDracoFacesPerByte * bytes.size());
+  if (c->faces > most)
+    throw ParseError(name,
+                     "the Draco header claims " + std::to_string(c->faces) + " faces, but " +
+                         std::to_string(bytes.size()) + " bytes cannot hold more than " + std::to_string(most) +
+                         " (a damaged or crafted file)",
+                     std::nullopt, std::nullopt);
+  if (c->vertices > 3 * std::max<std::uint64_t>(c->faces, 1))
+    throw ParseError(name,
+                     "the Draco header claims " + std::to_string(c->vertices) + " vertices for " +
+                         std::to_string(c->faces) + " faces (a damaged or crafted file)",
+                     std::nullopt, std::nullopt);
+}
 
 void read_draco(std::string_view bytes, const std::string& name, ReadResult& result) {
   if (bytes.empty()) throw ParseError(name, "the file is empty", std::nullopt, std::nullopt);
@@ -172,6 +292,7 @@ void read_draco(std::string_view bytes, const std::string& name, ReadResult& res
   if (!type.ok()) throw ParseError(name, "not a Draco file: " + type.status().error_msg_string(), std::nullopt, 0);
   if (type.value() != draco::TRIANGULAR_MESH)
     throw ParseError(name, "the Draco file holds a point cloud, not a triangle mesh", std::nullopt, 0);
+  check_draco_counts(bytes, name);
   draco::Decoder decoder;
   auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
   if (!decoded.ok())
@@ -274,6 +395,11 @@ class GltfReader {
   }
 
   void parse_json() {
+    // Dumping a value in an error message recurses once per level.
+    if (const int depth = json_depth(json_); depth > kMaxJsonDepth)
+      fail("the JSON nests arrays and objects " + std::to_string(depth) + " deep; at most " +
+               std::to_string(kMaxJsonDepth) + " are read",
+           json_offset_ ? std::optional<std::uint64_t>(json_offset_) : std::nullopt);
     try {
       doc_ = Json::parse(json_);
     } catch (const Json::exception& e) {
@@ -516,6 +642,7 @@ class GltfReader {
     const std::string_view data = view(index_field(ext, "bufferView", views_->size(), where, "bufferView"), stride);
     const auto attrs = ext.find("attributes");
     if (attrs == ext.end() || !attrs->is_object()) fail(where + " has no attributes object");
+    check_draco_counts(data, name_ + " (" + where + ")");
     draco::DecoderBuffer buffer;
     buffer.Init(data.data(), data.size());
     draco::Decoder decoder;

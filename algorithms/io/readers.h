@@ -15,6 +15,10 @@ void read_obj(std::string_view bytes, const std::string& name, ReadResult& resul
 void read_ply(std::string_view bytes, const std::string& name, ReadResult& result);
 void read_stl(std::string_view bytes, const std::string& name, const ReadOptions& options, ReadResult& result);
 void read_draco(std::string_view bytes, const std::string& name, ReadResult& result);
+// Throws ParseError when a Draco stream's header claims more faces than its
+// bytes can hold, or more vertices than three a face (Draco's edgebreaker
+// decoder allocates for the claim before it reads the stream).
+void check_draco_counts(std::string_view bytes, const std::string& name);
 void read_gltf(std::string_view bytes, const std::string& name, bool binary, ReadResult& result);
 
 std::string write_off(const Mesh& mesh);

@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "io/mesh_io.h"
+#include "io/parse_json.h"
 #include "io/text_scanner.h"
 
 namespace cgview {
@@ -120,6 +121,10 @@ Skeleton read_cg_or_obj(std::string_view bytes, const std::string& name, bool ob
 
 Skeleton read_json(std::string_view bytes, const std::string& name) {
   nlohmann::json j;
+  if (const int depth = json_depth(bytes); depth > kMaxJsonDepth)
+    throw ParseError(name, "the JSON nests arrays and objects " + std::to_string(depth) + " deep; at most " +
+                               std::to_string(kMaxJsonDepth) + " are read",
+                     std::nullopt, std::nullopt);
   try {
     j = nlohmann::json::parse(bytes);
   } catch (const nlohmann::json::parse_error& e) {

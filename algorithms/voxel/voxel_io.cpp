@@ -11,6 +11,7 @@
 
 #include "core/errors.h"
 #include "io/mesh_io.h"
+#include "io/parse_json.h"
 
 namespace cgview {
 namespace {
@@ -465,7 +466,7 @@ VoxelGrid read_voxel_grid(const std::filesystem::path& path) {
     const std::string side = read_file_bytes(path.string() + ".json", 1 << 20);
     nlohmann::json j;
     try {
-      j = nlohmann::json::parse(side);
+      j = parse_json(side, name + ".json");
       const auto d = checked_dims(j.at("dims").at(0).get<long long>(), j.at("dims").at(1).get<long long>(),
                                   j.at("dims").at(2).get<long long>(), name + ".json");
       const std::string type = j.at("type").get<std::string>();

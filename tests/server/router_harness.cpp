@@ -15,6 +15,8 @@ void RouterFixture::make_dir(const std::string& tag) {
 void RouterFixture::open(const std::filesystem::path& store_dir, std::optional<server::JobConfig> jobs, server::RouterConfig rc) {
   store_ = std::make_unique<server::Store>(store_dir);
   meshes_ = std::make_unique<server::MeshService>(*store_);
+  // Uploads read in a child, as the server reads them.
+  meshes_->set_reader({bin("cgview-read"), store_dir / "tmp"});
   if (jobs) {
     jobs->worker = bin("cgview-worker-test");
     jobs_ = std::make_unique<server::JobScheduler>(*meshes_, std::move(*jobs));

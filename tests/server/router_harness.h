@@ -24,7 +24,8 @@ class RouterFixture : public ::testing::Test {
   // dir_ = a fresh temp directory named TAG + the test's name.
   void make_dir(const std::string& tag);
 
-  // A store in STORE_DIR and its mesh service; with JOBS, a scheduler on the
+  // A store in STORE_DIR and its mesh service (uploads read by cgview-read
+  // in a child process, as the server does); with JOBS, a scheduler on the
   // test worker (cgview-worker-test), started, and rc.jobs set to it; then
   // the router with RC.
   void open(const std::filesystem::path& store_dir, std::optional<server::JobConfig> jobs, server::RouterConfig rc);

@@ -427,6 +427,82 @@ TEST(BadInput, LyingHeaderCountsAreRefusedQuicklyWithoutAllocating) {
   EXPECT_LT(peak_rss_kb() - rss_before, 100 * 1024) << "peak RSS grew by " << (peak_rss_kb() - rss_before) << " KiB";
 }
 
+std::string varint(std::uint64_t v) {
+  std::string s;
+  do {
+    unsigned char c = v & 0x7f;
+    v >>= 7;
+    if (v) c |= 0x80;
+    s.push_back(char(c));
+  } while (v);
+  return s;
+}
+
+// A Draco 2.2 edgebreaker stream whose connectivity header claims `faces`.
+std::string draco_claiming(std::uint64_t faces, std::uint64_t vertices = 3) {
+  std::string d = std::string("DRACO") + '\x02' + '\x02' + '\x01' + '\x01' + std::string(2, '\0');
+  d += '\0';  // standard traversal
+  d += varint(vertices) + varint(faces) + '\0' + varint(faces * 3 / 4) + varint(0);
+  return d + std::string(8, '\0');
+}
+
+// Draco's edgebreaker decoder sizes its corner table (several 4-byte
+// indices a corner) for the face count the header claims before a byte backs
+// it: 33 bytes claiming 1.4 billion faces ask for tens of GB.  The counts are
+// checked first.
+TEST(BadInput, LyingDracoCountsAreRefusedBeforeDracoAllocates) {
+  const long rss_before = peak_rss_kb();
+  const auto t0 = std::chrono::steady_clock::now();
+  struct Case {
+    std::string tag;
+    std::string bytes, says;
+  };
+  const std::vector<Case> cases = {
+      {"faces", draco_claiming(1400000000), "the Draco header claims 1400000000 faces, but 33 bytes cannot hold more"},
+      {"vertices", draco_claiming(1000, 4000000), "claims 4000000 vertices for 1000 faces"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.tag);
+    const fs::path p = dir() / ("claims_" + c.tag + ".drc");
+    test::write_text(p, c.bytes);
+    const ParseError e = parse_error(p);
+    EXPECT_NE(std::string(e.what()).find(c.says), std::string::npos) << e.what();
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 0.5);
+  EXPECT_LT(peak_rss_kb() - rss_before, 100 * 1024) << "peak RSS grew by " << (peak_rss_kb() - rss_before) << " KiB";
+}
+
+// The bound is 1024 faces a byte of the stream (draco_io.cpp): a regular
+// grid at Draco's best compression and 1-bit positions (its every vertex
+// predicted exactly), denser than any scanned mesh by far, stays under it and
+// loads.
+TEST(BadInput, TheDensestHonestDracoStreamIsUnderTheBoundAndLoads) {
+  const Mesh g = test::grid(800);  // 1.28 million faces
+  WriteOptions o;
+  o.draco_speed = 0;
+  o.position_bits = 1;
+  const std::string bytes = write_mesh_bytes(g, MeshFormat::drc, o);
+  const double per_byte = double(g.num_faces()) / double(bytes.size());
+  RecordProperty("faces_per_byte", std::to_string(per_byte));
+  std::printf("grid(800): %zu faces in %zu bytes, %.2f faces a byte\n", g.num_faces(), bytes.size(), per_byte);
+  EXPECT_GT(per_byte, 100.0) << "no longer the densest stream this test means to check";
+  EXPECT_LT(per_byte, 1024.0) << "the bound refuses an honest stream";
+  EXPECT_EQ(read_mesh_bytes(bytes, MeshFormat::drc, "grid.drc").mesh.num_faces(), g.num_faces());
+}
+
+// Dumping a JSON value recurses once a level: a glTF whose indices were an
+// array nested 200,000 deep crashed the reader's error message.
+TEST(BadInput, DeeplyNestedGltfJsonIsRefusedNotACrash) {
+  const std::size_t depth = 200000;
+  const std::string doc = R"({"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":)" +
+                          std::string(depth, '[') + std::string(depth, ']') + "}]}]}";
+  const fs::path p = dir() / "deep.gltf";
+  test::write_text(p, doc);
+  const ParseError e = parse_error(p);
+  EXPECT_NE(std::string(e.what()).find("nests arrays and objects 200005 deep; at most 64 are read"), std::string::npos)
+      << e.what();
+}
+
 TEST(BadInput, NonManifoldMeshLoadsAndIsReportedNonManifold) {
   const Mesh m = three_on_an_edge();
   ASSERT_EQ(mesh_report(m).non_manifold_edges, 1u);

@@ -1,0 +1,99 @@
+#include "child_process.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+
+namespace cgview::server {
+
+pid_t spawn_child(const std::vector<std::string>& args, const ChildOptions& options) {
+  std::vector<std::string> copy = args;
+  std::vector<char*> argv;
+  for (auto& a : copy) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const std::string err = options.stderr_file.string();
+  const rlim_t limit = rlim_t(options.memory_mb) << 20;
+  // Until it execs, the child is a copy of the server, Asio's signal handler
+  // included: a SIGTERM then (a job cancelled at once) would go through the
+  // server's own signal pipe and stop the server.  The child starts with
+  // SIGTERM and SIGINT blocked, resets them to the default, then unblocks.
+  sigset_t term, old_mask;
+  sigemptyset(&term);
+  sigaddset(&term, SIGTERM);
+  sigaddset(&term, SIGINT);
+  ::pthread_sigmask(SIG_BLOCK, &term, &old_mask);
+  const pid_t pid = ::fork();
+  if (pid != 0) {
+    ::pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
+    return pid < 0 ? -1 : pid;
+  }
+  // Only async-signal-safe calls from here to exec.
+  ::signal(SIGTERM, SIG_DFL);
+  ::signal(SIGINT, SIG_DFL);
+  ::pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // a killed server leaves no child behind
+  ::setpgid(0, 0);
+  if (limit > 0) {
+    struct rlimit rl{limit, limit};
+    ::setrlimit(RLIMIT_AS, &rl);
+  }
+  struct rlimit core{0, 0};
+  ::setrlimit(RLIMIT_CORE, &core);
+  const int null = ::open("/dev/null", O_RDWR);
+  if (null >= 0) ::dup2(null, 0);
+  if (options.stdout_fd >= 0) ::dup2(options.stdout_fd, 1);
+  else if (null >= 0) ::dup2(null, 1);
+  const int e = err.empty() ? -1 : ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (e >= 0) ::dup2(e, 2);
+  else if (null >= 0) ::dup2(null, 2);
+  ::execv(argv[0], argv.data());
+  ::_exit(127);
+}
+
+std::optional<int> wait_child(pid_t pid, std::chrono::milliseconds limit) {
+  int status = 0;
+  // A pidfd becomes readable when the child exits: one poll with the time
+  // limit instead of a sleep loop.
+  const int fd = int(::syscall(SYS_pidfd_open, pid, 0));
+  if (fd >= 0) {
+    pollfd p{fd, POLLIN, 0};
+    int n;
+    do n = ::poll(&p, 1, int(limit.count()));
+    while (n < 0 && errno == EINTR);
+    ::close(fd);
+    if (n > 0 && ::waitpid(pid, &status, 0) == pid) return status;
+  } else {
+    const auto end = std::chrono::steady_clock::now() + limit;
+    while (std::chrono::steady_clock::now() < end) {
+      if (::waitpid(pid, &status, WNOHANG) == pid) return status;
+      ::usleep(2000);
+    }
+  }
+  ::kill(-pid, SIGKILL);
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, &status, 0);
+  return std::nullopt;
+}
+
+std::string signal_name(int sig) {
+  switch (sig) {
+    case SIGSEGV: return "SIGSEGV";
+    case SIGABRT: return "SIGABRT";
+    case SIGKILL: return "SIGKILL";
+    case SIGTERM: return "SIGTERM";
+    case SIGBUS: return "SIGBUS";
+    case SIGFPE: return "SIGFPE";
+    case SIGILL: return "SIGILL";
+    case SIGXCPU: return "SIGXCPU";
+    default: return "signal " + std::to_string(sig);
+  }
+}
+
+}  // namespace cgview::server

@@ -1,0 +1,37 @@
+// Starting a helper program as a child of the server (a job's worker, an
+// upload's reader), the one place that knows how a child of a threaded,
+// signal-handling server is made: signals blocked across the fork, an
+// address-space limit, no core file, its own process group, killed with the
+// server.
+#pragma once
+
+#include <sys/types.h>
+
+#include <chrono>
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cgview::server {
+
+struct ChildOptions {
+  std::size_t memory_mb = 0;        // RLIMIT_AS; 0: none
+  int stdout_fd = -1;               // the child's stdout (closed in the parent by the caller); -1: /dev/null
+  std::filesystem::path stderr_file;  // the child's stderr, truncated; empty: /dev/null
+};
+
+// Forks and execs argv[0] (a path) with argv; the child's pid, or -1 when
+// fork fails.  A child that cannot exec exits with status 127.
+pid_t spawn_child(const std::vector<std::string>& argv, const ChildOptions& options);
+
+// Waits for the child to exit, at most `limit`; its wait status, or nullopt
+// when the time ran out (the child, and its process group, are then killed
+// with SIGKILL and reaped).
+std::optional<int> wait_child(pid_t pid, std::chrono::milliseconds limit);
+
+// "SIGSEGV", "SIGKILL", ... or "signal N".
+std::string signal_name(int sig);
+
+}  // namespace cgview::server

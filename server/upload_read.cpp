@@ -1,0 +1,318 @@
+#include "upload_read.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <new>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sys/wait.h>
+
+#include "child_process.h"
+#include "core/errors.h"
+#include "core/mesh_report.h"
+#include "io/materials.h"
+#include "io/mesh_io.h"
+#include "io/parse_json.h"
+#include "mesh_report_json.h"
+#include "zip_bundle.h"
+
+namespace cgview::server {
+
+namespace fs = std::filesystem;
+
+namespace {
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// The uploaded file that a mesh or MTL names, matched by base name without
+// case (files written on Windows name ".\\Tex.JPG" for "tex.jpg").
+const BundleFile* find_file(const std::vector<BundleFile>& files, const std::string& referenced) {
+  const std::string want = lower(file_base_name(referenced));
+  for (const auto& f : files)
+    if (lower(file_base_name(f.name)) == want) return &f;
+  return nullptr;
+}
+
+// The one mesh file among a zip's files.
+const BundleFile& mesh_file_of(const std::vector<BundleFile>& files) {
+  std::vector<const BundleFile*> meshes;
+  for (const auto& f : files) {
+    try {
+      if (can_read(format_from_name(f.name))) meshes.push_back(&f);
+    } catch (const UnsupportedFormat&) {
+      // an MTL, an image, a readme
+    }
+  }
+  if (meshes.empty()) throw InvalidInput("the zip holds no mesh file (readable: " + readable_formats() + ")");
+  if (meshes.size() > 1)
+    throw InvalidInput("the zip holds several mesh files ('" + meshes[0]->name + "', '" + meshes[1]->name +
+                       "', ...): upload one mesh per zip");
+  return *meshes.front();
+}
+
+struct Textures {
+  nlohmann::json material = nlohmann::json::object();  // has_uvs, textures, kd, materials
+  std::vector<std::string> blobs;                      // one per material["textures"] entry
+};
+
+// The texture named `image` among the uploaded files as a textures[] entry
+// and its blob, or a warning saying why it is not shown.
+std::optional<std::size_t> add_texture(Textures& t, const ReadResult& r, const std::vector<BundleFile>& files,
+                                       bool bundle, const std::string& image, std::vector<std::string>& warnings) {
+  const BundleFile* f = find_file(files, image);
+  if (!f) {
+    warnings.push_back("the texture '" + image + "' is not in the upload: its faces show untextured" +
+                       (bundle ? "" : " (upload a zip of the mesh and its images)"));
+    return std::nullopt;
+  }
+  const std::string mime = image_mime_type(f->bytes);
+  if (mime.empty()) {
+    warnings.push_back("the texture '" + image + "' is not a PNG or JPEG image: its faces show untextured");
+    return std::nullopt;
+  }
+  if (!r.mesh.has_uvs()) {
+    warnings.push_back("the mesh has no texture coordinates: its texture '" + image + "' is not shown");
+    return std::nullopt;
+  }
+  const std::string name = file_base_name(f->name);
+  for (std::size_t i = 0; i < t.blobs.size(); ++i)
+    if (t.material["textures"][i]["name"] == name) return i;  // two materials, one image: one blob
+  t.material["textures"].push_back({{"name", name}, {"mime", mime}, {"bytes", f->bytes.size()}});
+  t.blobs.push_back(f->bytes);
+  return t.blobs.size() - 1;
+}
+
+// The textures and diffuse colours of a mesh from the files uploaded with it:
+// for an OBJ, `materials` lists the materials its faces use in order of first
+// use (the order of the material ids in its Draco stream), each with its Kd
+// and the index of its texture in `textures`, or null.
+Textures find_textures(const ReadResult& r, std::string_view mesh_bytes, const std::vector<BundleFile>& files,
+                       bool bundle, std::vector<std::string>& warnings) {
+  Textures t;
+  t.material["has_uvs"] = r.mesh.has_uvs();
+  t.material["textures"] = nlohmann::json::array();
+  if (r.format == MeshFormat::obj) {
+    const ObjMaterialUse use = obj_material_use(mesh_bytes);
+    std::vector<Material> mtl;
+    for (const auto& lib : use.libraries) {
+      if (const BundleFile* f = find_file(files, lib)) {
+        for (auto& m : parse_mtl(f->bytes)) mtl.push_back(std::move(m));
+      } else {
+        warnings.push_back(bundle ? "the material library '" + lib + "' is not in the zip: the mesh shows untextured"
+                                  : "the OBJ names the material library '" + lib +
+                                        "': upload a zip of the OBJ, the MTL and its images to see its textures");
+      }
+    }
+    if (use.face_material.size() != r.mesh.num_faces()) return t;  // not the faces read_obj read: draw it plain
+    // Textures in order of the faces they cover, so textures[0] is the main one.
+    std::vector<std::size_t> order(use.names.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return use.faces.at(use.names[a]) > use.faces.at(use.names[b]); });
+    std::vector<nlohmann::json> entries(use.names.size());
+    for (const std::size_t i : order) {
+      const std::string& name = use.names[i];
+      const auto m = std::find_if(mtl.begin(), mtl.end(), [&](const Material& x) { return x.name == name; });
+      nlohmann::json e = {{"name", name}, {"faces", use.faces.at(name)}, {"kd", nullptr}, {"texture", nullptr}};
+      if (m != mtl.end() && m->kd) e["kd"] = *m->kd;
+      if (m != mtl.end() && !m->map_kd.empty())
+        if (const auto tex = add_texture(t, r, files, bundle, m->map_kd, warnings)) {
+          e["texture"] = *tex;
+          auto& te = t.material["textures"][*tex];
+          if (!te.contains("material")) {
+            te["material"] = name;
+            if (m->kd) te["kd"] = *m->kd;
+          }
+        }
+      if (!t.material.contains("kd") && m != mtl.end() && m->kd) t.material["kd"] = *m->kd;
+      entries[i] = std::move(e);
+    }
+    t.material["materials"] = entries;
+  } else if (r.format == MeshFormat::ply) {
+    const std::string image = ply_texture_file(mesh_bytes);
+    if (!image.empty()) add_texture(t, r, files, bundle, image, warnings);
+  }
+  return t;
+}
+
+}  // namespace
+
+std::string clean_upload_name(const std::string& name) {
+  if (name.empty()) throw InvalidInput("the mesh needs a name (?name=FILE.EXT)");
+  if (name.size() > 255) throw InvalidInput("the name is longer than 255 characters");
+  for (unsigned char c : name)
+    if (c < 32 || c == '/' || c == '\\' || c == 127) throw InvalidInput("the name may not hold '/', '\\' or control characters");
+  return name;
+}
+
+
+UploadRead read_upload(const std::string& name, const std::string& format, std::string_view bytes,
+                       std::size_t max_unpacked_bytes) {
+  std::string n = clean_upload_name(name);
+  const bool bundle = format == "zip" || (format.empty() && lower(n).ends_with(".zip"));
+  std::vector<BundleFile> files;
+  std::string_view mesh_bytes = bytes;
+  const BundleFile* mesh_file = nullptr;
+  if (bundle) {
+    files = unzip_bundle(bytes, max_unpacked_bytes);
+    mesh_file = &mesh_file_of(files);
+    n = clean_upload_name(file_base_name(mesh_file->name));
+    mesh_bytes = mesh_file->bytes;
+  }
+  const MeshFormat f = format_from_name(format.empty() || bundle ? n : "x." + format);
+  ReadResult r = read_mesh_bytes(mesh_bytes, f, n);
+  if (r.mesh.num_faces() == 0) throw InvalidInput(n + ": the mesh has no faces");
+  Textures textures = find_textures(r, mesh_bytes, files, bundle, r.warnings);
+  UploadRead out;
+  out.name = n;
+  out.format = to_string(f);
+  if (mesh_file) out.unpacked_mesh = mesh_file->bytes;
+  out.report_json = protocol::to_json(mesh_report(r.mesh)).dump();
+  out.warnings_json = nlohmann::json(r.warnings).dump();
+  out.material_json = textures.material.dump();
+  out.textures = std::move(textures.blobs);
+  out.mesh = std::make_shared<const Mesh>(std::move(r.mesh));
+  return out;
+}
+
+namespace {
+
+void write_file(const fs::path& p, std::string_view bytes) {
+  std::ofstream f(p, std::ios::binary);
+  f.write(bytes.data(), std::streamsize(bytes.size()));
+  if (!f) throw IoError("cannot write " + p.string());
+}
+
+std::string read_file(const fs::path& p, std::size_t max_bytes) { return read_file_bytes(p, max_bytes); }
+
+// A child's directory, removed with everything in it when this goes.
+struct TempDir {
+  explicit TempDir(const fs::path& parent) {
+    std::error_code ec;
+    fs::create_directories(parent, ec);
+    std::string t = (parent / "upload-XXXXXX").string();
+    if (!::mkdtemp(t.data())) throw IoError("cannot make a directory in " + parent.string() + " to read the upload in");
+    path = t;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  fs::path path;
+};
+
+}  // namespace
+
+UploadRead read_upload_in_child(const UploadReader& reader, const std::string& name, const std::string& format,
+                                std::string_view bytes, std::size_t max_unpacked_bytes) {
+  const std::string n = clean_upload_name(name);  // named in the messages below
+  TempDir dir(reader.temp_dir);
+  write_file(dir.path / "upload", bytes);
+  write_file(dir.path / "request.json",
+             nlohmann::json{{"name", name}, {"format", format}, {"max_unpacked_bytes", max_unpacked_bytes}}.dump());
+  ChildOptions options;
+  options.memory_mb = reader.memory_mb;
+  options.stderr_file = dir.path / "stderr.txt";
+  const pid_t pid = spawn_child({reader.program.string(), "--read-upload", dir.path.string()}, options);
+  if (pid < 0) throw IoError("cannot start a process to read the upload (fork failed)");
+  const std::optional<int> status = wait_child(pid, reader.time_limit);
+  const std::string limit_mb = std::to_string(reader.memory_mb) + " MB";
+  if (!status) {
+    char secs[32];
+    std::snprintf(secs, sizeof secs, "%g", double(reader.time_limit.count()) / 1000);
+    throw TooLarge(n + ": reading it took longer than the server allows for one upload (" + std::string(secs) + " s)");
+  }
+  if (WIFEXITED(*status) && WEXITSTATUS(*status) == 0) {
+    // What the child wrote is as untrusted as the upload: sizes capped, shape checked.
+    const std::size_t cap = std::max<std::size_t>(bytes.size(), max_unpacked_bytes) + (std::size_t(1) << 20);
+    const nlohmann::json r = parse_json_or_discarded(read_file(dir.path / "result.json", std::size_t(64) << 20));
+    UploadRead out;
+    try {
+      if (!r.is_object()) throw std::runtime_error("not an object");
+      out.name = clean_upload_name(r.at("name").get<std::string>());
+      out.format = r.at("format").get<std::string>();
+      out.report_json = r.at("report").dump();
+      out.warnings_json = r.at("warnings").dump();
+      out.material_json = r.at("material").dump();
+      const std::size_t textures = r.at("textures").get<std::size_t>();
+      if (textures > 1000) throw std::runtime_error("too many textures");
+      for (std::size_t k = 0; k < textures; ++k)
+        out.textures.push_back(read_file(dir.path / ("texture-" + std::to_string(k)), cap));
+      if (r.at("unpacked").get<bool>()) out.unpacked_mesh = read_file(dir.path / "mesh", cap);
+    } catch (const std::exception& e) {
+      throw InvalidInput(n + ": the upload's reader gave an unreadable result (" + e.what() + ")");
+    }
+    return out;
+  }
+  if (WIFEXITED(*status) && WEXITSTATUS(*status) == 2) {
+    const nlohmann::json e = parse_json_or_discarded(read_file(dir.path / "error.json", 1 << 20));
+    const std::string kind = e.is_object() ? e.value("error", "") : "";
+    const std::string detail = e.is_object() ? e.value("detail", "") : "";
+    if (kind == "payload_too_large") throw TooLarge(detail);
+    if (kind == "unsupported_format") throw UnsupportedFormat(detail);
+    if (kind == "io_error") throw IoError(detail);
+    throw InvalidInput(detail.empty() ? n + ": the file could not be read" : detail);
+  }
+  if (WIFEXITED(*status) && WEXITSTATUS(*status) == 3)
+    throw TooLarge(n + ": reading it needs more memory than the server allows for one upload (" + limit_mb + ")");
+  if (WIFEXITED(*status) && WEXITSTATUS(*status) == 127)
+    throw IoError("cannot run the upload reader " + reader.program.string());
+  if (WIFSIGNALED(*status))
+    throw InvalidInput(n + ": the reader stopped with " + signal_name(WTERMSIG(*status)) +
+                       " on this file (a malformed file it does not catch, or one that needs more than " + limit_mb +
+                       "); nothing was stored");
+  throw InvalidInput(n + ": the reader exited with status " + std::to_string(WEXITSTATUS(*status)) +
+                     "; nothing was stored");
+}
+
+int read_upload_main(const fs::path& dir) {
+  auto refuse = [&](const char* kind, const std::string& detail) {
+    try {
+      write_file(dir / "error.json", nlohmann::json{{"error", kind}, {"detail", detail}}.dump());
+    } catch (const std::exception&) {
+    }
+    return 2;
+  };
+  try {
+    const nlohmann::json req = nlohmann::json::parse(read_file(dir / "request.json", 1 << 20));
+    const std::string bytes = read_file(dir / "upload", std::numeric_limits<std::size_t>::max());
+    const UploadRead r = read_upload(req.at("name").get<std::string>(), req.at("format").get<std::string>(), bytes,
+                                     req.at("max_unpacked_bytes").get<std::size_t>());
+    for (std::size_t k = 0; k < r.textures.size(); ++k) write_file(dir / ("texture-" + std::to_string(k)), r.textures[k]);
+    if (!r.unpacked_mesh.empty()) write_file(dir / "mesh", r.unpacked_mesh);
+    // result.json last, through a rename: its presence means the rest is whole.
+    write_file(dir / "result.json.part",
+               nlohmann::json{{"name", r.name},
+                              {"format", r.format},
+                              {"report", nlohmann::json::parse(r.report_json)},
+                              {"warnings", nlohmann::json::parse(r.warnings_json)},
+                              {"material", nlohmann::json::parse(r.material_json)},
+                              {"textures", r.textures.size()},
+                              {"unpacked", !r.unpacked_mesh.empty()}}
+                   .dump());
+    fs::rename(dir / "result.json.part", dir / "result.json");
+    return 0;
+  } catch (const std::bad_alloc&) {
+    return 3;
+  } catch (const TooLarge& e) {
+    return refuse("payload_too_large", e.what());
+  } catch (const UnsupportedFormat& e) {
+    return refuse("unsupported_format", e.what());
+  } catch (const InvalidInput& e) {
+    return refuse("invalid_mesh", e.what());
+  } catch (const IoError& e) {
+    return refuse("io_error", e.what());
+  } catch (const std::length_error&) {
+    return 3;  // a size past what a vector may hold: a claim no memory backs
+  } catch (const std::exception& e) {
+    return refuse("invalid_mesh", e.what());
+  }
+}
+
+}  // namespace cgview::server

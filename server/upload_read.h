@@ -1,0 +1,69 @@
+// Reading an upload: the bytes of a mesh file, or of a zip of one with its
+// MTL and images, turned into what the store keeps of a mesh (its report,
+// warnings and materials) and the files it keeps (the mesh file, textures).
+// Everything here touches the untrusted bytes; the server runs it in a child
+// process (read_upload_in_child) so that whatever a file does to a parser
+// costs that child, not the server.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/mesh.h"
+
+namespace cgview::server {
+
+struct UploadRead {
+  std::string name;    // the mesh file's name (a zip's mesh file: its base name)
+  std::string format;  // "ply", ...
+  // The mesh file's bytes when they are not the upload's (a zip's mesh file);
+  // empty when the upload is the mesh file.
+  std::string unpacked_mesh;
+  std::string report_json, warnings_json, material_json;
+  std::vector<std::string> textures;  // one blob per material_json "textures" entry
+  std::shared_ptr<const Mesh> mesh;   // the mesh, when read in this process
+};
+
+// Throws InvalidInput when the name is empty, longer than 255 bytes or holds
+// '/', '\\' or a control character; else returns it.
+std::string clean_upload_name(const std::string& name);
+
+// Reads an upload in this process (format given, or from the name's
+// extension; "zip" or a ".zip" name is a bundle).  Throws InvalidInput (bad
+// name, format or file), UnsupportedFormat, TooLarge (a zip unpacking past
+// max_unpacked_bytes).  A file the mesh refers to that is missing is a
+// warning, not an error.
+UploadRead read_upload(const std::string& name, const std::string& format, std::string_view bytes,
+                       std::size_t max_unpacked_bytes);
+
+// Where and within what an upload is read in a child process.
+struct UploadReader {
+  std::filesystem::path program;  // cgview-read; empty: read in this process
+  std::filesystem::path temp_dir;  // the child's files (the upload, its results), one directory per upload
+  std::size_t memory_mb = 8192;     // the child's address space; 0: no limit
+  std::chrono::milliseconds time_limit{120000};
+};
+
+// read_upload run by `reader.program --read-upload DIR` (cgview-read) in a child process
+// with the reader's memory and time limits.  Throws what read_upload throws
+// (its message carried over), TooLarge when the child goes over the memory
+// or time limit, InvalidInput when it dies otherwise (a crash in a parser:
+// the file is refused, the server goes on) and IoError when the child cannot
+// be run.  The result has no `mesh`.
+UploadRead read_upload_in_child(const UploadReader& reader, const std::string& name, const std::string& format,
+                                std::string_view bytes, std::size_t max_unpacked_bytes);
+
+// The child's side: reads DIR/request.json ({"name", "format",
+// "max_unpacked_bytes"}) and DIR/upload, writes DIR/result.json (the fields
+// of UploadRead, "textures" a count) with DIR/mesh (unpacked_mesh, when
+// there is one) and DIR/texture-K, or DIR/error.json ({"error": kind,
+// "detail"}) on an error of the file.  Returns the exit status: 0 read, 2
+// refused (error.json says why), 3 out of memory.
+int read_upload_main(const std::filesystem::path& dir);
+
+}  // namespace cgview::server
