@@ -3,7 +3,9 @@
 // [alpha], bytes or 0..1 floats, with or without a diffuse_ prefix) and
 // texture coordinates (s t, u v, texture_u texture_v); the face element's
 // vertex_indices (or vertex_index) list and a per-corner texcoord list, as
-// MeshLab writes it.  Other elements and properties are skipped.
+// MeshLab writes it; triangle strips (a tristrips element's vertex_indices
+// lists, -1 restarting a strip, as Stanford's scans and old tools store
+// them).  Other elements and properties are skipped, with a warning.
 #include <bit>
 #include <cmath>
 #include <cstdio>
@@ -364,6 +366,57 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
         mesh.uv_faces.clear();
         result.warnings.push_back("per-corner texture coordinates dropped: their count does not match the corners");
       }
+    } else if (e.name == "tristrips") {
+      if (!have_vertices) fail_here("the tristrips element comes before the vertex element");
+      int idx_prop = -1;
+      for (std::size_t i = 0; i < e.props.size(); ++i)
+        if (e.props[i].is_list && (e.props[i].name == "vertex_indices" || e.props[i].name == "vertex_index") && idx_prop < 0)
+          idx_prop = int(i);
+      if (idx_prop < 0)
+        throw ParseError(name, "the tristrips element has no vertex_indices list", header_line, std::nullopt);
+      std::uint64_t strips = 0, degenerate = 0;
+      for (std::uint64_t s = 0; s < e.count; ++s)
+        for (std::size_t i = 0; i < e.props.size(); ++i) {
+          const Property& p = e.props[i];
+          if (!p.is_list) {
+            read_value(p.type);
+            continue;
+          }
+          read_list(p, list);
+          if (int(i) != idx_prop) continue;
+          // Each run between -1s is a strip: corner k makes a triangle with
+          // the two before it, every other one turned to keep the strip's
+          // orientation; triangles with a repeated corner only join strips.
+          poly.clear();
+          auto strip_done = [&] {
+            for (std::size_t k = 2; k < poly.size(); ++k) {
+              const Index a = poly[k - 2], b = poly[k - 1], c = poly[k];
+              if (a == b || b == c || a == c) {
+                ++degenerate;
+                continue;
+              }
+              mesh.faces.push_back(k % 2 == 0 ? Tri{a, b, c} : Tri{b, a, c});
+            }
+            strips += poly.size() >= 3;
+            poly.clear();
+          };
+          for (double x : list) {
+            if (x == -1) {
+              strip_done();
+              continue;
+            }
+            if (!(x >= 0) || x >= double(vertex_count))
+              fail_here("strip " + std::to_string(s) + " refers to vertex " + std::to_string(std::int64_t(x)) +
+                        " but there are " + std::to_string(vertex_count) + " vertices");
+            poly.push_back(Index(x));
+          }
+          strip_done();
+        }
+      have_faces = true;
+      result.warnings.push_back("read " + std::to_string(strips) + " triangle strips into triangles" +
+                                (degenerate ? " (" + std::to_string(degenerate) +
+                                                  " triangles with a repeated corner, which only join strips, left out)"
+                                            : std::string()));
     } else {
       // Skip another element (edges, materials, ...) item by item; one
       // without properties has nothing to skip (and its count costs no bytes).
