@@ -414,6 +414,12 @@ class GltfReader {
                        1 + std::uint64_t(std::count(json_.begin(), json_.begin() + std::ptrdiff_t(at), '\n')), std::nullopt);
     }
     if (!doc_.is_object()) fail("the glTF JSON is not an object");
+    // glTF 1.0 (2015) keeps buffers, meshes and accessors in objects by name.
+    const auto asset = doc_.find("asset");
+    const Json* version = asset != doc_.end() && asset->is_object() && asset->contains("version") ? &(*asset)["version"] : nullptr;
+    const bool v1 = version ? version->is_string() && version->get_ref<const std::string&>().starts_with("1.")
+                            : doc_.contains("buffers") && doc_["buffers"].is_object();
+    if (v1) fail("glTF 1.0 is not supported (only glTF 2.0): convert it, e.g. with gltf-pipeline or Blender");
     buffers_ = &array(doc_, "buffers", "");
     views_ = &array(doc_, "bufferViews", "");
     accessors_ = &array(doc_, "accessors", "");
@@ -506,7 +512,6 @@ class GltfReader {
   std::vector<float> floats(std::size_t i, int min_components, int max_components, const std::string& use, int& components) {
     const std::string where = "accessors[" + std::to_string(i) + "] (" + use + ")";
     const Json& a = object(*accessors_, i, where);
-    if (a.contains("sparse")) fail(where + ": sparse accessors are not supported");
     const auto type = a.find("type");
     components = 0;
     if (type != a.end() && type->is_string()) {
@@ -526,23 +531,72 @@ class GltfReader {
       normalized = n->get<bool>();
     }
     const std::uint64_t count = need_uint(a, "count", where);
-    const std::uint64_t offset = uint_field(a, "byteOffset", where).value_or(0);
-    if (!a.contains("bufferView")) fail(where + " has no bufferView");
-    std::uint64_t stride = 0;
-    const std::string_view data = view(index_field(a, "bufferView", views_->size(), where, "bufferView"), stride);
     const std::uint64_t element = std::uint64_t(components) * std::uint64_t(size);
-    if (stride == 0) stride = element;
-    if (count == 0 || count > data.size() || offset > data.size() ||
-        (count - 1) * stride + element > data.size() - offset)
-      fail(where + ": " + std::to_string(count) + " elements of " + std::to_string(element) + " bytes from byte " +
-           std::to_string(offset) + " do not fit in its bufferView of " + std::to_string(data.size()) + " bytes");
-    std::vector<float> out(static_cast<std::size_t>(count * std::uint64_t(components)));
-    for (std::uint64_t k = 0; k < count; ++k)
-      for (int c = 0; c < components; ++c) {
-        const char* p = data.data() + offset + k * stride + std::uint64_t(c * size);
-        out[std::size_t(k) * std::size_t(components) + std::size_t(c)] = component(p, ct, normalized);
-      }
+    const auto sparse = a.find("sparse");
+    if (!a.contains("bufferView") && sparse == a.end()) fail(where + " has no bufferView");
+    std::vector<float> out;
+    if (a.contains("bufferView")) {
+      const std::uint64_t offset = uint_field(a, "byteOffset", where).value_or(0);
+      std::uint64_t stride = 0;
+      const std::string_view data = view(index_field(a, "bufferView", views_->size(), where, "bufferView"), stride);
+      if (stride == 0) stride = element;
+      if (count == 0 || count > data.size() || offset > data.size() ||
+          (count - 1) * stride + element > data.size() - offset)
+        fail(where + ": " + std::to_string(count) + " elements of " + std::to_string(element) + " bytes from byte " +
+             std::to_string(offset) + " do not fit in its bufferView of " + std::to_string(data.size()) + " bytes");
+      out.resize(static_cast<std::size_t>(count * std::uint64_t(components)));
+      for (std::uint64_t k = 0; k < count; ++k)
+        for (int c = 0; c < components; ++c) {
+          const char* p = data.data() + offset + k * stride + std::uint64_t(c * size);
+          out[std::size_t(k) * std::size_t(components) + std::size_t(c)] = component(p, ct, normalized);
+        }
+    } else {
+      // No bufferView: zeros, then the sparse values.  The zeros cost memory
+      // the file does not back, so their count is bounded by the bytes the
+      // file holds at all (a few bytes of JSON must not claim a billion).
+      if (count == 0 || count > bytes_.size()) fail(where + ": a count of " + std::to_string(count) + " elements, more than the file's " + std::to_string(bytes_.size()) + " bytes can describe");
+      out.assign(static_cast<std::size_t>(count * std::uint64_t(components)), 0.f);
+    }
+    if (sparse != a.end()) apply_sparse(*sparse, where + ".sparse", count, components, ct, size, normalized, out);
     return out;
+  }
+
+  // A sparse accessor's substitutions: `count` element indices (strictly
+  // increasing, as the glTF specification requires) and their values, each
+  // replacing that element of out.
+  void apply_sparse(const Json& s, const std::string& where, std::uint64_t elements, int components, std::uint64_t ct,
+                    int size, bool normalized, std::vector<float>& out) {
+    if (!s.is_object()) fail(where + " is not an object");
+    const std::uint64_t n = need_uint(s, "count", where);
+    const auto idx = s.find("indices"), val = s.find("values");
+    if (idx == s.end() || !idx->is_object()) fail(where + " has no indices object");
+    if (val == s.end() || !val->is_object()) fail(where + " has no values object");
+    const std::uint64_t ict = need_uint(*idx, "componentType", where + ".indices");
+    const std::uint64_t isize = ict == 5121 ? 1 : ict == 5123 ? 2 : ict == 5125 ? 4 : 0;
+    if (isize == 0) fail(where + ".indices: componentType " + std::to_string(ict) + " is not an unsigned byte, short or int");
+    std::uint64_t stride = 0;
+    const std::string_view ib = view(index_field(*idx, "bufferView", views_->size(), where + ".indices", "bufferView"), stride);
+    const std::uint64_t ioff = uint_field(*idx, "byteOffset", where + ".indices").value_or(0);
+    const std::string_view vb = view(index_field(*val, "bufferView", views_->size(), where + ".values", "bufferView"), stride);
+    const std::uint64_t voff = uint_field(*val, "byteOffset", where + ".values").value_or(0);
+    const std::uint64_t element = std::uint64_t(components) * std::uint64_t(size);
+    if (n == 0 || n > elements || ioff > ib.size() || n > (ib.size() - ioff) / isize || voff > vb.size() ||
+        n > (vb.size() - voff) / element)
+      fail(where + ": " + std::to_string(n) + " substitutions do not fit in their bufferViews (or exceed the " +
+           std::to_string(elements) + " elements)");
+    std::uint64_t last = 0;
+    for (std::uint64_t k = 0; k < n; ++k) {
+      unsigned char b[4] = {0, 0, 0, 0};
+      std::memcpy(b, ib.data() + ioff + k * isize, std::size_t(isize));
+      const std::uint64_t e = std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24;
+      if (e >= elements || (k > 0 && e <= last))
+        fail(where + ": index " + std::to_string(k) + " is " + std::to_string(e) +
+             (e >= elements ? ", past the " + std::to_string(elements) + " elements" : ", not after the one before it"));
+      last = e;
+      for (int c = 0; c < components; ++c)
+        out[std::size_t(e) * std::size_t(components) + std::size_t(c)] =
+            component(vb.data() + voff + k * element + std::uint64_t(c * size), ct, normalized);
+    }
   }
 
   static float component(const char* p, std::uint64_t ct, bool normalized) {

@@ -1,6 +1,7 @@
 // Wavefront OBJ: v (with optional r g b), vt, vn and f records; polygons are
 // fan-triangulated, negative (relative) indices resolved, and every other
-// record (o, g, s, usemtl, mtllib, l, p) skipped.
+// record (o, g, s, usemtl, mtllib, l, p, free-form curves and surfaces)
+// skipped, with a warning for each kind that holds geometry.
 #include <cmath>
 
 #include "io/readers.h"
@@ -29,7 +30,7 @@ void read_obj(std::string_view bytes, const std::string& name, ReadResult& resul
   std::vector<Vec3f> normals;
   std::vector<Tri> uv_faces, normal_faces;
   bool any_uv = false, any_no_uv = false, any_n = false, any_no_n = false;
-  std::uint64_t polygons = 0, skipped_lines = 0, skipped_points = 0, unknown_records = 0;
+  std::uint64_t polygons = 0, skipped_lines = 0, skipped_points = 0, unknown_records = 0, freeform = 0;
   std::size_t colour_count = 0;
 
   struct Corner { Index v, t, n; };
@@ -136,9 +137,14 @@ void read_obj(std::string_view bytes, const std::string& name, ReadResult& resul
     } else if (key == "p") {
       ++skipped_points;
       in.skip_line();
-    } else if (key == "o" || key == "g" || key == "s" || key == "usemtl" || key == "mtllib" || key == "vp" ||
-               key == "cstype" || key == "deg" || key == "curv" || key == "parm" || key == "end" ||
-               key == "mg" || key == "lod" || key == "bevel" || key == "shadow_obj" || key == "trace_obj") {
+    } else if (key == "o" || key == "g" || key == "s" || key == "usemtl" || key == "mtllib" || key == "mg" ||
+               key == "lod" || key == "bevel" || key == "c_interp" || key == "d_interp" || key == "shadow_obj" ||
+               key == "trace_obj") {
+      in.skip_line();  // grouping and display: the geometry is all read
+    } else if (key == "vp" || key == "cstype" || key == "deg" || key == "bmat" || key == "step" || key == "curv" ||
+               key == "curv2" || key == "surf" || key == "parm" || key == "trim" || key == "hole" || key == "scrv" ||
+               key == "sp" || key == "end" || key == "con" || key == "ctech" || key == "stech") {
+      ++freeform;  // curves and surfaces: geometry that is not read
       in.skip_line();
     } else {
       for (char ch : key)
@@ -188,6 +194,9 @@ void read_obj(std::string_view bytes, const std::string& name, ReadResult& resul
   if (skipped_lines) result.warnings.push_back(std::to_string(skipped_lines) + " line records (l) were skipped");
   if (unknown_records) result.warnings.push_back(std::to_string(unknown_records) + " records of unknown kinds were skipped");
   if (skipped_points) result.warnings.push_back(std::to_string(skipped_points) + " point records (p) were skipped");
+  if (freeform)
+    result.warnings.push_back(std::to_string(freeform) +
+                              " free-form curve and surface records (vp, curv, surf, ...) were skipped: only polygons are read");
 }
 
 }  // namespace cgview::detail

@@ -227,6 +227,21 @@ TEST(ReadObj, LinesPointsAndUnknownRecordsAreSkippedWithWarnings) {
   EXPECT_TRUE(has_warning(r, "1 records of unknown kinds were skipped"));
 }
 
+// A file from a CAD tool: groups, a line, parameter-space vertices and a
+// free-form curve between the polygons.  The polygons are read whole; what
+// holds geometry and is not read is said.
+TEST(ReadObj, GroupsLinesAndFreeFormRecordsMixedIn) {
+  const ReadResult r = obj("g part1\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvp 0.5 0.5\nvp 0.2\nl 1 2\n"
+                           "cstype bspline\ndeg 2\ncurv 0 1 1 2 3\nparm u 0 0 0 1 1 1\nend\ng part2\nf 1 2 3\n"
+                           "g part3\nf 2 4 3\n");
+  EXPECT_EQ(r.mesh.num_vertices(), 4u);
+  const std::vector<Tri> want = {{0, 1, 2}, {1, 3, 2}};
+  EXPECT_EQ(r.mesh.faces, want);
+  EXPECT_TRUE(has_warning(r, "1 line records (l) were skipped"));
+  EXPECT_TRUE(has_warning(r, "7 free-form curve and surface records (vp, curv, surf, ...) were skipped: only polygons are read"));
+  EXPECT_FALSE(has_warning(r, "unknown"));
+}
+
 TEST(ReadObj, VertexColours) {
   const ReadResult r = obj("v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0.5 1\nf 1 2 3\n");
   const std::vector<Color> want = {{255, 0, 0, 255}, {0, 255, 0, 255}, {0, 128, 255, 255}};
@@ -720,6 +735,44 @@ TEST(ReadGltf, StripsAndFansAndSkippedPoints) {
   EXPECT_NE(std::string(e.what()).find("no triangles"), std::string::npos) << e.what();
 }
 
+// Sparse accessors as the glTF 2.0 specification (3.6.2.3) defines them:
+// without a bufferView the base is zeros; with one, its values; then each
+// of `count` indices takes its value from the sparse values.
+TEST(ReadGltf, SparseAccessorsSubstituteTheirElements) {
+  // Indices (unsigned short) at byte 0, values (two VEC3) at byte 4, base at byte 28.
+  const std::string idx = le(std::uint16_t(1)) + le(std::uint16_t(2));
+  const std::string bin = idx + floats({1, 0, 0, 0, 1, 0}) + floats({5, 5, 5, 5, 5, 5, 5, 5, 5});
+  auto doc = [](const std::string& base) {
+    return R"({"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+           R"("accessors":[{)" + base + R"("componentType":5126,"count":3,"type":"VEC3","sparse":{"count":2,)"
+           R"("indices":{"bufferView":0,"componentType":5123},"values":{"bufferView":1}}}],)"
+           R"("bufferViews":[{"buffer":0,"byteLength":4},{"buffer":0,"byteOffset":4,"byteLength":24},)"
+           R"({"buffer":0,"byteOffset":28,"byteLength":36}],"buffers":[{"byteLength":64}]})";
+  };
+  const Mesh zeros = read(glb(doc(""), bin), MeshFormat::glb, "z.glb").mesh;
+  EXPECT_EQ(zeros.positions, (std::vector<Vec3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}));
+  EXPECT_EQ(zeros.faces, (std::vector<Tri>{{0, 1, 2}}));
+  const Mesh based = read(glb(doc(R"("bufferView":2,)"), bin), MeshFormat::glb, "b.glb").mesh;
+  EXPECT_EQ(based.positions, (std::vector<Vec3>{{5, 5, 5}, {1, 0, 0}, {0, 1, 0}}));
+  // Indices out of order, or past the elements: refused, naming the index.
+  const std::string back = le(std::uint16_t(2)) + le(std::uint16_t(1)) + bin.substr(4);
+  EXPECT_NE(std::string(error_of(glb(doc(""), back), MeshFormat::glb, "o.glb").what()).find("not after the one before it"),
+            std::string::npos);
+  const std::string past = le(std::uint16_t(1)) + le(std::uint16_t(3)) + bin.substr(4);
+  EXPECT_NE(std::string(error_of(glb(doc(""), past), MeshFormat::glb, "p.glb").what()).find("past the 3 elements"),
+            std::string::npos);
+}
+
+// glTF 1.0 (objects by name where 2.0 has arrays): said as such, not as a
+// malformed 2.0 file.
+TEST(ReadGltf, Gltf1IsRefusedByName) {
+  for (const std::string& doc : {std::string(R"({"asset":{"version":"1.0"},"buffers":{"b":{"uri":"data:,"}}})"),
+                                 std::string(R"({"buffers":{"b":{"uri":"data:,"}},"meshes":{}})")}) {
+    const ParseError e = error_of(doc, MeshFormat::gltf, "old.gltf");
+    EXPECT_NE(std::string(e.what()).find("glTF 1.0 is not supported (only glTF 2.0)"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ReadGltf, DracoCompressedPrimitive) {
   // A KHR_draco_mesh_compression primitive whose bufferView holds our own .drc bytes.
   Mesh m = test::uv_sphere(1.0, 6, 8);
@@ -786,7 +839,7 @@ TEST(ReadGltf, HostileStructuresAreRefused) {
       {R"({"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
        R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","sparse":{}}],)"
        R"("bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":44}]})",
-       "sparse accessors are not supported"},
+       "sparse has no count"},
       {R"({"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
        R"("accessors":[{"bufferView":0,"componentType":5130,"count":3,"type":"VEC3"}],)"
        R"("bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":44}]})",
