@@ -38,6 +38,7 @@ TEST_APT_PACKAGES=(
   draco libgtest-dev libgmock-dev
   assimp-testmodels assimp-utils
   chromium wrk
+  clang libfuzzer-14-dev
   python3 python3-websocket
   openssl
 )
@@ -85,7 +86,7 @@ ensure_node() {
 check_tools() {
   local t
   local tools=(cmake ninja g++ ccache node npm)
-  [ "$TESTS" = 0 ] || tools+=(draco_decoder assimp python3)
+  [ "$TESTS" = 0 ] || tools+=(draco_decoder assimp python3 clang++)
   for t in "${tools[@]}"; do
     command -v "$t" >/dev/null || die "'$t' is missing after the install (see the apt-get output above)"
   done

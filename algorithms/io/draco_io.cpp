@@ -116,16 +116,31 @@ std::unique_ptr<draco::Mesh> to_draco(const Mesh& input, std::span<const std::ui
   return out;
 }
 
+// a, when it holds numbers.  Draco converts a bool attribute by loading its
+// bytes as bool, undefined for any byte but 0 and 1 (the fuzzer's first
+// finding): positions, normals, texture coordinates and colours are numbers,
+// so any other type is refused.
+const draco::PointAttribute* numeric(const draco::PointAttribute* a, const std::string& name, const char* what) {
+  if (!a) return nullptr;
+  const draco::DataType t = a->data_type();
+  if (t < draco::DT_INT8 || t > draco::DT_FLOAT64)
+    throw ParseError(name, std::string("the Draco ") + what + " are of data type " + std::to_string(int(t)) +
+                               ", not numbers",
+                     std::nullopt, std::nullopt);
+  return a;
+}
+
 // Our Mesh from a decoded draco::Mesh: one vertex per draco point.
 void from_draco(const draco::Mesh& dm, const std::string& name, ReadResult& result) {
   Mesh& mesh = result.mesh;
-  const draco::PointAttribute* pos = dm.GetNamedAttribute(draco::GeometryAttribute::POSITION);
+  const draco::PointAttribute* pos = numeric(dm.GetNamedAttribute(draco::GeometryAttribute::POSITION), name, "positions");
   if (!pos) throw ParseError(name, "the Draco data has no positions", std::nullopt, std::nullopt);
   const std::size_t n = dm.num_points();
   mesh.positions.resize(n);
-  const draco::PointAttribute* nrm = dm.GetNamedAttribute(draco::GeometryAttribute::NORMAL);
-  const draco::PointAttribute* tex = dm.GetNamedAttribute(draco::GeometryAttribute::TEX_COORD);
-  const draco::PointAttribute* col = dm.GetNamedAttribute(draco::GeometryAttribute::COLOR);
+  const draco::PointAttribute* nrm = numeric(dm.GetNamedAttribute(draco::GeometryAttribute::NORMAL), name, "normals");
+  const draco::PointAttribute* tex =
+      numeric(dm.GetNamedAttribute(draco::GeometryAttribute::TEX_COORD), name, "texture coordinates");
+  const draco::PointAttribute* col = numeric(dm.GetNamedAttribute(draco::GeometryAttribute::COLOR), name, "colours");
   if (nrm) mesh.normals.resize(n);
   if (tex) mesh.uvs.resize(n);
   if (col) mesh.colors.resize(n);
@@ -712,7 +727,7 @@ class GltfReader {
         return nullptr;
       }
       if (!it->is_number_integer()) fail(where + ".attributes." + key + " is not an integer");
-      const draco::PointAttribute* a = dm.GetAttributeByUniqueId(it->get<std::uint32_t>());
+      const draco::PointAttribute* a = numeric(dm.GetAttributeByUniqueId(it->get<std::uint32_t>()), name_, key);
       if (!a) fail(where + ": the Draco data has no attribute " + it->dump().substr(0, 16) + " for " + key);
       out.assign(part.vertices * std::size_t(comps), 0.f);
       if (comps == 4) for (std::size_t k = 3; k < out.size(); k += 4) out[k] = 1.f;

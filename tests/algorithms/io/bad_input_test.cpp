@@ -472,6 +472,21 @@ TEST(BadInput, LyingDracoCountsAreRefusedBeforeDracoAllocates) {
   EXPECT_LT(peak_rss_kb() - rss_before, 100 * 1024) << "peak RSS grew by " << (peak_rss_kb() - rss_before) << " KiB";
 }
 
+// The fuzzer's first finding (tests/fuzz/corpus/drc/regression-bool-attribute):
+// a Draco stream whose positions are of type bool; Draco converted them by
+// loading a byte of 14 as a bool, undefined behaviour.
+TEST(BadInput, DracoAttributesThatAreNotNumbersAreRefused) {
+  const std::string bytes(
+      "\x44\x52\x41\x43\x4f\x02\x02\x01\x01\x00\x00\x00\x08\x0c\x00\x0b\x00\x00\x03\x6f\x55\x15\x01\x01"
+      "\x10\x01\xff\x00\x00\x01\x00\x0b\x01\x20\x03\x00\x38\x41\x0e\x05\x05\x44\x02\x01\x00\x3f\xd3\x00"
+      "\xff\x00\x01\x55\x15\x01\x01\x18\x01\xff\x00\x00\x00\x80\x40\xff\x00\x00\x40\x0e",
+      68);
+  const fs::path p = dir() / "bool_positions.drc";
+  test::write_text(p, bytes);
+  const ParseError e = parse_error(p);
+  EXPECT_NE(std::string(e.what()).find("the Draco positions are of data type 11, not numbers"), std::string::npos) << e.what();
+}
+
 // The bound is 1024 faces a byte of the stream (draco_io.cpp): a regular
 // grid at Draco's best compression and 1-bit positions (its every vertex
 // predicted exactly), denser than any scanned mesh by far, stays under it and
