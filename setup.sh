@@ -30,7 +30,7 @@ APT_PACKAGES=(
   libdraco-dev libtinygltf-dev
   libegl-dev libopengl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libpng-dev
   libopenvdb-dev libembree-dev
-  libsqlite3-dev libssl-dev zlib1g-dev libzip-dev
+  libsqlite3-dev libssl-dev zlib1g-dev libzip-dev prometheus-cpp-dev
   libcgal-demo
   nodejs npm
 )
@@ -39,7 +39,7 @@ TEST_APT_PACKAGES=(
   assimp-testmodels assimp-utils
   chromium wrk
   clang libfuzzer-14-dev
-  python3 python3-websocket
+  python3 python3-websocket python3-prometheus-client
   openssl
 )
 [ "$TESTS" = 0 ] || APT_PACKAGES+=("${TEST_APT_PACKAGES[@]}")

@@ -436,6 +436,18 @@ int JobScheduler::active_locked(const std::string& owner) const {
   return n;
 }
 
+JobCounts JobScheduler::counts() const {
+  JobCounts c;
+  std::lock_guard lock(mutex_);
+  for (const auto& [id, j] : jobs_) {
+    ++c.by_state_algorithm[{j->state, j->algorithm}];
+    c.artifact_bytes += j->bytes;
+  }
+  for (const auto& [owner, q] : queues_) c.queued += q.size();
+  c.running = running_ids_.size();
+  return c;
+}
+
 Usage JobScheduler::usage(const std::string& user) const {
   Usage u;
   u.storage_bytes = meshes_.store().mesh_bytes(user);

@@ -47,6 +47,13 @@ struct ArtifactBytes {
   std::string bytes, content_type, file_name;
 };
 
+// How many jobs there are, for the metrics.
+struct JobCounts {
+  std::map<std::pair<std::string, std::string>, std::size_t> by_state_algorithm;  // (state, algorithm) -> jobs
+  std::size_t queued = 0, running = 0;
+  std::uint64_t artifact_bytes = 0;  // of every job's directory
+};
+
 class JobScheduler {
  public:
   JobScheduler(MeshService& meshes, JobConfig config);
@@ -88,6 +95,7 @@ class JobScheduler {
                          const Caller& caller = Caller::local());
 
   std::uint64_t workers_started() const { return workers_started_; }
+  JobCounts counts() const;
 
   // Quotas: a user's limits, and their use (the bytes of the meshes they own
   // and of their jobs' artifacts, cached results not counted twice; their

@@ -9,6 +9,7 @@
 #include "io/mesh_io.h"
 #include "io/parse_json.h"
 #include "jobs.h"
+#include "metrics.h"
 #include "render_service.h"
 #include "zip_bundle.h"
 
@@ -162,6 +163,24 @@ Router::Router(MeshService& meshes, RouterConfig config)
     if (!Access{rec.owner}.owned_by(caller)) throw Forbidden("mesh " + rec.id + " is " + rec.owner + "'s: only its owner changes it");
     return rec;
   };
+  routes_.push_back({"GET", "/metrics", "Prometheus metrics (text format): requests, latencies, WebSockets, jobs, queue, store", {},
+                     [this](const Params&, const HttpRequest&, const Caller&) {
+                       if (!config_.metrics) return error_response(404, "not_found", "this server keeps no metrics");
+                       MetricsSnapshot now;
+                       now.meshes = meshes_.store().count();
+                       now.store_bytes = meshes_.store().total_bytes();
+                       if (config_.jobs) {
+                         const JobCounts c = config_.jobs->counts();
+                         now.jobs = c.by_state_algorithm;
+                         now.queued = c.queued;
+                         now.running = c.running;
+                         now.store_bytes += c.artifact_bytes;
+                       }
+                       HttpResponse r;
+                       r.content_type = Metrics::kContentType;
+                       r.body = config_.metrics->text(now);
+                       return r;
+                     }});
   routes_.push_back({"GET", "/api/v1/health", "Server health: status, version, mesh count, uptime", {},
                      [this](const Params&, const HttpRequest&, const Caller& caller) {
                        const double up = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
@@ -500,10 +519,20 @@ bool Router::is_heavy(const HttpRequest& req) const {
 }
 
 HttpResponse Router::handle(const HttpRequest& req) const {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::string route = "unmatched";
+  HttpResponse r = dispatch(req, route);
+  if (config_.metrics)
+    config_.metrics->request(route, req.method, r.status,
+                             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  return r;
+}
+
+HttpResponse Router::dispatch(const HttpRequest& req, std::string& route) const {
   const auto [path, query] = split_target(req.target);
-  // The web client's files are public (it asks for a token); the API is not.
+  // The web client's files are public (it asks for a token); the API and the metrics are not.
   std::optional<Caller> caller;
-  if (path.starts_with("/api/")) {
+  if (path.starts_with("/api/") || path == "/metrics") {
     caller = auth_.authenticate(req.authorization);
     if (!caller) {
       HttpResponse r = error_response(401, "unauthorized", req.authorization.empty()
@@ -519,6 +548,7 @@ HttpResponse Router::handle(const HttpRequest& req) const {
     if (!match(r.pattern, path, params)) continue;
     path_known = true;
     if (r.method != req.method) continue;
+    route = r.pattern;
     for (const auto& [name, value] : params)
       if (!valid_path_param(value))
         return error_response(400, "bad_request", "'" + name + "' is not a valid " + name + ": letters, digits, '_', '.' or '-'");
@@ -545,6 +575,7 @@ HttpResponse Router::handle(const HttpRequest& req) const {
   if (path_known) return error_response(405, "method_not_allowed", req.method + " is not allowed on " + path);
   if (path.starts_with("/api/")) return error_response(404, "not_found", "no route " + req.method + " " + path);
   if (req.method != "GET" && req.method != "HEAD") return error_response(405, "method_not_allowed", "only GET serves files");
+  route = "static";
   return serve_static(path);
 }
 

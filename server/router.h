@@ -37,6 +37,7 @@ struct HttpResponse {
 HttpResponse error_response(int status, const std::string& code, const std::string& detail);
 
 class JobScheduler;
+class Metrics;
 class RenderService;
 
 struct RouterConfig {
@@ -46,6 +47,7 @@ struct RouterConfig {
   render::GlPlatform gl_platform = render::GlPlatform::automatic;  // for render.png
   int renderers = 2;  // EGL contexts rendering at once (render.png)
   bool auth_required = false;  // every /api/ request needs a bearer token (else: Caller::local() without one)
+  Metrics* metrics = nullptr;  // counts every request; GET /metrics serves it (404 without one)
 };
 
 class Router {
@@ -76,6 +78,8 @@ class Router {
   const Auth& auth() const { return auth_; }
 
  private:
+  // handle() without the metrics: `route` gets the matched route's pattern.
+  HttpResponse dispatch(const HttpRequest& request, std::string& route) const;
   HttpResponse serve_static(const std::string& path) const;
   // GET /api/v1/meshes/{id}/render.png: 400 naming a bad parameter ("parameter" in the JSON).
   HttpResponse render_png(const MeshRecord& rec, const HttpRequest& req, const Caller& caller) const;

@@ -21,6 +21,7 @@
 
 #include "core/errors.h"
 #include "io/parse_json.h"
+#include "metrics.h"
 #include "animation_frames.h"
 #include "frames.h"
 #include "mesh_service.h"
@@ -87,7 +88,7 @@ struct Shared {
         meshes(store),
         jobs(std::make_unique<JobScheduler>(meshes, c.jobs)),
         router(meshes, {c.static_dir, "0.1.0", jobs.get(), c.gl_platform, std::max(1, c.workers),
-                        c.auth_required || !net::ip::make_address(c.host).is_loopback()}),
+                        c.auth_required || !net::ip::make_address(c.host).is_loopback(), &metrics}),
         workers(std::size_t(std::max(1, c.workers))),
         rate(c.rate_per_s, c.rate_burst),
         tls(tls_context(c)) {
@@ -96,12 +97,14 @@ struct Shared {
       meshes.set_reader({c.reader, c.data_dir / "tmp", c.jobs.memory_mb,
                          std::chrono::milliseconds(std::llround(c.upload_timeout_s * 1000))});
     meshes.set_preview(c.preview);
-    jobs->on_event = [r = &router](const json& e, const Access& readers) {
+    jobs->on_event = [r = &router, m = &metrics](const json& e, const Access& readers) {
+      m->job_event(e);
       if (r->on_event) r->on_event(e, readers);
     };
   }
   ~Shared() { jobs.reset(); }  // its thread sends events through the router
   ServerConfig config;
+  Metrics metrics;  // before the router and the scheduler, which report to it
   Store store;
   MeshService meshes;
   std::unique_ptr<JobScheduler> jobs;
@@ -153,6 +156,7 @@ std::optional<std::pair<double, std::string>> Shared::over_rate(std::string_view
   const std::string key = rate_key(authorization, peer.address, peer.loopback);
   const auto wait = rate.take(key);
   if (!wait) return std::nullopt;
+  metrics.rate_limited();
   const double retry = std::max(1.0, std::ceil(*wait));
   return std::pair(retry, "over the rate limit of " + rate.describe() + " for this " +
                               (key.starts_with("token:") ? "token" : "address") + "; retry after " +
@@ -173,8 +177,11 @@ template <class Stream>
 class WebSocketSession : public EventSink, public std::enable_shared_from_this<WebSocketSession<Stream>> {
  public:
   WebSocketSession(Stream&& stream, std::shared_ptr<Shared> shared, std::shared_ptr<const Peer> peer)
-      : ws_(std::move(stream)), shared_(std::move(shared)), peer_(std::move(peer)) {}
+      : ws_(std::move(stream)), shared_(std::move(shared)), peer_(std::move(peer)) {
+    shared_->metrics.websocket_opened();
+  }
   ~WebSocketSession() {
+    shared_->metrics.websocket_closed();
     std::lock_guard lock(shared_->sessions_mutex);
     shared_->sessions.erase(static_cast<EventSink*>(this));
   }

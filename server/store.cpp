@@ -278,13 +278,23 @@ std::size_t Store::count(const Caller& caller) const {
   return s.step() ? std::size_t(s.integer(0)) : 0;
 }
 
+namespace {
+// The mesh file and its texture images (blobs of the mesh, sized in its material).
+constexpr const char* kMeshBytesSql =
+    "SELECT IFNULL(SUM(bytes + IFNULL((SELECT SUM(json_extract(t.value, '$.bytes'))"
+    " FROM json_each(material, '$.textures') AS t), 0)), 0) FROM meshes";
+}  // namespace
+
 std::uint64_t Store::mesh_bytes(const std::string& owner) const {
   std::lock_guard lock(mutex_);
-  // The mesh file and its texture images (blobs of the mesh, sized in its material).
-  Stmt s(db_,
-         "SELECT IFNULL(SUM(bytes + IFNULL((SELECT SUM(json_extract(t.value, '$.bytes'))"
-         " FROM json_each(material, '$.textures') AS t), 0)), 0) FROM meshes WHERE owner = ?1");
+  Stmt s(db_, (std::string(kMeshBytesSql) + " WHERE owner = ?1").c_str());
   s.bind(1, owner);
+  return s.step() ? std::uint64_t(s.integer(0)) : 0;
+}
+
+std::uint64_t Store::total_bytes() const {
+  std::lock_guard lock(mutex_);
+  Stmt s(db_, kMeshBytesSql);
   return s.step() ? std::uint64_t(s.integer(0)) : 0;
 }
 

@@ -113,6 +113,8 @@ class Store {
   std::size_t count(const Caller& caller) const;
   // The bytes of the meshes `owner` owns, files and texture images (their quota counts them).
   std::uint64_t mesh_bytes(const std::string& owner) const;
+  // The same, of every owner.
+  std::uint64_t total_bytes() const;
 
   // Shares an item with users (by name, or kEveryone), or stops sharing it
   // (shared false); kind is "mesh" or "job".

@@ -40,7 +40,7 @@ for t in "${TARGETS[@]}"; do
   if [ "$MODE" = --campaign ]; then args+=(-fork="${CGVIEW_JOBS:-$(nproc)}" -ignore_crashes=0); fi
   log="$BUILD/findings/$t.log"
   if "$BUILD/fuzz_$t" "${args[@]}" "$work" "corpus/$t" >"$log" 2>&1; then
-    echo "fuzz_$t: $(grep -E '^#[0-9]+.*(DONE|pulse)' "$log" | tail -1 | sed 's/^#//') $(grep -m1 -o 'stat::number_of_executed_units: [0-9]*' "$log")"
+    echo "fuzz_$t: $(grep -E '^#[0-9]+' "$log" | tail -1 | sed 's/^#/runs /')"
   else
     echo "fuzz_$t: FINDING (log: $log)"; grep -E 'ERROR|SUMMARY|Test unit written' "$log" | head -5
     failed+=("$t")
