@@ -238,7 +238,17 @@ void JobScheduler::persist(const Job& j) {
   else sqlite3_bind_int64(s, ++i, std::int64_t(j.bytes));
   const int rc = sqlite3_step(s);
   sqlite3_finalize(s);
+  if (rc == SQLITE_FULL) throw DiskFull(std::string("jobs: ") + sqlite3_errmsg(db_));
   if (rc != SQLITE_DONE) throw IoError(std::string("jobs: ") + sqlite3_errmsg(db_));
+}
+
+void JobScheduler::save(const Job& j) {
+  try {
+    persist(j);
+    unsaved_.erase(j.id);
+  } catch (const std::exception&) {
+    unsaved_.insert(j.id);
+  }
 }
 
 // Every input by name; a job from before several inputs has only "mesh".
@@ -534,7 +544,7 @@ std::optional<json> JobScheduler::cancel(const std::string& id, const Caller& ca
     if (changed) {
       j.state = "cancelled";
       j.finished = now_iso8601();
-      persist(j);
+      save(j);
     }
     out = job_json(j);
   }
@@ -700,14 +710,16 @@ bool JobScheduler::launch(Job& j) {
     }
     files[name] = meshes_.store().blob_file(*rec).string();
   }
-  {
-    std::ofstream f(dir / "job.json");
-    f << json{{"algorithm", j.algorithm}, {"params", json::parse(j.params)}, {"inputs", files}, {"out", dir.string()}}
-             .dump();
-    if (!f) {
-      j.error = "cannot write " + (dir / "job.json").string();
-      return false;
-    }
+  try {
+    write_file_bytes(dir / "job.json",
+                     json{{"algorithm", j.algorithm}, {"params", json::parse(j.params)}, {"inputs", files}, {"out", dir.string()}}
+                         .dump());
+  } catch (const DiskFull&) {
+    j.error = "the server's storage is full: the job could not start";
+    return false;
+  } catch (const IoError& e) {
+    j.error = e.what();
+    return false;
   }
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) {
@@ -743,7 +755,7 @@ void JobScheduler::reap(Job& j, int status, std::vector<json>& events) {
   j.pid = -1;
   j.bytes = dir_bytes(job_dir(j.id));
   if (j.cancelled) {  // already cancelled (state, event): only its size is new
-    persist(j);
+    save(j);
     return;
   }
   const fs::path dir = job_dir(j.id);
@@ -769,13 +781,15 @@ void JobScheduler::reap(Job& j, int status, std::vector<json>& events) {
     if (text.empty()) text = trim(read_file(dir / "stderr.txt"));
     const bool oom = (WIFEXITED(status) && WEXITSTATUS(status) == 3) || text.find("bad_alloc") != std::string::npos;
     if (oom && config_.memory_mb > 0) j.error = "exceeded its memory limit of " + std::to_string(config_.memory_mb) + " MB";
+    else if (WIFEXITED(status) && WEXITSTATUS(status) == 4)
+      j.error = "the server's storage is full: the job's results could not be written";
     else if (WIFSIGNALED(status)) j.error = "killed by signal " + signal_name(WTERMSIG(status));
     else if (WIFEXITED(status) && WEXITSTATUS(status) == 127 && text.empty()) j.error = "the worker could not be started";
     else j.error = text.empty() ? "the worker exited with status " + std::to_string(WEXITSTATUS(status)) : text;
   }
   j.state = state;
   j.finished = now_iso8601();
-  persist(j);
+  save(j);
   events.push_back({{"type", state == "done" ? "job_done" : "job_failed"}, {"job", job_json(j)}});
 }
 
@@ -788,6 +802,8 @@ void JobScheduler::loop() {
     {
       std::unique_lock lock(mutex_);
       if (stopping_) break;
+      for (const std::string& id : std::vector<std::string>(unsaved_.begin(), unsaved_.end()))
+        if (const auto it = jobs_.find(id); it != jobs_.end()) save(*it->second);
       // Start queued jobs, round-robin over owners.
       while (int(running_ids_.size()) < config_.max_workers) {
         auto it = queues_.upper_bound(last_owner_);
@@ -804,13 +820,13 @@ void JobScheduler::loop() {
         if (launch(j)) {
           running_ids_.push_back(id);
           j.last_event = Clock::now();
-          persist(j);
+          save(j);
           events.push_back({{"type", "job_progress"}, {"job", {{"id", j.id}, {"state", j.state}, {"progress", 0.0}, {"stage", j.stage}}}});
         } else {
           j.state = "failed";
           j.finished = now_iso8601();
           j.bytes = dir_bytes(job_dir(j.id));
-          persist(j);
+          save(j);
           events.push_back({{"type", "job_failed"}, {"job", job_json(j)}});
         }
       }

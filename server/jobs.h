@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <set>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -110,6 +111,8 @@ class JobScheduler {
   struct Job;
   void load();
   void persist(const Job& job);
+  // persist, or remember the job in unsaved_ when the write fails (never throws).
+  void save(const Job& job);
   nlohmann::json job_json(const Job& job) const;
   void loop();
   bool launch(Job& job);  // under mutex_
@@ -144,6 +147,9 @@ class JobScheduler {
   // The jobs queued or running of the owner (under mutex_).
   int active_locked(const std::string& owner) const;
   std::atomic<std::uint64_t> workers_started_{0};
+  // Jobs whose last change could not be written (a full disk): written again
+  // at each turn of the loop until it fits; their state in memory is right.
+  std::set<std::string> unsaved_;
   std::vector<std::string> running_ids_;
   int wake_pipe_[2] = {-1, -1};
   std::thread thread_;

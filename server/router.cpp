@@ -568,6 +568,9 @@ HttpResponse Router::dispatch(const HttpRequest& req, std::string& route) const 
       return error_response(400, "invalid_mesh", e.what());
     } catch (const std::out_of_range& e) {
       return error_response(404, "not_found", e.what());
+    } catch (const DiskFull&) {
+      return error_response(507, "insufficient_storage",
+                            "the server's storage is full: nothing was stored; retry once space is freed");
     } catch (const std::exception& e) {
       return error_response(500, "internal", e.what());
     }

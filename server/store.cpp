@@ -12,6 +12,7 @@
 #include <random>
 
 #include "core/errors.h"
+#include "io/mesh_io.h"
 
 namespace cgview::server {
 
@@ -39,6 +40,7 @@ class Stmt {
     const int rc = sqlite3_step(s_);
     if (rc == SQLITE_ROW) return true;
     if (rc == SQLITE_DONE) return false;
+    if (rc == SQLITE_FULL) throw DiskFull(std::string("store: ") + sqlite3_errmsg(db_));
     throw IoError(std::string("store: ") + sqlite3_errmsg(db_));
   }
   std::string text(int col) const {
@@ -113,9 +115,10 @@ sqlite3* open_database(const fs::path& path) {
 
 void exec_sql(sqlite3* db, const char* sql, const char* who) {
   char* err = nullptr;
-  if (sqlite3_exec(db, sql, nullptr, nullptr, &err) != SQLITE_OK) {
+  if (const int rc = sqlite3_exec(db, sql, nullptr, nullptr, &err); rc != SQLITE_OK) {
     std::string msg = err ? err : "unknown error";
     sqlite3_free(err);
+    if (rc == SQLITE_FULL) throw DiskFull(std::string(who) + ": " + msg);
     throw IoError(std::string(who) + ": " + msg);
   }
 }
@@ -187,22 +190,6 @@ fs::path Store::blob_path(const MeshRecord& r) const { return dir_ / "blobs" / (
 
 namespace {
 // Writes bytes to a temporary name, then renames it: a crash leaves a .part at worst.
-void write_blob(const fs::path& final_path, std::string_view bytes) {
-  const fs::path tmp = final_path.string() + ".part";
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    f.write(bytes.data(), std::streamsize(bytes.size()));
-    f.flush();
-    if (!f) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw IoError("store: cannot write " + tmp.string());
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, final_path, ec);
-  if (ec) throw IoError("store: cannot write " + final_path.string() + ": " + ec.message());
-}
 
 // A blob's whole bytes, or none when the file is not there.
 std::optional<std::string> read_whole(const fs::path& path) {
@@ -230,7 +217,7 @@ std::optional<std::string> Store::read_preview(const MeshRecord& r) const { retu
 
 void Store::write_preview(const MeshRecord& r, std::string_view bytes) const {
   std::error_code ec;
-  if (fs::exists(blob_path(r), ec)) write_blob(preview_path(r), bytes);
+  if (fs::exists(blob_path(r), ec)) write_file_bytes(preview_path(r), bytes);
 }
 
 MeshRecord Store::add_mesh(MeshRecord r, std::string_view bytes, const std::vector<std::string>& textures) {
@@ -239,8 +226,8 @@ MeshRecord Store::add_mesh(MeshRecord r, std::string_view bytes, const std::vect
   r.created = now_iso8601();
   r.bytes = bytes.size();
   try {
-    for (std::size_t n = 0; n < textures.size(); ++n) write_blob(texture_path(r.id, n), textures[n]);
-    write_blob(blob_path(r), bytes);
+    for (std::size_t n = 0; n < textures.size(); ++n) write_file_bytes(texture_path(r.id, n), textures[n]);
+    write_file_bytes(blob_path(r), bytes);
   } catch (...) {
     remove_blobs(r);
     throw;

@@ -4,7 +4,6 @@
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <limits>
 #include <new>
 #include <nlohmann/json.hpp>
@@ -183,12 +182,6 @@ UploadRead read_upload(const std::string& name, const std::string& format, std::
 
 namespace {
 
-void write_file(const fs::path& p, std::string_view bytes) {
-  std::ofstream f(p, std::ios::binary);
-  f.write(bytes.data(), std::streamsize(bytes.size()));
-  if (!f) throw IoError("cannot write " + p.string());
-}
-
 std::string read_file(const fs::path& p, std::size_t max_bytes) { return read_file_bytes(p, max_bytes); }
 
 // A child's directory, removed with everything in it when this goes.
@@ -213,8 +206,8 @@ UploadRead read_upload_in_child(const UploadReader& reader, const std::string& n
                                 std::string_view bytes, std::size_t max_unpacked_bytes) {
   const std::string n = clean_upload_name(name);  // named in the messages below
   TempDir dir(reader.temp_dir);
-  write_file(dir.path / "upload", bytes);
-  write_file(dir.path / "request.json",
+  write_file_bytes(dir.path / "upload", bytes);
+  write_file_bytes(dir.path / "request.json",
              nlohmann::json{{"name", name}, {"format", format}, {"max_unpacked_bytes", max_unpacked_bytes}}.dump());
   ChildOptions options;
   options.memory_mb = reader.memory_mb;
@@ -256,6 +249,7 @@ UploadRead read_upload_in_child(const UploadReader& reader, const std::string& n
     const std::string detail = e.is_object() ? e.value("detail", "") : "";
     if (kind == "payload_too_large") throw TooLarge(detail);
     if (kind == "unsupported_format") throw UnsupportedFormat(detail);
+    if (kind == "disk_full") throw DiskFull(detail);
     if (kind == "io_error") throw IoError(detail);
     throw InvalidInput(detail.empty() ? n + ": the file could not be read" : detail);
   }
@@ -274,7 +268,7 @@ UploadRead read_upload_in_child(const UploadReader& reader, const std::string& n
 int read_upload_main(const fs::path& dir) {
   auto refuse = [&](const char* kind, const std::string& detail) {
     try {
-      write_file(dir / "error.json", nlohmann::json{{"error", kind}, {"detail", detail}}.dump());
+      write_file_bytes(dir / "error.json", nlohmann::json{{"error", kind}, {"detail", detail}}.dump());
     } catch (const std::exception&) {
     }
     return 2;
@@ -284,10 +278,10 @@ int read_upload_main(const fs::path& dir) {
     const std::string bytes = read_file(dir / "upload", std::numeric_limits<std::size_t>::max());
     const UploadRead r = read_upload(req.at("name").get<std::string>(), req.at("format").get<std::string>(), bytes,
                                      req.at("max_unpacked_bytes").get<std::size_t>());
-    for (std::size_t k = 0; k < r.textures.size(); ++k) write_file(dir / ("texture-" + std::to_string(k)), r.textures[k]);
-    if (!r.unpacked_mesh.empty()) write_file(dir / "mesh", r.unpacked_mesh);
-    // result.json last, through a rename: its presence means the rest is whole.
-    write_file(dir / "result.json.part",
+    for (std::size_t k = 0; k < r.textures.size(); ++k) write_file_bytes(dir / ("texture-" + std::to_string(k)), r.textures[k]);
+    if (!r.unpacked_mesh.empty()) write_file_bytes(dir / "mesh", r.unpacked_mesh);
+    // result.json last (written through a rename): its presence means the rest is whole.
+    write_file_bytes(dir / "result.json",
                nlohmann::json{{"name", r.name},
                               {"format", r.format},
                               {"report", nlohmann::json::parse(r.report_json)},
@@ -296,7 +290,6 @@ int read_upload_main(const fs::path& dir) {
                               {"textures", r.textures.size()},
                               {"unpacked", !r.unpacked_mesh.empty()}}
                    .dump());
-    fs::rename(dir / "result.json.part", dir / "result.json");
     return 0;
   } catch (const std::bad_alloc&) {
     return 3;
@@ -306,6 +299,8 @@ int read_upload_main(const fs::path& dir) {
     return refuse("unsupported_format", e.what());
   } catch (const InvalidInput& e) {
     return refuse("invalid_mesh", e.what());
+  } catch (const DiskFull& e) {
+    return refuse("disk_full", e.what());
   } catch (const IoError& e) {
     return refuse("io_error", e.what());
   } catch (const std::length_error&) {

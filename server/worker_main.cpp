@@ -16,7 +16,8 @@
 //   animation     NAME.frames (core/animation.h)
 //   others        NAME + default_extension (write_artifact)
 // and result.json {"artifacts":[{"name","kind","file",...}],"warnings":[...]}.
-// Exit status: 0 done; 2 invalid input; 3 out of memory; 1 any other error
+// Exit status: 0 done; 2 invalid input; 3 out of memory; 4 no room for the
+// results (a full disk); 1 any other error
 // (the message on stderr and in OUT/error.txt).
 #include <chrono>
 #include <cstdio>
@@ -38,11 +39,7 @@ using namespace cgview;
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-void write_text(const fs::path& p, const std::string& s) {
-  std::ofstream f(p, std::ios::binary);
-  f << s;
-  if (!f) throw IoError("cannot write " + p.string());
-}
+void write_text(const fs::path& p, const std::string& s) { write_file_bytes(p, s); }
 
 json save(const Artifact& a, const Mesh& input, const fs::path& out) {
   json entry{{"name", a.name}};
@@ -54,9 +51,8 @@ json save(const Artifact& a, const Mesh& input, const fs::path& out) {
     entry["hint"] = to_string(field->hint);
     entry["range"] = {lo, hi};
     entry["count"] = field->values.size();
-    std::ofstream f(out / (a.name + ".f32"), std::ios::binary);
-    f.write(reinterpret_cast<const char*>(field->values.data()), std::streamsize(field->values.size() * sizeof(float)));
-    if (!f) throw IoError("cannot write " + (out / (a.name + ".f32")).string());
+    write_file_bytes(out / (a.name + ".f32"),
+                     std::string_view(reinterpret_cast<const char*>(field->values.data()), field->values.size() * sizeof(float)));
     write_text(out / (a.name + ".field.json"),
                json{{"name", field->name}, {"location", entry["location"]}, {"hint", entry["hint"]},
                     {"range", entry["range"]}, {"count", entry["count"]}}
@@ -110,9 +106,7 @@ int run_job(const fs::path& spec_path, fs::path& out) {
   const AlgorithmResult result = algo.run(inputs, values, ctx);
   json artifacts = json::array();
   for (const Artifact& a : result.artifacts) artifacts.push_back(save(a, mesh, out));
-  const fs::path tmp = out / "result.json.part";
-  write_text(tmp, json{{"artifacts", artifacts}, {"warnings", result.warnings}}.dump());
-  fs::rename(tmp, out / "result.json");
+  write_text(out / "result.json", json{{"artifacts", artifacts}, {"warnings", result.warnings}}.dump());
   return 0;
 }
 
@@ -142,6 +136,8 @@ int main(int argc, char** argv) {
     return run_job(argv[1], out);
   } catch (const std::bad_alloc&) {
     return fail(3, "out of memory");
+  } catch (const DiskFull& e) {
+    return fail(4, e.what());  // the status says it: error.txt may not fit either
   } catch (const InvalidInput& e) {
     return fail(2, e.what());
   } catch (const std::exception& e) {

@@ -52,4 +52,11 @@ class IoError : public Error {
   using Error::Error;
 };
 
+// A write that found no room (ENOSPC, EDQUOT, SQLite's SQLITE_FULL): a server
+// answers 507 and keeps what it had stored.
+class DiskFull : public IoError {
+ public:
+  using IoError::IoError;
+};
+
 }  // namespace cgview

@@ -131,14 +131,24 @@ void write_mesh(const Mesh& mesh, const std::filesystem::path& path, const Write
 void write_file_bytes(const std::filesystem::path& path, std::string_view bytes) {
   // Write beside the target and rename, so that a failure leaves no half file.
   const std::filesystem::path tmp = path.string() + ".part";
+  auto fail = [&](const char* what, int err) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    const std::string msg = path.string() + ": " + what + ": " + std::strerror(err);
+    if (err == ENOSPC || err == EDQUOT) throw DiskFull(msg);
+    throw IoError(msg);
+  };
   {
     std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(tmp.c_str(), "wb"), &std::fclose);
-    if (!f) throw IoError(path.string() + ": cannot create: " + std::strerror(errno));
+    if (!f) fail("cannot create", errno);
+    errno = 0;
     if (std::fwrite(bytes.data(), 1, bytes.size(), f.get()) != bytes.size() || std::fflush(f.get()) != 0) {
+      const int err = errno ? errno : EIO;
       f.reset();
-      std::filesystem::remove(tmp);
-      throw IoError(path.string() + ": write error");
+      fail("cannot write", err);
     }
+    errno = 0;
+    if (std::fclose(f.release()) != 0) fail("cannot write", errno ? errno : EIO);
   }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);

@@ -77,7 +77,7 @@ std::string write_mesh_bytes(const Mesh& mesh, MeshFormat format, const WriteOpt
 std::string write_ply_with_field(const Mesh& mesh, const struct ScalarField& field, bool binary = true);
 
 // Writes bytes to a file through a temporary name, so that a failure leaves
-// no half-written file; throws IoError.
+// no half-written file; throws IoError, DiskFull when there is no room.
 void write_file_bytes(const std::filesystem::path& path, std::string_view bytes);
 
 // Reads a whole file into memory; throws IoError (cannot open) or

@@ -6,7 +6,10 @@
 // MeshLab writes it; triangle strips (a tristrips element's vertex_indices
 // lists, -1 restarting a strip, as Stanford's scans and old tools store
 // them).  Other elements and properties are skipped, with a warning.
+#include <algorithm>
 #include <bit>
+#include <initializer_list>
+#include <string_view>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -55,6 +58,13 @@ struct Element {
   std::uint64_t count = 0;
   std::vector<Property> props;
 };
+
+// The index of the element's first list property of one of these names, or -1.
+int list_named(const Element& e, std::initializer_list<std::string_view> names) {
+  for (std::size_t i = 0; i < e.props.size(); ++i)
+    if (e.props[i].is_list && std::find(names.begin(), names.end(), e.props[i].name) != names.end()) return int(i);
+  return -1;
+}
 
 enum class Encoding { ascii, little, big };
 
@@ -227,6 +237,18 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
     out.resize(std::size_t(n));
     for (double& x : out) x = read_value(p.type);
   };
+  // One item of an element: its scalars read past, each list read into
+  // `list` and given to on_list with its property's index.
+  auto read_item = [&](const Element& e, const auto& on_list) {
+    for (std::size_t i = 0; i < e.props.size(); ++i) {
+      if (!e.props[i].is_list) {
+        read_value(e.props[i].type);
+        continue;
+      }
+      read_list(e.props[i], list);
+      on_list(i);
+    }
+  };
   auto fail_here = [&](const std::string& problem) {
     if (enc == Encoding::ascii) in.fail(problem);
     bin.fail(problem);
@@ -315,12 +337,7 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
     } else if (e.name == "face" && !have_faces) {
       have_faces = true;
       if (!have_vertices) fail_here("the face element comes before the vertex element");
-      int idx_prop = -1, uv_prop = -1;
-      for (std::size_t i = 0; i < e.props.size(); ++i) {
-        const Property& p = e.props[i];
-        if (p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index") && idx_prop < 0) idx_prop = int(i);
-        if (p.is_list && p.name == "texcoord" && uv_prop < 0) uv_prop = int(i);
-      }
+      const int idx_prop = list_named(e, {"vertex_indices", "vertex_index"}), uv_prop = list_named(e, {"texcoord"});
       if (idx_prop < 0)
         throw ParseError(name, "the face element has no vertex_indices list", header_line, std::nullopt);
       mesh.faces.reserve(std::size_t(std::min<std::uint64_t>(e.count, data_bytes / 4)));
@@ -329,13 +346,7 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
       for (std::uint64_t f = 0; f < e.count; ++f) {
         poly.clear();
         wedge_uv.clear();
-        for (std::size_t i = 0; i < e.props.size(); ++i) {
-          const Property& p = e.props[i];
-          if (!p.is_list) {
-            read_value(p.type);
-            continue;
-          }
-          read_list(p, list);
+        read_item(e, [&](std::size_t i) {
           if (int(i) == idx_prop) {
             for (double x : list) {
               if (!(x >= 0) || x >= double(vertex_count))
@@ -346,7 +357,7 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
           } else if (int(i) == uv_prop && wedges) {
             for (std::size_t k = 0; k + 1 < list.size(); k += 2) wedge_uv.push_back({float(list[k]), float(list[k + 1])});
           }
-        }
+        });
         if (poly.size() < 3) fail_here("face " + std::to_string(f) + " has " + std::to_string(poly.size()) + " corners (at least 3 needed)");
         if (poly.size() > 3) ++polygons;
         if (wedges_ok && wedge_uv.size() != poly.size()) wedges_ok = false;
@@ -368,22 +379,13 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
       }
     } else if (e.name == "tristrips") {
       if (!have_vertices) fail_here("the tristrips element comes before the vertex element");
-      int idx_prop = -1;
-      for (std::size_t i = 0; i < e.props.size(); ++i)
-        if (e.props[i].is_list && (e.props[i].name == "vertex_indices" || e.props[i].name == "vertex_index") && idx_prop < 0)
-          idx_prop = int(i);
+      const int idx_prop = list_named(e, {"vertex_indices", "vertex_index"});
       if (idx_prop < 0)
         throw ParseError(name, "the tristrips element has no vertex_indices list", header_line, std::nullopt);
       std::uint64_t strips = 0, degenerate = 0;
       for (std::uint64_t s = 0; s < e.count; ++s)
-        for (std::size_t i = 0; i < e.props.size(); ++i) {
-          const Property& p = e.props[i];
-          if (!p.is_list) {
-            read_value(p.type);
-            continue;
-          }
-          read_list(p, list);
-          if (int(i) != idx_prop) continue;
+        read_item(e, [&](std::size_t i) {
+          if (int(i) != idx_prop) return;
           // Each run between -1s is a strip: corner k makes a triangle with
           // the two before it, every other one turned to keep the strip's
           // orientation; triangles with a repeated corner only join strips.
@@ -411,7 +413,7 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
             poly.push_back(Index(x));
           }
           strip_done();
-        }
+        });
       have_faces = true;
       result.warnings.push_back("read " + std::to_string(strips) + " triangle strips into triangles" +
                                 (degenerate ? " (" + std::to_string(degenerate) +
@@ -420,11 +422,7 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
     } else {
       // Skip another element (edges, materials, ...) item by item; one
       // without properties has nothing to skip (and its count costs no bytes).
-      for (std::uint64_t n = 0; n < e.count && !e.props.empty(); ++n)
-        for (const Property& p : e.props) {
-          if (p.is_list) read_list(p, list);
-          else read_value(p.type);
-        }
+      for (std::uint64_t n = 0; n < e.count && !e.props.empty(); ++n) read_item(e, [](std::size_t) {});
       if (e.count) result.warnings.push_back("skipped " + std::to_string(e.count) + " '" + e.name + "' elements");
     }
   }

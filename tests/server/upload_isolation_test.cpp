@@ -28,29 +28,9 @@ using nlohmann::json;
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 
-std::string varint(std::uint64_t v) {
-  std::string s;
-  do {
-    unsigned char c = v & 0x7f;
-    v >>= 7;
-    if (v) c |= 0x80;
-    s.push_back(char(c));
-  } while (v);
-  return s;
-}
-
-// 33 bytes of Draco 2.2 edgebreaker whose header claims 1.4 billion faces:
-// Draco's decoder sizes its corner table (tens of GB) from the claim.
-std::string draco_claiming_billions() {
-  std::string d = std::string("DRACO") + '\x02' + '\x02' + '\x01' + '\x01' + std::string(2, '\0');
-  d += '\0';                       // standard traversal
-  d += varint(3);                  // vertices
-  d += varint(1400000000);         // faces
-  d += '\0';                       // attribute data
-  d += varint(1100000000);         // symbols
-  d += varint(0);                  // split symbols
-  return d + std::string(8, '\0');
-}
+// 33 bytes of Draco whose header claims 1.4 billion faces: Draco's decoder
+// sizes its corner table (tens of GB) from the claim.
+std::string draco_claiming_billions() { return draco_claiming(1400000000); }
 
 std::string le32(std::uint32_t v) { return {char(v), char(v >> 8), char(v >> 16), char(v >> 24)}; }
 

@@ -141,4 +141,24 @@ int run(const std::string& command, std::string* output) {
 
 std::string bin(const std::string& name) { return std::string(CGVIEW_BIN_DIR) + "/" + name; }
 
+namespace {
+std::string varint(std::uint64_t v) {
+  std::string s;
+  do {
+    unsigned char c = v & 0x7f;
+    v >>= 7;
+    if (v) c |= 0x80;
+    s.push_back(char(c));
+  } while (v);
+  return s;
+}
+}  // namespace
+
+std::string draco_claiming(std::uint64_t faces, std::uint64_t vertices) {
+  std::string d = std::string("DRACO") + '\x02' + '\x02' + '\x01' + '\x01' + std::string(2, '\0');
+  d += '\0';  // standard traversal
+  d += varint(vertices) + varint(faces) + '\0' + varint(faces * 3 / 4) + varint(0);
+  return d + std::string(8, '\0');
+}
+
 }  // namespace cgview::test

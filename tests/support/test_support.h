@@ -2,6 +2,7 @@
 // meshes, temporary directories and running programs.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -27,6 +28,11 @@ Mesh torus(double R = 2.0, double r = 0.5, int rings = 24, int segments = 12);
 Mesh swept(const std::vector<std::pair<double, double>>& section, int rings);
 // A flat n x n grid of squares in the z = 0 plane: one boundary loop, genus 0.
 Mesh grid(int n = 4);
+
+// A Draco 2.2 edgebreaker stream whose connectivity header claims `faces`
+// faces and `vertices` vertices, followed by eight zero bytes: a lie of 33
+// bytes when it claims 1.4 billion.
+std::string draco_claiming(std::uint64_t faces, std::uint64_t vertices = 3);
 
 // a and b side by side as one mesh (b's indices shifted).
 Mesh merged(const Mesh& a, const Mesh& b);

@@ -427,25 +427,6 @@ TEST(BadInput, LyingHeaderCountsAreRefusedQuicklyWithoutAllocating) {
   EXPECT_LT(peak_rss_kb() - rss_before, 100 * 1024) << "peak RSS grew by " << (peak_rss_kb() - rss_before) << " KiB";
 }
 
-std::string varint(std::uint64_t v) {
-  std::string s;
-  do {
-    unsigned char c = v & 0x7f;
-    v >>= 7;
-    if (v) c |= 0x80;
-    s.push_back(char(c));
-  } while (v);
-  return s;
-}
-
-// A Draco 2.2 edgebreaker stream whose connectivity header claims `faces`.
-std::string draco_claiming(std::uint64_t faces, std::uint64_t vertices = 3) {
-  std::string d = std::string("DRACO") + '\x02' + '\x02' + '\x01' + '\x01' + std::string(2, '\0');
-  d += '\0';  // standard traversal
-  d += varint(vertices) + varint(faces) + '\0' + varint(faces * 3 / 4) + varint(0);
-  return d + std::string(8, '\0');
-}
-
 // Draco's edgebreaker decoder sizes its corner table (several 4-byte
 // indices a corner) for the face count the header claims before a byte backs
 // it: 33 bytes claiming 1.4 billion faces ask for tens of GB.  The counts are
@@ -458,8 +439,8 @@ TEST(BadInput, LyingDracoCountsAreRefusedBeforeDracoAllocates) {
     std::string bytes, says;
   };
   const std::vector<Case> cases = {
-      {"faces", draco_claiming(1400000000), "the Draco header claims 1400000000 faces, but 33 bytes cannot hold more"},
-      {"vertices", draco_claiming(1000, 4000000), "claims 4000000 vertices for 1000 faces"},
+      {"faces", test::draco_claiming(1400000000), "the Draco header claims 1400000000 faces, but 33 bytes cannot hold more"},
+      {"vertices", test::draco_claiming(1000, 4000000), "claims 4000000 vertices for 1000 faces"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.tag);
