@@ -132,6 +132,8 @@ class TextScanner {
       const char* q = p + 1;
       if (q < e && *q == '+') ++q;
       if (std::from_chars(q, e, exp).ec == std::errc::result_out_of_range) exp = (*q == '-') ? INT32_MIN : INT32_MAX;
+      // An exponent near INT64_MAX overflowed lead + exp (the fuzzer found it).
+      exp = std::clamp<std::int64_t>(exp, INT32_MIN, INT32_MAX);
     }
     const double v = lead + exp < 0 ? 0.0 : HUGE_VAL;
     return negative ? -v : v;

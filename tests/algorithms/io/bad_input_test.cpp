@@ -220,9 +220,11 @@ TEST(BadInput, BinaryGarbageIsRefusedAtTheStart) {
 }
 
 TEST(BadInput, NonFiniteCoordinatesInTextFormats) {
-  // The first coordinate of vertex 3 (0-based) becomes each bad token.
+  // The first coordinate of vertex 3 (0-based) becomes each bad token; the
+  // last, an exponent of INT64_MAX, overflowed the exponent's sum (found by
+  // fuzz_stl: tests/fuzz/corpus/stl/regression-exponent-overflow) and read as 0.
   const Mesh m = box();
-  for (const std::string bad : {"nan", "inf", "-inf", "1e400", "-1e400", "NaN"}) {
+  for (const std::string bad : {"nan", "inf", "-inf", "1e400", "-1e400", "NaN", "3223678218291318148E9223372036854775807"}) {
     SCOPED_TRACE(bad);
     {
       const std::string text = encode(m, variant("off"));
