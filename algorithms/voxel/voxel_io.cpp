@@ -66,6 +66,14 @@ std::array<int, 3> checked_dims(long long a, long long b, long long c, const std
     if (d <= 0 || d > (1 << 20)) bad(name, "bad grid dimension " + std::to_string(d));
   return {int(a), int(b), int(c)};
 }
+// The same for sizes read as numbers from text: converting 1e100 (or NaN)
+// to an integer is undefined (found by fuzz_voxel), so the range comes first.
+std::array<int, 3> checked_text_dims(double a, double b, double c, const std::string& name) {
+  for (double d : {a, b, c})
+    if (!(d >= 1 && d <= (1 << 20)) || d != std::floor(d))
+      bad(name, "bad grid dimension " + nlohmann::json(d).dump() + " (a whole number 1.." + std::to_string(1 << 20) + ")");
+  return {int(a), int(b), int(c)};
+}
 
 VoxelGrid make_grid(std::array<int, 3> d, Vec3 origin, double size, VoxelType t, const std::string& name,
                     std::size_t available_bytes) {
@@ -268,7 +276,7 @@ VoxelGrid decode_nrrd(const std::string& bytes, const std::string& name) {
   double s = 1;
   if (dirs.size() == 9) s = dirs[0];
   Vec3 c = origin.size() == 3 ? Vec3{origin[0], origin[1], origin[2]} : Vec3{};
-  const auto d = checked_dims((long long)sizes[0], (long long)sizes[1], (long long)sizes[2], name);
+  const auto d = checked_text_dims(sizes[0], sizes[1], sizes[2], name);
   VoxelGrid g = make_grid(d, c - Vec3{0.5, 0.5, 0.5} * s, s, t, name, bytes.size() - end);
   fill(g, bytes.data() + end, bytes.size() - end, name, end);
   return g;
@@ -317,8 +325,7 @@ VoxelGrid decode_vti(const std::string& bytes, const std::string& name) {
                      head.find("<DataArray", head.find("<CellData")) < head.find("</CellData>");
   // Point data holds one more sample than cells along each axis.
   const int sub = cells ? 0 : 1;
-  const auto d = checked_dims((long long)(ext[1] - ext[0]) + sub, (long long)(ext[3] - ext[2]) + sub,
-                              (long long)(ext[5] - ext[4]) + sub, name);
+  const auto d = checked_text_dims(ext[1] - ext[0] + sub, ext[3] - ext[2] + sub, ext[5] - ext[4] + sub, name);
   const std::size_t arr = head.find("<DataArray");
   if (arr == std::string::npos) bad(name, "no <DataArray>");
   const std::string type = attribute(head, arr, "type"), format = attribute(head, arr, "format");

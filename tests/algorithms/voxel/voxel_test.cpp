@@ -625,6 +625,22 @@ TEST(VoxelFormatsTest, BadFilesAreParseErrors) {
   EXPECT_THROW(decode_vox(vox), ParseError);
   EXPECT_THROW(decode_vti("<VTKFile type=\"PolyData\">"), ParseError);
   EXPECT_THROW(read_voxel_grid("x.unknown"), UnsupportedFormat);
+  // Sizes that no integer holds, or not whole (fuzz_voxel found the first:
+  // converting 1e100 to an integer is undefined): refused, naming the size.
+  for (const std::string size : {"1e100", "nan", "-inf", "2.5", "0"}) {
+    try {
+      (void)decode_nrrd("NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 " + size + " 2\nencoding: raw\n\nxxxxxxxx");
+      ADD_FAILURE() << size << " was read";
+    } catch (const ParseError& e) {
+      const std::string what = e.what();  // nan and -inf are not numbers to the header's reader
+      EXPECT_TRUE(what.find("bad grid dimension") != std::string::npos || what.find("'sizes' needs 3 numbers") != std::string::npos)
+          << what;
+    }
+    const std::string vti = "<VTKFile type=\"ImageData\"><ImageData WholeExtent=\"0 1 0 " + size +
+                            " 0 1\" Origin=\"0 0 0\" Spacing=\"1 1 1\"><Piece><PointData><DataArray type=\"UInt8\" "
+                            "format=\"ascii\">0 0 0 0 0 0 0 0</DataArray></PointData></Piece></ImageData></VTKFile>";
+    EXPECT_THROW(decode_vti(vti), ParseError) << size;
+  }
 }
 
 TEST(VoxelFormatsTest, ArtifactWriterTakesEveryVoxelExtension) {
