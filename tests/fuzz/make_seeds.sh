@@ -12,7 +12,9 @@ CGVIEW=$BUILD/bin/cgview
 SAMPLES=$BUILD/samples
 ASSIMP=/usr/share/assimp/models
 C=corpus
-rm -rf "$C" && mkdir -p $C/{off,obj,ply,stl,gltf,glb,drc,mtl,skeleton,voxel,zip,frame,json}
+# Written over, never removed: the regression-* inputs (findings, fixed) and
+# the hand-written params/ and config/ seeds stay.
+mkdir -p $C/{off,obj,ply,stl,gltf,glb,drc,mtl,skeleton,voxel,zip,frame,json,params,config}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
