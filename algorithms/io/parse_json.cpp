@@ -28,7 +28,12 @@ nlohmann::json parse_json(std::string_view text, const std::string& what, int ma
   if (const int d = json_depth(text); d > max_depth)
     throw InvalidInput(what + " nests arrays and objects " + std::to_string(d) + " deep; at most " +
                        std::to_string(max_depth) + " are read");
-  return nlohmann::json::parse(text);
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::out_of_range&) {
+    // A number past a double ("6e8618") is out_of_range, not a parse_error.
+    throw InvalidInput(what + " holds a number too large for a double");
+  }
 }
 
 nlohmann::json parse_json_or_discarded(std::string_view text, int max_depth) {

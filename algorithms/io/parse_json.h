@@ -22,8 +22,9 @@ inline constexpr int kMaxJsonDepth = 64;
 int json_depth(std::string_view text);
 
 // text parsed; throws InvalidInput when it nests deeper than max_depth
-// ("WHAT nests arrays and objects N deep; at most M are read") and
-// nlohmann::json::parse_error when it is not JSON.
+// ("WHAT nests arrays and objects N deep; at most M are read") or holds a
+// number too large for a double, and nlohmann::json::parse_error when it is
+// not JSON.
 nlohmann::json parse_json(std::string_view text, const std::string& what, int max_depth = kMaxJsonDepth);
 
 // The same, never throwing: a discarded value (is_discarded()) for text that

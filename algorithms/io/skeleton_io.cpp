@@ -132,6 +132,10 @@ Skeleton read_json(std::string_view bytes, const std::string& name) {
     const std::size_t at = std::min<std::size_t>(e.byte, bytes.size());
     throw ParseError(name, "not JSON", 1 + std::uint64_t(std::count(bytes.begin(), bytes.begin() + std::ptrdiff_t(at), '\n')),
                      std::nullopt);
+  } catch (const nlohmann::json::out_of_range&) {
+    // A number past a double ("6e8618"): nlohmann throws out_of_range, not
+    // a parse_error (found by fuzz_skeleton).
+    throw ParseError(name, "a number in the JSON is too large for a double", std::nullopt, std::nullopt);
   }
   const auto bad = [&](const std::string& what) { throw ParseError(name, what, std::nullopt, std::nullopt); };
   if (!j.is_object() || !j.contains("nodes") || !j["nodes"].is_array()) bad("expected an object with a \"nodes\" array");

@@ -113,6 +113,10 @@ TEST(SkeletonFiles, BadFilesNameTheLine) {
   EXPECT_EQ(line_of("{\"nodes\": [[0, 0, 0]],\n \"edges\": [[0, 1]\n", SkeletonFormat::json), 3u);  // not JSON
   EXPECT_THROW(read_skeleton_bytes("{\"nodes\": [[0, 0, 0]], \"edges\": [[0, 4]]}", SkeletonFormat::json, "j"), ParseError);
   EXPECT_THROW(read_skeleton_bytes("", SkeletonFormat::cg, "empty"), ParseError);
+  // A number past a double: nlohmann's out_of_range escaped as another
+  // exception (tests/fuzz/corpus/skeleton/regression-number-overflow).
+  EXPECT_THROW(read_skeleton_bytes("362006e8618", SkeletonFormat::json, "big"), ParseError);
+  EXPECT_THROW(read_skeleton_bytes("{\"nodes\": [[0, 0, 1e999]], \"edges\": []}", SkeletonFormat::json, "big"), ParseError);
   EXPECT_THROW(skeleton_format_from_name("a.stl"), UnsupportedFormat);
 }
 
