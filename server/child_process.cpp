@@ -53,6 +53,9 @@ pid_t spawn_child(const std::vector<std::string>& args, const ChildOptions& opti
   const int e = err.empty() ? -1 : ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (e >= 0) ::dup2(e, 2);
   else if (null >= 0) ::dup2(null, 2);
+  // Nothing else of the server's: its listening socket, clients' sockets and
+  // the store's files are not the child's to hold open or write.
+  ::close_range(3, ~0U, 0);
   ::execv(argv[0], argv.data());
   ::_exit(127);
 }

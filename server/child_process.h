@@ -2,7 +2,7 @@
 // upload's reader), the one place that knows how a child of a threaded,
 // signal-handling server is made: signals blocked across the fork, an
 // address-space limit, no core file, its own process group, killed with the
-// server.
+// server, and no descriptor of the server's but stdin, stdout and stderr.
 #pragma once
 
 #include <sys/types.h>
