@@ -20,6 +20,7 @@
 #include "child_process.h"
 #include "core/errors.h"
 #include "io/mesh_io.h"
+#include "io/parse_json.h"
 #include "io/skeleton_io.h"
 #include "registry/artifact_io.h"
 #include "registry/registry.h"
@@ -749,6 +750,31 @@ bool JobScheduler::launch(Job& j) {
   return true;
 }
 
+// Why a worker's artifact list does not match its files ("" when it does):
+// each entry names a plain file of the job's directory that is there, and a
+// scalar field's file holds its count of floats.  A worker killed while
+// writing, or a plugin's, must not make a job done without its results.
+static std::string incomplete_artifact(const fs::path& dir, const json& artifacts) {
+  if (!artifacts.is_array()) return "no artifact list";
+  for (const auto& a : artifacts) {
+    const std::string name = a.is_object() ? a.value("name", "") : "";
+    const std::string file = a.is_object() ? a.value("file", "") : "";
+    if (name.empty() || file.empty() || file.find('/') != std::string::npos || file == "." || file == "..")
+      return "an artifact without a name or a file";
+    std::error_code ec;
+    const std::uintmax_t size = fs::file_size(dir / file, ec);
+    if (ec) return "artifact '" + name + "': its file is missing";
+    if (a.value("kind", "") == "scalar_field") {
+      const json count = a.value("count", json());
+      if (!count.is_number_unsigned() || size != count.get<std::uintmax_t>() * sizeof(float))
+        return "artifact '" + name + "': " + std::to_string(size) + " bytes for " + count.dump() + " values";
+    } else if (size == 0) {
+      return "artifact '" + name + "': its file is empty";
+    }
+  }
+  return "";
+}
+
 void JobScheduler::reap(Job& j, int status, std::vector<json>& events) {
   if (j.out_fd >= 0) ::close(j.out_fd);
   j.out_fd = -1;
@@ -765,8 +791,11 @@ void JobScheduler::reap(Job& j, int status, std::vector<json>& events) {
     std::snprintf(buf, sizeof buf, "%g", config_.timeout_s);
     j.error = std::string("exceeded its time limit of ") + buf + " s";
   } else if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(dir / "result.json")) {
-    const json result = json::parse(read_file(dir / "result.json"), nullptr, false);
-    if (result.is_object()) {
+    const json result = parse_json_or_discarded(read_file(dir / "result.json"));
+    const std::string broken = result.is_object() ? incomplete_artifact(dir, result.value("artifacts", json())) : "";
+    if (!broken.empty()) {
+      j.error = "the worker's results are incomplete: " + broken;
+    } else if (result.is_object()) {
       state = "done";
       j.artifacts = result.value("artifacts", json::array()).dump();
       j.files = j.id;

@@ -31,6 +31,7 @@
 #include "test_support.h"
 
 #include <sqlite3.h>
+#include <sys/stat.h>
 
 namespace cgview {
 namespace {
@@ -446,6 +447,24 @@ TEST_F(JobsTest, BadRequests) {
   EXPECT_EQ(http_call(server_.port(), Method::post, "/api/v1/jobs", "not json").status, 400);
   EXPECT_EQ(http_get(server_.port(), "/api/v1/jobs/0000000000000000").status, 404);
   EXPECT_EQ(http_call(server_.port(), Method::delete_, "/api/v1/jobs/0000000000000000").status, 404);
+}
+
+// A worker that exits 0 with a result list whose files are cut short (killed
+// while writing, or a plugin's bug) fails its job saying which artifact is
+// short; it is never done without its results.
+TEST_F(JobsTest, TruncatedArtifactsFailTheJobNamingThem) {
+  server_.kill_now();
+  const fs::path script = dir_ / "truncating-worker";
+  test::write_text(script, "#!/bin/sh\n" + test::bin("cgview-worker-test") +
+                               " \"$@\"; rc=$?\n[ \"$1\" = --list ] && exit $rc\n"
+                               "for f in \"$(dirname \"$1\")\"/*.f32; do truncate -s 7 \"$f\"; done\nexit $rc\n");
+  ::chmod(script.c_str(), 0755);
+  ASSERT_TRUE(start({"--worker", script.string()}));
+  const json j = wait_end(submit("centroid_distance", {{"exponent", 2}})["id"]);
+  EXPECT_EQ(j["state"], "failed") << j.dump();
+  EXPECT_EQ(j.value("error", ""), "the worker's results are incomplete: artifact 'distance': 7 bytes for 162 values")
+      << j.dump();
+  EXPECT_EQ(http_get(server_.port(), "/api/v1/jobs/" + j["id"].get<std::string>() + "/artifacts/distance").status, 400);
 }
 
 TEST_F(JobsTest, CrashMemoryAndTimeLimitsFailAlone) {
