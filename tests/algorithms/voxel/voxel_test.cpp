@@ -625,6 +625,15 @@ TEST(VoxelFormatsTest, BadFilesAreParseErrors) {
   EXPECT_THROW(decode_vox(vox), ParseError);
   EXPECT_THROW(decode_vti("<VTKFile type=\"PolyData\">"), ParseError);
   EXPECT_THROW(read_voxel_grid("x.unknown"), UnsupportedFormat);
+  // A bit grid's claim is checked too (fuzz_voxel: a 200-byte NRRD of type
+  // bit claimed 4 GB of voxels and got them allocated).
+  try {
+    (void)decode_nrrd("NRRD0004\ntype: uint8\ncgview_type: bit\ndimension: 3\nsizes: 1000 1000 1000\nencoding: raw\n\nxx");
+    ADD_FAILURE() << "a claim of 10^9 voxels in 2 bytes was read";
+  } catch (const ParseError& e) {
+    EXPECT_NE(std::string(e.what()).find("the header claims 1000x1000x1000 voxels, more than the file holds"),
+              std::string::npos) << e.what();
+  }
   // Sizes that no integer holds, or not whole (fuzz_voxel found the first:
   // converting 1e100 to an integer is undefined): refused, naming the size.
   for (const std::string size : {"1e100", "nan", "-inf", "2.5", "0"}) {
