@@ -37,7 +37,8 @@ for t in "${TARGETS[@]}"; do
   args=(-max_total_time="$SECONDS_EACH" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 -max_len=65536
         -artifact_prefix="$BUILD/findings/$t/" -print_final_stats=1)
   [ -f "dict/$t.dict" ] && args+=(-dict="dict/$t.dict")
-  if [ "$MODE" = --campaign ]; then args+=(-fork="${CGVIEW_JOBS:-$(nproc)}" -ignore_crashes=0); fi
+  # Fork mode counts out-of-memory inputs and timeouts without stopping; they are findings too.
+  if [ "$MODE" = --campaign ]; then args+=(-fork="${CGVIEW_JOBS:-$(nproc)}" -ignore_crashes=0 -ignore_ooms=0 -ignore_timeouts=0); fi
   log="$BUILD/findings/$t.log"
   if "$BUILD/fuzz_$t" "${args[@]}" "$work" "corpus/$t" >"$log" 2>&1; then
     echo "fuzz_$t: $(grep -E '^#[0-9]+' "$log" | tail -1 | sed 's/^#/runs /')"
