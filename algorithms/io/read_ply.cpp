@@ -59,6 +59,15 @@ struct Element {
   std::vector<Property> props;
 };
 
+// A list value as a message shows it: an index read as a double may be 1e75,
+// which no integer holds (casting it is undefined: fuzz_ply found it).
+std::string index_text(double x) {
+  if (std::isfinite(x) && std::fabs(x) < 1e18) return std::to_string(std::int64_t(x));
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
 // The index of the element's first list property of one of these names, or -1.
 int list_named(const Element& e, std::initializer_list<std::string_view> names) {
   for (std::size_t i = 0; i < e.props.size(); ++i)
@@ -350,7 +359,7 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
           if (int(i) == idx_prop) {
             for (double x : list) {
               if (!(x >= 0) || x >= double(vertex_count))
-                fail_here("face " + std::to_string(f) + " refers to vertex " + std::to_string(std::int64_t(x)) +
+                fail_here("face " + std::to_string(f) + " refers to vertex " + index_text(x) +
                           " but there are " + std::to_string(vertex_count) + " vertices");
               poly.push_back(Index(x));
             }
@@ -408,7 +417,7 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
               continue;
             }
             if (!(x >= 0) || x >= double(vertex_count))
-              fail_here("strip " + std::to_string(s) + " refers to vertex " + std::to_string(std::int64_t(x)) +
+              fail_here("strip " + std::to_string(s) + " refers to vertex " + index_text(x) +
                         " but there are " + std::to_string(vertex_count) + " vertices");
             poly.push_back(Index(x));
           }
