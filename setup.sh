@@ -38,7 +38,9 @@ TEST_APT_PACKAGES=(
   draco libgtest-dev libgmock-dev
   assimp-testmodels assimp-utils
   chromium wrk
-  clang libfuzzer-14-dev
+  # The fuzz targets (tests/fuzz): clang's sanitizer and libFuzzer runtimes are
+  # in libclang-rt-14-dev, which clang only recommends.
+  clang libfuzzer-14-dev libclang-rt-14-dev
   python3 python3-websocket python3-prometheus-client
   openssl
 )
