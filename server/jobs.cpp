@@ -751,8 +751,8 @@ bool JobScheduler::launch(Job& j) {
 }
 
 // Why a worker's artifact list does not match its files ("" when it does):
-// each entry names a plain file of the job's directory that is there, and a
-// scalar field's file holds its count of floats.  A worker killed while
+// each entry names a plain file of the job's directory that is there, a
+// scalar field's file holds its count of floats, and only text may be empty.  A worker killed while
 // writing, or a plugin's, must not make a job done without its results.
 static std::string incomplete_artifact(const fs::path& dir, const json& artifacts) {
   if (!artifacts.is_array()) return "no artifact list";
@@ -768,7 +768,7 @@ static std::string incomplete_artifact(const fs::path& dir, const json& artifact
       const json count = a.value("count", json());
       if (!count.is_number_unsigned() || size != count.get<std::uintmax_t>() * sizeof(float))
         return "artifact '" + name + "': " + std::to_string(size) + " bytes for " + count.dump() + " values";
-    } else if (size == 0) {
+    } else if (size == 0 && a.value("kind", "") != "text") {  // an extracted message may be empty
       return "artifact '" + name + "': its file is empty";
     }
   }

@@ -203,16 +203,12 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
-  if (config.jobs.worker.empty()) {
-    std::error_code ec;
-    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-    config.jobs.worker = (ec ? std::filesystem::path(argv[0]) : self).parent_path() / "cgview-worker";
-  }
-  if (config.reader.empty()) {
-    std::error_code ec;
-    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-    config.reader = (ec ? std::filesystem::path(argv[0]) : self).parent_path() / "cgview-read";
-  }
+  // The worker and the reader default to the programs beside this one.
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  const std::filesystem::path bin_dir = (ec ? std::filesystem::path(argv[0]) : self).parent_path();
+  if (config.jobs.worker.empty()) config.jobs.worker = bin_dir / "cgview-worker";
+  if (config.reader.empty()) config.reader = bin_dir / "cgview-read";
   // The renderer says once when only a software renderer is there.
   render::set_render_log([](const std::string& m) { std::fprintf(stderr, "cgview-server: %s\n", m.c_str()); });
   try {

@@ -189,8 +189,6 @@ Store::~Store() { sqlite3_close(db_); }
 fs::path Store::blob_path(const MeshRecord& r) const { return dir_ / "blobs" / (r.id + "." + r.format); }
 
 namespace {
-// Writes bytes to a temporary name, then renames it: a crash leaves a .part at worst.
-
 // A blob's whole bytes, or none when the file is not there.
 std::optional<std::string> read_whole(const fs::path& path) {
   std::ifstream f(path, std::ios::binary);

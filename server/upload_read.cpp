@@ -182,8 +182,6 @@ UploadRead read_upload(const std::string& name, const std::string& format, std::
 
 namespace {
 
-std::string read_file(const fs::path& p, std::size_t max_bytes) { return read_file_bytes(p, max_bytes); }
-
 // A child's directory, removed with everything in it when this goes.
 struct TempDir {
   explicit TempDir(const fs::path& parent) {
@@ -224,7 +222,7 @@ UploadRead read_upload_in_child(const UploadReader& reader, const std::string& n
   if (WIFEXITED(*status) && WEXITSTATUS(*status) == 0) {
     // What the child wrote is as untrusted as the upload: sizes capped, shape checked.
     const std::size_t cap = std::max<std::size_t>(bytes.size(), max_unpacked_bytes) + (std::size_t(1) << 20);
-    const nlohmann::json r = parse_json_or_discarded(read_file(dir.path / "result.json", std::size_t(64) << 20));
+    const nlohmann::json r = parse_json_or_discarded(read_file_bytes(dir.path / "result.json", std::size_t(64) << 20));
     UploadRead out;
     try {
       if (!r.is_object()) throw std::runtime_error("not an object");
@@ -236,15 +234,15 @@ UploadRead read_upload_in_child(const UploadReader& reader, const std::string& n
       const std::size_t textures = r.at("textures").get<std::size_t>();
       if (textures > 1000) throw std::runtime_error("too many textures");
       for (std::size_t k = 0; k < textures; ++k)
-        out.textures.push_back(read_file(dir.path / ("texture-" + std::to_string(k)), cap));
-      if (r.at("unpacked").get<bool>()) out.unpacked_mesh = read_file(dir.path / "mesh", cap);
+        out.textures.push_back(read_file_bytes(dir.path / ("texture-" + std::to_string(k)), cap));
+      if (r.at("unpacked").get<bool>()) out.unpacked_mesh = read_file_bytes(dir.path / "mesh", cap);
     } catch (const std::exception& e) {
       throw InvalidInput(n + ": the upload's reader gave an unreadable result (" + e.what() + ")");
     }
     return out;
   }
   if (WIFEXITED(*status) && WEXITSTATUS(*status) == 2) {
-    const nlohmann::json e = parse_json_or_discarded(read_file(dir.path / "error.json", 1 << 20));
+    const nlohmann::json e = parse_json_or_discarded(read_file_bytes(dir.path / "error.json", 1 << 20));
     const std::string kind = e.is_object() ? e.value("error", "") : "";
     const std::string detail = e.is_object() ? e.value("detail", "") : "";
     if (kind == "payload_too_large") throw TooLarge(detail);
@@ -274,8 +272,8 @@ int read_upload_main(const fs::path& dir) {
     return 2;
   };
   try {
-    const nlohmann::json req = nlohmann::json::parse(read_file(dir / "request.json", 1 << 20));
-    const std::string bytes = read_file(dir / "upload", std::numeric_limits<std::size_t>::max());
+    const nlohmann::json req = nlohmann::json::parse(read_file_bytes(dir / "request.json", 1 << 20));
+    const std::string bytes = read_file_bytes(dir / "upload", std::numeric_limits<std::size_t>::max());
     const UploadRead r = read_upload(req.at("name").get<std::string>(), req.at("format").get<std::string>(), bytes,
                                      req.at("max_unpacked_bytes").get<std::size_t>());
     for (std::size_t k = 0; k < r.textures.size(); ++k) write_file_bytes(dir / ("texture-" + std::to_string(k)), r.textures[k]);
