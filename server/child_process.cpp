@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 
 namespace cgview::server {
 
@@ -50,8 +51,9 @@ pid_t spawn_child(const std::vector<std::string>& args, const ChildOptions& opti
   if (null >= 0) ::dup2(null, 0);
   if (options.stdout_fd >= 0) ::dup2(options.stdout_fd, 1);
   else if (null >= 0) ::dup2(null, 1);
-  const int e = err.empty() ? -1 : ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (e >= 0) ::dup2(e, 2);
+  const int e = options.stderr_to_stdout ? -1 : err.empty() ? -1 : ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (options.stderr_to_stdout) ::dup2(1, 2);
+  else if (e >= 0) ::dup2(e, 2);
   else if (null >= 0) ::dup2(null, 2);
   // Nothing else of the server's: its listening socket, clients' sockets and
   // the store's files are not the child's to hold open or write.
@@ -97,6 +99,55 @@ std::string signal_name(int sig) {
     case SIGXCPU: return "SIGXCPU";
     default: return "signal " + std::to_string(sig);
   }
+}
+
+bool ToolRun::ok() const { return status && WIFEXITED(*status) && WEXITSTATUS(*status) == 0; }
+
+ToolRun run_tool(const std::vector<std::string>& argv, std::chrono::milliseconds limit) {
+  ToolRun out;
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0) {
+    out.output = "pipe failed";
+    return out;
+  }
+  ChildOptions child;
+  child.stdout_fd = fds[1];
+  child.stderr_to_stdout = true;
+  const pid_t pid = spawn_child(argv, child);
+  ::close(fds[1]);
+  if (pid < 0) {
+    ::close(fds[0]);
+    out.output = "fork failed";
+    return out;
+  }
+  const auto end = std::chrono::steady_clock::now() + limit;
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(end - std::chrono::steady_clock::now());
+    if (left.count() <= 0) break;
+    pollfd p{fds[0], POLLIN, 0};
+    if (::poll(&p, 1, int(left.count())) < 0 && errno != EINTR) break;
+    char buf[4096];
+    const ssize_t n = ::read(fds[0], buf, sizeof buf);
+    if (n == 0) break;
+    if (n > 0) out.output.append(buf, std::size_t(n));
+  }
+  ::close(fds[0]);
+  const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(end - std::chrono::steady_clock::now());
+  out.status = wait_child(pid, std::max(left, std::chrono::milliseconds(1)));
+  return out;
+}
+
+std::filesystem::path find_program(const std::string& name) {
+  if (name.find('/') != std::string::npos) return name;
+  const char* path = std::getenv("PATH");
+  std::string dirs = path ? path : "/usr/local/bin:/usr/bin:/bin";
+  for (std::size_t at = 0; at <= dirs.size();) {
+    const std::size_t colon = std::min(dirs.find(':', at), dirs.size());
+    const std::filesystem::path p = std::filesystem::path(dirs.substr(at, colon - at)) / name;
+    if (!p.parent_path().empty() && ::access(p.c_str(), X_OK) == 0) return p;
+    at = colon + 1;
+  }
+  return {};
 }
 
 }  // namespace cgview::server

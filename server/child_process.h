@@ -20,6 +20,7 @@ struct ChildOptions {
   std::size_t memory_mb = 0;        // RLIMIT_AS; 0: none
   int stdout_fd = -1;               // the child's stdout (closed in the parent by the caller); -1: /dev/null
   std::filesystem::path stderr_file;  // the child's stderr, truncated; empty: /dev/null
+  bool stderr_to_stdout = false;      // stderr goes where stdout goes (stderr_file unused)
 };
 
 // Forks and execs argv[0] (a path) with argv; the child's pid, or -1 when
@@ -30,6 +31,19 @@ pid_t spawn_child(const std::vector<std::string>& argv, const ChildOptions& opti
 // when the time ran out (the child, and its process group, are then killed
 // with SIGKILL and reaped).
 std::optional<int> wait_child(pid_t pid, std::chrono::milliseconds limit);
+
+// Runs a command-line tool (argv[0] a path) to its end, at most `limit`:
+// its wait status (nullopt when it ran out of time and was killed) and what
+// it printed, stdout and stderr together.
+struct ToolRun {
+  std::optional<int> status;
+  std::string output;
+  bool ok() const;  // exited with 0
+};
+ToolRun run_tool(const std::vector<std::string>& argv, std::chrono::milliseconds limit);
+
+// The full path of a program found on PATH, or "" (`name` with a '/' is taken as it is).
+std::filesystem::path find_program(const std::string& name);
 
 // "SIGSEGV", "SIGKILL", ... or "signal N".
 std::string signal_name(int sig);

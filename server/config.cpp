@@ -79,6 +79,12 @@ const std::map<std::string, Setter>& server_keys() {
        }},
       {"tls_cert", [](const json& v, const std::string& k, ServerConfig& c) { c.tls_cert = text(v, k); }},
       {"tls_key", [](const json& v, const std::string& k, ServerConfig& c) { c.tls_key = text(v, k); }},
+      {"job_cpus", [](const json& v, const std::string& k, ServerConfig& c) { c.jobs.cpus = int(integer(v, k, 1, 1024)); }},
+      {"executor", [](const json& v, const std::string& k, ServerConfig& c) {
+         const std::string e = text(v, k);
+         if (e != "local" && e != "slurm") bad(k, "is \"local\" or \"slurm\", got " + v.dump());
+         c.jobs.executor = e;
+       }},
       {"on_restart", [](const json& v, const std::string& k, ServerConfig& c) {
          const std::string m = text(v, k);
          if (m != "requeue" && m != "interrupt") bad(k, "is \"requeue\" or \"interrupt\", got " + v.dump());
@@ -133,8 +139,37 @@ void apply_config(const json& doc, ServerConfig& config) {
           else bad(where + "." + key, "unknown key (a user's limits are storage_mb and concurrent_jobs)");
         }
       }
+    } else if (section == "slurm") {
+      SlurmConfig& sl = config.jobs.slurm;
+      for (const auto& [key, v] : object(body, section).items()) {
+        const std::string k = "slurm." + key;
+        if (key == "partition") sl.partition = text(v, k);
+        else if (key == "account") sl.account = text(v, k);
+        else if (key == "qos") sl.qos = text(v, k);
+        else if (key == "sbatch_args") {
+          if (!v.is_array()) bad(k, "must be a list of strings, got " + v.dump());
+          sl.sbatch_args.clear();
+          for (const auto& a : v) sl.sbatch_args.push_back(text(a, k));
+        } else if (key == "max_jobs") sl.max_jobs = int(integer(v, k, 1, 1000000));
+        else if (key == "poll_s") {
+          if (!v.is_number() || !(v.get<double>() >= 0.05) || v.get<double>() > 3600)
+            bad(k, "must be a number of seconds 0.05..3600, got " + v.dump());
+          sl.poll_s = v.get<double>();
+        } else if (key == "shared_data") {
+          if (!v.is_boolean()) bad(k, "must be true or false, got " + v.dump());
+          sl.shared_data = v.get<bool>();
+        } else if (key == "server_url") sl.server_url = text(v, k);
+        else if (key == "on_lost") {
+          const std::string m = text(v, k);
+          if (m != "requeue" && m != "fail") bad(k, "is \"requeue\" or \"fail\", got " + v.dump());
+          sl.requeue_lost = m == "requeue";
+        } else if (key == "worker") sl.worker = text(v, k);
+        else
+          bad(k, "unknown key (the slurm section knows partition, account, qos, sbatch_args, max_jobs, poll_s, "
+                 "shared_data, server_url, on_lost, worker)");
+      }
     } else {
-      bad(section, "unknown key (the sections are server, limits and users)");
+      bad(section, "unknown key (the sections are server, limits, users and slurm)");
     }
   }
 }

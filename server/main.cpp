@@ -64,6 +64,8 @@ const char* kHelp =
     "  --reader PATH        the upload reader executable (default: cgview-read beside this program)\n"
     "  --upload-timeout-s N  time limit of reading one upload, in its own process (default 120; over: 413)\n"
     "  --on-restart WHAT    jobs left queued or running by a previous run: requeue (default) or interrupt\n"
+    "  --executor WHERE     where jobs run: local (this machine, default) or slurm (the config's slurm section)\n"
+    "  --job-cpus N         CPUs of a job (Slurm's --cpus-per-task; default 1)\n"
     "  -h, --help           this help\n";
 
 // A few sample meshes of different kinds (the whole set is 143 files).
@@ -174,6 +176,12 @@ int main(int argc, char** argv) {
       else if (a == "--job-workers") config.jobs.max_workers = int(number(1, 1024));
       else if (a == "--job-timeout-s") config.jobs.timeout_s = double(number(0, 100000000));
       else if (a == "--job-memory-mb") config.jobs.memory_mb = std::size_t(number(0, 1 << 24));
+      else if (a == "--job-cpus") config.jobs.cpus = int(number(1, 1024));
+      else if (a == "--executor") {
+        const std::string v = value();
+        if (v != "local" && v != "slurm") throw std::invalid_argument("--executor is local or slurm");
+        config.jobs.executor = v;
+      }
       else if (a == "--upload-timeout-s") config.upload_timeout_s = double(number(1, 86400));
       else if (a == "--on-restart") {
         const std::string v = value();

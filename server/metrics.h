@@ -49,7 +49,7 @@ class Metrics {
   void websocket_closed();
   // A request or WebSocket message refused with 429.
   void rate_limited();
-  // A job event (jobs.h's on_event): a start begins the job's clock; done,
+  // A job event (jobs/scheduler.h's on_event): a start begins the job's clock; done,
   // failed and cancelled count the end by algorithm and state, observe how
   // long it ran, and count a worker killed by a signal as a crash.
   void job_event(const nlohmann::json& event);

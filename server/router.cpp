@@ -8,7 +8,7 @@
 #include "core/errors.h"
 #include "io/mesh_io.h"
 #include "io/parse_json.h"
-#include "jobs.h"
+#include "jobs/scheduler.h"
 #include "metrics.h"
 #include "render_service.h"
 #include "zip_bundle.h"

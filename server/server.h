@@ -10,7 +10,7 @@
 #include <memory>
 #include <string>
 
-#include "jobs.h"
+#include "jobs/scheduler.h"
 #include "render/egl_context.h"
 
 namespace cgview::server {

@@ -15,7 +15,7 @@
 
 #include "auth.h"
 #include "core/errors.h"
-#include "jobs.h"
+#include "jobs/scheduler.h"
 #include "mesh_service.h"
 #include "router_harness.h"
 #include "router.h"

@@ -12,7 +12,7 @@
 #include <thread>
 
 #include "core/animation.h"
-#include "jobs.h"
+#include "jobs/scheduler.h"
 #include "mesh_service.h"
 #include "store.h"
 #include "test_support.h"

@@ -67,6 +67,13 @@ TEST_F(MetricsTest, RequestsJobsWebSocketsAndTheStoreAreCountedAsPrometheusReads
   ASSERT_FALSE(ws.connect(port()));
   ASSERT_TRUE(ws.ping(1));
 
+  // A job's end reaches the metrics as its event, just after its state is
+  // saved: a client may see "done" a moment before the counter moves.
+  for (int i = 0; i < 250; ++i) {
+    const json now = parse_exposition(dir_, http_get(port(), "/metrics").body);
+    if (value_of(now, "cgview_jobs_ended_total", {{"algorithm", "centroid_distance"}, {"state", "done"}}) == 1) break;
+    std::this_thread::sleep_for(20ms);
+  }
   const HttpResult m = http_get(port(), "/metrics");
   ASSERT_EQ(m.status, 200u) << m.body;
   EXPECT_EQ(m.header("Content-Type"), "text/plain; version=0.0.4; charset=utf-8");

@@ -15,7 +15,7 @@
 
 #include "auth.h"
 #include "config.h"
-#include "jobs.h"
+#include "jobs/scheduler.h"
 #include "mesh_service.h"
 #include "router.h"
 #include "router_harness.h"

@@ -11,7 +11,7 @@
 #include <optional>
 #include <string>
 
-#include "jobs.h"
+#include "jobs/scheduler.h"
 #include "mesh_service.h"
 #include "router.h"
 #include "server_harness.h"  // read_bytes

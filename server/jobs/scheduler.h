@@ -1,51 +1,51 @@
-// The job scheduler: runs algorithms in worker processes (cgview-worker),
-// one process per job, from a bounded pool, fair across owners (round-robin
-// over the owners with queued jobs).  Each job has a time and a memory
-// limit (setrlimit(RLIMIT_AS) in the child before exec, and a timer that
-// kills); a crash or a limit fails that job alone.  Cancellation sends
-// SIGTERM, then SIGKILL a second later.  Progress comes from the worker's
-// stdout ("progress FRACTION STAGE").
+// The job scheduler: takes job requests (admission.h), keeps the jobs
+// (job.h, in job_store.h's table), queues them fairly across owners
+// (fair_queue.h) and hands them to an executor (executor.h: this machine's
+// processes, or a Slurm cluster), one worker per job.  A crash or a limit
+// fails that job alone; cancelling stops its worker.  Results are cached by
+// (input contents, algorithm, canonical parameters): an identical job is
+// answered done, cached, without running.
 //
-// Jobs persist in the store's SQLite database (table jobs) and their
-// artifacts under DATA/jobs/ID/; on start, jobs left queued or running by a
-// previous run are queued again (or marked interrupted).  Results are
-// cached by (mesh sha256, algorithm, canonical parameters): an identical
-// job is answered done, cached, without running.
+// Jobs persist: after a restart, a job the executor still runs (a Slurm
+// job, by its stored id) is followed again; any other left queued or
+// running is queued again (or marked interrupted, by setting).
 #pragma once
 
 #include <atomic>
-#include <condition_variable>
-#include <deque>
 #include <filesystem>
 #include <functional>
 #include <map>
-#include <set>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "jobs/admission.h"
+#include "jobs/artifact_formats.h"
+#include "jobs/executor.h"
+#include "jobs/fair_queue.h"
+#include "jobs/job.h"
+#include "jobs/job_store.h"
+#include "jobs/slurm_config.h"
 #include "mesh_service.h"
 #include "quota.h"
-
-struct sqlite3;
 
 namespace cgview::server {
 
 struct JobConfig {
   std::filesystem::path worker;  // the cgview-worker executable
-  int max_workers = 0;           // 0: the number of cores
+  int max_workers = 0;           // local: jobs at once (0: the number of cores)
   double timeout_s = 3600;       // per job; 0: none
   std::size_t memory_mb = 8192;  // address-space limit per job; 0: none
-  bool requeue_on_restart = true;  // else: jobs of a previous run are marked interrupted
+  int cpus = 1;                  // per job (Slurm's --cpus-per-task)
+  bool requeue_on_restart = true;  // else: jobs of a previous run that cannot be followed are marked interrupted
   QuotaConfig quotas;  // per-user storage and concurrent-job limits
-};
-
-struct ArtifactBytes {
-  std::string bytes, content_type, file_name;
+  std::string executor = "local";  // or "slurm"
+  SlurmConfig slurm;
 };
 
 // How many jobs there are, for the metrics.
@@ -55,10 +55,11 @@ struct JobCounts {
   std::uint64_t artifact_bytes = 0;  // of every job's directory
 };
 
-class JobScheduler {
+class JobScheduler : private JobLookup {
  public:
+  // Throws InvalidInput for an executor it does not know.
   JobScheduler(MeshService& meshes, JobConfig config);
-  ~JobScheduler();  // kills running workers; their jobs stay "running" in the store and run again at the next start
+  ~JobScheduler();  // local workers are killed (their jobs run again at the next start); Slurm's go on
   JobScheduler(const JobScheduler&) = delete;
   JobScheduler& operator=(const JobScheduler&) = delete;
 
@@ -69,14 +70,9 @@ class JobScheduler {
   std::function<void(const nlohmann::json&, const Access&)> on_event;
 
   // GET /api/v1/algorithms: the algorithms a client may run (test ones hidden).
-  nlohmann::json algorithms_json() const;
-  // Throws std::out_of_range (unknown algorithm or mesh) or InvalidInput
-  // (bad parameters, naming the parameter and the rule broken).
-  // An input that names an earlier job's output mesh stores that mesh; its id
-  // is appended to `new_meshes` when given (the router announces it).
-  // The job belongs to the caller, whose every input must be readable: a
-  // mesh or job of another user is unknown (std::out_of_range), as is one
-  // that does not exist.
+  nlohmann::json algorithms_json() const { return admission_.algorithms_json(); }
+  // Admits and queues a job (admission.h says what it checks); the job.
+  // Throws as Admission::admit does, or QuotaExceeded.
   nlohmann::json submit(const nlohmann::json& request, const Caller& caller = Caller::local(),
                         std::vector<std::string>* new_meshes = nullptr);
   // The jobs the caller may see (their own and those shared with them; an
@@ -93,7 +89,7 @@ class JobScheduler {
   // An artifact of a done job in a format; throws std::out_of_range (no such
   // job or artifact), InvalidInput (job not done), UnsupportedFormat.
   ArtifactBytes artifact(const std::string& id, const std::string& name, const std::string& format,
-                         const Caller& caller = Caller::local());
+                         const Caller& caller = Caller::local()) override;
 
   std::uint64_t workers_started() const { return workers_started_; }
   JobCounts counts() const;
@@ -105,19 +101,26 @@ class JobScheduler {
   Usage usage(const std::string& user) const;
   // Throws QuotaExceeded (413) when `adding` bytes ("this upload") would take
   // the caller over their storage quota.
-  void check_storage(const Caller& caller, std::uint64_t adding, const std::string& what) const;
+  void check_storage(const Caller& caller, std::uint64_t adding, const std::string& what) const override;
 
  private:
-  struct Job;
+  // JobLookup, for admission.
+  std::filesystem::path artifact_file(const std::string& job, const std::string& artifact, const std::string& kind,
+                                      const Caller& caller) const override;
+  void check_job_count(const Caller& caller) const override;
+
   void load();
-  void persist(const Job& job);
-  // persist, or remember the job in unsaved_ when the write fails (never throws).
+  // Writes the job, or remembers it in unsaved_ when the write fails (never throws).
   void save(const Job& job);
-  nlohmann::json job_json(const Job& job) const;
   void loop();
-  bool launch(Job& job);  // under mutex_
-  void reap(Job& job, int status, std::vector<nlohmann::json>& events);  // under mutex_
-  void wake();
+  // Writes the job's job.json (its input files resolved); the spec to launch
+  // it, or nullopt with job.error set (under mutex_).
+  std::optional<LaunchSpec> prepare(Job& job);
+  LaunchSpec spec(const Job& job) const;
+  // Applies what the executor said (under mutex_); events to send.
+  void apply(const ExecutorEvent& e, std::vector<nlohmann::json>& events);
+  // The job ended (its worker gone, or its launch failed) (under mutex_).
+  void end(Job& job, const WorkerEnd* how, std::vector<nlohmann::json>& events);
   std::filesystem::path job_dir(const std::string& id) const;
   // Whether the caller reads the job: theirs, shared with them, or admin.
   bool readable(const Job& job, const Caller& caller) const;
@@ -125,33 +128,29 @@ class JobScheduler {
   const Job& job_locked(const std::string& id, const Caller& caller) const;
   // Who may see a job's events.
   Access job_access(const std::string& id) const;
-  // The file of a done job's artifact of that kind (under mutex_); throws
-  // std::out_of_range (no such job or artifact) or InvalidInput (not done,
-  // another kind).
+  // artifact_file, under mutex_.
   std::filesystem::path artifact_file_locked(const std::string& job, const std::string& name, const std::string& kind,
                                              const Caller& caller = Caller::local()) const;
+  // The jobs the owner has queued or running (under mutex_).
+  int active_locked(const std::string& owner) const;
 
   MeshService& meshes_;
   JobConfig config_;
-  sqlite3* db_ = nullptr;
-  std::map<std::string, nlohmann::json> worker_algorithms_;  // from cgview-worker --list
+  Admission admission_;
+  JobStore store_;
+  std::unique_ptr<Executor> executor_;
   mutable std::mutex mutex_;
-  std::condition_variable cv_;
   std::map<std::string, std::shared_ptr<Job>> jobs_;
-  std::vector<std::string> order_;                            // ids, oldest first
-  std::map<std::string, std::deque<std::string>> queues_;      // by owner
-  std::string last_owner_;
+  std::vector<std::string> order_;  // ids, oldest first
+  FairQueue queue_;
+  std::set<std::string> in_flight_;  // handed to the executor and not ended
   std::map<std::string, std::string> cache_;  // cache key -> the done job whose files hold the result
   bool stopping_ = false;
   std::int64_t seq_ = 0;
-  // The jobs queued or running of the owner (under mutex_).
-  int active_locked(const std::string& owner) const;
   std::atomic<std::uint64_t> workers_started_{0};
   // Jobs whose last change could not be written (a full disk): written again
   // at each turn of the loop until it fits; their state in memory is right.
   std::set<std::string> unsaved_;
-  std::vector<std::string> running_ids_;
-  int wake_pipe_[2] = {-1, -1};
   std::thread thread_;
 };
 

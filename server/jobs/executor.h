@@ -1,0 +1,95 @@
+// Where a job's worker runs.  The scheduler hands an executor one prepared
+// job at a time (its directory holds job.json, the worker writes its
+// results there) and hears back what happened: the worker started (and on
+// which node), waits (and why), made progress, ended (and how).  Two
+// implementations: local (a child process of the server: local_executor.h)
+// and slurm (a batch job on the lab's cluster: slurm_executor.h).
+//
+// launch, adopt, poll and shutdown are called from the scheduler's thread
+// only; cancel and wake from any thread.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace cgview::server {
+
+struct LaunchSpec {
+  std::string job_id;
+  std::string name;                // what the job is called where it runs ("cgview-ID")
+  std::filesystem::path dir;       // the job's directory: job.json in, results, stdout and stderr out
+  double timeout_s = 0;            // 0: none
+  std::size_t memory_mb = 0;       // 0: none
+  int cpus = 1;
+};
+
+// How a worker ended, as its executor saw it; the scheduler reads the
+// worker's own report (result.json, error.txt) beside it.
+struct WorkerEnd {
+  enum class How {
+    exited,         // with `code`
+    signaled,       // by `signal`
+    timed_out,      // its time limit
+    out_of_memory,  // its memory limit (where the executor knows it: Slurm)
+    node_failed,    // the machine it ran on went away
+    lost,           // its executor no longer knows it (`detail` says why)
+  };
+  How how = How::exited;
+  int code = 0, signal = 0;
+  std::string detail;  // the executor's own words (a Slurm state and reason), for the message
+};
+
+struct ExecutorEvent {
+  enum class Kind {
+    started,   // the worker runs now, on `node` ("" where there is one machine)
+    waiting,   // launched but not yet running: `reason` says why (Slurm's pending reason)
+    progress,  // `progress` (0..1) and `stage`, from the worker's "progress F STAGE" lines
+    ended,     // `end`
+  };
+  std::string job_id;
+  Kind kind = Kind::progress;
+  double progress = 0;
+  std::string stage, node, reason;
+  WorkerEnd end;
+};
+
+// A launch that failed: what() says why (the job fails with it).
+struct LaunchError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class Executor {
+ public:
+  virtual ~Executor() = default;
+  // "local" or "slurm": stored with each job it runs.
+  virtual const char* name() const = 0;
+  // How many jobs it takes at once (launched and not ended).
+  virtual int capacity() const = 0;
+  // Starts the job's worker and returns its handle (a pid, a Slurm job id).
+  // A started event follows (at once where there is no queue); throws
+  // LaunchError.
+  virtual std::string launch(const LaunchSpec& job) = 0;
+  // Follows again a job that an earlier run of the server launched, by its
+  // stored handle; false when this executor cannot (its worker died with
+  // that server).
+  virtual bool adopt(const LaunchSpec& job, const std::string& handle) = 0;
+  // Asks the job's worker to stop; its end comes as an ended event.
+  virtual void cancel(const std::string& job_id) = 0;
+  // Waits until something happens or `timeout` passes (or wake), and says what happened.
+  virtual std::vector<ExecutorEvent> poll(std::chrono::milliseconds timeout) = 0;
+  virtual void wake() = 0;
+  // The server stops: workers that cannot outlive it are killed (their jobs
+  // run again at the next start); the cluster's go on.
+  virtual void shutdown() = 0;
+};
+
+// Parses the worker's progress lines out of `buffer` (its output so far,
+// consumed up to the last newline); the last progress line's fraction and
+// stage, or false when there was none.
+bool read_progress_lines(std::string& buffer, double& progress, std::string& stage);
+
+}  // namespace cgview::server

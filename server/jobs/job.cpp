@@ -1,0 +1,47 @@
+#include "jobs/job.h"
+
+namespace cgview::server {
+
+using nlohmann::json;
+
+namespace {
+constexpr const char* kNames[] = {"queued", "running", "done", "failed", "cancelled", "interrupted"};
+}
+
+const char* to_string(JobState state) { return kNames[int(state)]; }
+
+std::optional<JobState> job_state_from(const std::string& name) {
+  for (int i = 0; i < int(std::size(kNames)); ++i)
+    if (name == kNames[i]) return JobState(i);
+  return std::nullopt;
+}
+
+json job_json(const Job& j) {
+  auto opt = [](const std::string& s) { return s.empty() ? json(nullptr) : json(s); };
+  json artifacts = j.artifacts.is_array() ? j.artifacts : json::array();
+  for (auto& a : artifacts) a.erase("file");
+  json out = {{"id", j.id},
+              {"owner", j.owner},
+              {"algorithm", j.algorithm},
+              {"inputs", j.inputs},
+              {"params", j.params},
+              {"state", to_string(j.state)},
+              {"progress", j.progress},
+              {"stage", j.stage},
+              {"error", opt(j.error)},
+              {"cached", j.cached},
+              {"created", j.created},
+              {"started", opt(j.started)},
+              {"finished", opt(j.finished)},
+              {"artifacts", artifacts}};
+  if (!j.where.empty()) out["node"] = j.where;
+  return out;
+}
+
+json progress_event(const Job& j) {
+  json job = {{"id", j.id}, {"state", to_string(j.state)}, {"progress", j.progress}, {"stage", j.stage}};
+  if (!j.where.empty()) job["node"] = j.where;
+  return {{"type", "job_progress"}, {"job", job}};
+}
+
+}  // namespace cgview::server

@@ -1,0 +1,509 @@
+#include "jobs/scheduler.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "core/errors.h"
+#include "io/mesh_io.h"
+#include "jobs/local_executor.h"
+#include "jobs/slurm_executor.h"
+#include "jobs/worker_result.h"
+
+namespace cgview::server {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+// The bytes of the files under a directory (0 when there is none).
+std::uint64_t dir_bytes(const fs::path& dir) {
+  std::uint64_t n = 0;
+  std::error_code ec;
+  for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (it->is_regular_file(ec)) n += it->file_size(ec);
+  return n;
+}
+
+std::unique_ptr<Executor> make_executor(const JobConfig& c, const fs::path& data_dir) {
+  if (c.executor == "local") return std::make_unique<LocalExecutor>(c.worker, c.max_workers);
+  if (c.executor == "slurm") return std::make_unique<SlurmExecutor>(c.slurm, c.worker, data_dir);
+  throw InvalidInput("executor '" + c.executor + "': it is local or slurm");
+}
+
+}  // namespace
+
+JobScheduler::JobScheduler(MeshService& meshes, JobConfig config)
+    : meshes_(meshes),
+      config_(std::move(config)),
+      admission_(meshes_, config_.worker),
+      store_(meshes_.store().data_dir()),
+      executor_(make_executor(config_, meshes_.store().data_dir())) {
+  std::error_code ec;
+  fs::create_directories(meshes_.store().data_dir() / "jobs", ec);
+  load();
+}
+
+void JobScheduler::start() {
+  if (!thread_.joinable()) thread_ = std::thread([this] { loop(); });
+}
+
+JobScheduler::~JobScheduler() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  executor_->wake();
+  if (thread_.joinable()) thread_.join();
+  executor_->shutdown();
+}
+
+fs::path JobScheduler::job_dir(const std::string& id) const { return meshes_.store().data_dir() / "jobs" / id; }
+
+LaunchSpec JobScheduler::spec(const Job& j) const {
+  LaunchSpec s;
+  s.job_id = j.id;
+  s.name = "cgview-" + j.id;
+  s.dir = job_dir(j.id);
+  s.timeout_s = config_.timeout_s;
+  s.memory_mb = config_.memory_mb;
+  s.cpus = std::max(1, config_.cpus);
+  return s;
+}
+
+void JobScheduler::load() {
+  std::vector<std::shared_ptr<Job>> unsized, restarted;
+  for (auto& j : store_.load()) {
+    seq_ = std::max(seq_, j->seq);
+    jobs_[j->id] = j;
+    order_.push_back(j->id);
+    if (!active(j->state)) {
+      // Sized once (walking its directory), then stored: later starts read the column.
+      if (j->in_flight) {
+        j->in_flight = false;
+        j->bytes = dir_bytes(job_dir(j->id));
+        unsized.push_back(j);
+      }
+      if (j->state == JobState::done && !j->cached) cache_[j->cache_key] = j->id;
+      continue;
+    }
+    // Still with its executor (a Slurm job by its id): followed again as it was.
+    if (!j->handle.empty() && j->executor == executor_->name() && executor_->adopt(spec(*j), j->handle)) {
+      j->in_flight = true;
+      in_flight_.insert(j->id);
+      continue;
+    }
+    j->in_flight = false;
+    j->progress = 0;
+    j->stage.clear();
+    j->started.clear();
+    j->handle.clear();
+    j->where.clear();
+    if (config_.requeue_on_restart) {
+      j->state = JobState::queued;
+      queue_.push(j->owner, j->id);
+    } else {
+      j->error = std::string("the server stopped while the job was ") + to_string(j->state);
+      j->state = JobState::interrupted;
+      j->finished = now_iso8601();
+      j->bytes = dir_bytes(job_dir(j->id));
+    }
+    restarted.push_back(j);
+  }
+  unsized.insert(unsized.end(), restarted.begin(), restarted.end());
+  if (!unsized.empty()) store_.put_all(unsized);
+}
+
+void JobScheduler::save(const Job& j) {
+  try {
+    store_.put(j);
+    unsaved_.erase(j.id);
+  } catch (const std::exception&) {
+    unsaved_.insert(j.id);
+  }
+}
+
+json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std::string>* new_meshes) {
+  auto j = std::make_shared<Job>(admission_.admit(req, caller, *this, new_meshes));
+  const std::string& owner = caller.user;
+  j->id = new_id();
+  j->created = now_iso8601();
+  const UserLimits quota = limits(caller);
+  const Usage use = quota.storage_bytes ? usage(owner) : Usage{};
+  json out;
+  {
+    std::lock_guard lock(mutex_);
+    j->seq = ++seq_;
+    if (const auto hit = cache_.find(j->cache_key); hit != cache_.end()) {
+      const Job& o = *jobs_.at(hit->second);
+      if (o.state == JobState::done && fs::exists(job_dir(o.files) / "result.json")) {
+        j->state = JobState::done;
+        j->cached = true;
+        j->progress = 1;
+        j->stage = "done";
+        j->started = j->finished = j->created;
+        j->artifacts = o.artifacts;
+        j->files = o.files;
+      }
+    }
+    // A cached result runs nothing and stores nothing: only a job that runs counts.
+    if (!j->cached) {
+      check_jobs(quota, {0, active_locked(owner)});
+      check_room_for_results(quota, use);
+    }
+    store_.put(*j);
+    jobs_[j->id] = j;
+    order_.push_back(j->id);
+    if (!j->cached) queue_.push(owner, j->id);
+    out = job_json(*j);
+  }
+  if (j->cached) {
+    if (on_event) on_event({{"type", "job_done"}, {"job", out}}, Access{owner});
+  } else {
+    executor_->wake();
+  }
+  return out;
+}
+
+int JobScheduler::active_locked(const std::string& owner) const {
+  int n = 0;
+  for (const auto& [id, j] : jobs_) n += j->owner == owner && active(j->state);
+  return n;
+}
+
+JobCounts JobScheduler::counts() const {
+  JobCounts c;
+  std::lock_guard lock(mutex_);
+  for (const auto& [id, j] : jobs_) {
+    ++c.by_state_algorithm[{to_string(j->state), j->algorithm}];
+    c.artifact_bytes += j->bytes;
+  }
+  c.queued = queue_.size();
+  for (const auto& id : in_flight_) {
+    const JobState s = jobs_.at(id)->state;
+    c.queued += s == JobState::queued;
+    c.running += s == JobState::running;
+  }
+  return c;
+}
+
+Usage JobScheduler::usage(const std::string& user) const {
+  Usage u;
+  u.storage_bytes = meshes_.store().mesh_bytes(user);
+  std::lock_guard lock(mutex_);
+  for (const auto& [id, j] : jobs_)
+    if (j->owner == user) u.storage_bytes += j->bytes;
+  u.jobs_active = active_locked(user);
+  return u;
+}
+
+void JobScheduler::check_storage(const Caller& caller, std::uint64_t adding, const std::string& what) const {
+  const UserLimits quota = limits(caller);
+  if (quota.storage_bytes) server::check_storage(quota, usage(caller.user), adding, what);
+}
+
+void JobScheduler::check_job_count(const Caller& caller) const {
+  const UserLimits quota = limits(caller);
+  if (quota.concurrent_jobs) check_jobs(quota, usage(caller.user));
+}
+
+bool JobScheduler::readable(const Job& j, const Caller& caller) const {
+  // Another user's job: the store knows whether it was shared.
+  return Access{j.owner}.allows(caller) || meshes_.store().access("job", j.id, j.owner).allows(caller);
+}
+
+const Job& JobScheduler::job_locked(const std::string& id, const Caller& caller) const {
+  const auto it = jobs_.find(id);
+  if (it == jobs_.end() || !readable(*it->second, caller)) throw std::out_of_range("no job with id '" + id + "'");
+  return *it->second;
+}
+
+Access JobScheduler::job_access(const std::string& id) const {
+  std::string owner;
+  {
+    std::lock_guard lock(mutex_);
+    const auto it = jobs_.find(id);
+    if (it != jobs_.end()) owner = it->second->owner;
+  }
+  return meshes_.store().access("job", id, owner);
+}
+
+Access JobScheduler::access(const std::string& id, const Caller& caller) const {
+  std::string owner;
+  {
+    std::lock_guard lock(mutex_);
+    owner = job_locked(id, caller).owner;
+  }
+  return meshes_.store().access("job", id, owner);
+}
+
+json JobScheduler::list(const Caller& caller) const {
+  std::lock_guard lock(mutex_);
+  json list = json::array();
+  for (const auto& id : order_)
+    if (const Job& j = *jobs_.at(id); readable(j, caller)) list.push_back(job_json(j));
+  return {{"jobs", list}};
+}
+
+std::optional<json> JobScheduler::get(const std::string& id, const Caller& caller) const {
+  std::lock_guard lock(mutex_);
+  try {
+    return job_json(job_locked(id, caller));
+  } catch (const std::out_of_range&) {
+    return std::nullopt;
+  }
+}
+
+std::optional<json> JobScheduler::cancel(const std::string& id, const Caller& caller) {
+  json out;
+  bool changed = false, stop_worker = false;
+  {
+    std::lock_guard lock(mutex_);
+    const auto it = jobs_.find(id);
+    if (it == jobs_.end() || !readable(*it->second, caller)) return std::nullopt;
+    Job& j = *it->second;
+    if (!Access{j.owner}.owned_by(caller)) throw Forbidden("job " + id + " is " + j.owner + "'s: only its owner cancels it");
+    if (active(j.state)) {
+      // Queued here: out of the queue.  With the executor (or being handed
+      // to it): its worker is stopped, and only its size is new when it ends.
+      queue_.remove(j.owner, id);
+      stop_worker = j.in_flight;
+      j.cancelled = true;
+      j.state = JobState::cancelled;
+      j.finished = now_iso8601();
+      save(j);
+      changed = true;
+    }
+    out = job_json(j);
+  }
+  if (stop_worker) executor_->cancel(id);
+  if (changed) {
+    executor_->wake();
+    if (on_event) on_event({{"type", "job_cancelled"}, {"job", out}}, job_access(id));
+  }
+  return out;
+}
+
+fs::path JobScheduler::artifact_file(const std::string& job, const std::string& artifact, const std::string& kind,
+                                     const Caller& caller) const {
+  std::lock_guard lock(mutex_);
+  return artifact_file_locked(job, artifact, kind, caller);
+}
+
+fs::path JobScheduler::artifact_file_locked(const std::string& id, const std::string& name, const std::string& kind,
+                                           const Caller& caller) const {
+  const Job& j = job_locked(id, caller);
+  if (j.state != JobState::done)
+    throw InvalidInput("job " + id + " is " + to_string(j.state) + ", not done: it has no artifacts");
+  for (const auto& a : j.artifacts)
+    if (a.value("name", "") == name) {
+      if (!kind.empty() && a.value("kind", "") != kind)
+        throw InvalidInput("artifact '" + name + "' of job " + id + " is a " + a.value("kind", "") + ", not a " + kind);
+      return job_dir(j.files) / a.value("file", "");
+    }
+  throw std::out_of_range("job " + id + " has no artifact '" + name + "'");
+}
+
+ArtifactBytes JobScheduler::artifact(const std::string& id, const std::string& name, const std::string& format,
+                                     const Caller& caller) {
+  json entry;
+  std::string files, mesh_id;
+  {
+    std::lock_guard lock(mutex_);
+    const Job& j = job_locked(id, caller);
+    if (j.state != JobState::done)
+      throw InvalidInput("job " + id + " is " + to_string(j.state) + ", not done: it has no artifacts");
+    for (const auto& a : j.artifacts)
+      if (a.value("name", "") == name) entry = a;
+    files = j.files;
+    mesh_id = j.mesh_id;
+  }
+  if (entry.is_null()) throw std::out_of_range("job " + id + " has no artifact '" + name + "'");
+  return serve_artifact(job_dir(files), entry, name, format, [&] {
+    const auto rec = meshes_.store().get_mesh(mesh_id);
+    if (!rec) throw std::out_of_range("the mesh " + mesh_id + " of job " + id + " was deleted");
+    return *meshes_.mesh(*rec);
+  });
+}
+
+std::optional<LaunchSpec> JobScheduler::prepare(Job& j) {
+  const fs::path dir = job_dir(j.id);
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  fs::create_directories(dir, ec);
+  json files = json::object();
+  for (const auto& [name, in] : j.inputs.items()) {
+    if (in.is_object()) {  // an earlier job's artifact
+      try {
+        files[name] = artifact_file_locked(in.value("job", ""), in.value("artifact", ""), "").string();
+      } catch (const std::exception& e) {
+        j.error = std::string("input '") + name + "': " + e.what();
+        return std::nullopt;
+      }
+      continue;
+    }
+    const auto rec = meshes_.store().get_mesh(in.get<std::string>());
+    if (!rec) {
+      j.error = "the mesh " + in.get<std::string>() + " (input '" + name + "') was deleted";
+      return std::nullopt;
+    }
+    files[name] = meshes_.store().blob_file(*rec).string();
+  }
+  try {
+    write_file_bytes(dir / "job.json",
+                     json{{"algorithm", j.algorithm}, {"params", j.params}, {"inputs", files}, {"out", dir.string()}}.dump());
+  } catch (const DiskFull&) {
+    j.error = "the server's storage is full: the job could not start";
+    return std::nullopt;
+  } catch (const IoError& e) {
+    j.error = e.what();
+    return std::nullopt;
+  }
+  return spec(j);
+}
+
+void JobScheduler::end(Job& j, const WorkerEnd* how, std::vector<json>& events) {
+  in_flight_.erase(j.id);
+  j.in_flight = false;
+  j.bytes = dir_bytes(job_dir(j.id));
+  if (j.cancelled) {  // already cancelled (state, event): only its size is new
+    save(j);
+    return;
+  }
+  if (how && how->how == WorkerEnd::How::lost && config_.slurm.requeue_lost && config_.executor == "slurm") {
+    // Its executor lost it (Slurm purged it, or it went with its node): run it again, by setting.
+    j.state = JobState::queued;
+    j.progress = 0;
+    j.stage = "queued again: " + how->detail;
+    j.started.clear();
+    j.handle.clear();
+    j.where.clear();
+    queue_.push(j.owner, j.id);
+    save(j);
+    events.push_back(progress_event(j));
+    return;
+  }
+  if (how) {
+    const WorkerOutcome r = read_worker_outcome(job_dir(j.id), *how, {config_.timeout_s, config_.memory_mb});
+    if (r.done) {
+      j.state = JobState::done;
+      j.artifacts = r.artifacts;
+      j.files = j.id;
+      cache_[j.cache_key] = j.id;
+      j.progress = 1;
+      j.stage = "done";
+    } else {
+      j.state = JobState::failed;
+      j.error = r.error;
+    }
+  } else {
+    j.state = JobState::failed;  // j.error says why it could not start
+  }
+  j.finished = now_iso8601();
+  if (j.started.empty()) j.started = j.finished;
+  save(j);
+  events.push_back({{"type", j.state == JobState::done ? "job_done" : "job_failed"}, {"job", job_json(j)}});
+}
+
+void JobScheduler::apply(const ExecutorEvent& e, std::vector<json>& events) {
+  const auto it = jobs_.find(e.job_id);
+  if (it == jobs_.end() || !in_flight_.count(e.job_id)) return;
+  Job& j = *it->second;
+  switch (e.kind) {
+    case ExecutorEvent::Kind::started:
+      if (j.cancelled) return;
+      // A job followed again after a restart keeps its start.
+      if (j.state != JobState::running || j.started.empty()) j.started = now_iso8601();
+      j.state = JobState::running;
+      j.stage = "starting";
+      j.progress = 0;
+      j.where = e.node;
+      j.last_event = Clock::now();
+      save(j);
+      events.push_back(progress_event(j));
+      return;
+    case ExecutorEvent::Kind::waiting: {
+      if (j.cancelled) return;
+      const std::string stage = e.reason.empty() ? "waiting for the cluster" : "waiting for the cluster: " + e.reason;
+      if (stage == j.stage && j.state == JobState::queued) return;
+      j.state = JobState::queued;  // a job the cluster requeued (its node failed) waits again
+      j.progress = 0;
+      j.stage = stage;
+      save(j);
+      events.push_back(progress_event(j));
+      return;
+    }
+    case ExecutorEvent::Kind::progress:
+      if (j.cancelled || j.state != JobState::running) return;
+      j.progress = e.progress;
+      j.stage = e.stage;
+      if (Clock::now() - j.last_event >= std::chrono::milliseconds(100)) {
+        j.last_event = Clock::now();
+        events.push_back(progress_event(j));
+      }
+      return;
+    case ExecutorEvent::Kind::ended:
+      end(j, &e.end, events);
+      return;
+  }
+}
+
+void JobScheduler::loop() {
+  std::vector<json> events;  // gathered under the lock, sent outside it
+  for (;;) {
+    std::vector<LaunchSpec> launching;
+    {
+      std::lock_guard lock(mutex_);
+      if (stopping_) break;
+      for (const std::string& id : std::vector<std::string>(unsaved_.begin(), unsaved_.end()))
+        if (const auto it = jobs_.find(id); it != jobs_.end()) save(*it->second);
+      // Queued jobs go to the executor while it has room, owners in turn.
+      while (int(in_flight_.size() + launching.size()) < executor_->capacity()) {
+        const auto id = queue_.pop();
+        if (!id) break;
+        Job& j = *jobs_.at(*id);
+        if (auto s = prepare(j)) launching.push_back(std::move(*s));
+        else end(j, nullptr, events);
+      }
+    }
+    // Outside the lock: sbatch may take a while.
+    std::vector<std::pair<std::string, std::string>> launched;  // job id, handle or error
+    std::vector<bool> ok;
+    for (const LaunchSpec& s : launching) {
+      try {
+        launched.emplace_back(s.job_id, executor_->launch(s));
+        ok.push_back(true);
+      } catch (const std::exception& e) {
+        launched.emplace_back(s.job_id, e.what());
+        ok.push_back(false);
+      }
+    }
+    {
+      std::lock_guard lock(mutex_);
+      for (std::size_t k = 0; k < launched.size(); ++k) {
+        Job& j = *jobs_.at(launched[k].first);
+        if (!ok[k]) {
+          j.error = launched[k].second;
+          if (!j.cancelled) end(j, nullptr, events);
+          continue;
+        }
+        ++workers_started_;
+        j.in_flight = true;
+        j.executor = executor_->name();
+        j.handle = launched[k].second;
+        in_flight_.insert(j.id);
+        save(j);
+        if (j.cancelled) executor_->cancel(j.id);  // cancelled while it was being handed over
+      }
+    }
+    for (auto& e : events)
+      if (on_event) on_event(e, job_access(e["job"].value("id", "")));
+    events.clear();
+    const auto happened = executor_->poll(std::chrono::milliseconds(100));
+    std::lock_guard lock(mutex_);
+    for (const auto& e : happened) apply(e, events);
+  }
+}
+
+}  // namespace cgview::server

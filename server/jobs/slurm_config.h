@@ -1,0 +1,26 @@
+// The settings of the Slurm executor (the config file's "slurm" section).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace cgview::server {
+
+struct SlurmConfig {
+  std::string partition, account, qos;    // sbatch's -p, -A, --qos ("": the cluster's default)
+  std::vector<std::string> sbatch_args;   // more of sbatch's arguments, as they are
+  int max_jobs = 200;                     // CGView jobs in the cluster at once (pending or running)
+  double poll_s = 1;                      // seconds between squeue calls
+  // The nodes see the data directory at the same path (NFS): workers read
+  // their inputs and write their results there.  Otherwise each worker
+  // fetches its inputs from the server and sends its results back.
+  bool shared_data = true;
+  std::string server_url;  // how a node reaches the server (when not shared), e.g. http://head:8080
+  // A job Slurm no longer knows (purged, lost with its node): queued again
+  // (true) or failed with that reason.
+  bool requeue_lost = false;
+  std::filesystem::path worker;  // cgview-worker on the nodes ("": the server's own path)
+};
+
+}  // namespace cgview::server

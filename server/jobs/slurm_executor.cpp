@@ -1,0 +1,313 @@
+#include "jobs/slurm_executor.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "child_process.h"
+#include "core/errors.h"
+#include "io/mesh_io.h"
+
+namespace cgview::server {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+constexpr std::chrono::seconds kToolLimit{30};
+
+// Slurm's states after which a job runs no more.
+bool final_state(const std::string& s) {
+  return s == "COMPLETED" || s == "FAILED" || s == "CANCELLED" || s == "TIMEOUT" || s == "OUT_OF_MEMORY" ||
+         s == "NODE_FAIL" || s == "PREEMPTED" || s == "BOOT_FAIL" || s == "DEADLINE" || s == "SPECIAL_EXIT" ||
+         s == "REVOKED";
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// A shell word: 'text' with each ' written '\''.
+std::string quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::size_t at = 0;
+  for (std::size_t k; (k = s.find(sep, at)) != std::string::npos; at = k + 1) out.push_back(s.substr(at, k - at));
+  out.push_back(s.substr(at));
+  return out;
+}
+
+// KEY=VALUE of `scontrol show job -o` ("" when absent).
+std::string field(const std::string& line, const std::string& key) {
+  for (const std::string& word : split(line, ' '))
+    if (word.rfind(key + "=", 0) == 0) return word.substr(key.size() + 1);
+  return "";
+}
+
+std::string first_line(std::string s) {
+  if (const auto nl = s.find('\n'); nl != std::string::npos) s.resize(nl);
+  return s;
+}
+
+}  // namespace
+
+SlurmExecutor::SlurmExecutor(SlurmConfig config, fs::path worker, fs::path data_dir)
+    : config_(std::move(config)), worker_(std::move(worker)), data_dir_(std::move(data_dir)) {
+  if (!config_.worker.empty()) worker_ = config_.worker;
+  if (config_.max_jobs < 1) config_.max_jobs = 1;
+  if (!(config_.poll_s > 0)) config_.poll_s = 1;
+  if (!config_.shared_data)
+    throw InvalidInput("slurm: shared_data false is not supported yet: the nodes must see the data directory " +
+                       data_dir_.string());
+  sbatch_ = find_program("sbatch");
+  squeue_ = find_program("squeue");
+  scancel_ = find_program("scancel");
+  scontrol_ = find_program("scontrol");
+  if (sbatch_.empty() || squeue_.empty() || scancel_.empty() || scontrol_.empty())
+    throw InvalidInput("slurm: sbatch, squeue, scancel and scontrol must be on PATH (Debian's slurm-client)");
+  if (::pipe2(wake_pipe_, O_CLOEXEC | O_NONBLOCK) != 0) throw IoError("jobs: pipe failed");
+}
+
+SlurmExecutor::~SlurmExecutor() {
+  ::close(wake_pipe_[0]);
+  ::close(wake_pipe_[1]);
+}
+
+std::vector<std::string> SlurmExecutor::sbatch_command(const LaunchSpec& job) const {
+  std::vector<std::string> a = {sbatch_.string(),
+                                "--parsable",
+                                "--job-name=" + job.name,
+                                "--chdir=" + job.dir.string(),
+                                "--output=" + (job.dir / "stdout.txt").string(),
+                                "--error=" + (job.dir / "stderr.txt").string(),
+                                "--cpus-per-task=" + std::to_string(std::max(1, job.cpus))};
+  // Slurm counts whole minutes; the executor's own watchdog holds the limit to the second.
+  if (job.timeout_s > 0) a.push_back("--time=" + std::to_string(std::max(1L, long(std::ceil(job.timeout_s / 60)))));
+  if (job.memory_mb > 0) a.push_back("--mem=" + std::to_string(job.memory_mb));
+  if (!config_.partition.empty()) a.push_back("--partition=" + config_.partition);
+  if (!config_.account.empty()) a.push_back("--account=" + config_.account);
+  if (!config_.qos.empty()) a.push_back("--qos=" + config_.qos);
+  for (const auto& extra : config_.sbatch_args) a.push_back(extra);
+  a.push_back((job.dir / "slurm-job.sh").string());
+  return a;
+}
+
+std::string SlurmExecutor::launch(const LaunchSpec& job) {
+  // The worker under the job's address-space limit (as a local worker runs),
+  // and its exit status kept beside its results: 128+N for a signal.
+  std::string script = "#!/bin/sh\n# CGView job " + job.job_id + "\ncd " + quoted(job.dir.string()) +
+                       " || exit 97\nrm -f worker.exit\n";
+  if (job.memory_mb > 0) script += "ulimit -v " + std::to_string(job.memory_mb * 1024) + "\n";
+  script += quoted(worker_.string()) + " " + quoted((job.dir / "job.json").string()) +
+            "\nrc=$?\necho $rc > worker.exit.tmp && mv worker.exit.tmp worker.exit\nexit $rc\n";
+  try {
+    write_file_bytes(job.dir / "slurm-job.sh", script);
+  } catch (const std::exception& e) {
+    throw LaunchError(std::string("the job's batch script could not be written: ") + e.what());
+  }
+  const ToolRun r = run_tool(sbatch_command(job), kToolLimit);
+  const std::string id = first_line(r.output).substr(0, first_line(r.output).find(';'));
+  if (!r.ok() || id.empty() || id.find_first_not_of("0123456789") != std::string::npos) {
+    std::string why = r.output;
+    while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
+    throw LaunchError("the cluster refused the job (sbatch: " + (why.empty() ? std::string("no answer") : why) + ")");
+  }
+  Tracked& t = jobs_[job.job_id];
+  t.spec = job;
+  t.slurm_id = id;
+  return id;
+}
+
+bool SlurmExecutor::adopt(const LaunchSpec& job, const std::string& handle) {
+  if (handle.empty() || handle.find_first_not_of("0123456789") != std::string::npos) return false;
+  Tracked& t = jobs_[job.job_id];
+  t.spec = job;
+  t.slurm_id = handle;
+  return true;
+}
+
+void SlurmExecutor::cancel(const std::string& job_id) {
+  {
+    std::lock_guard lock(cancel_mutex_);
+    cancels_.insert(job_id);
+  }
+  wake();
+}
+
+void SlurmExecutor::wake() {
+  const char c = 1;
+  [[maybe_unused]] auto n = ::write(wake_pipe_[1], &c, 1);
+}
+
+void SlurmExecutor::read_progress(Tracked& t, std::vector<ExecutorEvent>& events) {
+  const fs::path out = t.spec.dir / "stdout.txt";
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(out, ec);
+  if (ec || size <= t.output_read) return;
+  std::ifstream f(out, std::ios::binary);
+  f.seekg(std::streamoff(t.output_read));
+  std::string more(std::size_t(std::min<std::uintmax_t>(size - t.output_read, 1 << 20)), '\0');
+  f.read(more.data(), std::streamsize(more.size()));
+  more.resize(std::size_t(f.gcount()));
+  t.output_read += more.size();
+  t.output += more;
+  ExecutorEvent e;
+  e.job_id = t.spec.job_id;
+  e.kind = ExecutorEvent::Kind::progress;
+  if (read_progress_lines(t.output, e.progress, e.stage) && !t.cancelling) events.push_back(std::move(e));
+}
+
+WorkerEnd SlurmExecutor::ended(const Tracked& t, const std::string& state, const std::string& reason) const {
+  WorkerEnd end;
+  const std::string said = "Slurm job " + t.slurm_id + " " + (state.empty() ? "unknown" : state) +
+                           (reason.empty() || reason == "None" ? "" : ", " + reason);
+  end.detail = said;
+  if (t.timed_out || state == "TIMEOUT") {
+    end.how = WorkerEnd::How::timed_out;
+    return end;
+  }
+  // slurmstepd says so in the job's stderr when it kills for memory (OverMemoryKill, or cgroups' oom).
+  const std::string err = read_text(t.spec.dir / "stderr.txt");
+  if (state == "OUT_OF_MEMORY" || err.find("exceeded memory limit") != std::string::npos ||
+      err.find("oom_kill event") != std::string::npos || err.find("oom-kill event") != std::string::npos) {
+    end.how = WorkerEnd::How::out_of_memory;
+    return end;
+  }
+  // The worker's own exit status, as its batch script saw it.
+  const std::string code = first_line(read_text(t.spec.dir / "worker.exit"));
+  if (!code.empty() && code.find_first_not_of("0123456789") == std::string::npos && code.size() < 5) {
+    const int c = std::stoi(code);
+    if (c > 128 && c < 128 + 65) end.how = WorkerEnd::How::signaled, end.signal = c - 128;
+    else end.how = WorkerEnd::How::exited, end.code = c;
+    return end;
+  }
+  if (state == "NODE_FAIL" || state == "BOOT_FAIL") {
+    end.how = WorkerEnd::How::node_failed;
+    return end;
+  }
+  end.how = WorkerEnd::How::lost;
+  if (state == "CANCELLED") end.detail = "cancelled in the cluster, not by CGView (" + said + ")";
+  else if (state == "PREEMPTED") end.detail = "preempted by the cluster (" + said + ")";
+  else if (state == "DEADLINE") end.detail = "the cluster's deadline passed (" + said + ")";
+  else if (state.empty()) end.detail = "Slurm no longer knows job " + t.slurm_id + " (purged, or lost with its node)";
+  else end.detail = "the worker did not run to its end (" + said + ")";
+  return end;
+}
+
+void SlurmExecutor::refresh(std::vector<ExecutorEvent>& events) {
+  ++squeue_calls_;
+  // Every job of this user the controller still holds, ended ones included
+  // (for MinJobAge after their end): one call however many are in flight.
+  const ToolRun r = run_tool({squeue_.string(), "--noheader", "--me", "--states=all", "--format=%i|%T|%r|%N"}, kToolLimit);
+  if (!r.ok()) return;  // the controller is away: try again next cycle, change nothing
+  std::map<std::string, std::vector<std::string>> rows;  // Slurm id -> state, reason, nodes
+  for (const std::string& line : split(r.output, '\n')) {
+    auto f = split(line, '|');
+    if (f.size() >= 4) rows[f[0]] = {f[1], f[2], f[3]};
+  }
+  const auto now = Clock::now();
+  for (auto it = jobs_.begin(); it != jobs_.end();) {
+    Tracked& t = it->second;
+    ExecutorEvent e;
+    e.job_id = it->first;
+    const auto row = rows.find(t.slurm_id);
+    std::string state, reason, node;
+    if (row != rows.end()) {
+      state = row->second[0], reason = row->second[1], node = row->second[2];
+      t.unseen = 0;
+    } else if (++t.unseen < 2) {
+      ++it;  // just submitted, or a hiccup: look again next cycle
+      continue;
+    } else {
+      // Gone from squeue: scontrol may still hold it, else it is forgotten.
+      const ToolRun s = run_tool({scontrol_.string(), "show", "job", "-o", t.slurm_id}, kToolLimit);
+      if (s.ok()) state = field(s.output, "JobState"), reason = field(s.output, "Reason");
+      if (!state.empty() && !final_state(state)) {
+        ++it;
+        continue;
+      }
+    }
+    if (state.empty() || final_state(state)) {
+      read_progress(t, events);
+      e.kind = ExecutorEvent::Kind::ended;
+      e.end = ended(t, state, reason);
+      events.push_back(std::move(e));
+      it = jobs_.erase(it);
+      continue;
+    }
+    if (state == "RUNNING" || state == "COMPLETING") {
+      if (!t.running) {
+        t.running = true;
+        t.started = now;
+        e.kind = ExecutorEvent::Kind::started;
+        e.node = node;
+        events.push_back(e);
+      }
+      // Slurm's --time is in minutes: the job's own limit is held here.
+      if (t.spec.timeout_s > 0 && !t.cancelling && now - t.started > std::chrono::duration<double>(t.spec.timeout_s)) {
+        t.timed_out = t.cancelling = true;
+        run_tool({scancel_.string(), t.slurm_id}, kToolLimit);
+      }
+    } else if (!t.cancelling) {  // PENDING, REQUEUED, SUSPENDED, ...: waiting, and why
+      const std::string why = state == "PENDING" ? (reason == "None" ? "" : reason) : state + (reason == "None" ? "" : ": " + reason);
+      if (t.running || why != t.reason) {
+        t.running = false;
+        t.reason = why;
+        e.kind = ExecutorEvent::Kind::waiting;
+        e.reason = why;
+        events.push_back(e);
+      }
+    }
+    ++it;
+  }
+}
+
+std::vector<ExecutorEvent> SlurmExecutor::poll(std::chrono::milliseconds timeout) {
+  std::vector<ExecutorEvent> events;
+  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(config_.poll_s));
+  const auto due = last_refresh_ + period;
+  const auto now = Clock::now();
+  if (jobs_.empty() || due > now) {
+    const auto wait = jobs_.empty() ? timeout : std::min<std::chrono::milliseconds>(
+        timeout, std::chrono::duration_cast<std::chrono::milliseconds>(due - now) + std::chrono::milliseconds(1));
+    pollfd p{wake_pipe_[0], POLLIN, 0};
+    ::poll(&p, 1, int(wait.count()));
+    char buf[256];
+    while (::read(wake_pipe_[0], buf, sizeof buf) > 0) {
+    }
+  }
+  std::set<std::string> cancels;
+  {
+    std::lock_guard lock(cancel_mutex_);
+    cancels.swap(cancels_);
+  }
+  std::vector<std::string> scancel = {scancel_.string()};
+  for (const auto& id : cancels)
+    if (const auto it = jobs_.find(id); it != jobs_.end() && !it->second.cancelling) {
+      it->second.cancelling = true;
+      scancel.push_back(it->second.slurm_id);
+    }
+  if (scancel.size() > 1) run_tool(scancel, kToolLimit);
+  for (auto& [id, t] : jobs_)
+    if (t.running) read_progress(t, events);
+  if (Clock::now() >= last_refresh_ + period && !jobs_.empty()) {
+    last_refresh_ = Clock::now();
+    refresh(events);
+  }
+  return events;
+}
+
+}  // namespace cgview::server

@@ -1,0 +1,76 @@
+// Jobs as batch jobs on a Slurm cluster: one `sbatch` per CGView job
+// (named cgview-ID, with the job's time, memory and CPU count), one
+// `squeue` per poll cycle for every job in flight, `scancel` to stop.
+// Slurm's own command-line tools, not libslurm: they keep their interface
+// across Slurm releases where libslurm's ABI changes with each (and the
+// server then needs no Slurm headers to build).
+//
+// The batch script runs cgview-worker on the job's directory (on the data
+// directory the nodes share) under the job's address-space limit, and
+// writes the worker's exit status beside its results (worker.exit): how
+// the worker really ended is known from that file even where Slurm reports
+// a launch failure, or has forgotten the job.  Progress comes from the
+// worker's output file (Slurm's --output).
+#pragma once
+
+#include <chrono>
+#include <map>
+#include <mutex>
+#include <set>
+
+#include "jobs/executor.h"
+#include "jobs/slurm_config.h"
+
+namespace cgview::server {
+
+class SlurmExecutor : public Executor {
+ public:
+  // Throws InvalidInput when Slurm's tools are not on PATH.
+  SlurmExecutor(SlurmConfig config, std::filesystem::path worker, std::filesystem::path data_dir);
+  ~SlurmExecutor() override;
+
+  const char* name() const override { return "slurm"; }
+  int capacity() const override { return config_.max_jobs; }
+  std::string launch(const LaunchSpec& job) override;
+  bool adopt(const LaunchSpec& job, const std::string& handle) override;
+  void cancel(const std::string& job_id) override;
+  std::vector<ExecutorEvent> poll(std::chrono::milliseconds timeout) override;
+  void wake() override;
+  void shutdown() override {}  // the cluster's jobs outlive the server
+
+  // The sbatch command line for a job (for the tests and the docs).
+  std::vector<std::string> sbatch_command(const LaunchSpec& job) const;
+  // How many squeue calls it made (one per poll cycle).
+  std::uint64_t squeue_calls() const { return squeue_calls_; }
+
+ private:
+  struct Tracked {
+    LaunchSpec spec;
+    std::string slurm_id;
+    bool running = false;     // a started event was sent
+    bool cancelling = false;  // scancel sent
+    bool timed_out = false;   // our watchdog cancelled it over its time limit
+    std::string reason;       // the pending reason last reported
+    std::chrono::steady_clock::time_point started;
+    std::uintmax_t output_read = 0;  // bytes of its output file read for progress
+    std::string output;              // a partial line
+    int unseen = 0;                  // polls in a row that squeue did not list it
+  };
+  // One squeue for every job; events for what changed.
+  void refresh(std::vector<ExecutorEvent>& events);
+  // How a job that left the cluster ended (Slurm's final state, or none).
+  WorkerEnd ended(const Tracked& t, const std::string& state, const std::string& reason) const;
+  void read_progress(Tracked& t, std::vector<ExecutorEvent>& events);
+
+  SlurmConfig config_;
+  std::filesystem::path worker_, data_dir_;
+  std::filesystem::path sbatch_, squeue_, scancel_, scontrol_;
+  std::map<std::string, Tracked> jobs_;  // by CGView job id
+  std::mutex cancel_mutex_;
+  std::set<std::string> cancels_;
+  std::chrono::steady_clock::time_point last_refresh_{};
+  std::uint64_t squeue_calls_ = 0;
+  int wake_pipe_[2] = {-1, -1};
+};
+
+}  // namespace cgview::server

@@ -1,0 +1,89 @@
+#include "jobs/worker_result.h"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "child_process.h"
+#include "io/parse_json.h"
+
+namespace cgview::server {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+std::string trimmed_file(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream b;
+  b << f.rdbuf();
+  std::string s = b.str();
+  while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
+  return s;
+}
+
+}  // namespace
+
+std::string incomplete_artifact(const fs::path& dir, const json& artifacts) {
+  if (!artifacts.is_array()) return "no artifact list";
+  for (const auto& a : artifacts) {
+    const std::string name = a.is_object() ? a.value("name", "") : "";
+    const std::string file = a.is_object() ? a.value("file", "") : "";
+    if (name.empty() || file.empty() || file.find('/') != std::string::npos || file == "." || file == "..")
+      return "an artifact without a name or a file";
+    std::error_code ec;
+    const std::uintmax_t size = fs::file_size(dir / file, ec);
+    if (ec) return "artifact '" + name + "': its file is missing";
+    if (a.value("kind", "") == "scalar_field") {
+      const json count = a.value("count", json());
+      if (!count.is_number_unsigned() || size != count.get<std::uintmax_t>() * sizeof(float))
+        return "artifact '" + name + "': " + std::to_string(size) + " bytes for " + count.dump() + " values";
+    } else if (size == 0 && a.value("kind", "") != "text") {  // an extracted message may be empty
+      return "artifact '" + name + "': its file is empty";
+    }
+  }
+  return "";
+}
+
+WorkerOutcome read_worker_outcome(const fs::path& dir, const WorkerEnd& end, const WorkerLimits& limits) {
+  using How = WorkerEnd::How;
+  WorkerOutcome out;
+  std::string text = trimmed_file(dir / "error.txt");
+  if (text.empty()) text = trimmed_file(dir / "stderr.txt");
+  const bool exited_ok = end.how == How::exited && end.code == 0;
+  const bool oom_report = (end.how == How::exited && end.code == 3) || text.find("bad_alloc") != std::string::npos;
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, "%g", limits.timeout_s);
+  if (end.how == How::timed_out) {
+    out.error = std::string("exceeded its time limit of ") + seconds + " s";
+  } else if (exited_ok && fs::exists(dir / "result.json")) {
+    const json result = parse_json_or_discarded(trimmed_file(dir / "result.json"));
+    const std::string broken = result.is_object() ? incomplete_artifact(dir, result.value("artifacts", json())) : "";
+    if (!result.is_object()) {
+      out.error = "the worker wrote an unreadable result";
+    } else if (!broken.empty()) {
+      out.error = "the worker's results are incomplete: " + broken;
+    } else {
+      out.done = true;
+      out.artifacts = result.value("artifacts", json::array());
+    }
+  } else if (end.how == How::out_of_memory || (oom_report && limits.memory_mb > 0)) {
+    out.error = "exceeded its memory limit of " + std::to_string(limits.memory_mb) + " MB";
+  } else if (end.how == How::exited && end.code == 4) {
+    out.error = "the server's storage is full: the job's results could not be written";
+  } else if (end.how == How::signaled) {
+    out.error = "killed by signal " + signal_name(end.signal);
+  } else if (end.how == How::node_failed) {
+    out.error = "the node it ran on failed" + (end.detail.empty() ? std::string() : " (" + end.detail + ")");
+  } else if (end.how == How::lost) {
+    out.error = end.detail.empty() ? "its executor lost it" : end.detail;
+  } else if (end.how == How::exited && end.code == 127 && text.empty()) {
+    out.error = "the worker could not be started";
+  } else {
+    out.error = text.empty() ? "the worker exited with status " + std::to_string(end.code) : text;
+  }
+  return out;
+}
+
+}  // namespace cgview::server
