@@ -14,13 +14,17 @@ namespace {
 
 constexpr std::string_view kPrefix = "cgv_";
 
+}  // namespace
+
 std::string random_hex(std::size_t bytes) {
   std::vector<unsigned char> raw(bytes);
   if (RAND_bytes(raw.data(), int(bytes)) != 1) throw Error("no random bytes from OpenSSL");
   return to_hex(raw.data(), bytes);
 }
 
-}  // namespace
+bool same_digest(std::string_view a, std::string_view b) {
+  return a.size() == b.size() && !a.empty() && CRYPTO_memcmp(a.data(), b.data(), a.size()) == 0;
+}
 
 bool starts_with_nocase(std::string_view s, std::string_view prefix) {
   if (s.size() < prefix.size()) return false;
@@ -51,7 +55,7 @@ std::optional<Caller> Auth::check_token(std::string_view token) const {
   const auto row = store_.find_token(std::string(token.substr(kPrefix.size(), 16)));
   if (!row) return std::nullopt;
   const std::string hash = sha256_hex(token.substr(kPrefix.size() + 17));
-  if (row->second.size() != hash.size() || CRYPTO_memcmp(row->second.data(), hash.data(), hash.size()) != 0)
+  if (!same_digest(row->second, hash))
     return std::nullopt;
   const auto user = store_.get_user(row->first);
   if (!user) return std::nullopt;

@@ -37,6 +37,11 @@ class Auth {
 // True when s begins with prefix, ASCII case ignored (an HTTP auth scheme).
 bool starts_with_nocase(std::string_view s, std::string_view prefix);
 
+// `bytes` random bytes from OpenSSL's CSPRNG, as hex.
+std::string random_hex(std::size_t bytes);
+// Whether two digests (hex) are equal, compared in constant time; false when empty.
+bool same_digest(std::string_view a, std::string_view b);
+
 // True for a user name: 1..64 of [A-Za-z0-9_.-], not "local" or "system".
 bool valid_user_name(const std::string& name);
 

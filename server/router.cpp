@@ -376,6 +376,35 @@ Router::Router(MeshService& meshes, RouterConfig config)
                        return share("job", p.at("id"), job_owner(p, caller), req, false);
                      },
                      false});
+  // A job's worker on a node without the data directory: its own token
+  // (Authorization: Bearer), not a user's, reads its inputs and writes its results.
+  auto worker_token = [](const HttpRequest& req) {
+    return starts_with_nocase(req.authorization, "Bearer ") ? std::string_view(req.authorization).substr(7)
+                                                             : std::string_view();
+  };
+  routes_.push_back({"GET", "/api/v1/worker/jobs/{id}/spec", "A running job's job.json, for its worker (the job's token)", {},
+                     [jobs, worker_token](const Params& p, const HttpRequest& req, const Caller&) {
+                       HttpResponse r;
+                       r.body = jobs().worker_spec(p.at("id"), worker_token(req));
+                       return r;
+                     }});
+  routes_.push_back({"GET", "/api/v1/worker/jobs/{id}/inputs/{name}", "An input file of a running job, for its worker (the job's token)", {},
+                     [jobs, worker_token](const Params& p, const HttpRequest& req, const Caller&) {
+                       HttpResponse r;
+                       r.body = read_file_bytes(jobs().worker_input(p.at("id"), worker_token(req), p.at("name")), std::uint64_t(1) << 40);
+                       r.content_type = "application/octet-stream";
+                       return r;
+                     }});
+  routes_.push_back({"PUT", "/api/v1/worker/jobs/{id}/files/{name}", "A result file of a running job, from its worker (the job's token)", {},
+                     [jobs, worker_token](const Params& p, const HttpRequest& req, const Caller&) {
+                       jobs().worker_put(p.at("id"), worker_token(req), p.at("name"), req.body);
+                       return json_response(200, json{{"stored", p.at("name")}, {"bytes", req.body.size()}});
+                     }});
+  routes_.push_back({"POST", "/api/v1/worker/jobs/{id}/progress", "A running job's progress line (\"progress F STAGE\"), from its worker (the job's token)", {},
+                     [jobs, worker_token](const Params& p, const HttpRequest& req, const Caller&) {
+                       jobs().worker_progress(p.at("id"), worker_token(req), req.body);
+                       return json_response(200, json{{"progress", true}});
+                     }});
   routes_.push_back({"GET", "/api/v1/openapi.json", "This API's OpenAPI 3 document", {},
                      [this](const Params&, const HttpRequest&, const Caller&) { return json_response(200, openapi()); },
                      false});
@@ -532,7 +561,8 @@ HttpResponse Router::dispatch(const HttpRequest& req, std::string& route) const 
   const auto [path, query] = split_target(req.target);
   // The web client's files are public (it asks for a token); the API and the metrics are not.
   std::optional<Caller> caller;
-  if (path.starts_with("/api/") || path == "/metrics") {
+  // A worker's routes take its job's token instead (JobScheduler::worker_*).
+  if ((path.starts_with("/api/") || path == "/metrics") && !path.starts_with("/api/v1/worker/")) {
     caller = auth_.authenticate(req.authorization);
     if (!caller) {
       HttpResponse r = error_response(401, "unauthorized", req.authorization.empty()
@@ -554,6 +584,10 @@ HttpResponse Router::dispatch(const HttpRequest& req, std::string& route) const 
         return error_response(400, "bad_request", "'" + name + "' is not a valid " + name + ": letters, digits, '_', '.' or '-'");
     try {
       return r.handler(params, req, caller.value_or(Caller::local()));
+    } catch (const WorkerTokenRefused& e) {
+      HttpResponse res = error_response(401, "unauthorized", e.what());
+      res.headers.push_back({"WWW-Authenticate", "Bearer"});
+      return res;
     } catch (const QuotaExceeded& e) {
       HttpResponse res = json_response(e.status, json{{"error", e.code}, {"detail", e.what()}, {"limit", e.limit}, {"used", e.used}});
       if (e.status == 429) res.headers.push_back({"Retry-After", std::to_string(e.retry_after_s)});

@@ -751,12 +751,24 @@ class Detector : public std::enable_shared_from_this<Detector> {
 struct Server::Impl {
   explicit Impl(const ServerConfig& c) : shared(std::make_shared<Shared>(c)), acceptor(ioc) {
     shared->router.on_event = [s = shared.get()](const json& e, const Access& readers) { s->broadcast(e, readers); };
-    shared->jobs->start();
     const tcp::endpoint ep(net::ip::make_address(c.host), c.port);
     acceptor.open(ep.protocol());
     acceptor.set_option(net::socket_base::reuse_address(true));
     acceptor.bind(ep);
     acceptor.listen(net::socket_base::max_listen_connections);
+    // Where a job's worker on another machine calls back, unless the config
+    // says: this address, or this machine's name where it listens on all.
+    const auto address = ep.address();
+    std::string host = c.host;
+    if (address.is_unspecified()) {
+      char name[256] = {};
+      host = ::gethostname(name, sizeof name - 1) == 0 && name[0] ? name : "127.0.0.1";
+    } else if (address.is_v6()) {
+      host = "[" + c.host + "]";
+    }
+    shared->jobs->set_server_url(std::string(shared->tls ? "https" : "http") + "://" + host + ":" +
+                                 std::to_string(acceptor.local_endpoint().port()));
+    shared->jobs->start();
   }
   void accept() {
     acceptor.async_accept(net::make_strand(ioc), [this](beast::error_code ec, tcp::socket socket) {

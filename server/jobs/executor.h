@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cstddef>
 #include <filesystem>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -25,6 +26,12 @@ struct LaunchSpec {
   double timeout_s = 0;            // 0: none
   std::size_t memory_mb = 0;       // 0: none
   int cpus = 1;
+  // Where the worker cannot see the data directory: the server's address,
+  // the job's own token for its inputs and results (worker_api in
+  // scheduler.h), and its inputs by name with the file each becomes beside
+  // the worker (job.json, fetched too, names those files).  Empty otherwise.
+  std::string server_url, token;
+  std::map<std::string, std::string> remote_inputs;
 };
 
 // How a worker ended, as its executor saw it; the scheduler reads the

@@ -40,6 +40,10 @@ struct Job {
   // queued); kept so that a restarted server finds a Slurm job again.
   std::string executor, handle;
   std::string where;  // the node it runs on, when the executor knows it
+  // The SHA-256 of the token its worker uses to fetch inputs and send
+  // results over the API (where the nodes do not share the data directory);
+  // "" once it ended: the token dies with the job.
+  std::string worker_token_sha;
   // Run-time only.
   bool cancelled = false;  // asked to stop: its state is already cancelled, its worker may still run
   bool in_flight = false;  // a worker may still write into its directory

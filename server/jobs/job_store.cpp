@@ -19,7 +19,7 @@ JobStore::JobStore(const std::filesystem::path& data_dir) {
            " state TEXT NOT NULL, stage TEXT NOT NULL, progress REAL NOT NULL, error TEXT NOT NULL,"
            " cached INTEGER NOT NULL, created TEXT NOT NULL, started TEXT NOT NULL, finished TEXT NOT NULL,"
            " artifacts TEXT NOT NULL, files TEXT NOT NULL, inputs TEXT NOT NULL DEFAULT '{}', bytes INTEGER,"
-           " executor TEXT NOT NULL DEFAULT '', handle TEXT NOT NULL DEFAULT '');"
+           " executor TEXT NOT NULL DEFAULT '', handle TEXT NOT NULL DEFAULT '', worker_token TEXT NOT NULL DEFAULT '');"
            "CREATE INDEX IF NOT EXISTS jobs_cache ON jobs(cache_key);",
            "jobs");
   // A database from before algorithms of several inputs lacks the column.
@@ -29,6 +29,7 @@ JobStore::JobStore(const std::filesystem::path& data_dir) {
   // One from before executors: every job ran locally.
   add_missing_column(db_, "jobs", "executor", "TEXT NOT NULL DEFAULT ''", "jobs");
   add_missing_column(db_, "jobs", "handle", "TEXT NOT NULL DEFAULT ''", "jobs");
+  add_missing_column(db_, "jobs", "worker_token", "TEXT NOT NULL DEFAULT ''", "jobs");
 }
 
 JobStore::~JobStore() { sqlite3_close(db_); }
@@ -37,7 +38,7 @@ std::vector<std::shared_ptr<Job>> JobStore::load() const {
   sqlite3_stmt* s = nullptr;
   sqlite3_prepare_v2(db_,
                      "SELECT id, seq, owner, algorithm, mesh_id, mesh_sha, params, cache_key, state, stage, progress,"
-                     " error, cached, created, started, finished, artifacts, files, inputs, bytes, executor, handle"
+                     " error, cached, created, started, finished, artifacts, files, inputs, bytes, executor, handle, worker_token"
                      " FROM jobs ORDER BY seq",
                      -1, &s, nullptr);
   auto text = [&](int c) {
@@ -75,6 +76,7 @@ std::vector<std::shared_ptr<Job>> JobStore::load() const {
     else j->in_flight = true;
     j->executor = text(20);
     j->handle = text(21);
+    j->worker_token_sha = text(22);
     out.push_back(std::move(j));
   }
   sqlite3_finalize(s);
@@ -86,8 +88,8 @@ void JobStore::put(const Job& j) {
   if (sqlite3_prepare_v2(db_,
                          "INSERT OR REPLACE INTO jobs (id, seq, owner, algorithm, mesh_id, mesh_sha, params, cache_key,"
                          " state, stage, progress, error, cached, created, started, finished, artifacts, files, inputs,"
-                         " bytes, executor, handle)"
-                         " VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20,?21,?22)",
+                         " bytes, executor, handle, worker_token)"
+                         " VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20,?21,?22,?23)",
                          -1, &s, nullptr) != SQLITE_OK)
     throw IoError(std::string("jobs: ") + sqlite3_errmsg(db_));
   int i = 0;
@@ -104,7 +106,7 @@ void JobStore::put(const Job& j) {
   // sizes it then (a running job cancelled is sized when its worker ends).
   if (active(j.state) || j.in_flight) sqlite3_bind_null(s, ++i);
   else sqlite3_bind_int64(s, ++i, std::int64_t(j.bytes));
-  t(j.executor), t(j.handle);
+  t(j.executor), t(j.handle), t(j.worker_token_sha);
   const int rc = sqlite3_step(s);
   sqlite3_finalize(s);
   if (rc == SQLITE_FULL) throw DiskFull(std::string("jobs: ") + sqlite3_errmsg(db_));

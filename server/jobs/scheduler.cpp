@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <fstream>
 
+#include "auth.h"
 #include "core/errors.h"
 #include "io/mesh_io.h"
 #include "jobs/local_executor.h"
@@ -327,32 +329,51 @@ ArtifactBytes JobScheduler::artifact(const std::string& id, const std::string& n
   });
 }
 
-std::optional<LaunchSpec> JobScheduler::prepare(Job& j) {
-  const fs::path dir = job_dir(j.id);
-  std::error_code ec;
-  fs::remove_all(dir, ec);
-  fs::create_directories(dir, ec);
+std::optional<json> JobScheduler::input_files(const Job& j, std::string* error) const {
   json files = json::object();
   for (const auto& [name, in] : j.inputs.items()) {
     if (in.is_object()) {  // an earlier job's artifact
       try {
         files[name] = artifact_file_locked(in.value("job", ""), in.value("artifact", ""), "").string();
       } catch (const std::exception& e) {
-        j.error = std::string("input '") + name + "': " + e.what();
+        *error = std::string("input '") + name + "': " + e.what();
         return std::nullopt;
       }
       continue;
     }
     const auto rec = meshes_.store().get_mesh(in.get<std::string>());
     if (!rec) {
-      j.error = "the mesh " + in.get<std::string>() + " (input '" + name + "') was deleted";
+      *error = "the mesh " + in.get<std::string>() + " (input '" + name + "') was deleted";
       return std::nullopt;
     }
     files[name] = meshes_.store().blob_file(*rec).string();
   }
+  return files;
+}
+
+std::optional<LaunchSpec> JobScheduler::prepare(Job& j) {
+  const fs::path dir = job_dir(j.id);
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  fs::create_directories(dir, ec);
+  const auto files = input_files(j, &j.error);
+  if (!files) return std::nullopt;
+  LaunchSpec s = spec(j);
+  json inputs = *files, out = dir.string();
+  if (remote_data()) {
+    // The worker's own directory on its node: inputs under in/NAME/, results in out/.
+    for (const auto& [name, path] : files->items()) {
+      const std::string local = "in/" + name + "/" + fs::path(path.get<std::string>()).filename().string();
+      s.remote_inputs[name] = local;
+      inputs[name] = local;
+    }
+    out = "out";
+    s.server_url = config_.slurm.server_url.empty() ? server_url_ : config_.slurm.server_url;
+    s.token = random_hex(32);
+    j.worker_token_sha = sha256_hex(s.token);
+  }
   try {
-    write_file_bytes(dir / "job.json",
-                     json{{"algorithm", j.algorithm}, {"params", j.params}, {"inputs", files}, {"out", dir.string()}}.dump());
+    write_file_bytes(dir / "job.json", json{{"algorithm", j.algorithm}, {"params", j.params}, {"inputs", inputs}, {"out", out}}.dump());
   } catch (const DiskFull&) {
     j.error = "the server's storage is full: the job could not start";
     return std::nullopt;
@@ -360,12 +381,65 @@ std::optional<LaunchSpec> JobScheduler::prepare(Job& j) {
     j.error = e.what();
     return std::nullopt;
   }
-  return spec(j);
+  return s;
+}
+
+const Job& JobScheduler::worker_job_locked(const std::string& id, std::string_view token) const {
+  const auto it = jobs_.find(id);
+  if (it == jobs_.end() || !it->second->in_flight || !active(it->second->state) ||
+      !same_digest(sha256_hex(token), it->second->worker_token_sha))
+    throw WorkerTokenRefused("not a token of a running job " + id);
+  return *it->second;
+}
+
+std::string JobScheduler::worker_spec(const std::string& id, std::string_view token) const {
+  fs::path file;
+  {
+    std::lock_guard lock(mutex_);
+    file = job_dir(worker_job_locked(id, token).id) / "job.json";
+  }
+  return read_file_bytes(file, 1 << 20);
+}
+
+fs::path JobScheduler::worker_input(const std::string& id, std::string_view token, const std::string& name) const {
+  std::lock_guard lock(mutex_);
+  const Job& j = worker_job_locked(id, token);
+  std::string error;
+  const auto files = input_files(j, &error);
+  if (!files) throw std::out_of_range(error);
+  if (!files->contains(name)) throw std::out_of_range("job " + id + " has no input '" + name + "'");
+  return (*files)[name].get<std::string>();
+}
+
+void JobScheduler::worker_put(const std::string& id, std::string_view token, const std::string& file,
+                              const std::string& bytes) {
+  const bool plain = !file.empty() && file.size() <= 128 && file[0] != '.' &&
+                     file.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789._-") ==
+                         std::string::npos;
+  if (!plain || file == "job.json" || file == "slurm-job.sh")
+    throw InvalidInput("'" + file + "' is not a result file name: letters, digits, '.', '_', '-'");
+  fs::path dir;
+  {
+    std::lock_guard lock(mutex_);
+    dir = job_dir(worker_job_locked(id, token).id);
+  }
+  write_file_bytes(dir / file, bytes);
+}
+
+void JobScheduler::worker_progress(const std::string& id, std::string_view token, const std::string& line) {
+  if (line.size() > 4096 || line.rfind("progress ", 0) != 0 || line.find('\n') != std::string::npos)
+    throw InvalidInput("a progress line is \"progress FRACTION STAGE\" (one line)");
+  std::lock_guard lock(mutex_);
+  const Job& j = worker_job_locked(id, token);
+  // Appended to its output, where the executor reads progress as it does a shared directory's.
+  std::ofstream f(job_dir(j.id) / "stdout.txt", std::ios::binary | std::ios::app);
+  f << line << '\n';
 }
 
 void JobScheduler::end(Job& j, const WorkerEnd* how, std::vector<json>& events) {
   in_flight_.erase(j.id);
   j.in_flight = false;
+  j.worker_token_sha.clear();  // the worker's token dies with its job
   j.bytes = dir_bytes(job_dir(j.id));
   if (j.cancelled) {  // already cancelled (state, event): only its size is new
     save(j);

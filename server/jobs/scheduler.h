@@ -20,7 +20,9 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
+#include <stdexcept>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -48,6 +50,11 @@ struct JobConfig {
   SlurmConfig slurm;
 };
 
+// A worker's request with a token that is not its job's (or the job ended): 401.
+struct WorkerTokenRefused : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 // How many jobs there are, for the metrics.
 struct JobCounts {
   std::map<std::pair<std::string, std::string>, std::size_t> by_state_algorithm;  // (state, algorithm) -> jobs
@@ -63,8 +70,11 @@ class JobScheduler : private JobLookup {
   JobScheduler(const JobScheduler&) = delete;
   JobScheduler& operator=(const JobScheduler&) = delete;
 
-  // Starts running queued jobs (set on_event first).
+  // Starts running queued jobs (set on_event first, and the server's URL).
   void start();
+  // How a worker on another machine reaches this server (used where the
+  // nodes do not share the data directory and the config names no server_url).
+  void set_server_url(const std::string& url) { server_url_ = url; }
   // Called (from the scheduler's thread) with job_progress, job_done, job_failed
   // and job_cancelled events, and who may see them (the job's owner and shares).
   std::function<void(const nlohmann::json&, const Access&)> on_event;
@@ -90,6 +100,20 @@ class JobScheduler : private JobLookup {
   // job or artifact), InvalidInput (job not done), UnsupportedFormat.
   ArtifactBytes artifact(const std::string& id, const std::string& name, const std::string& format,
                          const Caller& caller = Caller::local()) override;
+
+  // The worker's side of a job whose node does not see the data directory
+  // (the Slurm executor's shared_data false).  Each call takes the job's
+  // own token, valid while the job runs and for nothing else; any other
+  // token, or a job that ended, is WorkerTokenRefused.
+  // Its job.json (input files and the output directory, relative to the worker's).
+  std::string worker_spec(const std::string& id, std::string_view token) const;
+  // The file of its input `name`.
+  std::filesystem::path worker_input(const std::string& id, std::string_view token, const std::string& name) const;
+  // Writes one of its results (`file`: a plain name, not job.json) into the
+  // job's directory; throws InvalidInput for a bad name, DiskFull.
+  void worker_put(const std::string& id, std::string_view token, const std::string& file, const std::string& bytes);
+  // Its progress line ("progress F STAGE"), as its stdout would carry it.
+  void worker_progress(const std::string& id, std::string_view token, const std::string& line);
 
   std::uint64_t workers_started() const { return workers_started_; }
   JobCounts counts() const;
@@ -117,6 +141,12 @@ class JobScheduler : private JobLookup {
   // it, or nullopt with job.error set (under mutex_).
   std::optional<LaunchSpec> prepare(Job& job);
   LaunchSpec spec(const Job& job) const;
+  // Every input of the job by name -> its file on this machine; "" with
+  // *error set when one is gone (under mutex_).
+  std::optional<nlohmann::json> input_files(const Job& job, std::string* error) const;
+  bool remote_data() const { return config_.executor == "slurm" && !config_.slurm.shared_data; }
+  // The in-flight job whose token this is (under mutex_); throws WorkerTokenRefused.
+  const Job& worker_job_locked(const std::string& id, std::string_view token) const;
   // Applies what the executor said (under mutex_); events to send.
   void apply(const ExecutorEvent& e, std::vector<nlohmann::json>& events);
   // The job ended (its worker gone, or its launch failed) (under mutex_).
@@ -151,6 +181,7 @@ class JobScheduler : private JobLookup {
   // Jobs whose last change could not be written (a full disk): written again
   // at each turn of the loop until it fits; their state in memory is right.
   std::set<std::string> unsaved_;
+  std::string server_url_;
   std::thread thread_;
 };
 

@@ -69,9 +69,6 @@ SlurmExecutor::SlurmExecutor(SlurmConfig config, fs::path worker, fs::path data_
   if (!config_.worker.empty()) worker_ = config_.worker;
   if (config_.max_jobs < 1) config_.max_jobs = 1;
   if (!(config_.poll_s > 0)) config_.poll_s = 1;
-  if (!config_.shared_data)
-    throw InvalidInput("slurm: shared_data false is not supported yet: the nodes must see the data directory " +
-                       data_dir_.string());
   sbatch_ = find_program("sbatch");
   squeue_ = find_program("squeue");
   scancel_ = find_program("scancel");
@@ -87,13 +84,19 @@ SlurmExecutor::~SlurmExecutor() {
 }
 
 std::vector<std::string> SlurmExecutor::sbatch_command(const LaunchSpec& job) const {
-  std::vector<std::string> a = {sbatch_.string(),
-                                "--parsable",
-                                "--job-name=" + job.name,
-                                "--chdir=" + job.dir.string(),
-                                "--output=" + (job.dir / "stdout.txt").string(),
-                                "--error=" + (job.dir / "stderr.txt").string(),
-                                "--cpus-per-task=" + std::to_string(std::max(1, job.cpus))};
+  std::vector<std::string> a = {sbatch_.string(), "--parsable", "--job-name=" + job.name};
+  if (job.token.empty()) {
+    a.push_back("--chdir=" + job.dir.string());
+    a.push_back("--output=" + (job.dir / "stdout.txt").string());
+    a.push_back("--error=" + (job.dir / "stderr.txt").string());
+  } else {
+    // The node sees nothing of the server's: the script keeps its own files
+    // in a temporary directory of the node and sends back what matters.
+    a.push_back("--chdir=/tmp");
+    a.push_back("--output=/dev/null");
+    a.push_back("--error=/dev/null");
+  }
+  a.push_back("--cpus-per-task=" + std::to_string(std::max(1, job.cpus)));
   // Slurm counts whole minutes; the executor's own watchdog holds the limit to the second.
   if (job.timeout_s > 0) a.push_back("--time=" + std::to_string(std::max(1L, long(std::ceil(job.timeout_s / 60)))));
   if (job.memory_mb > 0) a.push_back("--mem=" + std::to_string(job.memory_mb));
@@ -105,14 +108,58 @@ std::vector<std::string> SlurmExecutor::sbatch_command(const LaunchSpec& job) co
   return a;
 }
 
+std::string SlurmExecutor::batch_script(const LaunchSpec& job) const {
+  const std::string limit = job.memory_mb > 0 ? "ulimit -v " + std::to_string(job.memory_mb * 1024) + "; " : "";
+  if (job.token.empty()) {
+    // The worker under the job's address-space limit (as a local worker
+    // runs), and its exit status kept beside its results: 128+N for a signal.
+    return "#!/bin/sh\n# CGView job " + job.job_id + "\ncd " + quoted(job.dir.string()) +
+           " || exit 97\nrm -f worker.exit\n(" + limit + "exec " + quoted(worker_.string()) + " " +
+           quoted((job.dir / "job.json").string()) +
+           ")\nrc=$?\necho $rc > worker.exit.tmp && mv worker.exit.tmp worker.exit\nexit $rc\n";
+  }
+  // No shared directory: curl fetches job.json and the inputs with the job's
+  // own token, a loop sends the last progress line each second, and the
+  // results, the worker's stderr and its exit status go back at the end
+  // (result.json last of the results).
+  std::string s = "#!/bin/sh\n# CGView job " + job.job_id +
+                  "\nU=" + quoted(job.server_url + "/api/v1/worker/jobs/" + job.job_id) +
+                  "\nH=" + quoted("Authorization: Bearer " + job.token) +
+                  "\nW=$(mktemp -d \"${TMPDIR:-/tmp}/cgview-job.XXXXXX\") || exit 98\n"
+                  "trap 'rm -rf \"$W\"' EXIT\n"
+                  "cd \"$W\" || exit 98\n"
+                  "get() { curl -fsS --retry 3 -H \"$H\" -o \"$2\" \"$U/$1\"; }\n"
+                  "put() { curl -fsS --retry 3 -H \"$H\" -X PUT --data-binary \"@$1\" \"$U/files/$2\" >/dev/null; }\n"
+                  "mkdir out || exit 98\n"
+                  "get spec job.json || exit 98\n";
+  for (const auto& [name, local] : job.remote_inputs) {
+    const std::string parent = fs::path(local).parent_path().string();
+    s += "mkdir -p " + quoted(parent) + " && get " + quoted("inputs/" + name) + " " + quoted(local) + " || exit 98\n";
+  }
+  s += "(" + limit + "exec " + quoted(worker_.string()) + " job.json) > stdout.txt 2> stderr.txt &\n"
+       "pid=$!\n"
+       "last=\n"
+       "while kill -0 $pid 2>/dev/null; do\n"
+       "  sleep 1\n"
+       "  line=$(grep '^progress ' stdout.txt | tail -n 1)\n"
+       "  if [ -n \"$line\" ] && [ \"$line\" != \"$last\" ]; then\n"
+       "    printf '%s' \"$line\" | curl -fsS -H \"$H\" --data-binary @- \"$U/progress\" >/dev/null; last=$line\n"
+       "  fi\n"
+       "done\n"
+       "wait $pid\n"
+       "rc=$?\n"
+       "for f in out/*; do\n"
+       "  [ -f \"$f\" ] && [ \"${f##*/}\" != result.json ] && put \"$f\" \"${f##*/}\"\n"
+       "done\n"
+       "[ -f out/result.json ] && put out/result.json result.json\n"
+       "put stderr.txt stderr.txt\n"
+       "echo $rc > worker.exit && put worker.exit worker.exit\n"
+       "exit $rc\n";
+  return s;
+}
+
 std::string SlurmExecutor::launch(const LaunchSpec& job) {
-  // The worker under the job's address-space limit (as a local worker runs),
-  // and its exit status kept beside its results: 128+N for a signal.
-  std::string script = "#!/bin/sh\n# CGView job " + job.job_id + "\ncd " + quoted(job.dir.string()) +
-                       " || exit 97\nrm -f worker.exit\n";
-  if (job.memory_mb > 0) script += "ulimit -v " + std::to_string(job.memory_mb * 1024) + "\n";
-  script += quoted(worker_.string()) + " " + quoted((job.dir / "job.json").string()) +
-            "\nrc=$?\necho $rc > worker.exit.tmp && mv worker.exit.tmp worker.exit\nexit $rc\n";
+  const std::string script = batch_script(job);
   try {
     write_file_bytes(job.dir / "slurm-job.sh", script);
   } catch (const std::exception& e) {

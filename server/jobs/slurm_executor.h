@@ -38,8 +38,9 @@ class SlurmExecutor : public Executor {
   void wake() override;
   void shutdown() override {}  // the cluster's jobs outlive the server
 
-  // The sbatch command line for a job (for the tests and the docs).
+  // The sbatch command line for a job, and its batch script.
   std::vector<std::string> sbatch_command(const LaunchSpec& job) const;
+  std::string batch_script(const LaunchSpec& job) const;
   // How many squeue calls it made (one per poll cycle).
   std::uint64_t squeue_calls() const { return squeue_calls_; }
 
