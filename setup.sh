@@ -43,6 +43,11 @@ TEST_APT_PACKAGES=(
   clang libfuzzer-14-dev libclang-rt-14-dev
   python3 python3-websocket python3-prometheus-client
   openssl
+  # A real Slurm cluster for the tests (tests/slurm): munged, slurmctld and
+  # slurmd run from a temporary directory, not as the system's services.
+  slurm-wlm slurmctld slurmd slurm-client munge
+  # The Slurm executor's batch script on a node without the data directory.
+  curl
 )
 [ "$TESTS" = 0 ] || APT_PACKAGES+=("${TEST_APT_PACKAGES[@]}")
 
@@ -88,9 +93,10 @@ ensure_node() {
 check_tools() {
   local t
   local tools=(cmake ninja g++ ccache node npm)
-  [ "$TESTS" = 0 ] || tools+=(draco_decoder assimp python3 clang++)
+  [ "$TESTS" = 0 ] || tools+=(draco_decoder assimp python3 clang++ sbatch slurmctld slurmd munged)
   for t in "${tools[@]}"; do
-    command -v "$t" >/dev/null || die "'$t' is missing after the install (see the apt-get output above)"
+    # slurmctld, slurmd and munged are in /usr/sbin, which a user's PATH may lack.
+    PATH="$PATH:/usr/sbin:/sbin" command -v "$t" >/dev/null || die "'$t' is missing after the install (see the apt-get output above)"
   done
   local node_major
   node_major=$(node -p 'process.versions.node.split(".")[0]')

@@ -1,0 +1,350 @@
+// Jobs through the Slurm executor, against a real three-node cluster on this
+// machine (slurm_cluster.h) and the real cgview-server: jobs land on every
+// node, their results equal the local executor's byte for byte, and cancel,
+// the time and memory limits, a crash, a killed node, a server killed and
+// started again, and a job Slurm forgot each end as a person expects.
+#include <gtest/gtest.h>
+#include <sched.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <sys/mount.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <thread>
+
+#include "server_harness.h"
+#include "slurm_cluster.h"
+#include "test_support.h"
+
+namespace cgview::test {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using namespace std::chrono_literals;
+using Clock = std::chrono::steady_clock;
+
+class SlurmJobs : public ServerFixture {
+ protected:
+  SlurmJobs() : ServerFixture("slurm-jobs-") {}
+
+  void SetUp() override {
+    ServerFixture::SetUp();
+    std::string why;
+    if (!SlurmCluster::available(&why)) GTEST_SKIP() << why;
+    // Ended jobs leave the controller's memory after 2 s (a job "forgotten").
+    cluster_.set_conf("MinJobAge", "2");
+    // A short path: munge's socket path is limited to 108 bytes.
+    const std::filesystem::path cluster_dir = temp_dir("sj");
+    // A requeued job may start again after the credential lifetime (Slurm's
+    // default 120 s): 10 s keeps the killed-node test short.
+    cluster_.set_conf("AuthInfo", "socket=" + (cluster_dir / "munge" / "munge.socket").string() + ",cred_expire=10");
+    ASSERT_TRUE(cluster_.start(cluster_dir, 3, &why)) << why;
+    ::setenv("SLURM_CONF", cluster_.conf().c_str(), 1);  // the server and its sbatch read it
+  }
+  void TearDown() override {
+    server_.kill_now();
+    if (private_data_) ::umount2(data_.c_str(), MNT_DETACH);
+    cluster_.stop();
+    ::unsetenv("SLURM_CONF");
+    ServerFixture::TearDown();
+  }
+
+  // The server with the Slurm executor (the test worker), polling Slurm every 0.2 s.
+  bool start(std::vector<std::string> extra = {}, const fs::path& data = {}, json slurm = json::object()) {
+    slurm["poll_s"] = 0.2;
+    slurm["max_jobs"] = 50;
+    write_text(dir_ / "config.json", json{{"slurm", slurm}}.dump());
+    std::vector<std::string> args = {"--worker", bin("cgview-worker-test"), "--executor", "slurm", "--config",
+                                     (dir_ / "config.json").string(), "--job-memory-mb", "2048"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return server_.start(data.empty() ? data_ : data, args, dir_);
+  }
+  std::string upload(const std::string& sample_name) {
+    const auto r = http_call(port(), Method::post, "/api/v1/meshes?name=" + sample_name, read_bytes(sample(sample_name)));
+    EXPECT_EQ(r.status, 201u) << r.body;
+    return r.body_json().value("id", "");
+  }
+  json submit(const std::string& mesh, const std::string& algorithm, const json& params = json::object()) {
+    const auto r = http_call(port(), Method::post, "/api/v1/jobs",
+                             json{{"algorithm", algorithm}, {"inputs", {{"mesh", mesh}}}, {"params", params}}.dump());
+    EXPECT_EQ(r.status, 201u) << r.body;
+    return r.body_json();
+  }
+  json get(const std::string& id) { return http_get(port(), "/api/v1/jobs/" + id).body_json(); }
+  json wait_end(const std::string& id, std::chrono::seconds limit = 60s) {
+    const auto deadline = Clock::now() + limit;
+    json j;
+    while (Clock::now() < deadline) {
+      j = get(id);
+      const std::string s = j.value("state", "");
+      if (s != "queued" && s != "running") return j;
+      std::this_thread::sleep_for(50ms);
+    }
+    ADD_FAILURE() << "job " << id << " did not end in time: " << j.dump() << "\n" << cluster_.log_tail();
+    return j;
+  }
+  json wait_running(const std::string& id, std::chrono::seconds limit = 30s) {
+    const auto deadline = Clock::now() + limit;
+    json j;
+    while (Clock::now() < deadline) {
+      j = get(id);
+      if (j.value("state", "") == "running" && j.value("progress", 0.0) > 0) return j;
+      std::this_thread::sleep_for(20ms);
+    }
+    ADD_FAILURE() << "job " << id << " never ran: " << j.dump();
+    return j;
+  }
+  // The Slurm job of a CGView job, by its name (cgview-ID): its id, or "".
+  std::string slurm_id(const std::string& job) {
+    std::string out = cluster_.run("squeue --noheader --states=all --name=cgview-" + job + " --format=%i");
+    while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
+    return out;
+  }
+  std::string artifact(const std::string& job, const std::string& name, const std::string& format) {
+    const auto r = http_get(port(), "/api/v1/jobs/" + job + "/artifacts/" + name + "?format=" + format);
+    EXPECT_EQ(r.status, 200u) << r.body;
+    return r.body;
+  }
+
+  // data_ becomes a tmpfs that this process and the server see, and the
+  // cluster's nodes (started before, in the first mount namespace) do not.
+  bool hide_data_from_the_nodes() {
+    fs::create_directories(data_);
+    if (::unshare(CLONE_NEWNS) != 0) return false;
+    if (::mount(nullptr, "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0) return false;
+    private_data_ = ::mount("tmpfs", data_.c_str(), "tmpfs", 0, "size=256m") == 0;
+    return private_data_;
+  }
+  // The job's token, as its batch script carries it (scontrol write batch_script).
+  std::string token_of(const std::string& slurm_job) {
+    const std::string script = cluster_.run("scontrol write batch_script " + slurm_job + " -");
+    const auto at = script.find("Authorization: Bearer ");
+    if (at == std::string::npos) return "";
+    const auto from = at + 22;
+    return script.substr(from, script.find('\'', from) - from);
+  }
+
+  SlurmCluster cluster_;
+  bool private_data_ = false;
+};
+
+TEST_F(SlurmJobs, JobsLandOnEveryNodeAndResultsEqualTheLocalExecutorsByteForByte) {
+  ASSERT_TRUE(start());
+  const std::string mesh = upload("sphere.off");
+  // Six jobs of a second: each node has 2 CPUs, so all three are used.
+  std::vector<std::string> sleepers;
+  for (int i = 0; i < 6; ++i) sleepers.push_back(submit(mesh, "test_sleep", {{"seconds", 1.5 + 0.01 * i}})["id"]);
+  const json sdf = submit(mesh, "sdf");
+  const json vox = submit(mesh, "voxelize");
+  std::set<std::string> nodes;
+  for (const auto& id : sleepers) {
+    const auto deadline = Clock::now() + 30s;
+    while (Clock::now() < deadline && get(id).value("node", "").empty() && get(id).value("state", "") != "done")
+      std::this_thread::sleep_for(20ms);
+    nodes.insert(get(id).value("node", ""));
+  }
+  for (const auto& id : sleepers) EXPECT_EQ(wait_end(id).value("state", ""), "done");
+  EXPECT_EQ(nodes, (std::set<std::string>{"n1", "n2", "n3"}));
+  // Slurm ran each as its own batch job, named after it.
+  for (const auto& id : sleepers) EXPECT_FALSE(slurm_id(id).empty()) << id;
+  ASSERT_EQ(wait_end(sdf["id"]).value("state", ""), "done") << get(sdf["id"]).dump();
+  ASSERT_EQ(wait_end(vox["id"]).value("state", ""), "done") << get(vox["id"]).dump();
+  const std::string sdf_slurm = artifact(sdf["id"], "sdf", "f32");
+  const json vox_job = get(vox["id"]);
+  ASSERT_FALSE(vox_job["artifacts"].empty());
+  const std::string vox_name = vox_job["artifacts"][0]["name"];
+  const std::string vox_slurm = artifact(vox["id"], vox_name, "nrrd");
+  server_.kill_now();
+
+  // The same jobs through the local executor.
+  ::unsetenv("SLURM_CONF");
+  ASSERT_TRUE(server_.start(dir_ / "local-data", {"--worker", bin("cgview-worker-test")}, dir_));
+  const std::string mesh2 = upload("sphere.off");
+  const json sdf2 = submit(mesh2, "sdf");
+  const json vox2 = submit(mesh2, "voxelize");
+  ASSERT_EQ(wait_end(sdf2["id"]).value("state", ""), "done");
+  ASSERT_EQ(wait_end(vox2["id"]).value("state", ""), "done");
+  EXPECT_TRUE(artifact(sdf2["id"], "sdf", "f32") == sdf_slurm) << "sdf differs between the executors";
+  EXPECT_TRUE(artifact(vox2["id"], vox_name, "nrrd") == vox_slurm) << "the voxel grid differs between the executors";
+  EXPECT_GT(sdf_slurm.size(), 100u);
+}
+
+TEST_F(SlurmJobs, CancelStopsTheSlurmJobWithinSeconds) {
+  ASSERT_TRUE(start());
+  const std::string mesh = upload("sphere.off");
+  const json job = submit(mesh, "test_sleep", {{"seconds", 60}});
+  wait_running(job["id"]);
+  const std::string sid = slurm_id(job["id"]);
+  ASSERT_FALSE(sid.empty());
+  const auto r = http_call(port(), Method::delete_, "/api/v1/jobs/" + job["id"].get<std::string>());
+  ASSERT_EQ(r.status, 200u) << r.body;
+  EXPECT_EQ(r.body_json().value("state", ""), "cancelled");
+  EXPECT_EQ(cluster_.wait_ended(sid, 10), "CANCELLED");
+  EXPECT_EQ(get(job["id"]).value("state", ""), "cancelled");
+}
+
+TEST_F(SlurmJobs, TimeMemoryAndACrashFailWithTheirReasons) {
+  ASSERT_TRUE(start({"--job-timeout-s", "2", "--job-memory-mb", "300"}));
+  const std::string mesh = upload("sphere.off");
+  const json slow = submit(mesh, "test_sleep", {{"seconds", 60}});
+  const json hog = submit(mesh, "test_memory_hog");
+  const json crash = submit(mesh, "test_segfault");
+  EXPECT_EQ(wait_end(slow["id"]).value("error", ""), "exceeded its time limit of 2 s");
+  EXPECT_EQ(wait_end(hog["id"]).value("error", ""), "exceeded its memory limit of 300 MB");
+  EXPECT_EQ(wait_end(crash["id"]).value("error", ""), "killed by signal SIGSEGV");
+  for (const auto& j : {slow, hog, crash}) EXPECT_EQ(get(j["id"]).value("state", ""), "failed");
+}
+
+TEST_F(SlurmJobs, PendingJobsSayWhyTheyWait) {
+  ASSERT_TRUE(start({"--job-cpus", "2"}));
+  const std::string mesh = upload("sphere.off");
+  // Three nodes of 2 CPUs hold three 2-CPU jobs: the fourth waits for resources.
+  std::vector<std::string> ids;
+  for (int i = 0; i < 4; ++i) ids.push_back(submit(mesh, "test_sleep", {{"seconds", 3}})["id"]);
+  bool seen_waiting = false;
+  const auto deadline = Clock::now() + 20s;
+  while (Clock::now() < deadline && !seen_waiting) {
+    for (const auto& id : ids) {
+      const json j = get(id);
+      if (j.value("state", "") == "queued" && j.value("stage", "").rfind("waiting for the cluster: Resources", 0) == 0)
+        seen_waiting = true;
+    }
+    std::this_thread::sleep_for(20ms);
+  }
+  EXPECT_TRUE(seen_waiting);
+  for (const auto& id : ids) EXPECT_EQ(wait_end(id).value("state", ""), "done");
+}
+
+TEST_F(SlurmJobs, AServerKilledAndStartedAgainEndsEachJobExactlyOnce) {
+  ASSERT_TRUE(start());
+  const std::string mesh = upload("sphere.off");
+  std::vector<std::string> ids;
+  for (int i = 0; i < 3; ++i) ids.push_back(submit(mesh, "test_sleep", {{"seconds", 3 + 0.01 * i}})["id"]);
+  for (const auto& id : ids) wait_running(id);
+  std::vector<std::string> sids;
+  for (const auto& id : ids) sids.push_back(slurm_id(id));
+  EXPECT_EQ(server_.stop(SIGKILL), 128 + SIGKILL);
+  ASSERT_TRUE(start());
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    const json j = wait_end(ids[k]);
+    EXPECT_EQ(j.value("state", ""), "done") << j.dump();
+    EXPECT_EQ(j["artifacts"].size(), 1u);
+    // The same Slurm job, run once: no second submission of it.
+    EXPECT_EQ(slurm_id(ids[k]), sids[k]);
+  }
+  EXPECT_EQ(artifact(ids[0], "index", "json").empty(), false);
+}
+
+TEST_F(SlurmJobs, AJobSlurmForgotFailsSayingSo) {
+  ASSERT_TRUE(start());
+  const std::string mesh = upload("sphere.off");
+  const json job = submit(mesh, "test_sleep", {{"seconds", 60}});
+  wait_running(job["id"]);
+  const std::string sid = slurm_id(job["id"]);
+  ASSERT_FALSE(sid.empty());
+  EXPECT_EQ(server_.stop(SIGKILL), 128 + SIGKILL);
+  // While the server is down its job is cancelled behind its back and
+  // leaves the controller's memory (MinJobAge 2 s).
+  cluster_.run("scancel " + sid);
+  const auto deadline = Clock::now() + 30s;
+  while (Clock::now() < deadline && !cluster_.job_state(sid).empty()) std::this_thread::sleep_for(200ms);
+  ASSERT_EQ(cluster_.job_state(sid), "") << "the controller still knows the job";
+  ASSERT_TRUE(start());
+  const json j = wait_end(job["id"], 20s);
+  EXPECT_EQ(j.value("state", ""), "failed");
+  EXPECT_EQ(j.value("error", ""), "Slurm no longer knows job " + sid + " (purged, or lost with its node)");
+}
+
+TEST_F(SlurmJobs, AJobOnAKilledNodeIsRequeuedByTheClusterAndRunsElsewhere) {
+  ASSERT_TRUE(start());
+  const std::string mesh = upload("sphere.off");
+  const json job = submit(mesh, "test_sleep", {{"seconds", 8}});
+  const std::string id = job["id"];
+  const json running = wait_running(id);
+  const std::string node = running.value("node", "");
+  ASSERT_FALSE(node.empty());
+  const std::string sid = slurm_id(id);
+  // The node dies: its slurmd and the job's processes on it.
+  cluster_.kill_node(std::stoi(node.substr(1)));
+  cluster_.run("pkill -KILL -f 'slurmstepd: \\[" + sid + "\\.' ; pkill -KILL -f 'jobs/" + id + "/job.json'");
+  // SlurmdTimeout=20: the controller marks the node down in about half a
+  // minute and requeues the job (JobRequeue=1, Slurm's default): it waits
+  // again, then runs on another node to its end.
+  bool waited_again = false;
+  const auto deadline = Clock::now() + 120s;
+  json j;
+  while (Clock::now() < deadline) {
+    j = get(id);
+    const std::string s = j.value("state", "");
+    waited_again |= s == "queued";
+    if (s != "queued" && s != "running") break;
+    std::this_thread::sleep_for(100ms);
+  }
+  EXPECT_TRUE(waited_again) << j.dump();
+  EXPECT_EQ(j.value("state", ""), "done") << j.dump();
+  EXPECT_NE(j.value("node", ""), node) << j.dump();
+  EXPECT_EQ(slurm_id(id), sid) << "requeued by Slurm, not submitted again";
+}
+
+TEST_F(SlurmJobs, WithoutASharedDirectoryWorkersFetchInputsAndSendResultsWithTheirJobsToken) {
+  if (!hide_data_from_the_nodes()) GTEST_SKIP() << "cannot mount a tmpfs here (needs root: unshare, mount)";
+  ASSERT_TRUE(start({}, {}, {{"shared_data", false}}));
+  const std::string mesh = upload("sphere.off");
+  // The nodes see an empty directory where the server keeps its data.
+  ASSERT_TRUE(fs::exists(data_ / "blobs"));
+  const fs::path seen_by_node = fs::path("/proc") / std::to_string(cluster_.slurmd_pid(1)) / "root" / data_.relative_path();
+  EXPECT_TRUE(fs::is_directory(seen_by_node)) << seen_by_node;
+  EXPECT_TRUE(fs::is_empty(seen_by_node)) << seen_by_node;
+  const json sdf = submit(mesh, "sdf");
+  const json slow = submit(mesh, "test_sleep", {{"seconds", 4}});
+  wait_running(slow["id"]);  // its progress came back over the API
+  const std::string sid = slurm_id(slow["id"]);
+  const std::string token = token_of(sid);
+  ASSERT_EQ(token.size(), 64u) << cluster_.run("scontrol write batch_script " + sid + " -");
+  const std::string base = "/api/v1/worker/jobs/" + slow["id"].get<std::string>();
+  // The token reads its own job's inputs, and nothing else.
+  EXPECT_EQ(call_as(port(), token, "GET", base + "/inputs/mesh").body, read_bytes(data_ / "blobs" / (mesh + ".off")));
+  expect_error(call_as(port(), token, "GET", "/api/v1/worker/jobs/" + sdf["id"].get<std::string>() + "/inputs/mesh"), 401,
+               "unauthorized");
+  expect_error(call_as(port(), "0" + token.substr(1), "GET", base + "/spec"), 401, "unauthorized");
+  expect_error(call_as(port(), token, "PUT", base + "/files/job.json", "{}"), 400, "invalid_mesh");
+  EXPECT_EQ(call_as(port(), token, "GET", "/api/v1/meshes").status, 401u) << "a job's token is not a user's";
+
+  const json done = wait_end(sdf["id"]);
+  ASSERT_EQ(done.value("state", ""), "done") << done.dump();
+  EXPECT_EQ(wait_end(slow["id"]).value("state", ""), "done");
+  // The token died with its job.
+  expect_error(call_as(port(), token, "GET", base + "/spec"), 401, "unauthorized");
+  const std::string field = artifact(sdf["id"], "sdf", "f32");
+  server_.kill_now();
+
+  // The same result as the local executor's.
+  ASSERT_TRUE(server_.start(dir_ / "local-data", {"--worker", bin("cgview-worker-test")}, dir_));
+  const json local = submit(upload("sphere.off"), "sdf");
+  ASSERT_EQ(wait_end(local["id"]).value("state", ""), "done");
+  EXPECT_TRUE(artifact(local["id"], "sdf", "f32") == field) << "sdf differs between the executors";
+}
+
+TEST_F(SlurmJobs, WithoutASharedDirectoryCancelAndCrashesBehaveAsWithOne) {
+  if (!hide_data_from_the_nodes()) GTEST_SKIP() << "cannot mount a tmpfs here (needs root: unshare, mount)";
+  ASSERT_TRUE(start({"--job-memory-mb", "300"}, {}, {{"shared_data", false}}));
+  const std::string mesh = upload("sphere.off");
+  const json slow = submit(mesh, "test_sleep", {{"seconds", 60}});
+  const json crash = submit(mesh, "test_segfault");
+  const json hog = submit(mesh, "test_memory_hog");
+  wait_running(slow["id"]);
+  const std::string sid = slurm_id(slow["id"]);
+  ASSERT_EQ(http_call(port(), Method::delete_, "/api/v1/jobs/" + slow["id"].get<std::string>()).status, 200u);
+  EXPECT_EQ(cluster_.wait_ended(sid, 10), "CANCELLED");
+  EXPECT_EQ(wait_end(crash["id"]).value("error", ""), "killed by signal SIGSEGV");
+  EXPECT_EQ(wait_end(hog["id"]).value("error", ""), "exceeded its memory limit of 300 MB");
+}
+
+}  // namespace
+}  // namespace cgview::test
