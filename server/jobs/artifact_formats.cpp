@@ -1,12 +1,11 @@
 #include "jobs/artifact_formats.h"
 
 #include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include "core/errors.h"
 #include "io/mesh_io.h"
 #include "io/parse_json.h"
+#include "jobs/job_files.h"
 #include "io/skeleton_io.h"
 #include "registry/artifact_io.h"
 #include "store.h"
@@ -17,17 +16,6 @@ namespace cgview::server {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-namespace {
-
-std::string read_file(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-}  // namespace
-
 ArtifactBytes serve_artifact(const fs::path& dir, const json& entry, const std::string& name, std::string format,
                              const std::function<Mesh()>& input_mesh) {
   const std::string kind = entry.value("kind", "");
@@ -37,13 +25,13 @@ ArtifactBytes serve_artifact(const fs::path& dir, const json& entry, const std::
   out.content_type = "application/octet-stream";
   if (kind == "scalar_field") {
     if (format.empty()) format = "json";
-    const std::string raw = read_file(dir / file);
+    const std::string raw = read_job_file(dir / file);
     if (format == "f32") {
       out.bytes = raw;
     } else {
       ScalarField field;
       field.name = name;
-      const json side = parse_json_or_discarded(read_file(dir / (name + ".field.json")));
+      const json side = parse_json_or_discarded(read_job_file(dir / (name + ".field.json")));
       if (side.is_object()) field.name = side.value("name", name);
       field.location = entry.value("location", "vertex") == "face" ? Location::face : Location::vertex;
       const std::string hint = entry.value("hint", "standard");
@@ -66,7 +54,7 @@ ArtifactBytes serve_artifact(const fs::path& dir, const json& entry, const std::
         const fs::path tmp = dir / ("tmp-" + new_id() + "." + format);
         try {
           write_artifact(Artifact{name, field}, input, tmp);
-          out.bytes = read_file(tmp);
+          out.bytes = read_job_file(tmp);
         } catch (...) {
           std::error_code ec;
           fs::remove(tmp, ec);
@@ -81,7 +69,7 @@ ArtifactBytes serve_artifact(const fs::path& dir, const json& entry, const std::
     }
   } else if (kind == "mesh") {
     if (format.empty() || format == "ply") {
-      out.bytes = read_file(dir / file);
+      out.bytes = read_job_file(dir / file);
       format = "ply";
     } else {
       const MeshFormat f = format_from_name("x." + format);
@@ -91,13 +79,13 @@ ArtifactBytes serve_artifact(const fs::path& dir, const json& entry, const std::
   } else if (kind == "metrics") {
     if (!format.empty() && format != "json") throw UnsupportedFormat("metrics are served as json, not '" + format + "'");
     format = "json";
-    out.bytes = read_file(dir / file);
+    out.bytes = read_job_file(dir / file);
     out.content_type = "application/json";
   } else if (kind == "voxel_grid") {
     const std::string ext = fs::path(file).extension().string().substr(1);
     if (format.empty()) format = ext;
     if (format == ext) {
-      out.bytes = read_file(dir / file);
+      out.bytes = read_job_file(dir / file);
     } else {
       const VoxelGrid grid = read_voxel_grid(dir / file);
       if (format == "nrrd") out.bytes = encode_nrrd(grid);
@@ -109,7 +97,7 @@ ArtifactBytes serve_artifact(const fs::path& dir, const json& entry, const std::
   } else if (kind == "skeleton") {
     // Stored as .obj; also served in the other skeleton files (io/skeleton_io.h).
     if (format.empty()) format = "obj";
-    const std::string stored = read_file(dir / file);
+    const std::string stored = read_job_file(dir / file);
     if (format == "obj") {
       out.bytes = stored;
     } else {
@@ -124,7 +112,7 @@ ArtifactBytes serve_artifact(const fs::path& dir, const json& entry, const std::
     const std::string ext = fs::path(file).extension().string().substr(1);
     if (!format.empty() && format != ext) throw UnsupportedFormat("a " + kind + " is served as " + ext + ", not '" + format + "'");
     format = ext;
-    out.bytes = read_file(dir / file);
+    out.bytes = read_job_file(dir / file);
   }
   out.file_name = name + "." + format;
   return out;

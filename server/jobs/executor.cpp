@@ -1,10 +1,35 @@
 #include "jobs/executor.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
+#include "core/errors.h"
+
 namespace cgview::server {
+
+WakePipe::WakePipe() {
+  if (::pipe2(fds_, O_CLOEXEC | O_NONBLOCK) != 0) throw IoError("jobs: pipe failed");
+}
+
+WakePipe::~WakePipe() {
+  ::close(fds_[0]);
+  ::close(fds_[1]);
+}
+
+void WakePipe::wake() {
+  const char c = 1;
+  [[maybe_unused]] auto n = ::write(fds_[1], &c, 1);
+}
+
+void WakePipe::drain() {
+  char buf[256];
+  while (::read(fds_[0], buf, sizeof buf) > 0) {
+  }
+}
 
 bool read_progress_lines(std::string& buffer, double& progress, std::string& stage) {
   bool found = false;

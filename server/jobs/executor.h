@@ -94,6 +94,22 @@ class Executor {
   virtual void shutdown() = 0;
 };
 
+// A pipe that ends an executor's wait from another thread (cancel, a new
+// job): poll its fd(), then drain() it.
+class WakePipe {
+ public:
+  WakePipe();  // throws IoError
+  ~WakePipe();
+  WakePipe(const WakePipe&) = delete;
+  WakePipe& operator=(const WakePipe&) = delete;
+  void wake();
+  void drain();
+  int fd() const { return fds_[0]; }
+
+ private:
+  int fds_[2] = {-1, -1};
+};
+
 // Parses the worker's progress lines out of `buffer` (its output so far,
 // consumed up to the last newline); the last progress line's fraction and
 // stage, or false when there was none.

@@ -18,15 +18,9 @@ using Clock = std::chrono::steady_clock;
 
 LocalExecutor::LocalExecutor(fs::path worker, int max_workers)
     : worker_(std::move(worker)),
-      max_workers_(max_workers > 0 ? max_workers : int(std::max(1u, std::thread::hardware_concurrency()))) {
-  if (::pipe2(wake_pipe_, O_CLOEXEC | O_NONBLOCK) != 0) throw IoError("jobs: pipe failed");
-}
+      max_workers_(max_workers > 0 ? max_workers : int(std::max(1u, std::thread::hardware_concurrency()))) {}
 
-LocalExecutor::~LocalExecutor() {
-  shutdown();
-  ::close(wake_pipe_[0]);
-  ::close(wake_pipe_[1]);
-}
+LocalExecutor::~LocalExecutor() { shutdown(); }
 
 std::string LocalExecutor::launch(const LaunchSpec& job) {
   int fds[2];
@@ -62,10 +56,7 @@ void LocalExecutor::cancel(const std::string& job_id) {
   wake();
 }
 
-void LocalExecutor::wake() {
-  const char c = 1;
-  [[maybe_unused]] auto n = ::write(wake_pipe_[1], &c, 1);
-}
+void LocalExecutor::wake() { wake_.wake(); }
 
 void LocalExecutor::check(std::vector<ExecutorEvent>& events) {
   std::set<std::string> cancels;
@@ -120,15 +111,11 @@ std::vector<ExecutorEvent> LocalExecutor::poll(std::chrono::milliseconds timeout
       exited_unreaped = true;
     }
   }
-  fds.push_back({wake_pipe_[0], POLLIN, 0});
+  fds.push_back({wake_.fd(), POLLIN, 0});
   // A worker whose stdout closed is reaped soon; a running one is checked for its limits every 100 ms.
   const auto wait = std::min<std::chrono::milliseconds>(timeout, std::chrono::milliseconds(exited_unreaped ? 5 : 100));
   ::poll(fds.data(), fds.size(), int(wait.count()));
-  if (fds.back().revents) {
-    char buf[256];
-    while (::read(wake_pipe_[0], buf, sizeof buf) > 0) {
-    }
-  }
+  if (fds.back().revents) wake_.drain();
   for (std::size_t k = 0; k + 1 < fds.size(); ++k) {
     if (!fds[k].revents) continue;
     Run& r = runs_.at(ids[k]);

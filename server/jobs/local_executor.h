@@ -50,7 +50,7 @@ class LocalExecutor : public Executor {
   std::vector<ExecutorEvent> pending_;  // started events, sent at the next poll
   std::mutex cancel_mutex_;
   std::set<std::string> cancels_;  // asked from other threads, done in poll
-  int wake_pipe_[2] = {-1, -1};
+  WakePipe wake_;
 };
 
 }  // namespace cgview::server

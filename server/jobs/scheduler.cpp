@@ -7,6 +7,7 @@
 #include "auth.h"
 #include "core/errors.h"
 #include "io/mesh_io.h"
+#include "jobs/job_files.h"
 #include "jobs/local_executor.h"
 #include "jobs/slurm_executor.h"
 #include "jobs/worker_result.h"
@@ -18,15 +19,6 @@ using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-
-// The bytes of the files under a directory (0 when there is none).
-std::uint64_t dir_bytes(const fs::path& dir) {
-  std::uint64_t n = 0;
-  std::error_code ec;
-  for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
-    if (it->is_regular_file(ec)) n += it->file_size(ec);
-  return n;
-}
 
 std::unique_ptr<Executor> make_executor(const JobConfig& c, const fs::path& data_dir) {
   if (c.executor == "local") return std::make_unique<LocalExecutor>(c.worker, c.max_workers);
@@ -413,24 +405,24 @@ fs::path JobScheduler::worker_input(const std::string& id, std::string_view toke
 
 void JobScheduler::worker_put(const std::string& id, std::string_view token, const std::string& file,
                               const std::string& bytes) {
+  fs::path dir;
+  {
+    std::lock_guard lock(mutex_);
+    dir = job_dir(worker_job_locked(id, token).id);  // the token first: nothing is said to another caller
+  }
   const bool plain = !file.empty() && file.size() <= 128 && file[0] != '.' &&
                      file.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789._-") ==
                          std::string::npos;
   if (!plain || file == "job.json" || file == "slurm-job.sh")
     throw InvalidInput("'" + file + "' is not a result file name: letters, digits, '.', '_', '-'");
-  fs::path dir;
-  {
-    std::lock_guard lock(mutex_);
-    dir = job_dir(worker_job_locked(id, token).id);
-  }
   write_file_bytes(dir / file, bytes);
 }
 
 void JobScheduler::worker_progress(const std::string& id, std::string_view token, const std::string& line) {
+  std::lock_guard lock(mutex_);
+  const Job& j = worker_job_locked(id, token);  // the token first: nothing is said to another caller
   if (line.size() > 4096 || line.rfind("progress ", 0) != 0 || line.find('\n') != std::string::npos)
     throw InvalidInput("a progress line is \"progress FRACTION STAGE\" (one line)");
-  std::lock_guard lock(mutex_);
-  const Job& j = worker_job_locked(id, token);
   // Appended to its output, where the executor reads progress as it does a shared directory's.
   std::ofstream f(job_dir(j.id) / "stdout.txt", std::ios::binary | std::ios::app);
   f << line << '\n';
@@ -532,8 +524,11 @@ void JobScheduler::loop() {
       if (stopping_) break;
       for (const std::string& id : std::vector<std::string>(unsaved_.begin(), unsaved_.end()))
         if (const auto it = jobs_.find(id); it != jobs_.end()) save(*it->second);
-      // Queued jobs go to the executor while it has room, owners in turn.
-      while (int(in_flight_.size() + launching.size()) < executor_->capacity()) {
+      // Queued jobs go to the executor while it has room, owners in turn; a
+      // few dozen a turn, so that a thousand sbatch calls do not hold back
+      // the progress and ends of the jobs already running.
+      constexpr std::size_t kLaunchesPerTurn = 32;
+      while (int(in_flight_.size() + launching.size()) < executor_->capacity() && launching.size() < kLaunchesPerTurn) {
         const auto id = queue_.pop();
         if (!id) break;
         Job& j = *jobs_.at(*id);

@@ -6,11 +6,11 @@
 
 #include <cmath>
 #include <fstream>
-#include <sstream>
 
 #include "child_process.h"
 #include "core/errors.h"
 #include "io/mesh_io.h"
+#include "jobs/job_files.h"
 
 namespace cgview::server {
 
@@ -26,13 +26,6 @@ bool final_state(const std::string& s) {
   return s == "COMPLETED" || s == "FAILED" || s == "CANCELLED" || s == "TIMEOUT" || s == "OUT_OF_MEMORY" ||
          s == "NODE_FAIL" || s == "PREEMPTED" || s == "BOOT_FAIL" || s == "DEADLINE" || s == "SPECIAL_EXIT" ||
          s == "REVOKED";
-}
-
-std::string read_text(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
 }
 
 // A shell word: 'text' with each ' written '\''.
@@ -75,12 +68,6 @@ SlurmExecutor::SlurmExecutor(SlurmConfig config, fs::path worker, fs::path data_
   scontrol_ = find_program("scontrol");
   if (sbatch_.empty() || squeue_.empty() || scancel_.empty() || scontrol_.empty())
     throw InvalidInput("slurm: sbatch, squeue, scancel and scontrol must be on PATH (Debian's slurm-client)");
-  if (::pipe2(wake_pipe_, O_CLOEXEC | O_NONBLOCK) != 0) throw IoError("jobs: pipe failed");
-}
-
-SlurmExecutor::~SlurmExecutor() {
-  ::close(wake_pipe_[0]);
-  ::close(wake_pipe_[1]);
 }
 
 std::vector<std::string> SlurmExecutor::sbatch_command(const LaunchSpec& job) const {
@@ -194,10 +181,7 @@ void SlurmExecutor::cancel(const std::string& job_id) {
   wake();
 }
 
-void SlurmExecutor::wake() {
-  const char c = 1;
-  [[maybe_unused]] auto n = ::write(wake_pipe_[1], &c, 1);
-}
+void SlurmExecutor::wake() { wake_.wake(); }
 
 void SlurmExecutor::read_progress(Tracked& t, std::vector<ExecutorEvent>& events) {
   const fs::path out = t.spec.dir / "stdout.txt";
@@ -227,14 +211,14 @@ WorkerEnd SlurmExecutor::ended(const Tracked& t, const std::string& state, const
     return end;
   }
   // slurmstepd says so in the job's stderr when it kills for memory (OverMemoryKill, or cgroups' oom).
-  const std::string err = read_text(t.spec.dir / "stderr.txt");
+  const std::string err = read_job_file(t.spec.dir / "stderr.txt");
   if (state == "OUT_OF_MEMORY" || err.find("exceeded memory limit") != std::string::npos ||
       err.find("oom_kill event") != std::string::npos || err.find("oom-kill event") != std::string::npos) {
     end.how = WorkerEnd::How::out_of_memory;
     return end;
   }
   // The worker's own exit status, as its batch script saw it.
-  const std::string code = first_line(read_text(t.spec.dir / "worker.exit"));
+  const std::string code = first_line(read_job_file(t.spec.dir / "worker.exit"));
   if (!code.empty() && code.find_first_not_of("0123456789") == std::string::npos && code.size() < 5) {
     const int c = std::stoi(code);
     if (c > 128 && c < 128 + 65) end.how = WorkerEnd::How::signaled, end.signal = c - 128;
@@ -330,11 +314,9 @@ std::vector<ExecutorEvent> SlurmExecutor::poll(std::chrono::milliseconds timeout
   if (jobs_.empty() || due > now) {
     const auto wait = jobs_.empty() ? timeout : std::min<std::chrono::milliseconds>(
         timeout, std::chrono::duration_cast<std::chrono::milliseconds>(due - now) + std::chrono::milliseconds(1));
-    pollfd p{wake_pipe_[0], POLLIN, 0};
+    pollfd p{wake_.fd(), POLLIN, 0};
     ::poll(&p, 1, int(wait.count()));
-    char buf[256];
-    while (::read(wake_pipe_[0], buf, sizeof buf) > 0) {
-    }
+    wake_.drain();
   }
   std::set<std::string> cancels;
   {

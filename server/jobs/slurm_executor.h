@@ -27,7 +27,6 @@ class SlurmExecutor : public Executor {
  public:
   // Throws InvalidInput when Slurm's tools are not on PATH.
   SlurmExecutor(SlurmConfig config, std::filesystem::path worker, std::filesystem::path data_dir);
-  ~SlurmExecutor() override;
 
   const char* name() const override { return "slurm"; }
   int capacity() const override { return config_.max_jobs; }
@@ -71,7 +70,7 @@ class SlurmExecutor : public Executor {
   std::set<std::string> cancels_;
   std::chrono::steady_clock::time_point last_refresh_{};
   std::uint64_t squeue_calls_ = 0;
-  int wake_pipe_[2] = {-1, -1};
+  WakePipe wake_;
 };
 
 }  // namespace cgview::server

@@ -1,11 +1,10 @@
 #include "jobs/worker_result.h"
 
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include "child_process.h"
 #include "io/parse_json.h"
+#include "jobs/job_files.h"
 
 namespace cgview::server {
 
@@ -15,10 +14,7 @@ using nlohmann::json;
 namespace {
 
 std::string trimmed_file(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream b;
-  b << f.rdbuf();
-  std::string s = b.str();
+  std::string s = read_job_file(p);
   while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
   return s;
 }

@@ -121,6 +121,12 @@ class SlurmJobs : public ServerFixture {
     private_data_ = ::mount("tmpfs", data_.c_str(), "tmpfs", 0, "size=256m") == 0;
     return private_data_;
   }
+  // Waits (30 s at most) until the controller no longer knows the Slurm job.
+  bool forgotten(const std::string& slurm_job) {
+    const auto deadline = Clock::now() + 30s;
+    while (Clock::now() < deadline && !cluster_.job_state(slurm_job).empty()) std::this_thread::sleep_for(200ms);
+    return cluster_.job_state(slurm_job).empty();
+  }
   // The job's token, as its batch script carries it (scontrol write batch_script).
   std::string token_of(const std::string& slurm_job) {
     const std::string script = cluster_.run("scontrol write batch_script " + slurm_job + " -");
@@ -252,13 +258,29 @@ TEST_F(SlurmJobs, AJobSlurmForgotFailsSayingSo) {
   // While the server is down its job is cancelled behind its back and
   // leaves the controller's memory (MinJobAge 2 s).
   cluster_.run("scancel " + sid);
-  const auto deadline = Clock::now() + 30s;
-  while (Clock::now() < deadline && !cluster_.job_state(sid).empty()) std::this_thread::sleep_for(200ms);
-  ASSERT_EQ(cluster_.job_state(sid), "") << "the controller still knows the job";
+  ASSERT_TRUE(forgotten(sid)) << "the controller still knows the job";
   ASSERT_TRUE(start());
   const json j = wait_end(job["id"], 20s);
   EXPECT_EQ(j.value("state", ""), "failed");
   EXPECT_EQ(j.value("error", ""), "Slurm no longer knows job " + sid + " (purged, or lost with its node)");
+}
+
+TEST_F(SlurmJobs, AJobSlurmForgotRunsAgainWhenTheSettingSaysRequeue) {
+  const json requeue = {{"on_lost", "requeue"}};
+  ASSERT_TRUE(start({}, {}, requeue));
+  const std::string mesh = upload("sphere.off");
+  const json job = submit(mesh, "test_sleep", {{"seconds", 2}});
+  wait_running(job["id"]);
+  const std::string sid = slurm_id(job["id"]);
+  EXPECT_EQ(server_.stop(SIGKILL), 128 + SIGKILL);
+  cluster_.run("scancel " + sid);
+  ASSERT_TRUE(forgotten(sid)) << "the controller still knows the job";
+  ASSERT_TRUE(start({}, {}, requeue));
+  const json j = wait_end(job["id"], 30s);
+  EXPECT_EQ(j.value("state", ""), "done") << j.dump();
+  const std::string again = slurm_id(job["id"]);
+  EXPECT_FALSE(again.empty());
+  EXPECT_NE(again, sid) << "a new Slurm job ran it";
 }
 
 TEST_F(SlurmJobs, AJobOnAKilledNodeIsRequeuedByTheClusterAndRunsElsewhere) {
