@@ -174,7 +174,7 @@ Run run(const std::string& executor, const fs::path& dir, SlurmCluster* cluster,
     more[1] = bin("cgview-worker-test");
     if (executor == "slurm") {
       write_text(dir / "config.json",
-                 json{{"slurm", {{"poll_s", 1.0}, {"max_jobs", waiting + 10}, {"sbatch_args", {"--hold"}}}}}.dump());
+                 json{{"slurm", {{"poll_s", 1.0}, {"max_jobs", waiting + 10}, {"max_pending", waiting + 10}, {"sbatch_args", {"--hold"}}}}}.dump());
     }
     ServerProcess idle;
     fs::create_directories(dir / ("log-idle-" + executor));

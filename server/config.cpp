@@ -151,6 +151,7 @@ void apply_config(const json& doc, ServerConfig& config) {
           sl.sbatch_args.clear();
           for (const auto& a : v) sl.sbatch_args.push_back(text(a, k));
         } else if (key == "max_jobs") sl.max_jobs = int(integer(v, k, 1, 1000000));
+        else if (key == "max_pending") sl.max_pending = int(integer(v, k, 1, 1000000));
         else if (key == "poll_s") {
           if (!v.is_number() || !(v.get<double>() >= 0.05) || v.get<double>() > 3600)
             bad(k, "must be a number of seconds 0.05..3600, got " + v.dump());
@@ -165,7 +166,7 @@ void apply_config(const json& doc, ServerConfig& config) {
           sl.requeue_lost = m == "requeue";
         } else if (key == "worker") sl.worker = text(v, k);
         else
-          bad(k, "unknown key (the slurm section knows partition, account, qos, sbatch_args, max_jobs, poll_s, "
+          bad(k, "unknown key (the slurm section knows partition, account, qos, sbatch_args, max_jobs, max_pending, poll_s, "
                  "shared_data, server_url, on_lost, worker)");
       }
     } else {

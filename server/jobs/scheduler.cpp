@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <fstream>
 
 #include "auth.h"
 #include "core/errors.h"
@@ -160,95 +159,6 @@ json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std
   return out;
 }
 
-int JobScheduler::active_locked(const std::string& owner) const {
-  int n = 0;
-  for (const auto& [id, j] : jobs_) n += j->owner == owner && active(j->state);
-  return n;
-}
-
-JobCounts JobScheduler::counts() const {
-  JobCounts c;
-  std::lock_guard lock(mutex_);
-  for (const auto& [id, j] : jobs_) {
-    ++c.by_state_algorithm[{to_string(j->state), j->algorithm}];
-    c.artifact_bytes += j->bytes;
-  }
-  c.queued = queue_.size();
-  for (const auto& id : in_flight_) {
-    const JobState s = jobs_.at(id)->state;
-    c.queued += s == JobState::queued;
-    c.running += s == JobState::running;
-  }
-  return c;
-}
-
-Usage JobScheduler::usage(const std::string& user) const {
-  Usage u;
-  u.storage_bytes = meshes_.store().mesh_bytes(user);
-  std::lock_guard lock(mutex_);
-  for (const auto& [id, j] : jobs_)
-    if (j->owner == user) u.storage_bytes += j->bytes;
-  u.jobs_active = active_locked(user);
-  return u;
-}
-
-void JobScheduler::check_storage(const Caller& caller, std::uint64_t adding, const std::string& what) const {
-  const UserLimits quota = limits(caller);
-  if (quota.storage_bytes) server::check_storage(quota, usage(caller.user), adding, what);
-}
-
-void JobScheduler::check_job_count(const Caller& caller) const {
-  const UserLimits quota = limits(caller);
-  if (quota.concurrent_jobs) check_jobs(quota, usage(caller.user));
-}
-
-bool JobScheduler::readable(const Job& j, const Caller& caller) const {
-  // Another user's job: the store knows whether it was shared.
-  return Access{j.owner}.allows(caller) || meshes_.store().access("job", j.id, j.owner).allows(caller);
-}
-
-const Job& JobScheduler::job_locked(const std::string& id, const Caller& caller) const {
-  const auto it = jobs_.find(id);
-  if (it == jobs_.end() || !readable(*it->second, caller)) throw std::out_of_range("no job with id '" + id + "'");
-  return *it->second;
-}
-
-Access JobScheduler::job_access(const std::string& id) const {
-  std::string owner;
-  {
-    std::lock_guard lock(mutex_);
-    const auto it = jobs_.find(id);
-    if (it != jobs_.end()) owner = it->second->owner;
-  }
-  return meshes_.store().access("job", id, owner);
-}
-
-Access JobScheduler::access(const std::string& id, const Caller& caller) const {
-  std::string owner;
-  {
-    std::lock_guard lock(mutex_);
-    owner = job_locked(id, caller).owner;
-  }
-  return meshes_.store().access("job", id, owner);
-}
-
-json JobScheduler::list(const Caller& caller) const {
-  std::lock_guard lock(mutex_);
-  json list = json::array();
-  for (const auto& id : order_)
-    if (const Job& j = *jobs_.at(id); readable(j, caller)) list.push_back(job_json(j));
-  return {{"jobs", list}};
-}
-
-std::optional<json> JobScheduler::get(const std::string& id, const Caller& caller) const {
-  std::lock_guard lock(mutex_);
-  try {
-    return job_json(job_locked(id, caller));
-  } catch (const std::out_of_range&) {
-    return std::nullopt;
-  }
-}
-
 std::optional<json> JobScheduler::cancel(const std::string& id, const Caller& caller) {
   json out;
   bool changed = false, stop_worker = false;
@@ -277,48 +187,6 @@ std::optional<json> JobScheduler::cancel(const std::string& id, const Caller& ca
     if (on_event) on_event({{"type", "job_cancelled"}, {"job", out}}, job_access(id));
   }
   return out;
-}
-
-fs::path JobScheduler::artifact_file(const std::string& job, const std::string& artifact, const std::string& kind,
-                                     const Caller& caller) const {
-  std::lock_guard lock(mutex_);
-  return artifact_file_locked(job, artifact, kind, caller);
-}
-
-fs::path JobScheduler::artifact_file_locked(const std::string& id, const std::string& name, const std::string& kind,
-                                           const Caller& caller) const {
-  const Job& j = job_locked(id, caller);
-  if (j.state != JobState::done)
-    throw InvalidInput("job " + id + " is " + to_string(j.state) + ", not done: it has no artifacts");
-  for (const auto& a : j.artifacts)
-    if (a.value("name", "") == name) {
-      if (!kind.empty() && a.value("kind", "") != kind)
-        throw InvalidInput("artifact '" + name + "' of job " + id + " is a " + a.value("kind", "") + ", not a " + kind);
-      return job_dir(j.files) / a.value("file", "");
-    }
-  throw std::out_of_range("job " + id + " has no artifact '" + name + "'");
-}
-
-ArtifactBytes JobScheduler::artifact(const std::string& id, const std::string& name, const std::string& format,
-                                     const Caller& caller) {
-  json entry;
-  std::string files, mesh_id;
-  {
-    std::lock_guard lock(mutex_);
-    const Job& j = job_locked(id, caller);
-    if (j.state != JobState::done)
-      throw InvalidInput("job " + id + " is " + to_string(j.state) + ", not done: it has no artifacts");
-    for (const auto& a : j.artifacts)
-      if (a.value("name", "") == name) entry = a;
-    files = j.files;
-    mesh_id = j.mesh_id;
-  }
-  if (entry.is_null()) throw std::out_of_range("job " + id + " has no artifact '" + name + "'");
-  return serve_artifact(job_dir(files), entry, name, format, [&] {
-    const auto rec = meshes_.store().get_mesh(mesh_id);
-    if (!rec) throw std::out_of_range("the mesh " + mesh_id + " of job " + id + " was deleted");
-    return *meshes_.mesh(*rec);
-  });
 }
 
 std::optional<json> JobScheduler::input_files(const Job& j, std::string* error) const {
@@ -374,58 +242,6 @@ std::optional<LaunchSpec> JobScheduler::prepare(Job& j) {
     return std::nullopt;
   }
   return s;
-}
-
-const Job& JobScheduler::worker_job_locked(const std::string& id, std::string_view token) const {
-  const auto it = jobs_.find(id);
-  if (it == jobs_.end() || !it->second->in_flight || !active(it->second->state) ||
-      !same_digest(sha256_hex(token), it->second->worker_token_sha))
-    throw WorkerTokenRefused("not a token of a running job " + id);
-  return *it->second;
-}
-
-std::string JobScheduler::worker_spec(const std::string& id, std::string_view token) const {
-  fs::path file;
-  {
-    std::lock_guard lock(mutex_);
-    file = job_dir(worker_job_locked(id, token).id) / "job.json";
-  }
-  return read_file_bytes(file, 1 << 20);
-}
-
-fs::path JobScheduler::worker_input(const std::string& id, std::string_view token, const std::string& name) const {
-  std::lock_guard lock(mutex_);
-  const Job& j = worker_job_locked(id, token);
-  std::string error;
-  const auto files = input_files(j, &error);
-  if (!files) throw std::out_of_range(error);
-  if (!files->contains(name)) throw std::out_of_range("job " + id + " has no input '" + name + "'");
-  return (*files)[name].get<std::string>();
-}
-
-void JobScheduler::worker_put(const std::string& id, std::string_view token, const std::string& file,
-                              const std::string& bytes) {
-  fs::path dir;
-  {
-    std::lock_guard lock(mutex_);
-    dir = job_dir(worker_job_locked(id, token).id);  // the token first: nothing is said to another caller
-  }
-  const bool plain = !file.empty() && file.size() <= 128 && file[0] != '.' &&
-                     file.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789._-") ==
-                         std::string::npos;
-  if (!plain || file == "job.json" || file == "slurm-job.sh")
-    throw InvalidInput("'" + file + "' is not a result file name: letters, digits, '.', '_', '-'");
-  write_file_bytes(dir / file, bytes);
-}
-
-void JobScheduler::worker_progress(const std::string& id, std::string_view token, const std::string& line) {
-  std::lock_guard lock(mutex_);
-  const Job& j = worker_job_locked(id, token);  // the token first: nothing is said to another caller
-  if (line.size() > 4096 || line.rfind("progress ", 0) != 0 || line.find('\n') != std::string::npos)
-    throw InvalidInput("a progress line is \"progress FRACTION STAGE\" (one line)");
-  // Appended to its output, where the executor reads progress as it does a shared directory's.
-  std::ofstream f(job_dir(j.id) / "stdout.txt", std::ios::binary | std::ios::app);
-  f << line << '\n';
 }
 
 void JobScheduler::end(Job& j, const WorkerEnd* how, std::vector<json>& events) {

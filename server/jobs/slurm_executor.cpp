@@ -61,6 +61,7 @@ SlurmExecutor::SlurmExecutor(SlurmConfig config, fs::path worker, fs::path data_
     : config_(std::move(config)), worker_(std::move(worker)), data_dir_(std::move(data_dir)) {
   if (!config_.worker.empty()) worker_ = config_.worker;
   if (config_.max_jobs < 1) config_.max_jobs = 1;
+  if (config_.max_pending < 1) config_.max_pending = 1;
   if (!(config_.poll_s > 0)) config_.poll_s = 1;
   sbatch_ = find_program("sbatch");
   squeue_ = find_program("squeue");
@@ -68,6 +69,12 @@ SlurmExecutor::SlurmExecutor(SlurmConfig config, fs::path worker, fs::path data_
   scontrol_ = find_program("scontrol");
   if (sbatch_.empty() || squeue_.empty() || scancel_.empty() || scontrol_.empty())
     throw InvalidInput("slurm: sbatch, squeue, scancel and scontrol must be on PATH (Debian's slurm-client)");
+}
+
+int SlurmExecutor::capacity() const {
+  int running = 0;
+  for (const auto& [id, t] : jobs_) running += t.running;
+  return std::min(config_.max_jobs, running + config_.max_pending);
 }
 
 std::vector<std::string> SlurmExecutor::sbatch_command(const LaunchSpec& job) const {

@@ -29,7 +29,8 @@ class SlurmExecutor : public Executor {
   SlurmExecutor(SlurmConfig config, std::filesystem::path worker, std::filesystem::path data_dir);
 
   const char* name() const override { return "slurm"; }
-  int capacity() const override { return config_.max_jobs; }
+  // Its running jobs and max_pending more, at most max_jobs.
+  int capacity() const override;
   std::string launch(const LaunchSpec& job) override;
   bool adopt(const LaunchSpec& job, const std::string& handle) override;
   void cancel(const std::string& job_id) override;

@@ -13,7 +13,9 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <map>
 #include <set>
+#include <sstream>
 #include <string>
 #include <thread>
 
@@ -225,6 +227,57 @@ TEST_F(SlurmJobs, PendingJobsSayWhyTheyWait) {
   }
   EXPECT_TRUE(seen_waiting);
   for (const auto& id : ids) EXPECT_EQ(wait_end(id).value("state", ""), "done");
+}
+
+TEST_F(SlurmJobs, OwnersTakeTurnsBeforeTheirJobsReachTheCluster) {
+  fs::create_directories(data_);
+  const std::string alice = server_command(data_, "user add alice"), bob = server_command(data_, "user add bob");
+  // Three 2-CPU jobs fill the cluster; one more may wait in it.
+  ASSERT_TRUE(start({"--auth", "required", "--job-cpus", "2"}, {}, {{"max_pending", 1}}));
+  auto job_as = [&](const std::string& token, const std::string& mesh, double seconds) {
+    const auto r = call_as(port(), token, "POST", "/api/v1/jobs",
+                           json{{"algorithm", "test_sleep"}, {"inputs", {{"mesh", mesh}}}, {"params", {{"seconds", seconds}}}}.dump());
+    EXPECT_EQ(r.status, 201u) << r.body;
+    return r.body_json().value("id", "");
+  };
+  auto mesh_of = [&](const std::string& token) {
+    return call_as(port(), token, "POST", "/api/v1/meshes?name=sphere.off", read_bytes(sample("sphere.off"))).body_json().value("id", "");
+  };
+  const std::string a_mesh = mesh_of(alice), b_mesh = mesh_of(bob);
+  std::vector<std::string> a_jobs;
+  for (int i = 0; i < 8; ++i) a_jobs.push_back(job_as(alice, a_mesh, 2 + 0.01 * i));
+  // Each job's Slurm id, noted while the controller knows it (MinJobAge 2 s).
+  std::map<std::string, long> sid;
+  auto note_slurm_ids = [&] {
+    std::istringstream rows(cluster_.run("squeue --noheader --states=all --format='%i|%j'"));
+    for (std::string row; std::getline(rows, row);)
+      if (const auto bar = row.find("|cgview-"); bar != std::string::npos) sid.emplace(row.substr(bar + 8), std::stol(row.substr(0, bar)));
+  };
+  // Bob comes once Alice's jobs stop reaching the cluster (1.5 s without a new one).
+  auto changed = Clock::now();
+  for (std::size_t seen = 0; Clock::now() - changed < 1500ms;) {
+    note_slurm_ids();
+    if (sid.size() != seen || seen == 0) seen = sid.size(), changed = Clock::now();
+    std::this_thread::sleep_for(50ms);
+  }
+  const std::string b_job = job_as(bob, b_mesh, 2);
+  auto ended = [&](const std::string& id) {
+    const std::string s = call_as(port(), alice, "GET", "/api/v1/jobs/" + id).body_json().value("state", "");
+    return s == "done" || s == "failed";
+  };
+  const auto until = Clock::now() + 90s;
+  while (Clock::now() < until && !(ended(a_jobs.back()) && call_as(port(), bob, "GET", "/api/v1/jobs/" + b_job).body_json().value("state", "") == "done")) {
+    note_slurm_ids();
+    std::this_thread::sleep_for(100ms);
+  }
+  // Bob's one job reached Slurm (its ids grow with submission) before
+  // Alice's fifth: it waited in CGView's fair queue, not behind her eight in Slurm's.
+  ASSERT_TRUE(sid.count(b_job)) << call_as(port(), bob, "GET", "/api/v1/jobs/" + b_job).body << "\n"
+                                << cluster_.run("squeue --noheader --states=all --format='%i|%j'");
+  for (int i = 4; i < 8; ++i) {
+    ASSERT_TRUE(sid.count(a_jobs[i])) << i;
+    EXPECT_LT(sid[b_job], sid[a_jobs[i]]) << "alice's job " << i;
+  }
 }
 
 TEST_F(SlurmJobs, AServerKilledAndStartedAgainEndsEachJobExactlyOnce) {
