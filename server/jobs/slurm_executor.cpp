@@ -194,7 +194,9 @@ void SlurmExecutor::read_progress(Tracked& t, std::vector<ExecutorEvent>& events
   const fs::path out = t.spec.dir / "stdout.txt";
   std::error_code ec;
   const std::uintmax_t size = fs::file_size(out, ec);
-  if (ec || size <= t.output_read) return;
+  if (ec) return;
+  if (size < t.output_read) t.output_read = 0, t.output.clear();  // requeued: its output begins again
+  if (size == t.output_read) return;
   std::ifstream f(out, std::ios::binary);
   f.seekg(std::streamoff(t.output_read));
   std::string more(std::size_t(std::min<std::uintmax_t>(size - t.output_read, 1 << 20)), '\0');
