@@ -48,6 +48,9 @@ TEST_APT_PACKAGES=(
   slurm-wlm slurmctld slurmd slurm-client munge
   # The Slurm executor's batch script on a node without the data directory.
   curl
+  # The Python client's arrays, Open3D and meshio interop, and its package
+  # built offline in a venv (clients/python).
+  python3-numpy python3-open3d python3-meshio python3-setuptools python3-wheel python3-venv
 )
 [ "$TESTS" = 0 ] || APT_PACKAGES+=("${TEST_APT_PACKAGES[@]}")
 

@@ -8,9 +8,13 @@ library; Debian's python3-websocket, when installed, gives live job progress.
     c.download(job["id"], "results/")
     open("bunny.png", "wb").write(c.render(mesh["id"], field=f"{job['id']}/mean_curvature"))
 """
-from .client import DEFAULT_URL, CGViewError, Client, JobFailed
+from .client import DEFAULT_URL, Client
+from .errors import CGViewError, JobFailed
+from .objects import Job, Mesh
+from .params import ParameterError
 from . import args
 from .progress import ProgressBar
 from .views import render_around
 
-__all__ = ["Client", "CGViewError", "JobFailed", "ProgressBar", "DEFAULT_URL", "render_around"]
+__all__ = ["Client", "CGViewError", "JobFailed", "Job", "Mesh", "ParameterError", "ProgressBar", "DEFAULT_URL",
+           "render_around"]

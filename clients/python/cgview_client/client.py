@@ -9,29 +9,13 @@ import urllib.parse
 import urllib.request
 
 from . import live
+from .errors import CGViewError, JobFailed
+from . import params as parameters
+from .algorithms import Algorithms
+from .objects import Job, Mesh
 
 DEFAULT_URL = "http://127.0.0.1:8080"
 TERMINAL_STATES = ("done", "failed", "cancelled", "interrupted")
-
-
-class CGViewError(Exception):
-    """An error answer of the server: HTTP status, error code, detail and,
-    for a bad parameter, its name.  Over a quota (413 storage_quota, 429
-    job_limit) the detail names the limit and the use, .limit and .used are
-    the numbers, and for 429 .retry_after the seconds to wait."""
-
-    def __init__(self, status, error, detail, parameter=None, limit=None, used=None, retry_after=None):
-        super().__init__(f"HTTP {status} {error}: {detail}")
-        self.status, self.error, self.detail, self.parameter = status, error, detail, parameter
-        self.limit, self.used, self.retry_after = limit, used, retry_after
-
-
-class JobFailed(Exception):
-    """A job that ended in another state than done; .job is its last state."""
-
-    def __init__(self, job):
-        super().__init__(f"job {job['id']} ({job['algorithm']}) {job['state']}: {job.get('error') or 'no error given'}")
-        self.job = job
 
 
 class Client:
@@ -48,6 +32,8 @@ class Client:
         self.timeout = timeout
         self.ca_file = ca_file or os.environ.get("CGVIEW_CA_FILE") or None
         self.ssl_context = ssl.create_default_context(cafile=self.ca_file) if self.ca_file else None
+        # client.algorithms() lists them; client.algorithms.sdf(mesh, rays=25) runs one.
+        self.algorithms = Algorithms(self)
 
     # --- HTTP -----------------------------------------------------------
     def request(self, method, path, body=None, query=None, content_type=None):
@@ -96,17 +82,38 @@ class Client:
                               {"users": list(users), "everyone": everyone})
 
     def meshes(self):
-        return self.get_json("/meshes")["meshes"]
+        return [Mesh(self, m) for m in self.get_json("/meshes")["meshes"]]
 
     def mesh(self, mesh_id):
-        return self.get_json(f"/meshes/{quote(mesh_id)}")
+        return Mesh(self, self.get_json(f"/meshes/{quote(mesh_id)}"))
 
     def upload(self, path, name=None):
         """Uploads a mesh file; the server's Mesh (id, name, report, ...)."""
         with open(path, "rb") as f:
             data = f.read()
-        name = name or os.path.basename(path)
-        return json.loads(self.request("POST", "/meshes", data, {"name": name}, "application/octet-stream")[0])
+        return self.upload_bytes(data, name or os.path.basename(path))
+
+    def upload_bytes(self, data, name):
+        """Uploads a mesh file's bytes under a name (its extension says the format)."""
+        return Mesh(self, json.loads(self.request("POST", "/meshes", data, {"name": name}, "application/octet-stream")[0]))
+
+    def upload_arrays(self, vertices, faces, name="arrays.ply"):
+        """Uploads a mesh from arrays, (n, 3) positions and (m, 3) triangle
+        indices (numpy), without a file; the Mesh."""
+        from . import arrays
+        if not name.lower().endswith(".ply"):
+            name += ".ply"
+        return self.upload_bytes(arrays.ply_bytes(vertices, faces), name)
+
+    def upload_open3d(self, mesh, name="open3d.ply"):
+        """Uploads an open3d.geometry.TriangleMesh."""
+        from . import interop
+        return self.upload_arrays(*interop.from_open3d(mesh), name=name)
+
+    def upload_meshio(self, mesh, name="meshio.ply"):
+        """Uploads a meshio.Mesh of triangles."""
+        from . import interop
+        return self.upload_arrays(*interop.from_meshio(mesh), name=name)
 
     def find_mesh(self, ref):
         """A mesh by id or by name (the newest of that name), or an upload of
@@ -130,19 +137,23 @@ class Client:
         return self.request("GET", f"/meshes/{quote(mesh_id)}/render.png", query=params)[0]
 
     # --- algorithms and jobs --------------------------------------------
-    def algorithms(self):
-        return self.get_json("/algorithms")["algorithms"]
-
     def jobs(self):
-        return self.get_json("/jobs")["jobs"]
+        return [Job(self, j) for j in self.get_json("/jobs")["jobs"]]
 
     def job(self, job_id):
-        return self.get_json(f"/jobs/{quote(job_id)}")
+        return Job(self, self.get_json(f"/jobs/{quote(job_id)}"))
 
-    def submit(self, algorithm, mesh, params=None, inputs=None):
-        """Submits a job on a mesh id (its input 'mesh'); inputs: the others by name."""
-        body = {"algorithm": algorithm, "inputs": {"mesh": mesh, **(inputs or {})}, "params": params or {}}
-        return self.send_json("POST", "/jobs", body)
+    def submit(self, algorithm, mesh, params=None, inputs=None, **keywords):
+        """Submits a job on a mesh (a Mesh or its id: the input 'mesh');
+        inputs: the others by name; parameters as params={...} or keywords
+        (rays=25), checked against the algorithm's schema first
+        (params.ParameterError names a misspelt one's closest match).  The Job."""
+        given = {**(params or {}), **keywords}
+        parameters.check(self.algorithms.describe(algorithm), given)
+        mesh_id = mesh["id"] if isinstance(mesh, dict) else mesh
+        named = {k: (v["id"] if isinstance(v, Mesh) else v) for k, v in (inputs or {}).items()}
+        body = {"algorithm": algorithm, "inputs": {"mesh": mesh_id, **named}, "params": given}
+        return Job(self, self.send_json("POST", "/jobs", body))
 
     def cancel(self, job_id):
         return json.loads(self.request("DELETE", f"/jobs/{quote(job_id)}")[0])
@@ -177,12 +188,22 @@ class Client:
             if events is not None:
                 events.close()
 
-    def run(self, algorithm, mesh, params=None, inputs=None, on_progress=None, timeout=None):
-        """submit() then wait(); the done job, or JobFailed."""
-        job = self.wait(self.submit(algorithm, mesh, params, inputs)["id"], on_progress, timeout)
-        if job["state"] != "done":
-            raise JobFailed(job)
-        return job
+    def run(self, algorithm, mesh, params=None, inputs=None, on_progress=None, timeout=None, **keywords):
+        """submit() then wait(): the done Job, or JobFailed; Ctrl-C cancels it."""
+        return self.submit(algorithm, mesh, params, inputs, **keywords).result(timeout, on_progress)
+
+    def map(self, algorithm, meshes, params=None, timeout=None, **keywords):
+        """Runs the algorithm on each mesh: submits them all, then waits for
+        each; the done Jobs in the order of `meshes` (JobFailed for the first
+        that failed).  Ctrl-C cancels those not ended."""
+        jobs = [self.submit(algorithm, m, params, **keywords) for m in meshes]
+        try:
+            return [job.result(timeout) for job in jobs]
+        except KeyboardInterrupt:
+            for job in jobs:
+                if job.refresh()["state"] not in TERMINAL_STATES:
+                    self.cancel(job.id)
+            raise
 
     def artifact(self, job_id, name, fmt=None):
         """An artifact's bytes and its file name (NAME.FORMAT, as the server names it)."""
