@@ -24,8 +24,9 @@ except ImportError:
     open3d = None
 
 
-@unittest.skipIf(np is None, "numpy is not installed (Debian: python3-numpy)")
-class ArraysTest(unittest.TestCase):
+class WithElephant(unittest.TestCase):
+    """A server of its own, and elephant.off on it."""
+
     @classmethod
     def setUpClass(cls):
         cls.server = harness.Server()
@@ -33,6 +34,9 @@ class ArraysTest(unittest.TestCase):
         cls.client = Client(cls.server.url)
         cls.mesh = cls.client.upload(harness.ELEPHANT)
 
+
+@unittest.skipIf(np is None, "numpy is not installed (Debian: python3-numpy)")
+class ArraysTest(WithElephant):
     @unittest.skipIf(meshio is None, "meshio is not installed (Debian: python3-meshio)")
     def test_a_mesh_is_its_files_vertices_and_faces_in_order(self):
         ref = meshio.read(harness.ELEPHANT)
@@ -104,15 +108,8 @@ class ArraysTest(unittest.TestCase):
         self.assertIn("quad", str(caught.exception))
 
 
-class ParametersTest(unittest.TestCase):
+class ParametersTest(WithElephant):
     """Needs no numpy."""
-
-    @classmethod
-    def setUpClass(cls):
-        cls.server = harness.Server()
-        cls.addClassCleanup(cls.server.stop)
-        cls.client = Client(cls.server.url)
-        cls.mesh = cls.client.upload(harness.ELEPHANT)
 
     def test_a_misspelt_or_out_of_range_parameter_raises_before_anything_is_sent(self):
         before = len(self.client.jobs())
