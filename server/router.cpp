@@ -78,7 +78,9 @@ bool valid_path_param(const std::string& v) {
 HttpResponse json_response(int status, const json& body) {
   HttpResponse r;
   r.status = status;
-  r.body = body.dump();
+  // A detail may quote a file's bytes (a parser's message): invalid UTF-8
+  // there is replaced, not a reason to fail the answer.
+  r.body = body.dump(-1, ' ', false, json::error_handler_t::replace);
   return r;
 }
 

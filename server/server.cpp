@@ -205,7 +205,7 @@ class WebSocketSession : public EventSink, public std::enable_shared_from_this<W
   void send(Outgoing out) {
     net::post(ws_.get_executor(), [self = this->shared_from_this(), out = std::move(out)]() mutable { self->enqueue(std::move(out)); });
   }
-  void send_json(const json& j) { send({j.dump(), nullptr, {}, false}); }
+  void send_json(const json& j) { send({j.dump(-1, ' ', false, json::error_handler_t::replace), nullptr, {}, false}); }
   // Thread-safe: sends an event if this session's user may read it.
   void send_event(const json& event, const Access& readers) override {
     net::post(ws_.get_executor(), [self = this->shared_from_this(), event, readers] {

@@ -242,7 +242,13 @@ UploadRead read_upload_in_child(const UploadReader& reader, const std::string& n
     return out;
   }
   if (WIFEXITED(*status) && WEXITSTATUS(*status) == 2) {
-    const nlohmann::json e = parse_json_or_discarded(read_file_bytes(dir.path / "error.json", 1 << 20));
+    // A refusal whose error.json is missing still refuses the file (400), not the server (500).
+    std::string text;
+    try {
+      text = read_file_bytes(dir.path / "error.json", 1 << 20);
+    } catch (const std::exception&) {
+    }
+    const nlohmann::json e = parse_json_or_discarded(text);
     const std::string kind = e.is_object() ? e.value("error", "") : "";
     const std::string detail = e.is_object() ? e.value("detail", "") : "";
     if (kind == "payload_too_large") throw TooLarge(detail);
@@ -266,7 +272,9 @@ UploadRead read_upload_in_child(const UploadReader& reader, const std::string& n
 int read_upload_main(const fs::path& dir) {
   auto refuse = [&](const char* kind, const std::string& detail) {
     try {
-      write_file_bytes(dir / "error.json", nlohmann::json{{"error", kind}, {"detail", detail}}.dump());
+      // The detail may quote the upload's bytes: invalid UTF-8 is replaced, not a reason to write nothing.
+      write_file_bytes(dir / "error.json", nlohmann::json{{"error", kind}, {"detail", detail}}.dump(
+                                               -1, ' ', false, nlohmann::json::error_handler_t::replace));
     } catch (const std::exception&) {
     }
     return 2;

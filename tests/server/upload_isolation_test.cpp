@@ -120,6 +120,9 @@ TEST_F(UploadIsolation, HostileFilesOfEveryFormatAre4xxAndTheServerGoesOn) {
       {"overflow.obj", "v 1e999 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 99999999999999999999\n", 400, "overflow.obj: line 1: vertex 1 has a non-finite coordinate"},
       {"overflow.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 18446744073709551617\n", 400, "overflow.off: line 6: expected a vertex index, found '18446744073709551617'"},
       {"notazip.zip", "PK\x03\x04 this is not a zip", 400, "not a readable zip"},
+      // A message quoting bytes that are not UTF-8 (found by tests/soak): still
+      // a 400 that says where, the bytes replaced by U+FFFD.
+      {"latin1.off", "caf\xe9\n3 1 0\n", 400, "latin1.off: line 1: not an OFF file: it starts with caf\xef\xbf\xbd, not OFF"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
