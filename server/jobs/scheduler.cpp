@@ -19,9 +19,9 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-std::unique_ptr<Executor> make_executor(const JobConfig& c, const fs::path& data_dir) {
+std::unique_ptr<Executor> make_executor(const JobConfig& c) {
   if (c.executor == "local") return std::make_unique<LocalExecutor>(c.worker, c.max_workers);
-  if (c.executor == "slurm") return std::make_unique<SlurmExecutor>(c.slurm, c.worker, data_dir);
+  if (c.executor == "slurm") return std::make_unique<SlurmExecutor>(c.slurm, c.worker);
   throw InvalidInput("executor '" + c.executor + "': it is local or slurm");
 }
 
@@ -32,7 +32,7 @@ JobScheduler::JobScheduler(MeshService& meshes, JobConfig config)
       config_(std::move(config)),
       admission_(meshes_, config_.worker),
       store_(meshes_.store().data_dir()),
-      executor_(make_executor(config_, meshes_.store().data_dir())) {
+      executor_(make_executor(config_)) {
   std::error_code ec;
   fs::create_directories(meshes_.store().data_dir() / "jobs", ec);
   load();

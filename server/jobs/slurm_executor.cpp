@@ -57,8 +57,8 @@ std::string first_line(std::string s) {
 
 }  // namespace
 
-SlurmExecutor::SlurmExecutor(SlurmConfig config, fs::path worker, fs::path data_dir)
-    : config_(std::move(config)), worker_(std::move(worker)), data_dir_(std::move(data_dir)) {
+SlurmExecutor::SlurmExecutor(SlurmConfig config, fs::path worker)
+    : config_(std::move(config)), worker_(std::move(worker)) {
   if (!config_.worker.empty()) worker_ = config_.worker;
   if (config_.max_jobs < 1) config_.max_jobs = 1;
   if (config_.max_pending < 1) config_.max_pending = 1;

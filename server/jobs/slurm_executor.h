@@ -26,7 +26,7 @@ namespace cgview::server {
 class SlurmExecutor : public Executor {
  public:
   // Throws InvalidInput when Slurm's tools are not on PATH.
-  SlurmExecutor(SlurmConfig config, std::filesystem::path worker, std::filesystem::path data_dir);
+  SlurmExecutor(SlurmConfig config, std::filesystem::path worker);
 
   const char* name() const override { return "slurm"; }
   // Its running jobs and max_pending more, at most max_jobs.
@@ -64,7 +64,7 @@ class SlurmExecutor : public Executor {
   void read_progress(Tracked& t, std::vector<ExecutorEvent>& events);
 
   SlurmConfig config_;
-  std::filesystem::path worker_, data_dir_;
+  std::filesystem::path worker_;
   std::filesystem::path sbatch_, squeue_, scancel_, scontrol_;
   std::map<std::string, Tracked> jobs_;  // by CGView job id
   std::mutex cancel_mutex_;
