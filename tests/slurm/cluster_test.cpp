@@ -155,9 +155,13 @@ TEST_F(SlurmClusterTest, ScancelEndsCancelled) {
   int rc = -1;
   const std::string out = cluster_.run("scancel " + id, &rc);
   ASSERT_EQ(rc, 0) << out;
-  // scontrol: CANCELLED, Reason=None, ExitCode=0:15; sacct -c: CANCELLED 0:0.
+  // scontrol: CANCELLED, Reason=None; sacct -c: CANCELLED 0:0.  ExitCode is
+  // 0:15 when SIGTERM kills the batch shell, 143:0 when the shell outlives
+  // its `sleep` long enough to exit with 128+15 itself (seen on a loaded CI
+  // machine), so CGView reads neither: it knows it cancelled.
   EXPECT_EQ(cluster_.wait_ended(id, 10), "CANCELLED");
-  EXPECT_EQ(cluster_.job_field(id, "ExitCode"), "0:15");
+  const std::string exit_code = cluster_.job_field(id, "ExitCode");
+  EXPECT_TRUE(exit_code == "0:15" || exit_code == "143:0") << exit_code;
   const std::string line = wait_sacct_line(cluster_, id);
   EXPECT_EQ(line.substr(0, line.rfind('|')), "CANCELLED|0:0");
 }

@@ -52,6 +52,8 @@ export function setImageSource(img: HTMLImageElement, url: string): void {
     img.src = url;
     return;
   }
+  // Until the blob arrives the image has no src, so `complete` says true: `fetching` tells it is on its way.
+  img.dataset.fetching = '';
   authFetch(url)
     .then(async (r) => {
       if (!r.ok) throw new Error(`HTTP ${r.status}`);
@@ -59,7 +61,8 @@ export function setImageSource(img: HTMLImageElement, url: string): void {
       img.addEventListener('load', () => URL.revokeObjectURL(blobUrl), { once: true });
       img.src = blobUrl;
     })
-    .catch(() => img.dispatchEvent(new Event('error')));
+    .catch(() => img.dispatchEvent(new Event('error')))
+    .finally(() => delete img.dataset.fetching);
 }
 
 /**

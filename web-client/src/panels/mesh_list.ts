@@ -12,6 +12,20 @@ import { el } from './dom.ts';
 /** Thumbnails are rendered at 96 px and shown at 48 CSS px (sharp on high-DPI screens). */
 const THUMBNAIL_PX = 96;
 
+/** How long a delete waits for the mesh's thumbnail to arrive (a lazy image not yet in view never does). */
+const THUMBNAIL_WAIT_MS = 3000;
+
+/** Resolves once the image has loaded or failed, or after `ms`. */
+function imageSettled(img: HTMLImageElement | null, ms: number): Promise<void> {
+  if (!img || !img.isConnected || (img.complete && img.dataset.fetching === undefined)) return Promise.resolve();
+  return new Promise((resolve) => {
+    const done = (): void => resolve();
+    img.addEventListener('load', done, { once: true });
+    img.addEventListener('error', done, { once: true });
+    setTimeout(done, ms);
+  });
+}
+
 export interface MeshListActions {
   select(id: string): void;
   /** Shows the mesh beside those shown (the scene). */
@@ -58,9 +72,12 @@ export class MeshListPanel {
       }
       remove.addEventListener('click', (ev) => {
         ev.stopPropagation();
-        // A render still on its way would answer 404 once the mesh is gone: stop it first.
-        if (thumb && !thumb.complete) thumb.removeAttribute('src');
-        this.actions.remove(mesh.id);
+        remove.disabled = true;
+        remove.closest('li')?.classList.add('deleting');
+        // The server renders the thumbnail from the stored mesh, so a render still on its
+        // way would answer 404 once the mesh is gone (taking its src away does not stop
+        // the request in Chromium): the delete waits for it, a few seconds at most.
+        void imageSettled(thumb, THUMBNAIL_WAIT_MS).then(() => this.actions.remove(mesh.id));
       });
       const item = el(
         'li',
