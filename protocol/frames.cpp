@@ -1,5 +1,6 @@
 #include "frames.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "core/errors.h"
@@ -54,18 +55,15 @@ FrameHeader decode_frame(std::string_view f, std::string_view* chunk) {
   return h;
 }
 
-std::vector<std::string> split_into_frames(std::string_view payload, FrameKind kind, std::uint32_t request_id,
-                                           std::size_t chunk_bytes) {
+std::vector<Frame> split_into_frames(std::string_view payload, FrameKind kind, std::uint32_t request_id,
+                                     std::size_t chunk_bytes) {
   if (chunk_bytes == 0) throw InvalidInput("chunk size must be positive");
   const std::size_t count = payload.empty() ? 1 : (payload.size() + chunk_bytes - 1) / chunk_bytes;
-  std::vector<std::string> out;
+  std::vector<Frame> out;
   out.reserve(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    const std::string_view part = payload.substr(i * chunk_bytes, chunk_bytes);
-    std::string frame = encode_frame_header({kind, request_id, std::uint32_t(i), std::uint32_t(count), payload.size()});
-    frame.append(part);
-    out.push_back(std::move(frame));
-  }
+  for (std::size_t i = 0; i < count; ++i)
+    out.push_back({encode_frame_header({kind, request_id, std::uint32_t(i), std::uint32_t(count), payload.size()}),
+                   payload.substr(std::min(payload.size(), i * chunk_bytes), chunk_bytes)});
   return out;
 }
 

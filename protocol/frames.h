@@ -35,8 +35,18 @@ std::string encode_frame_header(const FrameHeader& h);
 // version, sizes, an index past the count).  `chunk` gets the payload part.
 FrameHeader decode_frame(std::string_view frame, std::string_view* chunk = nullptr);
 
-// All the frames of one payload, each header + at most chunk_bytes of it.
-std::vector<std::string> split_into_frames(std::string_view payload, FrameKind kind, std::uint32_t request_id,
-                                           std::size_t chunk_bytes = kDefaultChunkBytes);
+// One frame of a payload: its header, and a view of its part of the payload
+// (the payload is never copied: a server queues the view behind the header).
+struct Frame {
+  std::string header;
+  std::string_view chunk;
+  std::size_t size() const { return header.size() + chunk.size(); }
+  std::string bytes() const { return header + std::string(chunk); }
+};
+
+// All the frames of one payload, each header + at most chunk_bytes of it; an
+// empty payload is one frame with no chunk.  The frames view `payload`.
+std::vector<Frame> split_into_frames(std::string_view payload, FrameKind kind, std::uint32_t request_id,
+                                     std::size_t chunk_bytes = kDefaultChunkBytes);
 
 }  // namespace cgview::protocol

@@ -1,6 +1,7 @@
 #include "rate_limit.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "auth.h"
@@ -41,6 +42,18 @@ std::string rate_key(std::string_view authorization, const std::string& address,
     return "token:" + std::string(authorization.substr(bearer.size(), 16));
   if (authorization.empty() && loopback) return {};
   return "ip:" + address;
+}
+
+std::optional<RateRefusal> check_rate(RateLimiter& limiter, std::string_view authorization, const std::string& address,
+                                      bool loopback) {
+  const std::string key = rate_key(authorization, address, loopback);
+  const auto wait = limiter.take(key);
+  if (!wait) return std::nullopt;
+  if (limiter.on_refused) limiter.on_refused();
+  const int retry = int(std::max(1.0, std::ceil(*wait)));
+  return RateRefusal{retry, "over the rate limit of " + limiter.describe() + " for this " +
+                                (key.starts_with("token:") ? "token" : "address") + "; retry after " + std::to_string(retry) +
+                                " s"};
 }
 
 }  // namespace cgview::server

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -24,6 +25,8 @@ class RateLimiter {
   std::optional<double> take(const std::string& key, Clock::time_point now = Clock::now());
   // "N requests per second, bursts of M" (the 429's detail).
   std::string describe() const;
+  // Called for each refusal (the metrics count them).
+  std::function<void()> on_refused;
 
  private:
   struct Bucket {
@@ -40,5 +43,16 @@ class RateLimiter {
 // Authorization; empty (not limited) for a loopback client without one, the
 // local user.
 std::string rate_key(std::string_view authorization, const std::string& address, bool loopback);
+
+// A request over its bucket's limit: what Retry-After says, and why.
+struct RateRefusal {
+  int retry_after_s = 1;
+  std::string detail;
+};
+
+// Takes one request from the bucket of its token (or address): nullopt when
+// admitted, else the refusal (429 over HTTP, an error message on a WebSocket).
+std::optional<RateRefusal> check_rate(RateLimiter& limiter, std::string_view authorization, const std::string& address,
+                                      bool loopback);
 
 }  // namespace cgview::server

@@ -114,7 +114,7 @@ TEST(FramesSamples, SplitReproducesTheCommittedFrames) {
   const auto frames = split_into_frames(payload, FrameKind::draco_mesh, all[0].sidecar["request_id"].get<std::uint32_t>(),
                                         all[0].sidecar["chunk_bytes"].get<std::size_t>());
   ASSERT_EQ(frames.size(), all.size());
-  for (std::size_t i = 0; i < frames.size(); ++i) EXPECT_TRUE(frames[i] == all[i].bytes) << "frame " << i;
+  for (std::size_t i = 0; i < frames.size(); ++i) EXPECT_TRUE(frames[i].bytes() == all[i].bytes) << "frame " << i;
 }
 
 TEST(FramesHeader, LayoutIsLittleEndianAt32Bytes) {
@@ -127,11 +127,12 @@ TEST(FramesHeader, LayoutIsLittleEndianAt32Bytes) {
 }
 
 // The reassembled payload of split_into_frames' output, checking each header.
-std::string reassemble(const std::vector<std::string>& frames, std::uint32_t request_id, std::uint64_t total) {
+std::string reassemble(const std::vector<Frame>& frames, std::uint32_t request_id, std::uint64_t total) {
   std::string out;
   for (std::size_t i = 0; i < frames.size(); ++i) {
     std::string_view chunk;
-    const FrameHeader h = decode_frame(frames[i], &chunk);
+    const std::string frame = frames[i].bytes();
+    const FrameHeader h = decode_frame(frame, &chunk);
     EXPECT_EQ(h.kind, FrameKind::draco_mesh);
     EXPECT_EQ(h.request_id, request_id);
     EXPECT_EQ(h.chunk_index, i);
@@ -176,7 +177,8 @@ TEST(FramesSplit, EmptyPayloadIsOneHeaderOnlyFrame) {
   ASSERT_EQ(frames.size(), 1u);
   EXPECT_EQ(frames[0].size(), kFrameHeaderBytes);
   std::string_view chunk = "x";
-  const FrameHeader h = decode_frame(frames[0], &chunk);
+  const std::string frame = frames[0].bytes();
+  const FrameHeader h = decode_frame(frame, &chunk);
   EXPECT_EQ(h.chunk_index, 0u);
   EXPECT_EQ(h.chunk_count, 1u);
   EXPECT_EQ(h.total_bytes, 0u);

@@ -53,7 +53,8 @@ TEST(VoxelSliceTest, PayloadFollowsTheDocumentedLayout) {
   std::string joined;
   for (const auto& f : frames) {
     std::string_view chunk;
-    EXPECT_EQ(decode_frame(f, &chunk).kind, FrameKind::voxel_slice);
+    const std::string frame = f.bytes();
+    EXPECT_EQ(decode_frame(frame, &chunk).kind, FrameKind::voxel_slice);
     joined += chunk;
   }
   EXPECT_EQ(joined, p);

@@ -1,0 +1,130 @@
+#include "shared_state.h"
+
+#include <boost/asio/ip/address.hpp>
+
+#include <cmath>
+#include <fstream>
+
+#include "jobs/scheduler.h"
+
+namespace cgview::server {
+
+namespace ssl = boost::asio::ssl;
+using nlohmann::json;
+
+std::chrono::steady_clock::duration seconds(double s) {
+  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(s));
+}
+
+namespace {
+
+// The server's TLS context from the PEM files; throws naming the file at fault.
+std::optional<ssl::context> tls_context(const ServerConfig& c) {
+  if (c.tls_cert.empty() && c.tls_key.empty()) return std::nullopt;
+  if (c.tls_cert.empty() || c.tls_key.empty()) throw std::invalid_argument("TLS needs both a certificate and a key (--tls-cert, --tls-key)");
+  for (const auto& f : {c.tls_cert, c.tls_key})
+    if (!std::ifstream(f)) throw std::runtime_error("TLS: cannot read " + f.string());
+  std::optional<ssl::context> ctx(std::in_place, ssl::context::tls_server);
+  ctx->set_options(ssl::context::default_workarounds | ssl::context::no_sslv2 | ssl::context::no_sslv3 |
+                   ssl::context::no_tlsv1 | ssl::context::no_tlsv1_1 | ssl::context::single_dh_use);
+  try {
+    ctx->use_certificate_chain_file(c.tls_cert.string());
+  } catch (const std::exception& e) {
+    throw std::runtime_error("TLS: " + c.tls_cert.string() + " is not a PEM certificate chain (" + e.what() + ")");
+  }
+  try {
+    ctx->use_private_key_file(c.tls_key.string(), ssl::context::pem);
+  } catch (const std::exception& e) {
+    throw std::runtime_error("TLS: " + c.tls_key.string() + " is not the PEM private key of the certificate (" + e.what() + ")");
+  }
+  return ctx;
+}
+
+}  // namespace
+
+Shared::Shared(const ServerConfig& c)
+    : config(c),
+      store(c.data_dir),
+      meshes(store),
+      jobs(std::make_unique<JobScheduler>(meshes, c.jobs)),
+      router(meshes, {c.static_dir, "0.1.0", jobs.get(), c.gl_platform, std::max(1, c.workers),
+                      c.auth_required || !boost::asio::ip::make_address(c.host).is_loopback(), &metrics}),
+      rate(c.rate_per_s, c.rate_burst),
+      ws(meshes, jobs.get(), router.auth(), &rate, {c.chunk_bytes, c.max_ws_message_bytes}),
+      workers(std::size_t(std::max(1, c.workers))),
+      tls(tls_context(c)) {
+  meshes.set_max_upload_bytes(c.max_upload_bytes);  // what a zip upload may unpack to
+  if (!c.reader.empty())
+    meshes.set_reader({c.reader, c.data_dir / "tmp", c.jobs.memory_mb,
+                       std::chrono::milliseconds(std::llround(c.upload_timeout_s * 1000))});
+  meshes.set_preview(c.preview);
+  rate.on_refused = [m = &metrics] { m->rate_limited(); };
+  jobs->on_event = [r = &router, m = &metrics](const json& e, const Access& readers) {
+    m->job_event(e);
+    if (r->on_event) r->on_event(e, readers);
+  };
+}
+
+Shared::~Shared() { jobs.reset(); }  // its thread sends events through the router
+
+void Shared::broadcast(const json& event, const Access& readers) {
+  std::vector<std::shared_ptr<EventSink>> live;
+  {
+    std::lock_guard lock(sessions_mutex_);
+    for (auto& [p, w] : sessions_)
+      if (auto s = w.lock()) live.push_back(std::move(s));
+  }
+  for (auto& s : live) s->send_event(event, readers);
+}
+
+void Shared::add_session(EventSink* key, std::weak_ptr<EventSink> session) {
+  std::lock_guard lock(sessions_mutex_);
+  sessions_[key] = std::move(session);
+}
+
+void Shared::remove_session(EventSink* key) {
+  std::lock_guard lock(sessions_mutex_);
+  sessions_.erase(key);
+}
+
+bool Shared::admit_connection(const std::string& address) {
+  const int cap = config.max_connections_per_ip;
+  if (cap <= 0) return true;
+  std::lock_guard lock(connections_mutex_);
+  int& n = connections_[address];
+  if (n < cap) {
+    ++n;
+    return true;
+  }
+  if (n == 0) connections_.erase(address);
+  return false;
+}
+
+void Shared::release_connection(const std::string& address) {
+  if (config.max_connections_per_ip <= 0) return;
+  std::lock_guard lock(connections_mutex_);
+  if (--connections_[address] <= 0) connections_.erase(address);
+}
+
+Peer::Peer(std::shared_ptr<Shared> s, const boost::asio::ip::tcp::socket& socket) : shared(std::move(s)) {
+  boost::system::error_code ec;
+  const auto ep = socket.remote_endpoint(ec);
+  if (!ec) {
+    address = ep.address().to_string();
+    loopback = ep.address().is_loopback();
+  }
+  admitted = shared->admit_connection(address);
+}
+
+Peer::~Peer() {
+  if (admitted) shared->release_connection(address);
+}
+
+std::optional<HttpResponse> over_cap(const Peer& peer) {
+  if (peer.admitted) return std::nullopt;
+  return error_response(503, "too_many_connections",
+                        "this address has " + std::to_string(peer.shared->config.max_connections_per_ip) +
+                            " connections open, the most allowed; close one and retry");
+}
+
+}  // namespace cgview::server

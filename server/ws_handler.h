@@ -1,0 +1,87 @@
+// The WebSocket's messages (protocol/API.md): a message and a connection's
+// state in, replies out, and no sockets, as the HTTP router is.  The session
+// calls receive() on its strand and runs the work it returns on a worker
+// thread; tests and the fuzz target call handle(), which does both at once.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "auth.h"
+#include "frames.h"
+
+namespace cgview::server {
+
+class JobScheduler;
+class MeshService;
+class RateLimiter;
+
+// A message to a client: JSON text, or a binary frame (its header, then a
+// view into a payload that `keep` holds: the cached Draco bytes are never copied).
+struct WsOut {
+  std::string head;
+  std::shared_ptr<const void> keep;
+  std::string_view body;
+  bool binary = false;
+  std::size_t size() const { return head.size() + body.size(); }
+  // A JSON message (a detail quoting a file's invalid UTF-8 is replaced, not a reason to fail).
+  static WsOut text(const nlohmann::json& message);
+};
+using WsEmit = std::function<void(WsOut)>;
+
+// What the handler knows of one connection; read and changed on its strand only.
+struct WsConnection {
+  std::string address;  // the client's, for the rate limit
+  bool loopback = false;
+  // "Bearer TOKEN", checked again for each message and event, so that a
+  // revoked token stops an open session at once; empty: the local user.
+  std::string authorization;
+  std::optional<Caller> caller;  // set once authenticated
+  bool close = false;            // refused: the session closes once the replies are sent
+};
+
+struct WsHandlerConfig {
+  std::size_t chunk_bytes = protocol::kDefaultChunkBytes;  // of binary frames
+  std::size_t max_message_bytes = std::size_t(1) << 20;    // what too_big() says
+};
+
+class WsHandler {
+ public:
+  WsHandler(MeshService& meshes, JobScheduler* jobs, const Auth& auth, RateLimiter* rate, WsHandlerConfig config = {});
+
+  using Work = std::function<void(const WsEmit&)>;
+  // On the connection's strand: parses the message, checks its token and
+  // rate, answers auth and ping through `emit`; returns the work left for a
+  // worker thread (reading, encoding, streaming), or an empty function.
+  Work receive(std::string_view text, bool binary, WsConnection& conn, const WsEmit& emit) const;
+  // receive() and its work at once, the replies in order.
+  std::vector<WsOut> handle(std::string_view text, WsConnection& conn, bool binary = false) const;
+  // The reply to a message over max_message_bytes (the session then closes).
+  WsOut too_big() const;
+  // Whether an event for `readers` goes to this connection; a revoked token
+  // gets its refusal through `emit` instead (and conn.close).
+  bool admits_event(WsConnection& conn, const Access& readers, const WsEmit& emit) const;
+
+ private:
+  bool still_authorized(WsConnection& conn, const WsEmit& emit) const;
+  void get_mesh(const nlohmann::json& msg, const nlohmann::json& id, const Caller& caller, const WsEmit& emit) const;
+  void get_slice(const nlohmann::json& msg, const nlohmann::json& id, const Caller& caller, const WsEmit& emit) const;
+  void get_animation(const nlohmann::json& msg, const nlohmann::json& id, const Caller& caller, const WsEmit& emit) const;
+  // The begin message, the payload in binary frames of `kind`, the end message.
+  void stream(nlohmann::json begin, protocol::FrameKind kind, const nlohmann::json& id, std::shared_ptr<const void> keep,
+              std::string_view payload, const std::string& end_type, const WsEmit& emit) const;
+
+  MeshService& meshes_;
+  JobScheduler* jobs_;
+  const Auth& auth_;
+  RateLimiter* rate_;
+  WsHandlerConfig config_;
+};
+
+}  // namespace cgview::server
