@@ -50,7 +50,11 @@ Shared::Shared(const ServerConfig& c)
       router(meshes, {c.static_dir, "0.1.0", jobs.get(), c.gl_platform, std::max(1, c.workers),
                       c.auth_required || !boost::asio::ip::make_address(c.host).is_loopback(), &metrics}),
       rate(c.rate_per_s, c.rate_burst),
-      ws(meshes, jobs.get(), router.auth(), &rate, {c.chunk_bytes, c.max_ws_message_bytes}),
+      ws(meshes,
+         [j = jobs.get()](const std::string& job, const std::string& name, const std::string& format, const Caller& caller) {
+           return j->artifact(job, name, format, caller);
+         },
+         router.auth(), &rate, {c.chunk_bytes, c.max_ws_message_bytes}),
       workers(std::size_t(std::max(1, c.workers))),
       tls(tls_context(c)) {
   meshes.set_max_upload_bytes(c.max_upload_bytes);  // what a zip upload may unpack to

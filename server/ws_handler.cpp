@@ -5,7 +5,6 @@
 #include "animation_frames.h"
 #include "core/errors.h"
 #include "io/parse_json.h"
-#include "jobs/scheduler.h"
 #include "mesh_service.h"
 #include "rate_limit.h"
 #include "voxel/voxel_io.h"
@@ -33,8 +32,8 @@ WsOut WsOut::text(const json& message) {
   return {message.dump(-1, ' ', false, json::error_handler_t::replace), nullptr, {}, false};
 }
 
-WsHandler::WsHandler(MeshService& meshes, JobScheduler* jobs, const Auth& auth, RateLimiter* rate, WsHandlerConfig config)
-    : meshes_(meshes), jobs_(jobs), auth_(auth), rate_(rate), config_(config) {}
+WsHandler::WsHandler(MeshService& meshes, ArtifactSource artifacts, const Auth& auth, RateLimiter* rate, WsHandlerConfig config)
+    : meshes_(meshes), artifacts_(std::move(artifacts)), auth_(auth), rate_(rate), config_(config) {}
 
 WsOut WsHandler::too_big() const {
   return WsOut::text(error_message(nullptr, "payload_too_large",
@@ -177,11 +176,11 @@ void WsHandler::get_animation(const json& msg, const json& id, const Caller& cal
   if (id.is_null()) return error("bad_request", "get_animation needs a request_id");
   const auto job_id = string_field(msg, "job_id");
   if (!job_id) return error("bad_request", "get_animation needs a \"job_id\" string");
-  if (!jobs_) return error("not_found", "this server runs no jobs");
+  if (!artifacts_) return error("not_found", "this server runs no jobs");
   const std::string artifact = string_field(msg, "artifact").value_or("frames");
   std::string raw;
   try {
-    raw = jobs_->artifact(*job_id, artifact, "frames", caller).bytes;
+    raw = artifacts_(*job_id, artifact, "frames", caller).bytes;
   } catch (const std::out_of_range& e) {
     return error("not_found", e.what());
   } catch (const UnsupportedFormat&) {
@@ -207,10 +206,10 @@ void WsHandler::get_slice(const json& msg, const json& id, const Caller& caller,
   if (axis < 0 || axis > 2) return error("bad_request", "get_slice needs an \"axis\": \"x\", \"y\" or \"z\" (or 0, 1, 2)");
   if (!msg.contains("index") || !msg["index"].is_number_integer()) return error("bad_request", "get_slice needs an integer \"index\"");
   const long long index = msg["index"].get<long long>();
-  if (!jobs_) return error("not_found", "this server runs no jobs");
+  if (!artifacts_) return error("not_found", "this server runs no jobs");
   VoxelGrid grid;
   try {
-    grid = decode_nrrd(jobs_->artifact(*job_id, artifact, "nrrd", caller).bytes, artifact);
+    grid = decode_nrrd(artifacts_(*job_id, artifact, "nrrd", caller).bytes, artifact);
   } catch (const std::out_of_range& e) {
     return error("not_found", e.what());
   } catch (const UnsupportedFormat&) {

@@ -15,10 +15,10 @@
 
 #include "auth.h"
 #include "frames.h"
+#include "jobs/artifact_formats.h"
 
 namespace cgview::server {
 
-class JobScheduler;
 class MeshService;
 class RateLimiter;
 
@@ -51,9 +51,15 @@ struct WsHandlerConfig {
   std::size_t max_message_bytes = std::size_t(1) << 20;    // what too_big() says
 };
 
+// A job's artifact in a format, if the caller may read it (JobScheduler::artifact):
+// std::out_of_range for an unknown job or artifact, UnsupportedFormat for the wrong kind.
+using ArtifactSource =
+    std::function<ArtifactBytes(const std::string& job, const std::string& name, const std::string& format, const Caller&)>;
+
 class WsHandler {
  public:
-  WsHandler(MeshService& meshes, JobScheduler* jobs, const Auth& auth, RateLimiter* rate, WsHandlerConfig config = {});
+  // artifacts: empty on a server that runs no jobs.
+  WsHandler(MeshService& meshes, ArtifactSource artifacts, const Auth& auth, RateLimiter* rate, WsHandlerConfig config = {});
 
   using Work = std::function<void(const WsEmit&)>;
   // On the connection's strand: parses the message, checks its token and
@@ -78,7 +84,7 @@ class WsHandler {
               std::string_view payload, const std::string& end_type, const WsEmit& emit) const;
 
   MeshService& meshes_;
-  JobScheduler* jobs_;
+  ArtifactSource artifacts_;
   const Auth& auth_;
   RateLimiter* rate_;
   WsHandlerConfig config_;
