@@ -28,7 +28,7 @@ if [ ! -f "$BUILD/build.ninja" ]; then
 fi
 cmake --build "$BUILD" -j "${CGVIEW_JOBS:-$(nproc)}"
 TARGETS=("$@")
-[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(off obj ply stl gltf glb drc mtl skeleton voxel zip frame json params config)
+[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(off obj ply stl gltf glb drc mtl skeleton voxel zip frame json params config ws)
 failed=()
 for t in "${TARGETS[@]}"; do
   work="$BUILD/corpus/$t"
