@@ -245,7 +245,9 @@ TEST_F(SlurmJobs, OwnersTakeTurnsBeforeTheirJobsReachTheCluster) {
   };
   const std::string a_mesh = mesh_of(alice), b_mesh = mesh_of(bob);
   std::vector<std::string> a_jobs;
-  for (int i = 0; i < 8; ++i) a_jobs.push_back(job_as(alice, a_mesh, 2 + 0.01 * i));
+  // Each long enough that the first ends well after the 1.5 s of quiet below,
+  // on a loaded machine too (at 2 s, a slow sbatch let her fifth in first).
+  for (int i = 0; i < 8; ++i) a_jobs.push_back(job_as(alice, a_mesh, 4.5 + 0.01 * i));
   // Each job's Slurm id, noted while the controller knows it (MinJobAge 2 s).
   std::map<std::string, long> sid;
   auto note_slurm_ids = [&] {
@@ -261,7 +263,7 @@ TEST_F(SlurmJobs, OwnersTakeTurnsBeforeTheirJobsReachTheCluster) {
     std::this_thread::sleep_for(50ms);
   }
   // Not Alice's parameters: a result she already has would answer Bob from the cache.
-  const std::string b_job = job_as(bob, b_mesh, 2.5);
+  const std::string b_job = job_as(bob, b_mesh, 4.95);
   auto ended = [&](const std::string& id) {
     const std::string s = call_as(port(), alice, "GET", "/api/v1/jobs/" + id).body_json().value("state", "");
     return s == "done" || s == "failed";
