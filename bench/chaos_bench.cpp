@@ -1,4 +1,4 @@
-// Chaotic encryption and steganography (issue 9): throughput in vertices
+// Chaotic encryption and steganography: throughput in vertices
 // per second of chaos::encrypt, decrypt, embed and extract on a mesh of
 // about 1M vertices (man.off, 17,495 vertices, midpoint-subdivided three
 // times: 1.12M vertices), with

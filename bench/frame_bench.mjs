@@ -1,4 +1,4 @@
-// Big meshes in the viewer (issue 8 item 8), measured in headless chromium:
+// Big meshes in the viewer (a preview first), measured in headless chromium:
 // for a 2M-triangle mesh, the time from the click to the first frame of the
 // decimated preview and to the first frame of the full mesh, and the frame
 // time while orbiting (median and p95 over --frames frames (30), each rendered

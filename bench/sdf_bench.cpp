@@ -1,4 +1,4 @@
-// The Shape Diameter Function (issue 7), in one run:
+// The Shape Diameter Function, in one run:
 // - sdf against CGAL's sdf_values with the same rays (25, Vogel's spiral,
 //   uniform weights), the same cone (120 degrees) and the same
 //   post-processing (missing values filled, bilateral filter, linear

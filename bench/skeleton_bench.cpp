@@ -1,4 +1,4 @@
-// Curve skeletons (issue 10), in one run: skeleton_projection (the paper's
+// Curve skeletons, in one run: skeleton_projection (the paper's
 // method, EGL: Mesa's llvmpipe on this machine unless a GPU is found)
 // against CGAL's mean curvature flow skeletonization (skeleton_mcf), both
 // through the registry with their defaults: time ratio and the metrics of

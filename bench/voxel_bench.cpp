@@ -1,4 +1,4 @@
-// Voxelization (issue 6): CGView's solid voxelization against OpenVDB's
+// Voxelization: CGView's solid voxelization against OpenVDB's
 // meshToLevelSet plus sdfInteriorMask (the narrow-band level set, its sign
 // flood fill, and the interior as a mask) at the same voxel size and the same
 // voxel centres, with the agreement of the two; and CGView's surface

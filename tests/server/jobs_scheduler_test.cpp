@@ -86,7 +86,7 @@ TEST(JobScheduler, RoundRobinAcrossOwners) {
   EXPECT_EQ(s.jobs.workers_started(), 5u);
 }
 
-// The chaos algorithms' artifacts through the real worker process (issue 9):
+// The chaos algorithms' artifacts through the real worker process:
 // a message embedded, stored as PLY by the worker, extracted by a chained job
 // and served as text; a wrong key fails the job with its message; an
 // animation is served in the .frames format.

@@ -391,7 +391,7 @@ TEST_F(JobsTest, AGridFromAnEarlierJobIsTheInputOfTheNext) {
   EXPECT_EQ(post({{"grid", {{"job", vox["id"]}, {"artifact", "nope"}}}}).status, 404);
 }
 
-// Issues 7 and 10 through the server: the SDF's fields; a skeleton made by
+// The SDF and curve skeletons through the server: the SDF's fields; a skeleton made by
 // one job, measured by the next, served in every skeleton file format.
 TEST_F(JobsTest, SdfAndSkeletonJobs) {
   const json sdf = wait_end(submit("sdf", {{"rays", 16}})["id"]);

@@ -1,4 +1,4 @@
-// End-to-end test of big meshes (issue 8 item 8), against the real server
+// End-to-end test of big meshes (a preview first), against the real server
 // (with its preview threshold lowered to 20k faces) and a real browser: a
 // 320k-triangle torus first shows its decimated preview (at most 5k faces,
 // with the "preview shown" badge), then the full mesh, and the camera does not

@@ -1,4 +1,4 @@
-// End-to-end test of chaos_animate in the viewer (issue 9; docs/CHAOS.md),
+// End-to-end test of chaos_animate in the viewer (chaotic maps, docs/CHAOS.md),
 // against the real server: the job is run from the generated form on the
 // elephant, its animation artifact (.frames) is played, and moving the
 // slider changes the positions drawn (window.__cgview.lastAnimation, set

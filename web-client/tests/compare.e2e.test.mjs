@@ -243,9 +243,9 @@ test('"Leave comparison" goes back to one view with the field shown before', asy
   assert.deepEqual(v.problems, [], v.describeProblems());
 });
 
-// Issue 7's view (the paper's Figure 9): sdf_fast with compare on gives the
-// full SDF, its approximation from 10% of the faces and the error map; one
-// "Compare" shows the three side by side, per face, the error on turbo.
+// The SDF comparison view of the paper's Figure 9: sdf_fast with compare on
+// gives the full SDF, its approximation from 10% of the faces and the error
+// map; one "Compare" shows the three side by side, per face, the error on turbo.
 test('sdf_fast with compare: the full SDF, the approximation and the error map side by side', async () => {
   await v.page.locator('#algorithm-menu').selectOption('sdf_fast');
   const form = v.page.locator('form.algorithm-form[data-algorithm="sdf_fast"]');

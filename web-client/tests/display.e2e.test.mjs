@@ -1,5 +1,5 @@
-// End-to-end test of the Display panel (issue 8 items 1, 2 and 7) against the
-// real server and Debian's chromium: `npm run test:e2e`, or
+// End-to-end test of the Display panel (display modes, overlays, view links)
+// against the real server and Debian's chromium: `npm run test:e2e`, or
 //   CGVIEW_SERVER=build/bin/cgview-server CGVIEW_SAMPLES=build/samples node --test tests/display.e2e.test.mjs
 //
 // Display modes: a coarse sample (eight.off, 634 triangles, so that flat

@@ -1,4 +1,4 @@
-// End-to-end test of the scene (issue 8 item 3: several meshes at once)
+// End-to-end test of the scene (several meshes at once)
 // against the real server and Debian's chromium: `npm run test:e2e`, or
 //   CGVIEW_SERVER=build/bin/cgview-server CGVIEW_SAMPLES=build/samples node --test tests/scene.e2e.test.mjs
 //

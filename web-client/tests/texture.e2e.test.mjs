@@ -1,4 +1,4 @@
-// End-to-end test of textured meshes (issue 8 item 5), against the real
+// End-to-end test of textured meshes, against the real
 // server and a real browser: an OBJ, its MTL and a PNG chosen together in
 // the file picker go up as one zip; seen face-on, the quad shows the
 // texture's four colours in the right quadrants (the PNG is drawn by the

@@ -1,4 +1,4 @@
-// End-to-end test of voxel slices in the viewer (issue 6), against the real
+// End-to-end test of voxel slices in the viewer, against the real
 // server: voxelize run from the generated form, then the job's grid artifact
 // opened in the slice panel: the slice comes over the WebSocket (get_slice,
 // a zlib voxel-slice frame), is drawn in the 2D canvas and as a plane in the

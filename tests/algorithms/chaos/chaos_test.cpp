@@ -1,4 +1,4 @@
-// Chaotic maps, keyed encryption and steganography (issue 9): the maps
+// Chaotic maps, keyed encryption and steganography: the maps
 // against hand computations and known periods; exact round trips, key
 // sensitivity, capacity and distortion bounds on sample meshes; the
 // registered algorithms' errors.

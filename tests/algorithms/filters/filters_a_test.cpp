@@ -58,7 +58,7 @@ TEST(Curvature, SphereIsOneOverRAndOneOverRSquared) {
       h.push_back(H.values[v]);
       k.push_back(K.values[v]);
     }
-  EXPECT_NEAR(median(h), 1 / r, 0.01 / r);  // the brief asks 5%; measured under 0.1%
+  EXPECT_NEAR(median(h), 1 / r, 0.01 / r);  // 5% is required; measured under 0.1%
   EXPECT_NEAR(median(k), 1 / (r * r), 0.01 / (r * r));
 }
 

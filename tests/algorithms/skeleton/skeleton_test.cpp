@@ -323,10 +323,10 @@ TEST(SkeletonProjection, EveryNodeIsInsideTheSampleMeshes) {
   }
 }
 
-// Issue 10's "same limbs": MCF gives fingers, toes and bumps a short branch
-// each (17-19 ends on man); with spurs under 5% of the diagonal pruned from
-// both, MCF's ends are within one of ours, ours has no such spur, and each
-// of ours is within 10% of the diagonal of a different one of MCF's.
+// The same limbs as CGAL's MCF skeleton: MCF gives fingers, toes and bumps a
+// short branch each (17-19 ends on man); with spurs under 5% of the diagonal
+// pruned from both, MCF's ends are within one of ours, ours has no such spur,
+// and each of ours is within 10% of the diagonal of a different one of MCF's.
 TEST(SkeletonProjection, ManHasMcfsLimbsOnceSpursArePruned) {
   const Mesh mesh = read_mesh(test::sample("man.off"));
   const BBox box = bounding_box(mesh);

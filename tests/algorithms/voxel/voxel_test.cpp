@@ -1,4 +1,4 @@
-// Voxelization (issue 6): exact counts on boxes, conservative volumes on
+// Voxelization: exact counts on boxes, conservative volumes on
 // spheres, no gaps on thin, diagonal and tiny triangles, the topology of a
 // torus, analytic slices, grid operations, bad input, and the formats read
 // back by their published specifications (parsed here, independently of
@@ -49,7 +49,7 @@ std::string error_of(const std::function<void()>& f) {
   return "(no InvalidInput thrown)";
 }
 
-// ---- item 6: known answers --------------------------------------------------------
+// ---- known answers ----------------------------------------------------------------
 
 TEST(VoxelizeTest, AxisAlignedBoxGivesItsExactVoxelCount) {
   // Sides 2, 3, 4 at resolution 16: voxel size 0.25, so 8 x 12 x 16 voxels inside.
@@ -245,7 +245,7 @@ TEST(VoxelizeTest, SlicesMatchAnalyticCrossSections) {
     }
 }
 
-// ---- item 7: bad input --------------------------------------------------------------
+// ---- bad input ----------------------------------------------------------------------
 
 TEST(VoxelizeTest, BadInputGivesClearErrors) {
   const Mesh box = test::box();

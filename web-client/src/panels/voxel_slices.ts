@@ -1,4 +1,4 @@
-// The voxel slice panel (issue 6): for a voxel grid artifact, an axis, a
+// The voxel slice panel: for a voxel grid artifact, an axis, a
 // slider through the grid's slices and, for float grids, a threshold slider;
 // each slice is fetched over the WebSocket (get_slice, a zlib-compressed
 // binary frame), drawn in a 2D canvas, and handed to the viewer, which shows

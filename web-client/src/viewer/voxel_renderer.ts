@@ -1,5 +1,5 @@
-// Voxels in 3D (issue 6): a grid read from its NRRD artifact (the format the
-// worker stores, protocol/API.md), and the voxels above a threshold drawn as
+// Voxels in 3D: a grid read from its NRRD artifact (the format the worker
+// stores, protocol/API.md), and the voxels above a threshold drawn as
 // cubes, one instance each. Only the voxels on the boundary of the kept set
 // (a 6-neighbour not kept, or the grid's edge) are drawn: the inside ones
 // cannot be seen, and a 128³ solid keeps millions.
