@@ -51,9 +51,10 @@ Shared::Shared(const ServerConfig& c)
                       c.auth_required || !boost::asio::ip::make_address(c.host).is_loopback(), &metrics}),
       rate(c.rate_per_s, c.rate_burst),
       ws(meshes,
-         [j = jobs.get()](const std::string& job, const std::string& name, const std::string& format, const Caller& caller) {
-           return j->artifact(job, name, format, caller);
-         },
+         {[j = jobs.get()](const std::string& job, const std::string& name, const std::string& format, const Caller& caller) {
+            return j->artifact(job, name, format, caller);
+          },
+          [j = jobs.get()](const std::string& job, const Caller& caller) { (void)j->access(job, caller); }},
          router.auth(), &rate, {c.chunk_bytes, c.max_ws_message_bytes}),
       workers(std::size_t(std::max(1, c.workers))),
       tls(tls_context(c)) {

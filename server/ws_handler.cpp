@@ -32,7 +32,7 @@ WsOut WsOut::text(const json& message) {
   return {message.dump(-1, ' ', false, json::error_handler_t::replace), nullptr, {}, false};
 }
 
-WsHandler::WsHandler(MeshService& meshes, ArtifactSource artifacts, const Auth& auth, RateLimiter* rate, WsHandlerConfig config)
+WsHandler::WsHandler(MeshService& meshes, JobArtifacts artifacts, const Auth& auth, RateLimiter* rate, WsHandlerConfig config)
     : meshes_(meshes), artifacts_(std::move(artifacts)), auth_(auth), rate_(rate), config_(config) {}
 
 WsOut WsHandler::too_big() const {
@@ -176,11 +176,11 @@ void WsHandler::get_animation(const json& msg, const json& id, const Caller& cal
   if (id.is_null()) return error("bad_request", "get_animation needs a request_id");
   const auto job_id = string_field(msg, "job_id");
   if (!job_id) return error("bad_request", "get_animation needs a \"job_id\" string");
-  if (!artifacts_) return error("not_found", "this server runs no jobs");
+  if (!artifacts_.read) return error("not_found", "this server runs no jobs");
   const std::string artifact = string_field(msg, "artifact").value_or("frames");
   std::string raw;
   try {
-    raw = artifacts_(*job_id, artifact, "frames", caller).bytes;
+    raw = artifacts_.read(*job_id, artifact, "frames", caller).bytes;
   } catch (const std::out_of_range& e) {
     return error("not_found", e.what());
   } catch (const UnsupportedFormat&) {
@@ -206,15 +206,16 @@ void WsHandler::get_slice(const json& msg, const json& id, const Caller& caller,
   if (axis < 0 || axis > 2) return error("bad_request", "get_slice needs an \"axis\": \"x\", \"y\" or \"z\" (or 0, 1, 2)");
   if (!msg.contains("index") || !msg["index"].is_number_integer()) return error("bad_request", "get_slice needs an integer \"index\"");
   const long long index = msg["index"].get<long long>();
-  if (!artifacts_) return error("not_found", "this server runs no jobs");
-  VoxelGrid grid;
+  if (!artifacts_.read) return error("not_found", "this server runs no jobs");
+  std::shared_ptr<const VoxelGrid> kept;
   try {
-    grid = decode_nrrd(artifacts_(*job_id, artifact, "nrrd", caller).bytes, artifact);
+    kept = grid(*job_id, artifact, caller);
   } catch (const std::out_of_range& e) {
     return error("not_found", e.what());
   } catch (const UnsupportedFormat&) {
     return error("bad_request", "artifact '" + artifact + "' of job " + *job_id + " is not a voxel grid");
   }
+  const VoxelGrid& grid = *kept;
   if (index < INT_MIN || index > INT_MAX) return error("bad_request", "slice index " + std::to_string(index) + " is out of range");
   const VoxelSlice sl = cgview::slice(grid, axis, int(index));  // InvalidInput out of range: bad_request
   auto payload = std::make_shared<const std::string>(protocol::encode_slice_payload(grid, sl));
@@ -223,6 +224,30 @@ void WsHandler::get_slice(const json& msg, const json& id, const Caller& caller,
           {"width", sl.width}, {"height", sl.height}, {"dims", {d[0], d[1], d[2]}}, {"voxel_size", grid.voxel_size()},
           {"origin", {grid.origin().x, grid.origin().y, grid.origin().z}}, {"encoding", "zlib"}},
          protocol::FrameKind::voxel_slice, id, payload, *payload, "slice_end", emit);
+}
+
+std::shared_ptr<const VoxelGrid> WsHandler::grid(const std::string& job, const std::string& name, const Caller& caller) const {
+  const std::string key = job + "/" + name;
+  std::shared_ptr<const VoxelGrid> kept;
+  if (artifacts_.check_readable) {  // without it, nothing kept may serve another caller
+    std::lock_guard lock(grids_mutex_);
+    for (auto it = grids_.begin(); it != grids_.end(); ++it)
+      if (it->first == key) {
+        kept = it->second;
+        grids_.splice(grids_.begin(), grids_, it);
+        break;
+      }
+  }
+  if (kept) {
+    artifacts_.check_readable(job, caller);  // kept from a request of someone else, maybe
+    return kept;
+  }
+  auto decoded = std::make_shared<const VoxelGrid>(decode_nrrd(artifacts_.read(job, name, "nrrd", caller).bytes, name));
+  std::lock_guard lock(grids_mutex_);
+  std::erase_if(grids_, [&](const auto& g) { return g.first == key; });
+  grids_.emplace_front(key, decoded);
+  while (grids_.size() > config_.kept_grids) grids_.pop_back();
+  return decoded;
 }
 
 }  // namespace cgview::server

@@ -6,7 +6,9 @@
 
 #include <cstddef>
 #include <functional>
+#include <list>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -14,6 +16,7 @@
 #include <vector>
 
 #include "auth.h"
+#include "core/voxel_grid.h"
 #include "frames.h"
 #include "jobs/artifact_formats.h"
 
@@ -49,17 +52,23 @@ struct WsConnection {
 struct WsHandlerConfig {
   std::size_t chunk_bytes = protocol::kDefaultChunkBytes;  // of binary frames
   std::size_t max_message_bytes = std::size_t(1) << 20;    // what too_big() says
+  std::size_t kept_grids = 4;                               // decoded voxel grids kept for slicing
 };
 
-// A job's artifact in a format, if the caller may read it (JobScheduler::artifact):
-// std::out_of_range for an unknown job or artifact, UnsupportedFormat for the wrong kind.
-using ArtifactSource =
-    std::function<ArtifactBytes(const std::string& job, const std::string& name, const std::string& format, const Caller&)>;
+// A server's job artifacts as the handler reads them (JobScheduler's).
+struct JobArtifacts {
+  // An artifact in a format, if the caller may read it (JobScheduler::artifact):
+  // std::out_of_range for an unknown job or artifact, UnsupportedFormat for the wrong kind.
+  std::function<ArtifactBytes(const std::string& job, const std::string& name, const std::string& format, const Caller&)> read;
+  // Throws std::out_of_range unless the caller may read the job
+  // (JobScheduler::access): checked before a grid kept from before serves them.
+  std::function<void(const std::string& job, const Caller&)> check_readable;
+};
 
 class WsHandler {
  public:
   // artifacts: empty on a server that runs no jobs.
-  WsHandler(MeshService& meshes, ArtifactSource artifacts, const Auth& auth, RateLimiter* rate, WsHandlerConfig config = {});
+  WsHandler(MeshService& meshes, JobArtifacts artifacts, const Auth& auth, RateLimiter* rate, WsHandlerConfig config = {});
 
   using Work = std::function<void(const WsEmit&)>;
   // On the connection's strand: parses the message, checks its token and
@@ -84,7 +93,14 @@ class WsHandler {
               std::string_view payload, const std::string& end_type, const WsEmit& emit) const;
 
   MeshService& meshes_;
-  ArtifactSource artifacts_;
+  // The voxel grid artifact `name` of a job, decoded: the last few are kept,
+  // so that paging through slices does not read and decode the file each time
+  // (a done job's artifacts never change).
+  std::shared_ptr<const VoxelGrid> grid(const std::string& job, const std::string& name, const Caller& caller) const;
+
+  JobArtifacts artifacts_;
+  mutable std::mutex grids_mutex_;
+  mutable std::list<std::pair<std::string, std::shared_ptr<const VoxelGrid>>> grids_;  // newest first
   const Auth& auth_;
   RateLimiter* rate_;
   WsHandlerConfig config_;

@@ -5,11 +5,16 @@
 
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "frames.h"
 #include "io/mesh_io.h"
+#include "store.h"
+#include "voxel/voxel_io.h"
+#include "voxel_slice.h"
 #include "rate_limit.h"
 #include "router_harness.h"
 #include "test_support.h"
@@ -194,6 +199,66 @@ TEST_F(WsHandlerTest, OverTheRateLimitAMessageIsRefusedWithRetryAfter) {
   // The local user (loopback, no token) is not limited.
   WsConnection local = connect();
   for (int i = 0; i < 5; ++i) EXPECT_EQ(parse(ws.handle(R"({"type":"ping"})", local).at(0))["type"], "pong");
+}
+
+// The payload of a slice reply: its frames joined; checks they follow the slice message.
+std::string slice_payload(const std::vector<WsOut>& replies, std::uint32_t request_id) {
+  std::string payload;
+  for (std::size_t i = 1; i + 1 < replies.size(); ++i) {
+    std::string_view chunk;
+    const std::string frame = replies[i].head + std::string(replies[i].body);
+    EXPECT_EQ(protocol::decode_frame(frame, &chunk).request_id, request_id);
+    payload += chunk;
+  }
+  return payload;
+}
+
+TEST_F(WsHandlerTest, SlicesOfAGridKeptDecodedServeOnlyThoseWhoMayReadTheJob) {
+  make_dir("ws-");
+  open_with_users(dir_ / "data", JobConfig{});
+  const Caller alice = *router_->auth().authenticate("Bearer " + alice_);
+  const MeshRecord cube = meshes_->upload("cube.off", "", test::read_bytes(test::sample("cube.off")), "alice");
+  const std::string id =
+      jobs_->submit({{"algorithm", "voxelize"}, {"inputs", {{"mesh", cube.id}}}, {"params", {{"resolution", 16}, {"mode", "solid"}}}},
+                    alice)["id"];
+  for (int i = 0; i < 600 && jobs_->get(id, alice)->value("state", "") != "done"; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_EQ(jobs_->get(id, alice)->value("state", ""), "done") << *jobs_->get(id, alice);
+  const WsHandler ws(*meshes_,
+                     {[this](const std::string& job, const std::string& name, const std::string& format, const Caller& c) {
+                        return jobs_->artifact(job, name, format, c);
+                      },
+                      [this](const std::string& job, const Caller& c) { (void)jobs_->access(job, c); }},
+                     router_->auth(), nullptr, {64, 1024});
+  // The reference: the grid file as the job wrote it, sliced here.
+  const VoxelGrid grid = decode_nrrd(jobs_->artifact(id, "grid", "nrrd", alice).bytes);
+  const int k = grid.dims()[2] / 2;
+  const VoxelSlice expected = slice(grid, 2, k);
+  const std::string request = R"({"type":"get_slice","request_id":5,"axis":"z","index":)" + std::to_string(k) + R"(,"job_id":")" + id + R"("})";
+  WsConnection a = connect("Bearer " + alice_);
+  std::string first;
+  for (int round = 0; round < 2; ++round) {  // read and decoded, then kept
+    SCOPED_TRACE(round);
+    const auto replies = ws.handle(request, a);
+    ASSERT_GE(replies.size(), 3u);
+    const json head = parse(replies[0]);
+    EXPECT_EQ(head["type"], "slice") << head;
+    EXPECT_EQ(head["width"], expected.width);
+    EXPECT_EQ(head["height"], expected.height);
+    const std::string payload = slice_payload(replies, 5);
+    EXPECT_EQ(protocol::decode_slice_payload(payload).slice.values, expected.values);
+    if (round == 0) first = payload;
+    else EXPECT_EQ(payload, first);
+  }
+  // Bob does not read Alice's job, kept or not; once she shares it, he does.
+  WsConnection b = connect("Bearer " + bob_);
+  expect_one_error(ws.handle(request, b), "not_found");
+  store_->set_shared("job", id, {"bob"}, true);
+  const auto shared = ws.handle(request, b);
+  ASSERT_GE(shared.size(), 3u);
+  EXPECT_EQ(slice_payload(shared, 5), first);
+  store_->set_shared("job", id, {"bob"}, false);
+  expect_one_error(ws.handle(request, b), "not_found");
 }
 
 }  // namespace
