@@ -13,6 +13,7 @@
 
 #include "bench_util.h"
 #include "core/voxel_grid.h"
+#include "io/mesh_io.h"
 #include "mesh_service.h"
 #include "store.h"
 #include "voxel/voxel_io.h"
@@ -41,8 +42,7 @@ int main(int argc, char** argv) {
     std::ofstream(file, std::ios::binary) << encode_nrrd(grid);
     const server::JobArtifacts artifacts{
         [&](const std::string&, const std::string&, const std::string&, const server::Caller&) {
-          std::ifstream in(file, std::ios::binary);
-          return server::ArtifactBytes{std::string(std::istreambuf_iterator<char>(in), {}), "application/octet-stream", "grid.nrrd"};
+          return server::ArtifactBytes{read_file_bytes(file, std::uint64_t(1) << 40), "application/octet-stream", "grid.nrrd"};
         },
         [](const std::string&, const server::Caller&) {}};
     const int slices = 32;
