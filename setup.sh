@@ -43,6 +43,8 @@ TEST_APT_PACKAGES=(
   clang libfuzzer-14-dev libclang-rt-14-dev
   python3 python3-websocket python3-prometheus-client
   openssl
+  # The layout check of the C++ files (tests/style).
+  clang-format
   # A real Slurm cluster for the tests (tests/slurm): munged, slurmctld and
   # slurmd run from a temporary directory, not as the system's services.
   slurm-wlm slurmctld slurmd slurm-client munge

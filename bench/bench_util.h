@@ -44,7 +44,8 @@ inline Options parse_options(int argc, char** argv, const char* program, bool ta
         start = comma + 1;
       }
     } else {
-      std::fprintf(stderr, "usage: %s [--repeat N] [--quick]%s\n", program, takes_only ? " [--only NAME[,NAME...]]" : "");
+      std::fprintf(stderr, "usage: %s [--repeat N] [--quick]%s\n", program,
+                   takes_only ? " [--only NAME[,NAME...]]" : "");
       std::exit(2);
     }
   }
@@ -64,7 +65,8 @@ inline double best_seconds(int repeat, const std::function<void()>& setup, const
   return best;
 }
 inline double best_seconds(int repeat, const std::function<void()>& f) {
-  return best_seconds(repeat, [] {}, f);
+  return best_seconds(
+      repeat, [] {}, f);
 }
 
 // CPU seconds of the whole process (every thread: llvmpipe's, the ray

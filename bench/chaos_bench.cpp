@@ -57,8 +57,9 @@ int main(int argc, char** argv) {
     return 1;
   }
 
-  for (const auto& [label, bytes, k] : {std::tuple<std::string, std::size_t, int>{"1 KiB message, k = 4", 1024, 4},
-                                        {"full capacity, k = 4", chaos::embed_capacity_bytes(mesh.num_vertices(), 4), 4}}) {
+  for (const auto& [label, bytes, k] :
+       {std::tuple<std::string, std::size_t, int>{"1 KiB message, k = 4", 1024, 4},
+        {"full capacity, k = 4", chaos::embed_capacity_bytes(mesh.num_vertices(), 4), 4}}) {
     std::string message(bytes, '\0');
     for (std::size_t i = 0; i < bytes; ++i) message[i] = char(i * 2654435761u >> 24);
     chaos::EmbedResult e;

@@ -96,14 +96,17 @@ int main(int argc, char** argv) {
   }
   std::vector<Input> inputs;
   inputs.push_back({"refined_elephant", read_mesh(*elephant), false});
-  if (!quick) inputs.push_back({"bunny00 subdivided twice", subdivide_midpoint(subdivide_midpoint(read_mesh(*base))), true});
+  if (!quick)
+    inputs.push_back({"bunny00 subdivided twice", subdivide_midpoint(subdivide_midpoint(read_mesh(*base))), true});
   const Input holes_input{"elephant-with-holes", read_mesh(*holes), false};
 
   // Each direct call mirrors the CGAL calls of its filter in
   // algorithms/filters/, with the same settings (the filters' defaults where
   // the table does not name one).
   std::vector<Filter> filters;
-  filters.push_back({"simplify", "ratio 0.25", {{"ratio", 0.25}},
+  filters.push_back({"simplify",
+                     "ratio 0.25",
+                     {{"ratio", 0.25}},
                      [](SurfaceMesh& sm) {
                        // On a closed triangle mesh an edge ratio of 0.25 is a face ratio of 0.25.
                        SMS::GarlandHeckbert_plane_policies<SurfaceMesh, Kernel> gh(sm);
@@ -111,49 +114,72 @@ int main(int argc, char** argv) {
                                           CGAL::parameters::get_cost(gh.get_cost()).get_placement(gh.get_placement()));
                        sm.collect_garbage();
                      },
-                     false, false});
-  filters.push_back({"remesh", "1 iteration, mean edge length", {{"iterations", 1LL}},
+                     false,
+                     false});
+  filters.push_back({"remesh",
+                     "1 iteration, mean edge length",
+                     {{"iterations", 1LL}},
                      [](SurfaceMesh& sm) {
                        PMP::isotropic_remeshing(faces(sm), mean_edge_length(sm), sm,
                                                 CGAL::parameters::number_of_iterations(1));
                        sm.collect_garbage();
                      },
-                     false, false});
-  filters.push_back({"smooth", "mean_curvature_flow, 1 iteration",
+                     false,
+                     false});
+  filters.push_back({"smooth",
+                     "mean_curvature_flow, 1 iteration",
                      {{"method", std::string("mean_curvature_flow")}, {"iterations", 1LL}},
                      [](SurfaceMesh& sm) {
                        PMP::smooth_shape(sm, 1e-4, CGAL::parameters::number_of_iterations(1));
                        sm.collect_garbage();
                      },
-                     false, true});
-  filters.push_back({"subdivide", "loop, 1 iteration", {{"method", std::string("loop")}, {"iterations", 1LL}},
+                     false,
+                     true});
+  filters.push_back({"subdivide",
+                     "loop, 1 iteration",
+                     {{"method", std::string("loop")}, {"iterations", 1LL}},
                      [](SurfaceMesh& sm) {
                        CGAL::Subdivision_method_3::Loop_subdivision(sm, CGAL::parameters::number_of_iterations(1));
                      },
-                     false, false});
-  filters.push_back({"normals", "", {},
+                     false,
+                     false});
+  filters.push_back({"normals",
+                     "",
+                     {},
                      [](SurfaceMesh& sm) {
-                       auto n = sm.add_property_map<SurfaceMesh::Vertex_index, Kernel::Vector_3>("v:bench_normal").first;
+                       auto n =
+                           sm.add_property_map<SurfaceMesh::Vertex_index, Kernel::Vector_3>("v:bench_normal").first;
                        PMP::compute_vertex_normals(sm, n);
                      },
-                     false, false});
-  filters.push_back({"geodesic_distance", "heat method, intrinsic Delaunay, source vertex 0", {},
-                     [](SurfaceMesh& sm) {
-                       auto d = sm.add_property_map<SurfaceMesh::Vertex_index, double>("v:bench_distance", 0.0).first;
-                       CGAL::Heat_method_3::Surface_mesh_geodesic_distances_3<SurfaceMesh, CGAL::Heat_method_3::Intrinsic_Delaunay> hm(sm);
-                       hm.add_source(SurfaceMesh::Vertex_index(0));
-                       hm.estimate_geodesic_distances(d);
-                     },
-                     false, false});
-  filters.push_back({"components", "keep_largest", {{"mode", std::string("keep_largest")}},
+                     false,
+                     false});
+  filters.push_back(
+      {"geodesic_distance",
+       "heat method, intrinsic Delaunay, source vertex 0",
+       {},
+       [](SurfaceMesh& sm) {
+         auto d = sm.add_property_map<SurfaceMesh::Vertex_index, double>("v:bench_distance", 0.0).first;
+         CGAL::Heat_method_3::Surface_mesh_geodesic_distances_3<SurfaceMesh, CGAL::Heat_method_3::Intrinsic_Delaunay>
+             hm(sm);
+         hm.add_source(SurfaceMesh::Vertex_index(0));
+         hm.estimate_geodesic_distances(d);
+       },
+       false,
+       false});
+  filters.push_back({"components",
+                     "keep_largest",
+                     {{"mode", std::string("keep_largest")}},
                      [](SurfaceMesh& sm) {
                        auto c = sm.add_property_map<SurfaceMesh::Face_index, std::size_t>("f:bench_component").first;
                        PMP::connected_components(sm, c);
                        PMP::keep_largest_connected_components(sm, 1);
                        sm.collect_garbage();
                      },
-                     false, false});
-  filters.push_back({"fill_holes", "refine_and_fair, holes up to 1000 edges", {},
+                     false,
+                     false});
+  filters.push_back({"fill_holes",
+                     "refine_and_fair, holes up to 1000 edges",
+                     {},
                      [](SurfaceMesh& sm) {
                        using Halfedge = SurfaceMesh::Halfedge_index;
                        std::vector<Halfedge> cycles;
@@ -167,7 +193,8 @@ int main(int argc, char** argv) {
                        }
                        sm.collect_garbage();
                      },
-                     true, false});
+                     true,
+                     false});
 
   // The conversions every filter pays, Mesh -> Surface_mesh (CGAL's add_face,
   // face by face) and back: most of the overhead of the light filters.
@@ -176,9 +203,12 @@ int main(int argc, char** argv) {
     std::printf("|---|---|---:|---:|---:|\n");
     for (const Input& in : inputs) {
       SurfaceMesh sm;
-      const double to = best_seconds(repeat, [&] { sm.clear(); }, [&] { sm = to_surface_mesh(in.mesh).mesh; });
-      const double back = best_seconds(repeat, [] {}, [&] { (void)from_surface_mesh(sm); });
-      std::printf("| Mesh <-> Surface_mesh | %s | %zu | %.3f | %.3f |\n", in.name.c_str(), in.mesh.num_faces(), to, back);
+      const double to = best_seconds(
+          repeat, [&] { sm.clear(); }, [&] { sm = to_surface_mesh(in.mesh).mesh; });
+      const double back = best_seconds(
+          repeat, [] {}, [&] { (void)from_surface_mesh(sm); });
+      std::printf("| Mesh <-> Surface_mesh | %s | %zu | %.3f | %.3f |\n", in.name.c_str(), in.mesh.num_faces(), to,
+                  back);
       std::fflush(stdout);
     }
     std::printf("\n");
@@ -206,9 +236,11 @@ int main(int argc, char** argv) {
       if (f.name == "remesh") params["target_edge_length"] = mean_edge_length(converted);
       Context ctx;
       std::size_t reg_faces = 0;
-      const double reg = best_seconds(repeat, [] {}, [&] { reg_faces = result_faces(algo.run(in->mesh, params, ctx)); });
+      const double reg = best_seconds(
+          repeat, [] {}, [&] { reg_faces = result_faces(algo.run(in->mesh, params, ctx)); });
       SurfaceMesh sm;
-      const double direct = best_seconds(repeat, [&] { sm = converted; }, [&] { f.direct(sm); });
+      const double direct = best_seconds(
+          repeat, [&] { sm = converted; }, [&] { f.direct(sm); });
       if (reg_faces > 0 && reg_faces != sm.number_of_faces())
         std::fprintf(stderr, "note: %s on %s: registry gave %zu faces, direct call %zu\n", f.name.c_str(),
                      in->name.c_str(), reg_faces, std::size_t(sm.number_of_faces()));
@@ -233,23 +265,30 @@ int main(int argc, char** argv) {
       both.add("reference", moved);
       Context ctx;
       double reg_value = 0;
-      const double reg = best_seconds(repeat, [] {}, [&] {
-        const AlgorithmResult r = algo.run(both, {}, ctx);
-        reg_value = std::get<Metrics>(r.artifacts.back().value).at("hausdorff");
-      });
+      const double reg = best_seconds(
+          repeat, [] {},
+          [&] {
+            const AlgorithmResult r = algo.run(both, {}, ctx);
+            reg_value = std::get<Metrics>(r.artifacts.back().value).at("hausdorff");
+          });
       const SurfaceMesh a = to_surface_mesh(in.mesh).mesh, b = to_surface_mesh(moved).mesh;
       BBox box = bounding_box(in.mesh);
       for (const Vec3& p : moved.positions) box.add(p);
       const double bound = 1e-4 * box.diagonal();
       double direct_value = 0;
-      const double direct = best_seconds(repeat, [] {}, [&] {
-        direct_value = std::max(PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(a, b, bound),
-                                PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(b, a, bound));
-      });
+      const double direct = best_seconds(
+          repeat, [] {},
+          [&] {
+            direct_value = std::max(PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(a, b, bound),
+                                    PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(b, a, bound));
+          });
       if (std::abs(reg_value - direct_value) > 2 * bound)
-        std::fprintf(stderr, "note: hausdorff on %s: registry %.6g, direct %.6g\n", in.name.c_str(), reg_value, direct_value);
-      std::printf("| hausdorff | against itself moved 0.5%% of the diagonal, error bound 1e-4 | %s | %zu | %.3f | %.3f | %.2fx |\n",
-                  in.name.c_str(), in.mesh.num_faces(), reg, direct, reg / direct);
+        std::fprintf(stderr, "note: hausdorff on %s: registry %.6g, direct %.6g\n", in.name.c_str(), reg_value,
+                     direct_value);
+      std::printf(
+          "| hausdorff | against itself moved 0.5%% of the diagonal, error bound 1e-4 | %s | %zu | %.3f | %.3f | %.2fx "
+          "|\n",
+          in.name.c_str(), in.mesh.num_faces(), reg, direct, reg / direct);
       std::fflush(stdout);
     }
   }
@@ -260,7 +299,8 @@ int main(int argc, char** argv) {
     const Algorithm& algo = find_algorithm("repair");
     for (const Input& in : inputs) {
       Context ctx;
-      const double reg = best_seconds(repeat, [] {}, [&] { (void)algo.run(in.mesh, {}, ctx); });
+      const double reg = best_seconds(
+          repeat, [] {}, [&] { (void)algo.run(in.mesh, {}, ctx); });
       std::vector<Point3> points;
       std::vector<std::vector<std::size_t>> polygons;
       SurfaceMesh sm;

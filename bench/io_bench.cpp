@@ -51,13 +51,14 @@ int main(int argc, char** argv) {
   inputs.push_back({"refined_elephant (largest sample)", read_mesh(*largest)});
   if (!quick) inputs.push_back({"bunny00 subdivided twice", subdivide_midpoint(subdivide_midpoint(read_mesh(*base)))});
 
-  const Case cases[] = {{"OFF", "off", false},         {"OBJ", "obj", false},
-                        {"PLY binary", "ply", true},   {"PLY ascii", "ply", false},
-                        {"STL binary", "stl", true},   {"STL ascii", "stl", false}};
+  const Case cases[] = {{"OFF", "off", false},       {"OBJ", "obj", false},       {"PLY binary", "ply", true},
+                        {"PLY ascii", "ply", false}, {"STL binary", "stl", true}, {"STL ascii", "stl", false}};
   const fs::path dir = fs::temp_directory_path() / ("cgview-io-bench-" + std::to_string(::getpid()));
   fs::create_directories(dir);
 
-  std::printf("| mesh | triangles | format | file MB | CGView read s | CGView read + to Surface_mesh s | CGAL read_polygon_mesh s | CGAL / CGView |\n");
+  std::printf(
+      "| mesh | triangles | format | file MB | CGView read s | CGView read + to Surface_mesh s | CGAL "
+      "read_polygon_mesh s | CGAL / CGView |\n");
   std::printf("|---|---:|---|---:|---:|---:|---:|---:|\n");
   for (const Input& in : inputs) {
     for (const Case& c : cases) {
@@ -77,7 +78,8 @@ int main(int argc, char** argv) {
         if (!CGAL::IO::read_polygon_mesh(file.string(), sm)) std::fprintf(stderr, "CGAL failed on %s\n", file.c_str());
         cgal_faces = sm.number_of_faces();
       });
-      if (cgal_faces != faces) std::fprintf(stderr, "warning: %s: CGAL read %zu faces, CGView %zu\n", file.c_str(), cgal_faces, faces);
+      if (cgal_faces != faces)
+        std::fprintf(stderr, "warning: %s: CGAL read %zu faces, CGView %zu\n", file.c_str(), cgal_faces, faces);
       std::printf("| %s | %zu | %s | %.1f | %.3f | %.3f | %.3f | %.1fx |\n", in.name.c_str(), in.mesh.num_faces(),
                   c.label, double(fs::file_size(file)) / 1e6, ours, ours_sm, cgal, cgal / ours);
       std::fflush(stdout);

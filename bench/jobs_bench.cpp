@@ -4,7 +4,8 @@
 // WebSocket job_done events.  Prints throughput, p50/p99 submit->done, and
 // the per-job overhead against calling the algorithm in-process.
 //
-//   build/bin/jobs_bench [--jobs 1000] [--sequential 100] [--job-workers N] [--server build/bin/cgview-server] [--mesh FILE]
+//   build/bin/jobs_bench [--jobs 1000] [--sequential 100] [--job-workers N] [--server build/bin/cgview-server] [--mesh
+//   FILE]
 #include <utility>  // before Boost 1.74's asio (std::exchange)
 
 #include <boost/asio.hpp>
@@ -93,7 +94,8 @@ int main(int argc, char** argv) {
     else if (a == "--server" && i + 1 < argc) server = argv[++i];
     else if (a == "--mesh" && i + 1 < argc) mesh_file = argv[++i];
     else {
-      std::fprintf(stderr, "usage: jobs_bench [--jobs N] [--sequential N] [--job-workers N] [--server PATH] [--mesh FILE]\n");
+      std::fprintf(stderr,
+                   "usage: jobs_bench [--jobs N] [--sequential N] [--job-workers N] [--server PATH] [--mesh FILE]\n");
       return 2;
     }
   }
@@ -117,14 +119,17 @@ int main(int argc, char** argv) {
   for (int i = 0; i < direct_n; ++i) algo.run(mesh, {{"exponent", 0.1 + 0.001 * i}}, ctx);
   const double direct_ms = ms(Clock::now() - t0) / direct_n;
   t0 = Clock::now();
-  for (int i = 0; i < direct_n; ++i) algo.run(cgview::read_mesh_file(mesh_file).mesh, {{"exponent", 0.1 + 0.001 * i}}, ctx);
+  for (int i = 0; i < direct_n; ++i)
+    algo.run(cgview::read_mesh_file(mesh_file).mesh, {{"exponent", 0.1 + 0.001 * i}}, ctx);
   const double direct_read_ms = ms(Clock::now() - t0) / direct_n;
 
   const fs::path data = fs::temp_directory_path() / ("cgview-jobs-bench-" + std::to_string(getpid()));
   fs::remove_all(data);
   int rc = 0;
   {
-    ServerProcess srv(server, data, job_workers.empty() ? std::vector<std::string>{} : std::vector<std::string>{"--job-workers", job_workers});
+    ServerProcess srv(
+        server, data,
+        job_workers.empty() ? std::vector<std::string>{} : std::vector<std::string>{"--job-workers", job_workers});
     Http client(srv.port);
     const std::string mesh_id = cgview::bench::upload(srv.port, mesh_file.filename().string(), mesh_bytes.str());
 
@@ -159,7 +164,8 @@ int main(int argc, char** argv) {
     int k = 0;
     auto submit = [&](std::vector<std::pair<std::string, Clock::time_point>>& out) {
       const double exponent = 0.1 + 3.8 * double(k++) / double(jobs + sequential);
-      const json body = {{"algorithm", "centroid_distance"}, {"inputs", {{"mesh", mesh_id}}}, {"params", {{"exponent", exponent}}}};
+      const json body = {
+          {"algorithm", "centroid_distance"}, {"inputs", {{"mesh", mesh_id}}}, {"params", {{"exponent", exponent}}}};
       const auto t = Clock::now();
       const auto r = client.call(http::verb::post, "/api/v1/jobs", body.dump());
       if (r.result_int() != 201) throw std::runtime_error("submit failed: " + r.body());
@@ -211,13 +217,14 @@ int main(int argc, char** argv) {
     ws.next_layer().close(ec);
     reader.join();
     if (!failed.empty()) {
-      std::fprintf(stderr, "jobs_bench: %zu jobs did not complete, e.g. %s\n", failed.size(), failed.begin()->second.c_str());
+      std::fprintf(stderr, "jobs_bench: %zu jobs did not complete, e.g. %s\n", failed.size(),
+                   failed.begin()->second.c_str());
       rc = 1;
     }
 
     std::printf("## jobs_bench: %d jobs of centroid_distance on %s (%zu vertices), %s job workers, %u cores\n\n", jobs,
-                mesh_file.filename().c_str(), mesh.num_vertices(), job_workers.empty() ? "default" : job_workers.c_str(),
-                std::thread::hardware_concurrency());
+                mesh_file.filename().c_str(), mesh.num_vertices(),
+                job_workers.empty() ? "default" : job_workers.c_str(), std::thread::hardware_concurrency());
     std::printf("| measure | value |\n|---|---:|\n");
     std::printf("| burst of %d jobs: submitted in | %.2f s |\n", jobs, submit_s);
     std::printf("| burst: first submit to last done | %.2f s |\n", total_s);
@@ -225,7 +232,8 @@ int main(int argc, char** argv) {
     std::printf("| burst submit->done p50 | %.1f ms |\n", percentile(lat, 0.5));
     std::printf("| burst submit->done p99 | %.1f ms |\n", percentile(lat, 0.99));
     std::printf("| lone job (%d, one at a time) submit->done mean | %.2f ms |\n", sequential, seq_mean);
-    std::printf("| lone job submit->done p50 / p99 | %.2f / %.2f ms |\n", percentile(seq_lat, 0.5), percentile(seq_lat, 0.99));
+    std::printf("| lone job submit->done p50 / p99 | %.2f / %.2f ms |\n", percentile(seq_lat, 0.5),
+                percentile(seq_lat, 0.99));
     std::printf("| in-process algorithm call | %.4f ms |\n", direct_ms);
     std::printf("| in-process read mesh file + call | %.4f ms |\n", direct_read_ms);
     std::printf("| per-job overhead (lone job mean - in-process call) | %.2f ms |\n", seq_mean - direct_ms);

@@ -120,8 +120,9 @@ int small_views(int repeat, bool large, const std::string& only) {
   Renderer renderer;
   std::printf("renderer: %s (%s platform); 48 views of 256x256, depth only; median of %d runs\n\n",
               renderer.info().gl_renderer.c_str(), renderer.info().platform.c_str(), repeat);
-  std::printf("| mesh | faces | 1 context: wall | CPU-s | 2 contexts: wall | CPU-s | new Renderer + 2 contexts: wall | "
-              "24 pairs with back depth, 2 contexts: wall | CPU-s |\n");
+  std::printf(
+      "| mesh | faces | 1 context: wall | CPU-s | 2 contexts: wall | CPU-s | new Renderer + 2 contexts: wall | "
+      "24 pairs with back depth, 2 contexts: wall | CPU-s |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Input& in : inputs) {
     const BBox box = bounding_box(in.mesh);
@@ -196,7 +197,9 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--views") && i + 1 < argc) views = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--large-only")) large_only = true;
     else {
-      std::fprintf(stderr, "usage: render_bench [--views N] [--quick] [--large-only] | --small-views [--repeat N] [--large] [--only MESH.off]\n");
+      std::fprintf(stderr,
+                   "usage: render_bench [--views N] [--quick] [--large-only] | --small-views [--repeat N] [--large] "
+                   "[--only MESH.off]\n");
       return 2;
     }
   }
@@ -220,11 +223,15 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (!large_only) inputs.push_back({"refined_elephant", read_mesh(*elephant)});
-  if (!quick || large_only) inputs.push_back({"bunny00 subdivided twice", subdivide_midpoint(subdivide_midpoint(read_mesh(*bunny)))});
+  if (!quick || large_only)
+    inputs.push_back({"bunny00 subdivided twice", subdivide_midpoint(subdivide_midpoint(read_mesh(*bunny)))});
 
   const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
-  std::printf("| mesh | faces | size | views | EGL first call (upload + 1 view) | EGL views | per view | EGL views, %d contexts | per view | AABB tree build | CPU ray cast | per view | ratio CPU/EGL (1 context) | ratio CPU/EGL (%d contexts) | CPU-seconds EGL / EGL %d / ray cast | silhouettes agree | depth error (pixels) |\n",
-              cores, cores, cores);
+  std::printf(
+      "| mesh | faces | size | views | EGL first call (upload + 1 view) | EGL views | per view | EGL views, %d "
+      "contexts | per view | AABB tree build | CPU ray cast | per view | ratio CPU/EGL (1 context) | ratio CPU/EGL (%d "
+      "contexts) | CPU-seconds EGL / EGL %d / ray cast | silhouettes agree | depth error (pixels) |\n",
+      cores, cores, cores);
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Input& in : inputs) {
     Triangles tris;
@@ -281,17 +288,19 @@ int main(int argc, char** argv) {
           }
         }
       }
-      std::printf("| %s | %zu | %d² | %d | %.0f ms | %.3f s | %.1f ms | %.3f s | %.1f ms | %.2f s | %.2f s | %.1f ms | %.1f | %.1f | %.1f / %.1f / %.1f | %.3f%% | %.3f mean |\n",
-                  in.name.c_str(), in.mesh.faces.size(), size, views, one_s * 1e3, gpu_s,
-                  gpu_s / views * 1e3, gpu_n_s, gpu_n_s / views * 1e3, build_s, cpu_s, cpu_s / views * 1e3, cpu_s / gpu_s,
-                  cpu_s / gpu_n_s, gpu_cpu, gpu_n_cpu, cpu_cpu, 100.0 * same / total,
-                  both ? depth_err / both : 0.0);
+      std::printf(
+          "| %s | %zu | %d² | %d | %.0f ms | %.3f s | %.1f ms | %.3f s | %.1f ms | %.2f s | %.2f s | %.1f ms | %.1f | "
+          "%.1f | %.1f / %.1f / %.1f | %.3f%% | %.3f mean |\n",
+          in.name.c_str(), in.mesh.faces.size(), size, views, one_s * 1e3, gpu_s, gpu_s / views * 1e3, gpu_n_s,
+          gpu_n_s / views * 1e3, build_s, cpu_s, cpu_s / views * 1e3, cpu_s / gpu_s, cpu_s / gpu_n_s, gpu_cpu,
+          gpu_n_cpu, cpu_cpu, 100.0 * same / total, both ? depth_err / both : 0.0);
       std::fflush(stdout);
     }
   }
-  std::printf("\nEGL views: upload once, then per view a draw and the read-back of depth (silhouette = depth < 1);\n"
-              "CPU: CGAL AABB_tree::first_intersection per pixel centre on %u threads, tree build not included.\n"
-              "Times are wall clock; CPU-seconds (getrusage, all threads) are steadier on a shared machine.\n",
-              std::thread::hardware_concurrency());
+  std::printf(
+      "\nEGL views: upload once, then per view a draw and the read-back of depth (silhouette = depth < 1);\n"
+      "CPU: CGAL AABB_tree::first_intersection per pixel centre on %u threads, tree build not included.\n"
+      "Times are wall clock; CPU-seconds (getrusage, all threads) are steadier on a shared machine.\n",
+      std::thread::hardware_concurrency());
   return 0;
 }

@@ -70,12 +70,12 @@ int main(int argc, char** argv) {
   const bench::Options opt = bench::parse_options(argc, argv, "sdf_bench");
   std::vector<Input> inputs;
   for (const char* n : {"elephant", "man", "armadillo", "refined_elephant"})
-    if (opt.wants(n) && (!opt.quick || std::string(n) == "elephant"))
-      inputs.push_back({n, sample(n)});
+    if (opt.wants(n) && (!opt.quick || std::string(n) == "elephant")) inputs.push_back({n, sample(n)});
   if (!opt.quick && opt.wants("big"))
     inputs.push_back({"big", subdivide_midpoint(subdivide_midpoint(sample("refined_elephant")))});
 
-  std::printf("sdf against CGAL 5.5 sdf_values (25 rays, 120 degrees, Vogel's spiral, uniform weights, MAD outliers)\n");
+  std::printf(
+      "sdf against CGAL 5.5 sdf_values (25 rays, 120 degrees, Vogel's spiral, uniform weights, MAD outliers)\n");
   std::printf("%-18s %9s %10s %10s %8s %9s\n", "mesh", "faces", "CGAL s", "ours s", "ratio", "Pearson");
   sdf::SdfParamFields cgal_like;
   cgal_like.weights = "uniform";
@@ -84,9 +84,8 @@ int main(int argc, char** argv) {
     const bool big = in.mesh.faces.size() > 500000;
     SurfaceMesh sm = manifold_surface_mesh(in.mesh, "sdf_bench");
     auto map = sm.add_property_map<SurfaceMesh::Face_index, double>("f:sdf", 0.0).first;
-    const double cgal_s = bench::best_seconds(big ? 1 : opt.repeat, [&] {
-      CGAL::sdf_values(sm, map, 2.0 * std::numbers::pi / 3.0, 25, !big);
-    });
+    const double cgal_s = bench::best_seconds(
+        big ? 1 : opt.repeat, [&] { CGAL::sdf_values(sm, map, 2.0 * std::numbers::pi / 3.0, 25, !big); });
     std::vector<double> ours, theirs;
     const double ours_s = bench::best_seconds(opt.repeat, [&] { ours = our_sdf(in.mesh, cgal_like, !big); });
     if (!big) ours = sdf::normalize_linear(ours);
@@ -108,7 +107,8 @@ int main(int argc, char** argv) {
     for (double fraction : {0.05, 0.1, 0.2})
       for (sdf::Solver solver : {sdf::Solver::conjugate_gradient, sdf::Solver::cholesky}) {
         std::vector<double> fast;
-        const double fast_s = bench::best_seconds(opt.repeat, [&] { fast = our_fast(in.mesh, defaults, fraction, solver); });
+        const double fast_s =
+            bench::best_seconds(opt.repeat, [&] { fast = our_fast(in.mesh, defaults, fraction, solver); });
         std::vector<double> err(full.size());
         double mean = 0;
         for (std::size_t f = 0; f < full.size(); ++f) mean += (err[f] = std::abs(fast[f] - full[f]));

@@ -42,7 +42,8 @@ int main(int argc, char** argv) {
     std::ofstream(file, std::ios::binary) << encode_nrrd(grid);
     const server::JobArtifacts artifacts{
         [&](const std::string&, const std::string&, const std::string&, const server::Caller&) {
-          return server::ArtifactBytes{read_file_bytes(file, std::uint64_t(1) << 40), "application/octet-stream", "grid.nrrd"};
+          return server::ArtifactBytes{read_file_bytes(file, std::uint64_t(1) << 40), "application/octet-stream",
+                                       "grid.nrrd"};
         },
         [](const std::string&, const server::Caller&) {}};
     const int slices = 32;
@@ -50,14 +51,17 @@ int main(int argc, char** argv) {
       const server::WsHandler ws(meshes, artifacts, auth, nullptr, {std::size_t(4) << 20, 1 << 20, kept});
       server::WsConnection conn;
       conn.caller = server::Caller::local();
-      return bench::best_seconds(opt.repeat, [&] {
-        for (int s = 0; s < slices; ++s) {
-          const auto replies = ws.handle(R"({"type":"get_slice","request_id":1,"job_id":"j","axis":"z","index":)" +
+      return bench::best_seconds(opt.repeat,
+                                 [&] {
+                                   for (int s = 0; s < slices; ++s) {
+                                     const auto replies = ws.handle(
+                                         R"({"type":"get_slice","request_id":1,"job_id":"j","axis":"z","index":)" +
                                              std::to_string(s * n / slices) + "}",
                                          conn);
-          if (replies.size() < 3) std::abort();
-        }
-      }) / slices;
+                                     if (replies.size() < 3) std::abort();
+                                   }
+                                 }) /
+             slices;
     };
     const double each = page(0), kept = page(4);
     std::printf("%4d^3      %6d  %27.2f  %23.2f  %5.1fx\n", n, slices, each * 1e3, kept * 1e3, each / kept);

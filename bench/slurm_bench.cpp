@@ -84,7 +84,8 @@ std::string submit(unsigned short port, const json& body) {
 }
 
 // Polls GET /api/v1/jobs until each id ended; the time each was seen ended.
-std::map<std::string, Clock::time_point> wait_all(unsigned short port, const std::vector<std::string>& ids, int& failed) {
+std::map<std::string, Clock::time_point> wait_all(unsigned short port, const std::vector<std::string>& ids,
+                                                  int& failed) {
   std::map<std::string, Clock::time_point> ended;
   const std::set<std::string> wanted(ids.begin(), ids.end());
   const auto deadline = Clock::now() + std::chrono::minutes(20);
@@ -125,9 +126,11 @@ Run run(const std::string& executor, const fs::path& dir, SlurmCluster* cluster,
   const auto t0 = Clock::now();
   for (int i = 0; i < jobs; ++i) {
     const bool sdf = i % 4 == 3;  // 50 of 200
-    const json body = sdf ? json{{"algorithm", "sdf"}, {"inputs", {{"mesh", elephant}}}, {"params", {{"rays", 10 + i % 200}}}}
-                          : json{{"algorithm", "centroid_distance"}, {"inputs", {{"mesh", sphere}}},
-                                 {"params", {{"exponent", 0.1 + 0.001 * i}}}};
+    const json body =
+        sdf ? json{{"algorithm", "sdf"}, {"inputs", {{"mesh", elephant}}}, {"params", {{"rays", 10 + i % 200}}}}
+            : json{{"algorithm", "centroid_distance"},
+                   {"inputs", {{"mesh", sphere}}},
+                   {"params", {{"exponent", 0.1 + 0.001 * i}}}};
     const auto at = Clock::now();
     const std::string id = submit(port, body);
     ids.push_back(id);
@@ -154,7 +157,8 @@ Run run(const std::string& executor, const fs::path& dir, SlurmCluster* cluster,
   std::vector<double> lone;
   for (int i = 0; i < 10; ++i) {
     const auto at = Clock::now();
-    const std::string id = submit(port, json{{"algorithm", "centroid_distance"}, {"inputs", {{"mesh", sphere}}},
+    const std::string id = submit(port, json{{"algorithm", "centroid_distance"},
+                                             {"inputs", {{"mesh", sphere}}},
                                              {"params", {{"exponent", 3.0 + 0.01 * i}}}});
     int f = 0;
     const auto e = wait_all(port, {id}, f);
@@ -173,8 +177,12 @@ Run run(const std::string& executor, const fs::path& dir, SlurmCluster* cluster,
     std::vector<std::string> more = args;
     more[1] = bin("cgview-worker-test");
     if (executor == "slurm") {
-      write_text(dir / "config.json",
-                 json{{"slurm", {{"poll_s", 1.0}, {"max_jobs", waiting + 10}, {"max_pending", waiting + 10}, {"sbatch_args", {"--hold"}}}}}.dump());
+      write_text(dir / "config.json", json{{"slurm",
+                                            {{"poll_s", 1.0},
+                                             {"max_jobs", waiting + 10},
+                                             {"max_pending", waiting + 10},
+                                             {"sbatch_args", {"--hold"}}}}}
+                                          .dump());
     }
     ServerProcess idle;
     fs::create_directories(dir / ("log-idle-" + executor));
@@ -182,7 +190,8 @@ Run run(const std::string& executor, const fs::path& dir, SlurmCluster* cluster,
       throw std::runtime_error("the server did not start");
     const std::string m = upload(idle.port(), "sphere.off");
     for (int i = 0; i < waiting; ++i)
-      submit(idle.port(), json{{"algorithm", "test_sleep"}, {"inputs", {{"mesh", m}}}, {"params", {{"seconds", 600 + 0.001 * i}}}});
+      submit(idle.port(),
+             json{{"algorithm", "test_sleep"}, {"inputs", {{"mesh", m}}}, {"params", {{"seconds", 600 + 0.001 * i}}}});
     // Until every job is with Slurm (held), or queued locally.
     const auto handing = Clock::now();
     if (cluster) {
@@ -236,8 +245,10 @@ int main(int argc, char** argv) {
     runs.push_back(run(e, dir, e == "slurm" ? &cluster : nullptr, jobs, waiting, idle_s));
   }
   cluster.stop();
-  std::printf("%d jobs (%d tiny centroid_distance on sphere.off, %d sdf on elephant.off), 2 local workers, 3 Slurm nodes of 2 CPUs on %u cores\n\n",
-              jobs, jobs - jobs / 4, jobs / 4, std::thread::hardware_concurrency());
+  std::printf(
+      "%d jobs (%d tiny centroid_distance on sphere.off, %d sdf on elephant.off), 2 local workers, 3 Slurm nodes of 2 "
+      "CPUs on %u cores\n\n",
+      jobs, jobs - jobs / 4, jobs / 4, std::thread::hardware_concurrency());
   std::printf("| measure | local | slurm | slurm / local |\n|---|---:|---:|---:|\n");
   auto row = [&](const char* name, double Run::*f, const char* fmt) {
     char a[32], b[32];
@@ -255,10 +266,12 @@ int main(int argc, char** argv) {
   row("lone tiny job, mean (ms): the per-job overhead", &Run::lone_mean, "%.1f");
   row("lone tiny job, p50 (ms)", &Run::lone_p50, "%.1f");
   std::printf("| failed jobs | %d | %d | |\n", runs[0].failed, runs[1].failed);
-  std::printf("\n%d jobs waiting (Slurm: held in the cluster's queue; local: in the fair queue), %d s:\n\n", waiting, idle_s);
+  std::printf("\n%d jobs waiting (Slurm: held in the cluster's queue; local: in the fair queue), %d s:\n\n", waiting,
+              idle_s);
   std::printf("| CPU seconds per minute | local | slurm |\n|---|---:|---:|\n");
   std::printf("| the server | %.3f | %.3f |\n", runs[0].idle_cpu_per_min, runs[1].idle_cpu_per_min);
-  std::printf("| its children (squeue, sbatch) | %.3f | %.3f |\n", runs[0].idle_cpu_children_per_min, runs[1].idle_cpu_children_per_min);
+  std::printf("| its children (squeue, sbatch) | %.3f | %.3f |\n", runs[0].idle_cpu_children_per_min,
+              runs[1].idle_cpu_children_per_min);
   std::printf("| slurmctld | - | %.3f |\n", runs[1].idle_ctld_per_min);
   std::printf("\nHanding the %d jobs to Slurm (sbatch each, %d a scheduler turn) took %.1f s after the last submit.\n",
               waiting, 32, runs[1].handover_s);

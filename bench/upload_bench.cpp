@@ -51,14 +51,12 @@ int main(int argc, char** argv) {
   std::printf("|---|---:|---:|---:|---:|---:|\n");
   for (const auto& [name, bytes] : inputs) {
     if (!opt.wants(name)) continue;
-    const double in_process = bench::best_seconds(opt.repeat, [&] {
-      (void)server::read_upload(name, "", bytes, std::size_t(256) << 20);
-    });
-    const double child = bench::best_seconds(opt.repeat, [&] {
-      (void)server::read_upload_in_child(reader, name, "", bytes, std::size_t(256) << 20);
-    });
-    std::printf("| %s | %zu | %.2f | %.2f | %.2fx | %+.2f |\n", name.c_str(), bytes.size(), in_process * 1e3, child * 1e3,
-                child / in_process, (child - in_process) * 1e3);
+    const double in_process =
+        bench::best_seconds(opt.repeat, [&] { (void)server::read_upload(name, "", bytes, std::size_t(256) << 20); });
+    const double child = bench::best_seconds(
+        opt.repeat, [&] { (void)server::read_upload_in_child(reader, name, "", bytes, std::size_t(256) << 20); });
+    std::printf("| %s | %zu | %.2f | %.2f | %.2fx | %+.2f |\n", name.c_str(), bytes.size(), in_process * 1e3,
+                child * 1e3, child / in_process, (child - in_process) * 1e3);
     std::fflush(stdout);
   }
   std::error_code ec;

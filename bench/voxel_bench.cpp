@@ -67,7 +67,9 @@ int main(int argc, char** argv) {
     else if (a == "--no-openvdb") no_vdb = true;
     else if (a == "--threads" && i + 1 < argc) threads = std::max(1, std::atoi(argv[++i]));
     else {
-      std::fprintf(stderr, "usage: voxel_bench [--quick] [--max-res N] [--repeat N] [--res N]... [--large-only] [--no-openvdb] [--threads N]\n");
+      std::fprintf(stderr,
+                   "usage: voxel_bench [--quick] [--max-res N] [--repeat N] [--res N]... [--large-only] [--no-openvdb] "
+                   "[--threads N]\n");
       return 2;
     }
   }
@@ -82,16 +84,21 @@ int main(int argc, char** argv) {
   }
   std::vector<Input> inputs;
   inputs.push_back({"refined_elephant", read_mesh(*path)});
-  if (!quick) inputs.push_back({"refined_elephant subdivided twice", subdivide_midpoint(subdivide_midpoint(inputs[0].mesh))});
+  if (!quick)
+    inputs.push_back({"refined_elephant subdivided twice", subdivide_midpoint(subdivide_midpoint(inputs[0].mesh))});
   std::vector<int> resolutions = quick ? std::vector<int>{128, 256} : std::vector<int>{128, 256, 512, 1024};
   if (!only_res.empty()) resolutions = only_res;
   if (large_only && inputs.size() > 1) inputs.erase(inputs.begin());
-  resolutions.erase(std::remove_if(resolutions.begin(), resolutions.end(), [&](int r) { return r > max_res; }), resolutions.end());
+  resolutions.erase(std::remove_if(resolutions.begin(), resolutions.end(), [&](int r) { return r > max_res; }),
+                    resolutions.end());
 
   std::printf("threads: %u (both sides)\n\n", nthreads);
-  std::printf("| mesh | triangles | resolution | grid | CGView solid s | OpenVDB solid s (of which meshToLevelSet) | OpenVDB / CGView | "
-              "CGView surface s | surface Mtri/s | dense grid alone s | surface Mtri/s without it | voxels inside: CGView | OpenVDB | "
-              "OpenVDB's inside also CGView's | CGView's inside also OpenVDB's |\n");
+  std::printf(
+      "| mesh | triangles | resolution | grid | CGView solid s | OpenVDB solid s (of which meshToLevelSet) | OpenVDB / "
+      "CGView | "
+      "CGView surface s | surface Mtri/s | dense grid alone s | surface Mtri/s without it | voxels inside: CGView | "
+      "OpenVDB | "
+      "OpenVDB's inside also CGView's | CGView's inside also OpenVDB's |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Input& in : inputs) {
     std::vector<openvdb::Vec3s> points;
@@ -130,8 +137,9 @@ int main(int argc, char** argv) {
       openvdb::FloatGrid::Ptr sdf;
       openvdb::BoolGrid::Ptr interior;
       if (no_vdb) {
-        std::printf("| %s | %zu | %d | CGView only | %.3f | | | %.3f | %.1f | %.3f | %.1f | %zu | | | |\n", in.name.c_str(),
-                    in.mesh.num_faces(), res, t_solid, t_surface, double(in.mesh.num_faces()) / t_surface / 1e6, t_grid,
+        std::printf("| %s | %zu | %d | CGView only | %.3f | | | %.3f | %.1f | %.3f | %.1f | %zu | | | |\n",
+                    in.name.c_str(), in.mesh.num_faces(), res, t_solid, t_surface,
+                    double(in.mesh.num_faces()) / t_surface / 1e6, t_grid,
                     double(in.mesh.num_faces()) / std::max(1e-6, t_surface - t_grid) / 1e6, ours.solid_voxels);
         continue;
       }
@@ -159,12 +167,15 @@ int main(int argc, char** argv) {
             vdb_in += v;
             both += o && v;
           }
-      std::printf("| %s | %zu | %d | %dx%dx%d | %.3f | %.3f (%.3f) | %.2f | %.3f | %.1f | %.3f | %.1f | %zu | %zu | %.4f%% | %.2f%% |\n",
-                  in.name.c_str(), in.mesh.num_faces(), res, d[0], d[1], d[2], t_solid, t_vdb, t_ls, t_vdb / t_solid, t_surface,
-                  double(in.mesh.num_faces()) / t_surface / 1e6, t_grid,
-                  double(in.mesh.num_faces()) / std::max(1e-6, t_surface - t_grid) / 1e6, ours_in * std::size_t(step * step * step),
-                  vdb_in * std::size_t(step * step * step), 100.0 * double(both) / double(std::max<std::size_t>(vdb_in, 1)),
-                  100.0 * double(both) / double(std::max<std::size_t>(ours_in, 1)));
+      std::printf(
+          "| %s | %zu | %d | %dx%dx%d | %.3f | %.3f (%.3f) | %.2f | %.3f | %.1f | %.3f | %.1f | %zu | %zu | %.4f%% | "
+          "%.2f%% |\n",
+          in.name.c_str(), in.mesh.num_faces(), res, d[0], d[1], d[2], t_solid, t_vdb, t_ls, t_vdb / t_solid, t_surface,
+          double(in.mesh.num_faces()) / t_surface / 1e6, t_grid,
+          double(in.mesh.num_faces()) / std::max(1e-6, t_surface - t_grid) / 1e6,
+          ours_in * std::size_t(step * step * step), vdb_in * std::size_t(step * step * step),
+          100.0 * double(both) / double(std::max<std::size_t>(vdb_in, 1)),
+          100.0 * double(both) / double(std::max<std::size_t>(ours_in, 1)));
       std::fflush(stdout);
     }
   }

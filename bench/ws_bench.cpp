@@ -78,7 +78,8 @@ std::size_t fetch(unsigned short port, const std::string& id, double* seconds) {
 std::size_t gzip_size(const std::string& raw) {
   uLongf n = compressBound(uLong(raw.size()));
   std::string out(n, '\0');
-  if (compress2(reinterpret_cast<Bytef*>(out.data()), &n, reinterpret_cast<const Bytef*>(raw.data()), uLong(raw.size()), 6) != Z_OK)
+  if (compress2(reinterpret_cast<Bytef*>(out.data()), &n, reinterpret_cast<const Bytef*>(raw.data()), uLong(raw.size()),
+                6) != Z_OK)
     throw std::runtime_error("zlib failed");
   return n;
 }
@@ -132,14 +133,17 @@ int main(int argc, char** argv) {
     const std::string id = upload(server.port, "bunny_1m.ply", ply);
     const long rss_before = server.peak_rss_kb();
     double first = 0, second = 0;
-    const std::size_t wire = fetch(server.port, id, &first);   // encodes
-    fetch(server.port, id, &second);                           // from the cache
+    const std::size_t wire = fetch(server.port, id, &first);  // encodes
+    fetch(server.port, id, &second);                          // from the cache
 
-    std::printf("## Draco over WebSocket: %zu vertices, %zu triangles (bunny00 subdivided twice)\n\n", mesh.num_vertices(), mesh.num_faces());
+    std::printf("## Draco over WebSocket: %zu vertices, %zu triangles (bunny00 subdivided twice)\n\n",
+                mesh.num_vertices(), mesh.num_faces());
     std::printf("| measure | value |\n|---|---:|\n");
     std::printf("| raw float32 positions + uint32 indices | %.2f MB |\n", raw.size() / 1e6);
-    std::printf("| gzip -6 of the raw buffers | %.2f MB (%.1f%% of raw, %.2f s to compress) |\n", gz / 1e6, 100.0 * gz / raw.size(), gzip_s);
-    std::printf("| Draco, 14-bit positions (bytes on the wire) | %.2f MB (%.1f%% of raw) |\n", wire / 1e6, 100.0 * wire / raw.size());
+    std::printf("| gzip -6 of the raw buffers | %.2f MB (%.1f%% of raw, %.2f s to compress) |\n", gz / 1e6,
+                100.0 * gz / raw.size(), gzip_s);
+    std::printf("| Draco, 14-bit positions (bytes on the wire) | %.2f MB (%.1f%% of raw) |\n", wire / 1e6,
+                100.0 * wire / raw.size());
     std::printf("| first fetch: encode + send, one client | %.3f s |\n", first);
     std::printf("| second fetch: from the cache | %.3f s |\n", second);
 
@@ -160,10 +164,11 @@ int main(int argc, char** argv) {
     int ok = 0;
     for (std::size_t s : sizes) ok += s == wire;
     std::sort(times.begin(), times.end());
-    std::printf("| %d concurrent clients, same mesh: total | %.3f s (%d of %d complete; slowest %.3f s, median %.3f s) |\n", clients,
-                total, ok, clients, times.back(), times[times.size() / 2]);
-    std::printf("| server peak memory (VmHWM) | %.0f MB (%.0f MB before the fetches) |\n", server.peak_rss_kb() / 1024.0,
-                rss_before / 1024.0);
+    std::printf(
+        "| %d concurrent clients, same mesh: total | %.3f s (%d of %d complete; slowest %.3f s, median %.3f s) |\n",
+        clients, total, ok, clients, times.back(), times[times.size() / 2]);
+    std::printf("| server peak memory (VmHWM) | %.0f MB (%.0f MB before the fetches) |\n",
+                server.peak_rss_kb() / 1024.0, rss_before / 1024.0);
     if (ok != clients) rc = 1;
     // The same ratio on a sample mesh with real detail, encoded in-process.
     if (const auto man = resolve_mesh_path("man.off")) {
@@ -171,8 +176,9 @@ int main(int argc, char** argv) {
       const std::size_t man_raw = m.num_vertices() * 12 + m.num_faces() * 12;
       const auto t1 = Clock::now();
       const std::size_t man_drc = write_mesh_bytes(m, MeshFormat::drc).size();
-      std::printf("| CGAL's man.off (%zu triangles): Draco 14-bit | %.1f KB (%.1f%% of %.1f KB raw; encoded in %.3f s) |\n",
-                  m.num_faces(), man_drc / 1e3, 100.0 * man_drc / man_raw, man_raw / 1e3, seconds_since(t1));
+      std::printf(
+          "| CGAL's man.off (%zu triangles): Draco 14-bit | %.1f KB (%.1f%% of %.1f KB raw; encoded in %.3f s) |\n",
+          m.num_faces(), man_drc / 1e3, 100.0 * man_drc / man_raw, man_raw / 1e3, seconds_since(t1));
     }
   }
   fs::remove_all(data);

@@ -17,11 +17,22 @@ json to_json(const Algorithm& a) {
   for (const ParamSpec& p : a.params) {
     json s;
     switch (p.type) {
-      case ParamType::integer: s["type"] = "integer"; break;
-      case ParamType::number: s["type"] = "number"; break;
-      case ParamType::boolean: s["type"] = "boolean"; break;
-      case ParamType::choice: s["type"] = "string"; s["enum"] = p.info.choices; break;
-      case ParamType::text: s["type"] = "string"; break;
+      case ParamType::integer:
+        s["type"] = "integer";
+        break;
+      case ParamType::number:
+        s["type"] = "number";
+        break;
+      case ParamType::boolean:
+        s["type"] = "boolean";
+        break;
+      case ParamType::choice:
+        s["type"] = "string";
+        s["enum"] = p.info.choices;
+        break;
+      case ParamType::text:
+        s["type"] = "string";
+        break;
       case ParamType::faces:
       case ParamType::vertices:
         // A selection of the first input mesh: the viewer offers its current one.
@@ -79,7 +90,9 @@ std::map<std::string, ParamValue> params_from_json(const Algorithm& a, const jso
         ids.push_back(Index(e.get<long long>()));
       }
       value = std::move(ids);
-    } else throw InvalidInput("parameter '" + name + "': must be a " + std::string(to_string(spec->type)) + ", got " + v.dump());
+    } else
+      throw InvalidInput("parameter '" + name + "': must be a " + std::string(to_string(spec->type)) + ", got " +
+                         v.dump());
     out[name] = check_param(*spec, value);
   }
   return out;

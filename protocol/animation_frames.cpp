@@ -46,8 +46,8 @@ std::string encode_animation_payload(std::string_view frames_bytes) {
   }
   uLongf packed = compressBound(uLong(raw.size()));
   std::string out(packed, '\0');
-  if (compress2(reinterpret_cast<Bytef*>(out.data()), &packed, reinterpret_cast<const Bytef*>(raw.data()), uLong(raw.size()),
-                Z_DEFAULT_COMPRESSION) != Z_OK)
+  if (compress2(reinterpret_cast<Bytef*>(out.data()), &packed, reinterpret_cast<const Bytef*>(raw.data()),
+                uLong(raw.size()), Z_DEFAULT_COMPRESSION) != Z_OK)
     throw Error("zlib could not compress an animation");
   out.resize(packed);
   return out;

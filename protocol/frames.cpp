@@ -43,14 +43,16 @@ FrameHeader decode_frame(std::string_view f, std::string_view* chunk) {
   if (header_bytes < kFrameHeaderBytes || header_bytes > f.size()) throw InvalidInput("a frame's header size is wrong");
   FrameHeader h;
   h.kind = FrameKind(get<std::uint16_t>(f, 6));
-  if (h.kind != FrameKind::draco_mesh && h.kind != FrameKind::voxel_slice && h.kind != FrameKind::animation) throw InvalidInput("unknown frame kind " + std::to_string(int(h.kind)));
+  if (h.kind != FrameKind::draco_mesh && h.kind != FrameKind::voxel_slice && h.kind != FrameKind::animation)
+    throw InvalidInput("unknown frame kind " + std::to_string(int(h.kind)));
   h.request_id = get<std::uint32_t>(f, 8);
   h.chunk_index = get<std::uint32_t>(f, 12);
   h.chunk_count = get<std::uint32_t>(f, 16);
   h.total_bytes = get<std::uint64_t>(f, 24);
   if (h.chunk_count == 0 || h.chunk_index >= h.chunk_count)
     throw InvalidInput("frame chunk " + std::to_string(h.chunk_index) + " of " + std::to_string(h.chunk_count));
-  if (f.size() - header_bytes > h.total_bytes) throw InvalidInput("a frame carries more bytes than its payload's total");
+  if (f.size() - header_bytes > h.total_bytes)
+    throw InvalidInput("a frame carries more bytes than its payload's total");
   if (chunk) *chunk = f.substr(header_bytes);
   return h;
 }

@@ -77,8 +77,8 @@ DecodedSlice decode_slice_payload(std::string_view p) {
   d.corner = {get<double>(p, 40), get<double>(p, 48), get<double>(p, 56)};
   std::string bytes(raw, '\0');
   uLongf got = raw;
-  if (uncompress(reinterpret_cast<Bytef*>(bytes.data()), &got, reinterpret_cast<const Bytef*>(p.data() + kSliceHeaderBytes),
-                 packed) != Z_OK ||
+  if (uncompress(reinterpret_cast<Bytef*>(bytes.data()), &got,
+                 reinterpret_cast<const Bytef*>(p.data() + kSliceHeaderBytes), packed) != Z_OK ||
       got != raw)
     throw InvalidInput("the voxel slice's zlib data is corrupt");
   d.slice.values.resize(n);

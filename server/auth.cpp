@@ -29,7 +29,8 @@ bool same_digest(std::string_view a, std::string_view b) {
 bool starts_with_nocase(std::string_view s, std::string_view prefix) {
   if (s.size() < prefix.size()) return false;
   for (std::size_t i = 0; i < prefix.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(s[i])) != std::tolower(static_cast<unsigned char>(prefix[i]))) return false;
+    if (std::tolower(static_cast<unsigned char>(s[i])) != std::tolower(static_cast<unsigned char>(prefix[i])))
+      return false;
   return true;
 }
 
@@ -55,8 +56,7 @@ std::optional<Caller> Auth::check_token(std::string_view token) const {
   const auto row = store_.find_token(std::string(token.substr(kPrefix.size(), 16)));
   if (!row) return std::nullopt;
   const std::string hash = sha256_hex(token.substr(kPrefix.size() + 17));
-  if (!same_digest(row->second, hash))
-    return std::nullopt;
+  if (!same_digest(row->second, hash)) return std::nullopt;
   const auto user = store_.get_user(row->first);
   if (!user) return std::nullopt;
   return Caller{user->name, user->admin};
@@ -64,7 +64,8 @@ std::optional<Caller> Auth::check_token(std::string_view token) const {
 
 std::string Auth::add_user(const std::string& name, bool admin) {
   if (!valid_user_name(name))
-    throw InvalidInput("'" + name + "' is not a user name: 1 to 64 letters, digits, '_', '.' or '-' (not local or system)");
+    throw InvalidInput("'" + name +
+                       "' is not a user name: 1 to 64 letters, digits, '_', '.' or '-' (not local or system)");
   store_.add_user(name, admin);
   const std::string id = random_hex(8), secret = random_hex(32);
   store_.add_token(id, name, sha256_hex(secret));

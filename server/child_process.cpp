@@ -42,16 +42,22 @@ pid_t spawn_child(const std::vector<std::string>& args, const ChildOptions& opti
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // a killed server leaves no child behind
   ::setpgid(0, 0);
   if (limit > 0) {
-    struct rlimit rl{limit, limit};
+    struct rlimit rl {
+      limit, limit
+    };
     ::setrlimit(RLIMIT_AS, &rl);
   }
-  struct rlimit core{0, 0};
+  struct rlimit core {
+    0, 0
+  };
   ::setrlimit(RLIMIT_CORE, &core);
   const int null = ::open("/dev/null", O_RDWR);
   if (null >= 0) ::dup2(null, 0);
   if (options.stdout_fd >= 0) ::dup2(options.stdout_fd, 1);
   else if (null >= 0) ::dup2(null, 1);
-  const int e = options.stderr_to_stdout ? -1 : err.empty() ? -1 : ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const int e = options.stderr_to_stdout ? -1
+                : err.empty()            ? -1
+                                         : ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (options.stderr_to_stdout) ::dup2(1, 2);
   else if (e >= 0) ::dup2(e, 2);
   else if (null >= 0) ::dup2(null, 2);
@@ -89,15 +95,24 @@ std::optional<int> wait_child(pid_t pid, std::chrono::milliseconds limit) {
 
 std::string signal_name(int sig) {
   switch (sig) {
-    case SIGSEGV: return "SIGSEGV";
-    case SIGABRT: return "SIGABRT";
-    case SIGKILL: return "SIGKILL";
-    case SIGTERM: return "SIGTERM";
-    case SIGBUS: return "SIGBUS";
-    case SIGFPE: return "SIGFPE";
-    case SIGILL: return "SIGILL";
-    case SIGXCPU: return "SIGXCPU";
-    default: return "signal " + std::to_string(sig);
+    case SIGSEGV:
+      return "SIGSEGV";
+    case SIGABRT:
+      return "SIGABRT";
+    case SIGKILL:
+      return "SIGKILL";
+    case SIGTERM:
+      return "SIGTERM";
+    case SIGBUS:
+      return "SIGBUS";
+    case SIGFPE:
+      return "SIGFPE";
+    case SIGILL:
+      return "SIGILL";
+    case SIGXCPU:
+      return "SIGXCPU";
+    default:
+      return "signal " + std::to_string(sig);
   }
 }
 

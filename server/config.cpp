@@ -41,32 +41,51 @@ using Setter = std::function<void(const json&, const std::string& key, ServerCon
 const std::map<std::string, Setter>& server_keys() {
   static const std::map<std::string, Setter> keys = {
       {"host", [](const json& v, const std::string& k, ServerConfig& c) { c.host = text(v, k); }},
-      {"port", [](const json& v, const std::string& k, ServerConfig& c) { c.port = static_cast<unsigned short>(integer(v, k, 0, 65535)); }},
+      {"port", [](const json& v, const std::string& k,
+                  ServerConfig& c) { c.port = static_cast<unsigned short>(integer(v, k, 0, 65535)); }},
       {"static_dir", [](const json& v, const std::string& k, ServerConfig& c) { c.static_dir = text(v, k); }},
-      {"max_upload_mb", [](const json& v, const std::string& k, ServerConfig& c) { c.max_upload_bytes = std::size_t(integer(v, k, 1, 1 << 20)) << 20; }},
+      {"max_upload_mb", [](const json& v, const std::string& k,
+                           ServerConfig& c) { c.max_upload_bytes = std::size_t(integer(v, k, 1, 1 << 20)) << 20; }},
       {"workers", [](const json& v, const std::string& k, ServerConfig& c) { c.workers = int(integer(v, k, 1, 256)); }},
-      {"ws_chunk_kb", [](const json& v, const std::string& k, ServerConfig& c) { c.chunk_bytes = std::size_t(integer(v, k, 1, 16 * 1024 - 1)) << 10; }},
-      {"auth", [](const json& v, const std::string& k, ServerConfig& c) {
+      {"ws_chunk_kb", [](const json& v, const std::string& k,
+                         ServerConfig& c) { c.chunk_bytes = std::size_t(integer(v, k, 1, 16 * 1024 - 1)) << 10; }},
+      {"auth",
+       [](const json& v, const std::string& k, ServerConfig& c) {
          const std::string m = text(v, k);
          if (m != "auto" && m != "required") bad(k, "is \"auto\" or \"required\", got " + v.dump());
          c.auth_required = m == "required";
        }},
-      {"gl_platform", [](const json& v, const std::string& k, ServerConfig& c) { c.gl_platform = render::parse_gl_platform(text(v, k), k.c_str()); }},
+      {"gl_platform", [](const json& v, const std::string& k,
+                         ServerConfig& c) { c.gl_platform = render::parse_gl_platform(text(v, k), k.c_str()); }},
       {"worker", [](const json& v, const std::string& k, ServerConfig& c) { c.jobs.worker = text(v, k); }},
-      {"job_workers", [](const json& v, const std::string& k, ServerConfig& c) { c.jobs.max_workers = int(integer(v, k, 1, 1024)); }},
-      {"job_timeout_s", [](const json& v, const std::string& k, ServerConfig& c) { c.jobs.timeout_s = double(integer(v, k, 0, 100000000)); }},
-      {"job_memory_mb", [](const json& v, const std::string& k, ServerConfig& c) { c.jobs.memory_mb = std::size_t(integer(v, k, 0, 1 << 24)); }},
+      {"job_workers",
+       [](const json& v, const std::string& k, ServerConfig& c) { c.jobs.max_workers = int(integer(v, k, 1, 1024)); }},
+      {"job_timeout_s", [](const json& v, const std::string& k,
+                           ServerConfig& c) { c.jobs.timeout_s = double(integer(v, k, 0, 100000000)); }},
+      {"job_memory_mb", [](const json& v, const std::string& k,
+                           ServerConfig& c) { c.jobs.memory_mb = std::size_t(integer(v, k, 0, 1 << 24)); }},
       {"reader", [](const json& v, const std::string& k, ServerConfig& c) { c.reader = text(v, k); }},
-      {"upload_timeout_s", [](const json& v, const std::string& k, ServerConfig& c) { c.upload_timeout_s = double(integer(v, k, 1, 86400)); }},
-      {"max_header_kb", [](const json& v, const std::string& k, ServerConfig& c) { c.max_header_bytes = std::size_t(integer(v, k, 1, 1 << 20)) << 10; }},
-      {"max_ws_message_kb", [](const json& v, const std::string& k, ServerConfig& c) { c.max_ws_message_bytes = std::size_t(integer(v, k, 1, 1 << 20)) << 10; }},
-      {"request_timeout_s", [](const json& v, const std::string& k, ServerConfig& c) { c.request_timeout_s = double(integer(v, k, 1, 86400)); }},
-      {"min_body_rate_kb", [](const json& v, const std::string& k, ServerConfig& c) { c.min_body_rate = double(integer(v, k, 1, 1 << 20)) * 1024; }},
-      {"idle_timeout_s", [](const json& v, const std::string& k, ServerConfig& c) { c.idle_timeout_s = double(integer(v, k, 1, 86400)); }},
-      {"ws_idle_timeout_s", [](const json& v, const std::string& k, ServerConfig& c) { c.ws_idle_timeout_s = double(integer(v, k, 2, 86400)); }},
-      {"max_connections_per_ip", [](const json& v, const std::string& k, ServerConfig& c) { c.max_connections_per_ip = int(integer(v, k, 0, 1 << 20)); }},
+      {"upload_timeout_s", [](const json& v, const std::string& k,
+                              ServerConfig& c) { c.upload_timeout_s = double(integer(v, k, 1, 86400)); }},
+      {"max_header_kb", [](const json& v, const std::string& k,
+                           ServerConfig& c) { c.max_header_bytes = std::size_t(integer(v, k, 1, 1 << 20)) << 10; }},
+      {"max_ws_message_kb",
+       [](const json& v, const std::string& k, ServerConfig& c) {
+         c.max_ws_message_bytes = std::size_t(integer(v, k, 1, 1 << 20)) << 10;
+       }},
+      {"request_timeout_s", [](const json& v, const std::string& k,
+                               ServerConfig& c) { c.request_timeout_s = double(integer(v, k, 1, 86400)); }},
+      {"min_body_rate_kb", [](const json& v, const std::string& k,
+                              ServerConfig& c) { c.min_body_rate = double(integer(v, k, 1, 1 << 20)) * 1024; }},
+      {"idle_timeout_s", [](const json& v, const std::string& k,
+                            ServerConfig& c) { c.idle_timeout_s = double(integer(v, k, 1, 86400)); }},
+      {"ws_idle_timeout_s", [](const json& v, const std::string& k,
+                               ServerConfig& c) { c.ws_idle_timeout_s = double(integer(v, k, 2, 86400)); }},
+      {"max_connections_per_ip", [](const json& v, const std::string& k,
+                                    ServerConfig& c) { c.max_connections_per_ip = int(integer(v, k, 0, 1 << 20)); }},
       // {"rate": R, "burst": B} (requests per second per token; rate 0: no limit).
-      {"rate_limit", [](const json& v, const std::string& k, ServerConfig& c) {
+      {"rate_limit",
+       [](const json& v, const std::string& k, ServerConfig& c) {
          bool burst = false;
          for (const auto& [key, x] : object(v, k).items()) {
            if (!x.is_number() || !std::isfinite(x.get<double>()) || x.get<double>() < (key == "burst" ? 1 : 0))
@@ -79,13 +98,16 @@ const std::map<std::string, Setter>& server_keys() {
        }},
       {"tls_cert", [](const json& v, const std::string& k, ServerConfig& c) { c.tls_cert = text(v, k); }},
       {"tls_key", [](const json& v, const std::string& k, ServerConfig& c) { c.tls_key = text(v, k); }},
-      {"job_cpus", [](const json& v, const std::string& k, ServerConfig& c) { c.jobs.cpus = int(integer(v, k, 1, 1024)); }},
-      {"executor", [](const json& v, const std::string& k, ServerConfig& c) {
+      {"job_cpus",
+       [](const json& v, const std::string& k, ServerConfig& c) { c.jobs.cpus = int(integer(v, k, 1, 1024)); }},
+      {"executor",
+       [](const json& v, const std::string& k, ServerConfig& c) {
          const std::string e = text(v, k);
          if (e != "local" && e != "slurm") bad(k, "is \"local\" or \"slurm\", got " + v.dump());
          c.jobs.executor = e;
        }},
-      {"on_restart", [](const json& v, const std::string& k, ServerConfig& c) {
+      {"on_restart",
+       [](const json& v, const std::string& k, ServerConfig& c) {
          const std::string m = text(v, k);
          if (m != "requeue" && m != "interrupt") bad(k, "is \"requeue\" or \"interrupt\", got " + v.dump());
          c.jobs.requeue_on_restart = m == "requeue";
@@ -166,8 +188,10 @@ void apply_config(const json& doc, ServerConfig& config) {
           sl.requeue_lost = m == "requeue";
         } else if (key == "worker") sl.worker = text(v, k);
         else
-          bad(k, "unknown key (the slurm section knows partition, account, qos, sbatch_args, max_jobs, max_pending, poll_s, "
-                 "shared_data, server_url, on_lost, worker)");
+          bad(k,
+              "unknown key (the slurm section knows partition, account, qos, sbatch_args, max_jobs, max_pending, "
+              "poll_s, "
+              "shared_data, server_url, on_lost, worker)");
       }
     } else {
       bad(section, "unknown key (the sections are server, limits, users and slurm)");

@@ -38,8 +38,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
   // buffer: bytes already read (TLS detection); refusal: answered to the
   // first request instead of serving it (plain HTTP on a TLS port, a client
   // over its address's connection cap).
-  HttpSession(Stream&& stream, beast::flat_buffer buffer, std::shared_ptr<Shared> shared, std::shared_ptr<const Peer> peer,
-              std::optional<HttpResponse> refusal = std::nullopt)
+  HttpSession(Stream&& stream, beast::flat_buffer buffer, std::shared_ptr<Shared> shared,
+              std::shared_ptr<const Peer> peer, std::optional<HttpResponse> refusal = std::nullopt)
       : stream_(std::move(stream)),
         buffer_(std::move(buffer)),
         shared_(std::move(shared)),
@@ -92,18 +92,20 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
     if (buffer_.size() > 0) return read_header();
     // Between requests: wait for a first byte, at most idle_timeout_s.
     arm(Clock::now() + seconds(config().idle_timeout_s));
-    stream_.async_read_some(buffer_.prepare(4096), [self = this->shared_from_this()](beast::error_code ec, std::size_t n) {
-      self->disarm();
-      if (ec) return self->expired_ ? self->close() : void();
-      self->buffer_.commit(n);
-      self->read_header();
-    });
+    stream_.async_read_some(buffer_.prepare(4096),
+                            [self = this->shared_from_this()](beast::error_code ec, std::size_t n) {
+                              self->disarm();
+                              if (ec) return self->expired_ ? self->close() : void();
+                              self->buffer_.commit(n);
+                              self->read_header();
+                            });
   }
 
   void read_header() {
     request_start_ = Clock::now();
     arm(request_start_ + seconds(config().request_timeout_s));
-    http::async_read_header(stream_, buffer_, *parser_, beast::bind_front_handler(&HttpSession::on_header, this->shared_from_this()));
+    http::async_read_header(stream_, buffer_, *parser_,
+                            beast::bind_front_handler(&HttpSession::on_header, this->shared_from_this()));
   }
 
   // The header alone: refuse a body that is announced too large before it
@@ -129,33 +131,36 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
   // fall under min_body_rate since the request began (plus its grace).
   void read_body() {
     if (parser_->is_done()) return on_read({}, 0);
-    arm(request_start_ + seconds(config().request_timeout_s + double(body_bytes_) / std::max(1.0, config().min_body_rate)));
-    http::async_read_some(stream_, buffer_, *parser_, [self = this->shared_from_this()](beast::error_code ec, std::size_t n) {
-      if (ec) return self->on_read(ec, n);
-      self->body_bytes_ += n;
-      self->read_body();
-    });
+    arm(request_start_ +
+        seconds(config().request_timeout_s + double(body_bytes_) / std::max(1.0, config().min_body_rate)));
+    http::async_read_some(stream_, buffer_, *parser_,
+                          [self = this->shared_from_this()](beast::error_code ec, std::size_t n) {
+                            if (ec) return self->on_read(ec, n);
+                            self->body_bytes_ += n;
+                            self->read_body();
+                          });
   }
 
   void on_read(beast::error_code ec, std::size_t) {
     disarm();
     if (ec == http::error::end_of_stream) return close();
     if (ec == http::error::body_limit) {
-      return write(error_response(413, "payload_too_large",
-                                  "the body is over the limit of " + std::to_string(config().max_upload_bytes) + " bytes"),
-                   false);
+      return write(
+          error_response(413, "payload_too_large",
+                         "the body is over the limit of " + std::to_string(config().max_upload_bytes) + " bytes"),
+          false);
     }
     if (ec == http::error::header_limit) {
       return write(error_response(431, "headers_too_large",
-                                  "the request line and headers are over the limit of " + std::to_string(config().max_header_bytes) +
-                                      " bytes"),
+                                  "the request line and headers are over the limit of " +
+                                      std::to_string(config().max_header_bytes) + " bytes"),
                    false);
     }
     if (expired_) {
       char detail[200];
       std::snprintf(detail, sizeof detail,
-                    "the request did not arrive in time: headers within %g s, then the body at %g bytes per second", config().request_timeout_s,
-                    config().min_body_rate);
+                    "the request did not arrive in time: headers within %g s, then the body at %g bytes per second",
+                    config().request_timeout_s, config().min_body_rate);
       return write(error_response(408, "request_timeout", detail), false);
     }
     if (ec == beast::error::timeout || ec == net::error::operation_aborted || ec == net::error::connection_reset ||
@@ -175,7 +180,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
       }
     }
     if (websocket::is_upgrade(req)) {
-      if (path != "/api/v1/ws") return write(error_response(404, "not_found", "WebSockets are served at /api/v1/ws"), false);
+      if (path != "/api/v1/ws")
+        return write(error_response(404, "not_found", "WebSockets are served at /api/v1/ws"), false);
       // A token in the upgrade's header authenticates at once (scripts); a
       // browser, which cannot set it, sends an auth message first.
       if (!authorization.empty() && !shared_->router.auth().authenticate(authorization))
@@ -185,7 +191,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
       return;
     }
     keep_alive_ = req.keep_alive();
-    HttpRequest r{std::string(req.method_string()), std::string(req.target()), std::move(req.body()), std::move(authorization)};
+    HttpRequest r{std::string(req.method_string()), std::string(req.target()), std::move(req.body()),
+                  std::move(authorization)};
     const bool head = r.method == "HEAD";
     if (head) r.method = "GET";
     if (!shared_->router.is_heavy(r)) {
@@ -197,7 +204,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
     net::post(shared_->workers, [self = this->shared_from_this(), r = std::move(r), head]() mutable {
       HttpResponse res = self->shared_->router.handle(r);
       if (head) res.body.clear();
-      net::post(self->stream_.get_executor(), [self, res = std::move(res)]() mutable { self->write(std::move(res), self->keep_alive_); });
+      net::post(self->stream_.get_executor(),
+                [self, res = std::move(res)]() mutable { self->write(std::move(res), self->keep_alive_); });
     });
   }
 
@@ -244,15 +252,16 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
 }  // namespace
 
 template <class Stream>
-void run_http_session(Stream&& stream, beast::flat_buffer buffer, std::shared_ptr<Shared> shared, std::shared_ptr<const Peer> peer,
-                      std::optional<HttpResponse> refusal) {
-  std::make_shared<HttpSession<Stream>>(std::move(stream), std::move(buffer), std::move(shared), std::move(peer), std::move(refusal))
+void run_http_session(Stream&& stream, beast::flat_buffer buffer, std::shared_ptr<Shared> shared,
+                      std::shared_ptr<const Peer> peer, std::optional<HttpResponse> refusal) {
+  std::make_shared<HttpSession<Stream>>(std::move(stream), std::move(buffer), std::move(shared), std::move(peer),
+                                        std::move(refusal))
       ->run();
 }
 
-template void run_http_session<PlainStream>(PlainStream&&, beast::flat_buffer, std::shared_ptr<Shared>, std::shared_ptr<const Peer>,
-                                            std::optional<HttpResponse>);
-template void run_http_session<TlsStream>(TlsStream&&, beast::flat_buffer, std::shared_ptr<Shared>, std::shared_ptr<const Peer>,
-                                          std::optional<HttpResponse>);
+template void run_http_session<PlainStream>(PlainStream&&, beast::flat_buffer, std::shared_ptr<Shared>,
+                                            std::shared_ptr<const Peer>, std::optional<HttpResponse>);
+template void run_http_session<TlsStream>(TlsStream&&, beast::flat_buffer, std::shared_ptr<Shared>,
+                                          std::shared_ptr<const Peer>, std::optional<HttpResponse>);
 
 }  // namespace cgview::server

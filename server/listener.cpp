@@ -42,10 +42,12 @@ class Detector : public std::enable_shared_from_this<Detector> {
     if (ec) return;
     stream_.expires_never();
     if (tls) {
-      run_http_session(TlsStream(std::move(stream_), *shared_->tls), std::move(buffer_), shared_, peer_, over_cap(*peer_));
+      run_http_session(TlsStream(std::move(stream_), *shared_->tls), std::move(buffer_), shared_, peer_,
+                       over_cap(*peer_));
     } else {
       run_http_session(PlainStream(std::move(stream_)), std::move(buffer_), shared_, peer_,
-                       error_response(400, "tls_required", "this server speaks TLS only: use https:// (and wss:// for the WebSocket)"));
+                       error_response(400, "tls_required",
+                                      "this server speaks TLS only: use https:// (and wss:// for the WebSocket)"));
     }
   }
   beast::tcp_stream stream_;
@@ -86,10 +88,8 @@ struct Server::Impl {
         beast::error_code ignored;
         socket.set_option(tcp::no_delay(true), ignored);
         auto peer = std::make_shared<const Peer>(shared, socket);
-        if (shared->tls)
-          std::make_shared<Detector>(std::move(socket), shared, peer)->run();
-        else
-          run_http_session(PlainStream(std::move(socket)), beast::flat_buffer(), shared, peer, over_cap(*peer));
+        if (shared->tls) std::make_shared<Detector>(std::move(socket), shared, peer)->run();
+        else run_http_session(PlainStream(std::move(socket)), beast::flat_buffer(), shared, peer, over_cap(*peer));
       }
       if (acceptor.is_open()) accept();
     });

@@ -69,9 +69,15 @@ const char* kHelp =
     "  -h, --help           this help\n";
 
 // A few sample meshes of different kinds (the whole set is 143 files).
-const std::vector<std::string> kDefaultSamples = {"elephant.off", "bunny00.off", "armadillo.off", "camel.off",
-                                                   "man.off",      "kitten.off",  "double-torus-example.off",
-                                                   "colored_tetra.ply", "sphere.off"};
+const std::vector<std::string> kDefaultSamples = {"elephant.off",
+                                                  "bunny00.off",
+                                                  "armadillo.off",
+                                                  "camel.off",
+                                                  "man.off",
+                                                  "kitten.off",
+                                                  "double-torus-example.off",
+                                                  "colored_tetra.ply",
+                                                  "sphere.off"};
 
 // cgview-server user add|list|revoke: on the data directory's store, with or
 // without a server running on it.
@@ -86,7 +92,8 @@ int user_command(const std::vector<std::string>& args, const std::filesystem::pa
   if (what == "add") {
     const std::string token = Auth(store, true).add_user(args[2], admin);
     std::printf("%s\n", token.c_str());
-    std::fprintf(stderr, "cgview-server: a new token for %s%s; it is shown only once\n", args[2].c_str(), admin ? " (admin)" : "");
+    std::fprintf(stderr, "cgview-server: a new token for %s%s; it is shown only once\n", args[2].c_str(),
+                 admin ? " (admin)" : "");
   } else if (what == "list") {
     for (const UserRecord& u : store.list_users())
       std::printf("%-24s %-6s %d token%s  since %s\n", u.name.c_str(), u.admin ? "admin" : "user", u.tokens,
@@ -119,12 +126,14 @@ int main(int argc, char** argv) {
     bool user_command_given = false;
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
-      if ((a == "--config" || a == "--data-dir") && i + 1 < argc) (a == "--config" ? config_file : config.data_dir) = argv[++i];
+      if ((a == "--config" || a == "--data-dir") && i + 1 < argc)
+        (a == "--config" ? config_file : config.data_dir) = argv[++i];
       else if (a == "user") user_command_given = true;
     }
     if (!user_command_given) {
       if (!config_file.empty()) server::load_config_file(config_file, config);
-      else if (std::filesystem::exists(config.data_dir / "config.json")) server::load_config_file(config.data_dir / "config.json", config);
+      else if (std::filesystem::exists(config.data_dir / "config.json"))
+        server::load_config_file(config.data_dir / "config.json", config);
     }
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -137,7 +146,8 @@ int main(int argc, char** argv) {
         char* end = nullptr;
         const long n = std::strtol(v.c_str(), &end, 10);
         if (v.empty() || *end || n < lo || n > hi)
-          throw std::invalid_argument(a + " needs a number " + std::to_string(lo) + ".." + std::to_string(hi) + ", got '" + v + "'");
+          throw std::invalid_argument(a + " needs a number " + std::to_string(lo) + ".." + std::to_string(hi) +
+                                      ", got '" + v + "'");
         return n;
       };
       if (a == "-h" || a == "--help") {
@@ -165,8 +175,10 @@ int main(int argc, char** argv) {
         char* end = nullptr;
         config.rate_per_s = std::strtod(v.c_str(), &end);
         config.rate_burst = *end == '/' ? std::strtod(end + 1, &end) : std::max(1.0, config.rate_per_s * 4);
-        if (v.empty() || *end || !(config.rate_per_s >= 0) || !(config.rate_burst >= 1) || config.rate_per_s > 1e9 || config.rate_burst > 1e9)
-          throw std::invalid_argument("--rate-limit is RATE or RATE/BURST (requests per second, burst >= 1), got '" + v + "'");
+        if (v.empty() || *end || !(config.rate_per_s >= 0) || !(config.rate_burst >= 1) || config.rate_per_s > 1e9 ||
+            config.rate_burst > 1e9)
+          throw std::invalid_argument("--rate-limit is RATE or RATE/BURST (requests per second, burst >= 1), got '" +
+                                      v + "'");
       } else if (a == "--tls-cert") config.tls_cert = value();
       else if (a == "--tls-key") config.tls_key = value();
       else if (a == "--workers") config.workers = int(number(1, 256));
@@ -181,8 +193,7 @@ int main(int argc, char** argv) {
         const std::string v = value();
         if (v != "local" && v != "slurm") throw std::invalid_argument("--executor is local or slurm");
         config.jobs.executor = v;
-      }
-      else if (a == "--upload-timeout-s") config.upload_timeout_s = double(number(1, 86400));
+      } else if (a == "--upload-timeout-s") config.upload_timeout_s = double(number(1, 86400));
       else if (a == "--on-restart") {
         const std::string v = value();
         if (v != "requeue" && v != "interrupt") throw std::invalid_argument("--on-restart is requeue or interrupt");
@@ -198,7 +209,8 @@ int main(int argc, char** argv) {
       else if (!a.starts_with("-") && (a == "user" || !command.empty())) command.push_back(a);
       else throw std::invalid_argument("unknown option " + a);
     }
-    if (config.tls_cert.empty() != config.tls_key.empty()) throw std::invalid_argument("--tls-cert and --tls-key go together");
+    if (config.tls_cert.empty() != config.tls_key.empty())
+      throw std::invalid_argument("--tls-cert and --tls-key go together");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "cgview-server: %s (see --help)\n", e.what());
     return 2;
@@ -224,12 +236,13 @@ int main(int argc, char** argv) {
     if (samples != "none") {
       std::vector<std::filesystem::path> files;
       for (const auto& f : list_samples())
-        if (samples == "all" || std::find(kDefaultSamples.begin(), kDefaultSamples.end(), f.filename()) != kDefaultSamples.end())
+        if (samples == "all" ||
+            std::find(kDefaultSamples.begin(), kDefaultSamples.end(), f.filename()) != kDefaultSamples.end())
           files.push_back(f);
       srv.meshes().import_samples(files, config.max_upload_bytes);
     }
-    std::printf("CGView serving %s://%s:%u/ (data in %s, %zu meshes)\n", srv.tls() ? "https" : "http", config.host.c_str(), unsigned(srv.port()),
-                config.data_dir.c_str(), srv.meshes().store().count());
+    std::printf("CGView serving %s://%s:%u/ (data in %s, %zu meshes)\n", srv.tls() ? "https" : "http",
+                config.host.c_str(), unsigned(srv.port()), config.data_dir.c_str(), srv.meshes().store().count());
     std::fflush(stdout);
     srv.run();
   } catch (const std::exception& e) {

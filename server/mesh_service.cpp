@@ -79,8 +79,8 @@ std::shared_ptr<const Mesh> MeshService::mesh(const MeshRecord& rec) {
   return m;
 }
 
-std::shared_ptr<const EncodedMesh> MeshService::cached(const std::string& key,
-                                                      const std::function<std::shared_ptr<const EncodedMesh>()>& make) {
+std::shared_ptr<const EncodedMesh> MeshService::cached(
+    const std::string& key, const std::function<std::shared_ptr<const EncodedMesh>()>& make) {
   std::promise<std::shared_ptr<const EncodedMesh>> promise;
   std::shared_future<std::shared_ptr<const EncodedMesh>> pending;
   {
@@ -155,8 +155,8 @@ bool MeshService::has_preview(const MeshRecord& rec) const {
 
 std::shared_ptr<const EncodedMesh> MeshService::preview(const MeshRecord& rec) {
   if (!has_preview(rec))
-    throw InvalidInput("mesh " + rec.id + " has no preview (it has at most " + std::to_string(preview_.threshold_faces) +
-                       " faces)");
+    throw InvalidInput("mesh " + rec.id + " has no preview (it has at most " +
+                       std::to_string(preview_.threshold_faces) + " faces)");
   // Keyed by the mesh id too: the blob belongs to one stored mesh.
   return cached(rec.sha256 + "/preview/" + rec.id, [&]() -> std::shared_ptr<const EncodedMesh> {
     if (std::optional<std::string> bytes = store_.read_preview(rec)) {
@@ -214,8 +214,8 @@ nlohmann::json material_of(const MeshRecord& r) {
 
 namespace {
 nlohmann::json mesh_head(const MeshRecord& r) {
-  return {{"id", r.id}, {"name", r.name}, {"format", r.format}, {"bytes", r.bytes}, {"created", r.created}, {"sha256", r.sha256},
-          {"owner", r.owner}};
+  return {{"id", r.id},           {"name", r.name},     {"format", r.format}, {"bytes", r.bytes},
+          {"created", r.created}, {"sha256", r.sha256}, {"owner", r.owner}};
 }
 }  // namespace
 
@@ -229,7 +229,7 @@ nlohmann::json mesh_json(const MeshRecord& r) {
 
 std::string mesh_json_text(const MeshRecord& r) {
   std::string s = mesh_head(r).dump();
-  s.pop_back();  // the closing brace
+  s.pop_back();                           // the closing brace
   std::string m = material_of(r).dump();  // {"has_uvs":...}: spliced in without its braces
   return s + ",\"report\":" + r.report_json + ",\"warnings\":" + r.warnings_json + "," + m.substr(1);
 }

@@ -17,26 +17,59 @@ using prometheus::BuildGauge;
 using prometheus::BuildHistogram;
 
 // Requests: from a cached lookup (0.1 ms) to a large upload or encoding (tens of s).
-const prometheus::Histogram::BucketBoundaries kRequestBuckets = {0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05,
-                                                                 0.1,    0.25,  0.5,    1,     2.5,  5,     10, 30};
+const prometheus::Histogram::BucketBoundaries kRequestBuckets = {0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1,
+                                                                 0.25,   0.5,   1,      2.5,   5,    10,    30};
 // Jobs: from a cached or tiny job (a tenth of a second) to the hour-long limit.
-const prometheus::Histogram::BucketBoundaries kJobBuckets = {0.1, 0.25, 0.5, 1, 2.5, 5, 10, 30, 60, 120, 300, 600, 1800, 3600};
+const prometheus::Histogram::BucketBoundaries kJobBuckets = {0.1, 0.25, 0.5, 1,   2.5, 5,    10,
+                                                             30,  60,   120, 300, 600, 1800, 3600};
 }  // namespace
 
 Metrics::Metrics()
     : registry_(std::make_shared<prometheus::Registry>()),
-      requests_(BuildCounter().Name("cgview_http_requests_total").Help("HTTP requests answered, by route, method and status").Register(*registry_)),
-      latency_(BuildHistogram().Name("cgview_http_request_duration_seconds").Help("Time to answer an HTTP request, by route").Register(*registry_)),
-      websockets_(BuildGauge().Name("cgview_websocket_connections").Help("WebSocket connections open").Register(*registry_).Add({})),
-      rate_limited_(BuildCounter().Name("cgview_rate_limited_total").Help("Requests and WebSocket messages refused with 429").Register(*registry_).Add({})),
-      jobs_ended_(BuildCounter().Name("cgview_jobs_ended_total").Help("Jobs that ended, by algorithm and state (done, failed, cancelled)").Register(*registry_)),
-      job_seconds_(BuildHistogram().Name("cgview_job_duration_seconds").Help("How long a job's worker ran, by algorithm").Register(*registry_)),
-      worker_crashes_(BuildCounter().Name("cgview_worker_crashes_total").Help("Job workers killed by a signal (a crash, or over a limit)").Register(*registry_).Add({})),
-      jobs_(BuildGauge().Name("cgview_jobs").Help("Jobs known to the server, by state and algorithm").Register(*registry_)),
-      queued_(BuildGauge().Name("cgview_job_queue_length").Help("Jobs waiting for a worker").Register(*registry_).Add({})),
+      requests_(BuildCounter()
+                    .Name("cgview_http_requests_total")
+                    .Help("HTTP requests answered, by route, method and status")
+                    .Register(*registry_)),
+      latency_(BuildHistogram()
+                   .Name("cgview_http_request_duration_seconds")
+                   .Help("Time to answer an HTTP request, by route")
+                   .Register(*registry_)),
+      websockets_(BuildGauge()
+                      .Name("cgview_websocket_connections")
+                      .Help("WebSocket connections open")
+                      .Register(*registry_)
+                      .Add({})),
+      rate_limited_(BuildCounter()
+                        .Name("cgview_rate_limited_total")
+                        .Help("Requests and WebSocket messages refused with 429")
+                        .Register(*registry_)
+                        .Add({})),
+      jobs_ended_(BuildCounter()
+                      .Name("cgview_jobs_ended_total")
+                      .Help("Jobs that ended, by algorithm and state (done, failed, cancelled)")
+                      .Register(*registry_)),
+      job_seconds_(BuildHistogram()
+                       .Name("cgview_job_duration_seconds")
+                       .Help("How long a job's worker ran, by algorithm")
+                       .Register(*registry_)),
+      worker_crashes_(BuildCounter()
+                          .Name("cgview_worker_crashes_total")
+                          .Help("Job workers killed by a signal (a crash, or over a limit)")
+                          .Register(*registry_)
+                          .Add({})),
+      jobs_(BuildGauge()
+                .Name("cgview_jobs")
+                .Help("Jobs known to the server, by state and algorithm")
+                .Register(*registry_)),
+      queued_(
+          BuildGauge().Name("cgview_job_queue_length").Help("Jobs waiting for a worker").Register(*registry_).Add({})),
       running_(BuildGauge().Name("cgview_jobs_running").Help("Jobs whose worker runs").Register(*registry_).Add({})),
       meshes_(BuildGauge().Name("cgview_meshes").Help("Meshes stored").Register(*registry_).Add({})),
-      store_bytes_(BuildGauge().Name("cgview_store_bytes").Help("Bytes stored: mesh files, textures and job artifacts").Register(*registry_).Add({})) {}
+      store_bytes_(BuildGauge()
+                       .Name("cgview_store_bytes")
+                       .Help("Bytes stored: mesh files, textures and job artifacts")
+                       .Register(*registry_)
+                       .Add({})) {}
 
 Metrics::~Metrics() = default;
 
@@ -69,7 +102,8 @@ void Metrics::job_event(const nlohmann::json& e) {
   if (error.is_string() && error.get<std::string>().starts_with("killed by signal")) worker_crashes_.Increment();
   std::lock_guard lock(mutex_);
   if (const auto it = started_.find(id); it != started_.end()) {
-    job_seconds_.Add({{"algorithm", algorithm}}, kJobBuckets).Observe(std::chrono::duration<double>(now - it->second).count());
+    job_seconds_.Add({{"algorithm", algorithm}}, kJobBuckets)
+        .Observe(std::chrono::duration<double>(now - it->second).count());
     started_.erase(it);
   }
 }

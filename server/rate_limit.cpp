@@ -52,8 +52,8 @@ std::optional<RateRefusal> check_rate(RateLimiter& limiter, std::string_view aut
   if (limiter.on_refused) limiter.on_refused();
   const int retry = int(std::max(1.0, std::ceil(*wait)));
   return RateRefusal{retry, "over the rate limit of " + limiter.describe() + " for this " +
-                                (key.starts_with("token:") ? "token" : "address") + "; retry after " + std::to_string(retry) +
-                                " s"};
+                                (key.starts_with("token:") ? "token" : "address") + "; retry after " +
+                                std::to_string(retry) + " s"};
 }
 
 }  // namespace cgview::server

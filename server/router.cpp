@@ -67,7 +67,10 @@ Router::Router(MeshService& meshes, RouterConfig config)
   add_render_route(routes_, context_);
   add_job_routes(routes_, context_);
   add_worker_routes(routes_, context_);
-  routes_.push_back({"GET", "/api/v1/openapi.json", "This API's OpenAPI 3 document", {},
+  routes_.push_back({"GET",
+                     "/api/v1/openapi.json",
+                     "This API's OpenAPI 3 document",
+                     {},
                      [this](const Params&, const HttpRequest&, const Caller&) { return json_response(200, openapi()); },
                      false});
 }
@@ -98,9 +101,10 @@ HttpResponse Router::dispatch(const HttpRequest& req, std::string& route) const 
   if ((path.starts_with("/api/") || path == "/metrics") && !path.starts_with("/api/v1/worker/")) {
     caller = auth_.authenticate(req.authorization);
     if (!caller) {
-      HttpResponse r = error_response(401, "unauthorized", req.authorization.empty()
-                                                               ? "this server needs a token: Authorization: Bearer TOKEN"
-                                                               : "the token is wrong or was revoked");
+      HttpResponse r =
+          error_response(401, "unauthorized",
+                         req.authorization.empty() ? "this server needs a token: Authorization: Bearer TOKEN"
+                                                   : "the token is wrong or was revoked");
       r.headers.push_back({"WWW-Authenticate", "Bearer"});
       return r;
     }
@@ -114,7 +118,8 @@ HttpResponse Router::dispatch(const HttpRequest& req, std::string& route) const 
     route = r.pattern;
     for (const auto& [name, value] : params)
       if (!valid_path_param(value))
-        return error_response(400, "bad_request", "'" + name + "' is not a valid " + name + ": letters, digits, '_', '.' or '-'");
+        return error_response(400, "bad_request",
+                              "'" + name + "' is not a valid " + name + ": letters, digits, '_', '.' or '-'");
     try {
       return r.handler(params, req, caller.value_or(Caller::local()));
     } catch (const WorkerTokenRefused& e) {
@@ -122,7 +127,8 @@ HttpResponse Router::dispatch(const HttpRequest& req, std::string& route) const 
       res.headers.push_back({"WWW-Authenticate", "Bearer"});
       return res;
     } catch (const QuotaExceeded& e) {
-      HttpResponse res = json_response(e.status, json{{"error", e.code}, {"detail", e.what()}, {"limit", e.limit}, {"used", e.used}});
+      HttpResponse res =
+          json_response(e.status, json{{"error", e.code}, {"detail", e.what()}, {"limit", e.limit}, {"used", e.used}});
       if (e.status == 429) res.headers.push_back({"Retry-After", std::to_string(e.retry_after_s)});
       return res;
     } catch (const Forbidden& e) {
@@ -144,7 +150,8 @@ HttpResponse Router::dispatch(const HttpRequest& req, std::string& route) const 
   }
   if (path_known) return error_response(405, "method_not_allowed", req.method + " is not allowed on " + path);
   if (path.starts_with("/api/")) return error_response(404, "not_found", "no route " + req.method + " " + path);
-  if (req.method != "GET" && req.method != "HEAD") return error_response(405, "method_not_allowed", "only GET serves files");
+  if (req.method != "GET" && req.method != "HEAD")
+    return error_response(405, "method_not_allowed", "only GET serves files");
   route = "static";
   return serve_static(config_.static_dir, path);
 }
@@ -161,8 +168,9 @@ json Router::openapi() const {
     for (const auto& [name, help] : r.query)
       params.push_back({{"name", name}, {"in", "query"}, {"description", help}, {"schema", {{"type", "string"}}}});
     if (!params.empty()) op["parameters"] = params;
-    const json error_ref = {{"description", "error"},
-                            {"content", {{"application/json", {{"schema", {{"$ref", "#/components/schemas/Error"}}}}}}}};
+    const json error_ref = {
+        {"description", "error"},
+        {"content", {{"application/json", {{"schema", {{"$ref", "#/components/schemas/Error"}}}}}}}};
     op["responses"]["200"] = {{"description", "success"}};
     const bool is_job = r.pattern.starts_with("/api/v1/jobs");
     const bool json_body = r.pattern != "/api/v1/meshes";  // every POST but the upload takes JSON
@@ -196,8 +204,9 @@ json Router::openapi() const {
     for (char& c : method) c = char(std::tolower(static_cast<unsigned char>(c)));
     paths[r.pattern][method] = op;
   }
-  paths["/api/v1/ws"]["get"] = {{"summary", "WebSocket: JSON requests and events, binary mesh frames (protocol/API.md)"},
-                                {"responses", {{"101", {{"description", "switching protocols"}}}}}};
+  paths["/api/v1/ws"]["get"] = {
+      {"summary", "WebSocket: JSON requests and events, binary mesh frames (protocol/API.md)"},
+      {"responses", {{"101", {{"description", "switching protocols"}}}}}};
   json error_schema = {{"type", "object"},
                        {"properties", {{"error", {{"type", "string"}}}, {"detail", {{"type", "string"}}}}},
                        {"required", {"error", "detail"}}};

@@ -29,7 +29,7 @@ struct RouterConfig {
   std::string version = "0.1.0";
   JobScheduler* jobs = nullptr;  // the algorithm and job routes answer 503 without one
   render::GlPlatform gl_platform = render::GlPlatform::automatic;  // for render.png
-  int renderers = 2;  // EGL contexts rendering at once (render.png)
+  int renderers = 2;                                               // EGL contexts rendering at once (render.png)
   bool auth_required = false;  // every /api/ request needs a bearer token (else: Caller::local() without one)
   Metrics* metrics = nullptr;  // counts every request; GET /metrics serves it (404 without one)
 };

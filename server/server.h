@@ -19,9 +19,9 @@ struct ServerConfig {
   std::string host = "127.0.0.1";
   unsigned short port = 8080;  // 0: any free port
   std::filesystem::path data_dir = "cgview-data";
-  std::filesystem::path static_dir;  // the built web client
-  std::size_t chunk_bytes = std::size_t(4) << 20;         // WebSocket binary chunk size
-  std::size_t max_write_queue_bytes = std::size_t(1) << 30; // per WebSocket, then the client is dropped
+  std::filesystem::path static_dir;                          // the built web client
+  std::size_t chunk_bytes = std::size_t(4) << 20;            // WebSocket binary chunk size
+  std::size_t max_write_queue_bytes = std::size_t(1) << 30;  // per WebSocket, then the client is dropped
 
   // Limits (docs/DEPLOYMENT.md, "Limits and hardening").  A request over a
   // size limit is answered 431 (headers) or 413 (body), one too slow 408,
@@ -40,7 +40,7 @@ struct ServerConfig {
   // A WebSocket that sends nothing is pinged after half this time and
   // closed when the pong does not come by the end of it.
   double ws_idle_timeout_s = 60;
-  double write_timeout_s = 120;   // a response that the client does not read
+  double write_timeout_s = 120;    // a response that the client does not read
   int max_connections_per_ip = 0;  // open connections of one address (0: no cap); over: 503
   // Requests (REST under /api/ and WebSocket messages) per token, or per
   // address for requests without one (not counted from loopback without a
@@ -57,7 +57,7 @@ struct ServerConfig {
   // address needs tokens whatever this says.
   bool auth_required = false;
   render::GlPlatform gl_platform = render::GlPlatform::automatic;  // EGL platform of render.png
-  JobConfig jobs;  // the worker executable, pool size, limits
+  JobConfig jobs;                                                  // the worker executable, pool size, limits
   // Uploads are read in a child process (this program, cgview-read), with
   // the jobs' memory limit and this time limit: a file over either is a 413,
   // one that crashes its reader a 400, and the server goes on.  Empty: read

@@ -21,7 +21,8 @@ namespace {
 // The server's TLS context from the PEM files; throws naming the file at fault.
 std::optional<ssl::context> tls_context(const ServerConfig& c) {
   if (c.tls_cert.empty() && c.tls_key.empty()) return std::nullopt;
-  if (c.tls_cert.empty() || c.tls_key.empty()) throw std::invalid_argument("TLS needs both a certificate and a key (--tls-cert, --tls-key)");
+  if (c.tls_cert.empty() || c.tls_key.empty())
+    throw std::invalid_argument("TLS needs both a certificate and a key (--tls-cert, --tls-key)");
   for (const auto& f : {c.tls_cert, c.tls_key})
     if (!std::ifstream(f)) throw std::runtime_error("TLS: cannot read " + f.string());
   std::optional<ssl::context> ctx(std::in_place, ssl::context::tls_server);
@@ -35,7 +36,8 @@ std::optional<ssl::context> tls_context(const ServerConfig& c) {
   try {
     ctx->use_private_key_file(c.tls_key.string(), ssl::context::pem);
   } catch (const std::exception& e) {
-    throw std::runtime_error("TLS: " + c.tls_key.string() + " is not the PEM private key of the certificate (" + e.what() + ")");
+    throw std::runtime_error("TLS: " + c.tls_key.string() + " is not the PEM private key of the certificate (" +
+                             e.what() + ")");
   }
   return ctx;
 }
@@ -51,9 +53,8 @@ Shared::Shared(const ServerConfig& c)
                       c.auth_required || !boost::asio::ip::make_address(c.host).is_loopback(), &metrics}),
       rate(c.rate_per_s, c.rate_burst),
       ws(meshes,
-         {[j = jobs.get()](const std::string& job, const std::string& name, const std::string& format, const Caller& caller) {
-            return j->artifact(job, name, format, caller);
-          },
+         {[j = jobs.get()](const std::string& job, const std::string& name, const std::string& format,
+                           const Caller& caller) { return j->artifact(job, name, format, caller); },
           [j = jobs.get()](const std::string& job, const Caller& caller) { (void)j->access(job, caller); }},
          router.auth(), &rate, {c.chunk_bytes, c.max_ws_message_bytes}),
       workers(std::size_t(std::max(1, c.workers))),

@@ -45,7 +45,8 @@ class Stmt {
   }
   std::string text(int col) const {
     const auto* p = sqlite3_column_text(s_, col);
-    return p ? std::string(reinterpret_cast<const char*>(p), std::size_t(sqlite3_column_bytes(s_, col))) : std::string();
+    return p ? std::string(reinterpret_cast<const char*>(p), std::size_t(sqlite3_column_bytes(s_, col)))
+             : std::string();
   }
   std::int64_t integer(int col) const { return sqlite3_column_int64(s_, col); }
 
@@ -60,8 +61,8 @@ constexpr const char* kReadable =
     "(?2 OR owner = ?1 OR id IN (SELECT item FROM shares WHERE kind = 'mesh' AND (user = ?1 OR user = '*')))";
 
 MeshRecord row(const Stmt& s) {
-  return {s.text(0), s.text(1), s.text(2), std::uint64_t(s.integer(3)), s.text(4), s.text(5), s.text(6), s.text(7), s.text(8),
-          s.text(9)};
+  return {s.text(0), s.text(1), s.text(2), std::uint64_t(s.integer(3)), s.text(4), s.text(5), s.text(6),
+          s.text(7), s.text(8), s.text(9)};
 }
 
 std::string mesh_query(const std::string& where) {
@@ -128,7 +129,8 @@ void add_missing_column(sqlite3* db, const char* table, const char* column, cons
   const std::string select = std::string("SELECT ") + column + " FROM " + table + " LIMIT 0";
   const bool has = sqlite3_prepare_v2(db, select.c_str(), -1, &probe, nullptr) == SQLITE_OK;
   sqlite3_finalize(probe);
-  if (!has) exec_sql(db, (std::string("ALTER TABLE ") + table + " ADD COLUMN " + column + " " + decl + ";").c_str(), who);
+  if (!has)
+    exec_sql(db, (std::string("ALTER TABLE ") + table + " ADD COLUMN " + column + " " + decl + ";").c_str(), who);
 }
 
 bool Access::allows(const Caller& c) const {
@@ -161,15 +163,16 @@ Store::Store(const fs::path& data_dir) : dir_(data_dir) {
   db_ = open_database(dir_ / "cgview.db");
   exec_sql(db_, "PRAGMA foreign_keys=ON;", "store");
   exec_sql(db_,
-       "CREATE TABLE IF NOT EXISTS meshes ("
-       " id TEXT PRIMARY KEY, name TEXT NOT NULL, format TEXT NOT NULL, bytes INTEGER NOT NULL,"
-       " sha256 TEXT NOT NULL, created TEXT NOT NULL, report TEXT NOT NULL, warnings TEXT NOT NULL,"
-       " seq INTEGER);"
-       "CREATE INDEX IF NOT EXISTS meshes_sha ON meshes(sha256);"
-       "CREATE TABLE IF NOT EXISTS users (name TEXT PRIMARY KEY, admin INTEGER NOT NULL, created TEXT NOT NULL);"
-       "CREATE TABLE IF NOT EXISTS tokens (id TEXT PRIMARY KEY, user TEXT NOT NULL, hash TEXT NOT NULL, created TEXT NOT NULL);"
-       "CREATE TABLE IF NOT EXISTS shares (kind TEXT NOT NULL, item TEXT NOT NULL, user TEXT NOT NULL,"
-       " PRIMARY KEY (kind, item, user));",
+           "CREATE TABLE IF NOT EXISTS meshes ("
+           " id TEXT PRIMARY KEY, name TEXT NOT NULL, format TEXT NOT NULL, bytes INTEGER NOT NULL,"
+           " sha256 TEXT NOT NULL, created TEXT NOT NULL, report TEXT NOT NULL, warnings TEXT NOT NULL,"
+           " seq INTEGER);"
+           "CREATE INDEX IF NOT EXISTS meshes_sha ON meshes(sha256);"
+           "CREATE TABLE IF NOT EXISTS users (name TEXT PRIMARY KEY, admin INTEGER NOT NULL, created TEXT NOT NULL);"
+           "CREATE TABLE IF NOT EXISTS tokens (id TEXT PRIMARY KEY, user TEXT NOT NULL, hash TEXT NOT NULL, created "
+           "TEXT NOT NULL);"
+           "CREATE TABLE IF NOT EXISTS shares (kind TEXT NOT NULL, item TEXT NOT NULL, user TEXT NOT NULL,"
+           " PRIMARY KEY (kind, item, user));",
            "store");
   // Meshes stored before users belong to the local user.
   add_missing_column(db_, "meshes", "owner", "TEXT NOT NULL DEFAULT 'local'", "store");
@@ -293,7 +296,8 @@ std::optional<MeshRecord> Store::get_mesh(const std::string& id, const Caller& c
 
 std::optional<MeshRecord> Store::find_by_sha256(const std::string& sha, const std::string& owner) const {
   std::lock_guard lock(mutex_);
-  Stmt s(db_, (std::string("SELECT ") + kColumns + " FROM meshes WHERE sha256 = ?1 AND owner = ?2 ORDER BY seq LIMIT 1").c_str());
+  Stmt s(db_, (std::string("SELECT ") + kColumns + " FROM meshes WHERE sha256 = ?1 AND owner = ?2 ORDER BY seq LIMIT 1")
+                  .c_str());
   s.bind(1, sha).bind(2, owner);
   if (!s.step()) return std::nullopt;
   return row(s);
@@ -332,7 +336,8 @@ std::string Store::read_texture(const MeshRecord& r, std::size_t n) const {
   return std::move(*bytes);
 }
 
-void Store::set_shared(const std::string& kind, const std::string& id, const std::vector<std::string>& users, bool shared) {
+void Store::set_shared(const std::string& kind, const std::string& id, const std::vector<std::string>& users,
+                       bool shared) {
   std::lock_guard lock(mutex_);
   for (const auto& u : users) {
     Stmt s(db_, shared ? "INSERT OR IGNORE INTO shares (kind, item, user) VALUES (?1, ?2, ?3)"

@@ -35,7 +35,8 @@ struct Caller {
 // Who may read a mesh or a job: its owner, the users it was shared with, or
 // everyone; admins read everything.
 struct Access {
-  Access(std::string owner_ = {}, std::vector<std::string> readers_ = {}) : owner(std::move(owner_)), readers(std::move(readers_)) {}
+  Access(std::string owner_ = {}, std::vector<std::string> readers_ = {})
+      : owner(std::move(owner_)), readers(std::move(readers_)) {}
   std::string owner;
   std::vector<std::string> readers;
   bool everyone = false;
@@ -62,12 +63,12 @@ struct UserRecord {
 };
 
 struct MeshRecord {
-  std::string id;       // 16 hex digits
-  std::string name;     // as uploaded ("elephant.off")
-  std::string format;   // "off", "ply", ...
+  std::string id;      // 16 hex digits
+  std::string name;    // as uploaded ("elephant.off")
+  std::string format;  // "off", "ply", ...
   std::uint64_t bytes = 0;
-  std::string sha256;   // of the uploaded bytes
-  std::string created;  // ISO 8601 UTC
+  std::string sha256;         // of the uploaded bytes
+  std::string created;        // ISO 8601 UTC
   std::string report_json;    // protocol::to_json(MeshReport), serialized
   std::string warnings_json;  // JSON array of strings
   std::string owner = "local";

@@ -112,8 +112,9 @@ Textures find_textures(const ReadResult& r, std::string_view mesh_bytes, const s
     // Textures in order of the faces they cover, so textures[0] is the main one.
     std::vector<std::size_t> order(use.names.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return use.faces.at(use.names[a]) > use.faces.at(use.names[b]); });
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return use.faces.at(use.names[a]) > use.faces.at(use.names[b]);
+    });
     std::vector<nlohmann::json> entries(use.names.size());
     for (const std::size_t i : order) {
       const std::string& name = use.names[i];
@@ -146,10 +147,10 @@ std::string clean_upload_name(const std::string& name) {
   if (name.empty()) throw InvalidInput("the mesh needs a name (?name=FILE.EXT)");
   if (name.size() > 255) throw InvalidInput("the name is longer than 255 characters");
   for (unsigned char c : name)
-    if (c < 32 || c == '/' || c == '\\' || c == 127) throw InvalidInput("the name may not hold '/', '\\' or control characters");
+    if (c < 32 || c == '/' || c == '\\' || c == 127)
+      throw InvalidInput("the name may not hold '/', '\\' or control characters");
   return name;
 }
-
 
 UploadRead read_upload(const std::string& name, const std::string& format, std::string_view bytes,
                        std::size_t max_unpacked_bytes) {
@@ -205,8 +206,9 @@ UploadRead read_upload_in_child(const UploadReader& reader, const std::string& n
   const std::string n = clean_upload_name(name);  // named in the messages below
   TempDir dir(reader.temp_dir);
   write_file_bytes(dir.path / "upload", bytes);
-  write_file_bytes(dir.path / "request.json",
-             nlohmann::json{{"name", name}, {"format", format}, {"max_unpacked_bytes", max_unpacked_bytes}}.dump());
+  write_file_bytes(
+      dir.path / "request.json",
+      nlohmann::json{{"name", name}, {"format", format}, {"max_unpacked_bytes", max_unpacked_bytes}}.dump());
   ChildOptions options;
   options.memory_mb = reader.memory_mb;
   options.stderr_file = dir.path / "stderr.txt";
@@ -284,18 +286,18 @@ int read_upload_main(const fs::path& dir) {
     const std::string bytes = read_file_bytes(dir / "upload", std::numeric_limits<std::size_t>::max());
     const UploadRead r = read_upload(req.at("name").get<std::string>(), req.at("format").get<std::string>(), bytes,
                                      req.at("max_unpacked_bytes").get<std::size_t>());
-    for (std::size_t k = 0; k < r.textures.size(); ++k) write_file_bytes(dir / ("texture-" + std::to_string(k)), r.textures[k]);
+    for (std::size_t k = 0; k < r.textures.size(); ++k)
+      write_file_bytes(dir / ("texture-" + std::to_string(k)), r.textures[k]);
     if (!r.unpacked_mesh.empty()) write_file_bytes(dir / "mesh", r.unpacked_mesh);
     // result.json last (written through a rename): its presence means the rest is whole.
-    write_file_bytes(dir / "result.json",
-               nlohmann::json{{"name", r.name},
-                              {"format", r.format},
-                              {"report", nlohmann::json::parse(r.report_json)},
-                              {"warnings", nlohmann::json::parse(r.warnings_json)},
-                              {"material", nlohmann::json::parse(r.material_json)},
-                              {"textures", r.textures.size()},
-                              {"unpacked", !r.unpacked_mesh.empty()}}
-                   .dump());
+    write_file_bytes(dir / "result.json", nlohmann::json{{"name", r.name},
+                                                         {"format", r.format},
+                                                         {"report", nlohmann::json::parse(r.report_json)},
+                                                         {"warnings", nlohmann::json::parse(r.warnings_json)},
+                                                         {"material", nlohmann::json::parse(r.material_json)},
+                                                         {"textures", r.textures.size()},
+                                                         {"unpacked", !r.unpacked_mesh.empty()}}
+                                              .dump());
     return 0;
   } catch (const std::bad_alloc&) {
     return 3;

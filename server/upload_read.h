@@ -43,9 +43,9 @@ UploadRead read_upload(const std::string& name, const std::string& format, std::
 
 // Where and within what an upload is read in a child process.
 struct UploadReader {
-  std::filesystem::path program;  // cgview-read; empty: read in this process
+  std::filesystem::path program;   // cgview-read; empty: read in this process
   std::filesystem::path temp_dir;  // the child's files (the upload, its results), one directory per upload
-  std::size_t memory_mb = 8192;     // the child's address space; 0: no limit
+  std::size_t memory_mb = 8192;    // the child's address space; 0: no limit
   std::chrono::milliseconds time_limit{120000};
 };
 

@@ -50,8 +50,7 @@ class WebSocketSession : public EventSink, public std::enable_shared_from_this<W
   // Thread-safe: sends an event if this session's user may read it.
   void send_event(const json& event, const Access& readers) override {
     net::post(ws_.get_executor(), [self = this->shared_from_this(), event, readers] {
-      if (self->shared_->ws.admits_event(self->conn_, readers, self->on_strand()))
-        self->enqueue(WsOut::text(event));
+      if (self->shared_->ws.admits_event(self->conn_, readers, self->on_strand())) self->enqueue(WsOut::text(event));
       self->close_if_refused();
     });
   }
@@ -74,11 +73,14 @@ class WebSocketSession : public EventSink, public std::enable_shared_from_this<W
     do_read();
   }
 
-  void do_read() { ws_.async_read(buffer_, beast::bind_front_handler(&WebSocketSession::on_read, this->shared_from_this())); }
+  void do_read() {
+    ws_.async_read(buffer_, beast::bind_front_handler(&WebSocketSession::on_read, this->shared_from_this()));
+  }
 
   void on_read(beast::error_code ec, std::size_t) {
-    if (ec == websocket::error::message_too_big) return enqueue(shared_->ws.too_big());  // Beast closes the stream after it
-    if (ec) return;  // closed, timed out or broken: the session ends
+    if (ec == websocket::error::message_too_big)
+      return enqueue(shared_->ws.too_big());  // Beast closes the stream after it
+    if (ec) return;                           // closed, timed out or broken: the session ends
     const std::string text = beast::buffers_to_string(buffer_.data());
     buffer_.consume(buffer_.size());
     if (auto work = shared_->ws.receive(text, ws_.got_binary(), conn_, on_strand()))
@@ -99,7 +101,8 @@ class WebSocketSession : public EventSink, public std::enable_shared_from_this<W
 
   void enqueue(WsOut out) {
     if (closing_) return;
-    if (queued_bytes_ + out.size() > shared_->config.max_write_queue_bytes) return close();  // a client that does not read
+    if (queued_bytes_ + out.size() > shared_->config.max_write_queue_bytes)
+      return close();  // a client that does not read
     queued_bytes_ += out.size();
     queue_.push_back(std::move(out));
     if (queue_.size() == 1) do_write();
@@ -108,7 +111,8 @@ class WebSocketSession : public EventSink, public std::enable_shared_from_this<W
   void do_write() {
     const WsOut& out = queue_.front();
     ws_.binary(out.binary);
-    const std::array<net::const_buffer, 2> buffers{net::buffer(out.head), net::buffer(out.body.data(), out.body.size())};
+    const std::array<net::const_buffer, 2> buffers{net::buffer(out.head),
+                                                   net::buffer(out.body.data(), out.body.size())};
     ws_.async_write(buffers, beast::bind_front_handler(&WebSocketSession::on_write, this->shared_from_this()));
   }
 

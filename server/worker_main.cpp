@@ -2,7 +2,8 @@
 // runaway allocation or an endless loop takes down only this job.
 //
 //   cgview-worker JOB.json      runs the job the file describes:
-//     {"algorithm": "hausdorff", "params": {...}, "inputs": {"mesh": "/path/a.off", "reference": "/path/b.ply"}, "out": "/dir"}
+//     {"algorithm": "hausdorff", "params": {...}, "inputs": {"mesh": "/path/a.off", "reference": "/path/b.ply"}, "out":
+//     "/dir"}
 //   (an input the algorithm declares as a voxel_grid is a grid file: .nrrd, .binvox, ...)
 //   cgview-worker --list        prints every algorithm linked in, as JSON (protocol/algorithm_json)
 //
@@ -51,12 +52,14 @@ json save(const Artifact& a, const Mesh& input, const fs::path& out) {
     entry["hint"] = to_string(field->hint);
     entry["range"] = {lo, hi};
     entry["count"] = field->values.size();
-    write_file_bytes(out / (a.name + ".f32"),
-                     std::string_view(reinterpret_cast<const char*>(field->values.data()), field->values.size() * sizeof(float)));
-    write_text(out / (a.name + ".field.json"),
-               json{{"name", field->name}, {"location", entry["location"]}, {"hint", entry["hint"]},
-                    {"range", entry["range"]}, {"count", entry["count"]}}
-                   .dump());
+    write_file_bytes(out / (a.name + ".f32"), std::string_view(reinterpret_cast<const char*>(field->values.data()),
+                                                               field->values.size() * sizeof(float)));
+    write_text(out / (a.name + ".field.json"), json{{"name", field->name},
+                                                    {"location", entry["location"]},
+                                                    {"hint", entry["hint"]},
+                                                    {"range", entry["range"]},
+                                                    {"count", entry["count"]}}
+                                                   .dump());
   } else if (std::holds_alternative<Mesh>(a.value)) {
     entry["kind"] = "mesh";
     entry["file"] = a.name + ".ply";
@@ -66,10 +69,10 @@ json save(const Artifact& a, const Mesh& input, const fs::path& out) {
     entry["file"] = a.name + ".json";
     write_artifact(a, input, out / (a.name + ".json"));
   } else {
-    entry["kind"] = std::holds_alternative<VoxelGrid>(a.value) ? "voxel_grid"
-                    : std::holds_alternative<Text>(a.value)    ? "text"
+    entry["kind"] = std::holds_alternative<VoxelGrid>(a.value)   ? "voxel_grid"
+                    : std::holds_alternative<Text>(a.value)      ? "text"
                     : std::holds_alternative<Animation>(a.value) ? "animation"
-                                                               : "skeleton";
+                                                                 : "skeleton";
     entry["file"] = a.name + default_extension(a);
     write_artifact(a, input, out / entry["file"].get<std::string>());
   }

@@ -32,12 +32,14 @@ WsOut WsOut::text(const json& message) {
   return {message.dump(-1, ' ', false, json::error_handler_t::replace), nullptr, {}, false};
 }
 
-WsHandler::WsHandler(MeshService& meshes, JobArtifacts artifacts, const Auth& auth, RateLimiter* rate, WsHandlerConfig config)
+WsHandler::WsHandler(MeshService& meshes, JobArtifacts artifacts, const Auth& auth, RateLimiter* rate,
+                     WsHandlerConfig config)
     : meshes_(meshes), artifacts_(std::move(artifacts)), auth_(auth), rate_(rate), config_(config) {}
 
 WsOut WsHandler::too_big() const {
-  return WsOut::text(error_message(nullptr, "payload_too_large",
-                                   "messages to the server are limited to " + std::to_string(config_.max_message_bytes) + " bytes"));
+  return WsOut::text(
+      error_message(nullptr, "payload_too_large",
+                    "messages to the server are limited to " + std::to_string(config_.max_message_bytes) + " bytes"));
 }
 
 bool WsHandler::still_authorized(WsConnection& conn, const WsEmit& emit) const {
@@ -75,7 +77,8 @@ WsHandler::Work WsHandler::receive(std::string_view text, bool binary, WsConnect
   }
   if (!msg.is_object()) return error(nullptr, "bad_request", "the message must be a JSON object");
   const json id = msg.contains("request_id") ? msg["request_id"] : json(nullptr);
-  if (!id.is_null() && !id.is_number_unsigned()) return error(nullptr, "bad_request", "request_id must be a non-negative integer");
+  if (!id.is_null() && !id.is_number_unsigned())
+    return error(nullptr, "bad_request", "request_id must be a non-negative integer");
   const auto type = string_field(msg, "type");
   if (!type) return error(id, "bad_request", "the message has no \"type\"");
   if (rate_) {
@@ -88,10 +91,12 @@ WsHandler::Work WsHandler::receive(std::string_view text, bool binary, WsConnect
   }
   if (*type == "auth") {
     const json token = msg.value("token", json());
-    conn.authorization = token.is_string() && !token.get<std::string>().empty() ? "Bearer " + token.get<std::string>() : "-";
+    conn.authorization =
+        token.is_string() && !token.get<std::string>().empty() ? "Bearer " + token.get<std::string>() : "-";
     conn.caller = auth_.authenticate(conn.authorization);
     if (!conn.caller) return refuse(id, "the token is wrong or was revoked");
-    emit(WsOut::text({{"type", "authenticated"}, {"request_id", id}, {"user", conn.caller->user}, {"admin", conn.caller->admin}}));
+    emit(WsOut::text(
+        {{"type", "authenticated"}, {"request_id", id}, {"user", conn.caller->user}, {"admin", conn.caller->admin}}));
     return {};
   }
   if (!conn.caller) return refuse(id, "this server needs a token: send {\"type\":\"auth\",\"token\":TOKEN} first");
@@ -160,8 +165,14 @@ void WsHandler::get_mesh(const json& msg, const json& id, const Caller& caller, 
     return error("lod must be \"full\", \"preview\" or \"progressive\", got " + lod_value.dump());
   check_quantization_bits(bits);  // before a preview is streamed
   auto send = [&](const std::shared_ptr<const EncodedMesh>& enc, const char* level) {
-    stream({{"type", "mesh_begin"}, {"mesh_id", rec->id}, {"encoding", "draco"}, {"level", level}, {"vertices", enc->vertices},
-            {"faces", enc->faces}, {"has_normals", enc->has_normals}, {"has_colors", enc->has_colors}},
+    stream({{"type", "mesh_begin"},
+            {"mesh_id", rec->id},
+            {"encoding", "draco"},
+            {"level", level},
+            {"vertices", enc->vertices},
+            {"faces", enc->faces},
+            {"has_normals", enc->has_normals},
+            {"has_colors", enc->has_colors}},
            protocol::FrameKind::draco_mesh, id, enc, enc->bytes, "mesh_end", emit);
   };
   const bool preview = lod != "full" && meshes_.has_preview(*rec);
@@ -172,7 +183,9 @@ void WsHandler::get_mesh(const json& msg, const json& id, const Caller& caller, 
 // get_animation: a job's animation artifact (chaos_animate's frames) as
 // quantized deltas, zlib-compressed, in frames of kind 3 (protocol/animation_frames.h).
 void WsHandler::get_animation(const json& msg, const json& id, const Caller& caller, const WsEmit& emit) const {
-  auto error = [&](const std::string& code, const std::string& detail) { emit(WsOut::text(error_message(id, code, detail))); };
+  auto error = [&](const std::string& code, const std::string& detail) {
+    emit(WsOut::text(error_message(id, code, detail)));
+  };
   if (id.is_null()) return error("bad_request", "get_animation needs a request_id");
   const auto job_id = string_field(msg, "job_id");
   if (!job_id) return error("bad_request", "get_animation needs a \"job_id\" string");
@@ -187,7 +200,10 @@ void WsHandler::get_animation(const json& msg, const json& id, const Caller& cal
     return error("bad_request", "artifact '" + artifact + "' of job " + *job_id + " is not an animation");
   }
   auto payload = std::make_shared<const std::string>(protocol::encode_animation_payload(raw));
-  stream({{"type", "animation_begin"}, {"job_id", *job_id}, {"artifact", artifact}, {"encoding", "frames-delta-zlib"},
+  stream({{"type", "animation_begin"},
+          {"job_id", *job_id},
+          {"artifact", artifact},
+          {"encoding", "frames-delta-zlib"},
           {"raw_bytes", raw.size()}},
          protocol::FrameKind::animation, id, payload, *payload, "animation_end", emit);
 }
@@ -195,7 +211,9 @@ void WsHandler::get_animation(const json& msg, const json& id, const Caller& cal
 // get_slice: a 2D slice of a job's voxel grid artifact, zlib-compressed in
 // frames of kind 2 (protocol/voxel_slice.h).
 void WsHandler::get_slice(const json& msg, const json& id, const Caller& caller, const WsEmit& emit) const {
-  auto error = [&](const std::string& code, const std::string& detail) { emit(WsOut::text(error_message(id, code, detail))); };
+  auto error = [&](const std::string& code, const std::string& detail) {
+    emit(WsOut::text(error_message(id, code, detail)));
+  };
   if (id.is_null()) return error("bad_request", "get_slice needs a request_id");
   const auto job_id = string_field(msg, "job_id");
   if (!job_id) return error("bad_request", "get_slice needs a \"job_id\" string");
@@ -203,8 +221,10 @@ void WsHandler::get_slice(const json& msg, const json& id, const Caller& caller,
   int axis = -1;
   if (const auto a = string_field(msg, "axis")) axis = *a == "x" ? 0 : *a == "y" ? 1 : *a == "z" ? 2 : -1;
   else if (msg.contains("axis") && msg["axis"].is_number_integer()) axis = msg["axis"].get<int>();
-  if (axis < 0 || axis > 2) return error("bad_request", "get_slice needs an \"axis\": \"x\", \"y\" or \"z\" (or 0, 1, 2)");
-  if (!msg.contains("index") || !msg["index"].is_number_integer()) return error("bad_request", "get_slice needs an integer \"index\"");
+  if (axis < 0 || axis > 2)
+    return error("bad_request", "get_slice needs an \"axis\": \"x\", \"y\" or \"z\" (or 0, 1, 2)");
+  if (!msg.contains("index") || !msg["index"].is_number_integer())
+    return error("bad_request", "get_slice needs an integer \"index\"");
   const long long index = msg["index"].get<long long>();
   if (!artifacts_.read) return error("not_found", "this server runs no jobs");
   std::shared_ptr<const VoxelGrid> kept;
@@ -216,17 +236,27 @@ void WsHandler::get_slice(const json& msg, const json& id, const Caller& caller,
     return error("bad_request", "artifact '" + artifact + "' of job " + *job_id + " is not a voxel grid");
   }
   const VoxelGrid& grid = *kept;
-  if (index < INT_MIN || index > INT_MAX) return error("bad_request", "slice index " + std::to_string(index) + " is out of range");
+  if (index < INT_MIN || index > INT_MAX)
+    return error("bad_request", "slice index " + std::to_string(index) + " is out of range");
   const VoxelSlice sl = cgview::slice(grid, axis, int(index));  // InvalidInput out of range: bad_request
   auto payload = std::make_shared<const std::string>(protocol::encode_slice_payload(grid, sl));
   const auto d = grid.dims();
-  stream({{"type", "slice"}, {"job_id", *job_id}, {"artifact", artifact}, {"axis", std::string(1, "xyz"[axis])}, {"index", index},
-          {"width", sl.width}, {"height", sl.height}, {"dims", {d[0], d[1], d[2]}}, {"voxel_size", grid.voxel_size()},
-          {"origin", {grid.origin().x, grid.origin().y, grid.origin().z}}, {"encoding", "zlib"}},
+  stream({{"type", "slice"},
+          {"job_id", *job_id},
+          {"artifact", artifact},
+          {"axis", std::string(1, "xyz"[axis])},
+          {"index", index},
+          {"width", sl.width},
+          {"height", sl.height},
+          {"dims", {d[0], d[1], d[2]}},
+          {"voxel_size", grid.voxel_size()},
+          {"origin", {grid.origin().x, grid.origin().y, grid.origin().z}},
+          {"encoding", "zlib"}},
          protocol::FrameKind::voxel_slice, id, payload, *payload, "slice_end", emit);
 }
 
-std::shared_ptr<const VoxelGrid> WsHandler::grid(const std::string& job, const std::string& name, const Caller& caller) const {
+std::shared_ptr<const VoxelGrid> WsHandler::grid(const std::string& job, const std::string& name,
+                                                 const Caller& caller) const {
   const std::string key = job + "/" + name;
   std::shared_ptr<const VoxelGrid> kept;
   if (artifacts_.check_readable) {  // without it, nothing kept may serve another caller

@@ -52,14 +52,16 @@ struct WsConnection {
 struct WsHandlerConfig {
   std::size_t chunk_bytes = protocol::kDefaultChunkBytes;  // of binary frames
   std::size_t max_message_bytes = std::size_t(1) << 20;    // what too_big() says
-  std::size_t kept_grids = 4;                               // decoded voxel grids kept for slicing
+  std::size_t kept_grids = 4;                              // decoded voxel grids kept for slicing
 };
 
 // A server's job artifacts as the handler reads them (JobScheduler's).
 struct JobArtifacts {
   // An artifact in a format, if the caller may read it (JobScheduler::artifact):
   // std::out_of_range for an unknown job or artifact, UnsupportedFormat for the wrong kind.
-  std::function<ArtifactBytes(const std::string& job, const std::string& name, const std::string& format, const Caller&)> read;
+  std::function<ArtifactBytes(const std::string& job, const std::string& name, const std::string& format,
+                              const Caller&)>
+      read;
   // Throws std::out_of_range unless the caller may read the job
   // (JobScheduler::access): checked before a grid kept from before serves them.
   std::function<void(const std::string& job, const Caller&)> check_readable;
@@ -68,7 +70,8 @@ struct JobArtifacts {
 class WsHandler {
  public:
   // artifacts: empty on a server that runs no jobs.
-  WsHandler(MeshService& meshes, JobArtifacts artifacts, const Auth& auth, RateLimiter* rate, WsHandlerConfig config = {});
+  WsHandler(MeshService& meshes, JobArtifacts artifacts, const Auth& auth, RateLimiter* rate,
+            WsHandlerConfig config = {});
 
   using Work = std::function<void(const WsEmit&)>;
   // On the connection's strand: parses the message, checks its token and
@@ -87,10 +90,12 @@ class WsHandler {
   bool still_authorized(WsConnection& conn, const WsEmit& emit) const;
   void get_mesh(const nlohmann::json& msg, const nlohmann::json& id, const Caller& caller, const WsEmit& emit) const;
   void get_slice(const nlohmann::json& msg, const nlohmann::json& id, const Caller& caller, const WsEmit& emit) const;
-  void get_animation(const nlohmann::json& msg, const nlohmann::json& id, const Caller& caller, const WsEmit& emit) const;
+  void get_animation(const nlohmann::json& msg, const nlohmann::json& id, const Caller& caller,
+                     const WsEmit& emit) const;
   // The begin message, the payload in binary frames of `kind`, the end message.
-  void stream(nlohmann::json begin, protocol::FrameKind kind, const nlohmann::json& id, std::shared_ptr<const void> keep,
-              std::string_view payload, const std::string& end_type, const WsEmit& emit) const;
+  void stream(nlohmann::json begin, protocol::FrameKind kind, const nlohmann::json& id,
+              std::shared_ptr<const void> keep, std::string_view payload, const std::string& end_type,
+              const WsEmit& emit) const;
 
   MeshService& meshes_;
   // The voxel grid artifact `name` of a job, decoded: the last few are kept,

@@ -56,7 +56,8 @@ std::vector<BundleFile> unzip_bundle(std::string_view bytes, std::size_t max_byt
   zip_error_fini(&error);
   const zip_int64_t n = zip_get_num_entries(archive.get(), 0);
   if (n < 0 || std::size_t(n) > max_files)
-    throw TooLarge("the zip holds " + std::to_string(n) + " entries, more than the " + std::to_string(max_files) + " allowed");
+    throw TooLarge("the zip holds " + std::to_string(n) + " entries, more than the " + std::to_string(max_files) +
+                   " allowed");
   std::vector<BundleFile> out;
   std::size_t total = 0;
   const std::string limit = "the zip unpacks to more than the upload limit of " + std::to_string(max_bytes) + " bytes";

@@ -19,7 +19,7 @@ class TooLarge : public InvalidInput {
 };
 
 struct BundleFile {
-  std::string name;   // as in the zip ("textures/a.png")
+  std::string name;  // as in the zip ("textures/a.png")
   std::string bytes;
 };
 

@@ -25,7 +25,9 @@ struct EmbedParams {
               .help = "text: the message's UTF-8 bytes; base64: the bytes it decodes to (a file: base64 -w0 FILE)",
               .choices = {"text", "base64"}});
     v.integer("bits", bits,
-              {.label = "Bits per coordinate", .min = 1, .max = chaos::kMaxEmbedBits,
+              {.label = "Bits per coordinate",
+               .min = 1,
+               .max = chaos::kMaxEmbedBits,
                .help = "low mantissa bits used per float32 coordinate: capacity 3 k bits per vertex, each coordinate "
                        "moves by less than 2^(k-23) of its magnitude"});
   }
@@ -79,8 +81,9 @@ AlgorithmResult run_embed(const Mesh& mesh, const EmbedParams& p, Context& ctx) 
   AlgorithmResult result;
   result.artifacts.push_back({"mesh", std::move(e.mesh)});
   result.artifacts.push_back({"metrics", std::move(m)});
-  result.warnings.push_back("save the mesh as PLY, OBJ, OFF or glb to keep the message: STL, Draco, a text format "
-                            "with fewer digits or any processing destroys it");
+  result.warnings.push_back(
+      "save the mesh as PLY, OBJ, OFF or glb to keep the message: STL, Draco, a text format "
+      "with fewer digits or any processing destroys it");
   ctx.progress(1, "done");
   return result;
 }

@@ -24,9 +24,12 @@ struct MapParamFields {
     v.number("r", r, {.label = "Logistic r", .min = 0, .max = 4, .help = "logistic map's parameter; chaotic near 4"});
     v.number("a", a, {.label = "Henon a", .min = 0, .max = 2, .help = "Henon's a (classic 1.4)"});
     v.number("b", b, {.label = "Henon b", .min = -1, .max = 1, .help = "Henon's b (classic 0.3)"});
-    v.integer("grid", grid,
-              {.label = "Cat grid N", .min = 2, .max = 1 << 20,
-               .help = "the cat map acts on an N x N grid of the (x, y) box; its period is the Pisano period of N / 2"});
+    v.integer(
+        "grid", grid,
+        {.label = "Cat grid N",
+         .min = 2,
+         .max = 1 << 20,
+         .help = "the cat map acts on an N x N grid of the (x, y) box; its period is the Pisano period of N / 2"});
   }
   MapParams map_params() const {
     MapParams p;

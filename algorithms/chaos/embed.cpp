@@ -99,7 +99,8 @@ std::size_t embed_capacity_bytes(std::size_t vertices, int bits) {
 EmbedResult embed(const Mesh& cover, const std::string& key, const std::string& message, int k) {
   check_key(key);
   if (k < 1 || k > kMaxEmbedBits)
-    throw InvalidInput("parameter 'bits': must be 1 to " + std::to_string(kMaxEmbedBits) + ", got " + std::to_string(k));
+    throw InvalidInput("parameter 'bits': must be 1 to " + std::to_string(kMaxEmbedBits) + ", got " +
+                       std::to_string(k));
   const std::size_t n = cover.num_vertices();
   if (n == 0) throw InvalidInput("chaos_embed: the mesh has no vertices");
   if (3 * n > 0xFFFFFFFFull) throw InvalidInput("chaos_embed: more than 2^32 / 3 vertices");

@@ -40,7 +40,7 @@ inline constexpr int kHeaderBits = 64;
 std::size_t embed_capacity_bytes(std::size_t vertices, int bits);
 
 struct EmbedResult {
-  Mesh mesh;                 // the input with positions rounded to float32 and modified
+  Mesh mesh;                   // the input with positions rounded to float32 and modified
   std::size_t slots_used = 0;  // coordinates modified (header included)
   std::size_t capacity_bytes = 0;
 };

@@ -44,9 +44,7 @@ struct Schedule {
       if (V[j] < n) J.push_back(j);
   }
   // The plain vertex whose coordinate a goes to the k-th non-header slot.
-  std::uint32_t source(std::uint32_t k, int a) const {
-    return V[J[a == 0 ? k : a == 1 ? Qy[k] : Qz[k]]];
-  }
+  std::uint32_t source(std::uint32_t k, int a) const { return V[J[a == 0 ? k : a == 1 ? Qy[k] : Qz[k]]]; }
 };
 
 Mesh positions_mesh(const std::vector<F3>& p, std::vector<Tri> faces) {
@@ -74,13 +72,15 @@ Mesh encrypt(const Mesh& plain, const std::string& key) {
   const std::uint32_t n = std::uint32_t(plain.num_vertices());
   for (const Tri& t : plain.faces)
     for (Index i : t)
-      if (i >= n) throw InvalidInput("chaos_encrypt: a face refers to vertex " + std::to_string(i) +
-                                     " but there are " + std::to_string(n) + " vertices");
+      if (i >= n)
+        throw InvalidInput("chaos_encrypt: a face refers to vertex " + std::to_string(i) + " but there are " +
+                           std::to_string(n) + " vertices");
   std::vector<F3> pf(n);
   F3 lo{}, hi{};
   for (std::uint32_t i = 0; i < n; ++i) {
     const Vec3& p = plain.positions[i];
-    if (!is_finite(p)) throw InvalidInput("chaos_encrypt: vertex " + std::to_string(i) + " has a non-finite coordinate");
+    if (!is_finite(p))
+      throw InvalidInput("chaos_encrypt: vertex " + std::to_string(i) + " has a non-finite coordinate");
     pf[i] = {float(p.x), float(p.y), float(p.z)};
     for (int a = 0; a < 3; ++a) {
       if (i == 0 || rank_of(pf[i][a]) < rank_of(lo[a])) lo[a] = pf[i][a];
@@ -131,8 +131,9 @@ Mesh decrypt(const Mesh& cipher, const std::string& key) {
   const std::uint32_t m = std::uint32_t(cipher.num_vertices()), n = m - 2;
   for (const Tri& t : cipher.faces)
     for (Index i : t)
-      if (i >= m) throw InvalidInput("chaos_decrypt: a face refers to vertex " + std::to_string(i) +
-                                     " but there are " + std::to_string(m) + " vertices");
+      if (i >= m)
+        throw InvalidInput("chaos_decrypt: a face refers to vertex " + std::to_string(i) + " but there are " +
+                           std::to_string(m) + " vertices");
   std::vector<F3> cf(m);
   for (std::uint32_t i = 0; i < m; ++i) {
     const Vec3& p = cipher.positions[i];

@@ -36,11 +36,16 @@ Vec3 composite_step(Vec3 p, double u) {
 
 const char* to_string(MapKind k) {
   switch (k) {
-    case MapKind::ikeda: return "ikeda";
-    case MapKind::cat: return "cat";
-    case MapKind::logistic: return "logistic";
-    case MapKind::henon: return "henon";
-    case MapKind::composite: return "composite";
+    case MapKind::ikeda:
+      return "ikeda";
+    case MapKind::cat:
+      return "cat";
+    case MapKind::logistic:
+      return "logistic";
+    case MapKind::henon:
+      return "henon";
+    case MapKind::composite:
+      return "composite";
   }
   return "?";
 }
@@ -114,7 +119,9 @@ void map_one_step(std::vector<Vec3>& pts, const MapParams& p, std::vector<std::u
         q.x = r.x, q.y = r.y;
         break;
       }
-      case MapKind::composite: q = composite_step(q, p.u); break;
+      case MapKind::composite:
+        q = composite_step(q, p.u);
+        break;
     }
     if (escaped_value(q)) escaped[i] = 1;
     else pts[i] = q;

@@ -49,17 +49,17 @@ MapKind map_kind_from_string(const std::string& s);
 
 struct MapParams {
   MapKind map = MapKind::ikeda;
-  double u = 0.9;            // Ikeda, composite
-  double r = 3.99;           // logistic
-  double a = 1.4, b = 0.3;   // Henon
-  std::uint32_t grid = 1024; // cat: N
+  double u = 0.9;             // Ikeda, composite
+  double r = 3.99;            // logistic
+  double a = 1.4, b = 0.3;    // Henon
+  std::uint32_t grid = 1024;  // cat: N
 };
 
 // Normalized coordinates of a point set and back (see the header comment).
 struct Normalization {
   Vec3 center{};
-  double half = 1;     // half the longest side of the bounding box (1 if degenerate)
-  bool unit = false;   // true: [0, 1]^3 (cat, logistic); false: [-1, 1]^3
+  double half = 1;    // half the longest side of the bounding box (1 if degenerate)
+  bool unit = false;  // true: [0, 1]^3 (cat, logistic); false: [-1, 1]^3
   Vec3 to_normalized(Vec3 p) const;
   Vec3 from_normalized(Vec3 q) const;
 };

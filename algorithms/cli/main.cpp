@@ -70,8 +70,12 @@ std::string convert_help() {
   return "usage: cgview convert IN OUT [--ascii] [--bits N] [--no-weld]\n"
          "\n"
          "Reads IN and writes OUT, each format from its extension.\n"
-         "  reads:  " + readable_formats() + "\n"
-         "  writes: " + writable_formats() + "\n"
+         "  reads:  " +
+         readable_formats() +
+         "\n"
+         "  writes: " +
+         writable_formats() +
+         "\n"
          "\n"
          "  --ascii      write PLY and STL as text (default: binary)\n"
          "  --bits N     Draco position quantization in bits (default 14)\n"
@@ -101,7 +105,10 @@ void print_warnings(const ReadResult& r) {
 }
 
 int cmd_info(const std::vector<std::string>& args) {
-  if (wants_help(args)) { std::fputs(kInfoHelp, stdout); return 0; }
+  if (wants_help(args)) {
+    std::fputs(kInfoHelp, stdout);
+    return 0;
+  }
   bool json = false;
   std::string path;
   for (const auto& a : args) {
@@ -130,8 +137,8 @@ int cmd_info(const std::vector<std::string>& args) {
   std::printf("edges             %llu\n", (unsigned long long)rep.edges);
   if (!rep.bbox.empty())
     std::printf("bounding box      [%g %g %g] .. [%g %g %g] (size %g x %g x %g)\n", rep.bbox.min.x, rep.bbox.min.y,
-                rep.bbox.min.z, rep.bbox.max.x, rep.bbox.max.y, rep.bbox.max.z, rep.bbox.size().x,
-                rep.bbox.size().y, rep.bbox.size().z);
+                rep.bbox.min.z, rep.bbox.max.x, rep.bbox.max.y, rep.bbox.max.z, rep.bbox.size().x, rep.bbox.size().y,
+                rep.bbox.size().z);
   std::printf("components        %llu\n", (unsigned long long)rep.components);
   std::printf("boundary loops    %llu\n", (unsigned long long)rep.boundary_loops);
   if (rep.genus) std::printf("genus             %lld\n", (long long)*rep.genus);
@@ -151,7 +158,10 @@ int cmd_info(const std::vector<std::string>& args) {
 }
 
 int cmd_convert(const std::vector<std::string>& args) {
-  if (wants_help(args)) { std::fputs(convert_help().c_str(), stdout); return 0; }
+  if (wants_help(args)) {
+    std::fputs(convert_help().c_str(), stdout);
+    return 0;
+  }
   std::vector<std::string> paths;
   WriteOptions wo;
   ReadOptions ro;
@@ -174,7 +184,8 @@ int cmd_convert(const std::vector<std::string>& args) {
   if (paths.size() != 2) throw Usage("convert: needs IN and OUT");
   const MeshFormat out_format = format_from_name(paths[1]);
   if (!can_write(out_format))
-    throw UnsupportedFormat(std::string("cannot write ") + to_string(out_format) + " (writable: " + writable_formats() + ")");
+    throw UnsupportedFormat(std::string("cannot write ") + to_string(out_format) + " (writable: " + writable_formats() +
+                            ")");
   const auto in = need_mesh(paths[0]);
   const ReadResult r = read_mesh_file(in, ro);
   print_warnings(r);
@@ -183,7 +194,10 @@ int cmd_convert(const std::vector<std::string>& args) {
 }
 
 int cmd_samples(const std::vector<std::string>& args) {
-  if (wants_help(args)) { std::fputs(kSamplesHelp, stdout); return 0; }
+  if (wants_help(args)) {
+    std::fputs(kSamplesHelp, stdout);
+    return 0;
+  }
   const bool json = !args.empty() && args[0] == "--json";
   const auto dir = samples_dir();
   if (!dir) throw IoError("no sample meshes found: install Debian's libcgal-demo and rebuild, or set CGVIEW_SAMPLES");
@@ -216,7 +230,10 @@ std::string param_line(const ParamSpec& p) {
 
 int cmd_list(const std::vector<std::string>& args) {
   if (wants_help(args)) {
-    std::fputs("usage: cgview list [--json]\n\nThe registered algorithms, with their parameters (--json: with JSON Schemas).\n", stdout);
+    std::fputs(
+        "usage: cgview list [--json]\n\nThe registered algorithms, with their parameters (--json: with JSON "
+        "Schemas).\n",
+        stdout);
     return 0;
   }
   if (!args.empty() && args[0] == "--json") {
@@ -267,10 +284,12 @@ class ProgressPrinter {
 
 int cmd_run(const std::vector<std::string>& args) {
   if (args.empty() || args[0] == "-h" || args[0] == "--help") {
-    std::fputs("usage: cgview run ALGO MESH [--PARAM VALUE]... [-o OUT]\n\n"
-               "Runs a registered algorithm on a mesh and saves its results. With several results,\n"
-               "OUT names the first and the others are saved beside it as OUTSTEM-NAME.EXT.\n"
-               "A scalar field saves as .txt, .csv or .ply; see cgview list for the algorithms.\n", stdout);
+    std::fputs(
+        "usage: cgview run ALGO MESH [--PARAM VALUE]... [-o OUT]\n\n"
+        "Runs a registered algorithm on a mesh and saves its results. With several results,\n"
+        "OUT names the first and the others are saved beside it as OUTSTEM-NAME.EXT.\n"
+        "A scalar field saves as .txt, .csv or .ply; see cgview list for the algorithms.\n",
+        stdout);
     return 0;
   }
   const Algorithm* algo;
@@ -312,7 +331,8 @@ int cmd_run(const std::vector<std::string>& args) {
       const ParamSpec* spec = nullptr;
       for (const auto& p : algo->params)
         if (p.name == name) spec = &p;
-      if (!spec) throw Usage("run: " + args[0] + " has no parameter --" + name + " (see cgview run " + args[0] + " --help)");
+      if (!spec)
+        throw Usage("run: " + args[0] + " has no parameter --" + name + " (see cgview run " + args[0] + " --help)");
       if (i + 1 >= args.size()) throw Usage("run: --" + name + " needs a value");
       const std::string& v = args[++i];
       // A selection may be long: --faces @ids.txt reads it from a file.
@@ -362,7 +382,6 @@ int cmd_run(const std::vector<std::string>& args) {
   return 0;
 }
 
-
 const char* kRenderHelp =
     "usage: cgview render MESH -o OUT.png [options]\n"
     "\n"
@@ -408,7 +427,10 @@ double parse_double_option(const std::string& name, const std::string& text) {
 }
 
 int cmd_render(const std::vector<std::string>& args) {
-  if (wants_help(args)) { std::fputs(kRenderHelp, stdout); return 0; }
+  if (wants_help(args)) {
+    std::fputs(kRenderHelp, stdout);
+    return 0;
+  }
   std::string mesh_arg, out;
   render::RenderParams params;
   bool size_given = false, silhouette = false;
@@ -505,8 +527,14 @@ int main(int argc, char** argv) {
     if (args.empty()) throw Usage("a command is needed");
     const std::string cmd = args[0];
     std::vector<std::string> rest(args.begin() + 1, args.end());
-    if (cmd == "-h" || cmd == "--help" || cmd == "help") { std::fputs(kMainHelp, stdout); return 0; }
-    if (cmd == "--version") { std::printf("cgview %s\n", kVersion); return 0; }
+    if (cmd == "-h" || cmd == "--help" || cmd == "help") {
+      std::fputs(kMainHelp, stdout);
+      return 0;
+    }
+    if (cmd == "--version") {
+      std::printf("cgview %s\n", kVersion);
+      return 0;
+    }
     if (cmd == "info") return cmd_info(rest);
     if (cmd == "convert") return cmd_convert(rest);
     if (cmd == "samples") return cmd_samples(rest);

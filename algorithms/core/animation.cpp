@@ -30,8 +30,9 @@ T get(std::string_view s, std::size_t& at) {
 std::string encode_frames(const Animation& a) {
   const std::size_t n = a.base.num_vertices();
   for (const auto& f : a.frames)
-    if (f.size() != n) throw InvalidInput("frames: a frame has " + std::to_string(f.size()) + " positions for " +
-                                          std::to_string(n) + " vertices");
+    if (f.size() != n)
+      throw InvalidInput("frames: a frame has " + std::to_string(f.size()) + " positions for " + std::to_string(n) +
+                         " vertices");
   float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   bool first = true;
   auto add = [&](Vec3f p) {

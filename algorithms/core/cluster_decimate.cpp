@@ -14,9 +14,7 @@ namespace {
 
 // One clustering pass at cell size h.
 Mesh cluster(const Mesh& in, const BBox& box, double h) {
-  const auto cells_along = [&](int a) {
-    return std::uint64_t(std::floor((box.max[a] - box.min[a]) / h)) + 1;
-  };
+  const auto cells_along = [&](int a) { return std::uint64_t(std::floor((box.max[a] - box.min[a]) / h)) + 1; };
   const std::uint64_t nx = cells_along(0), ny = cells_along(1);
   const auto cell_of = [&](const Vec3& p) {
     std::uint64_t c[3];
@@ -51,7 +49,8 @@ Mesh cluster(const Mesh& in, const BBox& box, double h) {
   // Faces first: only clusters that some kept face uses become vertices.
   struct TriHash {
     std::size_t operator()(const Tri& t) const {
-      return std::hash<std::uint64_t>()((std::uint64_t(t[0]) * 0x9E3779B97F4A7C15ull) ^ (std::uint64_t(t[1]) << 21) ^ t[2]);
+      return std::hash<std::uint64_t>()((std::uint64_t(t[0]) * 0x9E3779B97F4A7C15ull) ^ (std::uint64_t(t[1]) << 21) ^
+                                        t[2]);
     }
   };
   std::unordered_set<Tri, TriHash> seen;

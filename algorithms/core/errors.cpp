@@ -2,8 +2,7 @@
 
 namespace cgview {
 namespace {
-std::string format_parse_error(const std::string& file, const std::string& problem,
-                               std::optional<std::uint64_t> line,
+std::string format_parse_error(const std::string& file, const std::string& problem, std::optional<std::uint64_t> line,
                                std::optional<std::uint64_t> offset) {
   std::string s = file + ": ";
   if (line) s += "line " + std::to_string(*line) + ": ";

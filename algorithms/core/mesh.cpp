@@ -18,8 +18,8 @@ void check_index_triangles(const std::vector<Tri>& tris, std::size_t count, cons
   for (std::size_t f = 0; f < tris.size(); ++f)
     for (Index i : tris[f])
       if (i >= count)
-        throw InvalidInput("face " + std::to_string(f) + " refers to " + what + " " +
-                           std::to_string(i) + " but there are only " + std::to_string(count));
+        throw InvalidInput("face " + std::to_string(f) + " refers to " + what + " " + std::to_string(i) +
+                           " but there are only " + std::to_string(count));
 }
 
 // Builds a CSR list from (key, value) pairs whose keys are < n, by counting sort.
@@ -43,8 +43,7 @@ double corner_angle(Vec3 a, Vec3 b, Vec3 c) {  // angle at a
 
 void Mesh::validate() const {
   for (std::size_t v = 0; v < positions.size(); ++v)
-    if (!is_finite(positions[v]))
-      throw InvalidInput("vertex " + std::to_string(v) + " has a non-finite coordinate");
+    if (!is_finite(positions[v])) throw InvalidInput("vertex " + std::to_string(v) + " has a non-finite coordinate");
   check_index_triangles(faces, positions.size(), "vertex");
   if (!colors.empty() && colors.size() != positions.size())
     throw InvalidInput("there are " + std::to_string(colors.size()) + " colours for " +
@@ -56,8 +55,7 @@ void Mesh::validate() const {
         throw InvalidInput(std::string("there are ") + std::to_string(n) + " " + what + "s for " +
                            std::to_string(positions.size()) + " vertices");
     } else {
-      if (idx.size() != faces.size())
-        throw InvalidInput(std::string(what) + " index triangles do not match the faces");
+      if (idx.size() != faces.size()) throw InvalidInput(std::string(what) + " index triangles do not match the faces");
       check_index_triangles(idx, n, what);
     }
   };
@@ -99,8 +97,7 @@ std::vector<Vec3> vertex_normals(const Mesh& mesh, NormalWeighting w) {
     for (int k = 0; k < 3; ++k) {
       double weight = 1.0;
       if (w == NormalWeighting::area) weight = 0.5 * norm(n2);
-      else if (w == NormalWeighting::angle)
-        weight = corner_angle(P[t[k]], P[t[(k + 1) % 3]], P[t[(k + 2) % 3]]);
+      else if (w == NormalWeighting::angle) weight = corner_angle(P[t[k]], P[t[(k + 1) % 3]], P[t[(k + 2) % 3]]);
       out[t[k]] += n * weight;
     }
   }
@@ -147,7 +144,10 @@ EdgeTopology edge_topology(const Mesh& mesh) {
   const auto& F = mesh.faces;
   const std::size_t nv = mesh.positions.size();
   // Face sides bucketed by their smaller end, then sorted by the larger one.
-  struct Side { Index other; std::uint32_t face_corner; };  // face*3 + k
+  struct Side {
+    Index other;
+    std::uint32_t face_corner;
+  };  // face*3 + k
   std::vector<std::uint32_t> offsets(nv + 1, 0);
   for (const Tri& t : F)
     for (int k = 0; k < 3; ++k) {
@@ -259,8 +259,7 @@ Mesh subdivide_midpoint(const Mesh& mesh) {
   const Index nv = Index(mesh.positions.size());
   out.positions = mesh.positions;
   out.positions.reserve(nv + topo.edges.size());
-  for (const auto& e : topo.edges)
-    out.positions.push_back((mesh.positions[e[0]] + mesh.positions[e[1]]) * 0.5);
+  for (const auto& e : topo.edges) out.positions.push_back((mesh.positions[e[0]] + mesh.positions[e[1]]) * 0.5);
   out.faces.reserve(mesh.faces.size() * 4);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const Tri& t = mesh.faces[f];

@@ -27,11 +27,11 @@ struct Mesh {
   std::vector<Vec3> positions;  // one per vertex
   std::vector<Tri> faces;       // one per face, counter-clockwise seen from outside
 
-  std::vector<Vec3f> normals;    // empty, one per vertex, or indexed by normal_faces
-  std::vector<Tri> normal_faces; // empty, or one per face
-  std::vector<Vec2f> uvs;        // empty, one per vertex, or indexed by uv_faces
-  std::vector<Tri> uv_faces;     // empty, or one per face
-  std::vector<Color> colors;     // empty, or one per vertex
+  std::vector<Vec3f> normals;     // empty, one per vertex, or indexed by normal_faces
+  std::vector<Tri> normal_faces;  // empty, or one per face
+  std::vector<Vec2f> uvs;         // empty, one per vertex, or indexed by uv_faces
+  std::vector<Tri> uv_faces;      // empty, or one per face
+  std::vector<Color> colors;      // empty, or one per vertex
 
   std::size_t num_vertices() const { return positions.size(); }
   std::size_t num_faces() const { return faces.size(); }
@@ -88,9 +88,9 @@ Adjacency vertex_neighbors(const Mesh& mesh);
 
 // The undirected edges of a mesh and which faces use them.
 struct EdgeTopology {
-  std::vector<std::array<Index, 2>> edges;  // (a, b) with a < b; one per edge
+  std::vector<std::array<Index, 2>> edges;       // (a, b) with a < b; one per edge
   std::vector<std::array<Index, 3>> face_edges;  // edge ids of each face: (v0v1, v1v2, v2v0)
-  Adjacency edge_faces;  // faces using each edge: 1 on a border, 2 inside, more if non-manifold
+  Adjacency edge_faces;                          // faces using each edge: 1 on a border, 2 inside, more if non-manifold
 };
 // Edges of non-degenerate face sides (a side whose two ends coincide is skipped
 // and gets the id UINT32_MAX in face_edges).

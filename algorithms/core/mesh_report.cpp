@@ -99,8 +99,8 @@ MeshReport mesh_report(const Mesh& mesh) {
   const std::int64_t used_vertices = std::int64_t(r.vertices - r.isolated_vertices);
   r.euler_characteristic = used_vertices - std::int64_t(r.edges) + std::int64_t(r.faces);
   if (r.oriented && r.faces > 0) {
-    const std::int64_t twice = 2 * std::int64_t(r.components) - *r.euler_characteristic -
-                               std::int64_t(r.boundary_loops);
+    const std::int64_t twice =
+        2 * std::int64_t(r.components) - *r.euler_characteristic - std::int64_t(r.boundary_loops);
     if (twice >= 0 && twice % 2 == 0) r.genus = twice / 2;
   }
   if (r.closed && r.oriented) r.volume = signed_volume(mesh);

@@ -32,7 +32,9 @@ void ScalarField::check_matches(const Mesh& mesh) const {
   if (values.size() != want)
     throw InvalidInput("scalar field '" + name + "' has " + std::to_string(values.size()) +
                        " values but the mesh has " + std::to_string(want) + " " +
-                       (want == 1 ? to_string(location) : location == Location::vertex ? "vertices" : "faces"));
+                       (want == 1                      ? to_string(location)
+                        : location == Location::vertex ? "vertices"
+                                                       : "faces"));
 }
 
 ScalarField face_to_vertex(const Mesh& mesh, const ScalarField& per_face) {
@@ -47,18 +49,21 @@ ScalarField face_to_vertex(const Mesh& mesh, const ScalarField& per_face) {
     }
   ScalarField out{per_face.name, Location::vertex, per_face.hint, {}};
   out.values.resize(mesh.num_vertices());
-  for (std::size_t v = 0; v < sum.size(); ++v)
-    out.values[v] = weight[v] > 0 ? float(sum[v] / weight[v]) : 0.f;
+  for (std::size_t v = 0; v < sum.size(); ++v) out.values[v] = weight[v] > 0 ? float(sum[v] / weight[v]) : 0.f;
   return out;
 }
 
 const char* to_string(Location l) { return l == Location::vertex ? "vertex" : "face"; }
 const char* to_string(ColorHint h) {
   switch (h) {
-    case ColorHint::standard: return "standard";
-    case ColorHint::symmetric: return "symmetric";
-    case ColorHint::magnitude: return "magnitude";
-    case ColorHint::categorical: return "categorical";
+    case ColorHint::standard:
+      return "standard";
+    case ColorHint::symmetric:
+      return "symmetric";
+    case ColorHint::magnitude:
+      return "magnitude";
+    case ColorHint::categorical:
+      return "categorical";
   }
   return "standard";
 }

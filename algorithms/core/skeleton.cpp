@@ -14,13 +14,14 @@ void Skeleton::validate() const {
   for (std::size_t e = 0; e < edges.size(); ++e) {
     const auto [a, b] = edges[e];
     if (a >= nodes.size() || b >= nodes.size())
-      throw InvalidInput("skeleton edge " + std::to_string(e) + " refers to node " +
-                         std::to_string(std::max(a, b)) + " but there are only " + std::to_string(nodes.size()));
-    if (a == b) throw InvalidInput("skeleton edge " + std::to_string(e) + " joins node " + std::to_string(a) + " to itself");
+      throw InvalidInput("skeleton edge " + std::to_string(e) + " refers to node " + std::to_string(std::max(a, b)) +
+                         " but there are only " + std::to_string(nodes.size()));
+    if (a == b)
+      throw InvalidInput("skeleton edge " + std::to_string(e) + " joins node " + std::to_string(a) + " to itself");
   }
   if (!radii.empty() && radii.size() != nodes.size())
-    throw InvalidInput("skeleton has " + std::to_string(radii.size()) + " radii for " +
-                       std::to_string(nodes.size()) + " nodes");
+    throw InvalidInput("skeleton has " + std::to_string(radii.size()) + " radii for " + std::to_string(nodes.size()) +
+                       " nodes");
 }
 
 Adjacency skeleton_adjacency(const Skeleton& s) {
@@ -67,9 +68,15 @@ std::vector<std::vector<Index>> skeleton_branches(const Skeleton& s) {
   // Marks the directed slot a->b and its reverse as walked.
   auto mark = [&](Index a, Index b) {
     for (auto o = adj.offsets[a]; o < adj.offsets[a + 1]; ++o)
-      if (adj.items[o] == b && !used[o]) { used[o] = 1; break; }
+      if (adj.items[o] == b && !used[o]) {
+        used[o] = 1;
+        break;
+      }
     for (auto o = adj.offsets[b]; o < adj.offsets[b + 1]; ++o)
-      if (adj.items[o] == a && !used[o]) { used[o] = 1; break; }
+      if (adj.items[o] == a && !used[o]) {
+        used[o] = 1;
+        break;
+      }
   };
   std::vector<std::vector<Index>> out;
   auto walk = [&](Index start, std::uint32_t slot) {
@@ -101,13 +108,15 @@ std::vector<std::vector<Index>> skeleton_branches(const Skeleton& s) {
   return out;
 }
 
-bool prune_spurs(Skeleton& s, const std::function<bool(const std::vector<Index>& branch, double length, Index tip)>& drop) {
+bool prune_spurs(Skeleton& s,
+                 const std::function<bool(const std::vector<Index>& branch, double length, Index tip)>& drop) {
   const std::vector<std::uint32_t> degree = node_degrees(s);
   std::vector<std::uint8_t> unused(s.nodes.size(), 0);
   bool changed = false;
   for (const std::vector<Index>& b : skeleton_branches(s)) {
     if (b.size() < 2 || b.front() == b.back()) continue;
-    const bool spur = (degree[b.front()] == 1 && degree[b.back()] >= 3) || (degree[b.back()] == 1 && degree[b.front()] >= 3);
+    const bool spur =
+        (degree[b.front()] == 1 && degree[b.back()] >= 3) || (degree[b.back()] == 1 && degree[b.front()] >= 3);
     if (!spur) continue;
     double length = 0;
     for (std::size_t k = 1; k < b.size(); ++k) length += norm(s.nodes[b[k]] - s.nodes[b[k - 1]]);

@@ -16,8 +16,8 @@ namespace cgview {
 struct Skeleton {
   std::vector<Vec3> nodes;
   std::vector<std::array<Index, 2>> edges;
-  std::vector<float> radii;               // empty, or one per node
-  std::vector<Index> vertex_to_node;      // empty, or one per mesh vertex
+  std::vector<float> radii;           // empty, or one per node
+  std::vector<Index> vertex_to_node;  // empty, or one per mesh vertex
 
   std::size_t num_nodes() const { return nodes.size(); }
   std::size_t num_edges() const { return edges.size(); }
@@ -42,7 +42,8 @@ std::vector<std::vector<Index>> skeleton_branches(const Skeleton& s);
 // junction) for which drop(branch, length, tip) holds loses its edges; its
 // nodes below degree 3 are left unused (not renumbered).  tip is the
 // branch's end of degree 1.  Returns whether any branch went.
-bool prune_spurs(Skeleton& s, const std::function<bool(const std::vector<Index>& branch, double length, Index tip)>& drop);
+bool prune_spurs(Skeleton& s,
+                 const std::function<bool(const std::vector<Index>& branch, double length, Index tip)>& drop);
 BBox bounding_box(const Skeleton& s);
 
 }  // namespace cgview

@@ -13,8 +13,8 @@ SurfaceMeshResult to_surface_mesh(const Mesh& mesh) {
              SurfaceMesh::size_type(mesh.num_faces()));
   for (const Vec3& p : mesh.positions) sm.add_vertex(Point3(p.x, p.y, p.z));
   for (const Tri& t : mesh.faces) {
-    const auto f = sm.add_face(SurfaceMesh::Vertex_index(t[0]), SurfaceMesh::Vertex_index(t[1]),
-                               SurfaceMesh::Vertex_index(t[2]));
+    const auto f =
+        sm.add_face(SurfaceMesh::Vertex_index(t[0]), SurfaceMesh::Vertex_index(t[1]), SurfaceMesh::Vertex_index(t[2]));
     if (f == SurfaceMesh::null_face()) ++r.skipped_faces;
   }
   if (mesh.has_normals() && mesh.normal_faces.empty()) {

@@ -18,9 +18,24 @@ struct Vec3T {
   friend constexpr Vec3T operator*(Vec3T a, T s) { return {a.x * s, a.y * s, a.z * s}; }
   friend constexpr Vec3T operator*(T s, Vec3T a) { return a * s; }
   friend constexpr Vec3T operator/(Vec3T a, T s) { return {a.x / s, a.y / s, a.z / s}; }
-  constexpr Vec3T& operator+=(Vec3T b) { x += b.x; y += b.y; z += b.z; return *this; }
-  constexpr Vec3T& operator-=(Vec3T b) { x -= b.x; y -= b.y; z -= b.z; return *this; }
-  constexpr Vec3T& operator*=(T s) { x *= s; y *= s; z *= s; return *this; }
+  constexpr Vec3T& operator+=(Vec3T b) {
+    x += b.x;
+    y += b.y;
+    z += b.z;
+    return *this;
+  }
+  constexpr Vec3T& operator-=(Vec3T b) {
+    x -= b.x;
+    y -= b.y;
+    z -= b.z;
+    return *this;
+  }
+  constexpr Vec3T& operator*=(T s) {
+    x *= s;
+    y *= s;
+    z *= s;
+    return *this;
+  }
   friend constexpr bool operator==(const Vec3T&, const Vec3T&) = default;
 };
 using Vec3 = Vec3T<double>;
@@ -37,16 +52,25 @@ struct Color {
   friend constexpr bool operator==(const Color&, const Color&) = default;
 };
 
-template <class T> constexpr T dot(Vec3T<T> a, Vec3T<T> b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-template <class T> constexpr Vec3T<T> cross(Vec3T<T> a, Vec3T<T> b) {
+template <class T>
+constexpr T dot(Vec3T<T> a, Vec3T<T> b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class T>
+constexpr Vec3T<T> cross(Vec3T<T> a, Vec3T<T> b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-template <class T> T norm(Vec3T<T> a) { return std::sqrt(dot(a, a)); }
-template <class T> Vec3T<T> normalized(Vec3T<T> a) {
+template <class T>
+T norm(Vec3T<T> a) {
+  return std::sqrt(dot(a, a));
+}
+template <class T>
+Vec3T<T> normalized(Vec3T<T> a) {
   T n = norm(a);
   return n > T(0) ? a / n : Vec3T<T>{};
 }
-template <class T> bool is_finite(Vec3T<T> a) {
+template <class T>
+bool is_finite(Vec3T<T> a) {
   return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
 }
 // The point of segment ab nearest to p (a when the segment is a point).

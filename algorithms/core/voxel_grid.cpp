@@ -9,21 +9,19 @@
 
 namespace cgview {
 
-VoxelGrid::VoxelGrid(std::array<int, 3> dims, Vec3 origin, double voxel_size, VoxelType type,
-                     std::uint64_t max_voxels)
+VoxelGrid::VoxelGrid(std::array<int, 3> dims, Vec3 origin, double voxel_size, VoxelType type, std::uint64_t max_voxels)
     : dims_(dims), origin_(origin), voxel_size_(voxel_size), type_(type) {
   for (int d : dims)
     if (d <= 0) throw InvalidInput("voxel grid dimensions must be positive, got " + std::to_string(d));
-  if (!(voxel_size > 0) || !std::isfinite(voxel_size))
-    throw InvalidInput("voxel size must be positive and finite");
+  if (!(voxel_size > 0) || !std::isfinite(voxel_size)) throw InvalidInput("voxel size must be positive and finite");
   if (!is_finite(origin)) throw InvalidInput("voxel grid origin must be finite");
   // x * y < 2^62 cannot overflow; the product with z can, so compare by division.
   const std::uint64_t xy = std::uint64_t(dims[0]) * std::uint64_t(dims[1]), z = std::uint64_t(dims[2]);
   if (xy > max_voxels / z) {
     const bool fits = xy <= UINT64_MAX / z;
-    throw InvalidInput("a " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" +
-                       std::to_string(dims[2]) + " grid has " + (fits ? std::to_string(xy * z) : "over 2^64") +
-                       " voxels, over the limit of " + std::to_string(max_voxels));
+    throw InvalidInput("a " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" + std::to_string(dims[2]) +
+                       " grid has " + (fits ? std::to_string(xy * z) : "over 2^64") + " voxels, over the limit of " +
+                       std::to_string(max_voxels));
   }
   const std::uint64_t n = xy * z;
   if (type == VoxelType::float32) floats_.assign(n, 0.f);
@@ -77,8 +75,7 @@ const std::vector<VoxelIndex>& VoxelGrid::offsets(Connectivity c) {
   return c == Connectivity::six ? six : (c == Connectivity::eighteen ? eighteen : all);
 }
 
-void VoxelGrid::for_each_neighbor(VoxelIndex v, Connectivity c,
-                                  const std::function<void(VoxelIndex)>& f) const {
+void VoxelGrid::for_each_neighbor(VoxelIndex v, Connectivity c, const std::function<void(VoxelIndex)>& f) const {
   for (const VoxelIndex& o : offsets(c)) {
     VoxelIndex w{v.i + o.i, v.j + o.j, v.k + o.k};
     if (contains(w)) f(w);

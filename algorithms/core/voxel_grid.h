@@ -40,13 +40,13 @@ class VoxelGrid {
   bool contains(VoxelIndex v) const {
     return v.i >= 0 && v.j >= 0 && v.k >= 0 && v.i < dims_[0] && v.j < dims_[1] && v.k < dims_[2];
   }
-  std::size_t linear(VoxelIndex v) const { return std::size_t(v.i) + std::size_t(dims_[0]) * (v.j + std::size_t(dims_[1]) * v.k); }
+  std::size_t linear(VoxelIndex v) const {
+    return std::size_t(v.i) + std::size_t(dims_[0]) * (v.j + std::size_t(dims_[1]) * v.k);
+  }
   VoxelIndex unlinear(std::size_t n) const {
     return {int(n % dims_[0]), int((n / dims_[0]) % dims_[1]), int(n / (std::size_t(dims_[0]) * dims_[1]))};
   }
-  Vec3 center(VoxelIndex v) const {
-    return origin_ + Vec3{v.i + 0.5, v.j + 0.5, v.k + 0.5} * voxel_size_;
-  }
+  Vec3 center(VoxelIndex v) const { return origin_ + Vec3{v.i + 0.5, v.j + 0.5, v.k + 0.5} * voxel_size_; }
   // The voxel holding point p (it may lie outside the grid: check contains()).
   VoxelIndex locate(Vec3 p) const;
 
@@ -58,7 +58,7 @@ class VoxelGrid {
 
   const std::vector<std::uint8_t>& bytes() const { return bytes_; }  // bit and uint8 grids
   std::vector<std::uint8_t>& bytes() { return bytes_; }
-  const std::vector<float>& floats() const { return floats_; }       // float grids
+  const std::vector<float>& floats() const { return floats_; }  // float grids
   std::vector<float>& floats() { return floats_; }
 
   // Offsets of the neighbours in the given connectivity (6, 18 or 26 of them).

@@ -15,7 +15,8 @@ struct Params {
   template <class V>
   void describe(V& v) {
     v.boolean("normalize", normalize, {.label = "Normalize", .help = "divide by the largest distance, giving 0..1"});
-    v.number("exponent", exponent, {.label = "Exponent", .min = 0.1, .max = 4, .help = "raise each distance to this power"});
+    v.number("exponent", exponent,
+             {.label = "Exponent", .min = 0.1, .max = 4, .help = "raise each distance to this power"});
   }
 };
 

@@ -65,15 +65,20 @@ AlgorithmResult translate(const Mesh& mesh, const NoParams&, Context&) {
 }
 
 CGVIEW_REGISTER_ALGORITHM(test_translate, NoParams, translate,
-                          {.title = "Translate (test)", .description = "moves the mesh by +1 in x", .area = "test",
+                          {.title = "Translate (test)",
+                           .description = "moves the mesh by +1 in x",
+                           .area = "test",
                            .outputs = {{"mesh", OutputKind::mesh}}})
 CGVIEW_REGISTER_ALGORITHM(test_segfault, NoParams, segfault,
                           {.title = "Crash (test)", .description = "raises SIGSEGV", .area = "test", .outputs = {}})
-CGVIEW_REGISTER_ALGORITHM(test_memory_hog, NoParams, memory_hog,
-                          {.title = "Memory hog (test)", .description = "allocates without bound", .area = "test", .outputs = {}})
+CGVIEW_REGISTER_ALGORITHM(
+    test_memory_hog, NoParams, memory_hog,
+    {.title = "Memory hog (test)", .description = "allocates without bound", .area = "test", .outputs = {}})
 CGVIEW_REGISTER_ALGORITHM(test_sleep, SleepParams, sleeper,
-                          {.title = "Sleep (test)", .description = "runs for a while, checking for cancellation",
-                           .area = "test", .outputs = {{"index", OutputKind::scalar_field}}})
+                          {.title = "Sleep (test)",
+                           .description = "runs for a while, checking for cancellation",
+                           .area = "test",
+                           .outputs = {{"index", OutputKind::scalar_field}}})
 
 }  // namespace
 }  // namespace cgview

@@ -25,16 +25,19 @@ struct Params {
   template <class V>
   void describe(V& v) {
     v.integer("max_hole_edges", max_hole_edges,
-              {.label = "Largest hole (edges)", .min = 3, .max = 1e6,
+              {.label = "Largest hole (edges)",
+               .min = 3,
+               .max = 1e6,
                .help = "holes bounded by more edges than this are left open"});
     v.choice("mode", mode,
              {.label = "Mode",
               .help = "triangulate: fewest new faces; refine: also add vertices to match the surrounding "
                       "density; refine_and_fair: also move them to blend smoothly with the surface",
               .choices = {"triangulate", "refine", "refine_and_fair"}});
-    v.boolean("repair", repair,
-              {.label = "Repair first",
-               .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
+    v.boolean(
+        "repair", repair,
+        {.label = "Repair first",
+         .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
   }
 };
 
@@ -62,15 +65,15 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
     } else if (p.mode == "refine") {
       PMP::triangulate_and_refine_hole(sm, h, std::back_inserter(new_faces), std::back_inserter(new_vertices));
     } else {
-      const bool faired = std::get<0>(PMP::triangulate_refine_and_fair_hole(
-          sm, h, std::back_inserter(new_faces), std::back_inserter(new_vertices)));
+      const bool faired = std::get<0>(PMP::triangulate_refine_and_fair_hole(sm, h, std::back_inserter(new_faces),
+                                                                            std::back_inserter(new_vertices)));
       if (!faired) ++fairing_failed;
     }
     if (!new_faces.empty()) ++filled;
   }
   if (too_large > 0)
-    result.warnings.push_back(std::to_string(too_large) + " holes have more than " +
-                              std::to_string(p.max_hole_edges) + " edges and were left open");
+    result.warnings.push_back(std::to_string(too_large) + " holes have more than " + std::to_string(p.max_hole_edges) +
+                              " edges and were left open");
   if (fairing_failed > 0)
     result.warnings.push_back("fairing failed on " + std::to_string(fairing_failed) +
                               " holes; they are triangulated and refined only");
@@ -78,8 +81,8 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
     result.warnings.push_back(std::to_string(cycles.size() - filled - too_large) + " holes could not be triangulated");
   sm.collect_garbage();
   result.artifacts.push_back({"mesh", from_surface_mesh(sm)});
-  result.artifacts.push_back({"metrics", Metrics{{"holes_found", double(cycles.size())},
-                                                 {"holes_filled", double(filled)}}});
+  result.artifacts.push_back(
+      {"metrics", Metrics{{"holes_found", double(cycles.size())}, {"holes_filled", double(filled)}}});
   ctx.progress(1.0, "done");
   return result;
 }

@@ -58,8 +58,7 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
       throw InvalidInput("parameter 'sources': vertex " + std::to_string(s) + " is used by no face");
   auto dist = sm.add_property_map<Vertex, double>("v:geodesic_distance", 0.0).first;
   ctx.progress(0.1, "factoring");
-  CGAL::Heat_method_3::Surface_mesh_geodesic_distances_3<SurfaceMesh, CGAL::Heat_method_3::Intrinsic_Delaunay>
-      hm(sm);
+  CGAL::Heat_method_3::Surface_mesh_geodesic_distances_3<SurfaceMesh, CGAL::Heat_method_3::Intrinsic_Delaunay> hm(sm);
   ctx.check_cancelled();
   for (std::size_t s : sources) hm.add_source(Vertex(SurfaceMesh::size_type(s)));
   ctx.progress(0.6, "solving");

@@ -39,7 +39,8 @@ struct Params {
 };
 
 using Triangle = Kernel::Triangle_3;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle>::const_iterator>>>;
+using Tree = CGAL::AABB_tree<
+    CGAL::AABB_traits<Kernel, CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle>::const_iterator>>>;
 
 AlgorithmResult run(const Inputs& in, const Params& p, Context& ctx) {
   const Mesh& a = in.mesh("mesh");
@@ -61,7 +62,8 @@ AlgorithmResult run(const Inputs& in, const Params& p, Context& ctx) {
   std::vector<Triangle> triangles;
   triangles.reserve(b.num_faces());
   auto point = [](const Vec3& v) { return Point3(v.x, v.y, v.z); };
-  for (const auto& f : b.faces) triangles.emplace_back(point(b.positions[f[0]]), point(b.positions[f[1]]), point(b.positions[f[2]]));
+  for (const auto& f : b.faces)
+    triangles.emplace_back(point(b.positions[f[0]]), point(b.positions[f[1]]), point(b.positions[f[2]]));
   Tree tree(triangles.begin(), triangles.end());
   tree.accelerate_distance_queries();
   ScalarField field{"distance", Location::vertex, ColorHint::magnitude, {}};
@@ -106,15 +108,16 @@ AlgorithmResult run(const Inputs& in, const Params& p, Context& ctx) {
   return result;
 }
 
-CGVIEW_REGISTER_ALGORITHM(hausdorff, Params, run,
-                          {.title = "Hausdorff distance",
-                           .description = "The symmetric Hausdorff distance between two meshes (exact within a "
-                                          "bound, over the whole surfaces), and each vertex's distance to the "
-                                          "reference as a colour map.",
-                           .area = "filters",
-                           .outputs = {{"distance", OutputKind::scalar_field}, {"metrics", OutputKind::metrics}},
-                           .inputs = {{.name = "mesh", .kind = OutputKind::mesh, .help = "the mesh measured (it carries the colour map)"},
-                                      {.name = "reference", .kind = OutputKind::mesh, .help = "the mesh it is compared with"}}})
+CGVIEW_REGISTER_ALGORITHM(
+    hausdorff, Params, run,
+    {.title = "Hausdorff distance",
+     .description = "The symmetric Hausdorff distance between two meshes (exact within a "
+                    "bound, over the whole surfaces), and each vertex's distance to the "
+                    "reference as a colour map.",
+     .area = "filters",
+     .outputs = {{"distance", OutputKind::scalar_field}, {"metrics", OutputKind::metrics}},
+     .inputs = {{.name = "mesh", .kind = OutputKind::mesh, .help = "the mesh measured (it carries the colour map)"},
+                {.name = "reference", .kind = OutputKind::mesh, .help = "the mesh it is compared with"}}})
 
 }  // namespace
 }  // namespace cgview

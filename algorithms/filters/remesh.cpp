@@ -22,13 +22,15 @@ struct Params {
   template <class V>
   void describe(V& v) {
     v.number("target_edge_length", target_edge_length,
-             {.label = "Target edge length", .min = 0,
+             {.label = "Target edge length",
+              .min = 0,
               .help = "the edge length to reach; 0 means the input's mean edge length"});
     v.integer("iterations", iterations,
               {.label = "Iterations", .min = 1, .max = 100, .help = "split/collapse/flip/relax rounds"});
-    v.boolean("repair", repair,
-              {.label = "Repair first",
-               .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
+    v.boolean(
+        "repair", repair,
+        {.label = "Repair first",
+         .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
   }
 };
 
@@ -40,8 +42,9 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   double target = p.target_edge_length;
   if (target == 0) {
     double sum = 0;
-    for (auto e : sm.edges()) sum += std::sqrt(CGAL::squared_distance(sm.point(sm.source(sm.halfedge(e))),
-                                                                      sm.point(sm.target(sm.halfedge(e)))));
+    for (auto e : sm.edges())
+      sum +=
+          std::sqrt(CGAL::squared_distance(sm.point(sm.source(sm.halfedge(e))), sm.point(sm.target(sm.halfedge(e)))));
     target = sum / double(sm.number_of_edges());
   }
   if (!(target > 0)) throw InvalidInput("remesh needs a mesh with edges of non-zero length");

@@ -15,8 +15,7 @@ struct Params {
   bool stitch = true;
   template <class V>
   void describe(V& v) {
-    v.boolean("stitch", stitch,
-              {.label = "Stitch borders", .help = "glue border edges whose end points coincide"});
+    v.boolean("stitch", stitch, {.label = "Stitch borders", .help = "glue border edges whose end points coincide"});
   }
 };
 

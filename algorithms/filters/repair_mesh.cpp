@@ -53,12 +53,12 @@ SurfaceMesh halfedge_mesh_for(const Mesh& mesh, const char* who, bool repair, st
   if (r.skipped_faces == 0) return std::move(r.mesh);
   RepairReport rep;
   SurfaceMesh sm = repair_to_surface_mesh(mesh, true, rep);
-  warnings.push_back(std::string(who) + ": the mesh was not manifold (" + std::to_string(r.skipped_faces) +
-                     " faces did not fit a halfedge structure) and was repaired first: " +
-                     std::to_string(rep.faces_removed) + " faces removed, " + std::to_string(rep.vertices_merged) +
-                     " vertices merged, " + std::to_string(rep.vertices_duplicated) +
-                     " duplicated to split non-manifold edges and vertices, " + std::to_string(rep.borders_stitched) +
-                     " borders stitched");
+  warnings.push_back(
+      std::string(who) + ": the mesh was not manifold (" + std::to_string(r.skipped_faces) +
+      " faces did not fit a halfedge structure) and was repaired first: " + std::to_string(rep.faces_removed) +
+      " faces removed, " + std::to_string(rep.vertices_merged) + " vertices merged, " +
+      std::to_string(rep.vertices_duplicated) + " duplicated to split non-manifold edges and vertices, " +
+      std::to_string(rep.borders_stitched) + " borders stitched");
   return sm;
 }
 

@@ -19,10 +19,10 @@ namespace cgview {
 
 struct RepairReport {
   std::size_t vertices_before = 0, faces_before = 0;
-  std::size_t vertices_merged = 0;            // duplicate points merged
-  std::size_t faces_removed = 0;              // degenerate, zero-area and duplicate faces
+  std::size_t vertices_merged = 0;  // duplicate points merged
+  std::size_t faces_removed = 0;    // degenerate, zero-area and duplicate faces
   std::size_t isolated_vertices_removed = 0;
-  std::size_t vertices_duplicated = 0;        // to split non-manifold edges and vertices
+  std::size_t vertices_duplicated = 0;  // to split non-manifold edges and vertices
   std::size_t borders_stitched = 0;
 };
 

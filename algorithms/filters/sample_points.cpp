@@ -24,8 +24,9 @@ struct Params {
   template <class V>
   void describe(V& v) {
     v.integer("count", count, {.label = "Points", .min = 1, .max = 1e7, .help = "how many points to draw"});
-    v.integer("seed", seed,
-              {.label = "Seed", .min = 0, .max = 2147483647, .help = "the random seed: the same seed, the same points"});
+    v.integer(
+        "seed", seed,
+        {.label = "Seed", .min = 0, .max = 2147483647, .help = "the random seed: the same seed, the same points"});
   }
 };
 
@@ -49,9 +50,9 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
       ctx.progress(0.05 + 0.95 * i / p.count, "sampling");
     }
     const double pick = uniform(rng) * total;
-    const std::size_t f = std::min(std::size_t(std::upper_bound(cumulative.begin(), cumulative.end(), pick) -
-                                               cumulative.begin()),
-                                   cumulative.size() - 1);
+    const std::size_t f =
+        std::min(std::size_t(std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin()),
+                 cumulative.size() - 1);
     // sqrt makes the barycentric coordinates uniform over the triangle's area.
     const double s = std::sqrt(uniform(rng)), t = uniform(rng);
     const Tri& tri = mesh.faces[f];

@@ -30,15 +30,21 @@ struct Params {
   double ratio = 0.5;
   template <class V>
   void describe(V& v) {
-    v.integer("target_faces", target_faces,
-              {.label = "Target faces", .min = 0, .max = 1e9,
-               .help = "stop at this many faces or fewer; 0 means use the ratio (when above 0, it wins over the ratio)"});
+    v.integer(
+        "target_faces", target_faces,
+        {.label = "Target faces",
+         .min = 0,
+         .max = 1e9,
+         .help = "stop at this many faces or fewer; 0 means use the ratio (when above 0, it wins over the ratio)"});
     v.number("ratio", ratio,
-             {.label = "Ratio", .min = 0, .max = 1,
+             {.label = "Ratio",
+              .min = 0,
+              .max = 1,
               .help = "fraction of the input's faces to keep, used when target_faces is 0"});
-    v.boolean("repair", repair,
-              {.label = "Repair first",
-               .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
+    v.boolean(
+        "repair", repair,
+        {.label = "Repair first",
+         .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
   }
 };
 
@@ -56,8 +62,7 @@ struct Visitor : SMS::Edge_collapse_visitor_base<SurfaceMesh> {
   void OnCollapsed(const Profile& p, const VD&) {
     t->faces -= std::size_t(p.left_face_exists()) + std::size_t(p.right_face_exists());
     if (++t->collapses % 256 == 0)
-      t->ctx->progress(0.05 + 0.9 * double(t->initial - t->faces) / double(t->initial - t->target),
-                       "collapsing edges");
+      t->ctx->progress(0.05 + 0.9 * double(t->initial - t->faces) / double(t->initial - t->target), "collapsing edges");
   }
 };
 
@@ -76,13 +81,12 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   SurfaceMesh sm = halfedge_mesh_for(mesh, "simplify", p.repair, result.warnings);
   Tracker t;
   t.faces = t.initial = sm.number_of_faces();
-  t.target = p.target_faces > 0 ? std::size_t(p.target_faces)
-                                : std::size_t(std::llround(p.ratio * double(t.initial)));
+  t.target = p.target_faces > 0 ? std::size_t(p.target_faces) : std::size_t(std::llround(p.ratio * double(t.initial)));
   t.ctx = &ctx;
   if (t.target < t.initial) {
     SMS::GarlandHeckbert_plane_policies<SurfaceMesh, Kernel> gh(sm);
-    SMS::edge_collapse(sm, Stop{&t},
-                       CGAL::parameters::get_cost(gh.get_cost()).get_placement(gh.get_placement()).visitor(Visitor(&t)));
+    SMS::edge_collapse(
+        sm, Stop{&t}, CGAL::parameters::get_cost(gh.get_cost()).get_placement(gh.get_placement()).visitor(Visitor(&t)));
     ctx.check_cancelled();
     sm.collect_garbage();
     if (sm.number_of_faces() > t.target)

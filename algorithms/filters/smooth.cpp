@@ -31,12 +31,15 @@ struct Params {
                       "the shape (area smoothing needs Ceres, absent here, so only angles are optimized)",
               .choices = {"mean_curvature_flow", "angle_and_area"}});
     v.number("time", time,
-             {.label = "Time step", .min = 1e-8, .max = 1,
+             {.label = "Time step",
+              .min = 1e-8,
+              .max = 1,
               .help = "mean_curvature_flow only: the step of each iteration; larger smooths faster"});
     v.integer("iterations", iterations, {.label = "Iterations", .min = 1, .max = 1000});
-    v.boolean("repair", repair,
-              {.label = "Repair first",
-               .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
+    v.boolean(
+        "repair", repair,
+        {.label = "Repair first",
+         .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
   }
 };
 
@@ -48,10 +51,8 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   for (int i = 0; i < p.iterations; ++i) {
     ctx.check_cancelled();
     ctx.progress(double(i) / double(p.iterations), "iteration " + std::to_string(i + 1));
-    if (p.method == "mean_curvature_flow")
-      PMP::smooth_shape(sm, p.time, CGAL::parameters::number_of_iterations(1));
-    else
-      PMP::angle_and_area_smoothing(sm, CGAL::parameters::number_of_iterations(1).use_area_smoothing(false));
+    if (p.method == "mean_curvature_flow") PMP::smooth_shape(sm, p.time, CGAL::parameters::number_of_iterations(1));
+    else PMP::angle_and_area_smoothing(sm, CGAL::parameters::number_of_iterations(1).use_area_smoothing(false));
   }
   sm.collect_garbage();
   result.artifacts.push_back({"mesh", from_surface_mesh(sm)});

@@ -26,12 +26,14 @@ struct Params {
     v.choice("method", method,
              {.label = "Method",
               .help = "loop: smooth, each triangle into 4; catmull_clark: quads, each triangle into 3 "
-                      "then each quad into 4 per step, split into 2 triangles each at the end; sqrt3: Kobbelt's scheme, each triangle into 3",
+                      "then each quad into 4 per step, split into 2 triangles each at the end; sqrt3: Kobbelt's "
+                      "scheme, each triangle into 3",
               .choices = {"loop", "catmull_clark", "sqrt3"}});
     v.integer("iterations", iterations, {.label = "Iterations", .min = 1, .max = 5, .help = "subdivision steps"});
-    v.boolean("repair", repair,
-              {.label = "Repair first",
-               .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
+    v.boolean(
+        "repair", repair,
+        {.label = "Repair first",
+         .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
   }
 };
 

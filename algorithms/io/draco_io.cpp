@@ -40,7 +40,8 @@ std::unique_ptr<draco::Mesh> to_draco(const Mesh& input, std::span<const std::ui
   std::vector<std::array<std::uint32_t, 3>> face_points(mesh.num_faces());
   if (face_material.empty()) {
     for (std::size_t f = 0; f < mesh.num_faces(); ++f)
-      face_points[f] = {std::uint32_t(mesh.faces[f][0]), std::uint32_t(mesh.faces[f][1]), std::uint32_t(mesh.faces[f][2])};
+      face_points[f] = {std::uint32_t(mesh.faces[f][0]), std::uint32_t(mesh.faces[f][1]),
+                        std::uint32_t(mesh.faces[f][2])};
   } else {
     std::unordered_map<std::uint64_t, std::uint32_t> point_of;
     for (std::size_t f = 0; f < mesh.num_faces(); ++f)
@@ -124,8 +125,8 @@ const draco::PointAttribute* numeric(const draco::PointAttribute* a, const std::
   if (!a) return nullptr;
   const draco::DataType t = a->data_type();
   if (t < draco::DT_INT8 || t > draco::DT_FLOAT64)
-    throw ParseError(name, std::string("the Draco ") + what + " are of data type " + std::to_string(int(t)) +
-                               ", not numbers",
+    throw ParseError(name,
+                     std::string("the Draco ") + what + " are of data type " + std::to_string(int(t)) + ", not numbers",
                      std::nullopt, std::nullopt);
   return a;
 }
@@ -133,7 +134,8 @@ const draco::PointAttribute* numeric(const draco::PointAttribute* a, const std::
 // Our Mesh from a decoded draco::Mesh: one vertex per draco point.
 void from_draco(const draco::Mesh& dm, const std::string& name, ReadResult& result) {
   Mesh& mesh = result.mesh;
-  const draco::PointAttribute* pos = numeric(dm.GetNamedAttribute(draco::GeometryAttribute::POSITION), name, "positions");
+  const draco::PointAttribute* pos =
+      numeric(dm.GetNamedAttribute(draco::GeometryAttribute::POSITION), name, "positions");
   if (!pos) throw ParseError(name, "the Draco data has no positions", std::nullopt, std::nullopt);
   const std::size_t n = dm.num_points();
   mesh.positions.resize(n);
@@ -311,7 +313,8 @@ void read_draco(std::string_view bytes, const std::string& name, ReadResult& res
   draco::Decoder decoder;
   auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
   if (!decoded.ok())
-    throw ParseError(name, "Draco could not decode it: " + decoded.status().error_msg_string(), std::nullopt, std::nullopt);
+    throw ParseError(name, "Draco could not decode it: " + decoded.status().error_msg_string(), std::nullopt,
+                     std::nullopt);
   from_draco(*decoded.value(), name, result);
 }
 
@@ -394,11 +397,13 @@ class GltfReader {
     if (version != 2) fail("glTF binary version " + std::to_string(version) + " is not supported (only 2)", 4);
     if (length > bytes_.size())
       fail("the header says the file has " + std::to_string(length) + " bytes, but it has " +
-               std::to_string(bytes_.size()) + " (truncated?)", 8);
+               std::to_string(bytes_.size()) + " (truncated?)",
+           8);
     if (length < 20) fail("the header's length " + std::to_string(length) + " is too small", 8);
     const std::uint32_t json_length = le32(bytes_, 12);
     if (le32(bytes_, 16) != 0x4E4F534Au) fail("the first chunk is not the JSON chunk", 16);
-    if (json_length > length - 20) fail("the JSON chunk of " + std::to_string(json_length) + " bytes runs past the end of the file", 12);
+    if (json_length > length - 20)
+      fail("the JSON chunk of " + std::to_string(json_length) + " bytes runs past the end of the file", 12);
     json_ = bytes_.substr(20, json_length);
     json_offset_ = 20;
     for (std::uint64_t at = 20 + std::uint64_t(json_length); at + 8 <= length;) {
@@ -426,12 +431,14 @@ class GltfReader {
       const std::uint64_t at = pe && pe->byte > 0 ? std::min<std::uint64_t>(pe->byte - 1, json_.size()) : 0;
       if (json_offset_) fail("the JSON chunk is malformed: " + what, json_offset_ + at);
       throw ParseError(name_, "malformed JSON: " + what,
-                       1 + std::uint64_t(std::count(json_.begin(), json_.begin() + std::ptrdiff_t(at), '\n')), std::nullopt);
+                       1 + std::uint64_t(std::count(json_.begin(), json_.begin() + std::ptrdiff_t(at), '\n')),
+                       std::nullopt);
     }
     if (!doc_.is_object()) fail("the glTF JSON is not an object");
     // glTF 1.0 (2015) keeps buffers, meshes and accessors in objects by name.
     const auto asset = doc_.find("asset");
-    const Json* version = asset != doc_.end() && asset->is_object() && asset->contains("version") ? &(*asset)["version"] : nullptr;
+    const Json* version =
+        asset != doc_.end() && asset->is_object() && asset->contains("version") ? &(*asset)["version"] : nullptr;
     const bool v1 = version ? version->is_string() && version->get_ref<const std::string&>().starts_with("1.")
                             : doc_.contains("buffers") && doc_["buffers"].is_object();
     if (v1) fail("glTF 1.0 is not supported (only glTF 2.0): convert it, e.g. with gltf-pipeline or Blender");
@@ -459,7 +466,8 @@ class GltfReader {
   std::optional<std::uint64_t> uint_field(const Json& obj, const char* key, const std::string& where) const {
     const auto it = obj.find(key);
     if (it == obj.end()) return std::nullopt;
-    if (!it->is_number_integer() || (it->is_number_integer() && !it->is_number_unsigned() && it->get<std::int64_t>() < 0))
+    if (!it->is_number_integer() ||
+        (it->is_number_integer() && !it->is_number_unsigned() && it->get<std::int64_t>() < 0))
       fail(where + "." + key + " is not a non-negative integer");
     return it->get<std::uint64_t>();
   }
@@ -469,11 +477,13 @@ class GltfReader {
     return *v;
   }
   std::uint64_t index(const Json& v, std::size_t count, const std::string& where, const char* what) const {
-    if (!v.is_number_integer() || (!v.is_number_unsigned() && v.get<std::int64_t>() < 0) || v.get<std::uint64_t>() >= count)
+    if (!v.is_number_integer() || (!v.is_number_unsigned() && v.get<std::int64_t>() < 0) ||
+        v.get<std::uint64_t>() >= count)
       fail(where + " refers to " + what + " " + v.dump().substr(0, 24) + ", but there are " + std::to_string(count));
     return v.get<std::uint64_t>();
   }
-  std::uint64_t index_field(const Json& obj, const char* key, std::size_t count, const std::string& where, const char* what) const {
+  std::uint64_t index_field(const Json& obj, const char* key, std::size_t count, const std::string& where,
+                            const char* what) const {
     const auto it = obj.find(key);
     if (it == obj.end()) fail(where + " has no " + key);
     return index(*it, count, where + "." + key, what);
@@ -494,7 +504,8 @@ class GltfReader {
       if (!uri->is_string()) fail(where + ".uri is not a string");
       const std::string& u = uri->get_ref<const std::string&>();
       const auto comma = u.find(',');
-      if (!u.starts_with("data:") || comma == std::string::npos || u.substr(0, comma).find(";base64") == std::string::npos)
+      if (!u.starts_with("data:") || comma == std::string::npos ||
+          u.substr(0, comma).find(";base64") == std::string::npos)
         fail(where + " refers to the external file '" + u.substr(0, 64) +
              "': only embedded buffers are read (a .glb, or data: URIs in a .gltf)");
       decoded_.emplace_back();
@@ -503,7 +514,8 @@ class GltfReader {
       data = decoded_.back();
     }
     if (data.size() < length)
-      fail(where + " has " + std::to_string(data.size()) + " bytes, fewer than its byteLength " + std::to_string(length));
+      fail(where + " has " + std::to_string(data.size()) + " bytes, fewer than its byteLength " +
+           std::to_string(length));
     buffer_data_[i] = data.substr(0, length);
     return *buffer_data_[i];
   }
@@ -524,7 +536,8 @@ class GltfReader {
   }
 
   // The values of accessor i as floats (normalized integers mapped to 0..1 or -1..1).
-  std::vector<float> floats(std::size_t i, int min_components, int max_components, const std::string& use, int& components) {
+  std::vector<float> floats(std::size_t i, int min_components, int max_components, const std::string& use,
+                            int& components) {
     const std::string where = "accessors[" + std::to_string(i) + "] (" + use + ")";
     const Json& a = object(*accessors_, i, where);
     const auto type = a.find("type");
@@ -569,7 +582,9 @@ class GltfReader {
       // No bufferView: zeros, then the sparse values.  The zeros cost memory
       // the file does not back, so their count is bounded by the bytes the
       // file holds at all (a few bytes of JSON must not claim a billion).
-      if (count == 0 || count > bytes_.size()) fail(where + ": a count of " + std::to_string(count) + " elements, more than the file's " + std::to_string(bytes_.size()) + " bytes can describe");
+      if (count == 0 || count > bytes_.size())
+        fail(where + ": a count of " + std::to_string(count) + " elements, more than the file's " +
+             std::to_string(bytes_.size()) + " bytes can describe");
       out.assign(static_cast<std::size_t>(count * std::uint64_t(components)), 0.f);
     }
     if (sparse != a.end()) apply_sparse(*sparse, where + ".sparse", count, components, ct, size, normalized, out);
@@ -588,11 +603,14 @@ class GltfReader {
     if (val == s.end() || !val->is_object()) fail(where + " has no values object");
     const std::uint64_t ict = need_uint(*idx, "componentType", where + ".indices");
     const std::uint64_t isize = ict == 5121 ? 1 : ict == 5123 ? 2 : ict == 5125 ? 4 : 0;
-    if (isize == 0) fail(where + ".indices: componentType " + std::to_string(ict) + " is not an unsigned byte, short or int");
+    if (isize == 0)
+      fail(where + ".indices: componentType " + std::to_string(ict) + " is not an unsigned byte, short or int");
     std::uint64_t stride = 0;
-    const std::string_view ib = view(index_field(*idx, "bufferView", views_->size(), where + ".indices", "bufferView"), stride);
+    const std::string_view ib =
+        view(index_field(*idx, "bufferView", views_->size(), where + ".indices", "bufferView"), stride);
     const std::uint64_t ioff = uint_field(*idx, "byteOffset", where + ".indices").value_or(0);
-    const std::string_view vb = view(index_field(*val, "bufferView", views_->size(), where + ".values", "bufferView"), stride);
+    const std::string_view vb =
+        view(index_field(*val, "bufferView", views_->size(), where + ".values", "bufferView"), stride);
     const std::uint64_t voff = uint_field(*val, "byteOffset", where + ".values").value_or(0);
     const std::uint64_t element = std::uint64_t(components) * std::uint64_t(size);
     if (n == 0 || n > elements || ioff > ib.size() || n > (ib.size() - ioff) / isize || voff > vb.size() ||
@@ -603,10 +621,12 @@ class GltfReader {
     for (std::uint64_t k = 0; k < n; ++k) {
       unsigned char b[4] = {0, 0, 0, 0};
       std::memcpy(b, ib.data() + ioff + k * isize, std::size_t(isize));
-      const std::uint64_t e = std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24;
+      const std::uint64_t e =
+          std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24;
       if (e >= elements || (k > 0 && e <= last))
-        fail(where + ": index " + std::to_string(k) + " is " + std::to_string(e) +
-             (e >= elements ? ", past the " + std::to_string(elements) + " elements" : ", not after the one before it"));
+        fail(
+            where + ": index " + std::to_string(k) + " is " + std::to_string(e) +
+            (e >= elements ? ", past the " + std::to_string(elements) + " elements" : ", not after the one before it"));
       last = e;
       for (int c = 0; c < components; ++c)
         out[std::size_t(e) * std::size_t(components) + std::size_t(c)] =
@@ -617,13 +637,19 @@ class GltfReader {
   static float component(const char* p, std::uint64_t ct, bool normalized) {
     unsigned char b[4] = {0, 0, 0, 0};
     std::memcpy(b, p, ct == 5120 || ct == 5121 ? 1 : ct == 5122 || ct == 5123 ? 2 : 4);
-    const std::uint32_t u = std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24;
+    const std::uint32_t u =
+        std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24;
     switch (ct) {
-      case 5120: return normalized ? std::max(float(std::int8_t(u)) / 127.f, -1.f) : float(std::int8_t(u));
-      case 5121: return normalized ? float(u) / 255.f : float(u);
-      case 5122: return normalized ? std::max(float(std::int16_t(u)) / 32767.f, -1.f) : float(std::int16_t(u));
-      case 5123: return normalized ? float(u) / 65535.f : float(u);
-      case 5125: return float(u);
+      case 5120:
+        return normalized ? std::max(float(std::int8_t(u)) / 127.f, -1.f) : float(std::int8_t(u));
+      case 5121:
+        return normalized ? float(u) / 255.f : float(u);
+      case 5122:
+        return normalized ? std::max(float(std::int16_t(u)) / 32767.f, -1.f) : float(std::int16_t(u));
+      case 5123:
+        return normalized ? float(u) / 65535.f : float(u);
+      case 5125:
+        return float(u);
       default: {
         float f;
         std::memcpy(&f, &u, 4);
@@ -667,7 +693,7 @@ class GltfReader {
   struct Part {
     std::vector<float> positions, normals, uvs, colors;  // 3, 3, 2 and 4 floats a vertex
     int color_components = 4;
-    std::vector<std::uint32_t> corners;                  // triangle corners
+    std::vector<std::uint32_t> corners;  // triangle corners
     std::size_t vertices = 0;
   };
 
@@ -685,8 +711,8 @@ class GltfReader {
       const auto it = attrs->find(key);
       if (it == attrs->end()) return;
       int c = 0;
-      out = floats(index(*it, accessors_->size(), where + ".attributes." + key, "accessor"), lo, hi,
-                   where + " " + key, c);
+      out = floats(index(*it, accessors_->size(), where + ".attributes." + key, "accessor"), lo, hi, where + " " + key,
+                   c);
       if (out.size() / std::size_t(c) != part.vertices)
         fail(where + ": " + key + " has " + std::to_string(out.size() / std::size_t(c)) + " values for " +
              std::to_string(part.vertices) + " positions");
@@ -696,8 +722,8 @@ class GltfReader {
     optional_attr("TEXCOORD_0", 2, 2, part.uvs, nullptr);
     optional_attr("COLOR_0", 3, 4, part.colors, &part.color_components);
     if (const auto ind = prim.find("indices"); ind != prim.end()) {
-      part.corners = indices(index(*ind, accessors_->size(), where + ".indices", "accessor"), part.vertices,
-                             where + " indices");
+      part.corners =
+          indices(index(*ind, accessors_->size(), where + ".indices", "accessor"), part.vertices, where + " indices");
     } else {
       part.corners.resize(part.vertices);
       for (std::size_t k = 0; k < part.vertices; ++k) part.corners[k] = std::uint32_t(k);
@@ -720,7 +746,8 @@ class GltfReader {
     const draco::Mesh& dm = *decoded.value();
     Part part;
     part.vertices = dm.num_points();
-    auto values = [&](const char* key, int comps, std::vector<float>& out, bool required) -> const draco::PointAttribute* {
+    auto values = [&](const char* key, int comps, std::vector<float>& out,
+                      bool required) -> const draco::PointAttribute* {
       const auto it = attrs->find(key);
       if (it == attrs->end()) {
         if (required) fail(where + " has no " + key + " attribute");
@@ -730,7 +757,8 @@ class GltfReader {
       const draco::PointAttribute* a = numeric(dm.GetAttributeByUniqueId(it->get<std::uint32_t>()), name_, key);
       if (!a) fail(where + ": the Draco data has no attribute " + it->dump().substr(0, 16) + " for " + key);
       out.assign(part.vertices * std::size_t(comps), 0.f);
-      if (comps == 4) for (std::size_t k = 3; k < out.size(); k += 4) out[k] = 1.f;
+      if (comps == 4)
+        for (std::size_t k = 3; k < out.size(); k += 4) out[k] = 1.f;
       for (std::size_t k = 0; k < part.vertices; ++k) {
         const draco::PointIndex p(static_cast<draco::PointIndex::ValueType>(k));
         a->ConvertValue<float>(a->mapped_index(p), std::int8_t(std::min<int>(comps, a->num_components())),
@@ -824,7 +852,7 @@ class GltfReader {
     const double a = m[0], b = m[1], cc = m[2], d = m[4], e = m[5], f = m[6], g = m[8], h = m[9], k = m[10];
     const double det = a * (e * k - f * h) - b * (d * k - f * g) + cc * (d * h - e * g);
     const double s = det < 0 ? -1.0 : 1.0;
-    const double cof[9] = {s * (e * k - f * h), s * (f * g - d * k), s * (d * h - e * g),
+    const double cof[9] = {s * (e * k - f * h),  s * (f * g - d * k),  s * (d * h - e * g),
                            s * (cc * h - b * k), s * (a * k - cc * g), s * (b * g - a * h),
                            s * (b * f - cc * e), s * (cc * d - a * f), s * (a * e - b * d)};
     for (std::size_t v = 0; v < part.vertices; ++v) {
@@ -863,7 +891,8 @@ class GltfReader {
     auto numbers = [&](const char* key, std::size_t n, std::vector<double>& out) {
       const auto it = node.find(key);
       if (it == node.end()) return false;
-      if (!it->is_array() || it->size() != n) fail(where + "." + key + " is not an array of " + std::to_string(n) + " numbers");
+      if (!it->is_array() || it->size() != n)
+        fail(where + "." + key + " is not an array of " + std::to_string(n) + " numbers");
       out.clear();
       for (const Json& x : *it) {
         if (!x.is_number()) fail(where + "." + key + " is not an array of " + std::to_string(n) + " numbers");
@@ -882,10 +911,22 @@ class GltfReader {
     if (numbers("translation", 3, v)) t[3] = v[0], t[7] = v[1], t[11] = v[2];
     if (numbers("rotation", 4, v)) {
       const double x = v[0], y = v[1], z = v[2], w = v[3];
-      r = {1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w), 0,
-           2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w), 0,
-           2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y), 0,
-           0, 0, 0, 1};
+      r = {1 - 2 * (y * y + z * z),
+           2 * (x * y - z * w),
+           2 * (x * z + y * w),
+           0,
+           2 * (x * y + z * w),
+           1 - 2 * (x * x + z * z),
+           2 * (y * z - x * w),
+           0,
+           2 * (x * z - y * w),
+           2 * (y * z + x * w),
+           1 - 2 * (x * x + y * y),
+           0,
+           0,
+           0,
+           0,
+           1};
     }
     if (numbers("scale", 3, v)) s[0] = v[0], s[5] = v[1], s[10] = v[2];
     return mul(t, mul(r, s));
@@ -900,7 +941,8 @@ class GltfReader {
       const Json& node = object(nodes, n, where);
       const Json& children = array(node, "children", where + ".");
       for (std::size_t c = 0; c < children.size(); ++c) {
-        const std::uint64_t child = index(children[c], nodes.size(), where + ".children[" + std::to_string(c) + "]", "node");
+        const std::uint64_t child =
+            index(children[c], nodes.size(), where + ".children[" + std::to_string(c) + "]", "node");
         if (is_child[child]) fail("node " + std::to_string(child) + " is the child of more than one node");
         is_child[child] = 1;
       }
@@ -942,9 +984,11 @@ class GltfReader {
     if (any_normals_ && !any_without_normals_) mesh.normals = std::move(normals_);
     else if (any_normals_) result_.warnings.push_back("normals dropped: some primitives have them and others do not");
     if (any_uvs_ && !any_without_uvs_) mesh.uvs = std::move(uvs_);
-    else if (any_uvs_) result_.warnings.push_back("texture coordinates dropped: some primitives have them and others do not");
+    else if (any_uvs_)
+      result_.warnings.push_back("texture coordinates dropped: some primitives have them and others do not");
     if (any_colors_ && !any_without_colors_) mesh.colors = std::move(colors_);
-    else if (any_colors_) result_.warnings.push_back("vertex colours dropped: some primitives have them and others do not");
+    else if (any_colors_)
+      result_.warnings.push_back("vertex colours dropped: some primitives have them and others do not");
     if (skipped_primitives_)
       result_.warnings.push_back(std::to_string(skipped_primitives_) + " point or line primitives were skipped");
   }
@@ -962,7 +1006,7 @@ class GltfReader {
   const Json* meshes_ = nullptr;
   const Json* nodes_ = nullptr;
   std::vector<std::optional<std::string_view>> buffer_data_;
-  std::deque<std::string> decoded_;  // data: URIs, decoded (stable addresses)
+  std::deque<std::string> decoded_;                      // data: URIs, decoded (stable addresses)
   std::vector<std::optional<std::vector<Part>>> parts_;  // per mesh, once read
   std::uint64_t stored_ = 0, used_ = 0, repeated_ = 0, skipped_primitives_ = 0;
   std::vector<Vec3f> normals_;

@@ -20,7 +20,7 @@ namespace cgview {
 struct Material {
   std::string name;
   std::optional<std::array<float, 3>> kd;  // diffuse colour, 0..1
-  std::string map_kd;                       // the diffuse texture's file name as written, or empty
+  std::string map_kd;                      // the diffuse texture's file name as written, or empty
 };
 
 // The materials of an MTL file, in file order (unknown statements are skipped).

@@ -26,13 +26,20 @@ std::string join_formats(bool writable) {
 
 const char* to_string(MeshFormat f) {
   switch (f) {
-    case MeshFormat::off: return "off";
-    case MeshFormat::obj: return "obj";
-    case MeshFormat::ply: return "ply";
-    case MeshFormat::stl: return "stl";
-    case MeshFormat::drc: return "drc";
-    case MeshFormat::glb: return "glb";
-    case MeshFormat::gltf: return "gltf";
+    case MeshFormat::off:
+      return "off";
+    case MeshFormat::obj:
+      return "obj";
+    case MeshFormat::ply:
+      return "ply";
+    case MeshFormat::stl:
+      return "stl";
+    case MeshFormat::drc:
+      return "drc";
+    case MeshFormat::glb:
+      return "glb";
+    case MeshFormat::gltf:
+      return "gltf";
   }
   return "?";
 }
@@ -48,11 +55,13 @@ MeshFormat format_from_name(const std::string& path_or_name) {
   const auto slash = ext.find_last_of("/\\");
   if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) ext = ext.substr(dot + 1);
   else if (slash != std::string::npos || ext.empty())
-    throw UnsupportedFormat("'" + path_or_name + "' has no extension to tell its format (one of " + readable_formats() + ")");
+    throw UnsupportedFormat("'" + path_or_name + "' has no extension to tell its format (one of " + readable_formats() +
+                            ")");
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   for (MeshFormat f : kAll)
     if (ext == to_string(f)) return f;
-  throw UnsupportedFormat("unknown mesh format '." + ext + "' of '" + path_or_name + "' (known: " + readable_formats() + ")");
+  throw UnsupportedFormat("unknown mesh format '." + ext + "' of '" + path_or_name + "' (known: " + readable_formats() +
+                          ")");
 }
 
 std::string read_file_bytes(const std::filesystem::path& path, std::uint64_t max_bytes) {
@@ -73,19 +82,35 @@ std::string read_file_bytes(const std::filesystem::path& path, std::uint64_t max
   return bytes;
 }
 
-ReadResult read_mesh_bytes(std::string_view bytes, MeshFormat format, const std::string& name, const ReadOptions& options) {
+ReadResult read_mesh_bytes(std::string_view bytes, MeshFormat format, const std::string& name,
+                           const ReadOptions& options) {
   if (bytes.size() > options.max_bytes)
-    throw InvalidInput(name + ": " + std::to_string(bytes.size()) + " bytes, over the limit of " + std::to_string(options.max_bytes));
+    throw InvalidInput(name + ": " + std::to_string(bytes.size()) + " bytes, over the limit of " +
+                       std::to_string(options.max_bytes));
   ReadResult r;
   r.format = format;
   switch (format) {
-    case MeshFormat::off: detail::read_off(bytes, name, r); break;
-    case MeshFormat::obj: detail::read_obj(bytes, name, r); break;
-    case MeshFormat::ply: detail::read_ply(bytes, name, r); break;
-    case MeshFormat::stl: detail::read_stl(bytes, name, options, r); break;
-    case MeshFormat::drc: detail::read_draco(bytes, name, r); break;
-    case MeshFormat::glb: detail::read_gltf(bytes, name, true, r); break;
-    case MeshFormat::gltf: detail::read_gltf(bytes, name, false, r); break;
+    case MeshFormat::off:
+      detail::read_off(bytes, name, r);
+      break;
+    case MeshFormat::obj:
+      detail::read_obj(bytes, name, r);
+      break;
+    case MeshFormat::ply:
+      detail::read_ply(bytes, name, r);
+      break;
+    case MeshFormat::stl:
+      detail::read_stl(bytes, name, options, r);
+      break;
+    case MeshFormat::drc:
+      detail::read_draco(bytes, name, r);
+      break;
+    case MeshFormat::glb:
+      detail::read_gltf(bytes, name, true, r);
+      break;
+    case MeshFormat::gltf:
+      detail::read_gltf(bytes, name, false, r);
+      break;
   }
   try {
     r.mesh.validate();
@@ -108,13 +133,20 @@ std::string write_mesh_bytes(const Mesh& mesh, MeshFormat format, const WriteOpt
   if (options.position_bits < 1 || options.position_bits > 30)
     throw InvalidInput("position quantization must be 1..30 bits, got " + std::to_string(options.position_bits));
   switch (format) {
-    case MeshFormat::off: return detail::write_off(mesh);
-    case MeshFormat::obj: return detail::write_obj(mesh);
-    case MeshFormat::ply: return detail::write_ply(mesh, options.binary);
-    case MeshFormat::stl: return detail::write_stl(mesh, options.binary);
-    case MeshFormat::drc: return detail::write_draco(mesh, options);
-    case MeshFormat::glb: return detail::write_glb(mesh);
-    case MeshFormat::gltf: break;
+    case MeshFormat::off:
+      return detail::write_off(mesh);
+    case MeshFormat::obj:
+      return detail::write_obj(mesh);
+    case MeshFormat::ply:
+      return detail::write_ply(mesh, options.binary);
+    case MeshFormat::stl:
+      return detail::write_stl(mesh, options.binary);
+    case MeshFormat::drc:
+      return detail::write_draco(mesh, options);
+    case MeshFormat::glb:
+      return detail::write_glb(mesh);
+    case MeshFormat::gltf:
+      break;
   }
   throw UnsupportedFormat(std::string("cannot write ") + to_string(format) + " (writable: " + writable_formats() + ")");
 }

@@ -60,11 +60,11 @@ ReadResult read_mesh_bytes(std::string_view bytes, MeshFormat format, const std:
 Mesh read_mesh(const std::filesystem::path& path);
 
 struct WriteOptions {
-  bool binary = true;            // PLY and STL: binary (default) or ascii
-  int position_bits = 14;        // Draco: position quantization
-  int normal_bits = 10;          // Draco
-  int uv_bits = 12;              // Draco
-  int draco_speed = 5;           // Draco: 0 (best compression) .. 10 (fastest)
+  bool binary = true;      // PLY and STL: binary (default) or ascii
+  int position_bits = 14;  // Draco: position quantization
+  int normal_bits = 10;    // Draco
+  int uv_bits = 12;        // Draco
+  int draco_speed = 5;     // Draco: 0 (best compression) .. 10 (fastest)
 };
 
 // Writes a mesh in the format named by the path's extension.

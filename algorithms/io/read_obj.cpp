@@ -33,7 +33,9 @@ void read_obj(std::string_view bytes, const std::string& name, ReadResult& resul
   std::uint64_t polygons = 0, skipped_lines = 0, skipped_points = 0, unknown_records = 0, freeform = 0;
   std::size_t colour_count = 0;
 
-  struct Corner { Index v, t, n; };
+  struct Corner {
+    Index v, t, n;
+  };
   std::vector<Corner> poly;
   bool saw_any = false;
   while (!in.at_end()) {
@@ -41,13 +43,17 @@ void read_obj(std::string_view bytes, const std::string& name, ReadResult& resul
     const char* line_start = in.pos();
     if (in.at_end()) break;
     const char c0 = *line_start;
-    if (c0 == '\n' || c0 == '#') { in.skip_line(); continue; }
+    if (c0 == '\n' || c0 == '#') {
+      in.skip_line();
+      continue;
+    }
     std::string_view key = in.word();
     if (key == "v") {
       saw_any = true;
       Vec3 p;
       for (int i = 0; i < 3; ++i) p[i] = in.need_double("a vertex coordinate");
-      if (!is_finite(p)) in.fail_at(line_start, "vertex " + std::to_string(mesh.positions.size() + 1) + " has a non-finite coordinate");
+      if (!is_finite(p))
+        in.fail_at(line_start, "vertex " + std::to_string(mesh.positions.size() + 1) + " has a non-finite coordinate");
       if (!in.at_eol()) {
         double r, g, b;
         if (in.try_double(r) && in.try_double(g) && in.try_double(b)) {
@@ -94,7 +100,8 @@ void read_obj(std::string_view bytes, const std::string& name, ReadResult& resul
           std::size_t field = 0, pos = 0;
           while (pos <= tok.size() && field < 3) {
             std::size_t slash = tok.find('/', pos);
-            std::string_view piece = tok.substr(pos, slash == std::string_view::npos ? std::string_view::npos : slash - pos);
+            std::string_view piece =
+                tok.substr(pos, slash == std::string_view::npos ? std::string_view::npos : slash - pos);
             if (!piece.empty()) {
               auto [ptr, ec] = std::from_chars(piece.data(), piece.data() + piece.size(), part[field]);
               if (ec != std::errc() || ptr != piece.data() + piece.size())
@@ -116,7 +123,8 @@ void read_obj(std::string_view bytes, const std::string& name, ReadResult& resul
         }
         poly.push_back(c);
       }
-      if (poly.size() < 3) in.fail_at(line_start, "a face has " + std::to_string(poly.size()) + " corners (at least 3 needed)");
+      if (poly.size() < 3)
+        in.fail_at(line_start, "a face has " + std::to_string(poly.size()) + " corners (at least 3 needed)");
       if (poly.size() > 3) ++polygons;
       for (std::size_t i = 1; i + 1 < poly.size(); ++i) {
         const Corner& a = poly[0];
@@ -192,11 +200,13 @@ void read_obj(std::string_view bytes, const std::string& name, ReadResult& resul
   }
   if (polygons) result.warnings.push_back(std::to_string(polygons) + " polygons were split into triangles");
   if (skipped_lines) result.warnings.push_back(std::to_string(skipped_lines) + " line records (l) were skipped");
-  if (unknown_records) result.warnings.push_back(std::to_string(unknown_records) + " records of unknown kinds were skipped");
+  if (unknown_records)
+    result.warnings.push_back(std::to_string(unknown_records) + " records of unknown kinds were skipped");
   if (skipped_points) result.warnings.push_back(std::to_string(skipped_points) + " point records (p) were skipped");
   if (freeform)
-    result.warnings.push_back(std::to_string(freeform) +
-                              " free-form curve and surface records (vp, curv, surf, ...) were skipped: only polygons are read");
+    result.warnings.push_back(
+        std::to_string(freeform) +
+        " free-form curve and surface records (vp, curv, surf, ...) were skipped: only polygons are read");
 }
 
 }  // namespace cgview::detail

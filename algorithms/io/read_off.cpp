@@ -24,12 +24,25 @@ void read_off(std::string_view bytes, const std::string& name, ReadResult& resul
   // [ST][C][N][4][n]OFF
   bool has_st = false, has_c = false, has_n = false, homogeneous = false;
   std::string_view k = key;
-  if (k.starts_with("ST")) { has_st = true; k.remove_prefix(2); }
-  if (k.starts_with("C")) { has_c = true; k.remove_prefix(1); }
-  if (k.starts_with("N")) { has_n = true; k.remove_prefix(1); }
-  if (k.starts_with("4")) { homogeneous = true; k.remove_prefix(1); }
+  if (k.starts_with("ST")) {
+    has_st = true;
+    k.remove_prefix(2);
+  }
+  if (k.starts_with("C")) {
+    has_c = true;
+    k.remove_prefix(1);
+  }
+  if (k.starts_with("N")) {
+    has_n = true;
+    k.remove_prefix(1);
+  }
+  if (k.starts_with("4")) {
+    homogeneous = true;
+    k.remove_prefix(1);
+  }
   if (k.starts_with("n")) in.fail_at(key_pos, "OFF files of other dimensions than 3 (nOFF) are not supported");
-  if (k != "OFF") in.fail_at(key_pos, "not an OFF file: it starts with " + std::string(key.substr(0, 24)) + ", not OFF");
+  if (k != "OFF")
+    in.fail_at(key_pos, "not an OFF file: it starts with " + std::string(key.substr(0, 24)) + ", not OFF");
   if (in.word() == "BINARY") in.fail_at(key_pos, "binary OFF is not supported; convert it to ascii OFF or PLY");
   in.set_pos(key_pos + key.size());
 
@@ -107,14 +120,17 @@ void read_off(std::string_view bytes, const std::string& name, ReadResult& resul
     in.skip_space();
     const char* face_pos = in.pos();
     const std::int64_t n = in.need_int("the number of corners of a face");
-    if (n < 3) in.fail_at(face_pos, "face " + std::to_string(f) + " has " + std::to_string(n) + " corners (at least 3 needed)");
-    if (std::uint64_t(n) > in.remaining() / 2) in.fail_at(face_pos, "face " + std::to_string(f) + " claims " + std::to_string(n) + " corners, more than the file holds");
+    if (n < 3)
+      in.fail_at(face_pos, "face " + std::to_string(f) + " has " + std::to_string(n) + " corners (at least 3 needed)");
+    if (std::uint64_t(n) > in.remaining() / 2)
+      in.fail_at(face_pos,
+                 "face " + std::to_string(f) + " claims " + std::to_string(n) + " corners, more than the file holds");
     poly.clear();
     for (std::int64_t i = 0; i < n; ++i) {
       const std::int64_t idx = in.need_int("a vertex index");
       if (idx < 0 || idx >= nv)
-        in.fail("face " + std::to_string(f) + " refers to vertex " + std::to_string(idx) +
-                " but there are " + std::to_string(nv) + " vertices");
+        in.fail("face " + std::to_string(f) + " refers to vertex " + std::to_string(idx) + " but there are " +
+                std::to_string(nv) + " vertices");
       poly.push_back(Index(idx));
     }
     in.skip_line();  // a face colour may follow

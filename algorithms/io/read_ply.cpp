@@ -25,10 +25,18 @@ enum class Type { i8, u8, i16, u16, i32, u32, f32, f64 };
 
 int type_size(Type t) {
   switch (t) {
-    case Type::i8: case Type::u8: return 1;
-    case Type::i16: case Type::u16: return 2;
-    case Type::i32: case Type::u32: case Type::f32: return 4;
-    case Type::f64: return 8;
+    case Type::i8:
+    case Type::u8:
+      return 1;
+    case Type::i16:
+    case Type::u16:
+      return 2;
+    case Type::i32:
+    case Type::u32:
+    case Type::f32:
+      return 4;
+    case Type::f64:
+      return 8;
   }
   return 0;
 }
@@ -81,8 +89,11 @@ enum class Encoding { ascii, little, big };
 class BinaryReader {
  public:
   BinaryReader(const char* p, const char* end, const char* begin, Encoding enc, const std::string& name)
-      : p_(p), end_(end), begin_(begin), swap_(enc == Encoding::big ? std::endian::native == std::endian::little
-                                                                    : std::endian::native == std::endian::big),
+      : p_(p),
+        end_(end),
+        begin_(begin),
+        swap_(enc == Encoding::big ? std::endian::native == std::endian::little
+                                   : std::endian::native == std::endian::big),
         name_(name) {}
   double read(Type t) {
     const int n = type_size(t);
@@ -92,14 +103,40 @@ class BinaryReader {
     if (swap_) std::reverse(b, b + n);
     p_ += n;
     switch (t) {
-      case Type::i8: return double(static_cast<std::int8_t>(b[0]));
-      case Type::u8: return double(b[0]);
-      case Type::i16: { std::int16_t v; std::memcpy(&v, b, 2); return v; }
-      case Type::u16: { std::uint16_t v; std::memcpy(&v, b, 2); return v; }
-      case Type::i32: { std::int32_t v; std::memcpy(&v, b, 4); return v; }
-      case Type::u32: { std::uint32_t v; std::memcpy(&v, b, 4); return v; }
-      case Type::f32: { float v; std::memcpy(&v, b, 4); return v; }
-      case Type::f64: { double v; std::memcpy(&v, b, 8); return v; }
+      case Type::i8:
+        return double(static_cast<std::int8_t>(b[0]));
+      case Type::u8:
+        return double(b[0]);
+      case Type::i16: {
+        std::int16_t v;
+        std::memcpy(&v, b, 2);
+        return v;
+      }
+      case Type::u16: {
+        std::uint16_t v;
+        std::memcpy(&v, b, 2);
+        return v;
+      }
+      case Type::i32: {
+        std::int32_t v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case Type::u32: {
+        std::uint32_t v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case Type::f32: {
+        float v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case Type::f64: {
+        double v;
+        std::memcpy(&v, b, 8);
+        return v;
+      }
     }
     return 0;
   }
@@ -108,9 +145,7 @@ class BinaryReader {
   const char* pos() const { return p_; }
   void skip(std::uint64_t n) { p_ += n; }
   bool swap() const { return swap_; }
-  [[noreturn]] void fail(const std::string& problem) const {
-    throw ParseError(name_, problem, std::nullopt, offset());
-  }
+  [[noreturn]] void fail(const std::string& problem) const { throw ParseError(name_, problem, std::nullopt, offset()); }
 
  private:
   const char* p_;
@@ -293,9 +328,9 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
         fixed &= !p.is_list;
         stride += std::uint64_t(type_size(p.type));
       }
-      const bool xyz_float = e.props.size() >= 3 && slots[0] == Slot::x && slots[1] == Slot::y &&
-                             slots[2] == Slot::z && e.props[0].type == Type::f32 &&
-                             e.props[1].type == Type::f32 && e.props[2].type == Type::f32;
+      const bool xyz_float = e.props.size() >= 3 && slots[0] == Slot::x && slots[1] == Slot::y && slots[2] == Slot::z &&
+                             e.props[0].type == Type::f32 && e.props[1].type == Type::f32 &&
+                             e.props[2].type == Type::f32;
       if (fixed && xyz_float && !has_n && !has_c && !has_t) {
         if (stride * e.count > bin.remaining()) bin.fail("the file ends inside the vertex data (truncated?)");
         const char* base = bin.pos();
@@ -321,19 +356,44 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
             }
             const double x = read_value(p.type);
             switch (slots[i]) {
-              case Slot::x: mesh.positions[v].x = x; break;
-              case Slot::y: mesh.positions[v].y = x; break;
-              case Slot::z: mesh.positions[v].z = x; break;
-              case Slot::nx: if (has_n) mesh.normals[v].x = float(x); break;
-              case Slot::ny: if (has_n) mesh.normals[v].y = float(x); break;
-              case Slot::nz: if (has_n) mesh.normals[v].z = float(x); break;
-              case Slot::r: if (has_c) mesh.colors[v].r = colour_byte(x, p.type); break;
-              case Slot::g: if (has_c) mesh.colors[v].g = colour_byte(x, p.type); break;
-              case Slot::b: if (has_c) mesh.colors[v].b = colour_byte(x, p.type); break;
-              case Slot::a: if (has_c) mesh.colors[v].a = colour_byte(x, p.type); break;
-              case Slot::u: if (has_t) mesh.uvs[v].u = float(x); break;
-              case Slot::v: if (has_t) mesh.uvs[v].v = float(x); break;
-              case Slot::none: break;
+              case Slot::x:
+                mesh.positions[v].x = x;
+                break;
+              case Slot::y:
+                mesh.positions[v].y = x;
+                break;
+              case Slot::z:
+                mesh.positions[v].z = x;
+                break;
+              case Slot::nx:
+                if (has_n) mesh.normals[v].x = float(x);
+                break;
+              case Slot::ny:
+                if (has_n) mesh.normals[v].y = float(x);
+                break;
+              case Slot::nz:
+                if (has_n) mesh.normals[v].z = float(x);
+                break;
+              case Slot::r:
+                if (has_c) mesh.colors[v].r = colour_byte(x, p.type);
+                break;
+              case Slot::g:
+                if (has_c) mesh.colors[v].g = colour_byte(x, p.type);
+                break;
+              case Slot::b:
+                if (has_c) mesh.colors[v].b = colour_byte(x, p.type);
+                break;
+              case Slot::a:
+                if (has_c) mesh.colors[v].a = colour_byte(x, p.type);
+                break;
+              case Slot::u:
+                if (has_t) mesh.uvs[v].u = float(x);
+                break;
+              case Slot::v:
+                if (has_t) mesh.uvs[v].v = float(x);
+                break;
+              case Slot::none:
+                break;
             }
           }
           if (!is_finite(mesh.positions[v])) {
@@ -359,15 +419,18 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
           if (int(i) == idx_prop) {
             for (double x : list) {
               if (!(x >= 0) || x >= double(vertex_count))
-                fail_here("face " + std::to_string(f) + " refers to vertex " + index_text(x) +
-                          " but there are " + std::to_string(vertex_count) + " vertices");
+                fail_here("face " + std::to_string(f) + " refers to vertex " + index_text(x) + " but there are " +
+                          std::to_string(vertex_count) + " vertices");
               poly.push_back(Index(x));
             }
           } else if (int(i) == uv_prop && wedges) {
-            for (std::size_t k = 0; k + 1 < list.size(); k += 2) wedge_uv.push_back({float(list[k]), float(list[k + 1])});
+            for (std::size_t k = 0; k + 1 < list.size(); k += 2)
+              wedge_uv.push_back({float(list[k]), float(list[k + 1])});
           }
         });
-        if (poly.size() < 3) fail_here("face " + std::to_string(f) + " has " + std::to_string(poly.size()) + " corners (at least 3 needed)");
+        if (poly.size() < 3)
+          fail_here("face " + std::to_string(f) + " has " + std::to_string(poly.size()) +
+                    " corners (at least 3 needed)");
         if (poly.size() > 3) ++polygons;
         if (wedges_ok && wedge_uv.size() != poly.size()) wedges_ok = false;
         for (std::size_t i = 1; i + 1 < poly.size(); ++i) {
@@ -417,8 +480,8 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
               continue;
             }
             if (!(x >= 0) || x >= double(vertex_count))
-              fail_here("strip " + std::to_string(s) + " refers to vertex " + index_text(x) +
-                        " but there are " + std::to_string(vertex_count) + " vertices");
+              fail_here("strip " + std::to_string(s) + " refers to vertex " + index_text(x) + " but there are " +
+                        std::to_string(vertex_count) + " vertices");
             poly.push_back(Index(x));
           }
           strip_done();

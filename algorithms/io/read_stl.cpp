@@ -110,7 +110,8 @@ void read_ascii(std::string_view bytes, const std::string& name, const ReadOptio
         in.fail_at(at, "a vertex has a non-finite coordinate");
       loop.push_back(weld.add(p));
     } else if (w == "endloop") {
-      if (loop.size() < 3) in.fail_at(at, "a facet has " + std::to_string(loop.size()) + " vertices (at least 3 needed)");
+      if (loop.size() < 3)
+        in.fail_at(at, "a facet has " + std::to_string(loop.size()) + " vertices (at least 3 needed)");
       if (loop.size() > 3) ++polygons;
       for (std::size_t i = 1; i + 1 < loop.size(); ++i) result.mesh.faces.push_back({loop[0], loop[i], loop[i + 1]});
       loop.clear();
@@ -121,7 +122,8 @@ void read_ascii(std::string_view bytes, const std::string& name, const ReadOptio
       ended = false;
       in.skip_line();
     } else {
-      in.fail_at(at, "unexpected " + in.describe_here().substr(0, 0) + "'" + std::string(w.substr(0, 24)) + "' in an ascii STL");
+      in.fail_at(at, "unexpected " + in.describe_here().substr(0, 0) + "'" + std::string(w.substr(0, 24)) +
+                         "' in an ascii STL");
     }
   }
   if (!loop.empty()) in.fail("the file ends inside a facet (truncated?)");

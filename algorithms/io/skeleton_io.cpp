@@ -122,15 +122,17 @@ Skeleton read_cg_or_obj(std::string_view bytes, const std::string& name, bool ob
 Skeleton read_json(std::string_view bytes, const std::string& name) {
   nlohmann::json j;
   if (const int depth = json_depth(bytes); depth > kMaxJsonDepth)
-    throw ParseError(name, "the JSON nests arrays and objects " + std::to_string(depth) + " deep; at most " +
-                               std::to_string(kMaxJsonDepth) + " are read",
+    throw ParseError(name,
+                     "the JSON nests arrays and objects " + std::to_string(depth) + " deep; at most " +
+                         std::to_string(kMaxJsonDepth) + " are read",
                      std::nullopt, std::nullopt);
   try {
     j = nlohmann::json::parse(bytes);
   } catch (const nlohmann::json::parse_error& e) {
     // nlohmann counts bytes; the user wants a line.
     const std::size_t at = std::min<std::size_t>(e.byte, bytes.size());
-    throw ParseError(name, "not JSON", 1 + std::uint64_t(std::count(bytes.begin(), bytes.begin() + std::ptrdiff_t(at), '\n')),
+    throw ParseError(name, "not JSON",
+                     1 + std::uint64_t(std::count(bytes.begin(), bytes.begin() + std::ptrdiff_t(at), '\n')),
                      std::nullopt);
   } catch (const nlohmann::json::out_of_range&) {
     // A number past a double ("6e8618"): nlohmann throws out_of_range, not
@@ -138,7 +140,8 @@ Skeleton read_json(std::string_view bytes, const std::string& name) {
     throw ParseError(name, "a number in the JSON is too large for a double", std::nullopt, std::nullopt);
   }
   const auto bad = [&](const std::string& what) { throw ParseError(name, what, std::nullopt, std::nullopt); };
-  if (!j.is_object() || !j.contains("nodes") || !j["nodes"].is_array()) bad("expected an object with a \"nodes\" array");
+  if (!j.is_object() || !j.contains("nodes") || !j["nodes"].is_array())
+    bad("expected an object with a \"nodes\" array");
   Skeleton s;
   for (const auto& p : j["nodes"]) {
     if (!p.is_array() || p.size() != 3 || !p[0].is_number() || !p[1].is_number() || !p[2].is_number())
@@ -183,7 +186,8 @@ SkeletonFormat skeleton_format_from_name(const std::string& name) {
   if (ends_with(name, ".cg")) return SkeletonFormat::cg;
   if (ends_with(name, ".obj")) return SkeletonFormat::obj;
   if (ends_with(name, ".json")) return SkeletonFormat::json;
-  throw UnsupportedFormat("'" + name + "' is not a skeleton file: use .polylines.txt (CGAL), .cg, .obj (l records) or .json");
+  throw UnsupportedFormat("'" + name +
+                          "' is not a skeleton file: use .polylines.txt (CGAL), .cg, .obj (l records) or .json");
 }
 
 bool is_skeleton_file_name(const std::string& name) {
@@ -198,10 +202,18 @@ bool is_skeleton_file_name(const std::string& name) {
 Skeleton read_skeleton_bytes(std::string_view bytes, SkeletonFormat format, const std::string& name) {
   Skeleton s;
   switch (format) {
-    case SkeletonFormat::polylines: s = read_polylines(bytes, name); break;
-    case SkeletonFormat::cg: s = read_cg_or_obj(bytes, name, false); break;
-    case SkeletonFormat::obj: s = read_cg_or_obj(bytes, name, true); break;
-    case SkeletonFormat::json: s = read_json(bytes, name); break;
+    case SkeletonFormat::polylines:
+      s = read_polylines(bytes, name);
+      break;
+    case SkeletonFormat::cg:
+      s = read_cg_or_obj(bytes, name, false);
+      break;
+    case SkeletonFormat::obj:
+      s = read_cg_or_obj(bytes, name, true);
+      break;
+    case SkeletonFormat::json:
+      s = read_json(bytes, name);
+      break;
   }
   if (s.nodes.empty()) throw ParseError(name, "no skeleton node in the file", std::nullopt, std::nullopt);
   try {

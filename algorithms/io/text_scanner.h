@@ -61,7 +61,7 @@ class TextScanner {
     auto [ptr, ec] = std::from_chars(s, end_, out);
     if (ec != std::errc() || (ptr < end_ && !is_space(*ptr) && *ptr != '#')) {
       if (ec == std::errc::result_out_of_range) {  // overflow: keep it as inf, reject later
-        out = out_of_range_value(s, ptr);            // underflow ("1e-400"): zero
+        out = out_of_range_value(s, ptr);          // underflow ("1e-400"): zero
         p_ = ptr;
         return true;
       }
@@ -122,9 +122,19 @@ class TextScanner {
     bool seen_point = false, seen_digit = false;
     const char* p = negative ? s + 1 : s;
     for (; p < e && *p != 'e' && *p != 'E'; ++p) {
-      if (*p == '.') { seen_point = true; continue; }
-      if (!seen_digit && *p == '0') { if (seen_point) --lead; continue; }
-      if (!seen_digit) { seen_digit = true; if (seen_point) --lead; continue; }
+      if (*p == '.') {
+        seen_point = true;
+        continue;
+      }
+      if (!seen_digit && *p == '0') {
+        if (seen_point) --lead;
+        continue;
+      }
+      if (!seen_digit) {
+        seen_digit = true;
+        if (seen_point) --lead;
+        continue;
+      }
       if (!seen_point) ++lead;
     }
     std::int64_t exp = 0;
@@ -147,13 +157,13 @@ class TextScanner {
 };
 
 // Refuses a count that the remaining bytes cannot hold, before any allocation.
-inline void check_claim(std::uint64_t claimed, std::uint64_t min_bytes_each, std::uint64_t bytes_left,
-                        const char* what, const std::string& name, std::uint64_t line) {
+inline void check_claim(std::uint64_t claimed, std::uint64_t min_bytes_each, std::uint64_t bytes_left, const char* what,
+                        const std::string& name, std::uint64_t line) {
   if (min_bytes_each > 0 && claimed > bytes_left / min_bytes_each)
     throw ParseError(name,
                      "the header claims " + std::to_string(claimed) + " " + what + ", but only " +
-                         std::to_string(bytes_left) + " bytes follow (at least " +
-                         std::to_string(min_bytes_each) + " bytes each)",
+                         std::to_string(bytes_left) + " bytes follow (at least " + std::to_string(min_bytes_each) +
+                         " bytes each)",
                      line, std::nullopt);
 }
 

@@ -67,7 +67,11 @@ std::string write_off(const Mesh& mesh) {
   // that they read back as written rather than as white.
   bool unit_floats = c;
   for (const Color& k : mesh.colors) unit_floats &= k.r <= 1 && k.g <= 1 && k.b <= 1;
-  o.str(c ? "COFF\n" : "OFF\n").num(std::uint64_t(mesh.num_vertices())).ch(' ').num(std::uint64_t(mesh.num_faces())).str(" 0\n");
+  o.str(c ? "COFF\n" : "OFF\n")
+      .num(std::uint64_t(mesh.num_vertices()))
+      .ch(' ')
+      .num(std::uint64_t(mesh.num_faces()))
+      .str(" 0\n");
   for (std::size_t v = 0; v < mesh.num_vertices(); ++v) {
     const Vec3& p = mesh.positions[v];
     o.num(p.x).ch(' ').num(p.y).ch(' ').num(p.z);
@@ -132,7 +136,9 @@ std::string write_ply(const Mesh& input, bool binary, const ScalarField* field) 
   const bool n = mesh.has_normals(), c = mesh.has_colors(), t = mesh.has_uvs();
   Out o(mesh.num_vertices() * (binary ? 40 : 80) + mesh.num_faces() * (binary ? 13 : 30) + 512);
   o.str("ply\nformat ").str(binary ? "binary_little_endian" : "ascii").str(" 1.0\ncomment written by CGView\n");
-  o.str("element vertex ").num(std::uint64_t(mesh.num_vertices())).str("\nproperty float x\nproperty float y\nproperty float z\n");
+  o.str("element vertex ")
+      .num(std::uint64_t(mesh.num_vertices()))
+      .str("\nproperty float x\nproperty float y\nproperty float z\n");
   if (n) o.str("property float nx\nproperty float ny\nproperty float nz\n");
   if (c) o.str("property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\n");
   if (t) o.str("property float s\nproperty float t\n");
@@ -151,7 +157,15 @@ std::string write_ply(const Mesh& input, bool binary, const ScalarField* field) 
     } else {
       o.num(p.x).ch(' ').num(p.y).ch(' ').num(p.z);
       if (n) o.ch(' ').num(mesh.normals[v].x).ch(' ').num(mesh.normals[v].y).ch(' ').num(mesh.normals[v].z);
-      if (c) o.ch(' ').num(int(mesh.colors[v].r)).ch(' ').num(int(mesh.colors[v].g)).ch(' ').num(int(mesh.colors[v].b)).ch(' ').num(int(mesh.colors[v].a));
+      if (c)
+        o.ch(' ')
+            .num(int(mesh.colors[v].r))
+            .ch(' ')
+            .num(int(mesh.colors[v].g))
+            .ch(' ')
+            .num(int(mesh.colors[v].b))
+            .ch(' ')
+            .num(int(mesh.colors[v].a));
       if (t) o.ch(' ').num(mesh.uvs[v].u).ch(' ').num(mesh.uvs[v].v);
       if (vf) o.ch(' ').num(field->values[v]);
       o.ch('\n');

@@ -47,8 +47,8 @@ RayCaster::RayCaster(const Mesh& mesh) : impl_(std::make_unique<Impl>()), normal
   RTCGeometry g = rtcNewGeometry(s.device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                         3 * sizeof(float), mesh.positions.size()));
-  auto* f = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                           3 * sizeof(unsigned), mesh.faces.size()));
+  auto* f = static_cast<unsigned*>(
+      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.faces.size()));
   if (!v || !f) {
     rtcReleaseGeometry(g);
     throw Error("Embree could not allocate the mesh's buffers");
@@ -70,7 +70,8 @@ RayCaster::RayCaster(const Mesh& mesh) : impl_(std::make_unique<Impl>()), normal
   const BBox box = bounding_box(mesh);
   int out = 0, in = 0;
   for (const Vec3& d : kInsideDirections)
-    if (const Hit h = first_hit(box.center() - d * (box.diagonal() + 1), d)) ++(dot(d, normals_[h.face]) < 0 ? out : in);
+    if (const Hit h = first_hit(box.center() - d * (box.diagonal() + 1), d))
+      ++(dot(d, normals_[h.face]) < 0 ? out : in);
   faces_out_ = out >= in;
 }
 

@@ -17,7 +17,7 @@ class RayCaster {
  public:
   static constexpr std::uint32_t kNoFace = std::numeric_limits<std::uint32_t>::max();
   struct Hit {
-    double distance = 0;          // along the unit direction
+    double distance = 0;           // along the unit direction
     std::uint32_t face = kNoFace;  // kNoFace: the ray met nothing
     explicit operator bool() const { return face != kNoFace; }
   };

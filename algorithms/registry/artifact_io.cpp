@@ -39,11 +39,16 @@ std::string default_extension(const Artifact& a) {
   if (std::holds_alternative<Text>(a.value)) return ".txt";
   if (std::holds_alternative<Animation>(a.value)) return ".frames";
   switch (a.value.index()) {
-    case 0: return ".ply";
-    case 1: return ".txt";
-    case 2: return ".nrrd";  // binary and read back by read_voxel_grid (ASCII .vtk is 20x larger)
-    case 3: return ".obj";
-    default: return ".json";
+    case 0:
+      return ".ply";
+    case 1:
+      return ".txt";
+    case 2:
+      return ".nrrd";  // binary and read back by read_voxel_grid (ASCII .vtk is 20x larger)
+    case 3:
+      return ".obj";
+    default:
+      return ".json";
   }
 }
 
@@ -58,7 +63,8 @@ void check_artifact_extension(OutputKind kind, const std::filesystem::path& path
       if (ext != ".txt" && ext != ".csv" && ext != ".ply") unsupported("scalar field", ext, ".txt, .csv or .ply");
       return;
     case OutputKind::voxel_grid:
-      if (ext != ".vtk" && !is_voxel_format(path)) unsupported("voxel grid", ext, ".vtk, .binvox, .raw, .nrrd, .vti, .vox or .vdb");
+      if (ext != ".vtk" && !is_voxel_format(path))
+        unsupported("voxel grid", ext, ".vtk, .binvox, .raw, .nrrd, .vti, .vox or .vdb");
       return;
     case OutputKind::skeleton:
       skeleton_format_from_name(path.filename().string());  // throws UnsupportedFormat naming the formats
@@ -106,7 +112,8 @@ void write_artifact(const Artifact& a, const Mesh& input, const std::filesystem:
     char head[512];
     std::snprintf(head, sizeof head,
                   "# vtk DataFile Version 3.0\n%s\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS %d %d %d\n"
-                  "ORIGIN %.17g %.17g %.17g\nSPACING %.17g %.17g %.17g\nPOINT_DATA %zu\nSCALARS %s float 1\nLOOKUP_TABLE default\n",
+                  "ORIGIN %.17g %.17g %.17g\nSPACING %.17g %.17g %.17g\nPOINT_DATA %zu\nSCALARS %s float "
+                  "1\nLOOKUP_TABLE default\n",
                   a.name.c_str(), d[0], d[1], d[2], o.x + g->voxel_size() / 2, o.y + g->voxel_size() / 2,
                   o.z + g->voxel_size() / 2, g->voxel_size(), g->voxel_size(), g->voxel_size(), g->size(), "value");
     out = head;

@@ -47,13 +47,20 @@ void register_algorithm(Algorithm a) {
 
 const char* to_string(ParamType t) {
   switch (t) {
-    case ParamType::integer: return "integer";
-    case ParamType::number: return "number";
-    case ParamType::boolean: return "boolean";
-    case ParamType::choice: return "choice";
-    case ParamType::text: return "text";
-    case ParamType::faces: return "faces";
-    case ParamType::vertices: return "vertices";
+    case ParamType::integer:
+      return "integer";
+    case ParamType::number:
+      return "number";
+    case ParamType::boolean:
+      return "boolean";
+    case ParamType::choice:
+      return "choice";
+    case ParamType::text:
+      return "text";
+    case ParamType::faces:
+      return "faces";
+    case ParamType::vertices:
+      return "vertices";
   }
   return "?";
 }
@@ -79,13 +86,20 @@ void check_selections(const std::vector<ParamSpec>& specs, const std::map<std::s
 
 const char* to_string(OutputKind k) {
   switch (k) {
-    case OutputKind::mesh: return "mesh";
-    case OutputKind::scalar_field: return "scalar_field";
-    case OutputKind::voxel_grid: return "voxel_grid";
-    case OutputKind::skeleton: return "skeleton";
-    case OutputKind::metrics: return "metrics";
-    case OutputKind::text: return "text";
-    case OutputKind::animation: return "animation";
+    case OutputKind::mesh:
+      return "mesh";
+    case OutputKind::scalar_field:
+      return "scalar_field";
+    case OutputKind::voxel_grid:
+      return "voxel_grid";
+    case OutputKind::skeleton:
+      return "skeleton";
+    case OutputKind::metrics:
+      return "metrics";
+    case OutputKind::text:
+      return "text";
+    case OutputKind::animation:
+      return "animation";
   }
   return "?";
 }
@@ -119,7 +133,9 @@ ParamValue check_param(const ParamSpec& spec, const ParamValue& value) {
     case ParamType::integer: {
       long long n;
       if (const auto* p = std::get_if<long long>(&value)) n = *p;
-      else if (const auto* d = std::get_if<double>(&value); d && std::isfinite(*d) && *d == std::floor(*d) && std::fabs(*d) < 9e15) n = (long long)*d;
+      else if (const auto* d = std::get_if<double>(&value);
+               d && std::isfinite(*d) && *d == std::floor(*d) && std::fabs(*d) < 9e15)
+        n = (long long)*d;
       else bad(spec, "must be an integer, got " + to_string(value));
       check_range(double(n));
       return n;
@@ -151,7 +167,9 @@ ParamValue check_param(const ParamSpec& spec, const ParamValue& value) {
     case ParamType::faces:
     case ParamType::vertices: {
       const auto* ids = std::get_if<Ids>(&value);
-      if (!ids) bad(spec, "must be a list of " + std::string(spec.type == ParamType::faces ? "face" : "vertex") + " ids, got " + to_string(value));
+      if (!ids)
+        bad(spec, "must be a list of " + std::string(spec.type == ParamType::faces ? "face" : "vertex") + " ids, got " +
+                      to_string(value));
       Ids sorted = *ids;
       std::sort(sorted.begin(), sorted.end());
       sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
@@ -188,7 +206,10 @@ ParamValue parse_param(const ParamSpec& spec, const std::string& text) {
       const char* p = text.data();
       const char* const end = p + text.size();
       while (p < end) {
-        if (*p == ',' || std::isspace((unsigned char)*p)) { ++p; continue; }
+        if (*p == ',' || std::isspace((unsigned char)*p)) {
+          ++p;
+          continue;
+        }
         unsigned long long n = 0;
         const auto [q, ec] = std::from_chars(p, end, n);
         if (ec != std::errc() || n > 0xffffffffULL || (q < end && *q != ',' && !std::isspace((unsigned char)*q)))

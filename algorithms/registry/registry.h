@@ -148,7 +148,7 @@ class Inputs {
 };
 
 struct AlgorithmInfo {  // initializers as in ParamInfo
-  std::string name{};  // snake_case, unique
+  std::string name{};   // snake_case, unique
   std::string title{};
   std::string description{};
   std::string area{};  // "examples", "sdf", ...
@@ -256,8 +256,8 @@ Algorithm make_algorithm(std::string name, AlgorithmInfo info, Fn fn) {
   Algorithm a;
   a.info = std::move(info);
   a.params = collect.specs;
-  a.run = [fn, specs = collect.specs, algo = a.info.name](const Inputs& in, const std::map<std::string, ParamValue>& values,
-                                                          Context& ctx) {
+  a.run = [fn, specs = collect.specs, algo = a.info.name](
+              const Inputs& in, const std::map<std::string, ParamValue>& values, Context& ctx) {
     check_names(algo, values, specs);
     if (in.has("mesh")) check_selections(specs, values, in.mesh().num_vertices(), in.mesh().num_faces());
     Params p;
@@ -284,12 +284,13 @@ struct PrecheckRegistrar {
     Params defaults;
     SpecCollector collect;
     defaults.describe(collect);
-    set_precheck(name, [fn, specs = collect.specs](const InputSummaries& in, const std::map<std::string, ParamValue>& values) {
-      Params p;
-      ValueAssigner assign{values, specs};
-      p.describe(assign);
-      fn(in, p);
-    });
+    set_precheck(
+        name, [fn, specs = collect.specs](const InputSummaries& in, const std::map<std::string, ParamValue>& values) {
+          Params p;
+          ValueAssigner assign{values, specs};
+          p.describe(assign);
+          fn(in, p);
+        });
   }
 };
 
@@ -299,13 +300,13 @@ struct PrecheckRegistrar {
 // Registers an algorithm at program start.  NAME: snake_case identifier.
 // After CGVIEW_REGISTER_ALGORITHM(NAME, ...) in the same file: a precheck
 // FN(const InputSummaries&, const PARAMS&) that throws InvalidInput.
-#define CGVIEW_REGISTER_PRECHECK(NAME, PARAMS, FN)                                                    \
-  namespace {                                                                                         \
+#define CGVIEW_REGISTER_PRECHECK(NAME, PARAMS, FN)                                                     \
+  namespace {                                                                                          \
   const ::cgview::detail::PrecheckRegistrar<PARAMS, decltype(&FN)> cgview_precheck_##NAME{#NAME, &FN}; \
   }
 
-#define CGVIEW_REGISTER_ALGORITHM(NAME, PARAMS, FN, ...)                                        \
-  namespace {                                                                                  \
-  const ::cgview::detail::Registrar cgview_registrar_##NAME{                                   \
+#define CGVIEW_REGISTER_ALGORITHM(NAME, PARAMS, FN, ...)                                         \
+  namespace {                                                                                    \
+  const ::cgview::detail::Registrar cgview_registrar_##NAME{                                     \
       ::cgview::detail::make_algorithm<PARAMS>(#NAME, ::cgview::AlgorithmInfo __VA_ARGS__, FN)}; \
   }

@@ -39,10 +39,10 @@ enum class Projection { perspective, orthographic };
 // with +y up: azimuth 0, elevation 0 looks from +z towards -z.
 struct Camera {
   Projection projection = Projection::perspective;
-  double azimuth = 30;    // degrees around +y
-  double elevation = 20;  // degrees above the xz plane, in [-90, 90]
-  double distance = 0;    // from the target; 0: fit the bounding sphere in view
-  double fov_y = 40;      // degrees, perspective only, in (0, 180)
+  double azimuth = 30;         // degrees around +y
+  double elevation = 20;       // degrees above the xz plane, in [-90, 90]
+  double distance = 0;         // from the target; 0: fit the bounding sphere in view
+  double fov_y = 40;           // degrees, perspective only, in (0, 180)
   std::optional<Vec3> target;  // default: the bounding box's centre
   // Both given: used as they are (the orbit settings are ignored).
   std::optional<Mat4> view, projection_matrix;
@@ -61,8 +61,8 @@ struct CameraMatrices {
   Projection kind = Projection::perspective;
 
   Mat4 view_projection() const { return projection * view; }
-  Vec3 eye() const;        // camera centre (perspective) or a point on the view axis (orthographic)
-  Vec3 forward() const;    // unit viewing direction
+  Vec3 eye() const;      // camera centre (perspective) or a point on the view axis (orthographic)
+  Vec3 forward() const;  // unit viewing direction
   // The world point seen at pixel coordinates (x, y) with window depth d.
   Vec3 unproject(double x, double y, double depth) const;
   // The ray through (x, y): from the near plane, along the view direction

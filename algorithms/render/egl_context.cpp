@@ -69,9 +69,12 @@ GlPlatform parse_gl_platform(const std::string& text, const char* what) {
 
 const char* to_string(GlPlatform p) {
   switch (p) {
-    case GlPlatform::automatic: return "auto";
-    case GlPlatform::device: return "device";
-    case GlPlatform::surfaceless: return "surfaceless";
+    case GlPlatform::automatic:
+      return "auto";
+    case GlPlatform::device:
+      return "device";
+    case GlPlatform::surfaceless:
+      return "surfaceless";
   }
   return "auto";
 }
@@ -122,8 +125,9 @@ struct EglContext::Impl {
       if (eglChooseConfig(d, attrs, &config, 1, &count) && count > 0) break;
     }
     if (count <= 0) return fail("no OpenGL config");
-    const EGLint ctx_attrs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
-                                EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    const EGLint ctx_attrs[] = {
+        EGL_CONTEXT_MAJOR_VERSION,           3,       EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
     context = eglCreateContext(d, config, EGL_NO_CONTEXT, ctx_attrs);
     if (context == EGL_NO_CONTEXT) return fail("no OpenGL 3.3 core context (" + egl_error() + ")");
     if (!eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, context))

@@ -26,9 +26,9 @@ GlPlatform parse_gl_platform(const std::string& text, const char* what = "gl pla
 const char* to_string(GlPlatform p);
 
 struct EglInfo {
-  std::string platform;     // "device 0", "surfaceless"
+  std::string platform;  // "device 0", "surfaceless"
   std::string gl_vendor, gl_renderer, gl_version;
-  bool software = false;    // llvmpipe, softpipe, SwiftShader, or an EGL_MESA_device_software device
+  bool software = false;              // llvmpipe, softpipe, SwiftShader, or an EGL_MESA_device_software device
   std::vector<std::string> attempts;  // "device 1 (NVIDIA): eglInitialize failed", ... in order tried
 };
 

@@ -22,8 +22,7 @@ Image decode_png(std::string_view bytes);
 
 // The images laid out in a grid of `columns` (0: about square), each cell the
 // size of the largest, on `background`.
-Image contact_sheet(const std::vector<Image>& images, int columns = 0,
-                    std::uint32_t background_rgba = 0xFFFFFFFFu);
+Image contact_sheet(const std::vector<Image>& images, int columns = 0, std::uint32_t background_rgba = 0xFFFFFFFFu);
 
 // A black-and-white picture of a binary mask (0 black, else white).
 Image mask_image(const std::vector<std::uint8_t>& mask, int width, int height);

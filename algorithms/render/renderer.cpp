@@ -177,11 +177,16 @@ RenderMode parse_render_mode(const std::string& text, const char* what) {
 
 const char* to_string(RenderMode m) {
   switch (m) {
-    case RenderMode::points: return "points";
-    case RenderMode::wireframe: return "wireframe";
-    case RenderMode::flat: return "flat";
-    case RenderMode::smooth: return "smooth";
-    case RenderMode::toon: return "toon";
+    case RenderMode::points:
+      return "points";
+    case RenderMode::wireframe:
+      return "wireframe";
+    case RenderMode::flat:
+      return "flat";
+    case RenderMode::smooth:
+      return "smooth";
+    case RenderMode::toon:
+      return "toon";
   }
   return "smooth";
 }
@@ -609,7 +614,9 @@ struct Renderer::Impl {
     return v;
   }
   // The range buffer: (nearest z, minus the farthest z) per pixel.
-  std::vector<float> read_range(int w, int h) { return read_attachment<float>(GL_COLOR_ATTACHMENT2, GL_RG, GL_FLOAT, 2, w, h); }
+  std::vector<float> read_range(int w, int h) {
+    return read_attachment<float>(GL_COLOR_ATTACHMENT2, GL_RG, GL_FLOAT, 2, w, h);
+  }
   std::vector<std::uint32_t> read_ids(int w, int h) {
     return read_attachment<std::uint32_t>(GL_COLOR_ATTACHMENT1, GL_RED_INTEGER, GL_UNSIGNED_INT, 1, w, h);
   }
@@ -721,7 +728,8 @@ std::vector<ViewCapture> Renderer::capture(const Mesh& mesh, const std::vector<C
                                            const CaptureOptions& options) {
   if (mesh.faces.empty()) throw InvalidInput("capture: the mesh has no faces");
   if (options.face_ids && options.back_depth)
-    throw InvalidInput("capture: face ids and back depth cannot be asked together (back depth draws with no depth test)");
+    throw InvalidInput(
+        "capture: face ids and back depth cannot be asked together (back depth draws with no depth test)");
   mesh.validate();
   if (cameras.empty()) return {};
   const int w = cameras[0].width, h = cameras[0].height;

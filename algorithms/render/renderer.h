@@ -34,15 +34,15 @@ constexpr std::uint32_t kNoFace = 0xFFFFFFFFu;
 // One mesh to draw, with what to show on it.  Pointers must outlive the call.
 struct RenderItem {
   const Mesh* mesh = nullptr;
-  const ScalarField* field = nullptr;    // colour map (per vertex or per face); nullptr: `color`
-  const Skeleton* skeleton = nullptr;    // drawn over the mesh, not hidden by it
-  Color color{200, 200, 210, 255};      // the surface colour without a field
+  const ScalarField* field = nullptr;  // colour map (per vertex or per face); nullptr: `color`
+  const Skeleton* skeleton = nullptr;  // drawn over the mesh, not hidden by it
+  Color color{200, 200, 210, 255};     // the surface colour without a field
 };
 
 struct RenderParams {
-  int width = 800, height = 600;         // each in [1, 8192]
+  int width = 800, height = 600;  // each in [1, 8192]
   RenderMode mode = RenderMode::smooth;
-  Camera camera;                         // fit to the items' bounding box by default
+  Camera camera;  // fit to the items' bounding box by default
   Color background{255, 255, 255, 255};
   // What to read back (colour is cheap to skip for algorithms).
   bool color = true, depth = false, face_ids = false, silhouette = false;
@@ -50,16 +50,16 @@ struct RenderParams {
 };
 
 struct RenderResult {
-  CameraMatrices camera;                // the matrices used: pixel + depth -> 3D point or ray
-  Image color;                          // when asked
-  std::vector<float> depth;             // window depth in [0, 1] per pixel, rows from the top; 1: nothing
+  CameraMatrices camera;     // the matrices used: pixel + depth -> 3D point or ray
+  Image color;               // when asked
+  std::vector<float> depth;  // window depth in [0, 1] per pixel, rows from the top; 1: nothing
   // Per pixel: the face seen, numbered over all items in order (item k's
   // face f is f + the face counts of items 0..k-1); kNoFace: background.
   // In points and wireframe modes: the face whose point or edge covers the pixel.
   // A mesh with no faces (a point cloud) is drawn as points in every mode,
   // and its "face" ids are vertex indices.
   std::vector<std::uint32_t> face_ids;
-  std::vector<std::uint8_t> silhouette; // 1 where a surface is seen, else 0
+  std::vector<std::uint8_t> silhouette;  // 1 where a surface is seen, else 0
 };
 
 // GL objects a Renderer holds now (what it generated and has not deleted).

@@ -29,8 +29,8 @@ std::vector<Vec3> fibonacci(int n) {
 
 std::vector<Vec3> icosahedron(int at_least) {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<Vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<Vec3> v = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
   std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                                        {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
                                        {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
@@ -77,8 +77,9 @@ std::vector<ViewCapture> capture_views(Renderer& renderer, const Mesh& mesh, con
   return capture_cameras(renderer, mesh, cameras, params.contexts, {.face_ids = params.face_ids});
 }
 
-std::vector<ViewCapture> capture_cameras(Renderer& renderer, const Mesh& mesh, const std::vector<CameraMatrices>& cameras,
-                                         int contexts, const CaptureOptions& options) {
+std::vector<ViewCapture> capture_cameras(Renderer& renderer, const Mesh& mesh,
+                                         const std::vector<CameraMatrices>& cameras, int contexts,
+                                         const CaptureOptions& options) {
   if (contexts < 1 || contexts > 64) throw InvalidInput("contexts must be in [1, 64], got " + std::to_string(contexts));
   const int n = std::min<int>(contexts, int(cameras.size()));
   if (n <= 1) return renderer.capture(mesh, cameras, options);

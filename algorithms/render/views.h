@@ -23,7 +23,7 @@ enum class SphereSampling { fibonacci, icosahedron };
 std::vector<Vec3> sphere_directions(int n, SphereSampling sampling = SphereSampling::fibonacci);
 
 struct ViewsParams {
-  int views = 100;            // directions on the sphere (see sphere_directions)
+  int views = 100;  // directions on the sphere (see sphere_directions)
   SphereSampling sampling = SphereSampling::fibonacci;
   int width = 256, height = 256;
   bool face_ids = false;
@@ -42,7 +42,8 @@ struct ViewsParams {
 std::vector<ViewCapture> capture_views(Renderer& renderer, const Mesh& mesh, const ViewsParams& params = {});
 // The same from cameras of the caller's choosing (all of one size), drawn by
 // `contexts` contexts at once, with what `options` asks (Renderer::capture).
-std::vector<ViewCapture> capture_cameras(Renderer& renderer, const Mesh& mesh, const std::vector<CameraMatrices>& cameras,
-                                         int contexts = 1, const CaptureOptions& options = {});
+std::vector<ViewCapture> capture_cameras(Renderer& renderer, const Mesh& mesh,
+                                         const std::vector<CameraMatrices>& cameras, int contexts = 1,
+                                         const CaptureOptions& options = {});
 
 }  // namespace cgview::render

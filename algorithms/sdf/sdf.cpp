@@ -163,7 +163,8 @@ RawSdf raw_sdf(const Mesh& mesh, const SdfOptions& o, std::span<const std::uint3
   });
   out.rays_cast = n * cone.size();
   out.rays_accepted = accepted;
-  out.missing = std::size_t(std::count_if(out.values.begin(), out.values.end(), [](double x) { return std::isnan(x); }));
+  out.missing =
+      std::size_t(std::count_if(out.values.begin(), out.values.end(), [](double x) { return std::isnan(x); }));
   return out;
 }
 
@@ -234,7 +235,8 @@ void bilateral_smooth(const Adjacency& graph, std::vector<double>& values, int w
       double sum = 0, wsum = 0;
       for (auto& [g, level] : ring) {
         const double dv = values[g] - c;
-        const double w = std::exp(-0.5 * (level / spatial) * (level / spatial)) * std::exp(-0.5 * (dv / range) * (dv / range));
+        const double w =
+            std::exp(-0.5 * (level / spatial) * (level / spatial)) * std::exp(-0.5 * (dv / range) * (dv / range));
         sum += values[g] * w;
         wsum += w;
       }

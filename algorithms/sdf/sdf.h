@@ -39,11 +39,11 @@ enum class Outliers { std_dev, mad, none };
 inline constexpr int kMaxRays = 1024;
 
 struct SdfOptions {
-  int rays = 25;                 // 1 .. kMaxRays
-  double cone_angle = 120.0;     // degrees, in (0, 180)
+  int rays = 25;              // 1 .. kMaxRays
+  double cone_angle = 120.0;  // degrees, in (0, 180)
   Weights weights = Weights::inverse_angle;
   Outliers outliers = Outliers::std_dev;
-  int threads = 0;               // 0: one per core
+  int threads = 0;  // 0: one per core
 };
 
 // The raw SDF of the faces listed (all faces when `faces` is empty): one value

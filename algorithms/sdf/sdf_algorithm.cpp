@@ -37,13 +37,14 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
 }  // namespace
 }  // namespace cgview::sdf
 
-CGVIEW_REGISTER_ALGORITHM(sdf, cgview::sdf::Params, cgview::sdf::run,
-                          {.title = "Shape Diameter Function",
-                           .description = "The local diameter of the shape at each face, from a cone of rays cast "
-                                          "inwards (Shapira, Shamir and Cohen-Or 2008); ray casting on Embree, on every core. "
-                                          "Rays escaping through holes of an open mesh are dropped.",
-                           .area = "sdf",
-                           .outputs = {{"sdf", cgview::OutputKind::scalar_field},
-                                       {"sdf_normalized", cgview::OutputKind::scalar_field},
-                                       {"sdf_vertex", cgview::OutputKind::scalar_field},
-                                       {"metrics", cgview::OutputKind::metrics}}});
+CGVIEW_REGISTER_ALGORITHM(
+    sdf, cgview::sdf::Params, cgview::sdf::run,
+    {.title = "Shape Diameter Function",
+     .description = "The local diameter of the shape at each face, from a cone of rays cast "
+                    "inwards (Shapira, Shamir and Cohen-Or 2008); ray casting on Embree, on every core. "
+                    "Rays escaping through holes of an open mesh are dropped.",
+     .area = "sdf",
+     .outputs = {{"sdf", cgview::OutputKind::scalar_field},
+                 {"sdf_normalized", cgview::OutputKind::scalar_field},
+                 {"sdf_vertex", cgview::OutputKind::scalar_field},
+                 {"metrics", cgview::OutputKind::metrics}}});

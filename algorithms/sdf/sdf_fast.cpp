@@ -71,7 +71,8 @@ std::vector<double> guidance(const Mesh& mesh, const Adjacency& g, double weight
   double length = 0;
   std::size_t arcs = 0;
   for (std::size_t f = 0; f < g.size(); ++f)
-    for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h, ++arcs) length += norm(centroid(mesh, f) - centroid(mesh, *h));
+    for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h, ++arcs)
+      length += norm(centroid(mesh, f) - centroid(mesh, *h));
   const double l = arcs ? length / double(arcs) : 0.0;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const Tri& t = mesh.faces[f];
@@ -92,13 +93,15 @@ std::vector<std::uint32_t> spread_samples(const Mesh& mesh, const Adjacency& g, 
   std::vector<std::pair<std::uint64_t, std::uint32_t>> order(n);
   for (std::size_t f = 0; f < n; ++f) {
     const Vec3 q = (centroid(mesh, f) - box.min) / extent * double((1 << 21) - 1);
-    order[f] = {spread_bits(std::uint64_t(q.x)) | spread_bits(std::uint64_t(q.y)) << 1 | spread_bits(std::uint64_t(q.z)) << 2,
-                std::uint32_t(f)};
+    order[f] = {
+        spread_bits(std::uint64_t(q.x)) | spread_bits(std::uint64_t(q.y)) << 1 | spread_bits(std::uint64_t(q.z)) << 2,
+        std::uint32_t(f)};
   }
   std::sort(order.begin(), order.end());
   std::vector<std::uint32_t> samples;
   samples.reserve(count);
-  for (std::size_t j = 0; j < count; ++j) samples.push_back(order[std::size_t((double(j) + 0.5) * double(n) / double(count))].second);
+  for (std::size_t j = 0; j < count; ++j)
+    samples.push_back(order[std::size_t((double(j) + 0.5) * double(n) / double(count))].second);
   std::uint32_t parts = 0;
   const std::vector<std::uint32_t> part = face_components(g, parts);
   std::vector<char> covered(parts, 0);
@@ -134,7 +137,8 @@ FastSdf sdf_fast(const Mesh& mesh, const Adjacency& g, const SdfOptions& options
   std::vector<std::int64_t> row(n, -1);
   std::vector<std::uint32_t> unknown;
   for (std::size_t f = 0; f < n; ++f)
-    if (std::isnan(out.values[f]) && anchored[part[f]]) row[f] = std::int64_t(unknown.size()), unknown.push_back(std::uint32_t(f));
+    if (std::isnan(out.values[f]) && anchored[part[f]])
+      row[f] = std::int64_t(unknown.size()), unknown.push_back(std::uint32_t(f));
   out.unknowns = unknown.size();
   if (unknown.empty()) {
     fill_missing(mesh, g, out.values);

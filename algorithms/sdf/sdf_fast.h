@@ -29,7 +29,7 @@ namespace cgview::sdf {
 enum class Solver { cholesky, conjugate_gradient };
 
 struct FastOptions {
-  double fraction = 0.1;          // of the faces that get rays, in (0, 1]
+  double fraction = 0.1;  // of the faces that get rays, in (0, 1]
   Solver solver = Solver::cholesky;
   double curvature_weight = 0.0;  // lambda / l^2
   // The bilateral filter of the full SDF (sdf.h), applied to the samples

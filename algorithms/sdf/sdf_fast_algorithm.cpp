@@ -18,16 +18,20 @@ struct Params : SdfParamFields {
   template <class V>
   void describe(V& v) {
     v.number("fraction", fraction,
-             {.label = "Fraction of faces", .min = 1e-6, .max = 1, .help = "the share of faces whose SDF is cast by rays, in (0, 1]"});
+             {.label = "Fraction of faces",
+              .min = 1e-6,
+              .max = 1,
+              .help = "the share of faces whose SDF is cast by rays, in (0, 1]"});
     v.choice("solver", solver,
              {.label = "Solver",
               .help = "conjugate_gradient (from each face's nearest sample) or cholesky (sparse LDLT), both Eigen's",
               .choices = {"conjugate_gradient", "cholesky"}});
-    v.number("curvature_weight", curvature_weight,
-             {.label = "Curvature guidance",
-              .min = -100,
-              .max = 100,
-              .help = "weight of the faces' negative mean curvature in the Poisson equation (0: harmonic interpolation)"});
+    v.number(
+        "curvature_weight", curvature_weight,
+        {.label = "Curvature guidance",
+         .min = -100,
+         .max = 100,
+         .help = "weight of the faces' negative mean curvature in the Poisson equation (0: harmonic interpolation)"});
     v.boolean("compare", compare,
               {.label = "Compare with the full SDF", .help = "also compute the SDF on every face, and the error map"});
     describe_sdf(v);
@@ -57,8 +61,9 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
             {"unknowns", double(approx.unknowns)},
             {"iterations", double(approx.iterations)},
             {"seconds", fast_seconds}};
-  result.artifacts.push_back({"sdf_fast", ScalarField{"sdf_fast", Location::face, ColorHint::standard,
-                                                      {approx.values.begin(), approx.values.end()}}});
+  result.artifacts.push_back(
+      {"sdf_fast",
+       ScalarField{"sdf_fast", Location::face, ColorHint::standard, {approx.values.begin(), approx.values.end()}}});
   if (p.compare) {
     const auto t1 = std::chrono::steady_clock::now();
     RawSdf full = raw_sdf(mesh, p.options(), {}, &ctx, 0.0, 0.9);
@@ -77,7 +82,8 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
     m["mean_error"] = mean / range;  // fractions of the full SDF's range
     m["p95_error"] = sorted[std::min(sorted.size() - 1, std::size_t(0.95 * double(sorted.size())))] / range;
     m["max_error"] = sorted.back() / range;
-    result.artifacts.push_back({"sdf", ScalarField{"sdf", Location::face, ColorHint::standard, {full.values.begin(), full.values.end()}}});
+    result.artifacts.push_back(
+        {"sdf", ScalarField{"sdf", Location::face, ColorHint::standard, {full.values.begin(), full.values.end()}}});
     result.artifacts.push_back({"error", ScalarField{"error", Location::face, ColorHint::magnitude, std::move(error)}});
   }
   result.artifacts.push_back({"metrics", std::move(m)});
@@ -88,13 +94,14 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
 }  // namespace
 }  // namespace cgview::sdf
 
-CGVIEW_REGISTER_ALGORITHM(sdf_fast, cgview::sdf::Params, cgview::sdf::run,
-                          {.title = "Accelerated SDF (Poisson)",
-                           .description = "The SDF cast on a fraction of the faces, spread over the surface, and propagated "
-                                          "to the others by a Poisson equation on the dual graph (the CGView paper, 3.2); "
-                                          "with compare, the full SDF and the error map beside it.",
-                           .area = "sdf",
-                           .outputs = {{"sdf_fast", cgview::OutputKind::scalar_field},
-                                       {"sdf", cgview::OutputKind::scalar_field},
-                                       {"error", cgview::OutputKind::scalar_field},
-                                       {"metrics", cgview::OutputKind::metrics}}});
+CGVIEW_REGISTER_ALGORITHM(
+    sdf_fast, cgview::sdf::Params, cgview::sdf::run,
+    {.title = "Accelerated SDF (Poisson)",
+     .description = "The SDF cast on a fraction of the faces, spread over the surface, and propagated "
+                    "to the others by a Poisson equation on the dual graph (the CGView paper, 3.2); "
+                    "with compare, the full SDF and the error map beside it.",
+     .area = "sdf",
+     .outputs = {{"sdf_fast", cgview::OutputKind::scalar_field},
+                 {"sdf", cgview::OutputKind::scalar_field},
+                 {"error", cgview::OutputKind::scalar_field},
+                 {"metrics", cgview::OutputKind::metrics}}});

@@ -16,7 +16,8 @@ std::vector<Artifact> sdf_fields(const Mesh& mesh, const std::string& name, cons
   ScalarField normalized{name + "_normalized", Location::face, ColorHint::standard, {n.begin(), n.end()}};
   ScalarField per_vertex = face_to_vertex(mesh, raw);
   per_vertex.name = name + "_vertex";
-  return {{name, std::move(raw)}, {name + "_normalized", std::move(normalized)}, {name + "_vertex", std::move(per_vertex)}};
+  return {
+      {name, std::move(raw)}, {name + "_normalized", std::move(normalized)}, {name + "_vertex", std::move(per_vertex)}};
 }
 
 void warn_missing(const RawSdf& raw, std::vector<std::string>& warnings) {

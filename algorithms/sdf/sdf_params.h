@@ -22,21 +22,30 @@ struct SdfParamFields {
   void describe_sdf(V& v) {
     v.integer("rays", rays, {.label = "Rays", .min = 1, .max = kMaxRays, .help = "rays in each face's cone"});
     v.number("cone_angle", cone_angle,
-             {.label = "Cone angle (degrees)", .min = 1, .max = 179, .help = "the cone's full opening around the inward normal"});
-    v.choice("weights", weights,
-             {.label = "Ray weights",
-              .help = "inverse_angle: each length weighted by the inverse of its angle to the cone's axis (Shapira et al.); "
-                      "uniform: all rays alike (CGAL's sdf_values)",
-              .choices = {"inverse_angle", "uniform"}});
+             {.label = "Cone angle (degrees)",
+              .min = 1,
+              .max = 179,
+              .help = "the cone's full opening around the inward normal"});
+    v.choice(
+        "weights", weights,
+        {.label = "Ray weights",
+         .help = "inverse_angle: each length weighted by the inverse of its angle to the cone's axis (Shapira et al.); "
+                 "uniform: all rays alike (CGAL's sdf_values)",
+         .choices = {"inverse_angle", "uniform"}});
     v.choice("outliers", outliers,
              {.label = "Outliers",
               .help = "std_dev: drop lengths further than one standard deviation from the median (Shapira et al.); "
                       "mad: further than 1.5 median absolute deviations (CGAL); none: keep all",
               .choices = {"std_dev", "mad", "none"}});
-    v.boolean("smooth", smooth,
-              {.label = "Bilateral smoothing", .help = "CGAL's post-processing: holes filled from neighbours, then a bilateral filter over edge-rings"});
+    v.boolean(
+        "smooth", smooth,
+        {.label = "Bilateral smoothing",
+         .help = "CGAL's post-processing: holes filled from neighbours, then a bilateral filter over edge-rings"});
     v.integer("window", window,
-              {.label = "Smoothing window (rings)", .min = 0, .max = 64, .help = "0: floor(sqrt(faces / 2000)) + 1, as CGAL"});
+              {.label = "Smoothing window (rings)",
+               .min = 0,
+               .max = 64,
+               .help = "0: floor(sqrt(faces / 2000)) + 1, as CGAL"});
   }
   SdfOptions options() const {
     SdfOptions o;

@@ -19,11 +19,18 @@ struct Params : SdfParamFields {
   template <class V>
   void describe(V& v) {
     v.integer("clusters", clusters,
-              {.label = "Clusters", .min = 1, .max = 32, .help = "levels of the soft clustering of SDF values (CGAL's number_of_clusters)"});
+              {.label = "Clusters",
+               .min = 1,
+               .max = 32,
+               .help = "levels of the soft clustering of SDF values (CGAL's number_of_clusters)"});
     v.number("smoothing_lambda", smoothing_lambda,
-             {.label = "Smoothing", .min = 0, .max = 1, .help = "weight of the surface's concave edges in the graph cut (0: none)"});
-    v.boolean("cluster_ids", cluster_ids,
-              {.label = "Cluster ids", .help = "give each face its cluster (SDF level) instead of its connected segment"});
+             {.label = "Smoothing",
+              .min = 0,
+              .max = 1,
+              .help = "weight of the surface's concave edges in the graph cut (0: none)"});
+    v.boolean(
+        "cluster_ids", cluster_ids,
+        {.label = "Cluster ids", .help = "give each face its cluster (SDF level) instead of its connected segment"});
     describe_sdf(v);
   }
 };
@@ -50,7 +57,8 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   ScalarField field{"segments", Location::face, ColorHint::categorical, std::vector<float>(mesh.faces.size())};
   for (SurfaceMesh::Face_index f : sm.faces()) field.values[std::size_t(f)] = float(segment_map[f]);
   result.artifacts.push_back({"segments", std::move(field)});
-  result.artifacts.push_back({"metrics", Metrics{{"segments", double(segments)}, {"faces", double(mesh.faces.size())}}});
+  result.artifacts.push_back(
+      {"metrics", Metrics{{"segments", double(segments)}, {"faces", double(mesh.faces.size())}}});
   ctx.progress(1.0, "done");
   return result;
 }

@@ -24,7 +24,9 @@ struct DistanceParams {
   template <class V>
   void describe(V& v) {
     v.number("spacing", spacing,
-             {.label = "Sample spacing", .min = 0, .help = "distance between samples along the edges (0: 1/500 of the bounding box's diagonal)"});
+             {.label = "Sample spacing",
+              .min = 0,
+              .help = "distance between samples along the edges (0: 1/500 of the bounding box's diagonal)"});
   }
 };
 
@@ -35,22 +37,24 @@ AlgorithmResult run_distance(const Inputs& in, const DistanceParams& p, Context&
   return {{{"metrics", Metrics{{"hausdorff", d.hausdorff}, {"mean", d.mean}}}}, {}};
 }
 
-CGVIEW_REGISTER_ALGORITHM(skeleton_metrics, NoParams, run_metrics,
-                          {.title = "Skeleton metrics",
-                           .description = "Nodes, branches, endpoints, junctions, loops and length of a skeleton, the "
-                                          "fraction of its nodes inside the mesh, and how centred it is in the mesh's cross-sections.",
-                           .area = "skeleton",
-                           .outputs = {{"metrics", OutputKind::metrics}},
-                           .inputs = {{.name = "mesh", .kind = OutputKind::mesh, .help = "the mesh the skeleton belongs to"},
-                                      {.name = "skeleton", .kind = OutputKind::skeleton, .help = "the skeleton to measure"}}});
+CGVIEW_REGISTER_ALGORITHM(
+    skeleton_metrics, NoParams, run_metrics,
+    {.title = "Skeleton metrics",
+     .description = "Nodes, branches, endpoints, junctions, loops and length of a skeleton, the "
+                    "fraction of its nodes inside the mesh, and how centred it is in the mesh's cross-sections.",
+     .area = "skeleton",
+     .outputs = {{"metrics", OutputKind::metrics}},
+     .inputs = {{.name = "mesh", .kind = OutputKind::mesh, .help = "the mesh the skeleton belongs to"},
+                {.name = "skeleton", .kind = OutputKind::skeleton, .help = "the skeleton to measure"}}});
 
-CGVIEW_REGISTER_ALGORITHM(skeleton_distance, DistanceParams, run_distance,
-                          {.title = "Distance between skeletons",
-                           .description = "Symmetric Hausdorff and mean distance between two skeletons, sampled along their edges.",
-                           .area = "skeleton",
-                           .outputs = {{"metrics", OutputKind::metrics}},
-                           .inputs = {{.name = "skeleton", .kind = OutputKind::skeleton, .help = "one skeleton"},
-                                      {.name = "reference", .kind = OutputKind::skeleton, .help = "the skeleton to compare it with"}}});
+CGVIEW_REGISTER_ALGORITHM(
+    skeleton_distance, DistanceParams, run_distance,
+    {.title = "Distance between skeletons",
+     .description = "Symmetric Hausdorff and mean distance between two skeletons, sampled along their edges.",
+     .area = "skeleton",
+     .outputs = {{"metrics", OutputKind::metrics}},
+     .inputs = {{.name = "skeleton", .kind = OutputKind::skeleton, .help = "one skeleton"},
+                {.name = "reference", .kind = OutputKind::skeleton, .help = "the skeleton to compare it with"}}});
 
 }  // namespace
 }  // namespace cgview

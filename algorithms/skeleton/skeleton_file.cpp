@@ -17,7 +17,8 @@ struct Params {
   std::string text;
   template <class V>
   void describe(V& v) {
-    v.text("name", name, {.label = "File name", .help = "its extension names the format: .polylines.txt, .cg, .obj or .json"});
+    v.text("name", name,
+           {.label = "File name", .help = "its extension names the format: .polylines.txt, .cg, .obj or .json"});
     v.text("text", text, {.label = "File contents", .help = "the skeleton file's text"});
   }
 };
@@ -37,12 +38,13 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
 
 void precheck(const InputSummaries&, const Params& p) { parse(p); }
 
-CGVIEW_REGISTER_ALGORITHM(skeleton_file, Params, run,
-                          {.title = "Skeleton from a file",
-                           .description = "Attaches a skeleton made by another tool (CGAL polylines, .cg, OBJ l records, "
-                                          "JSON) to the mesh, with its measures against it.",
-                           .area = "skeleton",
-                           .outputs = {{"skeleton", OutputKind::skeleton}, {"metrics", OutputKind::metrics}}});
+CGVIEW_REGISTER_ALGORITHM(
+    skeleton_file, Params, run,
+    {.title = "Skeleton from a file",
+     .description = "Attaches a skeleton made by another tool (CGAL polylines, .cg, OBJ l records, "
+                    "JSON) to the mesh, with its measures against it.",
+     .area = "skeleton",
+     .outputs = {{"skeleton", OutputKind::skeleton}, {"metrics", OutputKind::metrics}}});
 CGVIEW_REGISTER_PRECHECK(skeleton_file, Params, precheck)
 
 }  // namespace

@@ -30,17 +30,31 @@ struct Params {
   template <class V>
   void describe(V& v) {
     v.number("max_triangle_angle", max_triangle_angle,
-             {.label = "Max triangle angle (degrees)", .min = 90, .max = 179, .help = "edges opposite larger angles are split while contracting"});
+             {.label = "Max triangle angle (degrees)",
+              .min = 90,
+              .max = 179,
+              .help = "edges opposite larger angles are split while contracting"});
     v.number("min_edge_length", min_edge_length,
-             {.label = "Min edge length", .min = 1e-6, .max = 0.5, .help = "shorter edges collapse; a fraction of the bounding box's diagonal (CGAL: 0.002)"});
+             {.label = "Min edge length",
+              .min = 1e-6,
+              .max = 0.5,
+              .help = "shorter edges collapse; a fraction of the bounding box's diagonal (CGAL: 0.002)"});
     v.number("quality_speed_tradeoff", quality_speed_tradeoff,
-             {.label = "Quality/speed", .min = 1e-4, .max = 100, .help = "larger: faster contraction, a less smooth skeleton (w_H)"});
-    v.boolean("medially_centered", medially_centered, {.label = "Medially centred", .help = "pull towards the medial axis (Voronoi poles)"});
+             {.label = "Quality/speed",
+              .min = 1e-4,
+              .max = 100,
+              .help = "larger: faster contraction, a less smooth skeleton (w_H)"});
+    v.boolean("medially_centered", medially_centered,
+              {.label = "Medially centred", .help = "pull towards the medial axis (Voronoi poles)"});
     v.number("medially_centered_speed_tradeoff", medially_centered_speed_tradeoff,
              {.label = "Centring/speed", .min = 1e-4, .max = 100, .help = "weight of the medial pull (w_M)"});
     v.number("area_variation_factor", area_variation_factor,
-             {.label = "Convergence", .min = 1e-8, .max = 0.1, .help = "stop when the area changes by less than this fraction of the original in one iteration"});
-    v.integer("max_iterations", max_iterations, {.label = "Max iterations", .min = 1, .max = 10000, .help = "contraction iterations at most"});
+             {.label = "Convergence",
+              .min = 1e-8,
+              .max = 0.1,
+              .help = "stop when the area changes by less than this fraction of the original in one iteration"});
+    v.integer("max_iterations", max_iterations,
+              {.label = "Max iterations", .min = 1, .max = 10000, .help = "contraction iterations at most"});
   }
 };
 
@@ -97,9 +111,10 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
 }  // namespace
 }  // namespace cgview
 
-CGVIEW_REGISTER_ALGORITHM(skeleton_mcf, cgview::Params, cgview::run,
-                          {.title = "Skeleton by mean curvature flow (CGAL)",
-                           .description = "CGAL's Mean_curvature_flow_skeletonization: the surface contracted by mean "
-                                          "curvature flow to a curve, pulled towards the medial axis. Needs a closed manifold mesh.",
-                           .area = "skeleton",
-                           .outputs = {{"skeleton", cgview::OutputKind::skeleton}, {"metrics", cgview::OutputKind::metrics}}});
+CGVIEW_REGISTER_ALGORITHM(
+    skeleton_mcf, cgview::Params, cgview::run,
+    {.title = "Skeleton by mean curvature flow (CGAL)",
+     .description = "CGAL's Mean_curvature_flow_skeletonization: the surface contracted by mean "
+                    "curvature flow to a curve, pulled towards the medial axis. Needs a closed manifold mesh.",
+     .area = "skeleton",
+     .outputs = {{"skeleton", cgview::OutputKind::skeleton}, {"metrics", cgview::OutputKind::metrics}}});

@@ -23,7 +23,8 @@ std::vector<Vec3> samples_along(const Skeleton& s, double spacing) {
 
 double nearest_on(const Skeleton& s, const Vec3& p) {
   double best = HUGE_VAL;
-  for (const auto& e : s.edges) best = std::min(best, norm(p - closest_point_on_segment(p, s.nodes[e[0]], s.nodes[e[1]])));
+  for (const auto& e : s.edges)
+    best = std::min(best, norm(p - closest_point_on_segment(p, s.nodes[e[0]], s.nodes[e[1]])));
   if (s.edges.empty())
     for (const Vec3& q : s.nodes) best = std::min(best, norm(p - q));
   return best;
@@ -137,7 +138,9 @@ SkeletonDistance skeleton_distance(const Skeleton& a, const Skeleton& b, double 
   return {std::max(hab, hba), (mab + mba) / 2};
 }
 
-std::size_t endpoints_after_pruning(Skeleton s, double length) { return ends_after_pruning(std::move(s), length).size(); }
+std::size_t endpoints_after_pruning(Skeleton s, double length) {
+  return ends_after_pruning(std::move(s), length).size();
+}
 
 std::vector<Vec3> ends_after_pruning(Skeleton s, double length) {
   while (prune_spurs(s, [&](const std::vector<Index>&, double l, Index) { return l < length; })) {

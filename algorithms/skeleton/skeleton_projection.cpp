@@ -15,7 +15,6 @@
 #include <unordered_map>
 #include <thread>
 
-
 #include "core/cluster_decimate.h"
 #include "core/threads.h"
 #include "core/union_find.h"
@@ -70,7 +69,9 @@ const std::vector<Step>& steps26() {
 struct Lattice {
   std::array<int, 3> d;
   std::size_t size() const { return std::size_t(d[0]) * d[1] * d[2]; }
-  std::size_t at(int i, int j, int k) const { return std::size_t(i) + std::size_t(d[0]) * (std::size_t(j) + std::size_t(d[1]) * k); }
+  std::size_t at(int i, int j, int k) const {
+    return std::size_t(i) + std::size_t(d[0]) * (std::size_t(j) + std::size_t(d[1]) * k);
+  }
   std::array<int, 3> ijk(std::size_t n) const {
     return {int(n % d[0]), int((n / d[0]) % d[1]), int(n / (std::size_t(d[0]) * d[1]))};
   }
@@ -172,7 +173,8 @@ std::vector<std::uint16_t> chamfer_34(const std::vector<std::uint8_t>& mask, int
     std::uint16_t* r = &d[std::size_t(y) * pw];
     const std::uint16_t* down = r + pw;
     for (int x = w; x >= 1; --x)
-      if (r[x]) r[x] = std::uint16_t(std::min({int(r[x]), r[x + 1] + 3, down[x] + 3, down[x + 1] + 4, down[x - 1] + 4}));
+      if (r[x])
+        r[x] = std::uint16_t(std::min({int(r[x]), r[x + 1] + 3, down[x] + 3, down[x + 1] + 4, down[x - 1] + 4}));
   }
   std::vector<std::uint16_t> out(std::size_t(w) * h);
   for (int y = 0; y < h; ++y) std::copy_n(&d[std::size_t(y + 1) * pw + 1], w, &out[std::size_t(y) * w]);
@@ -182,25 +184,29 @@ std::vector<std::uint16_t> chamfer_34(const std::vector<std::uint8_t>& mask, int
 std::vector<std::uint8_t> medial_axis(const std::vector<std::uint16_t>& dt, int w, int h, int min_radius) {
   std::vector<std::uint8_t> axis(dt.size(), 0);
   const int least = std::max(1, 3 * min_radius);
-  const auto at = [&](int x, int y) -> int { return x < 0 || y < 0 || x >= w || y >= h ? 0 : dt[std::size_t(y) * w + x]; };
+  const auto at = [&](int x, int y) -> int {
+    return x < 0 || y < 0 || x >= w || y >= h ? 0 : dt[std::size_t(y) * w + x];
+  };
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const int v = dt[std::size_t(y) * w + x];
       if (v < least) continue;
       // A neighbour off the image is outside (0), never a bigger disc.
-      axis[std::size_t(y) * w + x] = at(x - 1, y) < v + 3 && at(x + 1, y) < v + 3 && at(x, y - 1) < v + 3 && at(x, y + 1) < v + 3 &&
-                                     at(x - 1, y - 1) < v + 4 && at(x + 1, y - 1) < v + 4 && at(x - 1, y + 1) < v + 4 &&
-                                     at(x + 1, y + 1) < v + 4;
+      axis[std::size_t(y) * w + x] = at(x - 1, y) < v + 3 && at(x + 1, y) < v + 3 && at(x, y - 1) < v + 3 &&
+                                     at(x, y + 1) < v + 3 && at(x - 1, y - 1) < v + 4 && at(x + 1, y - 1) < v + 4 &&
+                                     at(x - 1, y + 1) < v + 4 && at(x + 1, y + 1) < v + 4;
     }
   return axis;
 }
 
-Votes vote(const std::vector<render::ViewCapture>& views, const BBox& box, const ProjectionParams& p, const Context* ctx) {
+Votes vote(const std::vector<render::ViewCapture>& views, const BBox& box, const ProjectionParams& p,
+           const Context* ctx) {
   for (const render::ViewCapture& v : views)
     if (v.back_depth.size() != v.depth.size()) throw InvalidInput("vote: every view needs its back depth");
   const Vec3 size = box.size();
   const double vs = vote_voxel_size(box, p);
-  const std::array<int, 3> dims{int(std::ceil(size.x / vs)) + 2, int(std::ceil(size.y / vs)) + 2, int(std::ceil(size.z / vs)) + 2};
+  const std::array<int, 3> dims{int(std::ceil(size.x / vs)) + 2, int(std::ceil(size.y / vs)) + 2,
+                                int(std::ceil(size.z / vs)) + 2};
   const Vec3 origin = box.min - Vec3{vs, vs, vs};
   VoxelGrid grid(dims, origin, vs, VoxelType::float32);
   const int threads = std::max(1, std::min<int>(int(std::thread::hardware_concurrency()), int(views.size())));
@@ -247,7 +253,8 @@ Votes vote(const std::vector<render::ViewCapture>& views, const BBox& box, const
             for (int k = 0; k < samples; ++k, g += step) {
               const double fx = std::floor(g.x), fy = std::floor(g.y), fz = std::floor(g.z);
               if (!(fx >= 0 && fy >= 0 && fz >= 0 && fx < dims[0] && fy < dims[1] && fz < dims[2])) continue;
-              const std::size_t n = std::size_t(fx) + std::size_t(dims[0]) * (std::size_t(fy) + std::size_t(dims[1]) * std::size_t(fz));
+              const std::size_t n =
+                  std::size_t(fx) + std::size_t(dims[0]) * (std::size_t(fy) + std::size_t(dims[1]) * std::size_t(fz));
               if (n == last) continue;
               last = n;
               acc[n][0] += 1.f;
@@ -293,7 +300,7 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
   // by linear offsets.
   const double least_target = p.threshold * top;
   std::vector<std::int32_t> id(L.size(), -1);  // a voxel's number in the domain (grids up to 512³ fit 32 bits)
-  std::vector<std::size_t> vox;                 // a number's voxel
+  std::vector<std::size_t> vox;                // a number's voxel
   const std::vector<std::ptrdiff_t> offset = L.offsets();
   const std::vector<Step>& step = steps26();
   // The domain's 26-neighbours of a numbered voxel: f(number, step k); from
@@ -319,7 +326,8 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
           if (I[n] > least) id[n] = std::int32_t(vox.size()), vox.push_back(n);
     sets = UnionFind(vox.size());
     for (std::size_t c = 0; c < vox.size(); ++c)
-      neighbours(c, [&](std::size_t m, std::size_t) { sets.unite(std::uint32_t(c), std::uint32_t(m)); }, ahead);
+      neighbours(
+          c, [&](std::size_t m, std::size_t) { sets.unite(std::uint32_t(c), std::uint32_t(m)); }, ahead);
     std::int64_t first = -1;
     bool split = false;
     for (std::size_t c = 0; c < vox.size() && !split; ++c)
@@ -440,7 +448,8 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
       double mean = 0;
       for (std::size_t v : path) mean += I[vox[v]];
       mean /= double(std::max<std::size_t>(path.size(), 1));
-      const bool keep = along[far] - along[join] >= min_branch && (main_votes < 0 || mean >= p.branch_votes * main_votes);
+      const bool keep =
+          along[far] - along[join] >= min_branch && (main_votes < 0 || mean >= p.branch_votes * main_votes);
       if (keep) {
         if (main_votes < 0) main_votes = mean;
         Index prev = node(join);
@@ -585,7 +594,8 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
       neighbours(
           c,
           [&](std::size_t m, std::size_t) {
-            if (!done[m] || joins[m] < 0 || joins[m] == joins[c] || !far(std::min(joins[c], joins[m]), std::max(joins[c], joins[m])))
+            if (!done[m] || joins[m] < 0 || joins[m] == joins[c] ||
+                !far(std::min(joins[c], joins[m]), std::max(joins[c], joins[m])))
               return;
             const std::size_t u = joins[c] < joins[m] ? c : m, v = u == c ? m : c;
             meetings.push_back({u, v, Index(joins[u]), Index(joins[v]), std::min(I[vox[u]], I[vox[v]])});
@@ -697,7 +707,8 @@ Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const Pr
       for (std::size_t n = 0; n < degree.size(); ++n) {
         const double d = norm(s.nodes[n] - s.nodes[e]) / vs;
         const bool is_end = degree[n] == 1;
-        if (d > reach || g[n] < 4 * reach || (best_is_end && !is_end) || (is_end == best_is_end && d >= best_d)) continue;
+        if (d > reach || g[n] < 4 * reach || (best_is_end && !is_end) || (is_end == best_is_end && d >= best_d))
+          continue;
         const int samples = int(std::floor(4 * std::max(d, 1.0))) + 1;
         int voted = 0;
         for (int k = 0; k < samples; ++k) {
@@ -795,7 +806,8 @@ void simplify(Skeleton& s, double merge_length, int iterations, const std::funct
   // A collapse inside a loop can leave a short spur (a node whose two edges
   // went to the same merged node): terminal branches shorter than
   // merge_length go (thin keeps none shorter than min_branch otherwise).
-  if (merge_length > 0) prune_spurs(s, [&](const std::vector<Index>&, double length, Index) { return length < merge_length; });
+  if (merge_length > 0)
+    prune_spurs(s, [&](const std::vector<Index>&, double length, Index) { return length < merge_length; });
   // Drop the nodes no edge uses any more, renumbering.
   {
     std::vector<std::int64_t> keep(s.nodes.size(), -1);
@@ -831,7 +843,8 @@ ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mes
   // One drawing per antipodal pair: an orthographic view's back depth is its
   // antipode's depth, and its silhouette the antipode's mirrored.
   std::vector<render::CameraMatrices> cameras;
-  for (const Vec3& d : render::sphere_directions(p.views / 2)) cameras.push_back(render::orthographic_view(d, box, p.image, p.image));
+  for (const Vec3& d : render::sphere_directions(p.views / 2))
+    cameras.push_back(render::orthographic_view(d, box, p.image, p.image));
   // The silhouettes of a big mesh from a decimated copy (the bounding box,
   // the cameras and the inside tests stay the full mesh's).
   Mesh decimated;
@@ -871,7 +884,8 @@ ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mes
   }
   {
     const render::ViewCapture& v = views[0];
-    const std::vector<std::uint8_t> axis = medial_axis(chamfer_34(v.silhouette, p.image, p.image), p.image, p.image, p.min_radius);
+    const std::vector<std::uint8_t> axis =
+        medial_axis(chamfer_34(v.silhouette, p.image, p.image), p.image, p.image, p.min_radius);
     out.first_view.resize(axis.size());
     for (std::size_t i = 0; i < axis.size(); ++i) out.first_view[i] = axis[i] ? 2 : v.silhouette[i];
   }

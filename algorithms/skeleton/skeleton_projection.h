@@ -75,7 +75,8 @@ struct ProjectionParams {
   double merge_distance = 0.03;  // internal arcs shorter than this x the diagonal are collapsed
   int smoothing = 20;            // Laplacian iterations (lambda 0.5)
   int contexts = 2;              // rendering contexts at once (render/views.h)
-  int render_faces = 200000;     // a mesh with more faces is drawn decimated to at most these (vertex clustering); 0: never
+  int render_faces =
+      200000;  // a mesh with more faces is drawn decimated to at most these (vertex clustering); 0: never
   // Throws InvalidInput naming the parameter out of range.
   void check() const;
 };
@@ -126,9 +127,9 @@ struct ProjectionResult {
   Skeleton skeleton;
   VoxelGrid votes;
   std::vector<std::uint8_t> first_view;  // 0 outside, 1 inside, 2 medial axis; image x image, rows from the top
-  double render_seconds = 0, vote_seconds = 0, thin_seconds = 0;  // vote: medial axes and votes
+  double render_seconds = 0, vote_seconds = 0, thin_seconds = 0;              // vote: medial axes and votes
   double render_cpu_seconds = 0, vote_cpu_seconds = 0, thin_cpu_seconds = 0;  // the process's CPU time (all threads)
-  int genus = -1;  // the mesh's, which bounds the loops; -1: not a closed, oriented mesh
+  int genus = -1;               // the mesh's, which bounds the loops; -1: not a closed, oriented mesh
   std::size_t faces_drawn = 0;  // the mesh's, or its decimated copy's (render_faces)
 };
 ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mesh& mesh, const ProjectionParams& p,

@@ -14,25 +14,47 @@ struct Params : ProjectionParams {
   bool intermediate = false;
   template <class V>
   void describe(V& v) {
-    v.integer("views", views, {.label = "Views", .min = 2, .max = 1000, .help = "silhouettes, in antipodal pairs (even)"});
-    v.integer("image", image, {.label = "Image size", .min = 32, .max = 2048, .help = "pixels on a side of each silhouette"});
-    v.integer("grid", grid, {.label = "Vote grid", .min = 16, .max = 512, .help = "voxels along the longest side of the bounding box"});
+    v.integer("views", views,
+              {.label = "Views", .min = 2, .max = 1000, .help = "silhouettes, in antipodal pairs (even)"});
+    v.integer("image", image,
+              {.label = "Image size", .min = 32, .max = 2048, .help = "pixels on a side of each silhouette"});
+    v.integer(
+        "grid", grid,
+        {.label = "Vote grid", .min = 16, .max = 512, .help = "voxels along the longest side of the bounding box"});
     v.integer("min_radius", min_radius,
-              {.label = "Medial axis: min radius", .min = 0, .max = 100, .help = "medial pixels nearer the outline (pixels) are dropped"});
+              {.label = "Medial axis: min radius",
+               .min = 0,
+               .max = 100,
+               .help = "medial pixels nearer the outline (pixels) are dropped"});
     v.number("threshold", threshold,
-             {.label = "Vote threshold", .min = 0.001, .max = 0.999, .help = "voxels with fewer votes than this x the most are out"});
+             {.label = "Vote threshold",
+              .min = 0.001,
+              .max = 0.999,
+              .help = "voxels with fewer votes than this x the most are out"});
     v.number("min_branch", min_branch,
              {.label = "Shortest branch", .min = 0, .max = 0.99, .help = "x the bounding box's diagonal"});
     v.number("branch_votes", branch_votes,
-             {.label = "Branch votes", .min = 0, .max = 1, .help = "branches whose mean votes are below this x the main path's are pruned"});
+             {.label = "Branch votes",
+              .min = 0,
+              .max = 1,
+              .help = "branches whose mean votes are below this x the main path's are pruned"});
     v.number("merge_distance", merge_distance,
-             {.label = "Merge distance", .min = 0, .max = 0.99, .help = "internal arcs shorter than this x the diagonal are collapsed"});
-    v.integer("smoothing", smoothing, {.label = "Smoothing", .min = 0, .max = 1000, .help = "Laplacian iterations; ends and junctions stay"});
-    v.integer("contexts", contexts, {.label = "Render contexts", .min = 1, .max = 64, .help = "EGL contexts drawing at once"});
+             {.label = "Merge distance",
+              .min = 0,
+              .max = 0.99,
+              .help = "internal arcs shorter than this x the diagonal are collapsed"});
+    v.integer("smoothing", smoothing,
+              {.label = "Smoothing", .min = 0, .max = 1000, .help = "Laplacian iterations; ends and junctions stay"});
+    v.integer("contexts", contexts,
+              {.label = "Render contexts", .min = 1, .max = 64, .help = "EGL contexts drawing at once"});
     v.integer("render_faces", render_faces,
-              {.label = "Faces drawn", .min = 0, .max = 1 << 30, .help = "bigger meshes are drawn decimated (vertex clustering); 0: never"});
+              {.label = "Faces drawn",
+               .min = 0,
+               .max = 1 << 30,
+               .help = "bigger meshes are drawn decimated (vertex clustering); 0: never"});
     v.boolean("intermediate", intermediate,
-              {.label = "Keep intermediate results", .help = "also the vote grid and the first view's silhouette with its medial axis"});
+              {.label = "Keep intermediate results",
+               .help = "also the vote grid and the first view's silhouette with its medial axis"});
   }
 };
 
@@ -65,7 +87,8 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
     out.artifacts.push_back({"votes", std::move(r.votes)});
     VoxelGrid view({p.image, p.image, 1}, Vec3{}, 1.0, VoxelType::uint8);
     for (int y = 0; y < p.image; ++y)  // rows from the bottom, as the grid's j
-      for (int x = 0; x < p.image; ++x) view.set({x, p.image - 1 - y, 0}, float(r.first_view[std::size_t(y) * p.image + x]));
+      for (int x = 0; x < p.image; ++x)
+        view.set({x, p.image - 1 - y, 0}, float(r.first_view[std::size_t(y) * p.image + x]));
     out.artifacts.push_back({"first_view", std::move(view)});
   }
   ctx.progress(1.0, "done");
@@ -75,12 +98,13 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
 }  // namespace
 }  // namespace cgview::skeleton
 
-CGVIEW_REGISTER_ALGORITHM(skeleton_projection, cgview::skeleton::Params, cgview::skeleton::run,
-                          {.title = "Skeleton from projections",
-                           .description = "The paper's curve skeleton: medial axes of silhouettes rendered from many views "
-                                          "vote in a voxel grid, thinned along the ridge of votes, merged and smoothed.",
-                           .area = "skeleton",
-                           .outputs = {{"skeleton", cgview::OutputKind::skeleton},
-                                       {"metrics", cgview::OutputKind::metrics},
-                                       {"votes", cgview::OutputKind::voxel_grid},
-                                       {"first_view", cgview::OutputKind::voxel_grid}}});
+CGVIEW_REGISTER_ALGORITHM(
+    skeleton_projection, cgview::skeleton::Params, cgview::skeleton::run,
+    {.title = "Skeleton from projections",
+     .description = "The paper's curve skeleton: medial axes of silhouettes rendered from many views "
+                    "vote in a voxel grid, thinned along the ridge of votes, merged and smoothed.",
+     .area = "skeleton",
+     .outputs = {{"skeleton", cgview::OutputKind::skeleton},
+                 {"metrics", cgview::OutputKind::metrics},
+                 {"votes", cgview::OutputKind::voxel_grid},
+                 {"first_view", cgview::OutputKind::voxel_grid}}});

@@ -60,13 +60,14 @@ AlgorithmResult run(const Inputs& in, const NoParams&, Context& ctx) {
   return {{{"branch", std::move(field)}, {"metrics", Metrics{{"branches", double(branches.size())}}}}, {}};
 }
 
-CGVIEW_REGISTER_ALGORITHM(skeleton_segmentation, NoParams, run,
-                          {.title = "Segmentation by skeleton branches",
-                           .description = "Each face coloured by the nearest skeleton branch it can see (the paper's octopus).",
-                           .area = "skeleton",
-                           .outputs = {{"branch", OutputKind::scalar_field}, {"metrics", OutputKind::metrics}},
-                           .inputs = {{.name = "mesh", .kind = OutputKind::mesh, .help = "the mesh to segment"},
-                                      {.name = "skeleton", .kind = OutputKind::skeleton, .help = "its skeleton"}}});
+CGVIEW_REGISTER_ALGORITHM(
+    skeleton_segmentation, NoParams, run,
+    {.title = "Segmentation by skeleton branches",
+     .description = "Each face coloured by the nearest skeleton branch it can see (the paper's octopus).",
+     .area = "skeleton",
+     .outputs = {{"branch", OutputKind::scalar_field}, {"metrics", OutputKind::metrics}},
+     .inputs = {{.name = "mesh", .kind = OutputKind::mesh, .help = "the mesh to segment"},
+                {.name = "skeleton", .kind = OutputKind::skeleton, .help = "its skeleton"}}});
 
 }  // namespace
 }  // namespace cgview

@@ -35,9 +35,8 @@ AlgorithmResult run(const Inputs& in, const Params& p, Context& ctx) {
   AlgorithmResult result;
   if (voxels == 0) result.warnings.push_back("no voxel is above the threshold: the surface is empty");
   result.artifacts.push_back({"mesh", std::move(surface)});
-  result.artifacts.push_back({"metrics", Metrics{{"voxels", double(voxels)},
-                                                 {"voxel_size", s},
-                                                 {"volume", double(voxels) * s * s * s}}});
+  result.artifacts.push_back(
+      {"metrics", Metrics{{"voxels", double(voxels)}, {"voxel_size", s}, {"volume", double(voxels) * s * s * s}}});
   ctx.progress(1.0, "done");
   return result;
 }

@@ -16,10 +16,13 @@ struct Params {
   double max_memory_mb = 2048;
   template <class V>
   void describe(V& v) {
-    v.integer("resolution", resolution,
-              {.label = "Resolution", .min = 1, .max = 4096, .help = "voxels along the longest side of the bounding box"});
+    v.integer(
+        "resolution", resolution,
+        {.label = "Resolution", .min = 1, .max = 4096, .help = "voxels along the longest side of the bounding box"});
     v.number("max_memory_mb", max_memory_mb,
-             {.label = "Memory limit (MB)", .min = 1, .max = 1e6,
+             {.label = "Memory limit (MB)",
+              .min = 1,
+              .max = 1e6,
               .help = "refuse a grid that needs more memory (1 byte per voxel, and 12 more for the distances)"});
   }
 };
@@ -34,7 +37,8 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   try {
     r = voxelize(mesh, vp, &ctx);
   } catch (const InvalidInput& e) {
-    throw InvalidInput(std::string(e.what()) + " (voxel_distance needs 13 bytes per voxel: 1/13 of max_memory_mb for the grid)");
+    throw InvalidInput(std::string(e.what()) +
+                       " (voxel_distance needs 13 bytes per voxel: 1/13 of max_memory_mb for the grid)");
   }
   ctx.check_cancelled();
   ctx.progress(0.8, "distance transform");
@@ -42,8 +46,10 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   const auto [lo, hi] = value_range(depth);
   AlgorithmResult result;
   result.artifacts.push_back({"distance", std::move(depth)});
-  result.artifacts.push_back({"metrics", Metrics{{"max_distance", double(hi)}, {"min_distance", double(lo)},
-                                                 {"voxel_size", r.grid.voxel_size()}, {"voxels", double(r.solid_voxels)}}});
+  result.artifacts.push_back({"metrics", Metrics{{"max_distance", double(hi)},
+                                                 {"min_distance", double(lo)},
+                                                 {"voxel_size", r.grid.voxel_size()},
+                                                 {"voxels", double(r.solid_voxels)}}});
   result.warnings = std::move(r.warnings);
   ctx.progress(1.0, "done");
   return result;

@@ -32,7 +32,8 @@ std::string num(double v) {
   return std::string(buf, p);
 }
 
-[[noreturn]] void bad(const std::string& name, const std::string& problem, std::optional<std::uint64_t> byte = std::nullopt) {
+[[noreturn]] void bad(const std::string& name, const std::string& problem,
+                      std::optional<std::uint64_t> byte = std::nullopt) {
   throw ParseError(name, problem, std::nullopt, byte);
 }
 
@@ -71,7 +72,8 @@ std::array<int, 3> checked_dims(long long a, long long b, long long c, const std
 std::array<int, 3> checked_text_dims(double a, double b, double c, const std::string& name) {
   for (double d : {a, b, c})
     if (!(d >= 1 && d <= (1 << 20)) || d != std::floor(d))
-      bad(name, "bad grid dimension " + nlohmann::json(d).dump() + " (a whole number 1.." + std::to_string(1 << 20) + ")");
+      bad(name,
+          "bad grid dimension " + nlohmann::json(d).dump() + " (a whole number 1.." + std::to_string(1 << 20) + ")");
   return {int(a), int(b), int(c)};
 }
 
@@ -215,7 +217,8 @@ VoxelGrid decode_binvox(const std::string& bytes, const std::string& name) {
   const auto d = checked_dims(dims[0], dims[1], dims[2], name);
   // Each run of two bytes holds at most 255 voxels: check the claim before allocating.
   const std::size_t runs_hold = 255 * ((bytes.size() - pos) / 2);
-  if (double(d[0]) * d[1] * d[2] > double(runs_hold)) bad(name, "the header claims more voxels than the runs can hold", pos);
+  if (double(d[0]) * d[1] * d[2] > double(runs_hold))
+    bad(name, "the header claims more voxels than the runs can hold", pos);
   VoxelGrid g = make_grid(d, t, scale / std::max({d[0], d[1], d[2]}), VoxelType::bit, name, runs_hold);
   // y fastest, then z, then x.
   const std::size_t total = g.size();
@@ -293,18 +296,24 @@ std::string encode_vti(const VoxelGrid& g) {
   const Vec3 o = g.origin();
   const bool f = g.type() == VoxelType::float32;
   const std::string extent = "0 " + std::to_string(d[0]) + " 0 " + std::to_string(d[1]) + " 0 " + std::to_string(d[2]);
-  std::string out = "<?xml version=\"1.0\"?>\n"
-                    "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
-                    "  <ImageData WholeExtent=\"" + extent + "\" Origin=\"" + num(o.x) + " " + num(o.y) + " " + num(o.z) +
-                    "\" Spacing=\"" + num(s) + " " + num(s) + " " + num(s) + "\">\n"
-                    "    <Piece Extent=\"" + extent + "\">\n"
-                    "      <CellData Scalars=\"value\">\n"
-                    "        <DataArray type=\"" + (f ? "Float32" : "UInt8") +
-                    "\" Name=\"value\" NumberOfComponents=\"1\" format=\"appended\" offset=\"0\"/>\n"
-                    "      </CellData>\n"
-                    "    </Piece>\n"
-                    "  </ImageData>\n"
-                    "  <AppendedData encoding=\"raw\">\n   _";
+  std::string out =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+      "  <ImageData WholeExtent=\"" +
+      extent + "\" Origin=\"" + num(o.x) + " " + num(o.y) + " " + num(o.z) + "\" Spacing=\"" + num(s) + " " + num(s) +
+      " " + num(s) +
+      "\">\n"
+      "    <Piece Extent=\"" +
+      extent +
+      "\">\n"
+      "      <CellData Scalars=\"value\">\n"
+      "        <DataArray type=\"" +
+      (f ? "Float32" : "UInt8") +
+      "\" Name=\"value\" NumberOfComponents=\"1\" format=\"appended\" offset=\"0\"/>\n"
+      "      </CellData>\n"
+      "    </Piece>\n"
+      "  </ImageData>\n"
+      "  <AppendedData encoding=\"raw\">\n   _";
   const std::string data = payload(g);
   const std::uint64_t n = data.size();
   out.append(reinterpret_cast<const char*>(&n), 8);
@@ -315,7 +324,8 @@ std::string encode_vti(const VoxelGrid& g) {
 
 VoxelGrid decode_vti(const std::string& bytes, const std::string& name) {
   const std::size_t file = bytes.find("<VTKFile");
-  if (file == std::string::npos || attribute(bytes, file, "type") != "ImageData") bad(name, "not a VTK ImageData file", 0);
+  if (file == std::string::npos || attribute(bytes, file, "type") != "ImageData")
+    bad(name, "not a VTK ImageData file", 0);
   const std::size_t app = bytes.find("<AppendedData");
   const std::string head = bytes.substr(0, app == std::string::npos ? bytes.size() : app);
   const std::size_t image = head.find("<ImageData");
@@ -341,7 +351,8 @@ VoxelGrid decode_vti(const std::string& bytes, const std::string& name) {
   const bool u64 = attribute(bytes, file, "header_type") == "UInt64";
   const std::size_t underscore = bytes.find('_', app);
   if (underscore == std::string::npos) bad(name, "no '_' before the appended data");
-  const std::size_t offset = std::size_t(numbers_in(attribute(head, arr, "offset")).empty() ? 0 : numbers_in(attribute(head, arr, "offset"))[0]);
+  const std::size_t offset = std::size_t(
+      numbers_in(attribute(head, arr, "offset")).empty() ? 0 : numbers_in(attribute(head, arr, "offset"))[0]);
   std::size_t at = underscore + 1 + offset;
   const std::size_t hsize = u64 ? 8 : 4;
   if (at + hsize > bytes.size()) bad(name, "the appended data is cut short", at);
@@ -387,7 +398,8 @@ std::string encode_vox(const VoxelGrid& g) {
         ++count;
       }
   std::string size_chunk = "SIZE";
-  put32(size_chunk, 12), put32(size_chunk, 0), put32(size_chunk, d[0]), put32(size_chunk, d[1]), put32(size_chunk, d[2]);
+  put32(size_chunk, 12), put32(size_chunk, 0), put32(size_chunk, d[0]), put32(size_chunk, d[1]),
+      put32(size_chunk, d[2]);
   std::string xyzi_chunk = "XYZI";
   put32(xyzi_chunk, 4 + std::uint32_t(xyzi.size())), put32(xyzi_chunk, 0), put32(xyzi_chunk, count);
   xyzi_chunk += xyzi;
@@ -455,7 +467,9 @@ void write_voxel_grid(const VoxelGrid& g, const std::filesystem::path& path) {
                         {"dims", {d[0], d[1], d[2]}},
                         {"origin", {o.x, o.y, o.z}},
                         {"voxel_size", g.voxel_size()},
-                        {"type", g.type() == VoxelType::bit ? "bit" : g.type() == VoxelType::uint8 ? "uint8" : "float32"},
+                        {"type", g.type() == VoxelType::bit     ? "bit"
+                                 : g.type() == VoxelType::uint8 ? "uint8"
+                                                                : "float32"},
                         {"bytes_per_voxel", g.type() == VoxelType::float32 ? 4 : 1},
                         {"order", "x fastest, then y, then z"},
                         {"endian", "little"},
@@ -480,9 +494,13 @@ VoxelGrid read_voxel_grid(const std::filesystem::path& path) {
       const auto d = checked_dims(j.at("dims").at(0).get<long long>(), j.at("dims").at(1).get<long long>(),
                                   j.at("dims").at(2).get<long long>(), name + ".json");
       const std::string type = j.at("type").get<std::string>();
-      const VoxelType t = type == "bit" ? VoxelType::bit : type == "uint8" ? VoxelType::uint8 : type == "float32" ? VoxelType::float32
-                                                                                                                  : throw ParseError(name + ".json", "unknown type '" + type + "'", std::nullopt, std::nullopt);
-      const Vec3 o{j.at("origin").at(0).get<double>(), j.at("origin").at(1).get<double>(), j.at("origin").at(2).get<double>()};
+      const VoxelType t = type == "bit"       ? VoxelType::bit
+                          : type == "uint8"   ? VoxelType::uint8
+                          : type == "float32" ? VoxelType::float32
+                                              : throw ParseError(name + ".json", "unknown type '" + type + "'",
+                                                                 std::nullopt, std::nullopt);
+      const Vec3 o{j.at("origin").at(0).get<double>(), j.at("origin").at(1).get<double>(),
+                   j.at("origin").at(2).get<double>()};
       const std::string data = read_file_bytes(path, kMaxRead);
       VoxelGrid g = make_grid(d, o, j.at("voxel_size").get<double>(), t, name, data.size());
       fill(g, data.data(), data.size(), name, 0);

@@ -101,7 +101,8 @@ bool is_simple(const VoxelGrid& grid, VoxelIndex v) {
         has_face |= nonzero(x) == 1;
         for (int y = 0; y < 27; ++y) {
           if (!in[y] || seen[y]) continue;
-          const int da = std::abs(x % 3 - y % 3), db = std::abs((x / 3) % 3 - (y / 3) % 3), dc = std::abs(x / 9 - y / 9);
+          const int da = std::abs(x % 3 - y % 3), db = std::abs((x / 3) % 3 - (y / 3) % 3),
+                    dc = std::abs(x / 9 - y / 9);
           if (da > 1 || db > 1 || dc > 1 || (da + db + dc) > reach) continue;
           seen[y] = 1;
           stack[top++] = y;
@@ -122,7 +123,8 @@ VoxelSlice slice(const VoxelGrid& grid, int axis, int index) {
   const auto d = grid.dims();
   if (index < 0 || index >= d[axis])
     throw InvalidInput("slice index " + std::to_string(index) + " is out of range: the grid has " +
-                       std::to_string(d[axis]) + " voxels along " + "xyz"[axis] + " (0.." + std::to_string(d[axis] - 1) + ")");
+                       std::to_string(d[axis]) + " voxels along " + "xyz"[axis] + " (0.." +
+                       std::to_string(d[axis] - 1) + ")");
   VoxelSlice out;
   out.axis = axis;
   out.index = index;
@@ -177,7 +179,7 @@ Mesh boundary_mesh(const VoxelGrid& grid) {
     const int u = (a + 1) % 3, v = (a + 2) % 3;
     const int nu = d[u], nv = d[v];
     std::vector<std::uint8_t> mask(std::size_t(nu) * nv);
-    for (int side = 0; side < 2; ++side) {     // 0: faces looking to -a, 1: to +a
+    for (int side = 0; side < 2; ++side) {  // 0: faces looking to -a, 1: to +a
       for (int w = 0; w < d[a]; ++w) {
         // Faces of the voxels in layer w on that side.
         for (int jv = 0; jv < nv; ++jv)
@@ -242,7 +244,8 @@ VoxelTopology voxel_topology(const VoxelGrid& grid) {
   for (std::size_t i = 0; i < grid.size(); ++i) {
     if (!label[i]) continue;
     const VoxelIndex v = grid.unlinear(i);
-    if (v.i == 0 || v.j == 0 || v.k == 0 || v.i == d[0] - 1 || v.j == d[1] - 1 || v.k == d[2] - 1) touches[label[i]] = 1;
+    if (v.i == 0 || v.j == 0 || v.k == 0 || v.i == d[0] - 1 || v.j == d[1] - 1 || v.k == d[2] - 1)
+      touches[label[i]] = 1;
   }
   for (std::uint32_t c = 1; c <= ne; ++c) t.cavities += !touches[c];
 

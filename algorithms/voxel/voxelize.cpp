@@ -61,7 +61,9 @@ void count_boundary(const Mesh& mesh, std::size_t& edges, std::size_t& loops) {
   std::sort(verts.begin(), verts.end());
   verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
   UnionFind sets(verts.size());
-  auto id = [&](std::uint32_t v) { return std::uint32_t(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin()); };
+  auto id = [&](std::uint32_t v) {
+    return std::uint32_t(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin());
+  };
   for (const auto& [p, q] : border) sets.unite(id(p), id(q));
   loops = 0;
   for (std::uint32_t v = 0; v < sets.parent.size(); ++v) loops += sets.find(v) == v;
@@ -200,8 +202,7 @@ VoxelizeGeometry voxelize_geometry(const BBox& box, const VoxelizeParams& p) {
   const Vec3 ext = box.size();
   const double longest = std::max({ext.x, ext.y, ext.z});
   const double size = p.voxel_size > 0 ? p.voxel_size : longest / p.resolution;
-  if (!(size > 0))
-    throw InvalidInput("the mesh's bounding box is a single point: give a voxel_size to voxelize it");
+  if (!(size > 0)) throw InvalidInput("the mesh's bounding box is a single point: give a voxel_size to voxelize it");
   std::array<int, 3> dims{};
   double voxels = 1;
   for (int a = 0; a < 3; ++a) {
@@ -213,12 +214,13 @@ VoxelizeGeometry voxelize_geometry(const BBox& box, const VoxelizeParams& p) {
   const double need = voxels;  // voxelize_memory_bytes, without int overflow
   if (need > p.max_memory_mb * 1024 * 1024) {
     char shape[128];
-    std::snprintf(shape, sizeof shape, "%.0fx%.0fx%.0f", std::max(1.0, std::ceil(ext.x / size * (1 - 1e-12))) + 2.0 * p.padding,
+    std::snprintf(shape, sizeof shape, "%.0fx%.0fx%.0f",
+                  std::max(1.0, std::ceil(ext.x / size * (1 - 1e-12))) + 2.0 * p.padding,
                   std::max(1.0, std::ceil(ext.y / size * (1 - 1e-12))) + 2.0 * p.padding,
                   std::max(1.0, std::ceil(ext.z / size * (1 - 1e-12))) + 2.0 * p.padding);
     throw InvalidInput(std::string("parameter '") + (p.voxel_size > 0 ? "voxel_size" : "resolution") + "': a " + shape +
-                       " grid would take " + format_bytes(need) + ", over the limit max_memory_mb = " +
-                       std::to_string(long(p.max_memory_mb)) + " MB");
+                       " grid would take " + format_bytes(need) +
+                       ", over the limit max_memory_mb = " + std::to_string(long(p.max_memory_mb)) + " MB");
   }
   return {dims, size, need};
 }

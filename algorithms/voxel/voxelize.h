@@ -49,22 +49,22 @@ class Context;
 enum class VoxelizeMode { surface, solid };
 
 struct VoxelizeParams {
-  int resolution = 128;        // voxels along the longest side of the bounding box
-  double voxel_size = 0.0;     // > 0: use this size and ignore resolution
+  int resolution = 128;     // voxels along the longest side of the bounding box
+  double voxel_size = 0.0;  // > 0: use this size and ignore resolution
   VoxelizeMode mode = VoxelizeMode::solid;
-  int padding = 1;             // empty voxels added on every side
-  double max_memory_mb = 2048; // refuse grids that would need more
-  int threads = 0;             // 0: std::thread::hardware_concurrency()
+  int padding = 1;              // empty voxels added on every side
+  double max_memory_mb = 2048;  // refuse grids that would need more
+  int threads = 0;              // 0: std::thread::hardware_concurrency()
   // The box the grid covers (with the padding around it), when it must match
   // another grid's; it must hold the faces.  Default: the faces' own box.
   std::optional<BBox> box;
 };
 
 struct VoxelizeResult {
-  VoxelGrid grid;                    // bit grid, 1 = occupied
-  std::size_t surface_voxels = 0;    // voxels the surface touches
-  std::size_t solid_voxels = 0;      // surface + interior (solid mode; = surface_voxels otherwise)
-  std::size_t boundary_loops = 0;    // of the mesh (0 for a closed mesh)
+  VoxelGrid grid;                  // bit grid, 1 = occupied
+  std::size_t surface_voxels = 0;  // voxels the surface touches
+  std::size_t solid_voxels = 0;    // surface + interior (solid mode; = surface_voxels otherwise)
+  std::size_t boundary_loops = 0;  // of the mesh (0 for a closed mesh)
   std::size_t boundary_edges = 0;
   std::vector<std::string> warnings;
 };

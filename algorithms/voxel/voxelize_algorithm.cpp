@@ -17,8 +17,9 @@ struct Params {
   double max_memory_mb = 2048;
   template <class V>
   void describe(V& v) {
-    v.integer("resolution", resolution,
-              {.label = "Resolution", .min = 1, .max = 8192, .help = "voxels along the longest side of the bounding box"});
+    v.integer(
+        "resolution", resolution,
+        {.label = "Resolution", .min = 1, .max = 8192, .help = "voxels along the longest side of the bounding box"});
     v.number("voxel_size", voxel_size,
              {.label = "Voxel size", .min = 0, .help = "edge of a voxel in mesh units; 0: from the resolution"});
     v.choice("mode", mode,
@@ -28,7 +29,10 @@ struct Params {
               .choices = {"surface", "solid"}});
     v.integer("padding", padding, {.label = "Padding", .min = 0, .max = 64, .help = "empty voxels added on each side"});
     v.number("max_memory_mb", max_memory_mb,
-             {.label = "Memory limit (MB)", .min = 1, .max = 1e6, .help = "refuse a grid that needs more memory (1 byte per voxel)"});
+             {.label = "Memory limit (MB)",
+              .min = 1,
+              .max = 1e6,
+              .help = "refuse a grid that needs more memory (1 byte per voxel)"});
   }
 };
 

@@ -51,7 +51,8 @@ json Admission::algorithms_json() const {
   return {{"algorithms", list}};
 }
 
-Job Admission::admit(const json& req, const Caller& caller, JobLookup& jobs, std::vector<std::string>* new_meshes) const {
+Job Admission::admit(const json& req, const Caller& caller, JobLookup& jobs,
+                     std::vector<std::string>* new_meshes) const {
   const std::string& owner = caller.user;
   if (!req.is_object()) throw InvalidInput("the body must be a JSON object");
   if (!req.contains("algorithm") || !req["algorithm"].is_string()) throw InvalidInput("\"algorithm\" must be a string");
@@ -72,7 +73,8 @@ Job Admission::admit(const json& req, const Caller& caller, JobLookup& jobs, std
   for (const auto& [name, v] : inputs.items()) {
     bool known = false;
     for (const auto& spec : specs) known = known || spec.value("name", "") == name;
-    if (!known) throw InvalidInput("algorithm '" + algorithm + "' has no input '" + name + "' (it takes: " + names + ")");
+    if (!known)
+      throw InvalidInput("algorithm '" + algorithm + "' has no input '" + name + "' (it takes: " + names + ")");
   }
   json resolved = json::object();
   InputSummaries summaries;
@@ -82,7 +84,9 @@ Job Admission::admit(const json& req, const Caller& caller, JobLookup& jobs, std
     const std::string name = spec.value("name", ""), kind = spec.value("kind", "mesh");
     if (kind != "mesh") {
       // Any other kind is an earlier job's artifact of that kind.
-      if (!inputs.contains(name)) throw InvalidInput("input '" + name + "' is missing: {\"" + name + "\": {\"job\": \"<job id>\", \"artifact\": \"<name>\"}}");
+      if (!inputs.contains(name))
+        throw InvalidInput("input '" + name + "' is missing: {\"" + name +
+                           "\": {\"job\": \"<job id>\", \"artifact\": \"<name>\"}}");
       const json& v = inputs[name];
       if (!v.is_object() || !v.value("job", json()).is_string() || !v.value("artifact", json()).is_string())
         throw InvalidInput("input '" + name + "' is a " + kind + ": {\"job\": \"<job id>\", \"artifact\": \"<name>\"}");
@@ -162,7 +166,8 @@ Job Admission::admit(const json& req, const Caller& caller, JobLookup& jobs, std
   j.inputs = resolved;
   j.params = canonical;
   // A one-mesh job keeps the key it always had (its cached results stay valid).
-  j.cache_key = sha256_hex((mesh ? mesh->sha256 : std::string()) + input_shas + "\n" + algorithm + "\n" + canonical.dump());
+  j.cache_key =
+      sha256_hex((mesh ? mesh->sha256 : std::string()) + input_shas + "\n" + algorithm + "\n" + canonical.dump());
   return j;
 }
 

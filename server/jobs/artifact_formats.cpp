@@ -35,16 +35,23 @@ ArtifactBytes serve_artifact(const fs::path& dir, const json& entry, const std::
       if (side.is_object()) field.name = side.value("name", name);
       field.location = entry.value("location", "vertex") == "face" ? Location::face : Location::vertex;
       const std::string hint = entry.value("hint", "standard");
-      field.hint = hint == "symmetric" ? ColorHint::symmetric : hint == "magnitude" ? ColorHint::magnitude
-                   : hint == "categorical" ? ColorHint::categorical : ColorHint::standard;
+      field.hint = hint == "symmetric"     ? ColorHint::symmetric
+                   : hint == "magnitude"   ? ColorHint::magnitude
+                   : hint == "categorical" ? ColorHint::categorical
+                                           : ColorHint::standard;
       field.values.resize(raw.size() / sizeof(float));
       std::memcpy(field.values.data(), raw.data(), field.values.size() * sizeof(float));
       if (format == "json") {
         const auto [lo, hi] = field.range();
         json values = json::array();
         for (float v : field.values) values.push_back(v);
-        out.bytes = json{{"name", field.name}, {"location", to_string(field.location)}, {"hint", to_string(field.hint)},
-                         {"range", {lo, hi}}, {"values", values}}.dump();
+        out.bytes = json{
+            {"name", field.name},
+            {"location", to_string(field.location)},
+            {"hint", to_string(field.hint)},
+            {"range", {lo, hi}},
+            {"values",
+             values}}.dump();
         out.content_type = "application/json";
       } else if (format == "txt" || format == "csv" || format == "ply") {
         Mesh input;
@@ -77,7 +84,8 @@ ArtifactBytes serve_artifact(const fs::path& dir, const json& entry, const std::
       out.bytes = write_mesh_bytes(read_mesh_file(dir / file).mesh, f);
     }
   } else if (kind == "metrics") {
-    if (!format.empty() && format != "json") throw UnsupportedFormat("metrics are served as json, not '" + format + "'");
+    if (!format.empty() && format != "json")
+      throw UnsupportedFormat("metrics are served as json, not '" + format + "'");
     format = "json";
     out.bytes = read_job_file(dir / file);
     out.content_type = "application/json";
@@ -103,14 +111,16 @@ ArtifactBytes serve_artifact(const fs::path& dir, const json& entry, const std::
     } else {
       if (format != "cg" && format != "json" && format != "polylines")
         throw UnsupportedFormat("a skeleton is served as obj, cg, json or polylines, not '" + format + "'");
-      const SkeletonFormat f = skeleton_format_from_name("s." + std::string(format == "polylines" ? "polylines.txt" : format));
+      const SkeletonFormat f =
+          skeleton_format_from_name("s." + std::string(format == "polylines" ? "polylines.txt" : format));
       out.bytes = write_skeleton_bytes(read_skeleton_bytes(stored, SkeletonFormat::obj, file), f);
       if (format == "polylines") format = "polylines.txt";
     }
     out.content_type = format == "json" ? "application/json" : "text/plain; charset=utf-8";
   } else {
     const std::string ext = fs::path(file).extension().string().substr(1);
-    if (!format.empty() && format != ext) throw UnsupportedFormat("a " + kind + " is served as " + ext + ", not '" + format + "'");
+    if (!format.empty() && format != ext)
+      throw UnsupportedFormat("a " + kind + " is served as " + ext + ", not '" + format + "'");
     format = ext;
     out.bytes = read_job_file(dir / file);
   }

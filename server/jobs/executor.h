@@ -21,10 +21,10 @@ namespace cgview::server {
 
 struct LaunchSpec {
   std::string job_id;
-  std::string name;                // what the job is called where it runs ("cgview-ID")
-  std::filesystem::path dir;       // the job's directory: job.json in, results, stdout and stderr out
-  double timeout_s = 0;            // 0: none
-  std::size_t memory_mb = 0;       // 0: none
+  std::string name;           // what the job is called where it runs ("cgview-ID")
+  std::filesystem::path dir;  // the job's directory: job.json in, results, stdout and stderr out
+  double timeout_s = 0;       // 0: none
+  std::size_t memory_mb = 0;  // 0: none
   int cpus = 1;
   // Where the worker cannot see the data directory: the server's address,
   // the job's own token for its inputs and results (worker_api in

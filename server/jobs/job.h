@@ -24,7 +24,7 @@ inline bool active(JobState s) { return s == JobState::queued || s == JobState::
 
 struct Job {
   std::string id, owner, algorithm;
-  std::string mesh_id, mesh_sha;  // the first mesh input (a chained job's too)
+  std::string mesh_id, mesh_sha;                     // the first mesh input (a chained job's too)
   nlohmann::json inputs = nlohmann::json::object();  // every input by name: a mesh id or {"job", "artifact"}
   nlohmann::json params = nlohmann::json::object();  // canonical: checked, defaults filled in
   std::string cache_key;

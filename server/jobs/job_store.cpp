@@ -12,16 +12,17 @@ using nlohmann::json;
 
 JobStore::JobStore(const std::filesystem::path& data_dir) {
   db_ = open_database(data_dir / "cgview.db");
-  exec_sql(db_,
-           "CREATE TABLE IF NOT EXISTS jobs ("
-           " id TEXT PRIMARY KEY, seq INTEGER NOT NULL, owner TEXT NOT NULL, algorithm TEXT NOT NULL,"
-           " mesh_id TEXT NOT NULL, mesh_sha TEXT NOT NULL, params TEXT NOT NULL, cache_key TEXT NOT NULL,"
-           " state TEXT NOT NULL, stage TEXT NOT NULL, progress REAL NOT NULL, error TEXT NOT NULL,"
-           " cached INTEGER NOT NULL, created TEXT NOT NULL, started TEXT NOT NULL, finished TEXT NOT NULL,"
-           " artifacts TEXT NOT NULL, files TEXT NOT NULL, inputs TEXT NOT NULL DEFAULT '{}', bytes INTEGER,"
-           " executor TEXT NOT NULL DEFAULT '', handle TEXT NOT NULL DEFAULT '', worker_token TEXT NOT NULL DEFAULT '');"
-           "CREATE INDEX IF NOT EXISTS jobs_cache ON jobs(cache_key);",
-           "jobs");
+  exec_sql(
+      db_,
+      "CREATE TABLE IF NOT EXISTS jobs ("
+      " id TEXT PRIMARY KEY, seq INTEGER NOT NULL, owner TEXT NOT NULL, algorithm TEXT NOT NULL,"
+      " mesh_id TEXT NOT NULL, mesh_sha TEXT NOT NULL, params TEXT NOT NULL, cache_key TEXT NOT NULL,"
+      " state TEXT NOT NULL, stage TEXT NOT NULL, progress REAL NOT NULL, error TEXT NOT NULL,"
+      " cached INTEGER NOT NULL, created TEXT NOT NULL, started TEXT NOT NULL, finished TEXT NOT NULL,"
+      " artifacts TEXT NOT NULL, files TEXT NOT NULL, inputs TEXT NOT NULL DEFAULT '{}', bytes INTEGER,"
+      " executor TEXT NOT NULL DEFAULT '', handle TEXT NOT NULL DEFAULT '', worker_token TEXT NOT NULL DEFAULT '');"
+      "CREATE INDEX IF NOT EXISTS jobs_cache ON jobs(cache_key);",
+      "jobs");
   // A database from before algorithms of several inputs lacks the column.
   add_missing_column(db_, "jobs", "inputs", "TEXT NOT NULL DEFAULT '{}'", "jobs");
   // One from before result sizes were stored: NULL until the scheduler sizes the job once.
@@ -36,11 +37,12 @@ JobStore::~JobStore() { sqlite3_close(db_); }
 
 std::vector<std::shared_ptr<Job>> JobStore::load() const {
   sqlite3_stmt* s = nullptr;
-  sqlite3_prepare_v2(db_,
-                     "SELECT id, seq, owner, algorithm, mesh_id, mesh_sha, params, cache_key, state, stage, progress,"
-                     " error, cached, created, started, finished, artifacts, files, inputs, bytes, executor, handle, worker_token"
-                     " FROM jobs ORDER BY seq",
-                     -1, &s, nullptr);
+  sqlite3_prepare_v2(
+      db_,
+      "SELECT id, seq, owner, algorithm, mesh_id, mesh_sha, params, cache_key, state, stage, progress,"
+      " error, cached, created, started, finished, artifacts, files, inputs, bytes, executor, handle, worker_token"
+      " FROM jobs ORDER BY seq",
+      -1, &s, nullptr);
   auto text = [&](int c) {
     const auto* p = sqlite3_column_text(s, c);
     return p ? std::string(reinterpret_cast<const char*>(p)) : std::string();

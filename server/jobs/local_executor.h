@@ -46,7 +46,7 @@ class LocalExecutor : public Executor {
 
   std::filesystem::path worker_;
   int max_workers_;
-  std::map<std::string, Run> runs_;  // by job id
+  std::map<std::string, Run> runs_;     // by job id
   std::vector<ExecutorEvent> pending_;  // started events, sent at the next poll
   std::mutex cancel_mutex_;
   std::set<std::string> cancels_;  // asked from other threads, done in poll

@@ -167,7 +167,8 @@ std::optional<json> JobScheduler::cancel(const std::string& id, const Caller& ca
     const auto it = jobs_.find(id);
     if (it == jobs_.end() || !readable(*it->second, caller)) return std::nullopt;
     Job& j = *it->second;
-    if (!Access{j.owner}.owned_by(caller)) throw Forbidden("job " + id + " is " + j.owner + "'s: only its owner cancels it");
+    if (!Access{j.owner}.owned_by(caller))
+      throw Forbidden("job " + id + " is " + j.owner + "'s: only its owner cancels it");
     if (active(j.state)) {
       // Queued here: out of the queue.  With the executor (or being handed
       // to it): its worker is stopped, and only its size is new when it ends.
@@ -233,7 +234,8 @@ std::optional<LaunchSpec> JobScheduler::prepare(Job& j) {
     j.worker_token_sha = sha256_hex(s.token);
   }
   try {
-    write_file_bytes(dir / "job.json", json{{"algorithm", j.algorithm}, {"params", j.params}, {"inputs", inputs}, {"out", out}}.dump());
+    write_file_bytes(dir / "job.json",
+                     json{{"algorithm", j.algorithm}, {"params", j.params}, {"inputs", inputs}, {"out", out}}.dump());
   } catch (const DiskFull&) {
     j.error = "the server's storage is full: the job could not start";
     return std::nullopt;

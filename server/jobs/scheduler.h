@@ -39,13 +39,13 @@
 namespace cgview::server {
 
 struct JobConfig {
-  std::filesystem::path worker;  // the cgview-worker executable
-  int max_workers = 0;           // local: jobs at once (0: the number of cores)
-  double timeout_s = 3600;       // per job; 0: none
-  std::size_t memory_mb = 8192;  // address-space limit per job; 0: none
-  int cpus = 1;                  // per job (Slurm's --cpus-per-task)
+  std::filesystem::path worker;    // the cgview-worker executable
+  int max_workers = 0;             // local: jobs at once (0: the number of cores)
+  double timeout_s = 3600;         // per job; 0: none
+  std::size_t memory_mb = 8192;    // address-space limit per job; 0: none
+  int cpus = 1;                    // per job (Slurm's --cpus-per-task)
   bool requeue_on_restart = true;  // else: jobs of a previous run that cannot be followed are marked interrupted
-  QuotaConfig quotas;  // per-user storage and concurrent-job limits
+  QuotaConfig quotas;              // per-user storage and concurrent-job limits
   std::string executor = "local";  // or "slurm"
   SlurmConfig slurm;
 };
@@ -173,7 +173,7 @@ class JobScheduler : private JobLookup {
   std::map<std::string, std::shared_ptr<Job>> jobs_;
   std::vector<std::string> order_;  // ids, oldest first
   FairQueue queue_;
-  std::set<std::string> in_flight_;  // handed to the executor and not ended
+  std::set<std::string> in_flight_;           // handed to the executor and not ended
   std::map<std::string, std::string> cache_;  // cache key -> the done job whose files hold the result
   bool stopping_ = false;
   std::int64_t seq_ = 0;

@@ -104,7 +104,7 @@ fs::path JobScheduler::artifact_file(const std::string& job, const std::string& 
 }
 
 fs::path JobScheduler::artifact_file_locked(const std::string& id, const std::string& name, const std::string& kind,
-                                           const Caller& caller) const {
+                                            const Caller& caller) const {
   const Job& j = job_locked(id, caller);
   if (j.state != JobState::done)
     throw InvalidInput("job " + id + " is " + to_string(j.state) + ", not done: it has no artifacts");

@@ -8,15 +8,15 @@
 namespace cgview::server {
 
 struct SlurmConfig {
-  std::string partition, account, qos;    // sbatch's -p, -A, --qos ("": the cluster's default)
-  std::vector<std::string> sbatch_args;   // more of sbatch's arguments, as they are
-  int max_jobs = 200;                     // CGView jobs in the cluster at once (pending or running)
+  std::string partition, account, qos;   // sbatch's -p, -A, --qos ("": the cluster's default)
+  std::vector<std::string> sbatch_args;  // more of sbatch's arguments, as they are
+  int max_jobs = 200;                    // CGView jobs in the cluster at once (pending or running)
   // CGView jobs pending in the cluster at once: the rest wait in CGView's
   // fair queue, where owners take turns.  Slurm sees one user (the
   // server's), so jobs handed to it early would run in submission order,
   // one student's hundred before another's first.
   int max_pending = 16;
-  double poll_s = 1;                      // seconds between squeue calls
+  double poll_s = 1;  // seconds between squeue calls
   // The nodes see the data directory at the same path (NFS): workers read
   // their inputs and write their results there.  Otherwise each worker
   // fetches its inputs from the server and sends its results back.

@@ -130,7 +130,8 @@ std::string SlurmExecutor::batch_script(const LaunchSpec& job) const {
     const std::string parent = fs::path(local).parent_path().string();
     s += "mkdir -p " + quoted(parent) + " && get " + quoted("inputs/" + name) + " " + quoted(local) + " || exit 98\n";
   }
-  s += "(" + limit + "exec " + quoted(worker_.string()) + " job.json) > stdout.txt 2> stderr.txt &\n"
+  s += "(" + limit + "exec " + quoted(worker_.string()) +
+       " job.json) > stdout.txt 2> stderr.txt &\n"
        "pid=$!\n"
        "last=\n"
        "while kill -0 $pid 2>/dev/null; do\n"
@@ -251,8 +252,9 @@ void SlurmExecutor::refresh(std::vector<ExecutorEvent>& events) {
   ++squeue_calls_;
   // Every job of this user the controller still holds, ended ones included
   // (for MinJobAge after their end): one call however many are in flight.
-  const ToolRun r = run_tool({squeue_.string(), "--noheader", "--me", "--states=all", "--format=%i|%T|%r|%N"}, kToolLimit);
-  if (!r.ok()) return;  // the controller is away: try again next cycle, change nothing
+  const ToolRun r =
+      run_tool({squeue_.string(), "--noheader", "--me", "--states=all", "--format=%i|%T|%r|%N"}, kToolLimit);
+  if (!r.ok()) return;                                   // the controller is away: try again next cycle, change nothing
   std::map<std::string, std::vector<std::string>> rows;  // Slurm id -> state, reason, nodes
   for (const std::string& line : split(r.output, '\n')) {
     auto f = split(line, '|');
@@ -302,7 +304,8 @@ void SlurmExecutor::refresh(std::vector<ExecutorEvent>& events) {
         run_tool({scancel_.string(), t.slurm_id}, kToolLimit);
       }
     } else if (!t.cancelling) {  // PENDING, REQUEUED, SUSPENDED, ...: waiting, and why
-      const std::string why = state == "PENDING" ? (reason == "None" ? "" : reason) : state + (reason == "None" ? "" : ": " + reason);
+      const std::string why =
+          state == "PENDING" ? (reason == "None" ? "" : reason) : state + (reason == "None" ? "" : ": " + reason);
       if (t.running || why != t.reason) {
         t.running = false;
         t.reason = why;
@@ -321,8 +324,10 @@ std::vector<ExecutorEvent> SlurmExecutor::poll(std::chrono::milliseconds timeout
   const auto due = last_refresh_ + period;
   const auto now = Clock::now();
   if (jobs_.empty() || due > now) {
-    const auto wait = jobs_.empty() ? timeout : std::min<std::chrono::milliseconds>(
-        timeout, std::chrono::duration_cast<std::chrono::milliseconds>(due - now) + std::chrono::milliseconds(1));
+    const auto wait = jobs_.empty() ? timeout
+                                    : std::min<std::chrono::milliseconds>(
+                                          timeout, std::chrono::duration_cast<std::chrono::milliseconds>(due - now) +
+                                                       std::chrono::milliseconds(1));
     pollfd p{wake_.fd(), POLLIN, 0};
     ::poll(&p, 1, int(wait.count()));
     wake_.drain();

@@ -46,9 +46,9 @@ void JobScheduler::worker_put(const std::string& id, std::string_view token, con
     std::lock_guard lock(mutex_);
     dir = job_dir(worker_job_locked(id, token).id);  // the token first: nothing is said to another caller
   }
-  const bool plain = !file.empty() && file.size() <= 128 && file[0] != '.' &&
-                     file.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789._-") ==
-                         std::string::npos;
+  const bool plain =
+      !file.empty() && file.size() <= 128 && file[0] != '.' &&
+      file.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789._-") == std::string::npos;
   if (!plain || file == "job.json" || file == "slurm-job.sh")
     throw InvalidInput("'" + file + "' is not a result file name: letters, digits, '.', '_', '-'");
   write_file_bytes(dir / file, bytes);

@@ -16,7 +16,7 @@ namespace cgview::server {
 struct WorkerOutcome {
   bool done = false;
   nlohmann::json artifacts = nlohmann::json::array();  // when done
-  std::string error;                                  // when not
+  std::string error;                                   // when not
 };
 
 // The limits the job ran under, for the messages.

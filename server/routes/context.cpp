@@ -27,7 +27,8 @@ MeshRecord RouteContext::mesh(const std::string& id, const Caller& caller) const
 
 MeshRecord RouteContext::owned_mesh(const std::string& id, const Caller& caller) const {
   MeshRecord rec = mesh(id, caller);
-  if (!Access{rec.owner}.owned_by(caller)) throw Forbidden("mesh " + rec.id + " is " + rec.owner + "'s: only its owner changes it");
+  if (!Access{rec.owner}.owned_by(caller))
+    throw Forbidden("mesh " + rec.id + " is " + rec.owner + "'s: only its owner changes it");
   return rec;
 }
 
@@ -41,7 +42,8 @@ HttpResponse RouteContext::share(const std::string& kind, const std::string& id,
   if (!names.is_array()) return error_response(400, "bad_request", shape);
   for (const auto& n : names) {
     if (!n.is_string()) return error_response(400, "bad_request", shape);
-    if (!meshes.store().get_user(n)) return error_response(400, "bad_request", "no user '" + n.get<std::string>() + "'");
+    if (!meshes.store().get_user(n))
+      return error_response(400, "bad_request", "no user '" + n.get<std::string>() + "'");
     users.push_back(n);
   }
   const json everyone = body.value("everyone", json(false));

@@ -72,12 +72,20 @@ std::pair<std::string, std::map<std::string, std::string>> split_target(const st
 }
 
 const char* content_type_of(const std::string& extension) {
-  static const std::map<std::string, const char*> types = {
-      {".html", "text/html; charset=utf-8"}, {".js", "text/javascript"},      {".mjs", "text/javascript"},
-      {".css", "text/css"},                  {".json", "application/json"},   {".wasm", "application/wasm"},
-      {".svg", "image/svg+xml"},             {".png", "image/png"},           {".ico", "image/x-icon"},
-      {".txt", "text/plain; charset=utf-8"}, {".map", "application/json"},
-      {".obj", "model/obj"},                 {".stl", "model/stl"},           {".glb", "model/gltf-binary"}};
+  static const std::map<std::string, const char*> types = {{".html", "text/html; charset=utf-8"},
+                                                           {".js", "text/javascript"},
+                                                           {".mjs", "text/javascript"},
+                                                           {".css", "text/css"},
+                                                           {".json", "application/json"},
+                                                           {".wasm", "application/wasm"},
+                                                           {".svg", "image/svg+xml"},
+                                                           {".png", "image/png"},
+                                                           {".ico", "image/x-icon"},
+                                                           {".txt", "text/plain; charset=utf-8"},
+                                                           {".map", "application/json"},
+                                                           {".obj", "model/obj"},
+                                                           {".stl", "model/stl"},
+                                                           {".glb", "model/gltf-binary"}};
   const auto it = types.find(extension);
   return it == types.end() ? "application/octet-stream" : it->second;
 }

@@ -17,7 +17,8 @@ using nlohmann::json;
 namespace {
 
 // The scalar field that render.png's `field` names (JOB_ID/NAME or NAME).
-ScalarField resolve_field(const RouteContext& ctx, const MeshRecord& rec, const std::string& spec, const Caller& caller) {
+ScalarField resolve_field(const RouteContext& ctx, const MeshRecord& rec, const std::string& spec,
+                          const Caller& caller) {
   auto bad = [](const std::string& why) { return BadParameter("field", "parameter 'field': " + why); };
   if (!ctx.config.jobs) throw bad("this server runs no jobs, so it has no fields");
   std::string job_id, name;
@@ -33,7 +34,8 @@ ScalarField resolve_field(const RouteContext& ctx, const MeshRecord& rec, const 
       const json& j = *it;
       if (j.value("state", "") != "done") continue;
       const json inputs = j.value("inputs", json::object());
-      if (!inputs.contains("mesh") || !inputs["mesh"].is_string() || inputs["mesh"].get<std::string>() != rec.id) continue;
+      if (!inputs.contains("mesh") || !inputs["mesh"].is_string() || inputs["mesh"].get<std::string>() != rec.id)
+        continue;
       for (const auto& a : j.value("artifacts", json::array()))
         if (a.value("name", "") == name && a.value("kind", "") == "scalar_field") job_id = j.value("id", "");
       if (!job_id.empty()) break;
@@ -48,13 +50,16 @@ ScalarField resolve_field(const RouteContext& ctx, const MeshRecord& rec, const 
     throw bad(e.what());
   }
   const json j = json::parse(a.bytes, nullptr, false);
-  if (!j.is_object() || !j.contains("values")) throw bad("artifact '" + name + "' of job " + job_id + " is not a scalar field");
+  if (!j.is_object() || !j.contains("values"))
+    throw bad("artifact '" + name + "' of job " + job_id + " is not a scalar field");
   ScalarField f;
   f.name = j.value("name", name);
   f.location = j.value("location", "vertex") == "face" ? Location::face : Location::vertex;
   const std::string hint = j.value("hint", "standard");
-  f.hint = hint == "symmetric" ? ColorHint::symmetric : hint == "magnitude" ? ColorHint::magnitude
-           : hint == "categorical" ? ColorHint::categorical : ColorHint::standard;
+  f.hint = hint == "symmetric"     ? ColorHint::symmetric
+           : hint == "magnitude"   ? ColorHint::magnitude
+           : hint == "categorical" ? ColorHint::categorical
+                                   : ColorHint::standard;
   for (const auto& v : j["values"]) f.values.push_back(v.is_number() ? v.get<float>() : NAN);
   return f;
 }
@@ -120,17 +125,20 @@ HttpResponse render_png(const RouteContext& ctx, const MeshRecord& rec, const Ht
 }  // namespace
 
 void add_render_route(Routes& routes, const RouteContext& ctx) {
-  routes.push_back({"GET", "/api/v1/meshes/{id}/render.png", "A picture of the mesh from the EGL offscreen renderer",
-                    {{"mode", "points, wireframe, flat, smooth (default) or toon"},
-                     {"width", "image width in pixels, 1..8192 (default 800)"},
-                     {"height", "image height in pixels, 1..8192 (default 600)"},
-                     {"azimuth", "camera azimuth around +y in degrees (default 30)"},
-                     {"elevation", "camera elevation in degrees, -90..90 (default 20)"},
-                     {"projection", "perspective (default) or orthographic"},
-                     {"field", "a scalar-field artifact to colour by: JOB_ID/NAME, or NAME for the newest done job on this mesh"}},
-                    [&ctx](const Params& p, const HttpRequest& req, const Caller& caller) {
-                      return render_png(ctx, ctx.mesh(p.at("id"), caller), req, caller);
-                    }});
+  routes.push_back(
+      {"GET",
+       "/api/v1/meshes/{id}/render.png",
+       "A picture of the mesh from the EGL offscreen renderer",
+       {{"mode", "points, wireframe, flat, smooth (default) or toon"},
+        {"width", "image width in pixels, 1..8192 (default 800)"},
+        {"height", "image height in pixels, 1..8192 (default 600)"},
+        {"azimuth", "camera azimuth around +y in degrees (default 30)"},
+        {"elevation", "camera elevation in degrees, -90..90 (default 20)"},
+        {"projection", "perspective (default) or orthographic"},
+        {"field", "a scalar-field artifact to colour by: JOB_ID/NAME, or NAME for the newest done job on this mesh"}},
+       [&ctx](const Params& p, const HttpRequest& req, const Caller& caller) {
+         return render_png(ctx, ctx.mesh(p.at("id"), caller), req, caller);
+       }});
 }
 
 }  // namespace cgview::server

@@ -29,7 +29,8 @@ struct Route {
   std::vector<std::pair<std::string, std::string>> query;  // name, description
   // Called with the authenticated caller: a route answers only with what
   // the caller may read (another user's id is 404, as an unknown one).
-  std::function<HttpResponse(const std::map<std::string, std::string>& params, const HttpRequest&, const Caller&)> handler;
+  std::function<HttpResponse(const std::map<std::string, std::string>& params, const HttpRequest&, const Caller&)>
+      handler;
   // Heavy routes (parsing, encoding, file I/O) run on a worker; light ones
   // (a lookup, a small JSON) may run on the I/O thread, saving two hops.
   bool heavy = true;

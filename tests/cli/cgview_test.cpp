@@ -81,8 +81,8 @@ json info_json(const std::string& mesh) {
 }
 
 void expect_elephant(const json& j) {
-  for (const char* key : {"vertices", "faces", "edges", "bbox", "components", "boundary_loops", "genus",
-                          "manifold", "degenerate_faces"})
+  for (const char* key :
+       {"vertices", "faces", "edges", "bbox", "components", "boundary_loops", "genus", "manifold", "degenerate_faces"})
     EXPECT_TRUE(j.contains(key)) << "missing key " << key;
   EXPECT_EQ(j.value("vertices", 0), 2775);
   EXPECT_EQ(j.value("faces", 0), 5558);
@@ -211,8 +211,9 @@ TEST(CliTest, ConvertToPlyKeepsCounts) {
 TEST(CliTest, ConvertAsciiPly) {
   const fs::path dir = test::temp_dir("cli-convert-ascii");
   const fs::path out = dir / "e.ply";
-  ASSERT_EQ(cgview("convert " + quote(test::sample("elephant.off").string()) + " " + quote(out.string()) +
-                   " --ascii").status, 0);
+  ASSERT_EQ(
+      cgview("convert " + quote(test::sample("elephant.off").string()) + " " + quote(out.string()) + " --ascii").status,
+      0);
   std::ifstream f(out);
   std::string first, second;
   std::getline(f, first);
@@ -266,8 +267,9 @@ TEST(CliTest, ErrorMalformedFile) {
   expect_one_line_error("info " + quote(truncated.string()), "truncated.off");
 
   const fs::path bad_ply = dir / "bad.ply";
-  test::write_text(bad_ply, "ply\nformat binary_little_endian 1.0\nelement vertex 1000000\n"
-                            "property float x\nproperty float y\nproperty float z\nend_header\n\x01\x02");
+  test::write_text(bad_ply,
+                   "ply\nformat binary_little_endian 1.0\nelement vertex 1000000\n"
+                   "property float x\nproperty float y\nproperty float z\nend_header\n\x01\x02");
   expect_one_line_error("info " + quote(bad_ply.string()), "bad.ply");
 
   expect_one_line_error("convert " + quote(garbage.string()) + " " + quote((dir / "o.ply").string()));
@@ -395,8 +397,8 @@ TEST(CliTest, RunBadParameterIsOneLineNamingIt) {
   expect_one_line_error("run centroid_distance elephant --bogus 1", "--bogus");
   expect_one_line_error("run centroid_distance elephant --exponent", "--exponent");
   expect_one_line_error("run centroid_distance", "which mesh");
-  expect_one_line_error("run centroid_distance elephant -o " + quote((test::temp_dir("cli-run-ext") / "d.vtk").string()),
-                        "vtk");
+  expect_one_line_error(
+      "run centroid_distance elephant -o " + quote((test::temp_dir("cli-run-ext") / "d.vtk").string()), "vtk");
 }
 
 TEST(CliTest, RunTakesASelectionAsListOrFile) {
@@ -414,7 +416,8 @@ TEST(CliTest, RunTakesASelectionAsListOrFile) {
   ASSERT_EQ(r.status, 0) << r.out;
   std::ifstream m2(dir / "part-metrics.json");
   EXPECT_EQ(nlohmann::json::parse(m2)["faces"], 5558 - 5);
-  expect_one_line_error("run extract_faces elephant --faces 1,99999", "face id 99999 is out of range (the mesh has 5558 faces)");
+  expect_one_line_error("run extract_faces elephant --faces 1,99999",
+                        "face id 99999 is out of range (the mesh has 5558 faces)");
   expect_one_line_error("run extract_faces elephant --faces 1,x", "parameter 'faces'");
 }
 

@@ -11,10 +11,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string bytes(fuzz::text(data + 1, size - 1));
   return fuzz::expect_answer([&] {
     switch (data[0] % 4) {
-      case 0: (void)decode_binvox(bytes); break;
-      case 1: (void)decode_nrrd(bytes); break;
-      case 2: (void)decode_vti(bytes); break;
-      default: (void)decode_vox(bytes); break;
+      case 0:
+        (void)decode_binvox(bytes);
+        break;
+      case 1:
+        (void)decode_nrrd(bytes);
+        break;
+      case 2:
+        (void)decode_vti(bytes);
+        break;
+      default:
+        (void)decode_vox(bytes);
+        break;
     }
   });
 }

@@ -33,7 +33,11 @@ struct World {
         token(auth.add_user("alice", false)),
         handler(meshes, {}, auth, nullptr, {256, 1 << 20}) {
     // A tetrahedron and a quad: small, so that get_mesh streams several 256-byte frames quickly.
-    mesh_id = meshes.upload("t.off", "", "OFF\n5 5 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n3 1 4 2\n").id;
+    mesh_id =
+        meshes
+            .upload("t.off", "",
+                    "OFF\n5 5 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n3 1 4 2\n")
+            .id;
   }
   ~World() {
     std::error_code ec;
@@ -49,7 +53,8 @@ struct World {
 };
 
 void replace_all(std::string& s, const std::string& from, const std::string& to) {
-  for (std::size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + to.size())) s.replace(p, from.size(), to);
+  for (std::size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + to.size()))
+    s.replace(p, from.size(), to);
 }
 
 void check(const server::WsOut& out) {

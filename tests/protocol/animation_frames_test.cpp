@@ -33,7 +33,8 @@ Animation wobbling_sphere(int frames) {
 std::size_t zlib_size(const std::string& raw) {
   uLongf n = compressBound(uLong(raw.size()));
   std::string out(n, '\0');
-  compress2(reinterpret_cast<Bytef*>(out.data()), &n, reinterpret_cast<const Bytef*>(raw.data()), uLong(raw.size()), Z_DEFAULT_COMPRESSION);
+  compress2(reinterpret_cast<Bytef*>(out.data()), &n, reinterpret_cast<const Bytef*>(raw.data()), uLong(raw.size()),
+            Z_DEFAULT_COMPRESSION);
   return n;
 }
 

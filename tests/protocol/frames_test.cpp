@@ -111,8 +111,9 @@ TEST(FramesSamples, SplitReproducesTheCommittedFrames) {
   const auto all = samples();
   ASSERT_FALSE(all.empty());
   const std::string payload = read_bytes(kFrames / all[0].sidecar["payload_file"].get<std::string>());
-  const auto frames = split_into_frames(payload, FrameKind::draco_mesh, all[0].sidecar["request_id"].get<std::uint32_t>(),
-                                        all[0].sidecar["chunk_bytes"].get<std::size_t>());
+  const auto frames =
+      split_into_frames(payload, FrameKind::draco_mesh, all[0].sidecar["request_id"].get<std::uint32_t>(),
+                        all[0].sidecar["chunk_bytes"].get<std::size_t>());
   ASSERT_EQ(frames.size(), all.size());
   for (std::size_t i = 0; i < frames.size(); ++i) EXPECT_TRUE(frames[i].bytes() == all[i].bytes) << "frame " << i;
 }
@@ -120,9 +121,10 @@ TEST(FramesSamples, SplitReproducesTheCommittedFrames) {
 TEST(FramesHeader, LayoutIsLittleEndianAt32Bytes) {
   const std::string h = encode_frame_header({FrameKind::draco_mesh, 0x01020304u, 5, 6, 0x0102030405060708ull});
   ASSERT_EQ(h.size(), 32u);
-  const std::string expected("CGVF\x01\x00\x01\x00\x04\x03\x02\x01\x05\x00\x00\x00\x06\x00\x00\x00\x20\x00\x00\x00"
-                             "\x08\x07\x06\x05\x04\x03\x02\x01",
-                             32);
+  const std::string expected(
+      "CGVF\x01\x00\x01\x00\x04\x03\x02\x01\x05\x00\x00\x00\x06\x00\x00\x00\x20\x00\x00\x00"
+      "\x08\x07\x06\x05\x04\x03\x02\x01",
+      32);
   EXPECT_TRUE(h == expected);
 }
 
@@ -198,9 +200,7 @@ TEST(FramesSplit, ZeroChunkSizeIsRefused) {
 }
 
 // A valid frame of 16 payload bytes out of 48.
-std::string good_frame() {
-  return encode_frame_header({FrameKind::draco_mesh, 5, 1, 3, 48}) + pattern_bytes(16);
-}
+std::string good_frame() { return encode_frame_header({FrameKind::draco_mesh, 5, 1, 3, 48}) + pattern_bytes(16); }
 
 TEST(FramesDecode, AcceptsTheGoodFrame) {
   std::string_view chunk;

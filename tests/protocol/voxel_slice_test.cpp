@@ -28,8 +28,8 @@ TEST(VoxelSliceTest, PayloadFollowsTheDocumentedLayout) {
   const std::string p = encode_slice_payload(g, s);
   ASSERT_EQ(p.substr(0, 4), "CGVS");
   EXPECT_EQ(at<std::uint16_t>(p, 4), 1);
-  EXPECT_EQ(at<std::uint8_t>(p, 6), 2);   // z
-  EXPECT_EQ(at<std::uint8_t>(p, 7), 1);   // uint8
+  EXPECT_EQ(at<std::uint8_t>(p, 6), 2);  // z
+  EXPECT_EQ(at<std::uint8_t>(p, 7), 1);  // uint8
   EXPECT_EQ(at<std::uint32_t>(p, 8), 2u);
   EXPECT_EQ(at<std::uint32_t>(p, 12), 6u);
   EXPECT_EQ(at<std::uint32_t>(p, 16), 5u);
@@ -42,7 +42,9 @@ TEST(VoxelSliceTest, PayloadFollowsTheDocumentedLayout) {
   EXPECT_EQ(at<double>(p, 56), 4.0);  // 3 + 2 * 0.5: the slice's corner along z
   std::string raw(30, '\0');
   uLongf n = 30;
-  ASSERT_EQ(uncompress(reinterpret_cast<Bytef*>(raw.data()), &n, reinterpret_cast<const Bytef*>(p.data() + 64), uLong(p.size() - 64)), Z_OK);
+  ASSERT_EQ(uncompress(reinterpret_cast<Bytef*>(raw.data()), &n, reinterpret_cast<const Bytef*>(p.data() + 64),
+                       uLong(p.size() - 64)),
+            Z_OK);
   for (int j = 0; j < 5; ++j)
     for (int i = 0; i < 6; ++i) EXPECT_EQ(std::uint8_t(raw[std::size_t(i + 6 * j)]), i + 10 * j);
   const DecodedSlice d = decode_slice_payload(p);

@@ -38,7 +38,8 @@ class AuthTest : public test::RouterFixture {
     admin_ = Auth(*store_, true).add_user("root", true);
   }
 
-  HttpResponse call(const std::string& token, const std::string& method, const std::string& target, std::string body = "") {
+  HttpResponse call(const std::string& token, const std::string& method, const std::string& target,
+                    std::string body = "") {
     return router_->handle({method, target, std::move(body), token.empty() ? "" : "Bearer " + token});
   }
 
@@ -67,7 +68,8 @@ class AuthTest : public test::RouterFixture {
 };
 
 std::string replace_all(std::string s, const std::string& from, const std::string& to) {
-  for (std::size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + to.size())) s.replace(p, from.size(), to);
+  for (std::size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + to.size()))
+    s.replace(p, from.size(), to);
   return s;
 }
 
@@ -75,8 +77,8 @@ TEST_F(AuthTest, EveryApiRouteNeedsAToken) {
   for (const auto& r : router_->routes()) {
     SCOPED_TRACE(r.method + " " + r.pattern);
     const std::string target = std::regex_replace(r.pattern, std::regex(R"(\{[a-z_]+\})"), "x");
-    for (const std::string& token : {std::string(), std::string("cgv_0123456789abcdef_") + std::string(64, '0'),
-                                     std::string("not a token")}) {
+    for (const std::string& token :
+         {std::string(), std::string("cgv_0123456789abcdef_") + std::string(64, '0'), std::string("not a token")}) {
       const HttpResponse res = call(token, r.method, target, "{}");
       EXPECT_EQ(res.status, 401) << res.body;
       EXPECT_EQ(json::parse(res.body).value("error", ""), "unauthorized");
@@ -91,16 +93,17 @@ TEST_F(AuthTest, EveryApiRouteNeedsAToken) {
 TEST_F(AuthTest, AUserSeesNothingOfAnothersOverEveryRoute) {
   const std::string b_mesh = upload(bob_);
   const std::string b_job = run_job(bob_, {{"algorithm", "test_translate"}, {"inputs", {{"mesh", b_mesh}}}});
-  const std::string b_field = run_job(bob_, {{"algorithm", "test_sleep"}, {"inputs", {{"mesh", b_mesh}}}, {"params", {{"seconds", 0.0}}}});
+  const std::string b_field =
+      run_job(bob_, {{"algorithm", "test_sleep"}, {"inputs", {{"mesh", b_mesh}}}, {"params", {{"seconds", 0.0}}}});
   const std::string a_mesh = upload(alice_);
   const std::map<std::string, std::pair<std::string, std::string>> values = {
       // placeholder: B's value, a value that does not exist
-      {"name", {"mesh", "mesh"}}, {"n", {"0", "0"}}};
+      {"name", {"mesh", "mesh"}},
+      {"n", {"0", "0"}}};
   const std::string fake_mesh = "00000000deadbeef", fake_job = "00000000feedface";
   // POST bodies that try to reach B's data: by id, as a job input, by sharing.
   auto body_for = [](const std::string& pattern, const std::string& mesh) {
-    if (pattern == "/api/v1/jobs")
-      return json{{"algorithm", "test_translate"}, {"inputs", {{"mesh", mesh}}}}.dump();
+    if (pattern == "/api/v1/jobs") return json{{"algorithm", "test_translate"}, {"inputs", {{"mesh", mesh}}}}.dump();
     return json{{"users", {"alice"}}}.dump();
   };
   int checked = 0;
@@ -140,10 +143,12 @@ TEST_F(AuthTest, AUserSeesNothingOfAnothersOverEveryRoute) {
   }
   EXPECT_GE(checked, 9);
   // B's earlier job as A's input, and B's field on A's render.
-  const HttpResponse chained =
-      call(alice_, "POST", "/api/v1/jobs", json{{"algorithm", "test_translate"}, {"inputs", {{"mesh", {{"job", b_job}, {"artifact", "mesh"}}}}}}.dump());
+  const HttpResponse chained = call(
+      alice_, "POST", "/api/v1/jobs",
+      json{{"algorithm", "test_translate"}, {"inputs", {{"mesh", {{"job", b_job}, {"artifact", "mesh"}}}}}}.dump());
   EXPECT_EQ(chained.status, 404) << chained.body;
-  const HttpResponse field = call(alice_, "GET", "/api/v1/meshes/" + a_mesh + "/render.png?field=" + b_field + "/index");
+  const HttpResponse field =
+      call(alice_, "GET", "/api/v1/meshes/" + a_mesh + "/render.png?field=" + b_field + "/index");
   EXPECT_EQ(field.status, 400) << field.body;
   EXPECT_EQ(call(alice_, "GET", "/api/v1/meshes/" + a_mesh + "/render.png?field=index").status, 400);
   // Health counts A's meshes only.
@@ -198,7 +203,8 @@ TEST_F(AuthTest, SharingAJobSharesItsStateAndArtifactsReadOnly) {
   EXPECT_NE(call(alice_, "GET", "/api/v1/jobs").body.find(b_job), std::string::npos);
   EXPECT_EQ(call(alice_, "GET", target + "/artifacts/mesh").status, 200);
   // Its output mesh as her job's input: stored as her own mesh.
-  const std::string a_job = run_job(alice_, {{"algorithm", "test_translate"}, {"inputs", {{"mesh", {{"job", b_job}, {"artifact", "mesh"}}}}}});
+  const std::string a_job = run_job(
+      alice_, {{"algorithm", "test_translate"}, {"inputs", {{"mesh", {{"job", b_job}, {"artifact", "mesh"}}}}}});
   const json a_input = json::parse(call(alice_, "GET", "/api/v1/jobs/" + a_job).body)["inputs"]["mesh"];
   EXPECT_EQ(json::parse(call(alice_, "GET", "/api/v1/meshes/" + a_input.get<std::string>()).body)["owner"], "alice");
   // B's input mesh stays his.

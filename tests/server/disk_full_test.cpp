@@ -63,7 +63,8 @@ class DiskFull : public ServerFixture {
 };
 
 TEST_F(DiskFull, UploadsAre507JobsFailSayingSoNothingStoredIsDamagedAndFreedSpaceServes) {
-  if (!small_disk(4)) GTEST_SKIP() << "cannot mount a tmpfs here (needs root: unshare, mount): " << std::strerror(errno);
+  if (!small_disk(4))
+    GTEST_SKIP() << "cannot mount a tmpfs here (needs root: unshare, mount): " << std::strerror(errno);
   ASSERT_TRUE(server_.start(data_, {}, dir_));
   const std::string bytes = read_bytes(sample("elephant.off"));  // 170 kB
   std::vector<std::string> ids;
@@ -121,7 +122,8 @@ TEST_F(DiskFull, UploadsAre507JobsFailSayingSoNothingStoredIsDamagedAndFreedSpac
   for (const auto& id : ids) want.insert(id + ".off");
   EXPECT_EQ(blobs, want);
   std::size_t left = 0;
-  for (const auto& e : fs::directory_iterator(data_ / "tmp")) left += e.path().filename().string().starts_with("upload-");
+  for (const auto& e : fs::directory_iterator(data_ / "tmp"))
+    left += e.path().filename().string().starts_with("upload-");
   EXPECT_EQ(left, 0u);
 
   // Space freed: stored again.

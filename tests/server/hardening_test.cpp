@@ -173,7 +173,8 @@ TEST_F(Hardening, ABodyUnderTheMinimumRateIs408AndOneAboveItIsServed) {
   {  // announces 1 MB and sends a byte a second
     RawSocket slow(port());
     ASSERT_TRUE(slow.ok());
-    ASSERT_TRUE(slow.send("POST /api/v1/meshes?name=x.off HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 1000000\r\n\r\n"));
+    ASSERT_TRUE(
+        slow.send("POST /api/v1/meshes?name=x.off HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 1000000\r\n\r\n"));
     const auto t0 = Clock::now();
     std::string answer;
     for (int i = 0; i < 10 && answer.empty(); ++i) {
@@ -189,8 +190,9 @@ TEST_F(Hardening, ABodyUnderTheMinimumRateIs408AndOneAboveItIsServed) {
   const std::string mesh = test::read_bytes(test::sample("dino.off"));
   RawSocket upload(port());
   ASSERT_TRUE(upload.ok());
-  ASSERT_TRUE(upload.send("POST /api/v1/meshes?name=dino.off HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\nContent-Length: " +
-                          std::to_string(mesh.size()) + "\r\n\r\n"));
+  ASSERT_TRUE(upload.send(
+      "POST /api/v1/meshes?name=dino.off HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\nContent-Length: " +
+      std::to_string(mesh.size()) + "\r\n\r\n"));
   const auto t0 = Clock::now();
   for (std::size_t at = 0; at < mesh.size(); at += 15000) {
     ASSERT_TRUE(upload.send(mesh.substr(at, 15000))) << "cut off after " << at << " bytes";
@@ -228,8 +230,9 @@ TEST_F(Hardening, IdleConnectionsAreClosed) {
   }
   {  // a WebSocket that never answers the server's pings
     RawSocket ws(port());
-    ASSERT_TRUE(ws.send("GET /api/v1/ws HTTP/1.1\r\nHost: 127.0.0.1\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
-                        "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n"));
+    ASSERT_TRUE(
+        ws.send("GET /api/v1/ws HTTP/1.1\r\nHost: 127.0.0.1\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+                "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n"));
     const auto t0 = Clock::now();
     bool eof = false;
     const std::string got = ws.read_all(8s, &eof);
@@ -249,8 +252,8 @@ TEST_F(Hardening, OversizedHeadersBodiesAndWebSocketMessagesEndOnlyTheirConnecti
   WsClient bystander;
   ASSERT_FALSE(bystander.connect(port()));
 
-  const HttpResult headers = http_raw(port(), "GET /api/v1/health HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Pad: " +
-                                                  std::string(8000, 'x') + "\r\n\r\n");
+  const HttpResult headers = http_raw(
+      port(), "GET /api/v1/health HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Pad: " + std::string(8000, 'x') + "\r\n\r\n");
   expect_error(headers, 431, "headers_too_large");
   EXPECT_FALSE(headers.keep_alive);
   // Just under the limit is served.
@@ -302,11 +305,13 @@ TEST_F(Hardening, ConnectionsPerAddressAreCapped) {
 // server must not take it for its own.
 TEST_F(Hardening, JobsCancelledAtOnceDoNotStopTheServer) {
   ASSERT_TRUE(start({"--job-workers", "2"}));
-  const HttpResult up = http_call(port(), Method::post, "/api/v1/meshes?name=elephant.off", test::read_bytes(test::sample("elephant.off")));
+  const HttpResult up = http_call(port(), Method::post, "/api/v1/meshes?name=elephant.off",
+                                  test::read_bytes(test::sample("elephant.off")));
   ASSERT_EQ(up.status, 201u) << up.body;
   const std::string mesh = up.body_json().value("id", "");
   for (int i = 0; i < 40; ++i) {
-    const json request = {{"algorithm", "voxelize"}, {"inputs", {{"mesh", mesh}}}, {"params", {{"resolution", 900 + i}}}};
+    const json request = {
+        {"algorithm", "voxelize"}, {"inputs", {{"mesh", mesh}}}, {"params", {{"resolution", 900 + i}}}};
     const HttpResult job = http_call(port(), Method::post, "/api/v1/jobs", request.dump());
     ASSERT_EQ(job.status, 201u) << i << ": " << job.body << job.ec.message();
     const HttpResult cancel = http_call(port(), Method::delete_, "/api/v1/jobs/" + job.body_json().value("id", ""));
@@ -349,7 +354,8 @@ TEST_F(Hardening, OverTheRateLimitIs429ThenServedAfterRetryAfter) {
   for (int i = 0; i < 3; ++i) EXPECT_EQ(call_as(port(), alice, "GET", "/api/v1/health").status, 200u) << i;
   const HttpResult over = call_as(port(), alice, "GET", "/api/v1/health");
   expect_error(over, 429, "rate_limited");
-  EXPECT_NE(over.body_json().value("detail", "").find("2 requests per second, bursts of 3"), std::string::npos) << over.body;
+  EXPECT_NE(over.body_json().value("detail", "").find("2 requests per second, bursts of 3"), std::string::npos)
+      << over.body;
   const int retry = std::atoi(over.header("Retry-After").c_str());
   EXPECT_GE(retry, 1) << over.header("Retry-After");
   // Another token has its own bucket.
@@ -391,8 +397,9 @@ TEST(IdsAreNeverPaths, OverEveryRoute) {
   server::Store store(dir / "data");
   server::MeshService meshes(store);
   server::Router router(meshes, {});
-  const std::vector<std::string> one_segment = {"..", ".", "%2e%2e", "%2E.", "a%00b", "%00", "..%5c..%5csecret.txt",
-                                                "a%20b", "%2e%2e%5csecret.txt", "~", "a%0d%0ab"};
+  const std::vector<std::string> one_segment = {
+      "..", ".",       "%2e%2e", "%2E.", "a%00b", "%00", "..%5c..%5csecret.txt", "a%20b", "%2e%2e%5csecret.txt",
+      "~",  "a%0d%0ab"};
   const std::vector<std::string> with_slash = {"%2e%2e%2fsecret.txt", "..%2F..%2Fsecret.txt", "%2fetc%2fpasswd",
                                                "..%2f..%2f..%2f..%2fetc%2fpasswd"};
   int checked = 0;
@@ -448,11 +455,13 @@ struct TlsClient {
 };
 
 TEST_F(Hardening, TlsServesHttpsAndWssAndRefusesPlainHttp) {
-  const fs::path cert = dir_ / "cert.pem", key = dir_ / "key.pem", other = dir_ / "other.pem", other_key = dir_ / "other-key.pem";
+  const fs::path cert = dir_ / "cert.pem", key = dir_ / "key.pem", other = dir_ / "other.pem",
+                 other_key = dir_ / "other-key.pem";
   std::string out;
   for (const auto& [c, k] : {std::pair(cert, key), std::pair(other, other_key)})
     ASSERT_EQ(test::run("openssl req -x509 -newkey rsa:2048 -nodes -days 2 -subj /CN=localhost -addext "
-                        "subjectAltName=DNS:localhost,IP:127.0.0.1 -keyout '" + k.string() + "' -out '" + c.string() + "' 2>&1",
+                        "subjectAltName=DNS:localhost,IP:127.0.0.1 -keyout '" +
+                            k.string() + "' -out '" + c.string() + "' 2>&1",
                         &out),
               0)
         << out;
@@ -509,14 +518,14 @@ TEST_F(Hardening, TlsServesHttpsAndWssAndRefusesPlainHttp) {
 
 TEST_F(Hardening, TlsWithAMissingOrMismatchedFileDoesNotStart) {
   std::string out;
-  const int rc = test::run("'" + test::bin("cgview-server") + "' --port 0 --samples none --data-dir '" + data_.string() +
-                               "' --tls-cert '" + (dir_ / "none.pem").string() + "' --tls-key '" + (dir_ / "none.pem").string() +
-                               "' 2>&1",
+  const int rc = test::run("'" + test::bin("cgview-server") + "' --port 0 --samples none --data-dir '" +
+                               data_.string() + "' --tls-cert '" + (dir_ / "none.pem").string() + "' --tls-key '" +
+                               (dir_ / "none.pem").string() + "' 2>&1",
                            &out);
   EXPECT_NE(rc, 0);
   EXPECT_NE(out.find("cannot read"), std::string::npos) << out;
-  const int rc2 = test::run("'" + test::bin("cgview-server") + "' --port 0 --samples none --data-dir '" + data_.string() +
-                                "' --tls-cert x.pem 2>&1",
+  const int rc2 = test::run("'" + test::bin("cgview-server") + "' --port 0 --samples none --data-dir '" +
+                                data_.string() + "' --tls-cert x.pem 2>&1",
                             &out);
   EXPECT_NE(rc2, 0);
   EXPECT_NE(out.find("--tls-key"), std::string::npos) << out;
@@ -527,9 +536,10 @@ TEST_F(Hardening, TlsWithAMissingOrMismatchedFileDoesNotStart) {
                       &out),
             0)
       << out;
-  const int rc3 = test::run("'" + test::bin("cgview-server") + "' --port 0 --samples none --data-dir '" + data_.string() +
-                                "' --tls-cert '" + cert.string() + "' --tls-key '" + stranger.string() + "'",
-                            &out);
+  const int rc3 =
+      test::run("'" + test::bin("cgview-server") + "' --port 0 --samples none --data-dir '" + data_.string() +
+                    "' --tls-cert '" + cert.string() + "' --tls-key '" + stranger.string() + "'",
+                &out);
   EXPECT_NE(rc3, 0);
   EXPECT_NE(out.find("not the PEM private key of the certificate"), std::string::npos) << out;
 }

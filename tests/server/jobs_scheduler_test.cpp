@@ -47,8 +47,10 @@ struct Scheduler {
 
   // Submits a test_sleep job on the mesh for OWNER; its id.
   std::string submit_sleep(const std::string& owner, double seconds) {
-    return jobs.submit({{"algorithm", "test_sleep"}, {"inputs", {{"mesh", mesh.id}}}, {"params", {{"seconds", seconds}}}},
-                       Caller{owner, true})["id"].get<std::string>();
+    return jobs
+        .submit({{"algorithm", "test_sleep"}, {"inputs", {{"mesh", mesh.id}}}, {"params", {{"seconds", seconds}}}},
+                Caller{owner, true})["id"]
+        .get<std::string>();
   }
 };
 
@@ -77,7 +79,8 @@ TEST(JobScheduler, RoundRobinAcrossOwners) {
   Scheduler s("jobs-fairness", "sphere.off");
   StartOrder o(s.jobs);
   // Queued before the scheduler starts: alice has three, bob one, carol one.
-  const std::string a1 = s.submit_sleep("alice", 0.01), a2 = s.submit_sleep("alice", 0.02), a3 = s.submit_sleep("alice", 0.03);
+  const std::string a1 = s.submit_sleep("alice", 0.01), a2 = s.submit_sleep("alice", 0.02),
+                    a3 = s.submit_sleep("alice", 0.03);
   const std::string b1 = s.submit_sleep("bob", 0.01), c1 = s.submit_sleep("carol", 0.01);
   s.jobs.start();
   std::unique_lock lock(o.m);
@@ -147,11 +150,11 @@ TEST(JobsChaos, EmbedExtractAndAnimateThroughTheWorker) {
 
   const json wrong = run({{"algorithm", "chaos_extract"}, {"inputs", {{"mesh", from}}}, {"params", {{"key", "K"}}}});
   EXPECT_EQ(wrong["state"], "failed");
-  EXPECT_NE(wrong["error"].get<std::string>().find("no message found with this key"), std::string::npos) << wrong.dump();
+  EXPECT_NE(wrong["error"].get<std::string>().find("no message found with this key"), std::string::npos)
+      << wrong.dump();
 
-  const json anim = run({{"algorithm", "chaos_animate"},
-                         {"inputs", {{"mesh", mesh.id}}},
-                         {"params", {{"frames", 4}, {"map", "henon"}}}});
+  const json anim = run(
+      {{"algorithm", "chaos_animate"}, {"inputs", {{"mesh", mesh.id}}}, {"params", {{"frames", 4}, {"map", "henon"}}}});
   ASSERT_EQ(anim["state"], "done") << anim.dump();
   const Animation a = decode_frames(jobs.artifact(anim["id"], "animation", "frames").bytes);
   EXPECT_EQ(a.frame_count(), 5u);

@@ -65,9 +65,9 @@ class JobsTest : public ::testing::Test {
   }
 
   bool start(std::vector<std::string> extra = {}) {
-    std::vector<std::string> args = {"--worker", test::bin("cgview-worker-test"), "--job-workers", "2",
-                                     "--job-timeout-s", std::to_string(kTimeoutS), "--job-memory-mb",
-                                     std::to_string(kMemoryMb)};
+    std::vector<std::string> args = {
+        "--worker",        test::bin("cgview-worker-test"), "--job-workers",   "2",
+        "--job-timeout-s", std::to_string(kTimeoutS),       "--job-memory-mb", std::to_string(kMemoryMb)};
     args.insert(args.end(), extra.begin(), extra.end());
     return server_.start(data_, args, dir_);
   }
@@ -211,7 +211,8 @@ TEST_F(JobsTest, VoxelizeJobServesItsGridAndSlicesOverWebSocket) {
   WsClient ws;
   ASSERT_FALSE(ws.connect(server_.port()));
   const int k = grid.dims()[2] / 2;
-  ASSERT_FALSE(ws.send({{"type", "get_slice"}, {"request_id", 9}, {"job_id", id}, {"artifact", "grid"}, {"axis", "z"}, {"index", k}}));
+  ASSERT_FALSE(ws.send(
+      {{"type", "get_slice"}, {"request_id", 9}, {"job_id", id}, {"artifact", "grid"}, {"axis", "z"}, {"index", k}}));
   const json begin = ws.reply();
   ASSERT_EQ(begin["type"], "slice") << begin.dump();
   EXPECT_EQ(begin["request_id"], 9);
@@ -244,14 +245,24 @@ TEST_F(JobsTest, VoxelizeJobServesItsGridAndSlicesOverWebSocket) {
   EXPECT_EQ(ws.reply()["error"], "not_found");
   ASSERT_FALSE(ws.send({{"type", "get_slice"}, {"request_id", 12}, {"job_id", id}, {"index", 0}}));
   EXPECT_EQ(ws.reply()["error"], "bad_request");
-  ASSERT_FALSE(ws.send({{"type", "get_slice"}, {"request_id", 13}, {"job_id", id}, {"artifact", "metrics"}, {"axis", "x"}, {"index", 0}}));
+  ASSERT_FALSE(ws.send({{"type", "get_slice"},
+                        {"request_id", 13},
+                        {"job_id", id},
+                        {"artifact", "metrics"},
+                        {"axis", "x"},
+                        {"index", 0}}));
   EXPECT_EQ(ws.reply()["error"], "bad_request");
   EXPECT_TRUE(ws.ping(14));
 
   // A scalar grid (voxel_distance): its slices come as float32.
   const json dist = wait_end(submit("voxel_distance", {{"resolution", 16}})["id"]);
   ASSERT_EQ(dist["state"], "done") << dist.dump();
-  ASSERT_FALSE(ws.send({{"type", "get_slice"}, {"request_id", 15}, {"job_id", dist["id"]}, {"artifact", "distance"}, {"axis", "y"}, {"index", 8}}));
+  ASSERT_FALSE(ws.send({{"type", "get_slice"},
+                        {"request_id", 15},
+                        {"job_id", dist["id"]},
+                        {"artifact", "distance"},
+                        {"axis", "y"},
+                        {"index", 8}}));
   // Job events (job_progress, job_done) of that job reach this open socket too.
   auto reply = [&] {
     json m = ws.reply();
@@ -263,7 +274,8 @@ TEST_F(JobsTest, VoxelizeJobServesItsGridAndSlicesOverWebSocket) {
   std::string fpayload;
   for (int i = 0; i < fb["chunks"].get<int>(); ++i) {
     auto m = ws.read();
-    while (m && !m->binary && json::parse(m->data).value("type", "").rfind("job_", 0) == 0) m = ws.read();  // a late job event
+    while (m && !m->binary && json::parse(m->data).value("type", "").rfind("job_", 0) == 0)
+      m = ws.read();  // a late job event
     ASSERT_TRUE(m && m->binary);
     std::string_view chunk;
     protocol::decode_frame(m->data, &chunk);
@@ -296,7 +308,8 @@ TEST_F(JobsTest, AJobRunsOnAnEarlierJobsOutputMesh) {
   const json m = http_get(server_.port(), "/api/v1/meshes/" + chained_mesh).body_json();
   const json original = http_get(server_.port(), "/api/v1/meshes/" + mesh_id_).body_json();
   EXPECT_EQ(m["report"]["vertices"], original["report"]["vertices"]);
-  EXPECT_NEAR(m["report"]["bbox"]["min"][0].get<double>(), original["report"]["bbox"]["min"][0].get<double>() + 1.0, 1e-5);
+  EXPECT_NEAR(m["report"]["bbox"]["min"][0].get<double>(), original["report"]["bbox"]["min"][0].get<double>() + 1.0,
+              1e-5);
   // Distances from the centroid do not change under a translation.
   const std::string moved = artifact(second["id"], "distance", "f32");
   const json direct = wait_end(submit("centroid_distance", json::object())["id"]);
@@ -309,7 +322,8 @@ TEST_F(JobsTest, AJobRunsOnAnEarlierJobsOutputMesh) {
     EXPECT_NEAR(a, b, 1e-5) << i;
   }
   // An unknown job or artifact as input: 404.
-  const json bad = {{"algorithm", "centroid_distance"}, {"inputs", {{"mesh", {{"job", "nope"}, {"artifact", "mesh"}}}}}};
+  const json bad = {{"algorithm", "centroid_distance"},
+                    {"inputs", {{"mesh", {{"job", "nope"}, {"artifact", "mesh"}}}}}};
   EXPECT_EQ(http_call(server_.port(), Method::post, "/api/v1/jobs", bad.dump()).status, 404);
 }
 
@@ -337,7 +351,8 @@ TEST_F(JobsTest, AJobOfTwoInputsTakesBothAndNamesAMissingOne) {
 
   // A missing input, an unknown one, a bad one: 400 naming it; an unknown mesh: 404.
   auto post = [&](const json& inputs) {
-    return http_call(server_.port(), Method::post, "/api/v1/jobs", json{{"algorithm", "hausdorff"}, {"inputs", inputs}}.dump());
+    return http_call(server_.port(), Method::post, "/api/v1/jobs",
+                     json{{"algorithm", "hausdorff"}, {"inputs", inputs}}.dump());
   };
   auto e = post({{"mesh", mesh_id_}});
   EXPECT_EQ(e.status, 400);
@@ -379,7 +394,8 @@ TEST_F(JobsTest, AGridFromAnEarlierJobIsTheInputOfTheNext) {
   // A grid over the memory limit is refused at submission, saying what it would take.
   const json big = submit("voxelize", {{"resolution", 1000}, {"max_memory_mb", 64}}, 400);
   EXPECT_NE(big["detail"].get<std::string>().find("parameter 'resolution'"), std::string::npos) << big.dump();
-  EXPECT_NE(big["detail"].get<std::string>().find("over the limit max_memory_mb = 64 MB"), std::string::npos) << big.dump();
+  EXPECT_NE(big["detail"].get<std::string>().find("over the limit max_memory_mb = 64 MB"), std::string::npos)
+      << big.dump();
   // A grid input named by a mesh id, an artifact of another kind, a job that is not there.
   auto e = post({{"grid", mesh_id_}});
   EXPECT_EQ(e.status, 400);
@@ -399,14 +415,16 @@ TEST_F(JobsTest, SdfAndSkeletonJobs) {
   const std::string values = artifact(sdf["id"], "sdf", "txt");
   EXPECT_GT(std::count(values.begin(), values.end(), '\n'), 300);  // sphere.off has 320 faces
   EXPECT_NE(submit("sdf", {{"rays", 0}}, 400)["detail"].get<std::string>().find("'rays'"), std::string::npos);
-  EXPECT_NE(submit("sdf_fast", {{"fraction", 2.0}}, 400)["detail"].get<std::string>().find("'fraction'"), std::string::npos);
+  EXPECT_NE(submit("sdf_fast", {{"fraction", 2.0}}, 400)["detail"].get<std::string>().find("'fraction'"),
+            std::string::npos);
 
   const json mcf = wait_end(submit("skeleton_mcf", json::object())["id"]);
   ASSERT_EQ(mcf["state"], "done") << mcf.dump();
-  const auto r = http_call(server_.port(), Method::post, "/api/v1/jobs",
-                           json{{"algorithm", "skeleton_metrics"},
-                                {"inputs", {{"mesh", mesh_id_}, {"skeleton", {{"job", mcf["id"]}, {"artifact", "skeleton"}}}}}}
-                               .dump());
+  const auto r =
+      http_call(server_.port(), Method::post, "/api/v1/jobs",
+                json{{"algorithm", "skeleton_metrics"},
+                     {"inputs", {{"mesh", mesh_id_}, {"skeleton", {{"job", mcf["id"]}, {"artifact", "skeleton"}}}}}}
+                    .dump());
   ASSERT_EQ(r.status, 201) << r.body;
   const json measured = wait_end(r.body_json()["id"]);
   ASSERT_EQ(measured["state"], "done") << measured.dump();
@@ -418,12 +436,14 @@ TEST_F(JobsTest, SdfAndSkeletonJobs) {
     const Skeleton s = read_skeleton_bytes(bytes, skeleton_format_from_name(name), name);
     EXPECT_EQ(double(s.nodes.size()), m["nodes"].get<double>()) << format;
   }
-  EXPECT_EQ(http_get(server_.port(), "/api/v1/jobs/" + mcf["id"].get<std::string>() + "/artifacts/skeleton?format=stl").status, 400);
+  EXPECT_EQ(http_get(server_.port(), "/api/v1/jobs/" + mcf["id"].get<std::string>() + "/artifacts/skeleton?format=stl")
+                .status,
+            400);
 
   // A skeleton from another tool, attached to the mesh: skeleton_file with
   // the file's text; a malformed one is refused at submission, naming its line.
-  const std::string cg = write_skeleton_bytes(read_skeleton_bytes(artifact(mcf["id"], "skeleton", "cg"), SkeletonFormat::cg, "s.cg"),
-                                              SkeletonFormat::cg);
+  const std::string cg = write_skeleton_bytes(
+      read_skeleton_bytes(artifact(mcf["id"], "skeleton", "cg"), SkeletonFormat::cg, "s.cg"), SkeletonFormat::cg);
   const json attached = wait_end(submit("skeleton_file", {{"name", "mcf.cg"}, {"text", cg}})["id"]);
   ASSERT_EQ(attached["state"], "done") << attached.dump();
   EXPECT_EQ(json::parse(artifact(attached["id"], "metrics", "json"))["nodes"], m["nodes"]);
@@ -504,7 +524,8 @@ TEST_F(JobsTest, CancelARunningJobWithinTwoSeconds) {
   // A queued job cancels too (both workers busy).
   const json a = submit("test_sleep", {{"seconds", 60}}), b = submit("test_sleep", {{"seconds", 61}}),
              queued = submit("test_sleep", {{"seconds", 62}});
-  EXPECT_EQ(http_call(server_.port(), Method::delete_, "/api/v1/jobs/" + queued["id"].get<std::string>()).body_json()["state"],
+  EXPECT_EQ(http_call(server_.port(), Method::delete_, "/api/v1/jobs/" + queued["id"].get<std::string>())
+                .body_json()["state"],
             "cancelled");
   http_call(server_.port(), Method::delete_, "/api/v1/jobs/" + a["id"].get<std::string>());
   http_call(server_.port(), Method::delete_, "/api/v1/jobs/" + b["id"].get<std::string>());
@@ -582,7 +603,9 @@ std::uint64_t bytes_under(const fs::path& dir) {
 }
 
 TEST_F(JobsTest, AFinishedJobsResultSizeIsStoredWithItAndCountedAfterARestart) {
-  auto used = [&] { return http_get(server_.port(), "/api/v1/me").body_json()["storage_bytes_used"].get<std::uint64_t>(); };
+  auto used = [&] {
+    return http_get(server_.port(), "/api/v1/me").body_json()["storage_bytes_used"].get<std::uint64_t>();
+  };
   const std::uint64_t meshes = used();
   const json job = submit("centroid_distance", {{"exponent", 0.5}});
   ASSERT_EQ(wait_end(job["id"])["state"], "done");

@@ -80,11 +80,17 @@ TEST_F(MetricsTest, RequestsJobsWebSocketsAndTheStoreAreCountedAsPrometheusReads
   const json s = parse_exposition(dir_, m.body);
   ASSERT_TRUE(s.is_array());
   // prometheus_client names a counter's sample NAME_total.
-  EXPECT_EQ(value_of(s, "cgview_http_requests_total", {{"route", "/api/v1/meshes"}, {"method", "POST"}, {"status", "201"}}), 1);
-  EXPECT_EQ(value_of(s, "cgview_http_requests_total", {{"route", "/api/v1/meshes/{id}"}, {"method", "GET"}, {"status", "404"}}), 1);
-  EXPECT_EQ(value_of(s, "cgview_http_requests_total", {{"route", "unmatched"}, {"method", "GET"}, {"status", "404"}}), 1);
+  EXPECT_EQ(
+      value_of(s, "cgview_http_requests_total", {{"route", "/api/v1/meshes"}, {"method", "POST"}, {"status", "201"}}),
+      1);
+  EXPECT_EQ(value_of(s, "cgview_http_requests_total",
+                     {{"route", "/api/v1/meshes/{id}"}, {"method", "GET"}, {"status", "404"}}),
+            1);
+  EXPECT_EQ(value_of(s, "cgview_http_requests_total", {{"route", "unmatched"}, {"method", "GET"}, {"status", "404"}}),
+            1);
   EXPECT_EQ(value_of(s, "cgview_http_request_duration_seconds_count", {{"route", "/api/v1/meshes"}}), 1);
-  EXPECT_EQ(value_of(s, "cgview_http_request_duration_seconds_bucket", {{"route", "/api/v1/meshes"}, {"le", "+Inf"}}), 1);
+  EXPECT_EQ(value_of(s, "cgview_http_request_duration_seconds_bucket", {{"route", "/api/v1/meshes"}, {"le", "+Inf"}}),
+            1);
   EXPECT_GT(value_of(s, "cgview_http_request_duration_seconds_sum", {{"route", "/api/v1/meshes"}}), 0);
   EXPECT_EQ(value_of(s, "cgview_jobs_ended_total", {{"algorithm", "centroid_distance"}, {"state", "done"}}), 1);
   EXPECT_EQ(value_of(s, "cgview_job_duration_seconds_count", {{"algorithm", "centroid_distance"}}), 1);

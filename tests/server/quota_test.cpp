@@ -46,7 +46,8 @@ TEST(QuotaConfig, SectionsAndOverrides) {
     "server": {"port": 9000, "max_upload_mb": 16, "job_workers": 3, "auth": "required"},
     "limits": {"storage_mb": 500, "concurrent_jobs": 4},
     "users": {"alice": {"storage_mb": 0.5}, "bob": {"concurrent_jobs": null}, "root": {"concurrent_jobs": 8}}
-  })"), c);
+  })"),
+               c);
   EXPECT_EQ(c.port, 9000);
   EXPECT_EQ(c.max_upload_bytes, std::size_t(16) << 20);
   EXPECT_EQ(c.jobs.max_workers, 3);
@@ -73,7 +74,8 @@ TEST(QuotaConfig, HardeningLimitsInTheServerSection) {
   ServerConfig c;
   apply_config(json::parse(R"({"server": {"max_header_kb": 16, "max_ws_message_kb": 256, "request_timeout_s": 10,
     "min_body_rate_kb": 32, "idle_timeout_s": 20, "ws_idle_timeout_s": 40, "max_connections_per_ip": 8,
-    "rate_limit": {"rate": 5}, "tls_cert": "c.pem", "tls_key": "k.pem"}})"), c);
+    "rate_limit": {"rate": 5}, "tls_cert": "c.pem", "tls_key": "k.pem"}})"),
+               c);
   EXPECT_EQ(c.max_header_bytes, std::size_t(16) << 10);
   EXPECT_EQ(c.max_ws_message_bytes, std::size_t(256) << 10);
   EXPECT_EQ(c.request_timeout_s, 10);
@@ -84,14 +86,17 @@ TEST(QuotaConfig, HardeningLimitsInTheServerSection) {
   EXPECT_EQ(c.rate_per_s, 5);
   EXPECT_EQ(c.rate_burst, 20) << "as --rate-limit 5: a burst of four seconds";
   EXPECT_EQ(c.tls_cert, "c.pem");
-  EXPECT_NE(config_error({{"server", {{"rate_limit", {{"rate", 5}, {"burst", 0}}}}}}).find("server.rate_limit.burst"), std::string::npos);
+  EXPECT_NE(config_error({{"server", {{"rate_limit", {{"rate", 5}, {"burst", 0}}}}}}).find("server.rate_limit.burst"),
+            std::string::npos);
   EXPECT_NE(config_error({{"server", {{"rate_limit", {{"per_s", 5}}}}}}).find("unknown key"), std::string::npos);
 }
 
 TEST(QuotaConfig, ErrorsNameTheKey) {
-  EXPECT_NE(config_error({{"limits", {{"storage_bytes", 5}}}}).find("limits.storage_bytes: unknown key"), std::string::npos);
+  EXPECT_NE(config_error({{"limits", {{"storage_bytes", 5}}}}).find("limits.storage_bytes: unknown key"),
+            std::string::npos);
   EXPECT_NE(config_error({{"server", {{"wrokers", 2}}}}).find("server.wrokers: unknown key"), std::string::npos);
-  EXPECT_NE(config_error({{"users", {{"alice", {{"jobs", 2}}}}}}).find("users.alice.jobs: unknown key"), std::string::npos);
+  EXPECT_NE(config_error({{"users", {{"alice", {{"jobs", 2}}}}}}).find("users.alice.jobs: unknown key"),
+            std::string::npos);
   EXPECT_NE(config_error({{"limit", json::object()}}).find("limit: unknown key"), std::string::npos);
   EXPECT_NE(config_error({{"limits", {{"storage_mb", -1}}}}).find("limits.storage_mb: must be"), std::string::npos);
   EXPECT_NE(config_error({{"limits", {{"concurrent_jobs", 1.5}}}}).find("limits.concurrent_jobs: must be an integer"),
@@ -105,8 +110,8 @@ TEST(QuotaConfig, TheServerRefusesABadFileNamingTheKey) {
   const auto dir = test::temp_dir("quota-bad-config");
   const auto file = dir / "bad.json";
   std::ofstream(file) << R"({"limits": {"storage_mb": 10, "concurent_jobs": 2}})";
-  const std::string cmd = test::bin("cgview-server") + " --port 0 --samples none --data-dir '" + (dir / "data").string() +
-                          "' --config '" + file.string() + "' 2>&1";
+  const std::string cmd = test::bin("cgview-server") + " --port 0 --samples none --data-dir '" +
+                          (dir / "data").string() + "' --config '" + file.string() + "' 2>&1";
   FILE* p = ::popen(cmd.c_str(), "r");
   ASSERT_NE(p, nullptr);
   std::string out;
@@ -126,7 +131,10 @@ TEST(QuotaConfig, TheServerRefusesABadFileNamingTheKey) {
   // Without --config, DATA-DIR/config.json is read when it is there.
   std::filesystem::create_directories(dir / "data");
   std::ofstream(dir / "data" / "config.json") << R"({"users": {"alice": {"storage": 1}}})";
-  p = ::popen((test::bin("cgview-server") + " --port 0 --samples none --data-dir '" + (dir / "data").string() + "' 2>&1").c_str(), "r");
+  p = ::popen(
+      (test::bin("cgview-server") + " --port 0 --samples none --data-dir '" + (dir / "data").string() + "' 2>&1")
+          .c_str(),
+      "r");
   out.clear();
   for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
   EXPECT_NE(::pclose(p), 0);
@@ -144,7 +152,8 @@ class QuotaTest : public test::RouterFixture {
     open_with_users(dir_, jc);
   }
 
-  HttpResponse call(const std::string& token, const std::string& method, const std::string& target, std::string body = "") {
+  HttpResponse call(const std::string& token, const std::string& method, const std::string& target,
+                    std::string body = "") {
     return router_->handle({method, target, std::move(body), "Bearer " + token});
   }
   HttpResponse upload(const std::string& token, const std::string& sample, const std::string& as = "") {
@@ -152,8 +161,9 @@ class QuotaTest : public test::RouterFixture {
   }
   json me(const std::string& token) { return json::parse(call(token, "GET", "/api/v1/me").body); }
   HttpResponse sleep_job(const std::string& token, const std::string& mesh, double seconds) {
-    return call(token, "POST", "/api/v1/jobs",
-                json{{"algorithm", "test_sleep"}, {"inputs", {{"mesh", mesh}}}, {"params", {{"seconds", seconds}}}}.dump());
+    return call(
+        token, "POST", "/api/v1/jobs",
+        json{{"algorithm", "test_sleep"}, {"inputs", {{"mesh", mesh}}}, {"params", {{"seconds", seconds}}}}.dump());
   }
   json wait_job(const std::string& token, const std::string& id) {
     for (auto until = std::chrono::steady_clock::now() + 60s; std::chrono::steady_clock::now() < until;) {
@@ -165,7 +175,6 @@ class QuotaTest : public test::RouterFixture {
     ADD_FAILURE() << "job " << id << " did not end";
     return {};
   }
-
 };
 
 TEST_F(QuotaTest, AnUploadOverTheStorageQuotaIs413NamingTheLimitAndTheUse) {

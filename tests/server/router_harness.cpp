@@ -12,7 +12,8 @@ void RouterFixture::make_dir(const std::string& tag) {
   dir_ = temp_dir(tag + ::testing::UnitTest::GetInstance()->current_test_info()->name());
 }
 
-void RouterFixture::open(const std::filesystem::path& store_dir, std::optional<server::JobConfig> jobs, server::RouterConfig rc) {
+void RouterFixture::open(const std::filesystem::path& store_dir, std::optional<server::JobConfig> jobs,
+                         server::RouterConfig rc) {
   store_ = std::make_unique<server::Store>(store_dir);
   meshes_ = std::make_unique<server::MeshService>(*store_);
   // Uploads read in a child, as the server reads them.

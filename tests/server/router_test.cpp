@@ -149,9 +149,9 @@ TEST_F(RouterTest, DownloadInEveryWritableFormat) {
   struct Case {
     std::string format, content_type;
   };
-  for (const Case& c : {Case{"off", "application/octet-stream"}, Case{"obj", "model/obj"},
-                        Case{"ply", "application/octet-stream"}, Case{"stl", "model/stl"},
-                        Case{"glb", "model/gltf-binary"}, Case{"drc", "application/octet-stream"}}) {
+  for (const Case& c :
+       {Case{"off", "application/octet-stream"}, Case{"obj", "model/obj"}, Case{"ply", "application/octet-stream"},
+        Case{"stl", "model/stl"}, Case{"glb", "model/gltf-binary"}, Case{"drc", "application/octet-stream"}}) {
     SCOPED_TRACE(c.format);
     const HttpResponse r = call("GET", "/api/v1/meshes/" + id + "/download?format=" + c.format);
     ASSERT_EQ(r.status, 200) << r.body.substr(0, 200);
@@ -252,9 +252,9 @@ TEST_F(RouterTest, RefusesPathTraversal) {
   // A secret next to the static dir: reachable by any of these if traversal worked.
   test::write_text(dir_ / "secret.txt", "SECRET");
   for (const char* target :
-       {"/../secret.txt", "/../etc/passwd", "/%2e%2e/secret.txt", "/%2E%2E/%2e%2e/etc/passwd", "/assets/../../secret.txt",
-        "/assets/%2e%2e/%2e%2e/secret.txt", "/..%2fsecret.txt", "/..%5csecret.txt", "//etc/passwd",
-        "/%2fetc/passwd", "/%2Fetc%2Fpasswd", "/index.html%00.js"}) {
+       {"/../secret.txt", "/../etc/passwd", "/%2e%2e/secret.txt", "/%2E%2E/%2e%2e/etc/passwd",
+        "/assets/../../secret.txt", "/assets/%2e%2e/%2e%2e/secret.txt", "/..%2fsecret.txt", "/..%5csecret.txt",
+        "//etc/passwd", "/%2fetc/passwd", "/%2Fetc%2Fpasswd", "/index.html%00.js"}) {
     SCOPED_TRACE(target);
     const HttpResponse r = call("GET", target);
     EXPECT_TRUE(r.status == 400 || r.status == 404) << r.status;
@@ -340,8 +340,10 @@ TEST_F(RouterTest, EveryRouteInTheTableIsWellFormedAndDocumented) {
     EXPECT_TRUE(r.handler);
     std::string lower = r.method;
     for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
-    EXPECT_TRUE(doc["paths"].contains(r.pattern) && doc["paths"][r.pattern].contains(lower)) << "not in the OpenAPI document";
-    EXPECT_NE(api_doc.find("`" + route), std::string::npos) << "protocol/API.md does not name it as `" << route << "...`";
+    EXPECT_TRUE(doc["paths"].contains(r.pattern) && doc["paths"][r.pattern].contains(lower))
+        << "not in the OpenAPI document";
+    EXPECT_NE(api_doc.find("`" + route), std::string::npos)
+        << "protocol/API.md does not name it as `" << route << "...`";
   }
 }
 

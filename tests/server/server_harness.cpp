@@ -53,8 +53,8 @@ bool ServerProcess::start(const fs::path& data_dir, const std::vector<std::strin
   kill_now();
   out_ = log_dir / ("stdout-" + std::to_string(++starts_) + ".txt");
   err_ = log_dir / ("stderr-" + std::to_string(starts_) + ".txt");
-  std::vector<std::string> args = {test::bin("cgview-server"), "--host", "127.0.0.1", "--port", "0",
-                                   "--data-dir", data_dir.string(), "--samples", "none"};
+  std::vector<std::string> args = {test::bin("cgview-server"), "--host",    "127.0.0.1", "--port", "0", "--data-dir",
+                                   data_dir.string(),          "--samples", "none"};
   args.insert(args.end(), extra.begin(), extra.end());
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
@@ -93,7 +93,8 @@ bool ServerProcess::start(const fs::path& data_dir, const std::vector<std::strin
     std::this_thread::sleep_for(10ms);
   }
   ADD_FAILURE() << "cgview-server printed no 'CGView serving' line in 30 s; stdout:\n"
-                << read_bytes(out_) << "\nstderr:\n" << read_bytes(err_);
+                << read_bytes(out_) << "\nstderr:\n"
+                << read_bytes(err_);
   kill_now();
   return false;
 }
@@ -165,11 +166,16 @@ std::string lower(std::string s) {
 
 http::verb to_verb(Method m) {
   switch (m) {
-    case Method::get: return http::verb::get;
-    case Method::head: return http::verb::head;
-    case Method::post: return http::verb::post;
-    case Method::put: return http::verb::put;
-    case Method::delete_: return http::verb::delete_;
+    case Method::get:
+      return http::verb::get;
+    case Method::head:
+      return http::verb::head;
+    case Method::post:
+      return http::verb::post;
+    case Method::put:
+      return http::verb::put;
+    case Method::delete_:
+      return http::verb::delete_;
   }
   return http::verb::unknown;
 }
@@ -202,7 +208,9 @@ HttpResult http_call(unsigned short port, Method method, const std::string& targ
   tcp::socket socket(ioc);
   std::optional<beast::error_code> connected, wrote, read;
   socket.async_connect(local(port), [&](beast::error_code ec) { connected = ec; });
-  if (!run_until(ioc, [&] { return connected.has_value(); }, limit) || *connected) {
+  if (!run_until(
+          ioc, [&] { return connected.has_value(); }, limit) ||
+      *connected) {
     out.timed_out = !connected.has_value();
     out.ec = connected.value_or(net::error::timed_out);
     return out;
@@ -219,10 +227,12 @@ HttpResult http_call(unsigned short port, Method method, const std::string& targ
   parser.skip(method == Method::head);  // a HEAD response has no body, whatever its Content-Length
   http::async_write(socket, req, [&](beast::error_code ec, std::size_t) { wrote = ec; });
   http::async_read(socket, buffer, parser, [&](beast::error_code ec, std::size_t) { read = ec; });
-  const bool done = run_until(ioc, [&] { return read.has_value(); }, limit);
+  const bool done = run_until(
+      ioc, [&] { return read.has_value(); }, limit);
   beast::error_code ignored;
   socket.close(ignored);
-  run_until(ioc, [&] { return wrote.has_value() && read.has_value(); }, 5s);
+  run_until(
+      ioc, [&] { return wrote.has_value() && read.has_value(); }, 5s);
   return result_of(done, done ? *read : beast::error_code(), parser);
 }
 
@@ -243,10 +253,12 @@ HttpResult http_raw(unsigned short port, const std::string& bytes, std::chrono::
   http::response_parser<http::string_body> parser;
   std::optional<beast::error_code> read;
   http::async_read(s, buffer, parser, [&](beast::error_code e, std::size_t) { read = e; });
-  const bool done = run_until(ioc, [&] { return read.has_value(); }, limit);
+  const bool done = run_until(
+      ioc, [&] { return read.has_value(); }, limit);
   if (!done) {
     s.close(ec);
-    run_until(ioc, [&] { return read.has_value(); }, 5s);
+    run_until(
+        ioc, [&] { return read.has_value(); }, 5s);
   }
   return result_of(done, done ? *read : beast::error_code(), parser);
 }
@@ -277,11 +289,13 @@ HttpResult HttpConnection::get(const std::string& target, std::chrono::milliseco
     if (ec) done = ec;
     else http::async_read(c.socket, c.buffer, parser, [&](beast::error_code ec2, std::size_t) { done = ec2; });
   });
-  const bool in_time = run_until(c.ioc, [&] { return done.has_value(); }, limit);
+  const bool in_time = run_until(
+      c.ioc, [&] { return done.has_value(); }, limit);
   if (!in_time) {
     beast::error_code ignored;
     c.socket.close(ignored);
-    run_until(c.ioc, [&] { return done.has_value(); }, 5s);
+    run_until(
+        c.ioc, [&] { return done.has_value(); }, 5s);
   }
   return result_of(in_time, in_time ? *done : beast::error_code(), parser);
 }
@@ -296,10 +310,13 @@ struct WsClient::Impl {
   beast::error_code op(Start start, std::chrono::milliseconds limit = 30s) {
     auto result = std::make_shared<std::optional<beast::error_code>>();
     start([result](beast::error_code ec, auto&&...) { *result = ec; });
-    if (run_until(ioc, [&] { return result->has_value(); }, limit)) return **result;
+    if (run_until(
+            ioc, [&] { return result->has_value(); }, limit))
+      return **result;
     beast::error_code ignored;
     ws.next_layer().close(ignored);  // the pending operation ends with an error
-    run_until(ioc, [&] { return result->has_value(); }, 5s);
+    run_until(
+        ioc, [&] { return result->has_value(); }, 5s);
     return net::error::timed_out;
   }
 };
@@ -407,7 +424,8 @@ void ServerFixture::expect_error(const HttpResult& r, unsigned status, const std
 HttpResult call_as(unsigned short port, const std::string& token, const std::string& method, const std::string& target,
                    const std::string& body) {
   return http_raw(port, method + " " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\nAuthorization: Bearer " + token +
-                            "\r\nContent-Length: " + std::to_string(body.size()) + "\r\nConnection: close\r\n\r\n" + body);
+                            "\r\nContent-Length: " + std::to_string(body.size()) + "\r\nConnection: close\r\n\r\n" +
+                            body);
 }
 
 std::string server_command(const fs::path& data, const std::string& args) {

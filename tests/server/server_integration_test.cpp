@@ -30,15 +30,15 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
+using test::call_as;
 using test::http_call;
 using test::http_get;
-using test::call_as;
 using test::http_raw;
-using test::server_command;
 using test::HttpConnection;
 using test::HttpResult;
 using test::Method;
 using test::read_bytes;
+using test::server_command;
 using test::ServerProcess;
 using test::WsClient;
 
@@ -128,7 +128,8 @@ class ServerIntegration : public test::ServerFixture {
   }
 
   json upload(const std::string& sample) {
-    const HttpResult r = http_call(port(), Method::post, "/api/v1/meshes?name=" + sample, read_bytes(test::sample(sample)));
+    const HttpResult r =
+        http_call(port(), Method::post, "/api/v1/meshes?name=" + sample, read_bytes(test::sample(sample)));
     EXPECT_FALSE(r.ec) << r.ec.message();
     EXPECT_EQ(r.status, 201u) << r.body;
     return r.body_json();
@@ -195,7 +196,8 @@ TEST_F(ServerIntegration, HttpRoutes) {
       EXPECT_TRUE(d.body == original);
     }
   }
-  EXPECT_EQ(http_get(port(), "/api/v1/meshes/" + id + "/download?format=glb").header("Content-Type"), "model/gltf-binary");
+  EXPECT_EQ(http_get(port(), "/api/v1/meshes/" + id + "/download?format=glb").header("Content-Type"),
+            "model/gltf-binary");
 
   // HEAD: the headers of a GET without its body.
   const HttpResult head = http_call(port(), Method::head, "/api/v1/health");
@@ -242,8 +244,8 @@ TEST_F(ServerIntegration, UploadOverTheLimitIs413AndTheServerCarriesOn) {
   const HttpResult under = http_call(port(), Method::post, "/api/v1/meshes?name=under.off", big.substr(0, 1000 * 1000));
   ASSERT_FALSE(under.ec) << under.ec.message();
   EXPECT_EQ(under.status, 400u) << under.body;
-  const HttpResult ok = http_call(port(), Method::post, "/api/v1/meshes?name=elephant.off",
-                                  read_bytes(test::sample("elephant.off")));
+  const HttpResult ok =
+      http_call(port(), Method::post, "/api/v1/meshes?name=elephant.off", read_bytes(test::sample("elephant.off")));
   EXPECT_EQ(ok.status, 201u) << ok.body;
   expect_healthy();
   EXPECT_TRUE(server_.alive());
@@ -389,10 +391,11 @@ TEST_F(ServerIntegration, MalformedWebSocketMessagesGetErrorsAndTheConnectionSta
        "bad_request"},
       {"quantization 0", R"({"type":"get_mesh","request_id":14,"mesh_id":")" + id + R"(","quantization":0})", 14,
        "bad_request"},
-      {"lod unknown", R"({"type":"get_mesh","request_id":16,"mesh_id":")" + id + R"(","lod":"tiny"})", 16, "bad_request"},
-      {"lod a number", R"({"type":"get_mesh","request_id":17,"mesh_id":")" + id + R"(","lod":2})", 17, "bad_request"},
-      {"quantization text", R"({"type":"get_mesh","request_id":15,"mesh_id":")" + id + R"(","quantization":"high"})", 15,
+      {"lod unknown", R"({"type":"get_mesh","request_id":16,"mesh_id":")" + id + R"(","lod":"tiny"})", 16,
        "bad_request"},
+      {"lod a number", R"({"type":"get_mesh","request_id":17,"mesh_id":")" + id + R"(","lod":2})", 17, "bad_request"},
+      {"quantization text", R"({"type":"get_mesh","request_id":15,"mesh_id":")" + id + R"(","quantization":"high"})",
+       15, "bad_request"},
   };
   std::uint64_t ping_id = 1000;
   for (const Case& c : cases) {
@@ -522,8 +525,9 @@ TEST_F(ServerIntegration, ConcurrentUploadsAreAllStored) {
       for (int i = 0; i < kEach; ++i) {
         const std::string off =
             write_mesh_bytes(test::box({double(t), double(i), 0}, {t + 1.5, i + 1.5, 1}), MeshFormat::off);
-        const HttpResult r = http_call(port(), Method::post,
-                                       "/api/v1/meshes?name=box_" + std::to_string(t) + "_" + std::to_string(i) + ".off", off);
+        const HttpResult r =
+            http_call(port(), Method::post,
+                      "/api/v1/meshes?name=box_" + std::to_string(t) + "_" + std::to_string(i) + ".off", off);
         EXPECT_EQ(r.status, 201u) << r.ec.message() << " " << r.body;
       }
     });
@@ -596,7 +600,8 @@ TEST_F(ServerIntegration, TokensOverHttpAndWebSocketAndRevokedAtOnce) {
   expect_error(none, 401, "unauthorized");
   EXPECT_EQ(none.header("WWW-Authenticate"), "Bearer");
   expect_error(call_as(port(), "cgv_nonsense", "GET", "/api/v1/health"), 401, "unauthorized");
-  const HttpResult up = call_as(port(), bob, "POST", "/api/v1/meshes?name=sphere.off", read_bytes(test::sample("sphere.off")));
+  const HttpResult up =
+      call_as(port(), bob, "POST", "/api/v1/meshes?name=sphere.off", read_bytes(test::sample("sphere.off")));
   ASSERT_EQ(up.status, 201u) << up.body;
   const std::string mesh = up.body_json()["id"];
   EXPECT_EQ(up.body_json()["owner"], "bob");
@@ -630,7 +635,8 @@ TEST_F(ServerIntegration, TokensOverHttpAndWebSocketAndRevokedAtOnce) {
   ASSERT_FALSE(b.connect(port()));
   ASSERT_FALSE(b.send({{"type", "auth"}, {"request_id", 1}, {"token", bob}}));
   EXPECT_EQ(b.reply().value("user", ""), "bob");
-  ASSERT_EQ(call_as(port(), bob, "POST", "/api/v1/meshes?name=cube.off", read_bytes(test::sample("cube.off"))).status, 201u);
+  ASSERT_EQ(call_as(port(), bob, "POST", "/api/v1/meshes?name=cube.off", read_bytes(test::sample("cube.off"))).status,
+            201u);
   const auto added = b.read();
   ASSERT_TRUE(added.has_value());
   EXPECT_EQ(json::parse(added->data).value("type", ""), "mesh_added");

@@ -124,7 +124,8 @@ TEST(Store, CountIsOfTheMeshesTheCallerMayRead) {
   EXPECT_EQ(store.count(carol), 1u);
   EXPECT_EQ(store.count(dave), 1u);
   EXPECT_EQ(store.count(admin), 4u);
-  for (const Caller& c : {alice, bob, carol, dave, admin}) EXPECT_EQ(store.count(c), store.list_meshes(c).size()) << c.user;
+  for (const Caller& c : {alice, bob, carol, dave, admin})
+    EXPECT_EQ(store.count(c), store.list_meshes(c).size()) << c.user;
   store.set_shared("mesh", bobs, {"alice"}, false);
   EXPECT_EQ(store.count(alice), 3u);
   EXPECT_TRUE(store.remove_mesh(carols));
@@ -173,11 +174,13 @@ TEST(Store, AnOldDataDirectoryUpgradesAndUsersPersist) {
   const fs::path dir = test::temp_dir("store-upgrade");
   {
     sqlite3* db = open_database(dir / "cgview.db");
-    exec_sql(db,
-             "CREATE TABLE meshes (id TEXT PRIMARY KEY, name TEXT NOT NULL, format TEXT NOT NULL, bytes INTEGER NOT NULL,"
-             " sha256 TEXT NOT NULL, created TEXT NOT NULL, report TEXT NOT NULL, warnings TEXT NOT NULL, seq INTEGER);"
-             "INSERT INTO meshes VALUES ('00000000000000aa', 'old.off', 'off', 3, 'x', '2026-01-01T00:00:00Z', '{}', '[]', 1);",
-             "test");
+    exec_sql(
+        db,
+        "CREATE TABLE meshes (id TEXT PRIMARY KEY, name TEXT NOT NULL, format TEXT NOT NULL, bytes INTEGER NOT NULL,"
+        " sha256 TEXT NOT NULL, created TEXT NOT NULL, report TEXT NOT NULL, warnings TEXT NOT NULL, seq INTEGER);"
+        "INSERT INTO meshes VALUES ('00000000000000aa', 'old.off', 'off', 3, 'x', '2026-01-01T00:00:00Z', '{}', '[]', "
+        "1);",
+        "test");
     sqlite3_close(db);
   }
   {

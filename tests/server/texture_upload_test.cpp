@@ -82,10 +82,13 @@ class TextureUploadTest : public test::RouterFixture {
 };
 
 TEST_F(TextureUploadTest, ObjMtlAndImageKeepTheirTexture) {
-  const json mesh = upload("quad.zip", make_zip({{"quad/quad.obj", kQuad}, {"quad/quad.mtl", kMtl}, {"quad/maps/wood.jpg", jpeg_},
+  const json mesh = upload("quad.zip", make_zip({{"quad/quad.obj", kQuad},
+                                                 {"quad/quad.mtl", kMtl},
+                                                 {"quad/maps/wood.jpg", jpeg_},
                                                  {"readme.txt", "not a mesh"},
                                                  // What macOS's Finder adds: not a second mesh.
-                                                 {"__MACOSX/quad/._quad.obj", "\0\5\x16\7"}, {"quad/._quad.obj", "x"}}));
+                                                 {"__MACOSX/quad/._quad.obj", "\0\5\x16\7"},
+                                                 {"quad/._quad.obj", "x"}}));
   EXPECT_EQ(mesh["name"], "quad.obj");
   EXPECT_EQ(mesh["format"], "obj");
   EXPECT_EQ(mesh["bytes"], kQuad.size());
@@ -161,7 +164,8 @@ TEST_F(TextureUploadTest, SpiderKeepsEveryMaterialsTexture) {
     ++per_material[f.material];
   }
   ASSERT_EQ(per_material.size(), 4u);
-  for (std::size_t i = 0; i < use.names.size(); ++i) EXPECT_EQ(per_material[std::uint32_t(i)], mesh["materials"][i]["faces"]);
+  for (std::size_t i = 0; i < use.names.size(); ++i)
+    EXPECT_EQ(per_material[std::uint32_t(i)], mesh["materials"][i]["faces"]);
 }
 
 TEST_F(TextureUploadTest, MissingImageIsAWarning) {

@@ -55,7 +55,8 @@ std::string glb_with_draco_claiming_billions() {
       {"meshes",
        {{{"primitives",
           {{{"attributes", {{"POSITION", 0}}},
-            {"extensions", {{"KHR_draco_mesh_compression", {{"bufferView", 0}, {"attributes", {{"POSITION", 0}}}}}}}}}}}}},
+            {"extensions",
+             {{"KHR_draco_mesh_compression", {{"bufferView", 0}, {"attributes", {{"POSITION", 0}}}}}}}}}}}}},
       {"nodes", {{{"mesh", 0}}}},
       {"scenes", {{{"nodes", {0}}}}}};
   return glb(doc.dump(), d);
@@ -112,17 +113,25 @@ TEST_F(UploadIsolation, HostileFilesOfEveryFormatAre4xxAndTheServerGoesOn) {
       {"lie.glb", glb_with_draco_claiming_billions(), 400, "claims 1400000000 faces"},
       {"deep.gltf", gltf_nested(200000), 400, "nests arrays and objects 200005 deep"},
       {"deep.glb", glb(gltf_nested(200000), ""), 400, "nests arrays and objects 200005 deep"},
-      {"lie.off", "OFF\n2000000000 4000000000 0\n0 0 0\n", 400, "lie.off: line 2: the header claims 2000000000 vertices, but only 7 bytes follow"},
-      {"lie.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n"
-                  "property float y\nproperty float z\nelement face 4000000000\nproperty list uchar int vertex_indices\n"
-                  "end_header\n" + std::string(64, '\0'), 400, "lie.ply: line 9: the header claims 4000000000 vertex elements"},
-      {"lie.stl", std::string(80, ' ') + le32(4000000000u) + std::string(50, '\0'), 400, "lie.stl: byte 80: a binary STL header claims 4000000000 triangles"},
-      {"overflow.obj", "v 1e999 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 99999999999999999999\n", 400, "overflow.obj: line 1: vertex 1 has a non-finite coordinate"},
-      {"overflow.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 18446744073709551617\n", 400, "overflow.off: line 6: expected a vertex index, found '18446744073709551617'"},
+      {"lie.off", "OFF\n2000000000 4000000000 0\n0 0 0\n", 400,
+       "lie.off: line 2: the header claims 2000000000 vertices, but only 7 bytes follow"},
+      {"lie.ply",
+       "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n"
+       "property float y\nproperty float z\nelement face 4000000000\nproperty list uchar int vertex_indices\n"
+       "end_header\n" +
+           std::string(64, '\0'),
+       400, "lie.ply: line 9: the header claims 4000000000 vertex elements"},
+      {"lie.stl", std::string(80, ' ') + le32(4000000000u) + std::string(50, '\0'), 400,
+       "lie.stl: byte 80: a binary STL header claims 4000000000 triangles"},
+      {"overflow.obj", "v 1e999 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 99999999999999999999\n", 400,
+       "overflow.obj: line 1: vertex 1 has a non-finite coordinate"},
+      {"overflow.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 18446744073709551617\n", 400,
+       "overflow.off: line 6: expected a vertex index, found '18446744073709551617'"},
       {"notazip.zip", "PK\x03\x04 this is not a zip", 400, "not a readable zip"},
       // A message quoting bytes that are not UTF-8 (found by tests/soak): still
       // a 400 that says where, the bytes replaced by U+FFFD.
-      {"latin1.off", "caf\xe9\n3 1 0\n", 400, "latin1.off: line 1: not an OFF file: it starts with caf\xef\xbf\xbd, not OFF"},
+      {"latin1.off", "caf\xe9\n3 1 0\n", 400,
+       "latin1.off: line 1: not an OFF file: it starts with caf\xef\xbf\xbd, not OFF"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
@@ -139,7 +148,8 @@ TEST_F(UploadIsolation, HostileFilesOfEveryFormatAre4xxAndTheServerGoesOn) {
   EXPECT_EQ(meshes(), 1u);
   // Nothing is left of the readers' files.
   std::size_t left = 0;
-  for (const auto& e : fs::directory_iterator(data_ / "tmp")) left += e.path().filename().string().starts_with("upload-");
+  for (const auto& e : fs::directory_iterator(data_ / "tmp"))
+    left += e.path().filename().string().starts_with("upload-");
   EXPECT_EQ(left, 0u);
 }
 

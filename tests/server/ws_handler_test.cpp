@@ -149,19 +149,22 @@ TEST_F(WsHandlerTest, ATokenIsNeededChecksEachMessageAndARevokedOneClosesTheConn
   EXPECT_TRUE(ws.handle(R"({"type":"ping","request_id":2})", anonymous).empty()) << "nothing after the refusal";
 
   WsConnection wrong = connect();
-  expect_one_error(ws.handle(R"({"type":"auth","token":"cgv_0000000000000000_nope","request_id":1})", wrong), "unauthorized");
+  expect_one_error(ws.handle(R"({"type":"auth","token":"cgv_0000000000000000_nope","request_id":1})", wrong),
+                   "unauthorized");
   EXPECT_TRUE(wrong.close);
 
   WsConnection alice = connect();
   auto replies = ws.handle(R"({"type":"auth","token":")" + alice_ + R"(","request_id":1})", alice);
   ASSERT_EQ(replies.size(), 1u);
-  EXPECT_EQ(parse(replies[0]), json({{"type", "authenticated"}, {"request_id", 1}, {"user", "alice"}, {"admin", false}}));
+  EXPECT_EQ(parse(replies[0]),
+            json({{"type", "authenticated"}, {"request_id", 1}, {"user", "alice"}, {"admin", false}}));
   replies = ws.handle(R"({"type":"list_meshes","request_id":2})", alice);
   ASSERT_EQ(replies.size(), 1u);
   const json list = parse(replies[0]);
   ASSERT_EQ(list["meshes"].size(), 1u) << list;
   EXPECT_EQ(list["meshes"][0]["id"], alices.id);
-  expect_one_error(ws.handle(R"({"type":"get_mesh","request_id":3,"mesh_id":")" + bobs.id + R"("})", alice), "not_found");
+  expect_one_error(ws.handle(R"({"type":"get_mesh","request_id":3,"mesh_id":")" + bobs.id + R"("})", alice),
+                   "not_found");
 
   // Events go to their readers only.
   std::vector<WsOut> sent;
@@ -218,23 +221,23 @@ TEST_F(WsHandlerTest, SlicesOfAGridKeptDecodedServeOnlyThoseWhoMayReadTheJob) {
   open_with_users(dir_ / "data", JobConfig{});
   const Caller alice = *router_->auth().authenticate("Bearer " + alice_);
   const MeshRecord cube = meshes_->upload("cube.off", "", test::read_bytes(test::sample("cube.off")), "alice");
-  const std::string id =
-      jobs_->submit({{"algorithm", "voxelize"}, {"inputs", {{"mesh", cube.id}}}, {"params", {{"resolution", 16}, {"mode", "solid"}}}},
-                    alice)["id"];
+  const std::string id = jobs_->submit(
+      {{"algorithm", "voxelize"}, {"inputs", {{"mesh", cube.id}}}, {"params", {{"resolution", 16}, {"mode", "solid"}}}},
+      alice)["id"];
   for (int i = 0; i < 600 && jobs_->get(id, alice)->value("state", "") != "done"; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   ASSERT_EQ(jobs_->get(id, alice)->value("state", ""), "done") << *jobs_->get(id, alice);
   const WsHandler ws(*meshes_,
-                     {[this](const std::string& job, const std::string& name, const std::string& format, const Caller& c) {
-                        return jobs_->artifact(job, name, format, c);
-                      },
+                     {[this](const std::string& job, const std::string& name, const std::string& format,
+                             const Caller& c) { return jobs_->artifact(job, name, format, c); },
                       [this](const std::string& job, const Caller& c) { (void)jobs_->access(job, c); }},
                      router_->auth(), nullptr, {64, 1024});
   // The reference: the grid file as the job wrote it, sliced here.
   const VoxelGrid grid = decode_nrrd(jobs_->artifact(id, "grid", "nrrd", alice).bytes);
   const int k = grid.dims()[2] / 2;
   const VoxelSlice expected = slice(grid, 2, k);
-  const std::string request = R"({"type":"get_slice","request_id":5,"axis":"z","index":)" + std::to_string(k) + R"(,"job_id":")" + id + R"("})";
+  const std::string request =
+      R"({"type":"get_slice","request_id":5,"axis":"z","index":)" + std::to_string(k) + R"(,"job_id":")" + id + R"("})";
   WsConnection a = connect("Bearer " + alice_);
   std::string first;
   for (int round = 0; round < 2; ++round) {  // read and decoded, then kept

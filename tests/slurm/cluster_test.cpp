@@ -59,7 +59,8 @@ class SlurmClusterTest : public ::testing::Test {
   void SetUp() override {
     std::string why;
     if (!SlurmCluster::available(&why)) GTEST_SKIP() << why;
-    dir_ = cgview::test::temp_dir("slurm-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    dir_ =
+        cgview::test::temp_dir("slurm-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     ASSERT_TRUE(cluster_.start(dir_, 3, &why)) << why;
   }
 
@@ -128,10 +129,10 @@ TEST_F(SlurmClusterTest, UnpinnedJobsSpreadOverTheNodes) {
 
 TEST_F(SlurmClusterTest, MemoryHogIsKilled) {
   std::string why;
-  const std::string id = cluster_.submit(
-      "--mem=20 -o " + (dir_ / "%j.out").string() +
-          " --wrap 'python3 -c \"x = bytearray(400 * 1024 * 1024); import time; time.sleep(30)\"'",
-      &why);
+  const std::string id =
+      cluster_.submit("--mem=20 -o " + (dir_ / "%j.out").string() +
+                          " --wrap 'python3 -c \"x = bytearray(400 * 1024 * 1024); import time; time.sleep(30)\"'",
+                      &why);
   ASSERT_FALSE(id.empty()) << why;
   // Slurm 22.05 with jobacct_gather/linux + OverMemoryKill (no cgroups): the
   // poller SIGKILLs the step within a second or two.  Not OUT_OF_MEMORY (that

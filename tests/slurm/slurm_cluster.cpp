@@ -153,7 +153,7 @@ bool is_job_of(pid_t pid, const std::string& conf_entry, const std::string& clus
 }
 
 bool is_ended(const std::string& state) {
-  static const std::set<std::string> ended = {"COMPLETED", "FAILED",   "CANCELLED", "TIMEOUT",  "OUT_OF_MEMORY",
+  static const std::set<std::string> ended = {"COMPLETED", "FAILED",    "CANCELLED", "TIMEOUT",   "OUT_OF_MEMORY",
                                               "NODE_FAIL", "BOOT_FAIL", "DEADLINE",  "PREEMPTED", "REVOKED"};
   return ended.count(state) > 0;
 }
@@ -164,8 +164,8 @@ SlurmCluster::~SlurmCluster() { stop(); }
 
 bool SlurmCluster::available(std::string* why) {
   std::string missing;
-  for (const char* p : {"munged", "slurmctld", "slurmd", "slurmstepd", "sbatch", "squeue", "sinfo", "scancel",
-                        "scontrol", "sacct"})
+  for (const char* p :
+       {"munged", "slurmctld", "slurmd", "slurmstepd", "sbatch", "squeue", "sinfo", "scancel", "scontrol", "sacct"})
     if (find_program(p).empty()) missing += std::string(missing.empty() ? "" : ", ") + p;
   if (missing.empty()) return true;
   if (why) *why = "not installed: " + missing + " (Debian: munge, slurm-wlm; ./setup.sh installs them)";
@@ -419,7 +419,9 @@ bool SlurmCluster::wait_nodes_idle(double timeout_s, std::string* why) {
     for (std::string node, state; ss >> node >> state;) idle += state == "idle";
     if (rc == 0 && idle == nodes()) return true;
     if (since(t0) > timeout_s) {
-      if (why) *why = "SlurmCluster::start: the nodes are not all idle after " + std::to_string(timeout_s) + " s; sinfo:\n" + last;
+      if (why)
+        *why = "SlurmCluster::start: the nodes are not all idle after " + std::to_string(timeout_s) + " s; sinfo:\n" +
+               last;
       return false;
     }
     sleep_s(0.1);
@@ -496,9 +498,7 @@ void SlurmCluster::sweep_leftovers() {
   }
 }
 
-pid_t SlurmCluster::slurmd_pid(int i) const {
-  return i >= 1 && i <= nodes() ? slurmd_[i - 1].pid : 0;
-}
+pid_t SlurmCluster::slurmd_pid(int i) const { return i >= 1 && i <= nodes() ? slurmd_[i - 1].pid : 0; }
 
 void SlurmCluster::kill_node(int i) {
   if (i < 1 || i > nodes() || slurmd_[i - 1].pid <= 0) return;

@@ -62,13 +62,14 @@ class SlurmJobs : public ServerFixture {
     slurm["poll_s"] = 0.2;
     slurm["max_jobs"] = 50;
     write_text(dir_ / "config.json", json{{"slurm", slurm}}.dump());
-    std::vector<std::string> args = {"--worker", bin("cgview-worker-test"), "--executor", "slurm", "--config",
-                                     (dir_ / "config.json").string(), "--job-memory-mb", "2048"};
+    std::vector<std::string> args = {"--worker", bin("cgview-worker-test"),       "--executor",      "slurm",
+                                     "--config", (dir_ / "config.json").string(), "--job-memory-mb", "2048"};
     args.insert(args.end(), extra.begin(), extra.end());
     return server_.start(data.empty() ? data_ : data, args, dir_);
   }
   std::string upload(const std::string& sample_name) {
-    const auto r = http_call(port(), Method::post, "/api/v1/meshes?name=" + sample_name, read_bytes(sample(sample_name)));
+    const auto r =
+        http_call(port(), Method::post, "/api/v1/meshes?name=" + sample_name, read_bytes(sample(sample_name)));
     EXPECT_EQ(r.status, 201u) << r.body;
     return r.body_json().value("id", "");
   }
@@ -235,13 +236,16 @@ TEST_F(SlurmJobs, OwnersTakeTurnsBeforeTheirJobsReachTheCluster) {
   // Three 2-CPU jobs fill the cluster; one more may wait in it.
   ASSERT_TRUE(start({"--auth", "required", "--job-cpus", "2"}, {}, {{"max_pending", 1}}));
   auto job_as = [&](const std::string& token, const std::string& mesh, double seconds) {
-    const auto r = call_as(port(), token, "POST", "/api/v1/jobs",
-                           json{{"algorithm", "test_sleep"}, {"inputs", {{"mesh", mesh}}}, {"params", {{"seconds", seconds}}}}.dump());
+    const auto r = call_as(
+        port(), token, "POST", "/api/v1/jobs",
+        json{{"algorithm", "test_sleep"}, {"inputs", {{"mesh", mesh}}}, {"params", {{"seconds", seconds}}}}.dump());
     EXPECT_EQ(r.status, 201u) << r.body;
     return r.body_json().value("id", "");
   };
   auto mesh_of = [&](const std::string& token) {
-    return call_as(port(), token, "POST", "/api/v1/meshes?name=sphere.off", read_bytes(sample("sphere.off"))).body_json().value("id", "");
+    return call_as(port(), token, "POST", "/api/v1/meshes?name=sphere.off", read_bytes(sample("sphere.off")))
+        .body_json()
+        .value("id", "");
   };
   const std::string a_mesh = mesh_of(alice), b_mesh = mesh_of(bob);
   std::vector<std::string> a_jobs;
@@ -253,7 +257,8 @@ TEST_F(SlurmJobs, OwnersTakeTurnsBeforeTheirJobsReachTheCluster) {
   auto note_slurm_ids = [&] {
     std::istringstream rows(cluster_.run("squeue --noheader --states=all --format='%i|%j'"));
     for (std::string row; std::getline(rows, row);)
-      if (const auto bar = row.find("|cgview-"); bar != std::string::npos) sid.emplace(row.substr(bar + 8), std::stol(row.substr(0, bar)));
+      if (const auto bar = row.find("|cgview-"); bar != std::string::npos)
+        sid.emplace(row.substr(bar + 8), std::stol(row.substr(0, bar)));
   };
   // Bob comes once Alice's jobs stop reaching the cluster (1.5 s without a new one).
   auto changed = Clock::now();
@@ -269,7 +274,9 @@ TEST_F(SlurmJobs, OwnersTakeTurnsBeforeTheirJobsReachTheCluster) {
     return s == "done" || s == "failed";
   };
   const auto until = Clock::now() + 90s;
-  while (Clock::now() < until && !(ended(a_jobs.back()) && call_as(port(), bob, "GET", "/api/v1/jobs/" + b_job).body_json().value("state", "") == "done")) {
+  while (Clock::now() < until &&
+         !(ended(a_jobs.back()) &&
+           call_as(port(), bob, "GET", "/api/v1/jobs/" + b_job).body_json().value("state", "") == "done")) {
     note_slurm_ids();
     std::this_thread::sleep_for(100ms);
   }
@@ -376,7 +383,8 @@ TEST_F(SlurmJobs, WithoutASharedDirectoryWorkersFetchInputsAndSendResultsWithThe
   const std::string mesh = upload("sphere.off");
   // The nodes see an empty directory where the server keeps its data.
   ASSERT_TRUE(fs::exists(data_ / "blobs"));
-  const fs::path seen_by_node = fs::path("/proc") / std::to_string(cluster_.slurmd_pid(1)) / "root" / data_.relative_path();
+  const fs::path seen_by_node =
+      fs::path("/proc") / std::to_string(cluster_.slurmd_pid(1)) / "root" / data_.relative_path();
   EXPECT_TRUE(fs::is_directory(seen_by_node)) << seen_by_node;
   EXPECT_TRUE(fs::is_empty(seen_by_node)) << seen_by_node;
   const json sdf = submit(mesh, "sdf");
@@ -388,8 +396,8 @@ TEST_F(SlurmJobs, WithoutASharedDirectoryWorkersFetchInputsAndSendResultsWithThe
   const std::string base = "/api/v1/worker/jobs/" + slow["id"].get<std::string>();
   // The token reads its own job's inputs, and nothing else.
   EXPECT_EQ(call_as(port(), token, "GET", base + "/inputs/mesh").body, read_bytes(data_ / "blobs" / (mesh + ".off")));
-  expect_error(call_as(port(), token, "GET", "/api/v1/worker/jobs/" + sdf["id"].get<std::string>() + "/inputs/mesh"), 401,
-               "unauthorized");
+  expect_error(call_as(port(), token, "GET", "/api/v1/worker/jobs/" + sdf["id"].get<std::string>() + "/inputs/mesh"),
+               401, "unauthorized");
   expect_error(call_as(port(), "0" + token.substr(1), "GET", base + "/spec"), 401, "unauthorized");
   expect_error(call_as(port(), token, "PUT", base + "/files/job.json", "{}"), 400, "invalid_mesh");
   EXPECT_EQ(call_as(port(), token, "GET", "/api/v1/meshes").status, 401u) << "a job's token is not a user's";

@@ -12,16 +12,16 @@ struct Variant {
   std::string label;  // "ply_binary"
   MeshFormat format;
   bool binary;
-  std::string ext;    // "ply"
+  std::string ext;  // "ply"
   bool text() const { return !binary; }
 };
 
 inline const std::vector<Variant>& variants() {
   static const std::vector<Variant> v = {
-      {"off", MeshFormat::off, false, "off"},          {"obj", MeshFormat::obj, false, "obj"},
-      {"ply_ascii", MeshFormat::ply, false, "ply"},    {"ply_binary", MeshFormat::ply, true, "ply"},
-      {"stl_ascii", MeshFormat::stl, false, "stl"},    {"stl_binary", MeshFormat::stl, true, "stl"},
-      {"drc", MeshFormat::drc, true, "drc"},           {"glb", MeshFormat::glb, true, "glb"}};
+      {"off", MeshFormat::off, false, "off"},       {"obj", MeshFormat::obj, false, "obj"},
+      {"ply_ascii", MeshFormat::ply, false, "ply"}, {"ply_binary", MeshFormat::ply, true, "ply"},
+      {"stl_ascii", MeshFormat::stl, false, "stl"}, {"stl_binary", MeshFormat::stl, true, "stl"},
+      {"drc", MeshFormat::drc, true, "drc"},        {"glb", MeshFormat::glb, true, "glb"}};
   return v;
 }
 

@@ -146,7 +146,8 @@ TEST(ChaosAnimateTest, FramesFollowTheMapAndSurviveTheFramesFormat) {
 TEST(ChaosMeasuresTest, HausdorffMatchesBruteForce) {
   const Mesh m = chaos::float32_copy(read_mesh(test::sample("elephant.off")));
   const Mesh c = chaos::encrypt(m, "k");
-  std::vector<Vec3> a(m.positions.begin(), m.positions.begin() + 700), b(c.positions.begin(), c.positions.begin() + 900);
+  std::vector<Vec3> a(m.positions.begin(), m.positions.begin() + 700),
+      b(c.positions.begin(), c.positions.begin() + 900);
   auto directed = [](const std::vector<Vec3>& x, const std::vector<Vec3>& y) {
     double worst = 0;
     for (const Vec3& p : x) {
@@ -212,7 +213,8 @@ TEST(ChaosEncryptTest, SurvivesBinaryPlyAndKeepsSignedZerosAndDenormals) {
   const Mesh back = chaos::decrypt(read_mesh(dir / "cipher.ply"), "k");
   EXPECT_TRUE(bit_equal(back.positions, chaos::float32_copy(m).positions));
   write_mesh(cipher, dir / "cipher.obj");
-  EXPECT_TRUE(bit_equal(chaos::decrypt(read_mesh(dir / "cipher.obj"), "k").positions, chaos::float32_copy(m).positions));
+  EXPECT_TRUE(
+      bit_equal(chaos::decrypt(read_mesh(dir / "cipher.obj"), "k").positions, chaos::float32_copy(m).positions));
   EXPECT_TRUE(std::signbit(back.positions[0].x));
   EXPECT_EQ(back.faces, m.faces);
 }
@@ -359,8 +361,8 @@ TEST(ChaosEmbedTest, MessageLongerThanTheCapacityIsRefused) {
 
 TEST(ChaosEmbedTest, RegisteredPairReturnsTheMessageAsText) {
   const Mesh m = read_mesh(test::sample("bunny00.off"));
-  const AlgorithmResult e =
-      run_algorithm("chaos_embed", m, {{"key", std::string("k")}, {"message", std::string("hello, mesh")}, {"bits", 2LL}});
+  const AlgorithmResult e = run_algorithm(
+      "chaos_embed", m, {{"key", std::string("k")}, {"message", std::string("hello, mesh")}, {"bits", 2LL}});
   const Metrics& x = artifact<Metrics>(e, "metrics");
   EXPECT_EQ(x.at("capacity_bits_per_vertex"), 6);
   EXPECT_LE(x.at("max_displacement_relative"), x.at("bound_displacement_relative"));
@@ -369,14 +371,16 @@ TEST(ChaosEmbedTest, RegisteredPairReturnsTheMessageAsText) {
   EXPECT_EQ(artifact<Text>(r, "message").bytes, "hello, mesh");
   EXPECT_THROW(run_algorithm("chaos_extract", artifact<Mesh>(e, "mesh"), {{"key", std::string("K")}}), InvalidInput);
   // A file's bytes, as base64.
-  const AlgorithmResult b = run_algorithm("chaos_embed", m,
-                                {{"key", std::string("k")}, {"message", std::string("AP8BaGk=")},
-                                 {"encoding", std::string("base64")}});
+  const AlgorithmResult b = run_algorithm(
+      "chaos_embed", m,
+      {{"key", std::string("k")}, {"message", std::string("AP8BaGk=")}, {"encoding", std::string("base64")}});
   const AlgorithmResult rb = run_algorithm("chaos_extract", artifact<Mesh>(b, "mesh"), {{"key", std::string("k")}});
   EXPECT_EQ(artifact<Text>(rb, "message").bytes, std::string("\x00\xff\x01hi", 5));
-  EXPECT_THROW(run_algorithm("chaos_embed", m, {{"key", std::string("k")}, {"message", std::string("not*base64")},
-                                      {"encoding", std::string("base64")}}),
-               InvalidInput);
+  EXPECT_THROW(
+      run_algorithm(
+          "chaos_embed", m,
+          {{"key", std::string("k")}, {"message", std::string("not*base64")}, {"encoding", std::string("base64")}}),
+      InvalidInput);
 }
 
 }  // namespace

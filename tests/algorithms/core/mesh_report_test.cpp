@@ -264,7 +264,10 @@ TEST(MeshReportTest, TwoCubesSharingACorner) {
   Mesh m = a;
   std::vector<Index> id(8);
   for (Index v = 0; v < 8; ++v) {
-    if (v == 0) { id[v] = 7; continue; }  // b's (1,1,1) is a's vertex 7
+    if (v == 0) {
+      id[v] = 7;
+      continue;
+    }  // b's (1,1,1) is a's vertex 7
     id[v] = Index(m.positions.size());
     m.positions.push_back(b.positions[v]);
   }
@@ -305,7 +308,7 @@ TEST(MeshReportTest, DegenerateThresholdScalesWithSize) {
 
 TEST(MeshReportTest, DuplicateFaces) {
   Mesh m = box();
-  m.faces.push_back(m.faces[0]);                                // the same
+  m.faces.push_back(m.faces[0]);                                     // the same
   m.faces.push_back({m.faces[5][2], m.faces[5][0], m.faces[5][1]});  // rotated
   m.faces.push_back({m.faces[7][0], m.faces[7][2], m.faces[7][1]});  // reversed
   const MeshReport r = mesh_report(m);

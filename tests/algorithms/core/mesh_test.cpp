@@ -27,9 +27,7 @@ constexpr Index kNone = std::numeric_limits<Index>::max();
 
 using test::merged;
 
-double angle_between(Vec3 a, Vec3 b) {
-  return std::atan2(norm(cross(a, b)), dot(a, b));
-}
+double angle_between(Vec3 a, Vec3 b) { return std::atan2(norm(cross(a, b)), dot(a, b)); }
 
 // Vertex id of grid(n) point (i, j).
 Index gid(int n, int i, int j) { return Index(j * (n + 1) + i); }
@@ -169,12 +167,12 @@ TEST(MeshTest, VertexFacesOnGrid) {
   const Adjacency vf = vertex_faces(m);
   ASSERT_EQ(vf.size(), m.num_vertices());
   EXPECT_EQ(vf.items.size(), 3 * m.num_faces());
-  EXPECT_EQ(vf.degree(gid(n, 0, 0)), 2u);   // both triangles of the corner square
+  EXPECT_EQ(vf.degree(gid(n, 0, 0)), 2u);  // both triangles of the corner square
   EXPECT_EQ(vf.degree(gid(n, n, 0)), 1u);
   EXPECT_EQ(vf.degree(gid(n, 0, n)), 1u);
   EXPECT_EQ(vf.degree(gid(n, n, n)), 2u);
-  EXPECT_EQ(vf.degree(gid(n, 2, 0)), 3u);   // bottom side
-  EXPECT_EQ(vf.degree(gid(n, 0, 2)), 3u);   // left side
+  EXPECT_EQ(vf.degree(gid(n, 2, 0)), 3u);  // bottom side
+  EXPECT_EQ(vf.degree(gid(n, 0, 2)), 3u);  // left side
   for (int j = 1; j < n; ++j)
     for (int i = 1; i < n; ++i) EXPECT_EQ(vf.degree(gid(n, i, j)), 6u) << i << "," << j;
   // Each listed face really uses the vertex, in increasing face order.
@@ -295,8 +293,8 @@ TEST(MeshTest, EdgeTopologySkipsCollapsedSides) {
   m.faces = {{0, 1, 2}, {1, 1, 2}};
   const EdgeTopology topo = edge_topology(m);
   EXPECT_EQ(topo.edges.size(), 3u);
-  EXPECT_EQ(topo.face_edges[1][0], kNone);  // side 1-1
-  ASSERT_NE(topo.face_edges[1][1], kNone);  // side 1-2, shared with face 0
+  EXPECT_EQ(topo.face_edges[1][0], kNone);                       // side 1-1
+  ASSERT_NE(topo.face_edges[1][1], kNone);                       // side 1-2, shared with face 0
   EXPECT_EQ(topo.edge_faces.degree(topo.face_edges[1][1]), 3u);  // face 0 once, face 1 twice
   EXPECT_EQ(topo.face_edges[1][1], topo.face_edges[1][2]);
   EXPECT_EQ(topo.face_edges[1][1], topo.face_edges[0][1]);
@@ -456,8 +454,7 @@ TEST(MeshTest, SubdivideMidpointBox) {
   // Old vertices keep their place; new ones are edge midpoints.
   for (std::size_t v = 0; v < m.num_vertices(); ++v) EXPECT_EQ(s.positions[v], m.positions[v]);
   for (std::size_t e = 0; e < topo.edges.size(); ++e)
-    EXPECT_EQ(s.positions[m.num_vertices() + e],
-              (m.positions[topo.edges[e][0]] + m.positions[topo.edges[e][1]]) * 0.5);
+    EXPECT_EQ(s.positions[m.num_vertices() + e], (m.positions[topo.edges[e][0]] + m.positions[topo.edges[e][1]]) * 0.5);
   const MeshReport before = mesh_report(m), after = mesh_report(s);
   EXPECT_NEAR(after.area, 6.0, 1e-12);
   EXPECT_TRUE(after.closed);

@@ -164,8 +164,8 @@ TEST(SkeletonTest, BranchesOfY) {
     got.push_back(path_edges(b));
   }
   std::sort(got.begin(), got.end());
-  std::vector<std::vector<std::array<Index, 2>>> want = {
-      path_edges({0, 1, 2}), path_edges({0, 3, 4}), path_edges({0, 5, 6})};
+  std::vector<std::vector<std::array<Index, 2>>> want = {path_edges({0, 1, 2}), path_edges({0, 3, 4}),
+                                                         path_edges({0, 5, 6})};
   std::sort(want.begin(), want.end());
   EXPECT_EQ(got, want);
 }

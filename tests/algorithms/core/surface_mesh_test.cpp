@@ -162,9 +162,7 @@ TEST(SurfaceMeshTest, FromSurfaceMeshSkipsRemovedElements) {
       }
     // Compare up to rotation of each triangle: rotate so the smallest point comes first.
     auto canon = [](std::vector<std::array<Vec3, 3>>& tris) {
-      auto less = [](const Vec3& a, const Vec3& b) {
-        return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
-      };
+      auto less = [](const Vec3& a, const Vec3& b) { return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z); };
       for (auto& t : tris) {
         while (less(t[1], t[0]) || less(t[2], t[0])) std::rotate(t.begin(), t.begin() + 1, t.end());
       }

@@ -83,8 +83,8 @@ TEST(VoxelGridTest, LocateAndCenter) {
   for (int k = 0; k < 10; k += 3)
     for (int j = 0; j < 10; j += 2)
       for (int i = 0; i < 10; ++i) EXPECT_EQ(g.locate(g.center({i, j, k})), (VoxelIndex{i, j, k}));
-  EXPECT_EQ(g.locate({-1, 2, 0.5}), (VoxelIndex{0, 0, 0}));         // the origin corner is inside voxel 0
-  EXPECT_EQ(g.locate({-0.75, 2.25, 0.75}), (VoxelIndex{1, 1, 1}));  // a lower corner belongs to its voxel
+  EXPECT_EQ(g.locate({-1, 2, 0.5}), (VoxelIndex{0, 0, 0}));          // the origin corner is inside voxel 0
+  EXPECT_EQ(g.locate({-0.75, 2.25, 0.75}), (VoxelIndex{1, 1, 1}));   // a lower corner belongs to its voxel
   EXPECT_EQ(g.locate({-1.01, 1.9, 0.4}), (VoxelIndex{-1, -1, -1}));  // outside: floor, not truncation
   EXPECT_FALSE(g.contains(g.locate({-1.01, 2.1, 0.6})));
   // Far away or NaN: some index outside the grid, never undefined behaviour.
@@ -159,8 +159,7 @@ TEST(VoxelGridTest, Offsets) {
   for (const auto& o : all) s26.insert({o.i, o.j, o.k});
   EXPECT_EQ(s26.size(), 26u);
   for (const auto& o : eighteen) EXPECT_TRUE(s26.count({o.i, o.j, o.k}));
-  for (const auto& o : six)
-    EXPECT_TRUE(std::find(eighteen.begin(), eighteen.end(), o) != eighteen.end());
+  for (const auto& o : six) EXPECT_TRUE(std::find(eighteen.begin(), eighteen.end(), o) != eighteen.end());
 }
 
 TEST(VoxelGridTest, ForEachNeighborClipsToGrid) {

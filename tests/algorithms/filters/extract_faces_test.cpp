@@ -51,19 +51,25 @@ TEST(SelectionParam, FromJsonArraysOnly) {
   const Algorithm& a = find_algorithm("extract_faces");
   const auto v = protocol::params_from_json(a, nlohmann::json::parse(R"({"faces": [5, 0, 5]})"));
   EXPECT_EQ(std::get<Ids>(v.at("faces")), (Ids{0, 5}));
-  EXPECT_NE(invalid_input_message([&] { protocol::params_from_json(a, nlohmann::json::parse(R"({"faces": [1, -2]})")); })
-                .find("parameter 'faces': ids must be non-negative integers, got -2"),
+  EXPECT_NE(invalid_input_message([&] {
+              protocol::params_from_json(a, nlohmann::json::parse(R"({"faces": [1, -2]})"));
+            }).find("parameter 'faces': ids must be non-negative integers, got -2"),
             std::string::npos);
-  EXPECT_NE(invalid_input_message([&] { protocol::params_from_json(a, nlohmann::json::parse(R"({"faces": 3})")); })
-                .find("parameter 'faces': must be a list of face ids"),
+  EXPECT_NE(invalid_input_message([&] {
+              protocol::params_from_json(a, nlohmann::json::parse(R"({"faces": 3})"));
+            }).find("parameter 'faces': must be a list of face ids"),
             std::string::npos);
 }
 
 TEST(SelectionParam, IdsOutOfRangeAreRefusedNamingTheId) {
   const Mesh cube = test::box();  // 12 faces, 8 vertices
-  EXPECT_EQ(invalid_input_message([&] { run_algorithm("extract_faces", cube, {{"faces", Ids{0, 12}}}); }),
+  EXPECT_EQ(invalid_input_message([&] {
+              run_algorithm("extract_faces", cube, {{"faces", Ids{0, 12}}});
+            }),
             "parameter 'faces': face id 12 is out of range (the mesh has 12 faces)");
-  EXPECT_EQ(invalid_input_message([&] { check_selections(find_algorithm("extract_faces").params, {{"faces", Ids{40}}}, 8, 12); }),
+  EXPECT_EQ(invalid_input_message([&] {
+              check_selections(find_algorithm("extract_faces").params, {{"faces", Ids{40}}}, 8, 12);
+            }),
             "parameter 'faces': face id 40 is out of range (the mesh has 12 faces)");
   EXPECT_EQ(invalid_input_message([&] { run_algorithm("extract_faces", cube, {}); }),
             "parameter 'faces': select at least one face");

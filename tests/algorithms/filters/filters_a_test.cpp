@@ -119,9 +119,8 @@ TEST(Normals, SphereNormalsPointOutward) {
 TEST(Subdivide, LoopOnBoxQuadruplesFacesAndStaysClosed) {
   const Mesh b = test::box();
   for (int it = 1; it <= 3; ++it) {
-    const Mesh out =
-        artifact<Mesh>(run_algorithm("subdivide", b, {{"method", std::string("loop")}, {"iterations", (long long)it}}),
-                       "mesh");
+    const Mesh out = artifact<Mesh>(
+        run_algorithm("subdivide", b, {{"method", std::string("loop")}, {"iterations", (long long)it}}), "mesh");
     EXPECT_EQ(out.num_faces(), b.num_faces() * std::size_t(std::pow(4, it)));
     EXPECT_TRUE(closed(out));
   }
@@ -132,21 +131,25 @@ TEST(Subdivide, CatmullClarkAndSqrt3) {
   const Mesh cc = artifact<Mesh>(run_algorithm("subdivide", b, {{"method", std::string("catmull_clark")}}), "mesh");
   EXPECT_EQ(cc.num_faces(), 12u * 3 * 2);
   EXPECT_TRUE(closed(cc));
-  const Mesh s3 = artifact<Mesh>(
-      run_algorithm("subdivide", b, {{"method", std::string("sqrt3")}, {"iterations", 2LL}}), "mesh");
+  const Mesh s3 =
+      artifact<Mesh>(run_algorithm("subdivide", b, {{"method", std::string("sqrt3")}, {"iterations", 2LL}}), "mesh");
   EXPECT_EQ(s3.num_faces(), 12u * 9);
   EXPECT_TRUE(closed(s3));
 }
 
 TEST(Subdivide, BadInputIsRefused) {
-  EXPECT_NE(invalid_input_message([] { run_algorithm("subdivide", fin()); })
-                .find("1 faces could not be placed in a halfedge structure"),
+  EXPECT_NE(invalid_input_message([] {
+              run_algorithm("subdivide", fin());
+            }).find("1 faces could not be placed in a halfedge structure"),
             std::string::npos);
-  EXPECT_NE(invalid_input_message([] { run_algorithm("subdivide", test::box(), {{"iterations", 6LL}}); })
-                .find("iterations"),
+  EXPECT_NE(invalid_input_message([] {
+              run_algorithm("subdivide", test::box(), {{"iterations", 6LL}});
+            }).find("iterations"),
             std::string::npos);
   const Mesh big = test::uv_sphere(1.0, 200, 400);  // ~160k faces, x4^5 > the limit
-  EXPECT_NE(invalid_input_message([&] { run_algorithm("subdivide", big, {{"iterations", 5LL}}); }).find("limit"),
+  EXPECT_NE(invalid_input_message([&] {
+              run_algorithm("subdivide", big, {{"iterations", 5LL}});
+            }).find("limit"),
             std::string::npos);
 }
 
@@ -206,8 +209,7 @@ TEST(SamplePoints, CountAndPointsOnTheSurface) {
 TEST(SamplePoints, NoFacesIsRefused) {
   Mesh points;
   points.positions = {{0, 0, 0}, {1, 0, 0}};
-  EXPECT_NE(invalid_input_message([&] { run_algorithm("sample_points", points); }).find("no faces"),
-            std::string::npos);
+  EXPECT_NE(invalid_input_message([&] { run_algorithm("sample_points", points); }).find("no faces"), std::string::npos);
 }
 
 TEST(Normals, NonManifoldFacesAreAWarning) {

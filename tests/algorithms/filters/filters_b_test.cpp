@@ -111,7 +111,8 @@ TEST(SmoothTest, MeanCurvatureFlowReducesRadiusVariance) {
 
 TEST(SmoothTest, AngleSmoothingKeepsAClosedMesh) {
   const Mesh noisy = noisy_sphere();
-  const Mesh out = mesh_of(run_algorithm("smooth", noisy, {{"method", std::string("angle_and_area")}, {"iterations", 2LL}}));
+  const Mesh out =
+      mesh_of(run_algorithm("smooth", noisy, {{"method", std::string("angle_and_area")}, {"iterations", 2LL}}));
   EXPECT_EQ(out.num_vertices(), noisy.num_vertices());
   EXPECT_TRUE(mesh_report(out).closed);
 }
@@ -131,7 +132,8 @@ TEST(FillHolesTest, ClosesTheElephant) {
 
 TEST(FillHolesTest, TriangulateModeAndSizeLimit) {
   const Mesh g = test::grid(4);  // one hole of 16 edges: the grid's border
-  const MeshReport filled = mesh_report(mesh_of(run_algorithm("fill_holes", g, {{"mode", std::string("triangulate")}})));
+  const MeshReport filled =
+      mesh_report(mesh_of(run_algorithm("fill_holes", g, {{"mode", std::string("triangulate")}})));
   EXPECT_EQ(filled.boundary_loops, 0u);
   const AlgorithmResult r = run_algorithm("fill_holes", g, {{"max_hole_edges", 10LL}});
   EXPECT_EQ(mesh_report(mesh_of(r)).boundary_loops, 1u);

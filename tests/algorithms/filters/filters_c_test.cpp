@@ -71,12 +71,12 @@ TEST(RepairTest, BowtieBecomesManifold) {
 TEST(RepairTest, DuplicateAndDegenerateFacesAreRemoved) {
   Mesh in = test::box();
   const std::size_t faces = in.num_faces();
-  in.faces.push_back(in.faces[0]);                             // the same face again
+  in.faces.push_back(in.faces[0]);                                       // the same face again
   in.faces.push_back({in.faces[1][1], in.faces[1][2], in.faces[1][0]});  // rotated copy
-  in.faces.push_back({0, 0, 1});                               // a repeated vertex
-  in.positions.push_back({0.5, 0, 0});                         // collinear with 0 and 1
-  in.faces.push_back({0, 1, Index(in.positions.size() - 1)});  // zero area
-  in.positions.push_back({5, 5, 5});                           // used by no face
+  in.faces.push_back({0, 0, 1});                                         // a repeated vertex
+  in.positions.push_back({0.5, 0, 0});                                   // collinear with 0 and 1
+  in.faces.push_back({0, 1, Index(in.positions.size() - 1)});            // zero area
+  in.positions.push_back({5, 5, 5});                                     // used by no face
   ASSERT_GT(mesh_report(in).duplicate_faces + mesh_report(in).degenerate_faces, 0u);
   const AlgorithmResult r = run_algorithm("repair", in);
   const Mesh& out = artifact<Mesh>(r, "mesh");
@@ -156,8 +156,7 @@ TEST(GeodesicDistanceTest, SphereFromNorthPoleMatchesGreatCircle) {
 TEST(GeodesicDistanceTest, TwoSourcesTakeTheNearer) {
   const Mesh sphere = test::uv_sphere(1.0, 32, 64);
   const Index south = Index(sphere.num_vertices() - 1);
-  const AlgorithmResult r =
-      run_algorithm("geodesic_distance", sphere, {{"sources", "0, " + std::to_string(south)}});
+  const AlgorithmResult r = run_algorithm("geodesic_distance", sphere, {{"sources", "0, " + std::to_string(south)}});
   const ScalarField& f = artifact<ScalarField>(r, "distance");
   EXPECT_NEAR(f.values[0], 0.0, 0.02);
   EXPECT_NEAR(f.values[south], 0.0, 0.02);

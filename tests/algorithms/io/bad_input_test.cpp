@@ -224,7 +224,8 @@ TEST(BadInput, NonFiniteCoordinatesInTextFormats) {
   // last, an exponent of INT64_MAX, overflowed the exponent's sum (found by
   // fuzz_stl: tests/fuzz/corpus/stl/regression-exponent-overflow) and read as 0.
   const Mesh m = box();
-  for (const std::string bad : {"nan", "inf", "-inf", "1e400", "-1e400", "NaN", "3223678218291318148E9223372036854775807"}) {
+  for (const std::string bad :
+       {"nan", "inf", "-inf", "1e400", "-1e400", "NaN", "3223678218291318148E9223372036854775807"}) {
     SCOPED_TRACE(bad);
     {
       const std::string text = encode(m, variant("off"));
@@ -332,7 +333,8 @@ TEST(BadInput, IndexOutOfRangeNamesTheFaceAndTheIndex) {
     // tests/fuzz/corpus/ply/regression-index-1e75).
     for (const std::string idx : {"8", "-1", "1e+75"}) {
       SCOPED_TRACE("ply ascii " + idx);
-      const ParseError e = parse_error(put("index", variant("ply_ascii"), replace_line(text, line, "3 1 " + idx + " 2")));
+      const ParseError e =
+          parse_error(put("index", variant("ply_ascii"), replace_line(text, line, "3 1 " + idx + " 2")));
       EXPECT_EQ(e.line(), line) << e.what();
       EXPECT_NE(std::string(e.what()).find("face 3 refers to vertex " + idx), std::string::npos) << e.what();
     }
@@ -369,11 +371,13 @@ TEST(BadInput, LyingHeaderCountsAreRefusedQuicklyWithoutAllocating) {
        std::nullopt},
       {"ply_1e12", "ply_ascii",
        "ply\nformat ascii 1.0\nelement vertex 1000000000000\nproperty float x\nproperty float y\nproperty float z\n"
-       "element face 1\nproperty list uchar int vertex_indices\nend_header\n" + body,
+       "element face 1\nproperty list uchar int vertex_indices\nend_header\n" +
+           body,
        "the header claims 1000000000000 vertex elements", 9, std::nullopt},
       {"ply_1e12", "ply_binary",
        "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000000\nproperty float x\nproperty float y\n"
-       "property float z\nend_header\n" + std::string(36, '\0'),
+       "property float z\nend_header\n" +
+           std::string(36, '\0'),
        "the header claims 1000000000000 vertex elements", 7, std::nullopt},
       {"ply_faces", "ply_binary",
        "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
@@ -384,7 +388,8 @@ TEST(BadInput, LyingHeaderCountsAreRefusedQuicklyWithoutAllocating) {
        "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
        "property float z\nelement junk 1000000000000\nend_header\n",
        "", std::nullopt, std::nullopt},
-      {"stl_4e9", "stl_binary", [] {
+      {"stl_4e9", "stl_binary",
+       [] {
          std::string s(84 + 50, '\0');
          const std::uint32_t n = 4000000000u;
          std::memcpy(s.data() + 80, &n, 4);
@@ -408,8 +413,8 @@ TEST(BadInput, LyingHeaderCountsAreRefusedQuicklyWithoutAllocating) {
         "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
     cases.push_back({"ply_list_1e30", "ply_ascii", ply + "1e30 0 1 2\n", "a list claims", 13, std::nullopt});
     cases.push_back({"ply_list_inf", "ply_ascii", ply + "inf 0 1 2\n", "list", 13, std::nullopt});
-    cases.push_back({"ply_list_2e19", "ply_ascii", ply + "20000000000000000000 0 1 2\n", "a list claims", 13,
-                     std::nullopt});
+    cases.push_back(
+        {"ply_list_2e19", "ply_ascii", ply + "20000000000000000000 0 1 2\n", "a list claims", 13, std::nullopt});
   }
   for (const Case& c : cases) {
     SCOPED_TRACE(c.tag + " " + c.label);
@@ -443,7 +448,8 @@ TEST(BadInput, LyingDracoCountsAreRefusedBeforeDracoAllocates) {
     std::string bytes, says;
   };
   const std::vector<Case> cases = {
-      {"faces", test::draco_claiming(1400000000), "the Draco header claims 1400000000 faces, but 33 bytes cannot hold more"},
+      {"faces", test::draco_claiming(1400000000),
+       "the Draco header claims 1400000000 faces, but 33 bytes cannot hold more"},
       {"vertices", test::draco_claiming(1000, 4000000), "claims 4000000 vertices for 1000 faces"},
   };
   for (const Case& c : cases) {
@@ -469,7 +475,8 @@ TEST(BadInput, DracoAttributesThatAreNotNumbersAreRefused) {
   const fs::path p = dir() / "bool_positions.drc";
   test::write_text(p, bytes);
   const ParseError e = parse_error(p);
-  EXPECT_NE(std::string(e.what()).find("the Draco positions are of data type 11, not numbers"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("the Draco positions are of data type 11, not numbers"), std::string::npos)
+      << e.what();
 }
 
 // The bound is 1024 faces a byte of the stream (draco_io.cpp): a regular
@@ -494,8 +501,9 @@ TEST(BadInput, TheDensestHonestDracoStreamIsUnderTheBoundAndLoads) {
 // array nested 200,000 deep crashed the reader's error message.
 TEST(BadInput, DeeplyNestedGltfJsonIsRefusedNotACrash) {
   const std::size_t depth = 200000;
-  const std::string doc = R"({"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":)" +
-                          std::string(depth, '[') + std::string(depth, ']') + "}]}]}";
+  const std::string doc =
+      R"({"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":)" +
+      std::string(depth, '[') + std::string(depth, ']') + "}]}]}";
   const fs::path p = dir() / "deep.gltf";
   test::write_text(p, doc);
   const ParseError e = parse_error(p);

@@ -37,7 +37,8 @@ TEST(Materials, ParsesMtl) {
 }
 
 TEST(Materials, CountsFacesPerUsemtl) {
-  const auto u = obj_material_use("mtllib a.mtl b.mtl\nv 0 0 0\nf 1 1 1\nusemtl x\nf 1 1 1\nf 1 1 1\n  usemtl y \nf 1 1 1\nusemtl x\nf 1 1 1\n");
+  const auto u = obj_material_use(
+      "mtllib a.mtl b.mtl\nv 0 0 0\nf 1 1 1\nusemtl x\nf 1 1 1\nf 1 1 1\n  usemtl y \nf 1 1 1\nusemtl x\nf 1 1 1\n");
   EXPECT_EQ(u.libraries, (std::vector<std::string>{"a.mtl", "b.mtl"}));
   EXPECT_EQ(u.faces.at(""), 1u);
   EXPECT_EQ(u.faces.at("x"), 3u);
@@ -48,8 +49,9 @@ TEST(Materials, CountsFacesPerUsemtl) {
 
 TEST(Materials, PolygonsCountAsTheirTriangles) {
   // As read_obj fans them: a quad is two triangles, a pentagon three; a comment ends the corners.
-  const std::string obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv -1 1 0\nusemtl a\nf 1 2 3 4 # a quad\n"
-                          "usemtl unused\nusemtl b\nfo 1/1 2/2 3/3 4/4 5/5\nusemtl a\nf 1 2 3\n";
+  const std::string obj =
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv -1 1 0\nusemtl a\nf 1 2 3 4 # a quad\n"
+      "usemtl unused\nusemtl b\nfo 1/1 2/2 3/3 4/4 5/5\nusemtl a\nf 1 2 3\n";
   const auto u = obj_material_use(obj);
   EXPECT_EQ(u.names, (std::vector<std::string>{"a", "b"})) << "a usemtl without faces is no material";
   EXPECT_EQ(u.face_material, (std::vector<std::uint32_t>{0, 0, 1, 1, 1, 0}));
@@ -59,8 +61,9 @@ TEST(Materials, PolygonsCountAsTheirTriangles) {
 
 TEST(Materials, ObjLinesSplitAtTabsAndCarriageReturnsAsTheReadersSplitThem) {
   // Words are split by io/text_scanner.h's spaces: tabs, \r, \f, \v as well as ' '.
-  const auto u = obj_material_use("mtllib\ta.mtl \t b.mtl\r\n\tusemtl\tx\r\n\tf\t1 2 3\r\n  fo 1\f2\v3 4\r\n"
-                                  "f\r\nf 1 2\nfoo 1 2 3\nf1 2 3\nface 1 2 3\n");
+  const auto u = obj_material_use(
+      "mtllib\ta.mtl \t b.mtl\r\n\tusemtl\tx\r\n\tf\t1 2 3\r\n  fo 1\f2\v3 4\r\n"
+      "f\r\nf 1 2\nfoo 1 2 3\nf1 2 3\nface 1 2 3\n");
   EXPECT_EQ(u.libraries, (std::vector<std::string>{"a.mtl", "b.mtl"}));
   EXPECT_EQ(u.names, (std::vector<std::string>{"x"}));
   EXPECT_EQ(u.face_material, (std::vector<std::uint32_t>{0, 0, 0})) << "a triangle and a quad; the rest are no faces";

@@ -27,7 +27,8 @@ ReadResult ply(const std::string& s) { return read(s, MeshFormat::ply, "t.ply");
 ReadResult stl(const std::string& s, const ReadOptions& o = {}) { return read(s, MeshFormat::stl, "t.stl", o); }
 
 bool has_warning(const ReadResult& r, const std::string& part) {
-  return std::any_of(r.warnings.begin(), r.warnings.end(), [&](const std::string& w) { return w.find(part) != std::string::npos; });
+  return std::any_of(r.warnings.begin(), r.warnings.end(),
+                     [&](const std::string& w) { return w.find(part) != std::string::npos; });
 }
 
 // The ParseError a read throws (a failure if it throws none).
@@ -62,9 +63,9 @@ const std::vector<Vec3> kTri = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
 // OFF
 
 TEST(ReadOff, CommentsAndBlankLinesAnywhere) {
-  const ReadResult r = off(
-      "# a comment before the keyword\n\nOFF # after it\n# counts next\n3 1 0\n\n# vertices\n0 0 0\n1 0 0 # x\n"
-      "0 1 0\n# the face\n3 0 1 2 # done\n");
+  const ReadResult r =
+      off("# a comment before the keyword\n\nOFF # after it\n# counts next\n3 1 0\n\n# vertices\n0 0 0\n1 0 0 # x\n"
+          "0 1 0\n# the face\n3 0 1 2 # done\n");
   EXPECT_EQ(r.mesh.positions, kTri);
   ASSERT_EQ(r.mesh.num_faces(), 1u);
   EXPECT_EQ(r.mesh.faces[0], (Tri{0, 1, 2}));
@@ -101,8 +102,9 @@ TEST(ReadOff, NoffNormalsAndStoffTextureCoordinates) {
   EXPECT_EQ(t.mesh.positions, kTri);
 
   // All prefixes at once, in Geomview's order: normal, colour, texture.
-  const ReadResult all = off("STCNOFF\n3 1 0\n0 0 0 0 0 1 255 0 0 255 0.5 0.5\n1 0 0 0 0 1 0 255 0 255 1 0\n"
-                             "0 1 0 0 0 1 0 0 255 255 0 1\n3 0 1 2\n");
+  const ReadResult all =
+      off("STCNOFF\n3 1 0\n0 0 0 0 0 1 255 0 0 255 0.5 0.5\n1 0 0 0 0 1 0 255 0 255 1 0\n"
+          "0 1 0 0 0 1 0 0 255 255 0 1\n3 0 1 2\n");
   EXPECT_EQ(all.mesh.positions, kTri);
   ASSERT_EQ(all.mesh.colors.size(), 3u);
   EXPECT_EQ(all.mesh.colors[1], (Color{0, 255, 0, 255}));
@@ -172,11 +174,11 @@ TEST(ReadOff, Errors) {
 // OBJ
 
 TEST(ReadObj, VertexTextureNormalTriples) {
-  const ReadResult r = obj(
-      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
-      "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\n"
-      "vn 0 0 1\n"
-      "f 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/5/1\n");
+  const ReadResult r =
+      obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+          "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\n"
+          "vn 0 0 1\n"
+          "f 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/5/1\n");
   ASSERT_EQ(r.mesh.num_faces(), 2u);
   EXPECT_TRUE(r.warnings.empty());
   ASSERT_EQ(r.mesh.uvs.size(), 5u);
@@ -210,10 +212,10 @@ TEST(ReadObj, NegativeIndicesAreRelativeToTheVerticesSoFar) {
 }
 
 TEST(ReadObj, QuadsCommentsGroupsAndMaterialsAreHandled) {
-  const ReadResult r = obj(
-      "# made by hand\nmtllib a.mtl\no thing\ng side\nusemtl red\ns off\n"
-      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0 # a comment after a vertex\n"
-      "f 1 2 3 4\ng other\ns 1\nf 1 3 4 # and after a face\n");
+  const ReadResult r =
+      obj("# made by hand\nmtllib a.mtl\no thing\ng side\nusemtl red\ns off\n"
+          "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0 # a comment after a vertex\n"
+          "f 1 2 3 4\ng other\ns 1\nf 1 3 4 # and after a face\n");
   const std::vector<Tri> want = {{0, 1, 2}, {0, 2, 3}, {0, 2, 3}};
   EXPECT_EQ(r.mesh.faces, want);
   EXPECT_EQ(r.warnings, std::vector<std::string>{"1 polygons were split into triangles"});
@@ -231,14 +233,16 @@ TEST(ReadObj, LinesPointsAndUnknownRecordsAreSkippedWithWarnings) {
 // free-form curve between the polygons.  The polygons are read whole; what
 // holds geometry and is not read is said.
 TEST(ReadObj, GroupsLinesAndFreeFormRecordsMixedIn) {
-  const ReadResult r = obj("g part1\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvp 0.5 0.5\nvp 0.2\nl 1 2\n"
-                           "cstype bspline\ndeg 2\ncurv 0 1 1 2 3\nparm u 0 0 0 1 1 1\nend\ng part2\nf 1 2 3\n"
-                           "g part3\nf 2 4 3\n");
+  const ReadResult r =
+      obj("g part1\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvp 0.5 0.5\nvp 0.2\nl 1 2\n"
+          "cstype bspline\ndeg 2\ncurv 0 1 1 2 3\nparm u 0 0 0 1 1 1\nend\ng part2\nf 1 2 3\n"
+          "g part3\nf 2 4 3\n");
   EXPECT_EQ(r.mesh.num_vertices(), 4u);
   const std::vector<Tri> want = {{0, 1, 2}, {1, 3, 2}};
   EXPECT_EQ(r.mesh.faces, want);
   EXPECT_TRUE(has_warning(r, "1 line records (l) were skipped"));
-  EXPECT_TRUE(has_warning(r, "7 free-form curve and surface records (vp, curv, surf, ...) were skipped: only polygons are read"));
+  EXPECT_TRUE(has_warning(
+      r, "7 free-form curve and surface records (vp, curv, surf, ...) were skipped: only polygons are read"));
   EXPECT_FALSE(has_warning(r, "unknown"));
 }
 
@@ -334,17 +338,18 @@ TEST(ReadPly, FloatColoursAndDiffuseNamesAndAlpha) {
 }
 
 TEST(ReadPly, ExtraElementsAndPropertiesAreSkipped) {
-  const ReadResult r = ply(std::string(kPlyHead) +
-                           "element material 1\nproperty uchar ambient_red\nproperty list uchar float coefficients\n"
-                           "element vertex 3\nproperty float x\nproperty int flags\nproperty float y\nproperty float z\n"
-                           "property list uchar float extra\n"
-                           "element face 1\nproperty uchar kind\nproperty list uchar int vertex_indices\n"
-                           "property list uchar float weights\n"
-                           "element edge 2\nproperty int vertex1\nproperty int vertex2\nend_header\n"
-                           "7 2 0.5 0.25\n"
-                           "0 9 0 0 0\n1 9 0 0 1 5\n0 9 1 0 2 5 6\n"
-                           "4 3 0 1 2 2 1 1\n"
-                           "0 1\n1 2\n");
+  const ReadResult r =
+      ply(std::string(kPlyHead) +
+          "element material 1\nproperty uchar ambient_red\nproperty list uchar float coefficients\n"
+          "element vertex 3\nproperty float x\nproperty int flags\nproperty float y\nproperty float z\n"
+          "property list uchar float extra\n"
+          "element face 1\nproperty uchar kind\nproperty list uchar int vertex_indices\n"
+          "property list uchar float weights\n"
+          "element edge 2\nproperty int vertex1\nproperty int vertex2\nend_header\n"
+          "7 2 0.5 0.25\n"
+          "0 9 0 0 0\n1 9 0 0 1 5\n0 9 1 0 2 5 6\n"
+          "4 3 0 1 2 2 1 1\n"
+          "0 1\n1 2\n");
   EXPECT_EQ(r.mesh.positions, kTri);
   EXPECT_EQ(r.mesh.faces, (std::vector<Tri>{{0, 1, 2}}));
   EXPECT_TRUE(has_warning(r, "skipped 1 'material' elements"));
@@ -384,8 +389,9 @@ TEST(ReadPly, BinaryLittleAndBigEndianReadTheSame) {
     EXPECT_TRUE(has_warning(r, "1 polygons were split into triangles"));
   }
   // Big-endian doubles and ushort counts too.
-  std::string s = "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
-                  "property double z\nelement face 1\nproperty list ushort uint vertex_indices\nend_header\n";
+  std::string s =
+      "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+      "property double z\nelement face 1\nproperty list ushort uint vertex_indices\nend_header\n";
   for (const Vec3& p : kTri) s += be(p.x) + be(p.y) + be(p.z);
   s += be(std::uint16_t(3)) + be(std::uint32_t(2)) + be(std::uint32_t(1)) + be(std::uint32_t(0));
   const ReadResult r = ply(s);
@@ -404,11 +410,12 @@ TEST(ReadPly, AsciiFloatPropertiesAreFloats) {
 }
 
 TEST(ReadPly, MeshLabPerCornerTexcoords) {
-  const ReadResult r = ply(std::string(kPlyHead) +
-                           "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-                           "element face 2\nproperty list uchar int vertex_indices\nproperty list uchar float texcoord\n"
-                           "end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
-                           "3 0 1 2 6 0 0 1 0 1 1\n3 0 2 3 6 0 0 0.5 0.5 0 1\n");
+  const ReadResult r =
+      ply(std::string(kPlyHead) +
+          "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+          "element face 2\nproperty list uchar int vertex_indices\nproperty list uchar float texcoord\n"
+          "end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+          "3 0 1 2 6 0 0 1 0 1 1\n3 0 2 3 6 0 0 0.5 0.5 0 1\n");
   ASSERT_EQ(r.mesh.num_faces(), 2u);
   ASSERT_EQ(r.mesh.uv_faces.size(), 2u);
   ASSERT_EQ(r.mesh.uvs.size(), 6u);
@@ -418,25 +425,28 @@ TEST(ReadPly, MeshLabPerCornerTexcoords) {
   EXPECT_EQ(r.mesh.uvs[t[2]], (Vec2f{0, 1}));
   EXPECT_NO_THROW(r.mesh.validate());
   // Per-vertex s t win over per-corner texcoords.
-  const ReadResult both = ply(std::string(kPlyHead) +
-                              "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                              "property float s\nproperty float t\n"
-                              "element face 1\nproperty list uchar int vertex_indices\nproperty list uchar float texcoord\n"
-                              "end_header\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2 6 9 9 9 9 9 9\n");
+  const ReadResult both =
+      ply(std::string(kPlyHead) +
+          "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+          "property float s\nproperty float t\n"
+          "element face 1\nproperty list uchar int vertex_indices\nproperty list uchar float texcoord\n"
+          "end_header\n0 0 0 0 0\n1 0 0 1 0\n0 1 0 0 1\n3 0 1 2 6 9 9 9 9 9 9\n");
   EXPECT_TRUE(both.mesh.uv_faces.empty());
   EXPECT_EQ(both.mesh.uvs[2], (Vec2f{0, 1}));
   // A texcoord list of the wrong length drops the per-corner UVs with a warning.
-  const ReadResult bad = ply(std::string(kPlyHead) +
-                             "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                             "element face 1\nproperty list uchar int vertex_indices\nproperty list uchar float texcoord\n"
-                             "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 4 0 0 1 0\n");
+  const ReadResult bad =
+      ply(std::string(kPlyHead) +
+          "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+          "element face 1\nproperty list uchar int vertex_indices\nproperty list uchar float texcoord\n"
+          "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 4 0 0 1 0\n");
   EXPECT_FALSE(bad.mesh.has_uvs());
   EXPECT_TRUE(has_warning(bad, "per-corner texture coordinates dropped"));
 }
 
 TEST(ReadPly, PointCloudLoadsWithoutFaces) {
-  const ReadResult r = ply(std::string(kPlyHead) + "element vertex 2\nproperty float x\nproperty float y\n"
-                                                   "property float z\nend_header\n1 2 3\n4 5 6\n");
+  const ReadResult r = ply(std::string(kPlyHead) +
+                           "element vertex 2\nproperty float x\nproperty float y\n"
+                           "property float z\nend_header\n1 2 3\n4 5 6\n");
   EXPECT_EQ(r.mesh.num_vertices(), 2u);
   EXPECT_EQ(r.mesh.num_faces(), 0u);
 }
@@ -447,8 +457,9 @@ TEST(ReadPly, PointCloudLoadsWithoutFaces) {
 // triangles are the strip's definition written out: corner k with the two
 // before it, every other one turned, so all face the same way.
 TEST(ReadPly, TriangleStripsAreReadAsMeshLabReadsThem) {
-  const std::string head = "element vertex 6\nproperty float x\nproperty float y\nproperty float z\n"
-                           "element tristrips 1\nproperty list int int vertex_indices\nend_header\n";
+  const std::string head =
+      "element vertex 6\nproperty float x\nproperty float y\nproperty float z\n"
+      "element tristrips 1\nproperty list int int vertex_indices\nend_header\n";
   const std::string verts = "0 0 0\n1 0 0\n2 0 0\n0 1 0\n1 1 0\n2 1 0\n";
   const std::vector<int> strip = {0, 3, 1, 4, 2, 5, -1, 0, 1, 3, 3, 3, 4, 1, 2};
   std::string ascii = std::string(kPlyHead) + head + verts + std::to_string(strip.size());
@@ -459,10 +470,13 @@ TEST(ReadPly, TriangleStripsAreReadAsMeshLabReadsThem) {
                                  {3, 4, 1}, {1, 4, 2}};                       // its second, after (3 3 3 4)
   EXPECT_EQ(a.mesh.faces, want);
   ASSERT_EQ(a.warnings.size(), 1u);
-  EXPECT_EQ(a.warnings[0], "read 2 triangle strips into triangles (3 triangles with a repeated corner, which only join strips, left out)");
+  EXPECT_EQ(
+      a.warnings[0],
+      "read 2 triangle strips into triangles (3 triangles with a repeated corner, which only join strips, left out)");
   // Binary, with uint indices and a uchar count: the same triangles.
-  std::string bin = "ply\nformat binary_little_endian 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
-                    "property float z\nelement tristrips 1\nproperty list uchar int vertex_indices\nend_header\n";
+  std::string bin =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
+      "property float z\nelement tristrips 1\nproperty list uchar int vertex_indices\nend_header\n";
   for (int v = 0; v < 6; ++v) {
     const float xyz[3] = {float(v % 3), float(v / 3), 0.f};
     bin.append(reinterpret_cast<const char*>(xyz), sizeof xyz);
@@ -474,7 +488,8 @@ TEST(ReadPly, TriangleStripsAreReadAsMeshLabReadsThem) {
   for (std::size_t f = 0; f < 4; ++f) {
     const auto& p = a.mesh.positions;
     const auto& t = a.mesh.faces[f];
-    const double z = (p[t[1]][0] - p[t[0]][0]) * (p[t[2]][1] - p[t[0]][1]) - (p[t[1]][1] - p[t[0]][1]) * (p[t[2]][0] - p[t[0]][0]);
+    const double z =
+        (p[t[1]][0] - p[t[0]][0]) * (p[t[2]][1] - p[t[0]][1]) - (p[t[1]][1] - p[t[0]][1]) * (p[t[2]][0] - p[t[0]][0]);
     EXPECT_LT(z, 0) << "triangle " << f;
   }
   // An index past the vertices names the strip.
@@ -497,10 +512,13 @@ TEST(ReadPly, Errors) {
       {"ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n", "unknown property type 'quad'", 4},
       {"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n1\n", "no x, y and z", 5},
       {"ply\nformat ascii 1.0\nwhatever\nend_header\n", "unknown header line 'whatever'", 3},
-      {"ply\nformat ascii 1.0\n" + f1 + v3 + "end_header\n3 0 1 2\n0 0 0\n1 0 0\n0 1 0\n", "face element comes before", 10},
-      {"ply\nformat ascii 1.0\n" + v3 + "element face 1\nproperty list uchar int corners\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+      {"ply\nformat ascii 1.0\n" + f1 + v3 + "end_header\n3 0 1 2\n0 0 0\n1 0 0\n0 1 0\n", "face element comes before",
+       10},
+      {"ply\nformat ascii 1.0\n" + v3 +
+           "element face 1\nproperty list uchar int corners\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
        "no vertex_indices list", 9},
-      {"ply\nformat ascii 1.0\n" + v3 + f1 + "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "face 0 refers to vertex 3", 13},
+      {"ply\nformat ascii 1.0\n" + v3 + f1 + "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "face 0 refers to vertex 3",
+       13},
       {"ply\nformat ascii 1.0\n" + v3 + f1 + "end_header\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n", "face 0 has 2 corners", 13},
       {"ply\nformat ascii 1.0\n" + v3 + f1 + "end_header\n0 0 0\n1 0 0\n0 1 0\n-1 0 1\n", "a bad list length", 13},
   };
@@ -517,7 +535,8 @@ TEST(ReadPly, Errors) {
   EXPECT_FALSE(e.line().has_value());
   ASSERT_TRUE(e.byte_offset().has_value());
   EXPECT_EQ(*e.byte_offset(), trunc.size() - 13) << e.what();  // after the face's count of 4 (16 bytes needed)
-  EXPECT_NE(std::string(e.what()).find("a list claims 4 items, more than the file holds"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("a list claims 4 items, more than the file holds"), std::string::npos)
+      << e.what();
 }
 
 // ---------------------------------------------------------------------------
@@ -542,8 +561,9 @@ TEST(ReadStl, AsciiWithSeveralSolids) {
 }
 
 TEST(ReadStl, AsciiPolygonFacetsAreSplit) {
-  const std::string s = "solid q\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\n"
-                        "vertex 0 1 0\nendloop\nendfacet\nendsolid q\n";
+  const std::string s =
+      "solid q\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\n"
+      "vertex 0 1 0\nendloop\nendfacet\nendsolid q\n";
   const ReadResult r = stl(s);
   EXPECT_EQ(r.mesh.faces, (std::vector<Tri>{{0, 1, 2}, {0, 2, 3}}));
   EXPECT_TRUE(has_warning(r, "1 polygons were split"));
@@ -598,8 +618,9 @@ TEST(ReadStl, PlusAndMinusZeroWeld) {
 
 TEST(ReadStl, Errors) {
   // Ascii: the line of the problem.
-  const ParseError a = error_of("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\n",
-                                MeshFormat::stl, "bad.stl");
+  const ParseError a =
+      error_of("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\n",
+               MeshFormat::stl, "bad.stl");
   EXPECT_EQ(a.line(), 6u) << a.what();
   EXPECT_NE(std::string(a.what()).find("a facet has 2 vertices"), std::string::npos) << a.what();
   const ParseError b = error_of("solid x\nfacet normal 0 0 1\nbogus\n", MeshFormat::stl, "bad.stl");
@@ -664,7 +685,8 @@ std::string tri_json(const std::string& nodes, const std::string& scene_nodes = 
          R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},)"
          R"({"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}],)"
          R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":6}],)"
-         R"("buffers":[{"byteLength":44)" + buffer + "}]}";
+         R"("buffers":[{"byteLength":44)" +
+         buffer + "}]}";
 }
 
 TEST(ReadGltf, MinimalGlb) {
@@ -674,8 +696,8 @@ TEST(ReadGltf, MinimalGlb) {
 }
 
 TEST(ReadGltf, TextGltfWithAnEmbeddedBuffer) {
-  const std::string json = tri_json(R"([{"mesh":0}])", "[0]",
-                                    R"(,"uri":"data:application/octet-stream;base64,)" + base64(kTriBin) + "\"");
+  const std::string json =
+      tri_json(R"([{"mesh":0}])", "[0]", R"(,"uri":"data:application/octet-stream;base64,)" + base64(kTriBin) + "\"");
   const ReadResult r = read(json, MeshFormat::gltf, "t.gltf");
   EXPECT_EQ(r.mesh.positions, kTri);
   EXPECT_EQ(r.mesh.num_faces(), 1u);
@@ -685,7 +707,8 @@ TEST(ReadGltf, ExternalFilesAreNeverRead) {
   // A buffer naming a file: refused, whatever the file holds.
   const auto d = test::temp_dir("readers_gltf");
   test::write_text(d / "secret.bin", kTriBin);
-  for (const std::string& uri : {(d / "secret.bin").string(), std::string("secret.bin"), std::string("file:///etc/passwd")}) {
+  for (const std::string& uri :
+       {(d / "secret.bin").string(), std::string("secret.bin"), std::string("file:///etc/passwd")}) {
     SCOPED_TRACE(uri);
     const std::string json = tri_json(R"([{"mesh":0}])", "[0]", R"(,"uri":")" + uri + "\"");
     for (MeshFormat f : {MeshFormat::glb, MeshFormat::gltf}) {
@@ -697,8 +720,9 @@ TEST(ReadGltf, ExternalFilesAreNeverRead) {
 
 TEST(ReadGltf, NodeTransformsAndHierarchy) {
   // Node 0 translates by (10, 0, 0) and holds node 1, which scales by 2 and shows the mesh.
-  const ReadResult r = read(glb(tri_json(R"([{"translation":[10,0,0],"children":[1]},{"scale":[2,2,2],"mesh":0}])"), kTriBin),
-                            MeshFormat::glb, "t.glb");
+  const ReadResult r =
+      read(glb(tri_json(R"([{"translation":[10,0,0],"children":[1]},{"scale":[2,2,2],"mesh":0}])"), kTriBin),
+           MeshFormat::glb, "t.glb");
   const std::vector<Vec3> want = {{10, 0, 0}, {12, 0, 0}, {10, 2, 0}};
   EXPECT_EQ(r.mesh.positions, want);
   // A column-major matrix; a 90-degree rotation about z (quaternion x y z w).
@@ -706,8 +730,9 @@ TEST(ReadGltf, NodeTransformsAndHierarchy) {
                             MeshFormat::glb, "t.glb");
   EXPECT_EQ(m.mesh.positions[1], (Vec3{6, 6, 7}));
   const double h = std::sqrt(0.5);
-  const ReadResult q = read(glb(tri_json(R"([{"rotation":[0,0,)" + std::to_string(h) + "," + std::to_string(h) +
-                                         R"(],"mesh":0}])"), kTriBin), MeshFormat::glb, "t.glb");
+  const ReadResult q = read(
+      glb(tri_json(R"([{"rotation":[0,0,)" + std::to_string(h) + "," + std::to_string(h) + R"(],"mesh":0}])"), kTriBin),
+      MeshFormat::glb, "t.glb");
   EXPECT_NEAR(q.mesh.positions[1].x, 0, 1e-6);
   EXPECT_NEAR(q.mesh.positions[1].y, 1, 1e-6);
   // A mirroring scale reverses the winding so that the faces still face out.
@@ -744,7 +769,9 @@ TEST(ReadGltf, SparseAccessorsSubstituteTheirElements) {
   const std::string bin = idx + floats({1, 0, 0, 0, 1, 0}) + floats({5, 5, 5, 5, 5, 5, 5, 5, 5});
   auto doc = [](const std::string& base) {
     return R"({"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
-           R"("accessors":[{)" + base + R"("componentType":5126,"count":3,"type":"VEC3","sparse":{"count":2,)"
+           R"("accessors":[{)" +
+           base +
+           R"("componentType":5126,"count":3,"type":"VEC3","sparse":{"count":2,)"
            R"("indices":{"bufferView":0,"componentType":5123},"values":{"bufferView":1}}}],)"
            R"("bufferViews":[{"buffer":0,"byteLength":4},{"buffer":0,"byteOffset":4,"byteLength":24},)"
            R"({"buffer":0,"byteOffset":28,"byteLength":36}],"buffers":[{"byteLength":64}]})";
@@ -756,8 +783,9 @@ TEST(ReadGltf, SparseAccessorsSubstituteTheirElements) {
   EXPECT_EQ(based.positions, (std::vector<Vec3>{{5, 5, 5}, {1, 0, 0}, {0, 1, 0}}));
   // Indices out of order, or past the elements: refused, naming the index.
   const std::string back = le(std::uint16_t(2)) + le(std::uint16_t(1)) + bin.substr(4);
-  EXPECT_NE(std::string(error_of(glb(doc(""), back), MeshFormat::glb, "o.glb").what()).find("not after the one before it"),
-            std::string::npos);
+  EXPECT_NE(
+      std::string(error_of(glb(doc(""), back), MeshFormat::glb, "o.glb").what()).find("not after the one before it"),
+      std::string::npos);
   const std::string past = le(std::uint16_t(1)) + le(std::uint16_t(3)) + bin.substr(4);
   EXPECT_NE(std::string(error_of(glb(doc(""), past), MeshFormat::glb, "p.glb").what()).find("past the 3 elements"),
             std::string::npos);
@@ -782,10 +810,10 @@ TEST(ReadGltf, DracoCompressedPrimitive) {
       R"("extensionsRequired":["KHR_draco_mesh_compression"],"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
       R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"extensions":{"KHR_draco_mesh_compression":)"
       R"({"bufferView":0,"attributes":{"POSITION":0}}}}]}],)"
-      R"("accessors":[{"componentType":5126,"count":)" + std::to_string(m.num_vertices()) +
-      R"(,"type":"VEC3"},{"componentType":5125,"count":)" + std::to_string(3 * m.num_faces()) +
-      R"(,"type":"SCALAR"}],"bufferViews":[{"buffer":0,"byteLength":)" + std::to_string(drc.size()) +
-      R"(}],"buffers":[{"byteLength":)" + std::to_string(drc.size()) + "}]}";
+      R"("accessors":[{"componentType":5126,"count":)" +
+      std::to_string(m.num_vertices()) + R"(,"type":"VEC3"},{"componentType":5125,"count":)" +
+      std::to_string(3 * m.num_faces()) + R"(,"type":"SCALAR"}],"bufferViews":[{"buffer":0,"byteLength":)" +
+      std::to_string(drc.size()) + R"(}],"buffers":[{"byteLength":)" + std::to_string(drc.size()) + "}]}";
   const ReadResult r = read(glb(json, drc), MeshFormat::glb, "d.glb");
   EXPECT_EQ(r.mesh.num_faces(), m.num_faces());
   EXPECT_EQ(r.mesh.num_vertices(), m.num_vertices());
@@ -859,18 +887,21 @@ TEST(ReadGltf, HostileStructuresAreRefused) {
     nodes += std::string(i ? "," : "") + R"({"mesh":0})";
     roots += std::string(i ? "," : "") + std::to_string(i);
   }
-  const std::string bomb_json =
-      R"({"asset":{"version":"2.0"},"scenes":[{"nodes":)" + roots + R"(]}],"nodes":)" + nodes +
-      R"(],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
-      R"("accessors":[{"bufferView":0,"componentType":5126,"count":3000,"type":"VEC3"}],)"
-      R"("bufferViews":[{"buffer":0,"byteLength":36000}],"buffers":[{"byteLength":36000}]})";
+  const std::string bomb_json = R"({"asset":{"version":"2.0"},"scenes":[{"nodes":)" + roots + R"(]}],"nodes":)" +
+                                nodes +
+                                R"(],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+                                R"("accessors":[{"bufferView":0,"componentType":5126,"count":3000,"type":"VEC3"}],)"
+                                R"("bufferViews":[{"buffer":0,"byteLength":36000}],"buffers":[{"byteLength":36000}]})";
   const ParseError bomb = error_of(glb(bomb_json, std::string(36000, '\0')), MeshFormat::glb, "bomb.glb");
   EXPECT_NE(std::string(bomb.what()).find("instantiates its meshes into over"), std::string::npos) << bomb.what();
   // JSON nested a million deep: refused, without exhausting the stack.
-  const ParseError deep = error_of(glb(std::string(1000000, '[') + std::string(1000000, ']'), ""), MeshFormat::glb, "deep.glb");
-  EXPECT_NE(std::string(deep.what()).find("the JSON nests arrays and objects 1000000 deep"), std::string::npos) << deep.what();
+  const ParseError deep =
+      error_of(glb(std::string(1000000, '[') + std::string(1000000, ']'), ""), MeshFormat::glb, "deep.glb");
+  EXPECT_NE(std::string(deep.what()).find("the JSON nests arrays and objects 1000000 deep"), std::string::npos)
+      << deep.what();
   // Malformed JSON in a text .gltf: the line.
-  const ParseError text = error_of("{\n\"asset\": {\n\"version\": \"2.0\"\n},\n\"meshes\": [ oops ]\n}\n", MeshFormat::gltf, "t.gltf");
+  const ParseError text =
+      error_of("{\n\"asset\": {\n\"version\": \"2.0\"\n},\n\"meshes\": [ oops ]\n}\n", MeshFormat::gltf, "t.gltf");
   EXPECT_EQ(text.line(), 5u) << text.what();
   // The GLB container: version, length, chunk type.
   std::string g = glb(tri_json(ok_nodes), kTriBin);

@@ -65,7 +65,8 @@ std::vector<long> match_points(const std::vector<Vec3>& points, const Mesh& orig
   std::map<std::array<long, 3>, std::vector<Index>> cells;
   const double cell = std::max(tol, 1e-12) * 4;
   auto key = [&](Vec3 p) {
-    return std::array<long, 3>{long(std::floor(p.x / cell)), long(std::floor(p.y / cell)), long(std::floor(p.z / cell))};
+    return std::array<long, 3>{long(std::floor(p.x / cell)), long(std::floor(p.y / cell)),
+                               long(std::floor(p.z / cell))};
   };
   for (Index v = 0; v < original.num_vertices(); ++v) cells[key(original.positions[v])].push_back(v);
   std::vector<long> out(points.size(), -1);
@@ -106,7 +107,8 @@ void expect_same_geometry(const std::vector<Vec3>& points, const std::vector<std
   EXPECT_EQ(unmatched, 0) << "points farther than " << tol << " from every original vertex";
   std::multiset<std::array<long, 3>> want, got;
   for (const Tri& t : original.faces) want.insert(canonical({long(t[0]), long(t[1]), long(t[2])}));
-  for (const auto& t : tris) got.insert(canonical({to[std::size_t(t[0])], to[std::size_t(t[1])], to[std::size_t(t[2])]}));
+  for (const auto& t : tris)
+    got.insert(canonical({to[std::size_t(t[0])], to[std::size_t(t[1])], to[std::size_t(t[2])]}));
   EXPECT_TRUE(want == got) << "the faces differ";
 }
 
@@ -131,7 +133,8 @@ void expect_soup_equals(const Soup& s, const Mesh& m, double rel_tol, const std:
   double worst = 0;
   for (std::size_t v = 0; v < m.num_vertices(); ++v) {
     const Vec3 d = vec(s.points[v]) - m.positions[v];
-    const double scale = std::max({1.0, std::abs(m.positions[v].x), std::abs(m.positions[v].y), std::abs(m.positions[v].z)});
+    const double scale =
+        std::max({1.0, std::abs(m.positions[v].x), std::abs(m.positions[v].y), std::abs(m.positions[v].z)});
     worst = std::max(worst, norm(d) / scale);
   }
   EXPECT_LE(worst, rel_tol);
@@ -240,7 +243,8 @@ TEST(RoundTrip, CgalReadsOurOffObjAndPly) {
 TEST(RoundTrip, CgalReadsOurStl) {
   for (const Shape& shape : shapes()) {
     for (const char* label : {"stl_binary", "stl_ascii"}) {
-      const Variant& v = *std::find_if(variants().begin(), variants().end(), [&](const Variant& x) { return x.label == label; });
+      const Variant& v =
+          *std::find_if(variants().begin(), variants().end(), [&](const Variant& x) { return x.label == label; });
       SCOPED_TRACE(shape.name + " as " + label);
       const fs::path p = write(shape.mesh, shape.name, v);
       std::vector<Point3> points;
@@ -362,7 +366,8 @@ TEST(RoundTrip, ColoursSurvive) {
   // CGAL reads the colours of our PLY (binary and ascii) and OFF.
   for (const char* label : {"ply_binary", "ply_ascii"}) {
     SCOPED_TRACE(std::string("CGAL ") + label);
-    const Variant& v = *std::find_if(variants().begin(), variants().end(), [&](const Variant& x) { return x.label == label; });
+    const Variant& v =
+        *std::find_if(variants().begin(), variants().end(), [&](const Variant& x) { return x.label == label; });
     const fs::path p = write(m, "colours_cgal", v);
     std::ifstream is(p, std::ios::binary);
     std::vector<Point3> points;
@@ -379,9 +384,9 @@ TEST(RoundTrip, ColoursSurvive) {
     std::vector<Point3> points;
     std::vector<std::vector<std::size_t>> polygons;
     std::vector<CGAL::IO::Color> vcolors;
-    ASSERT_TRUE(CGAL::IO::read_OFF(p.string(), points, polygons,
-                                   CGAL::parameters::vertex_color_output_iterator(std::back_inserter(vcolors))
-                                       .verbose(false)));
+    ASSERT_TRUE(
+        CGAL::IO::read_OFF(p.string(), points, polygons,
+                           CGAL::parameters::vertex_color_output_iterator(std::back_inserter(vcolors)).verbose(false)));
     ASSERT_EQ(vcolors.size(), 4u);
     for (std::size_t i = 0; i < 4; ++i)
       EXPECT_EQ((std::array<int, 3>{vcolors[i].red(), vcolors[i].green(), vcolors[i].blue()}),
@@ -393,7 +398,8 @@ TEST(RoundTrip, ColoursSurvive) {
 // 0..1 floats by the OFF reader.
 TEST(RoundTrip, DarkColoursSurviveOff) {
   Mesh m = test::box();
-  for (std::size_t i = 0; i < m.num_vertices(); ++i) m.colors.push_back({std::uint8_t(i & 1), std::uint8_t((i >> 1) & 1), 0, 255});
+  for (std::size_t i = 0; i < m.num_vertices(); ++i)
+    m.colors.push_back({std::uint8_t(i & 1), std::uint8_t((i >> 1) & 1), 0, 255});
   const Mesh r = read_mesh_bytes(write_mesh_bytes(m, MeshFormat::off), MeshFormat::off, "dark.off").mesh;
   EXPECT_EQ(r.colors, m.colors);
 }
@@ -404,7 +410,8 @@ TEST(RoundTrip, PerVertexUvsSurvive) {
   Mesh m = test::grid(4);
   for (const Vec3& p : m.positions) m.uvs.push_back({float(p.x / 4.0), float(p.y / 4.0) * 0.7f + 0.1f});
   for (const Variant& v : variants()) {
-    if (v.format == MeshFormat::stl || v.format == MeshFormat::off) continue;  // no UVs in STL; OFF: see readers_test (STOFF)
+    if (v.format == MeshFormat::stl || v.format == MeshFormat::off)
+      continue;  // no UVs in STL; OFF: see readers_test (STOFF)
     SCOPED_TRACE(v.label);
     const ReadResult r = read_mesh_file(write(m, "uvs", v));
     ASSERT_TRUE(r.mesh.has_uvs());
@@ -427,8 +434,7 @@ TEST(RoundTrip, SeparateUvIndicesSurviveObj) {
   Mesh m = test::box();
   // Each face of the cube gets the whole unit square: 4 uvs, per-corner indices.
   m.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  for (std::size_t f = 0; f < m.num_faces(); ++f)
-    m.uv_faces.push_back(f % 2 == 0 ? Tri{0, 1, 2} : Tri{0, 2, 3});
+  for (std::size_t f = 0; f < m.num_faces(); ++f) m.uv_faces.push_back(f % 2 == 0 ? Tri{0, 1, 2} : Tri{0, 2, 3});
   m.normals = {{0, 0, -1}, {0, 0, 1}, {0, -1, 0}, {0, 1, 0}, {-1, 0, 0}, {1, 0, 0}};
   for (std::size_t f = 0; f < m.num_faces(); ++f) {
     const Index n = Index(f / 2);

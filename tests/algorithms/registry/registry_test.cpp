@@ -183,8 +183,10 @@ TEST(ParseParam, ParsesCommandLineText) {
   const Algorithm& a = find_algorithm("centroid_distance");
   EXPECT_EQ(std::get<double>(parse_param(spec_of(a, "exponent"), "2")), 2.0);
   EXPECT_EQ(std::get<double>(parse_param(spec_of(a, "exponent"), "0.5")), 0.5);
-  for (const char* yes : {"true", "1", "yes", "on"}) EXPECT_TRUE(std::get<bool>(parse_param(spec_of(a, "normalize"), yes)));
-  for (const char* no : {"false", "0", "no", "off"}) EXPECT_FALSE(std::get<bool>(parse_param(spec_of(a, "normalize"), no)));
+  for (const char* yes : {"true", "1", "yes", "on"})
+    EXPECT_TRUE(std::get<bool>(parse_param(spec_of(a, "normalize"), yes)));
+  for (const char* no : {"false", "0", "no", "off"})
+    EXPECT_FALSE(std::get<bool>(parse_param(spec_of(a, "normalize"), no)));
 }
 
 TEST(ParseParam, RejectsBadTextNamingParameter) {
@@ -199,8 +201,10 @@ TEST(ParseParam, RejectsBadTextNamingParameter) {
             "parameter 'normalize': must be true or false, got 'maybe'");
   const ParamSpec integer{"rays", ParamType::integer, 25LL, {.min = 1, .max = 100}};
   EXPECT_EQ(std::get<long long>(parse_param(integer, "42")), 42);
-  EXPECT_EQ(invalid_input_message([&] { parse_param(integer, "4.5"); }), "parameter 'rays': must be an integer, got '4.5'");
-  EXPECT_EQ(invalid_input_message([&] { parse_param(integer, "101"); }), "parameter 'rays': 101 is over the maximum 100");
+  EXPECT_EQ(invalid_input_message([&] { parse_param(integer, "4.5"); }),
+            "parameter 'rays': must be an integer, got '4.5'");
+  EXPECT_EQ(invalid_input_message([&] { parse_param(integer, "101"); }),
+            "parameter 'rays': 101 is over the maximum 100");
 }
 
 TEST(RunParams, UnknownNameIsRejectedListingTheKnownOnes) {
@@ -212,10 +216,13 @@ TEST(RunParams, UnknownNameIsRejectedListingTheKnownOnes) {
 }
 
 TEST(RunParams, ValuesAreCheckedWhenRun) {
-  EXPECT_EQ(invalid_input_message([&] { run("centroid_distance", test::box(), {{"exponent", 9LL}}); }),
+  EXPECT_EQ(invalid_input_message([&] {
+              run("centroid_distance", test::box(), {{"exponent", 9LL}});
+            }),
             "parameter 'exponent': 9 is over the maximum 4");
-  EXPECT_NE(invalid_input_message([&] { run("centroid_distance", test::box(), {{"normalize", 2.0}}); })
-                .find("parameter 'normalize'"),
+  EXPECT_NE(invalid_input_message([&] {
+              run("centroid_distance", test::box(), {{"normalize", 2.0}});
+            }).find("parameter 'normalize'"),
             std::string::npos);
 }
 
@@ -268,9 +275,7 @@ TEST(CentroidDistance, NormalizeDividesByTheLargest) {
   for (std::size_t i = 8; i < 16; ++i) EXPECT_NEAR(f.values[i], 1.0, 1e-6);
 }
 
-TEST(CentroidDistance, EmptyMeshIsInvalidInput) {
-  EXPECT_THROW(run("centroid_distance", Mesh{}), InvalidInput);
-}
+TEST(CentroidDistance, EmptyMeshIsInvalidInput) { EXPECT_THROW(run("centroid_distance", Mesh{}), InvalidInput); }
 
 TEST(CentroidDistance, ElephantHasOneValuePerVertex) {
   const Mesh m = read_mesh(test::sample("elephant.off"));
@@ -285,10 +290,12 @@ TEST(CentroidDistance, ElephantHasOneValuePerVertex) {
 TEST(Context, ProgressFractionsStayInRangeAndEndAtOne) {
   std::vector<double> fractions;
   std::vector<std::string> stages;
-  Context ctx([&](double f, std::string_view stage) {
-    fractions.push_back(f);
-    stages.emplace_back(stage);
-  }, nullptr);
+  Context ctx(
+      [&](double f, std::string_view stage) {
+        fractions.push_back(f);
+        stages.emplace_back(stage);
+      },
+      nullptr);
   // Enough vertices for more than one progress report inside the loop.
   Mesh big;
   for (int i = 0; i < 200000; ++i) big.positions.push_back({double(i % 7), double(i % 11), double(i % 13)});
@@ -425,9 +432,13 @@ TEST(OneFileAlgorithm, Runs) {
   const ScalarField y = field_of(r);
   for (std::size_t i = 0; i < box.num_vertices(); ++i) EXPECT_FLOAT_EQ(y.values[i], float(3 * box.positions[i].y));
 
-  EXPECT_EQ(invalid_input_message([&] { run("test_one_file_coordinate", box, {{"axis", std::string("w")}}); }),
+  EXPECT_EQ(invalid_input_message([&] {
+              run("test_one_file_coordinate", box, {{"axis", std::string("w")}});
+            }),
             "parameter 'axis': 'w' is not one of x, y, z");
-  EXPECT_EQ(invalid_input_message([&] { run("test_one_file_coordinate", box, {{"scale", 11LL}}); }),
+  EXPECT_EQ(invalid_input_message([&] {
+              run("test_one_file_coordinate", box, {{"scale", 11LL}});
+            }),
             "parameter 'scale': 11 is over the maximum 10");
 }
 

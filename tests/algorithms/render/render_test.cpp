@@ -65,7 +65,7 @@ struct TriangleTree {
     const auto hit = tree.first_intersection(ray);
     if (!hit) return std::nullopt;
     const K::Point_3* p = boost::get<K::Point_3>(&hit->first);  // CGAL 5.5: a boost::variant
-    if (!p) return std::nullopt;  // along a triangle's plane
+    if (!p) return std::nullopt;                                // along a triangle's plane
     return Vec3{p->x(), p->y(), p->z()};
   }
 };
@@ -260,7 +260,8 @@ TEST(RenderViews, DepthUnprojectsOntoTheSurface) {
 // tree shooting the ray backwards from beyond the mesh; the silhouette and
 // front depth stay those of a plain capture, bit for bit.
 TEST(RenderViews, BackDepthIsWhereEachPixelsRayLeavesTheMesh) {
-  const std::vector<Mesh> meshes = {test::torus(), test::uv_sphere(1.5, 24, 48), read_mesh(test::sample("elephant.off"))};
+  const std::vector<Mesh> meshes = {test::torus(), test::uv_sphere(1.5, 24, 48),
+                                    read_mesh(test::sample("elephant.off"))};
   for (const Mesh& mesh : meshes) {
     const TriangleTree tree(mesh);
     const BBox box = bounding_box(mesh);
@@ -299,9 +300,10 @@ TEST(RenderViews, BackDepthIsWhereEachPixelsRayLeavesTheMesh) {
     EXPECT_GT(n, 1000);
     EXPECT_LT(double(far), 0.01 * double(n)) << far << " of " << n << " pixels' exits more than a pixel from CGAL's";
   }
-  EXPECT_THROW(shared_renderer().capture(test::torus(), {orthographic_view({0, 0, 1}, bounding_box(test::torus()), 32, 32)},
-                                         {.face_ids = true, .back_depth = true}),
-               InvalidInput);
+  EXPECT_THROW(
+      shared_renderer().capture(test::torus(), {orthographic_view({0, 0, 1}, bounding_box(test::torus()), 32, 32)},
+                                {.face_ids = true, .back_depth = true}),
+      InvalidInput);
 }
 
 TEST(RenderViews, FaceIdsAgreeWithAabbTreeRayShooting) {

@@ -69,7 +69,8 @@ TEST(Sdf, SphereWithTheDefaultConeIsTheMeanOfItsChords) {
   const Mesh sphere = test::uv_sphere(r, 64, 128);
   const int n = 25;
   double expected = 0;
-  for (int i = 0; i < n; ++i) expected += 2 * r * std::cos(std::atan(double(i) / n * std::tan(std::numbers::pi / 3))) / n;
+  for (int i = 0; i < n; ++i)
+    expected += 2 * r * std::cos(std::atan(double(i) / n * std::tan(std::numbers::pi / 3))) / n;
   sdf::SdfOptions o;
   o.weights = sdf::Weights::uniform;
   o.outliers = sdf::Outliers::none;
@@ -140,7 +141,11 @@ TEST(Sdf, AlgorithmGivesRawNormalizedAndPerVertexFields) {
   EXPECT_FLOAT_EQ(normalized.range().first, 0.0f);
   EXPECT_FLOAT_EQ(normalized.range().second, 1.0f);
   // The elephant's legs are thinner than its body: the SDF is in the mesh's units.
-  const BBox box = [&] { BBox b; for (const Vec3& p : mesh.positions) b.add(p); return b; }();
+  const BBox box = [&] {
+    BBox b;
+    for (const Vec3& p : mesh.positions) b.add(p);
+    return b;
+  }();
   EXPECT_LT(raw.range().second, box.diagonal());
   EXPECT_GT(raw.range().first, 0.0f);
   const Metrics& m = artifact<Metrics>(res, "metrics");
@@ -152,10 +157,12 @@ TEST(Sdf, AlgorithmGivesRawNormalizedAndPerVertexFields) {
 // (docs/BENCHMARKS.md: elephant 3.54% mean, 12.4% p95; armadillo 1.83%, 6.56%),
 // as fractions of the full SDF's range.
 TEST(SdfFast, TenPercentStaysWithinTheBenchmarksErrorBounds) {
-  for (const auto& [name, mean_bound, p95_bound] : {std::tuple{"elephant.off", 0.04, 0.13}, std::tuple{"armadillo.off", 0.025, 0.075}}) {
+  for (const auto& [name, mean_bound, p95_bound] :
+       {std::tuple{"elephant.off", 0.04, 0.13}, std::tuple{"armadillo.off", 0.025, 0.075}}) {
     const Mesh mesh = read_mesh(test::sample(name));
     for (const char* solver : {"conjugate_gradient", "cholesky"}) {
-      const AlgorithmResult res = run_algorithm("sdf_fast", mesh, {{"fraction", 0.1}, {"compare", true}, {"solver", std::string(solver)}});
+      const AlgorithmResult res =
+          run_algorithm("sdf_fast", mesh, {{"fraction", 0.1}, {"compare", true}, {"solver", std::string(solver)}});
       const Metrics& m = artifact<Metrics>(res, "metrics");
       EXPECT_LE(m.at("mean_error"), mean_bound) << name << " " << solver;
       EXPECT_LE(m.at("p95_error"), p95_bound) << name << " " << solver;

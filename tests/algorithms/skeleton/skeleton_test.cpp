@@ -83,15 +83,18 @@ TEST(SkeletonFiles, EveryFormatRoundTrips) {
 
 TEST(SkeletonFiles, ReadsWhatOtherToolsWrite) {
   // CGAL's polylines: branches share their end points exactly.
-  const Skeleton p = read_skeleton_bytes("3 0 0 0 0 1 0 0 2 0\n2 0 1 0 1 1 0\n", SkeletonFormat::polylines, "cgal.polylines.txt");
+  const Skeleton p =
+      read_skeleton_bytes("3 0 0 0 0 1 0 0 2 0\n2 0 1 0 1 1 0\n", SkeletonFormat::polylines, "cgal.polylines.txt");
   EXPECT_EQ(p.nodes.size(), 4u);
   EXPECT_EQ(p.edges.size(), 3u);
   // The .cg curve graph of the contraction tools.
-  const Skeleton c = read_skeleton_bytes("# D:3 NV:3 NE:2\nv 0 0 0\nv 1 0 0\nv 2 0 0\ne 1 2\ne 2 3\n", SkeletonFormat::cg, "a.cg");
+  const Skeleton c =
+      read_skeleton_bytes("# D:3 NV:3 NE:2\nv 0 0 0\nv 1 0 0\nv 2 0 0\ne 1 2\ne 2 3\n", SkeletonFormat::cg, "a.cg");
   EXPECT_EQ(c.edges.size(), 2u);
   EXPECT_EQ(c.edges[1][1], 2u);
   // OBJ polylines with negative indices, other records ignored.
-  const Skeleton o = read_skeleton_bytes("o s\nv 0 0 0\nv 1 0 0\nv 2 0 0\nl 1 2 -1\nvn 0 0 1\n", SkeletonFormat::obj, "a.obj");
+  const Skeleton o =
+      read_skeleton_bytes("o s\nv 0 0 0\nv 1 0 0\nv 2 0 0\nl 1 2 -1\nvn 0 0 1\n", SkeletonFormat::obj, "a.obj");
   EXPECT_EQ(o.edges.size(), 2u);
 }
 
@@ -104,19 +107,21 @@ TEST(SkeletonFiles, BadFilesNameTheLine) {
     }
     return std::nullopt;
   };
-  EXPECT_EQ(line_of("# D:3\nv 0 0 0\nv 1 0 0\ne 1 3\n", SkeletonFormat::cg), 4u);    // index out of range
-  EXPECT_EQ(line_of("v 0 0 0\nv 1 x 0\n", SkeletonFormat::cg), 2u);                  // not a number
-  EXPECT_EQ(line_of("v 0 0 0\nv 1 0 0\ne 1 1\n", SkeletonFormat::cg), 3u);          // a loop edge
-  EXPECT_EQ(line_of("v 0 0 0\nf 1 2 3\n", SkeletonFormat::cg), 2u);                  // unknown record
+  EXPECT_EQ(line_of("# D:3\nv 0 0 0\nv 1 0 0\ne 1 3\n", SkeletonFormat::cg), 4u);     // index out of range
+  EXPECT_EQ(line_of("v 0 0 0\nv 1 x 0\n", SkeletonFormat::cg), 2u);                   // not a number
+  EXPECT_EQ(line_of("v 0 0 0\nv 1 0 0\ne 1 1\n", SkeletonFormat::cg), 3u);            // a loop edge
+  EXPECT_EQ(line_of("v 0 0 0\nf 1 2 3\n", SkeletonFormat::cg), 2u);                   // unknown record
   EXPECT_EQ(line_of("2 0 0 0 1 1 1\n3 0 0 0 1 1\n", SkeletonFormat::polylines), 2u);  // short polyline
   EXPECT_EQ(line_of("v 0 0 0\nl 1 7\n", SkeletonFormat::obj), 2u);
   EXPECT_EQ(line_of("{\"nodes\": [[0, 0, 0]],\n \"edges\": [[0, 1]\n", SkeletonFormat::json), 3u);  // not JSON
-  EXPECT_THROW(read_skeleton_bytes("{\"nodes\": [[0, 0, 0]], \"edges\": [[0, 4]]}", SkeletonFormat::json, "j"), ParseError);
+  EXPECT_THROW(read_skeleton_bytes("{\"nodes\": [[0, 0, 0]], \"edges\": [[0, 4]]}", SkeletonFormat::json, "j"),
+               ParseError);
   EXPECT_THROW(read_skeleton_bytes("", SkeletonFormat::cg, "empty"), ParseError);
   // A number past a double: nlohmann's out_of_range escaped as another
   // exception (tests/fuzz/corpus/skeleton/regression-number-overflow).
   EXPECT_THROW(read_skeleton_bytes("362006e8618", SkeletonFormat::json, "big"), ParseError);
-  EXPECT_THROW(read_skeleton_bytes("{\"nodes\": [[0, 0, 1e999]], \"edges\": []}", SkeletonFormat::json, "big"), ParseError);
+  EXPECT_THROW(read_skeleton_bytes("{\"nodes\": [[0, 0, 1e999]], \"edges\": []}", SkeletonFormat::json, "big"),
+               ParseError);
   EXPECT_THROW(skeleton_format_from_name("a.stl"), UnsupportedFormat);
 }
 
@@ -172,8 +177,8 @@ TEST(SkeletonMetrics, PruningSpursKeepsTheLimbs) {
   const Index elbow = add({0, 5, 0}), hand = add({0, 10, 0});
   s.edges = {{body, left}, {body, right}, {body, elbow}, {elbow, hand}};
   for (double x : {-1.0, 0.0, 1.0}) s.edges.push_back({hand, add({x, 11, 0})});
-  EXPECT_EQ(endpoints_after_pruning(s, 0), 5u);    // two legs, three fingers
-  EXPECT_EQ(endpoints_after_pruning(s, 2), 3u);    // the fingers go: the arm ends at the hand
+  EXPECT_EQ(endpoints_after_pruning(s, 0), 5u);  // two legs, three fingers
+  EXPECT_EQ(endpoints_after_pruning(s, 2), 3u);  // the fingers go: the arm ends at the hand
   // Legs of 7.07 and fingers go at once; the arm (10) is then a lone path,
   // which has no branch node to be a spur of: it stays, however long.
   EXPECT_EQ(endpoints_after_pruning(s, 7.5), 2u);
@@ -396,13 +401,13 @@ std::vector<Vec3> loop_centres(const Skeleton& s) {
 // each, all three, and so on the same elephant four times finer.
 TEST(SkeletonProjection, LoopsAreTheShapesTunnels) {
   for (const auto& [name, genus] : std::vector<std::pair<const char*, double>>{{"eight.off", 2},
-                                                                              {"man.off", 0},
-                                                                              {"knot.off", 1},
-                                                                              {"torus_quad.off", 1},
-                                                                              {"pinion.off", 1},
-                                                                              {"double-torus-example.off", 2},
-                                                                              {"3torus.off", 3},
-                                                                              {"anchor.off", 4}}) {
+                                                                               {"man.off", 0},
+                                                                               {"knot.off", 1},
+                                                                               {"torus_quad.off", 1},
+                                                                               {"pinion.off", 1},
+                                                                               {"double-torus-example.off", 2},
+                                                                               {"3torus.off", 3},
+                                                                               {"anchor.off", 4}}) {
     const Mesh mesh = read_mesh(test::sample(name));
     ASSERT_EQ(double(mesh_report(mesh).genus.value_or(-1)), genus) << name;
     const AlgorithmResult res = run_algorithm("skeleton_projection", mesh);
@@ -416,7 +421,8 @@ TEST(SkeletonProjection, LoopsAreTheShapesTunnels) {
   ASSERT_EQ(mcf.size(), 3u);
   const double near = 0.06 * bounding_box(elephant).diagonal();
   for (const char* name : {"elephant.off", "refined_elephant.off"}) {
-    const AlgorithmResult res = run_algorithm("skeleton_projection", name == std::string("elephant.off") ? elephant : read_mesh(test::sample(name)));
+    const AlgorithmResult res = run_algorithm(
+        "skeleton_projection", name == std::string("elephant.off") ? elephant : read_mesh(test::sample(name)));
     const std::vector<Vec3> ours = loop_centres(artifact<Skeleton>(res, "skeleton"));
     EXPECT_EQ(ours.size(), 3u) << name;
     std::vector<bool> taken(mcf.size(), false);
@@ -424,8 +430,10 @@ TEST(SkeletonProjection, LoopsAreTheShapesTunnels) {
       std::size_t best = 0;
       for (std::size_t k = 1; k < mcf.size(); ++k)
         if (norm(mcf[k] - c) < norm(mcf[best] - c)) best = k;
-      EXPECT_LT(norm(mcf[best] - c), near) << name << ": a loop around (" << c.x << ", " << c.y << ", " << c.z << ") is no tunnel of MCF's";
-      EXPECT_FALSE(taken[best]) << name << ": two loops around the tunnel at (" << mcf[best].x << ", " << mcf[best].y << ", " << mcf[best].z << ")";
+      EXPECT_LT(norm(mcf[best] - c), near)
+          << name << ": a loop around (" << c.x << ", " << c.y << ", " << c.z << ") is no tunnel of MCF's";
+      EXPECT_FALSE(taken[best]) << name << ": two loops around the tunnel at (" << mcf[best].x << ", " << mcf[best].y
+                                << ", " << mcf[best].z << ")";
       taken[best] = true;
     }
     const Metrics& m = artifact<Metrics>(res, "metrics");

@@ -110,7 +110,8 @@ TEST(VoxelizeTest, PaddingStaysEmpty) {
       if (!r.grid.bytes()[n]) continue;
       const VoxelIndex v = r.grid.unlinear(n);
       ASSERT_TRUE(v.i >= 2 && v.j >= 2 && v.k >= 2 && v.i < d[0] - 2 && v.j < d[1] - 2 && v.k < d[2] - 2)
-          << "resolution " << res << ": voxel " << v.i << " " << v.j << " " << v.k << " of " << d[0] << "x" << d[1] << "x" << d[2];
+          << "resolution " << res << ": voxel " << v.i << " " << v.j << " " << v.k << " of " << d[0] << "x" << d[1]
+          << "x" << d[2];
     }
   }
 }
@@ -184,7 +185,8 @@ TEST(VoxelizeTest, ThinDiagonalPlateHasNoHolesInSurfaceMode) {
   expect_covered_and_connected(fine, vox(fine, 24, VoxelizeMode::surface), "fine sphere", 4);
   // A closed thin slab (thickness 1/50 of a voxel) turned diagonally, in solid mode.
   Mesh slab = test::box({0, 0, 0}, {1, 1, 0.0005});
-  for (Vec3& p : slab.positions) p = Vec3{p.x + 0.3 * p.y + 0.4 * p.z, p.y - 0.5 * p.z + 0.2 * p.x, p.z + 0.6 * p.x + 0.3 * p.y};
+  for (Vec3& p : slab.positions)
+    p = Vec3{p.x + 0.3 * p.y + 0.4 * p.z, p.y - 0.5 * p.z + 0.2 * p.x, p.z + 0.6 * p.x + 0.3 * p.y};
   const VoxelizeResult r = vox(slab, 40, VoxelizeMode::solid);
   expect_covered_and_connected(slab, r, "thin slab, solid");
 }
@@ -265,7 +267,9 @@ TEST(VoxelizeTest, BadInputGivesClearErrors) {
   nan.positions[0].x = NAN;
   EXPECT_NE(error_of([&] { vox(nan, 8, VoxelizeMode::solid); }), "(no InvalidInput thrown)");
   const VoxelizeResult r = vox(box, 8, VoxelizeMode::solid);
-  EXPECT_NE(error_of([&] { slice(r.grid, 2, 10); }).find("slice index 10 is out of range: the grid has 10 voxels along z (0..9)"),
+  EXPECT_NE(error_of([&] {
+              slice(r.grid, 2, 10);
+            }).find("slice index 10 is out of range: the grid has 10 voxels along z (0..9)"),
             std::string::npos);
   EXPECT_NE(error_of([&] { slice(r.grid, 2, -1); }).find("out of range"), std::string::npos);
   EXPECT_NE(error_of([&] { slice(r.grid, 3, 0); }).find("axis"), std::string::npos);
@@ -275,7 +279,9 @@ TEST(VoxelizeTest, BadInputGivesClearErrors) {
   Context ctx;
   EXPECT_NE(error_of([&] { a.run(box, {{"resolution", 0LL}}, ctx); }).find("resolution"), std::string::npos);
   EXPECT_NE(error_of([&] { a.run(box, {{"mode", std::string("hollow")}}, ctx); }).find("mode"), std::string::npos);
-  EXPECT_NE(error_of([&] { a.run(box, {{"resolution", 8000LL}, {"max_memory_mb", 100.0}}, ctx); }).find("GB"),
+  EXPECT_NE(error_of([&] {
+              a.run(box, {{"resolution", 8000LL}, {"max_memory_mb", 100.0}}, ctx);
+            }).find("GB"),
             std::string::npos);
 }
 
@@ -302,7 +308,8 @@ TEST(VoxelizeTest, OpenMeshGetsAWarningWithItsBoundaryLoops) {
 TEST(VoxelizeTest, RegisteredAlgorithmGivesGridAndMetrics) {
   const Algorithm& a = find_algorithm("voxelize");
   Context ctx;
-  const AlgorithmResult r = a.run(test::box({0, 0, 0}, {2, 3, 4}), {{"resolution", 16LL}, {"mode", std::string("surface")}}, ctx);
+  const AlgorithmResult r =
+      a.run(test::box({0, 0, 0}, {2, 3, 4}), {{"resolution", 16LL}, {"mode", std::string("surface")}}, ctx);
   ASSERT_EQ(r.artifacts.size(), 2u);
   EXPECT_EQ(r.artifacts[0].name, "grid");
   const VoxelGrid& g = std::get<VoxelGrid>(r.artifacts[0].value);
@@ -331,7 +338,10 @@ TEST(VoxelizeTest, VoxelDistanceAlgorithmGivesAScalarGrid) {
   EXPECT_FLOAT_EQ(g.get({4, 7, 9}), 1.0f);
   EXPECT_FLOAT_EQ(float(std::get<Metrics>(r.artifacts.at(1).value).at("max_distance")), 1.0f);
   // Its memory limit counts the distances too.
-  EXPECT_NE(error_of([&] { a.run(test::box(), {{"resolution", 1000LL}}, ctx); }).find("13 bytes per voxel"), std::string::npos);
+  EXPECT_NE(error_of([&] {
+              a.run(test::box(), {{"resolution", 1000LL}}, ctx);
+            }).find("13 bytes per voxel"),
+            std::string::npos);
 }
 
 // ---- grid operations ------------------------------------------------------------------
@@ -388,7 +398,8 @@ TEST(VoxelOpsTest, DistanceTransformIsEuclidean) {
     for (std::size_t m = 0; m < rnd.size(); ++m)
       if (rnd.bytes()[m]) {
         const VoxelIndex w = rnd.unlinear(m);
-        best = std::min(best, std::sqrt(double((v.i - w.i) * (v.i - w.i) + (v.j - w.j) * (v.j - w.j) + (v.k - w.k) * (v.k - w.k))));
+        best = std::min(
+            best, std::sqrt(double((v.i - w.i) * (v.i - w.i) + (v.j - w.j) * (v.j - w.j) + (v.k - w.k) * (v.k - w.k))));
       }
     ASSERT_FLOAT_EQ(dr.floats()[n], float(best)) << n;
   }
@@ -424,7 +435,8 @@ TEST(VoxelOpsTest, BoundaryMeshMergesCoplanarFaces) {
   for (std::size_t n = 0; n < sphere.grid.size(); ++n) {
     const VoxelIndex v = sphere.grid.unlinear(n);
     if (!sphere.grid.occupied(v)) continue;
-    for (const VoxelIndex& o : VoxelGrid::offsets(Connectivity::six)) exposed += !sphere.grid.occupied({v.i + o.i, v.j + o.j, v.k + o.k});
+    for (const VoxelIndex& o : VoxelGrid::offsets(Connectivity::six))
+      exposed += !sphere.grid.occupied({v.i + o.i, v.j + o.j, v.k + o.k});
   }
   EXPECT_LT(ms.num_faces(), exposed);
 }
@@ -437,7 +449,8 @@ VoxelGrid sample_grid(VoxelType t = VoxelType::bit) {
   for (int k = 0; k < 3; ++k)
     for (int j = 0; j < 7; ++j)
       for (int i = 0; i < 5; ++i)
-        if ((i + 2 * j + 3 * k) % 4 == 0 || (i == 4 && j == 6 && k == 2)) g.set({i, j, k}, t == VoxelType::float32 ? 0.5f + i : float(1 + i));
+        if ((i + 2 * j + 3 * k) % 4 == 0 || (i == 4 && j == 6 && k == 2))
+          g.set({i, j, k}, t == VoxelType::float32 ? 0.5f + i : float(1 + i));
   return g;
 }
 
@@ -554,7 +567,9 @@ TEST(VoxelFormatsTest, VtiBySpecification) {
     std::memcpy(&n, b.data() + u + 1, 8);
     const std::size_t bpv = t == VoxelType::float32 ? 4 : 1;
     ASSERT_EQ(n, g.size() * bpv);
-    const std::string ours(reinterpret_cast<const char*>(t == VoxelType::float32 ? (const void*)g.floats().data() : (const void*)g.bytes().data()), n);
+    const std::string ours(reinterpret_cast<const char*>(t == VoxelType::float32 ? (const void*)g.floats().data()
+                                                                                 : (const void*)g.bytes().data()),
+                           n);
     EXPECT_EQ(b.substr(u + 9, n), ours);
     EXPECT_NE(b.find("</VTKFile>", u + 9 + n), std::string::npos);
     expect_same(g, read_voxel_grid(path));
@@ -594,8 +609,9 @@ TEST(VoxelFormatsTest, MagicaVoxelBySpecification) {
   EXPECT_EQ(i32(pal + 4), 1024);
   expect_same(g, read_voxel_grid(path), false);  // .vox has no origin or voxel size
   // Over 256 per side: a clear error.
-  EXPECT_NE(error_of([] { write_voxel_grid(VoxelGrid({300, 2, 2}, {0, 0, 0}, 1), test::temp_dir("vox2") / "x.vox"); })
-                .find("at most 256"),
+  EXPECT_NE(error_of([] {
+              write_voxel_grid(VoxelGrid({300, 2, 2}, {0, 0, 0}, 1), test::temp_dir("vox2") / "x.vox");
+            }).find("at most 256"),
             std::string::npos);
 }
 
@@ -628,11 +644,13 @@ TEST(VoxelFormatsTest, BadFilesAreParseErrors) {
   // A bit grid's claim is checked too (fuzz_voxel: a 200-byte NRRD of type
   // bit claimed 4 GB of voxels and got them allocated).
   try {
-    (void)decode_nrrd("NRRD0004\ntype: uint8\ncgview_type: bit\ndimension: 3\nsizes: 1000 1000 1000\nencoding: raw\n\nxx");
+    (void)decode_nrrd(
+        "NRRD0004\ntype: uint8\ncgview_type: bit\ndimension: 3\nsizes: 1000 1000 1000\nencoding: raw\n\nxx");
     ADD_FAILURE() << "a claim of 10^9 voxels in 2 bytes was read";
   } catch (const ParseError& e) {
     EXPECT_NE(std::string(e.what()).find("the header claims 1000x1000x1000 voxels, more than the file holds"),
-              std::string::npos) << e.what();
+              std::string::npos)
+        << e.what();
   }
   // Sizes that no integer holds, or not whole (fuzz_voxel found the first:
   // converting 1e100 to an integer is undefined): refused, naming the size.
@@ -642,7 +660,8 @@ TEST(VoxelFormatsTest, BadFilesAreParseErrors) {
       ADD_FAILURE() << size << " was read";
     } catch (const ParseError& e) {
       const std::string what = e.what();  // nan and -inf are not numbers to the header's reader
-      EXPECT_TRUE(what.find("bad grid dimension") != std::string::npos || what.find("'sizes' needs 3 numbers") != std::string::npos)
+      EXPECT_TRUE(what.find("bad grid dimension") != std::string::npos ||
+                  what.find("'sizes' needs 3 numbers") != std::string::npos)
           << what;
     }
     const std::string vti = "<VTKFile type=\"ImageData\"><ImageData WholeExtent=\"0 1 0 " + size +
