@@ -4,23 +4,13 @@
 // job_progress / job_done / job_failed / job_cancelled.
 // Reconnects by itself; requests in flight when the connection drops fail.
 import { ChunkAssembler, FrameError, FrameKind, decodeFrame } from './frames.ts';
+import { receiveTransferFrame, receiveTransferText, type GetMeshOptions, type MeshTransfer, type Pending, type SliceBegin } from './transfers.ts';
 import { getToken, reportUnauthorized } from './auth.ts';
-import { SERVER_EVENT_TYPES, type Mesh, type MeshBegin, type ServerEvent } from './types.ts';
+import { SERVER_EVENT_TYPES, type Mesh, type ServerEvent } from './types.ts';
 import { decodeAnimationPayload } from './animation_payload.ts';
 import { decodeSlicePayload, type Axis, type VoxelSlice } from './voxel_slice.ts';
 
-/** The `slice` text frame that precedes a slice's binary frames (API.md). */
-export interface SliceBegin {
-  axis: Axis;
-  index: number;
-  width: number;
-  height: number;
-  dims: [number, number, number];
-  voxel_size: number;
-  origin: [number, number, number];
-  bytes: number;
-  chunks: number;
-}
+export type { GetMeshOptions, MeshTransfer, SliceBegin } from './transfers.ts';
 
 /** An `{"type":"error"}` answer: the server's code and detail. */
 export class ServerError extends Error {
@@ -34,54 +24,6 @@ export class ServerError extends Error {
     this.detail = detail;
   }
 }
-
-export interface MeshTransfer {
-  begin: MeshBegin;
-  /** The whole Draco bitstream, chunks joined in order. */
-  payload: Uint8Array;
-}
-
-export interface GetMeshOptions {
-  /** Position quantization bits, 1..30 (the server's default is 14). */
-  quantization?: number;
-  /** Called as chunks arrive: payload bytes received so far and the total. */
-  onProgress?: (received: number, total: number) => void;
-  /** Called when the get_mesh request has been sent. */
-  onSent?: () => void;
-  /** Called when mesh_begin arrives. */
-  onBegin?: (begin: MeshBegin) => void;
-  /**
-   * Asks for a big mesh's preview first (lod "progressive"): called with the
-   * decimated preview's transfer, before the full mesh arrives (then onBegin
-   * and onProgress start again for it).  Small meshes come in one reply.
-   */
-  onPreview?: (preview: MeshTransfer) => void;
-  /** Aborting forgets the request; chunks still arriving for it are dropped. */
-  signal?: AbortSignal;
-}
-
-type Pending =
-  | { kind: 'reply'; expect: string; resolve: (msg: Record<string, unknown>) => void; reject: (e: Error) => void }
-  | {
-      // A payload in binary frames of one kind between a begin and an end
-      // text message (get_slice, get_animation), decoded once complete.
-      kind: 'payload';
-      beginType: string;
-      endType: string;
-      frameKind: number;
-      begin: Record<string, unknown> | null;
-      assembler: ChunkAssembler;
-      finish: (begin: Record<string, unknown>, payload: Uint8Array) => Promise<void>;
-      reject: (e: Error) => void;
-    }
-  | {
-      kind: 'mesh';
-      begin: MeshBegin | null;
-      assembler: ChunkAssembler;
-      options: GetMeshOptions;
-      resolve: (t: MeshTransfer) => void;
-      reject: (e: Error) => void;
-    };
 
 type EventHandler = (event: ServerEvent) => void;
 type StatusHandler = (connected: boolean) => void;
@@ -316,64 +258,7 @@ export class CgviewSocket {
       }
       return;
     }
-    if (p.kind === 'payload') {
-      if (type === p.beginType) {
-        p.begin = msg;
-      } else if (type === p.endType) {
-        this.pending.delete(id);
-        const begin = p.begin;
-        if (!begin) {
-          p.reject(new Error(`${p.endType} without ${p.beginType}`));
-          return;
-        }
-        let payload: Uint8Array;
-        try {
-          payload = p.assembler.result();
-        } catch (e) {
-          p.reject(e as Error);
-          return;
-        }
-        p.finish(begin, payload).catch((e: Error) => p.reject(e));
-      }
-      return;
-    }
-    if (type === 'mesh_begin') {
-      const begin = msg as unknown as MeshBegin;
-      if (begin.encoding !== 'draco') {
-        this.fail(id, new Error(`unsupported mesh encoding "${begin.encoding}"`));
-        return;
-      }
-      p.begin = begin;
-      p.options.onBegin?.(begin);
-      p.options.onProgress?.(p.assembler.bytesReceived, begin.bytes);
-    } else if (type === 'mesh_end') {
-      const preview = p.begin?.level === 'preview' && p.options.onPreview !== undefined;
-      if (!preview) this.pending.delete(id);
-      try {
-        if (!p.begin) throw new Error('mesh_end without mesh_begin');
-        let payload: Uint8Array;
-        if (p.begin.bytes === 0 && p.assembler.total === null) {
-          payload = new Uint8Array(0);
-        } else {
-          payload = p.assembler.result();
-        }
-        if (payload.byteLength !== p.begin.bytes) {
-          throw new FrameError(`received ${payload.byteLength} bytes, mesh_begin announced ${p.begin.bytes}`);
-        }
-        if (preview) {
-          // The full mesh follows on the same request id.
-          const begin = p.begin;
-          p.begin = null;
-          p.assembler = new ChunkAssembler(id);
-          p.options.onPreview!({ begin, payload });
-        } else {
-          p.resolve({ begin: p.begin, payload });
-        }
-      } catch (e) {
-        if (preview) this.fail(id, e as Error);
-        else p.reject(e as Error);
-      }
-    }
+    receiveTransferText(p, type, msg, { id, forget: () => this.pending.delete(id), fail: (e) => this.fail(id, e) });
   }
 
   private receiveBinary(data: ArrayBuffer): void {
@@ -392,26 +277,8 @@ export class CgviewSocket {
       this.fail(id, new FrameError(`binary frame for request ${id}, which expects "${p.expect}"`));
       return;
     }
-    if (p.kind === 'payload') {
-      try {
-        if (frame.header.kind !== p.frameKind) {
-          throw new FrameError(`frame kind ${frame.header.kind}, expected ${p.frameKind} (${p.beginType})`);
-        }
-        p.assembler.add(frame);
-      } catch (e) {
-        this.fail(id, e as Error);
-      }
-      return;
-    }
     try {
-      if (frame.header.kind !== FrameKind.DracoMesh) {
-        throw new FrameError(`frame kind ${frame.header.kind}, expected ${FrameKind.DracoMesh} (Draco mesh)`);
-      }
-      if (p.begin && frame.header.total !== p.begin.bytes) {
-        throw new FrameError(`frame says ${frame.header.total} bytes, mesh_begin said ${p.begin.bytes}`);
-      }
-      p.assembler.add(frame);
-      p.options.onProgress?.(p.assembler.bytesReceived, frame.header.total);
+      receiveTransferFrame(p, frame);
     } catch (e) {
       this.fail(id, e as Error);
     }

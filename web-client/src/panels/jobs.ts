@@ -14,22 +14,20 @@ import { formatValue } from './format.ts';
 
 export interface JobsActions {
   cancel(id: string): void;
-  /** Shows a scalar_field artifact on its mesh. */
-  showField(jobId: string, artifact: string): void;
+  /**
+   * Shows an artifact by its kind (kinds/registry.ts): a scalar field on its
+   * mesh, a mesh beside its input, a skeleton over its mesh, an animation
+   * with the player, a voxel grid's slices.
+   */
+  show(jobId: string, artifact: string, kind: string): void;
+  /** Stops showing an artifact (a skeleton's second click). */
+  hide(jobId: string, artifact: string, kind: string): void;
   /** Shows every scalar_field artifact of the job side by side, in synchronized views. */
   compare(jobId: string): void;
   /** Adds a scalar_field artifact to the fields compared side by side (or to the one shown). */
   addToComparison(jobId: string, artifact: string): void;
-  /** Adds a mesh artifact to the view, beside its input mesh. */
-  addMesh(jobId: string, artifact: string): void;
   /** Makes a mesh or voxel-grid artifact the input of the next job (the algorithm form runs on it). */
   runOn(jobId: string, artifact: string): void;
-  /** Shows an animation artifact (chaos_animate's frames) with the player. */
-  playAnimation(jobId: string, artifact: string): void;
-  /** Opens the slice panel on a voxel_grid artifact. */
-  showSlices(jobId: string, artifact: string): void;
-  /** Shows or hides a skeleton artifact over its mesh. */
-  toggleSkeleton(jobId: string, artifact: string): void;
   /** Opens the share form on a job (its state and artifacts, read-only for those it is shared with). */
   share(jobId: string): void;
 }
@@ -205,7 +203,7 @@ export class JobsPanel {
     if (a.kind === 'scalar_field') {
       const shown = view.shown?.jobId === job.id && view.shown.artifact === a.name;
       const show = el('button', { type: 'button', class: shown ? 'button small show active' : 'button small show' }, shown ? 'Shown' : 'Show');
-      show.addEventListener('click', () => this.actions.showField(job.id, a.name));
+      show.addEventListener('click', () => this.actions.show(job.id, a.name, a.kind));
       const compared = view.compared.has(`${job.id}/${a.name}`);
       const add = el('button', { type: 'button', class: compared ? 'button small compare-add active' : 'button small compare-add', title: 'Show beside the fields compared now (or the one shown)' }, compared ? 'Compared' : 'Add to comparison');
       add.disabled = compared;
@@ -215,11 +213,11 @@ export class JobsPanel {
       const added = view.added.has(`${job.id}/${a.name}`);
       const add = el('button', { type: 'button', class: added ? 'button small add active' : 'button small add' }, added ? 'Added' : 'Add to view');
       add.disabled = added;
-      add.addEventListener('click', () => this.actions.addMesh(job.id, a.name));
+      add.addEventListener('click', () => this.actions.show(job.id, a.name, a.kind));
       row.append(label, add, ' ', this.runOnButton(job, a, view), ' ', el('a', { href: artifactUrl(job.id, a.name, 'ply'), download: '' }, 'ply'), ' ', el('a', { href: artifactUrl(job.id, a.name, 'obj'), download: '' }, 'obj'));
     } else if (a.kind === 'animation') {
       const play = el('button', { type: 'button', class: 'button small play-animation' }, 'Play');
-      play.addEventListener('click', () => this.actions.playAnimation(job.id, a.name));
+      play.addEventListener('click', () => this.actions.show(job.id, a.name, a.kind));
       row.append(label, play, ' ', el('a', { href: artifactUrl(job.id, a.name, 'frames'), download: '' }, 'frames'));
     } else if (a.kind === 'text') {
       row.append(label, ' ', el('a', { href: artifactUrl(job.id, a.name, 'txt'), download: '' }, 'txt'));
@@ -229,7 +227,7 @@ export class JobsPanel {
       row.append(el('pre', { class: 'text-content' }, shown));
     } else if (a.kind === 'voxel_grid') {
       const slices = el('button', { type: 'button', class: 'button small slices' }, 'Slices');
-      slices.addEventListener('click', () => this.actions.showSlices(job.id, a.name));
+      slices.addEventListener('click', () => this.actions.show(job.id, a.name, a.kind));
       row.append(label, slices, ' ', this.runOnButton(job, a, view));
       for (const f of ['nrrd', 'vti', 'binvox']) row.append(' ', el('a', { href: artifactUrl(job.id, a.name, f), download: '' }, f));
     } else if (a.kind === 'metrics') {
@@ -243,7 +241,7 @@ export class JobsPanel {
         { type: 'button', class: color ? 'button small show-skeleton active' : 'button small show-skeleton' },
         color ? 'Shown' : 'Show',
       );
-      show.addEventListener('click', () => this.actions.toggleSkeleton(job.id, a.name));
+      show.addEventListener('click', () => (color ? this.actions.hide(job.id, a.name, a.kind) : this.actions.show(job.id, a.name, a.kind)));
       row.append(label, show);
       if (color) row.append(' ', el('span', { class: 'swatch', style: `background:${color}`, title: color }));
       for (const f of ['obj', 'cg', 'polylines', 'json']) row.append(' ', el('a', { href: artifactUrl(job.id, a.name, f), download: '' }, f));

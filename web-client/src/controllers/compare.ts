@@ -1,0 +1,138 @@
+// Side by side: the fields of one mesh (each in a pane with its colour map
+// and legend), the skeletons drawn over it, or the scene's objects; all
+// through the one camera (viewer/comparison.ts). "Leave comparison" goes back
+// to one view.
+import type * as THREE from 'three';
+import { jobMeshId } from '../api/types.ts';
+import { byId } from '../panels/dom.ts';
+import type { ArtifactRef } from '../state/app_state.ts';
+import { ComparisonView } from '../viewer/comparison.ts';
+import type { PlyMesh } from '../viewer/ply.ts';
+import { describe, jobOf, type AppContext } from './context.ts';
+import type { FieldSource } from '../kinds/scalar_field.ts';
+
+/** A pane's prepared object (a skeleton over its mesh, a scene object). */
+export interface PaneObject {
+  key: string;
+  title: string;
+  object: THREE.Object3D;
+  color?: string;
+}
+
+/** At most this many panes. */
+export const MAX_PANES = 4;
+
+export class CompareController {
+  private readonly ctx: AppContext;
+  private readonly view: ComparisonView;
+  private readonly leaveButton: HTMLButtonElement;
+  /** The comparison being prepared: a later one, or leaving, makes it stale. */
+  private token = 0;
+
+  constructor(ctx: AppContext) {
+    this.ctx = ctx;
+    this.view = new ComparisonView(ctx.viewer, byId('viewport'), (panes) => {
+      const { selectedId: meshId, compared } = ctx.store.get();
+      ctx.hooks.lastCompare = meshId && compared.length ? { meshId, panes: panes.map((p, i) => ({ ...compared[i]!, map: p.map, range: p.range })) } : null;
+    });
+    this.leaveButton = byId<HTMLButtonElement>('leave-compare');
+    this.leaveButton.addEventListener('click', () => this.leave());
+  }
+
+  /** "Compare": every scalar field of the job side by side (at most MAX_PANES). */
+  compareJob(jobId: string): void {
+    const fields = jobOf(this.ctx, jobId)?.artifacts?.filter((a) => a.kind === 'scalar_field') ?? [];
+    if (fields.length > MAX_PANES) this.ctx.notice(`Comparing the first ${MAX_PANES} of ${fields.length} fields.`);
+    void this.compareFields(fields.slice(0, MAX_PANES).map((a) => ({ jobId, artifact: a.name })));
+  }
+
+  /** "Add to comparison": the field joins the fields compared now (or the one shown), on the same mesh. */
+  addToComparison(jobId: string, artifact: string): void {
+    const { compared, field } = this.ctx.store.get();
+    const now = compared.length ? compared : field ? [field] : [];
+    if (now.some((c) => c.jobId === jobId && c.artifact === artifact)) return;
+    const meshId = jobMeshId(jobOf(this.ctx, jobId));
+    const other = now.find((c) => jobMeshId(jobOf(this.ctx, c.jobId)) !== meshId);
+    if (other) return this.ctx.error(`Cannot compare ${artifact}: it is on another mesh than ${other.artifact}; compare fields of one mesh.`);
+    if (now.length >= MAX_PANES) return this.ctx.error(`At most ${MAX_PANES} fields side by side: leave the comparison first.`);
+    void this.compareFields([...now, { jobId, artifact }]);
+  }
+
+  /** Shows the fields (all on one mesh) side by side in synchronized panes, each with its legend. */
+  private async compareFields(list: ArtifactRef[]): Promise<void> {
+    const field = this.ctx.app.kinds.field;
+    const sources: FieldSource[] = [];
+    for (const c of list) {
+      const source = field.source(c.jobId, c.artifact);
+      if (!source) return;
+      sources.push(source);
+    }
+    const meshId = sources[0]?.meshId;
+    if (!meshId || sources.some((s) => s.meshId !== meshId)) return;
+    const token = ++this.token;
+    try {
+      const loaded = await Promise.all(sources.map((s) => field.fetch(s.job.id, s.artifact, meshId)));
+      if (token !== this.token || this.ctx.store.get().selectedId !== meshId) return;
+      this.take(list);
+      this.view.show(
+        loaded[0]!.ply,
+        loaded.map(({ data }, i) => ({ key: `${list[i]!.jobId}/${list[i]!.artifact}`, title: `${sources[i]!.job.algorithm} · ${data.name}`, data, hint: sources[i]!.artifact.hint })),
+      );
+      this.leaveButton.hidden = false;
+    } catch (e) {
+      if (token !== this.token) return;
+      this.ctx.error(`Cannot compare the fields: ${describe(e)}`);
+    }
+  }
+
+  /**
+   * Artifacts of the selected mesh drawn as objects side by side (skeletons,
+   * each over the plain surface): `build` makes the panes' objects from the
+   * mesh as stored; `what` words a failure.
+   */
+  async compareObjects(list: ArtifactRef[], build: (ply: PlyMesh) => PaneObject[], what: string): Promise<void> {
+    const { store, app } = this.ctx;
+    const meshId = store.get().selectedId;
+    if (list.length < 2 || !meshId) return;
+    const token = ++this.token;
+    try {
+      const ply = await app.loader.ply(meshId);
+      if (token !== this.token || store.get().selectedId !== meshId) return;
+      this.take(list);
+      this.view.showObjects(build(ply));
+      this.leaveButton.hidden = false;
+    } catch (e) {
+      if (token !== this.token) return;
+      this.ctx.error(`Cannot show ${what} side by side: ${describe(e)}`);
+    }
+  }
+
+  /** The scene's objects in the panes (the scene keeps them: they are not disposed when the panes go). */
+  showScene(items: PaneObject[]): void {
+    ++this.token;
+    this.ctx.store.update({ compared: [] });
+    this.ctx.hooks.lastCompare = null;
+    this.ctx.app.kinds.field.hideLegend();
+    this.view.showObjects(items, false);
+    this.leaveButton.hidden = false;
+  }
+
+  /** Back to one view: the field drawn before the comparison (if any) with its legend. */
+  leave(): void {
+    ++this.token;
+    const { compared, scenePanes } = this.ctx.store.get();
+    if (!compared.length && !scenePanes) return;
+    this.ctx.store.update({ compared: [], scenePanes: false });
+    this.ctx.hooks.lastCompare = null;
+    this.view.clear();
+    this.leaveButton.hidden = true;
+    this.ctx.app.kinds.field.showLegend();
+  }
+
+  /** The panes go to `list` (the scene's side by side ends). */
+  private take(list: ArtifactRef[]): void {
+    this.ctx.store.update({ compared: list, scenePanes: false });
+    this.ctx.hooks.lastCompare = null;
+    this.ctx.app.kinds.field.hideLegend();
+  }
+}

@@ -1,0 +1,63 @@
+// What the controllers and the artifact kinds share: the state, the test
+// hooks, the viewer and the connection, the panels several of them draw in,
+// and each other (filled in by App once all are made, so that each may call
+// the others at run time without an order of construction).
+import { ApiError } from '../api/rest.ts';
+import type { Job } from '../api/types.ts';
+import { ServerError, type CgviewSocket } from '../api/ws.ts';
+import type { DisplayPanel } from '../panels/display.ts';
+import type { ProgressPanel } from '../panels/progress.ts';
+import type { AppStore } from '../state/app_state.ts';
+import type { TestHooks } from '../test_hooks.ts';
+import type { MeshTextures } from '../viewer/textures.ts';
+import type { Viewer } from '../viewer/viewer.ts';
+import type { SelectionTool } from '../viewer/selection_tool.ts';
+import type { Kinds } from '../kinds/registry.ts';
+import type { AccountController } from './account.ts';
+import type { CompareController } from './compare.ts';
+import type { JobsController } from './jobs.ts';
+import type { MeshLoader } from './mesh_loader.ts';
+import type { MeshesController } from './meshes.ts';
+import type { SceneController } from './scene.ts';
+
+export interface Controllers {
+  account: AccountController;
+  meshes: MeshesController;
+  loader: MeshLoader;
+  scene: SceneController;
+  compare: CompareController;
+  jobs: JobsController;
+  kinds: Kinds;
+}
+
+export interface AppContext {
+  readonly store: AppStore;
+  readonly hooks: TestHooks;
+  readonly viewer: Viewer;
+  readonly socket: CgviewSocket;
+  readonly display: DisplayPanel;
+  readonly progress: ProgressPanel;
+  readonly textures: MeshTextures;
+  readonly selectionTool: SelectionTool;
+  readonly app: Controllers;
+  /** Shows an error in the page (and in the hooks' lastError). */
+  error(text: string): void;
+  /** Shows a notice that fades. */
+  notice(text: string): void;
+}
+
+/** An error's words for the page: the server's detail where it gave one. */
+export function describe(e: unknown): string {
+  if (e instanceof ApiError || e instanceof ServerError) return e.detail || e.message;
+  if (e instanceof Error) return e.message;
+  return String(e);
+}
+
+export function isAbort(e: unknown): boolean {
+  return e instanceof DOMException && e.name === 'AbortError';
+}
+
+/** A job by id, as the page knows it. */
+export function jobOf(ctx: AppContext, id: string): Job | undefined {
+  return ctx.store.get().jobs.get(id);
+}

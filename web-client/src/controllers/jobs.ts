@@ -1,0 +1,228 @@
+// Algorithms and jobs: the algorithm menu, submitting a job (on the selected
+// mesh, or on a job's output chosen with "Run on this"), following its
+// progress from the WebSocket's job_* events, cancelling it, and handing what
+// it made to the artifact kinds (kinds/registry.ts). The job list and the
+// algorithm form render from the state.
+import { ApiError, cancelJob, getJob, listAlgorithms, listJobs, submitJob } from '../api/rest.ts';
+import type { Algorithm, Job, JobInput, JobProgress } from '../api/types.ts';
+import { AlgorithmsPanel } from '../panels/algorithms.ts';
+import { byId } from '../panels/dom.ts';
+import { JobsPanel } from '../panels/jobs.ts';
+import { openShareForm } from '../panels/share.ts';
+import { artifactKey, withEntry } from '../state/app_state.ts';
+import { describe, jobOf, type AppContext } from './context.ts';
+
+const FINAL = new Set(['done', 'failed', 'cancelled', 'interrupted']);
+
+export class JobsController {
+  private readonly ctx: AppContext;
+  private readonly algorithms: AlgorithmsPanel;
+  /** Jobs this page submitted: their scalar field is shown when they finish. */
+  private readonly autoShow = new Set<string>();
+  /** Jobs asked for with GET /jobs/{id} (progress of a job not seen yet). */
+  private readonly asking = new Set<string>();
+
+  constructor(ctx: AppContext) {
+    this.ctx = ctx;
+    const { store, app } = ctx;
+    this.algorithms = new AlgorithmsPanel(byId('algorithms'), {
+      run: (algorithm, params, inputs) => this.run(algorithm, params, inputs),
+      selection: (kind) => this.selectionFor(kind),
+    });
+    const panel = new JobsPanel(byId('jobs'), {
+      cancel: (id) => void this.cancel(id),
+      show: (jobId, artifact, kind) => void app.kinds.show(jobId, artifact, kind),
+      hide: (jobId, artifact, kind) => app.kinds.hide(jobId, artifact, kind),
+      compare: (jobId) => app.compare.compareJob(jobId),
+      addToComparison: (jobId, artifact) => app.compare.addToComparison(jobId, artifact),
+      runOn: (jobId, artifact) => this.setRunTarget(jobId, artifact),
+      share: (jobId) => openShareForm('jobs', jobId, `job ${jobOf(ctx, jobId)?.algorithm ?? ''} ${jobId.slice(0, 8)}`),
+    });
+    store.subscribe(
+      (s) => [s.jobs, s.meshes, s.field, s.compared, s.added, s.runTarget, s.metrics, s.texts, s.skeletons, s.me?.user, s.me?.admin],
+      () => {
+        const s = store.get();
+        panel.render({
+          jobs: [...s.jobs.values()].sort((a, b) => String(a.created ?? '').localeCompare(String(b.created ?? ''))),
+          meshName: (id) => s.meshes.find((m) => m.id === id)?.name ?? null,
+          // The single field is hidden while fields are compared.
+          shown: s.field && !s.compared.length ? s.field : null,
+          compared: new Set(s.compared.map((c) => artifactKey(c.jobId, c.artifact))),
+          added: s.added,
+          target: s.runTarget ? artifactKey(s.runTarget.jobId, s.runTarget.artifact) : null,
+          metrics: s.metrics,
+          texts: s.texts,
+          skeletons: s.skeletons,
+          mayChange: (owner) => app.account.mayChange(owner),
+        });
+      },
+      { now: true },
+    );
+    store.subscribe((s) => s.inputName, (name) => this.algorithms.setMesh(name), { now: true });
+    store.subscribe(
+      (s) => s.meshes,
+      (meshes) => this.algorithms.setMeshes(meshes.map((m) => ({ id: m.id, name: m.name }))),
+    );
+  }
+
+  /** The selection changed: the form's selection parameters say its size. */
+  selectionChanged(kind: string, count: number): void {
+    this.algorithms.setSelection(kind, count);
+  }
+
+  /** Asks for the algorithm menu; a 404 means this server has no algorithms API. */
+  async loadAlgorithms(): Promise<void> {
+    const { store, hooks } = this.ctx;
+    try {
+      const algorithms = await listAlgorithms();
+      hooks.algorithmsApi = true;
+      store.update({ algorithmsApi: true });
+      this.algorithms.render(algorithms);
+      this.algorithms.setMesh(store.get().inputName);
+      await this.refresh();
+    } catch (e) {
+      hooks.algorithmsApi = false;
+      store.update({ algorithmsApi: false });
+      if (e instanceof ApiError && e.status === 404) {
+        this.algorithms.unavailable('This server has no algorithms API (GET /api/v1/algorithms: 404).');
+      } else {
+        this.algorithms.unavailable(`Cannot list algorithms: ${describe(e)}`);
+      }
+    }
+  }
+
+  /** Reloads the job list (after a reconnect, events may have been missed). */
+  async refresh(): Promise<void> {
+    if (this.ctx.store.get().algorithmsApi !== true) return;
+    try {
+      this.upsertAll(await listJobs());
+    } catch (e) {
+      this.ctx.error(`Cannot list jobs: ${describe(e)}`);
+    }
+  }
+
+  /**
+   * Submits a job on the selected mesh, or on the job output chosen with "Run
+   * on this" (a chain: the server stores that output as a mesh of its own and
+   * announces it); `extra` names the meshes of the algorithm's other inputs.
+   * Rejects with the server's detail (shown beside the form).
+   */
+  async run(algorithm: Algorithm, params: Record<string, unknown>, extra: Record<string, string> = {}): Promise<void> {
+    const { store, app } = this.ctx;
+    const target = store.get().runTarget;
+    const mesh = app.meshes.selected();
+    // The algorithm's first input: the selected mesh, or the output chosen with "Run on this".
+    const first = algorithm.inputs?.[0] ?? { name: 'mesh', kind: 'mesh' };
+    if (first.kind !== 'mesh' && target?.kind !== first.kind) {
+      throw new Error(`${algorithm.name} runs on a ${first.kind}: choose one with "Run on this" in the job list.`);
+    }
+    if (!target && !mesh) throw new Error('Choose a mesh first.');
+    const inputs: Record<string, JobInput> = {
+      ...extra,
+      [first.name]: target ? { job: target.jobId, artifact: target.artifact } : mesh!.id,
+    };
+    let job: Job;
+    try {
+      job = await submitJob(algorithm.name, inputs, params);
+    } catch (e) {
+      throw new Error(describe(e));
+    }
+    if (target) {
+      // A chained mesh is a stored mesh now: later runs and fields use it.
+      store.update({ runTarget: null });
+      const stored = typeof job.inputs.mesh === 'string' ? job.inputs.mesh : null;
+      if (stored && !app.meshes.mesh(stored)) await app.meshes.refresh();
+      if (stored) app.meshes.select(stored);
+    }
+    this.autoShow.add(job.id);
+    // A job_done event may have come before this answer: upsert keeps the later state.
+    this.upsert(job);
+    app.account.refreshSoon(); // one more job in use
+  }
+
+  /**
+   * The selection to send as a job's faces or vertices parameter: its ids (the
+   * stored mesh's), when it is of that kind and on the mesh the job runs on.
+   */
+  private selectionFor(kind: string): number[] {
+    const { selectionTool, store, app } = this.ctx;
+    const state = selectionTool.state();
+    if (store.get().runTarget || state.meshId !== store.get().selectedId || state.kind !== kind) return [];
+    // Vertices split at attribute seams in the PLY are not the stored ones (docs/DESIGN.md).
+    if (kind === 'vertices' && state.ids.length && selectionTool.vertexCount !== app.meshes.selected()?.report.vertices) {
+      this.ctx.error('This mesh has seams (separate normal or UV indices): its vertex selection cannot be sent as stored ids.');
+      return [];
+    }
+    return state.ids;
+  }
+
+  /** "Run on this": the next job's input is this job's output mesh. */
+  setRunTarget(jobId: string, artifact: string): void {
+    const job = jobOf(this.ctx, jobId);
+    if (!job) return;
+    const kind = job.artifacts?.find((a) => a.name === artifact)?.kind ?? 'mesh';
+    this.ctx.store.update({ runTarget: { jobId, artifact, kind }, inputName: `${artifact} of ${job.algorithm}` });
+  }
+
+  async cancel(id: string): Promise<void> {
+    try {
+      this.upsert(await cancelJob(id));
+    } catch (e) {
+      this.ctx.error(`Cannot cancel the job: ${describe(e)}`);
+      void getJob(id).then((j) => this.upsert(j), () => {});
+    }
+  }
+
+  /** Merges a Job in; a finished job never goes back to queued or running (events and answers may cross). */
+  upsert(job: Job): void {
+    this.upsertAll([job]);
+  }
+
+  /** Merges Jobs in, as upsert does, with one update of the state. */
+  private upsertAll(jobs: readonly Job[]): void {
+    const { store } = this.ctx;
+    const next = new Map(store.get().jobs);
+    const merged: Job[] = [];
+    for (const job of jobs) {
+      const old = next.get(job.id);
+      if (old && FINAL.has(old.state) && !FINAL.has(job.state)) continue;
+      const m = { ...old, ...job };
+      next.set(job.id, m);
+      merged.push(m);
+    }
+    if (!merged.length) return;
+    store.update({ jobs: next });
+    for (const m of merged) this.settled(m);
+  }
+
+  /** What a job's new state brings: a done job's artifacts to their kinds, and the field of a job submitted here shown. */
+  private settled(job: Job): void {
+    if (job.state === 'done') {
+      this.ctx.app.kinds.load(job);
+      if (this.autoShow.delete(job.id)) {
+        const field = job.artifacts?.find((a) => a.kind === 'scalar_field');
+        if (field) void this.ctx.app.kinds.show(job.id, field.name, field.kind);
+      }
+    } else if (job.state === 'failed' && this.autoShow.delete(job.id)) {
+      this.ctx.error(`${job.algorithm} failed: ${job.error ?? 'no reason given'}`);
+    } else if (FINAL.has(job.state)) {
+      this.autoShow.delete(job.id);
+    }
+  }
+
+  /** A job_progress event. */
+  progress(p: JobProgress): void {
+    const old = jobOf(this.ctx, p.id);
+    if (!old) {
+      // A job from another client that this page has not seen yet: ask for it once.
+      if (this.asking.has(p.id)) return;
+      this.asking.add(p.id);
+      void getJob(p.id)
+        .then((j) => this.upsert(j), () => {})
+        .finally(() => this.asking.delete(p.id));
+      return;
+    }
+    if (FINAL.has(old.state)) return;
+    this.ctx.store.update((s) => ({ jobs: withEntry(s.jobs, p.id, { ...old, state: p.state, progress: p.progress, stage: p.stage }) }));
+  }
+}

@@ -1,0 +1,147 @@
+// The stored meshes: the list (kept up to date from the server's mesh_*
+// events), choosing the one shown, uploads, deletes and sharing. The mesh
+// list and the report panel render from the state.
+import { deleteMesh, listMeshes, uploadMesh } from '../api/rest.ts';
+import { jobMeshId, type Job, type Mesh } from '../api/types.ts';
+import { byId } from '../panels/dom.ts';
+import { MeshListPanel } from '../panels/mesh_list.ts';
+import { ReportPanel } from '../panels/report.ts';
+import { openShareForm } from '../panels/share.ts';
+import { uploadsOf } from '../panels/upload.ts';
+import { selectedMesh } from '../state/app_state.ts';
+import { describe, type AppContext } from './context.ts';
+
+export class MeshesController {
+  private readonly ctx: AppContext;
+  private readonly list: MeshListPanel;
+
+  constructor(ctx: AppContext) {
+    this.ctx = ctx;
+    this.list = new MeshListPanel(byId('mesh-list'), {
+      select: (id) => this.select(id),
+      addToScene: (id) => void ctx.app.scene.add(id),
+      remove: (id) => void this.remove(id),
+      share: (id) => openShareForm('meshes', id, this.mesh(id)?.name ?? id),
+      mayChange: (owner) => ctx.app.account.mayChange(owner),
+    });
+    const report = new ReportPanel(byId('report'));
+    report.render(null);
+    const { store } = ctx;
+    // The share buttons depend on who asks; the "in scene" marks on the scene.
+    store.subscribe(
+      (s) => [s.meshes, s.selectedId, s.scene.map((e) => e.mesh).join(' '), s.me?.user, s.me?.admin],
+      () => this.renderList(),
+    );
+    store.subscribe(selectedMesh, (mesh) => report.render(mesh));
+  }
+
+  mesh(id: string): Mesh | null {
+    return this.ctx.store.get().meshes.find((m) => m.id === id) ?? null;
+  }
+
+  selected(): Mesh | null {
+    return selectedMesh(this.ctx.store.get());
+  }
+
+  /** Reloads the mesh list from the server. */
+  async refresh(): Promise<void> {
+    const { store } = this.ctx;
+    try {
+      const meshes = await listMeshes();
+      store.update({ meshes });
+      const id = store.get().selectedId;
+      if (id && !meshes.some((m) => m.id === id)) this.forget(id);
+    } catch (e) {
+      this.renderList();
+      this.ctx.error(`Cannot list meshes: ${describe(e)}`);
+    }
+  }
+
+  /** Uploads files one after the other (a mesh with its MTL and images as one zip) and shows the last one uploaded. */
+  async upload(files: File[]): Promise<void> {
+    const { progress } = this.ctx;
+    let last: Mesh | null = null;
+    let uploads: Array<{ name: string; body: Blob }> = [];
+    try {
+      uploads = await uploadsOf(files);
+    } catch (e) {
+      this.ctx.error(`Upload failed: ${describe(e)}`);
+    }
+    for (const file of uploads) {
+      progress.show('uploading', null, file.name);
+      try {
+        const mesh = await uploadMesh(file.name, file.body);
+        this.upsert(mesh);
+        for (const w of mesh.warnings ?? []) this.ctx.notice(`${mesh.name}: ${w}`);
+        last = mesh;
+      } catch (e) {
+        this.ctx.error(`Upload of ${file.name} failed: ${describe(e)}`);
+      } finally {
+        progress.hide();
+      }
+    }
+    if (last) this.select(last.id);
+  }
+
+  /** Shows the mesh alone: the scene starts again from it, and what was drawn on the last one goes. */
+  select(id: string): void {
+    const mesh = this.mesh(id);
+    if (!mesh) return;
+    const { store, app } = this.ctx;
+    store.update({ selectedId: id });
+    app.compare.leave();
+    app.scene.start(mesh);
+    store.update({ runTarget: null, inputName: mesh.name });
+    this.ctx.selectionTool.setSource(id, (meshId) => app.loader.ply(meshId));
+    app.loader.show(mesh);
+  }
+
+  /** Selects the mesh a job ran on (when it is another one, and still stored), so that what the job made is drawn on it. */
+  selectMeshOf(job: Job): void {
+    const meshId = jobMeshId(job);
+    if (meshId && this.ctx.store.get().selectedId !== meshId && this.mesh(meshId)) this.select(meshId);
+  }
+
+  async remove(id: string): Promise<void> {
+    const mesh = this.mesh(id);
+    try {
+      await deleteMesh(id);
+      this.forget(id);
+    } catch (e) {
+      this.ctx.error(`Cannot delete ${mesh?.name ?? id}: ${describe(e)}`);
+    }
+  }
+
+  /** A mesh added or changed on the server. */
+  upsert(mesh: Mesh): void {
+    this.ctx.app.loader.forgetPly(mesh.id);
+    this.ctx.store.update((s) => {
+      const i = s.meshes.findIndex((m) => m.id === mesh.id);
+      return { meshes: i >= 0 ? s.meshes.map((m, k) => (k === i ? mesh : m)) : [...s.meshes, mesh] };
+    });
+  }
+
+  /** Drops a mesh that no longer exists on the server; clears the view if it was shown. */
+  forget(id: string): void {
+    const { store, app, viewer, hooks } = this.ctx;
+    store.update((s) => ({ meshes: s.meshes.filter((m) => m.id !== id) }));
+    app.scene.removeMesh(id);
+    app.loader.forgetPly(id);
+    if (store.get().selectedId !== id) return;
+    store.update({ selectedId: null, inputName: null });
+    this.ctx.selectionTool.setSource(null, (meshId) => app.loader.ply(meshId));
+    app.compare.leave();
+    app.kinds.dispose();
+    app.loader.abort(id);
+    viewer.clearAll();
+    this.ctx.textures.detach();
+    hooks.lastLoaded = null;
+    hooks.timings = null;
+    app.scene.clear();
+  }
+
+  private renderList(): void {
+    const s = this.ctx.store.get();
+    this.list.render(s.meshes, s.selectedId, new Set(s.scene.map((e) => e.mesh)));
+  }
+}

@@ -1,0 +1,51 @@
+// The artifact kinds the viewer knows, by the server's kind string: what a
+// job made is loaded, shown, hidden and disposed by its kind's module. A new
+// kind is a module in this folder and a line in `modules` below.
+import type { Job } from '../api/types.ts';
+import type { AppContext } from '../controllers/context.ts';
+import { AnimationKind } from './animation.ts';
+import type { ArtifactKind } from './kind.ts';
+import { MeshSurfaceKind } from './mesh_surface.ts';
+import { MetricsKind } from './metrics.ts';
+import { ScalarFieldKind } from './scalar_field.ts';
+import { SkeletonKind } from './skeleton.ts';
+import { TextKind } from './text.ts';
+import { VoxelGridKind } from './voxel_grid.ts';
+
+export class Kinds {
+  /** Scalar fields: also compared side by side, and kept in view links. */
+  readonly field: ScalarFieldKind;
+  private readonly byKind: ReadonlyMap<string, ArtifactKind>;
+
+  constructor(ctx: AppContext) {
+    // Made in this order because the legend goes over the view before the animation player.
+    const skeleton = new SkeletonKind(ctx);
+    const voxels = new VoxelGridKind(ctx);
+    this.field = new ScalarFieldKind(ctx);
+    const modules: ArtifactKind[] = [new AnimationKind(ctx), this.field, new MeshSurfaceKind(ctx), skeleton, voxels, new MetricsKind(ctx), new TextKind(ctx)];
+    this.byKind = new Map(modules.map((m) => [m.kind, m]));
+  }
+
+  /** The module of a kind; undefined for a kind this viewer does not know (the job list offers its JSON). */
+  of(kind: string): ArtifactKind | undefined {
+    return this.byKind.get(kind);
+  }
+
+  /** A done job: each artifact's module fetches what the job list shows of it. */
+  load(job: Job): void {
+    for (const a of job.artifacts ?? []) this.of(a.kind)?.load(job, a);
+  }
+
+  show(jobId: string, artifact: string, kind: string): Promise<void> {
+    return this.of(kind)?.show(jobId, artifact) ?? Promise.resolve();
+  }
+
+  hide(jobId: string, artifact: string, kind: string): void {
+    this.of(kind)?.hide(jobId, artifact);
+  }
+
+  /** Another mesh is chosen, or the one shown is gone: every kind forgets what it drew on it (the animation first, as it replaced the mesh). */
+  dispose(): void {
+    for (const m of this.byKind.values()) m.dispose();
+  }
+}

@@ -1,0 +1,187 @@
+// `skeleton` artifacts: curve skeletons drawn over their mesh (fetched as
+// JSON), each in its own colour so that skeletons from several algorithms
+// compare at a glance (the paper's Figure 5); a table of their metrics and of
+// each one's distance to the first, side by side on demand; and skeleton
+// files made by other tools, attached to the mesh shown.
+import * as THREE from 'three';
+import { fetchArtifactJson, submitJob } from '../api/rest.ts';
+import { parseSkeleton, type SkeletonData } from '../api/skeleton.ts';
+import type { ArtifactInfo, Job } from '../api/types.ts';
+import { MAX_PANES } from '../controllers/compare.ts';
+import { describe, jobOf, type AppContext } from '../controllers/context.ts';
+import { byId } from '../panels/dom.ts';
+import { SkeletonsPanel } from '../panels/skeletons.ts';
+import { artifactKey, selectedMesh, splitKey } from '../state/app_state.ts';
+import { buildSkeleton, SKELETON_COLORS } from '../viewer/skeleton_renderer.ts';
+import { buildPlainSurface, SURFACE_COLOR } from '../viewer/surface_renderer.ts';
+import type { ArtifactKind } from './kind.ts';
+
+interface DrawnSkeleton {
+  object: THREE.Object3D;
+  data: SkeletonData;
+  color: string;
+  nodes: number;
+  edges: number;
+}
+
+export class SkeletonKind implements ArtifactKind {
+  readonly kind = 'skeleton';
+  private readonly ctx: AppContext;
+  /** The skeletons drawn over the mesh, by `${jobId}/${name}`, in the order shown. */
+  private readonly drawn = new Map<string, DrawnSkeleton>();
+  /** skeleton_distance jobs submitted for the comparison table, by `${first key}|${other key}` ('' while submitting). */
+  private readonly distanceJobs = new Map<string, string>();
+  /** skeleton_file jobs from "Load skeleton file…": their skeleton is drawn when done. */
+  private readonly drawWhenDone = new Set<string>();
+
+  constructor(ctx: AppContext) {
+    this.ctx = ctx;
+    const panel = new SkeletonsPanel(
+      byId('skeletons'),
+      () => void this.compare(),
+      (file) => void this.loadFile(file),
+    );
+    ctx.store.subscribe(
+      (s) => [s.skeletons, s.jobs, s.metrics, selectedMesh(s) !== null],
+      () => this.renderTable(panel),
+      { now: true },
+    );
+  }
+
+  load(job: Job, artifact: ArtifactInfo): void {
+    if (!this.drawWhenDone.delete(job.id)) return;
+    if (!this.drawn.has(artifactKey(job.id, artifact.name))) void this.show(job.id, artifact.name);
+  }
+
+  /** Draws a job's skeleton artifact over its mesh (selecting that mesh first when another one is shown). */
+  async show(jobId: string, artifactName: string): Promise<void> {
+    const { app, store, viewer } = this.ctx;
+    const key = artifactKey(jobId, artifactName);
+    if (this.drawn.has(key)) return;
+    const job = jobOf(this.ctx, jobId);
+    if (!job) return;
+    app.meshes.selectMeshOf(job);
+    const selected = store.get().selectedId;
+    try {
+      const [json] = await Promise.all([fetchArtifactJson(jobId, artifactName), app.loader.showing]);
+      if (store.get().selectedId !== selected || this.drawn.has(key)) return;
+      const data = parseSkeleton(json);
+      const palette = SKELETON_COLORS;
+      const used = new Set([...this.drawn.values()].map((v) => v.color));
+      const color = palette.find((c) => !used.has(c)) ?? palette[this.drawn.size % palette.length]!;
+      const object = buildSkeleton(data, color);
+      this.drawn.set(key, { object, data, color, nodes: data.nodes.length / 3, edges: data.edges.length / 2 });
+      viewer.addExtra(object, () => this.report());
+      this.publish();
+    } catch (e) {
+      this.ctx.error(`Cannot show ${artifactName} of ${job.algorithm}: ${describe(e)}`);
+    }
+  }
+
+  hide(jobId: string, artifact: string): void {
+    const key = artifactKey(jobId, artifact);
+    const drawn = this.drawn.get(key);
+    if (!drawn) return;
+    this.ctx.viewer.removeExtra(drawn.object);
+    this.drawn.delete(key);
+    this.publish();
+    this.ctx.viewer.redraw(() => this.report());
+  }
+
+  dispose(): void {
+    this.ctx.hooks.skeletons = [];
+    if (!this.drawn.size) return;
+    for (const s of this.drawn.values()) this.ctx.viewer.removeExtra(s.object);
+    this.drawn.clear();
+    this.publish();
+  }
+
+  /**
+   * "Load skeleton file…": the file's text goes to a skeleton_file job on the
+   * shown mesh (the server parses it: a bad file is refused naming its line),
+   * whose skeleton is drawn when it is done, measured and compared as any.
+   */
+  async loadFile(file: File): Promise<void> {
+    const { app, store } = this.ctx;
+    const mesh = selectedMesh(store.get());
+    if (!mesh) return this.ctx.error('Choose a mesh first: a skeleton file is attached to the mesh shown.');
+    try {
+      const job = await submitJob('skeleton_file', { mesh: mesh.id }, { name: file.name, text: await file.text() });
+      this.drawWhenDone.add(job.id);
+      // A job_done event may have come before this answer: upsert keeps the
+      // later state, and a job done already is drawn now.
+      app.jobs.upsert(job);
+      const now = jobOf(this.ctx, job.id);
+      if (now?.state === 'done' && this.drawWhenDone.has(job.id)) app.jobs.upsert(now);
+    } catch (e) {
+      this.ctx.error(`Cannot load the skeleton file ${file.name}: ${describe(e)}`);
+    }
+  }
+
+  /** The skeletons drawn, side by side: one pane each, over the plain surface, through the one camera. */
+  private compare(): Promise<void> {
+    const list = [...this.drawn].slice(0, MAX_PANES);
+    return this.ctx.app.compare.compareObjects(
+      list.map(([key]) => splitKey(key)),
+      (ply) =>
+        list.map(([key, s]) => {
+          const group = new THREE.Group();
+          group.add(buildPlainSurface(ply.positions, ply.indices, SURFACE_COLOR), buildSkeleton(s.data, s.color));
+          const { jobId } = splitKey(key);
+          return { key, title: jobOf(this.ctx, jobId)?.algorithm ?? jobId, object: group, color: s.color };
+        }),
+      'the skeletons',
+    );
+  }
+
+  /** The comparison table of the skeletons drawn; asks the server for each one's distance to the first. */
+  private renderTable(panel: SkeletonsPanel): void {
+    const { store, app } = this.ctx;
+    const keys = [...this.drawn.keys()];
+    const input = (key: string) => {
+      const { jobId, artifact } = splitKey(key);
+      return { job: jobId, artifact };
+    };
+    const metricsOf = (jobId: string) => {
+      const m = store.get().metrics.get(`${jobId}/metrics`);
+      return m && typeof m === 'object' ? (m as Record<string, unknown>) : undefined;
+    };
+    panel.render(
+      keys.map((key, i) => {
+        const { jobId: job } = splitKey(key);
+        let distance: { hausdorff: number; mean: number } | undefined | null = null;
+        if (i > 0) {
+          const pair = `${keys[0]}|${key}`;
+          const distanceJob = this.distanceJobs.get(pair);
+          if (distanceJob === undefined) {
+            this.distanceJobs.set(pair, '');
+            submitJob('skeleton_distance', { skeleton: input(keys[0]!), reference: input(key) }, {})
+              .then((j) => {
+                this.distanceJobs.set(pair, j.id);
+                app.jobs.upsert(j);
+              })
+              .catch((e) => this.ctx.error(`Cannot measure the distance between skeletons: ${describe(e)}`));
+          }
+          const m = distanceJob ? metricsOf(distanceJob) : undefined;
+          distance = m && typeof m.hausdorff === 'number' && typeof m.mean === 'number' ? { hausdorff: m.hausdorff, mean: m.mean } : undefined;
+        }
+        return {
+          key,
+          color: this.drawn.get(key)!.color,
+          algorithm: jobOf(this.ctx, job)?.algorithm ?? job,
+          metrics: metricsOf(job),
+          distance,
+        };
+      }),
+      selectedMesh(store.get()) !== null,
+    );
+  }
+
+  private publish(): void {
+    this.ctx.store.update({ skeletons: new Map([...this.drawn].map(([k, v]) => [k, v.color])) });
+  }
+
+  private report(): void {
+    this.ctx.hooks.skeletons = [...this.drawn].map(([key, v]) => ({ key, color: v.color, nodes: v.nodes, edges: v.edges }));
+  }
+}

@@ -1,0 +1,47 @@
+// `voxel_grid` artifacts: 2D slices in the slice panel (fetched over the
+// WebSocket), the slice's plane in the view (optionally cutting the mesh),
+// and the voxels above a threshold drawn in 3D.
+import { fetchArtifactBytes } from '../api/rest.ts';
+import type { AppContext } from '../controllers/context.ts';
+import { byId } from '../panels/dom.ts';
+import { VoxelSlicePanel } from '../panels/voxel_slices.ts';
+import { buildSlicePlane, sliceClipPlane } from '../viewer/slice_plane.ts';
+import type { ArtifactKind } from './kind.ts';
+
+export class VoxelGridKind implements ArtifactKind {
+  readonly kind = 'voxel_grid';
+  private readonly panel: VoxelSlicePanel;
+
+  constructor(ctx: AppContext) {
+    const { viewer } = ctx;
+    this.panel = new VoxelSlicePanel(
+      byId('voxel-slices'),
+      ctx.socket,
+      (shown) => {
+        viewer.setOverlay('voxel-slice', shown ? buildSlicePlane(shown.canvas, shown.slice) : null);
+        viewer.setClipPlane(shown?.cut ? sliceClipPlane(shown.slice) : null);
+      },
+      (jobId, artifact) => fetchArtifactBytes(jobId, artifact, 'nrrd'),
+      (shown) => {
+        viewer.setOverlay('voxels', shown?.object ?? null);
+        ctx.hooks.lastVoxels = shown ? { count: shown.count, kept: shown.kept, threshold: shown.threshold } : null;
+      },
+    );
+  }
+
+  load(): void {
+    // Sliced on demand.
+  }
+
+  async show(jobId: string, artifact: string): Promise<void> {
+    this.panel.open(jobId, artifact);
+  }
+
+  hide(): void {
+    this.panel.close();
+  }
+
+  dispose(): void {
+    // The slices are of a job's grid, not of the mesh shown: they stay open.
+  }
+}

@@ -1,0 +1,113 @@
+// The viewer's application state: what the page shows, in one object held by
+// a Store (state/store.ts). Controllers update it; panels subscribe to the
+// parts they show. Three.js objects, tokens and caches stay in the
+// controllers and kinds that own them.
+import type { Job, Me, Mesh } from '../api/types.ts';
+import type { SceneObjectState } from '../viewer/scene_state.ts';
+import type * as THREE from 'three';
+import { Store } from './store.ts';
+
+/** An artifact of a job, by job id and artifact name. */
+export interface ArtifactRef {
+  jobId: string;
+  artifact: string;
+}
+
+/** A job's output that the next job runs on ("Run on this"), with its kind. */
+export interface RunTarget extends ArtifactRef {
+  kind: string;
+}
+
+/**
+ * An object of the scene: its state, its mesh's name, and (for those beside
+ * the first) the surface drawn once loaded. The Scene panel edits an entry in
+ * place (its sliders), so such edits do not render the panel again.
+ */
+export interface SceneEntry extends SceneObjectState {
+  name: string;
+  object: THREE.Mesh | null;
+}
+
+/** A message shown in the page; each one is a new object. */
+export interface Message {
+  level: 'error' | 'notice';
+  text: string;
+}
+
+export interface AppState {
+  meshes: readonly Mesh[];
+  selectedId: string | null;
+  /** The signed-in user and their quota use (GET /me); null on a server without it, or until it answers. */
+  me: Me | null;
+  /** The WebSocket: null before its first connection. */
+  connected: boolean | null;
+  /** Whether the server answered GET /api/v1/algorithms (null until asked). */
+  algorithmsApi: boolean | null;
+  jobs: ReadonlyMap<string, Job>;
+  runTarget: RunTarget | null;
+  /** What the algorithm form runs on, as its label says: the selected mesh's name, or the job output chosen with "Run on this"; null: Run is disabled. */
+  inputName: string | null;
+  /** Fetched metrics artifacts, by `${jobId}/${name}`: the JSON, or an error sentence (undefined: loading). */
+  metrics: ReadonlyMap<string, unknown>;
+  /** Fetched text artifacts, by `${jobId}/${name}`: the text (undefined: loading). */
+  texts: ReadonlyMap<string, string | undefined>;
+  /** The scalar field drawn on the mesh. */
+  field: ArtifactRef | null;
+  /** The fields (or skeletons) compared side by side; empty: one view. */
+  compared: readonly ArtifactRef[];
+  /** Mesh artifacts in the view beside the selected mesh, as `${jobId}/${name}`. */
+  added: ReadonlySet<string>;
+  /** Skeleton artifacts drawn over the mesh, by `${jobId}/${name}` in the order drawn: their colour. */
+  skeletons: ReadonlyMap<string, string>;
+  /** The scene: the selected mesh first (the viewer's shown object), then the meshes added beside it. */
+  scene: readonly SceneEntry[];
+  /** Whether the scene's objects are side by side, one per pane. */
+  scenePanes: boolean;
+  /** The scene object chosen in the Scene panel: the Display panel's overlays are drawn over it. */
+  picked: number;
+  message: Message | null;
+}
+
+export type AppStore = Store<AppState>;
+
+export function initialState(): AppState {
+  return {
+    meshes: [],
+    selectedId: null,
+    me: null,
+    connected: null,
+    algorithmsApi: null,
+    jobs: new Map(),
+    runTarget: null,
+    inputName: null,
+    metrics: new Map(),
+    texts: new Map(),
+    field: null,
+    compared: [],
+    added: new Set(),
+    skeletons: new Map(),
+    scene: [],
+    scenePanes: false,
+    picked: 0,
+    message: null,
+  };
+}
+
+export function selectedMesh(state: Readonly<AppState>): Mesh | null {
+  return state.meshes.find((m) => m.id === state.selectedId) ?? null;
+}
+
+export function artifactKey(jobId: string, artifact: string): string {
+  return `${jobId}/${artifact}`;
+}
+
+/** A `${jobId}/${artifact}` key back into its parts. */
+export function splitKey(key: string): ArtifactRef {
+  const i = key.indexOf('/');
+  return { jobId: key.slice(0, i), artifact: key.slice(i + 1) };
+}
+
+/** A copy of `map` with `key` set to `value`. */
+export function withEntry<K, V>(map: ReadonlyMap<K, V>, key: K, value: V): Map<K, V> {
+  return new Map(map).set(key, value);
+}
