@@ -42,8 +42,8 @@ int main(int argc, char** argv) {
     std::ofstream(file, std::ios::binary) << encode_nrrd(grid);
     const server::JobArtifacts artifacts{
         [&](const std::string&, const std::string&, const std::string&, const server::Caller&) {
-          return server::ArtifactBytes{read_file_bytes(file, std::uint64_t(1) << 40), "application/octet-stream",
-                                       "grid.nrrd"};
+          return ExportedArtifact{read_file_bytes(file, std::uint64_t(1) << 40), "application/octet-stream",
+                                  "grid.nrrd"};
         },
         [](const std::string&, const server::Caller&) {}};
     const int slices = 32;

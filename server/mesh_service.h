@@ -83,6 +83,8 @@ class MeshService {
   // set-up); without one, in this process.  Removes what earlier runs left
   // in reader.temp_dir.
   void set_reader(const UploadReader& reader);
+  // Where uploads are read (an empty program: in this process).
+  const UploadReader& reader() const { return reader_; }
   void set_preview(const PreviewConfig& c) { preview_ = c; }
   const PreviewConfig& preview_config() const { return preview_; }
   std::uint64_t previews_computed() const { return previews_computed_; }

@@ -66,6 +66,7 @@ Router::Router(MeshService& meshes, RouterConfig config)
   add_mesh_routes(routes_, context_);
   add_render_route(routes_, context_);
   add_job_routes(routes_, context_);
+  add_data_routes(routes_, context_);
   add_worker_routes(routes_, context_);
   routes_.push_back({"GET",
                      "/api/v1/openapi.json",

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <limits>
 #include <new>
 #include <nlohmann/json.hpp>
@@ -181,73 +182,39 @@ UploadRead read_upload(const std::string& name, const std::string& format, std::
   return out;
 }
 
-namespace {
+ReadDir::ReadDir(const fs::path& parent) {
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  std::string t = (parent / "upload-XXXXXX").string();
+  if (!::mkdtemp(t.data())) throw IoError("cannot make a directory in " + parent.string() + " to read the upload in");
+  path_ = t;
+}
 
-// A child's directory, removed with everything in it when this goes.
-struct TempDir {
-  explicit TempDir(const fs::path& parent) {
-    std::error_code ec;
-    fs::create_directories(parent, ec);
-    std::string t = (parent / "upload-XXXXXX").string();
-    if (!::mkdtemp(t.data())) throw IoError("cannot make a directory in " + parent.string() + " to read the upload in");
-    path = t;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  fs::path path;
-};
+ReadDir::~ReadDir() {
+  std::error_code ec;
+  fs::remove_all(path_, ec);
+}
 
-}  // namespace
-
-UploadRead read_upload_in_child(const UploadReader& reader, const std::string& name, const std::string& format,
-                                std::string_view bytes, std::size_t max_unpacked_bytes) {
-  const std::string n = clean_upload_name(name);  // named in the messages below
-  TempDir dir(reader.temp_dir);
-  write_file_bytes(dir.path / "upload", bytes);
-  write_file_bytes(
-      dir.path / "request.json",
-      nlohmann::json{{"name", name}, {"format", format}, {"max_unpacked_bytes", max_unpacked_bytes}}.dump());
+void run_reader_child(const UploadReader& reader, const char* mode, const std::string& name, const ReadDir& dir) {
   ChildOptions options;
   options.memory_mb = reader.memory_mb;
-  options.stderr_file = dir.path / "stderr.txt";
-  const pid_t pid = spawn_child({reader.program.string(), "--read-upload", dir.path.string()}, options);
+  options.stderr_file = dir.path() / "stderr.txt";
+  const pid_t pid = spawn_child({reader.program.string(), mode, dir.path().string()}, options);
   if (pid < 0) throw IoError("cannot start a process to read the upload (fork failed)");
   const std::optional<int> status = wait_child(pid, reader.time_limit);
   const std::string limit_mb = std::to_string(reader.memory_mb) + " MB";
   if (!status) {
     char secs[32];
     std::snprintf(secs, sizeof secs, "%g", double(reader.time_limit.count()) / 1000);
-    throw TooLarge(n + ": reading it took longer than the server allows for one upload (" + std::string(secs) + " s)");
+    throw TooLarge(name + ": reading it took longer than the server allows for one upload (" + std::string(secs) +
+                   " s)");
   }
-  if (WIFEXITED(*status) && WEXITSTATUS(*status) == 0) {
-    // What the child wrote is as untrusted as the upload: sizes capped, shape checked.
-    const std::size_t cap = std::max<std::size_t>(bytes.size(), max_unpacked_bytes) + (std::size_t(1) << 20);
-    const nlohmann::json r = parse_json_or_discarded(read_file_bytes(dir.path / "result.json", std::size_t(64) << 20));
-    UploadRead out;
-    try {
-      if (!r.is_object()) throw std::runtime_error("not an object");
-      out.name = clean_upload_name(r.at("name").get<std::string>());
-      out.format = r.at("format").get<std::string>();
-      out.report_json = r.at("report").dump();
-      out.warnings_json = r.at("warnings").dump();
-      out.material_json = r.at("material").dump();
-      const std::size_t textures = r.at("textures").get<std::size_t>();
-      if (textures > 1000) throw std::runtime_error("too many textures");
-      for (std::size_t k = 0; k < textures; ++k)
-        out.textures.push_back(read_file_bytes(dir.path / ("texture-" + std::to_string(k)), cap));
-      if (r.at("unpacked").get<bool>()) out.unpacked_mesh = read_file_bytes(dir.path / "mesh", cap);
-    } catch (const std::exception& e) {
-      throw InvalidInput(n + ": the upload's reader gave an unreadable result (" + e.what() + ")");
-    }
-    return out;
-  }
+  if (WIFEXITED(*status) && WEXITSTATUS(*status) == 0) return;
   if (WIFEXITED(*status) && WEXITSTATUS(*status) == 2) {
     // A refusal whose error.json is missing still refuses the file (400), not the server (500).
     std::string text;
     try {
-      text = read_file_bytes(dir.path / "error.json", 1 << 20);
+      text = read_file_bytes(dir.path() / "error.json", 1 << 20);
     } catch (const std::exception&) {
     }
     const nlohmann::json e = parse_json_or_discarded(text);
@@ -257,21 +224,21 @@ UploadRead read_upload_in_child(const UploadReader& reader, const std::string& n
     if (kind == "unsupported_format") throw UnsupportedFormat(detail);
     if (kind == "disk_full") throw DiskFull(detail);
     if (kind == "io_error") throw IoError(detail);
-    throw InvalidInput(detail.empty() ? n + ": the file could not be read" : detail);
+    throw InvalidInput(detail.empty() ? name + ": the file could not be read" : detail);
   }
   if (WIFEXITED(*status) && WEXITSTATUS(*status) == 3)
-    throw TooLarge(n + ": reading it needs more memory than the server allows for one upload (" + limit_mb + ")");
+    throw TooLarge(name + ": reading it needs more memory than the server allows for one upload (" + limit_mb + ")");
   if (WIFEXITED(*status) && WEXITSTATUS(*status) == 127)
     throw IoError("cannot run the upload reader " + reader.program.string());
   if (WIFSIGNALED(*status))
-    throw InvalidInput(n + ": the reader stopped with " + signal_name(WTERMSIG(*status)) +
+    throw InvalidInput(name + ": the reader stopped with " + signal_name(WTERMSIG(*status)) +
                        " on this file (a malformed file it does not catch, or one that needs more than " + limit_mb +
                        "); nothing was stored");
-  throw InvalidInput(n + ": the reader exited with status " + std::to_string(WEXITSTATUS(*status)) +
+  throw InvalidInput(name + ": the reader exited with status " + std::to_string(WEXITSTATUS(*status)) +
                      "; nothing was stored");
 }
 
-int read_upload_main(const fs::path& dir) {
+int reader_main(const fs::path& dir, const std::function<void()>& read) {
   auto refuse = [&](const char* kind, const std::string& detail) {
     try {
       // The detail may quote the upload's bytes: invalid UTF-8 is replaced, not a reason to write nothing.
@@ -282,22 +249,7 @@ int read_upload_main(const fs::path& dir) {
     return 2;
   };
   try {
-    const nlohmann::json req = nlohmann::json::parse(read_file_bytes(dir / "request.json", 1 << 20));
-    const std::string bytes = read_file_bytes(dir / "upload", std::numeric_limits<std::size_t>::max());
-    const UploadRead r = read_upload(req.at("name").get<std::string>(), req.at("format").get<std::string>(), bytes,
-                                     req.at("max_unpacked_bytes").get<std::size_t>());
-    for (std::size_t k = 0; k < r.textures.size(); ++k)
-      write_file_bytes(dir / ("texture-" + std::to_string(k)), r.textures[k]);
-    if (!r.unpacked_mesh.empty()) write_file_bytes(dir / "mesh", r.unpacked_mesh);
-    // result.json last (written through a rename): its presence means the rest is whole.
-    write_file_bytes(dir / "result.json", nlohmann::json{{"name", r.name},
-                                                         {"format", r.format},
-                                                         {"report", nlohmann::json::parse(r.report_json)},
-                                                         {"warnings", nlohmann::json::parse(r.warnings_json)},
-                                                         {"material", nlohmann::json::parse(r.material_json)},
-                                                         {"textures", r.textures.size()},
-                                                         {"unpacked", !r.unpacked_mesh.empty()}}
-                                              .dump());
+    read();
     return 0;
   } catch (const std::bad_alloc&) {
     return 3;
@@ -316,6 +268,58 @@ int read_upload_main(const fs::path& dir) {
   } catch (const std::exception& e) {
     return refuse("invalid_mesh", e.what());
   }
+}
+
+UploadRead read_upload_in_child(const UploadReader& reader, const std::string& name, const std::string& format,
+                                std::string_view bytes, std::size_t max_unpacked_bytes) {
+  const std::string n = clean_upload_name(name);  // named in the messages below
+  ReadDir dir(reader.temp_dir);
+  write_file_bytes(dir.path() / "upload", bytes);
+  write_file_bytes(
+      dir.path() / "request.json",
+      nlohmann::json{{"name", name}, {"format", format}, {"max_unpacked_bytes", max_unpacked_bytes}}.dump());
+  run_reader_child(reader, "--read-upload", n, dir);
+  // What the child wrote is as untrusted as the upload: sizes capped, shape checked.
+  const std::size_t cap = std::max<std::size_t>(bytes.size(), max_unpacked_bytes) + (std::size_t(1) << 20);
+  const nlohmann::json r = parse_json_or_discarded(read_file_bytes(dir.path() / "result.json", std::size_t(64) << 20));
+  UploadRead out;
+  try {
+    if (!r.is_object()) throw std::runtime_error("not an object");
+    out.name = clean_upload_name(r.at("name").get<std::string>());
+    out.format = r.at("format").get<std::string>();
+    out.report_json = r.at("report").dump();
+    out.warnings_json = r.at("warnings").dump();
+    out.material_json = r.at("material").dump();
+    const std::size_t textures = r.at("textures").get<std::size_t>();
+    if (textures > 1000) throw std::runtime_error("too many textures");
+    for (std::size_t k = 0; k < textures; ++k)
+      out.textures.push_back(read_file_bytes(dir.path() / ("texture-" + std::to_string(k)), cap));
+    if (r.at("unpacked").get<bool>()) out.unpacked_mesh = read_file_bytes(dir.path() / "mesh", cap);
+  } catch (const std::exception& e) {
+    throw InvalidInput(n + ": the upload's reader gave an unreadable result (" + e.what() + ")");
+  }
+  return out;
+}
+
+int read_upload_main(const fs::path& dir) {
+  return reader_main(dir, [&] {
+    const nlohmann::json req = nlohmann::json::parse(read_file_bytes(dir / "request.json", 1 << 20));
+    const std::string bytes = read_file_bytes(dir / "upload", std::numeric_limits<std::size_t>::max());
+    const UploadRead r = read_upload(req.at("name").get<std::string>(), req.at("format").get<std::string>(), bytes,
+                                     req.at("max_unpacked_bytes").get<std::size_t>());
+    for (std::size_t k = 0; k < r.textures.size(); ++k)
+      write_file_bytes(dir / ("texture-" + std::to_string(k)), r.textures[k]);
+    if (!r.unpacked_mesh.empty()) write_file_bytes(dir / "mesh", r.unpacked_mesh);
+    // result.json last (written through a rename): its presence means the rest is whole.
+    write_file_bytes(dir / "result.json", nlohmann::json{{"name", r.name},
+                                                         {"format", r.format},
+                                                         {"report", nlohmann::json::parse(r.report_json)},
+                                                         {"warnings", nlohmann::json::parse(r.warnings_json)},
+                                                         {"material", nlohmann::json::parse(r.material_json)},
+                                                         {"textures", r.textures.size()},
+                                                         {"unpacked", !r.unpacked_mesh.empty()}}
+                                              .dump());
+  });
 }
 
 }  // namespace cgview::server

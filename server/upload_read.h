@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -57,6 +58,32 @@ struct UploadReader {
 // be run.  The result has no `mesh`.
 UploadRead read_upload_in_child(const UploadReader& reader, const std::string& name, const std::string& format,
                                 std::string_view bytes, std::size_t max_unpacked_bytes);
+
+// A directory of its own for one read in a child, removed with its files.
+class ReadDir {
+ public:
+  explicit ReadDir(const std::filesystem::path& parent);  // throws IoError
+  ~ReadDir();
+  ReadDir(const ReadDir&) = delete;
+  ReadDir& operator=(const ReadDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// Runs `reader.program MODE DIR` (cgview-read) on what the caller put in DIR
+// (the upload, request.json) under the reader's limits, and returns when it
+// read the file (its results in DIR).  Otherwise throws as the read would
+// have (the child's error.json: its kind and its message), TooLarge over a
+// limit, InvalidInput when the child dies (`name` in the message), IoError
+// when it cannot run.
+void run_reader_child(const UploadReader& reader, const char* mode, const std::string& name, const ReadDir& dir);
+
+// The child's side of any read: runs `read`, and turns what it throws into
+// DIR/error.json ({"error": kind, "detail"}) and the exit status that
+// run_reader_child reads: 0 read, 2 refused, 3 out of memory.
+int reader_main(const std::filesystem::path& dir, const std::function<void()>& read);
 
 // The child's side: reads DIR/request.json ({"name", "format",
 // "max_unpacked_bytes"}) and DIR/upload, writes DIR/result.json (the fields

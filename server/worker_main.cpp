@@ -8,31 +8,30 @@
 //   cgview-worker --list        prints every algorithm linked in, as JSON (protocol/algorithm_json)
 //
 // Progress goes to stdout as lines "progress FRACTION STAGE" (at most ~10 a
-// second).  Artifacts go to the output directory in a canonical form:
-//   scalar field  NAME.f32 (raw little-endian float32) + NAME.field.json
-//                 {"name","location","hint","range":[lo,hi],"count"}
-//   mesh          NAME.ply
-//   metrics       NAME.json
-//   text          NAME.txt (the bytes as they are)
-//   animation     NAME.frames (core/animation.h)
-//   others        NAME + default_extension (write_artifact)
-// and result.json {"artifacts":[{"name","kind","file",...}],"warnings":[...]}.
+// second), and nothing else: what the algorithm prints there goes to stderr.
+// Each artifact is stored in the output directory by its kind's codec
+// (artifacts/artifact_codec.h: a field as NAME.f32, a mesh as NAME.ply, ...),
+// and result.json lists them: {"artifacts":[{"name","kind","file","bytes",
+// ...}],"warnings":[...]} ("bytes": each file's size as written, which the
+// server checks).
 // Exit status: 0 done; 2 invalid input; 3 out of memory; 4 no room for the
 // results (a full disk); 1 any other error
 // (the message on stderr and in OUT/error.txt).
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
 #include <new>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <unistd.h>
 
 #include "algorithm_json.h"
 #include "io/mesh_io.h"
+#include "artifacts/artifact_codec.h"
 #include "registry/artifact_io.h"
 #include "registry/registry.h"
-#include "voxel/voxel_io.h"
 
 namespace {
 
@@ -40,46 +39,26 @@ using namespace cgview;
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-void write_text(const fs::path& p, const std::string& s) { write_file_bytes(p, s); }
+// The progress pipe is the worker's own: from here on, what an algorithm or
+// a library prints to stdout goes to stderr, so that only progress lines
+// reach the pipe (the server fails a job whose pipe carries anything else).
+std::FILE* take_progress_pipe() {
+  const int fd = ::dup(STDOUT_FILENO);
+  std::FILE* pipe = fd >= 0 ? ::fdopen(fd, "w") : nullptr;
+  if (!pipe || ::dup2(STDERR_FILENO, STDOUT_FILENO) < 0) throw IoError("cannot set up the progress pipe");
+  return pipe;
+}
 
-json save(const Artifact& a, const Mesh& input, const fs::path& out) {
-  json entry{{"name", a.name}};
-  if (const auto* field = std::get_if<ScalarField>(&a.value)) {
-    const auto [lo, hi] = field->range();
-    entry["kind"] = "scalar_field";
-    entry["file"] = a.name + ".f32";
-    entry["location"] = to_string(field->location);
-    entry["hint"] = to_string(field->hint);
-    entry["range"] = {lo, hi};
-    entry["count"] = field->values.size();
-    write_file_bytes(out / (a.name + ".f32"), std::string_view(reinterpret_cast<const char*>(field->values.data()),
-                                                               field->values.size() * sizeof(float)));
-    write_text(out / (a.name + ".field.json"), json{{"name", field->name},
-                                                    {"location", entry["location"]},
-                                                    {"hint", entry["hint"]},
-                                                    {"range", entry["range"]},
-                                                    {"count", entry["count"]}}
-                                                   .dump());
-  } else if (std::holds_alternative<Mesh>(a.value)) {
-    entry["kind"] = "mesh";
-    entry["file"] = a.name + ".ply";
-    write_artifact(a, input, out / (a.name + ".ply"));
-  } else if (std::holds_alternative<Metrics>(a.value)) {
-    entry["kind"] = "metrics";
-    entry["file"] = a.name + ".json";
-    write_artifact(a, input, out / (a.name + ".json"));
-  } else {
-    entry["kind"] = std::holds_alternative<VoxelGrid>(a.value)   ? "voxel_grid"
-                    : std::holds_alternative<Text>(a.value)      ? "text"
-                    : std::holds_alternative<Animation>(a.value) ? "animation"
-                                                                 : "skeleton";
-    entry["file"] = a.name + default_extension(a);
-    write_artifact(a, input, out / entry["file"].get<std::string>());
-  }
-  return entry;
+// A stage on one line of printable text, however the algorithm named it.
+std::string one_line(std::string_view stage) {
+  std::string s(stage.substr(0, 200));
+  for (char& c : s)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = ' ';
+  return s;
 }
 
 int run_job(const fs::path& spec_path, fs::path& out) {
+  std::FILE* const progress = take_progress_pipe();
   std::ifstream f(spec_path);
   if (!f) throw IoError("cannot read the job file " + spec_path.string());
   const json spec = json::parse(f);
@@ -99,17 +78,18 @@ int run_job(const fs::path& spec_path, fs::path& out) {
   Clock::time_point last{};
   Context ctx(
       [&](double fraction, std::string_view stage) {
+        if (!std::isfinite(fraction)) return;
         const auto now = Clock::now();
         if (now - last < std::chrono::milliseconds(100) && fraction < 1.0) return;
         last = now;
-        std::printf("progress %.4f %.*s\n", fraction, int(stage.size()), stage.data());
-        std::fflush(stdout);
+        std::fprintf(progress, "progress %.4f %s\n", fraction, one_line(stage).c_str());
+        std::fflush(progress);
       },
       nullptr);
   const AlgorithmResult result = algo.run(inputs, values, ctx);
   json artifacts = json::array();
-  for (const Artifact& a : result.artifacts) artifacts.push_back(save(a, mesh, out));
-  write_text(out / "result.json", json{{"artifacts", artifacts}, {"warnings", result.warnings}}.dump());
+  for (const Artifact& a : result.artifacts) artifacts.push_back(artifact_codec(kind_of(a.value)).store(a, mesh, out));
+  write_file_bytes(out / "result.json", json{{"artifacts", artifacts}, {"warnings", result.warnings}}.dump());
   return 0;
 }
 

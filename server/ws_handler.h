@@ -18,7 +18,7 @@
 #include "auth.h"
 #include "core/voxel_grid.h"
 #include "frames.h"
-#include "jobs/artifact_formats.h"
+#include "artifacts/artifact_codec.h"
 
 namespace cgview::server {
 
@@ -59,8 +59,8 @@ struct WsHandlerConfig {
 struct JobArtifacts {
   // An artifact in a format, if the caller may read it (JobScheduler::artifact):
   // std::out_of_range for an unknown job or artifact, UnsupportedFormat for the wrong kind.
-  std::function<ArtifactBytes(const std::string& job, const std::string& name, const std::string& format,
-                              const Caller&)>
+  std::function<ExportedArtifact(const std::string& job, const std::string& name, const std::string& format,
+                                 const Caller&)>
       read;
   // Throws std::out_of_range unless the caller may read the job
   // (JobScheduler::access): checked before a grid kept from before serves them.

@@ -3,7 +3,9 @@
 // the CLI or the normal worker.
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
+#include <iostream>
 #include <thread>
 #include <vector>
 
@@ -64,6 +66,23 @@ AlgorithmResult translate(const Mesh& mesh, const NoParams&, Context&) {
   return {{{"mesh", out}}, {}};
 }
 
+// Prints to stdout as libraries and students' code do: that must not reach
+// the worker's progress pipe, or the job would fail for it.
+AlgorithmResult chatty(const Mesh& mesh, const NoParams&, Context& ctx) {
+  std::printf("iteration 1 of 3: residual 0.25\nprogress banana\n");
+  std::cout << "a line from std::cout without an end" << std::flush;
+  ctx.progress(0.5, "chatting\non two lines");
+  std::fflush(stdout);
+  ScalarField f{"index", Location::vertex, ColorHint::standard, {}};
+  for (std::size_t i = 0; i < mesh.num_vertices(); ++i) f.values.push_back(float(i));
+  return {{{"index", f}}, {}};
+}
+
+CGVIEW_REGISTER_ALGORITHM(test_chatty, NoParams, chatty,
+                          {.title = "Chatty (test)",
+                           .description = "prints to stdout while it runs",
+                           .area = "test",
+                           .outputs = {{"index", OutputKind::scalar_field}}})
 CGVIEW_REGISTER_ALGORITHM(test_translate, NoParams, translate,
                           {.title = "Translate (test)",
                            .description = "moves the mesh by +1 in x",

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "core/scalar_field.h"
 
 namespace cgview {
 
@@ -49,6 +50,10 @@ struct ReadResult {
   Mesh mesh;
   MeshFormat format = MeshFormat::off;
   std::vector<std::string> warnings;  // what was repaired or dropped, for the user
+  // A PLY's scalar properties beyond positions, normals, colours and texture
+  // coordinates (a "quality", an "sdf" written by another tool): one field
+  // each, per vertex, or per face (one value per triangle of mesh.faces).
+  std::vector<ScalarField> properties;
 };
 
 // Reads a file; the format comes from its extension.

@@ -283,10 +283,10 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
   };
   // One item of an element: its scalars read past, each list read into
   // `list` and given to on_list with its property's index.
-  auto read_item = [&](const Element& e, const auto& on_list) {
+  auto read_item = [&](const Element& e, const auto& on_list, const auto& on_scalar) {
     for (std::size_t i = 0; i < e.props.size(); ++i) {
       if (!e.props[i].is_list) {
-        read_value(e.props[i].type);
+        on_scalar(i, read_value(e.props[i].type));
         continue;
       }
       read_list(e.props[i], list);
@@ -313,6 +313,15 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
       }
       if (!has[int(Slot::x)] || !has[int(Slot::y)] || !has[int(Slot::z)])
         throw ParseError(name, "the vertex element has no x, y and z properties", header_line, std::nullopt);
+      // Each other scalar is a field of its own (its index in result.properties).
+      std::vector<int> extra(e.props.size(), -1);
+      for (std::size_t i = 0; i < e.props.size(); ++i)
+        if (!e.props[i].is_list && slots[i] == Slot::none) {
+          extra[i] = int(result.properties.size());
+          result.properties.push_back({e.props[i].name, Location::vertex, ColorHint::standard, {}});
+          result.properties.back().values.resize(e.count);
+        }
+      const bool has_extra = std::any_of(extra.begin(), extra.end(), [](int k) { return k >= 0; });
       const bool has_n = has[int(Slot::nx)] && has[int(Slot::ny)] && has[int(Slot::nz)];
       const bool has_c = has[int(Slot::r)] && has[int(Slot::g)] && has[int(Slot::b)];
       const bool has_t = has[int(Slot::u)] && has[int(Slot::v)];
@@ -331,7 +340,7 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
       const bool xyz_float = e.props.size() >= 3 && slots[0] == Slot::x && slots[1] == Slot::y && slots[2] == Slot::z &&
                              e.props[0].type == Type::f32 && e.props[1].type == Type::f32 &&
                              e.props[2].type == Type::f32;
-      if (fixed && xyz_float && !has_n && !has_c && !has_t) {
+      if (fixed && xyz_float && !has_n && !has_c && !has_t && !has_extra) {
         if (stride * e.count > bin.remaining()) bin.fail("the file ends inside the vertex data (truncated?)");
         const char* base = bin.pos();
         for (std::uint64_t v = 0; v < e.count; ++v) {
@@ -393,6 +402,7 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
                 if (has_t) mesh.uvs[v].v = float(x);
                 break;
               case Slot::none:
+                if (extra[i] >= 0) result.properties[std::size_t(extra[i])].values[v] = float(x);
                 break;
             }
           }
@@ -412,22 +422,33 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
       mesh.faces.reserve(std::size_t(std::min<std::uint64_t>(e.count, data_bytes / 4)));
       const bool wedges = uv_prop >= 0 && mesh.uvs.empty();
       bool wedges_ok = wedges;
+      // Each scalar of a face is a field, one value per triangle it becomes.
+      std::vector<int> extra(e.props.size(), -1);
+      for (std::size_t i = 0; i < e.props.size(); ++i)
+        if (!e.props[i].is_list) {
+          extra[i] = int(result.properties.size());
+          result.properties.push_back({e.props[i].name, Location::face, ColorHint::standard, {}});
+        }
+      std::vector<double> face_values(e.props.size());
       for (std::uint64_t f = 0; f < e.count; ++f) {
         poly.clear();
         wedge_uv.clear();
-        read_item(e, [&](std::size_t i) {
-          if (int(i) == idx_prop) {
-            for (double x : list) {
-              if (!(x >= 0) || x >= double(vertex_count))
-                fail_here("face " + std::to_string(f) + " refers to vertex " + index_text(x) + " but there are " +
-                          std::to_string(vertex_count) + " vertices");
-              poly.push_back(Index(x));
-            }
-          } else if (int(i) == uv_prop && wedges) {
-            for (std::size_t k = 0; k + 1 < list.size(); k += 2)
-              wedge_uv.push_back({float(list[k]), float(list[k + 1])});
-          }
-        });
+        read_item(
+            e,
+            [&](std::size_t i) {
+              if (int(i) == idx_prop) {
+                for (double x : list) {
+                  if (!(x >= 0) || x >= double(vertex_count))
+                    fail_here("face " + std::to_string(f) + " refers to vertex " + index_text(x) + " but there are " +
+                              std::to_string(vertex_count) + " vertices");
+                  poly.push_back(Index(x));
+                }
+              } else if (int(i) == uv_prop && wedges) {
+                for (std::size_t k = 0; k + 1 < list.size(); k += 2)
+                  wedge_uv.push_back({float(list[k]), float(list[k + 1])});
+              }
+            },
+            [&](std::size_t i, double x) { face_values[i] = x; });
         if (poly.size() < 3)
           fail_here("face " + std::to_string(f) + " has " + std::to_string(poly.size()) +
                     " corners (at least 3 needed)");
@@ -435,6 +456,8 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
         if (wedges_ok && wedge_uv.size() != poly.size()) wedges_ok = false;
         for (std::size_t i = 1; i + 1 < poly.size(); ++i) {
           mesh.faces.push_back({poly[0], poly[i], poly[i + 1]});
+          for (std::size_t k = 0; k < extra.size(); ++k)
+            if (extra[k] >= 0) result.properties[std::size_t(extra[k])].values.push_back(float(face_values[k]));
           if (wedges_ok) {
             const Index base = Index(mesh.uvs.size());
             mesh.uvs.push_back(wedge_uv[0]);
@@ -456,36 +479,39 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
         throw ParseError(name, "the tristrips element has no vertex_indices list", header_line, std::nullopt);
       std::uint64_t strips = 0, degenerate = 0;
       for (std::uint64_t s = 0; s < e.count; ++s)
-        read_item(e, [&](std::size_t i) {
-          if (int(i) != idx_prop) return;
-          // Each run between -1s is a strip: corner k makes a triangle with
-          // the two before it, every other one turned to keep the strip's
-          // orientation; triangles with a repeated corner only join strips.
-          poly.clear();
-          auto strip_done = [&] {
-            for (std::size_t k = 2; k < poly.size(); ++k) {
-              const Index a = poly[k - 2], b = poly[k - 1], c = poly[k];
-              if (a == b || b == c || a == c) {
-                ++degenerate;
-                continue;
+        read_item(
+            e,
+            [&](std::size_t i) {
+              if (int(i) != idx_prop) return;
+              // Each run between -1s is a strip: corner k makes a triangle with
+              // the two before it, every other one turned to keep the strip's
+              // orientation; triangles with a repeated corner only join strips.
+              poly.clear();
+              auto strip_done = [&] {
+                for (std::size_t k = 2; k < poly.size(); ++k) {
+                  const Index a = poly[k - 2], b = poly[k - 1], c = poly[k];
+                  if (a == b || b == c || a == c) {
+                    ++degenerate;
+                    continue;
+                  }
+                  mesh.faces.push_back(k % 2 == 0 ? Tri{a, b, c} : Tri{b, a, c});
+                }
+                strips += poly.size() >= 3;
+                poly.clear();
+              };
+              for (double x : list) {
+                if (x == -1) {
+                  strip_done();
+                  continue;
+                }
+                if (!(x >= 0) || x >= double(vertex_count))
+                  fail_here("strip " + std::to_string(s) + " refers to vertex " + index_text(x) + " but there are " +
+                            std::to_string(vertex_count) + " vertices");
+                poly.push_back(Index(x));
               }
-              mesh.faces.push_back(k % 2 == 0 ? Tri{a, b, c} : Tri{b, a, c});
-            }
-            strips += poly.size() >= 3;
-            poly.clear();
-          };
-          for (double x : list) {
-            if (x == -1) {
               strip_done();
-              continue;
-            }
-            if (!(x >= 0) || x >= double(vertex_count))
-              fail_here("strip " + std::to_string(s) + " refers to vertex " + index_text(x) + " but there are " +
-                        std::to_string(vertex_count) + " vertices");
-            poly.push_back(Index(x));
-          }
-          strip_done();
-        });
+            },
+            [](std::size_t, double) {});
       have_faces = true;
       result.warnings.push_back("read " + std::to_string(strips) + " triangle strips into triangles" +
                                 (degenerate ? " (" + std::to_string(degenerate) +
@@ -494,7 +520,9 @@ void read_ply(std::string_view bytes, const std::string& name, ReadResult& resul
     } else {
       // Skip another element (edges, materials, ...) item by item; one
       // without properties has nothing to skip (and its count costs no bytes).
-      for (std::uint64_t n = 0; n < e.count && !e.props.empty(); ++n) read_item(e, [](std::size_t) {});
+      for (std::uint64_t n = 0; n < e.count && !e.props.empty(); ++n)
+        read_item(
+            e, [](std::size_t) {}, [](std::size_t, double) {});
       if (e.count) result.warnings.push_back("skipped " + std::to_string(e.count) + " '" + e.name + "' elements");
     }
   }

@@ -1,14 +1,6 @@
-// Saving an algorithm's artifacts in formats that common tools read.
-//   mesh          any writable mesh format (.off .obj .ply .stl .glb .drc)
-//   scalar field  .txt (one value per line, in vertex or face order), .csv
-//                 (index,value), .ply (the input mesh with the values as a
-//                 float property, for MeshLab and ParaView)
-//   skeleton      .obj (v and l records), .json, .cg, .polylines.txt (io/skeleton_io.h)
-//   voxel grid    .nrrd (the default), .binvox .raw .vti .vox .vdb (voxel/voxel_io.h),
-//                 .vtk (legacy STRUCTURED_POINTS, ASCII, for ParaView)
-//   metrics       .json
-//   text          .txt or .bin (the bytes as they are)
-//   animation     .frames (core/animation.h: faces and uint16-quantized positions per frame)
+// Saving an algorithm's artifacts in formats that common tools read, by
+// each kind's codec (artifacts/artifact_codec.h lists the formats), and
+// reading a run's input files.
 #pragma once
 
 #include <filesystem>

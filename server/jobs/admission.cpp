@@ -104,7 +104,7 @@ Job Admission::admit(const json& req, const Caller& caller, JobLookup& jobs,
       // A chain: an earlier job's output mesh becomes a stored mesh (once, by
       // content) and the new job runs on it like on any other.
       const std::string from = v["job"], artifact_name = v["artifact"];
-      const ArtifactBytes ply = jobs.artifact(from, artifact_name, "ply", caller);
+      const ExportedArtifact ply = jobs.artifact(from, artifact_name, "ply", caller);
       if (const auto known = meshes_.store().find_by_sha256(sha256_hex(ply.bytes), owner)) id = known->id;
       else {
         // Refused before it stores anything (even where the job would be a cache hit).

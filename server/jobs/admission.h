@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "jobs/artifact_formats.h"
+#include "artifacts/artifact_codec.h"
 #include "jobs/job.h"
 #include "mesh_service.h"
 
@@ -28,8 +28,8 @@ class JobLookup {
   // caller may read; throws std::out_of_range or InvalidInput.
   virtual std::filesystem::path artifact_file(const std::string& job, const std::string& artifact,
                                               const std::string& kind, const Caller& caller) const = 0;
-  virtual ArtifactBytes artifact(const std::string& job, const std::string& artifact, const std::string& format,
-                                 const Caller& caller) = 0;
+  virtual ExportedArtifact artifact(const std::string& job, const std::string& artifact, const std::string& format,
+                                    const Caller& caller) = 0;
   // Throws QuotaExceeded when the caller may not add `bytes` (`what`) or
   // start another job.
   virtual void check_storage(const Caller& caller, std::uint64_t bytes, const std::string& what) const = 0;

@@ -31,22 +31,46 @@ void WakePipe::drain() {
   }
 }
 
-bool read_progress_lines(std::string& buffer, double& progress, std::string& stage) {
-  bool found = false;
+namespace {
+
+// At most 60 bytes of what the worker wrote, unprintable bytes as '?'.
+std::string quoted_output(std::string_view s) {
+  std::string q = "\"";
+  for (char c : s.substr(0, 60)) q += (c >= 0x20 && c < 0x7f) ? c : '?';
+  return q + (s.size() > 60 ? "...\"" : "\"");
+}
+
+}  // namespace
+
+ProgressRead read_progress_lines(std::string& buffer, double& progress, std::string& stage) {
+  ProgressRead r;
+  const std::string said = "the worker wrote something other than progress on its progress pipe: ";
   for (std::size_t nl; (nl = buffer.find('\n')) != std::string::npos;) {
     const std::string line = buffer.substr(0, nl);
     buffer.erase(0, nl + 1);
-    if (line.rfind("progress ", 0) != 0) continue;
+    if (line.size() > kMaxProgressLine) {
+      r.garbage = said + "a line of " + std::to_string(line.size()) + " bytes";
+      break;
+    }
+    if (line.rfind("progress ", 0) != 0) {
+      r.garbage = said + quoted_output(line);
+      break;
+    }
     char* end = nullptr;
     const double f = std::strtod(line.c_str() + 9, &end);
-    if (end == line.c_str() + 9 || std::isnan(f)) continue;
+    if (end == line.c_str() + 9 || !std::isfinite(f) || (*end != ' ' && *end != '\0')) {
+      r.garbage = said + quoted_output(line);
+      break;
+    }
     progress = std::clamp(f, 0.0, 1.0);
     stage = *end == ' ' ? std::string(end + 1) : std::string();
-    found = true;
+    r.found = true;
   }
   // A worker that writes no newline must not grow the buffer without end.
-  if (buffer.size() > 65536) buffer.clear();
-  return found;
+  if (r.garbage.empty() && buffer.size() > kMaxProgressLine)
+    r.garbage = said + std::to_string(buffer.size()) + " bytes without a line end";
+  if (!r.garbage.empty()) buffer.clear();
+  return r;
 }
 
 }  // namespace cgview::server

@@ -44,6 +44,7 @@ struct WorkerEnd {
     out_of_memory,  // its memory limit (where the executor knows it: Slurm)
     node_failed,    // the machine it ran on went away
     lost,           // its executor no longer knows it (`detail` says why)
+    garbled,        // it wrote something other than progress lines on its progress pipe (`detail` quotes it)
   };
   How how = How::exited;
   int code = 0, signal = 0;
@@ -110,9 +111,19 @@ class WakePipe {
   int fds_[2] = {-1, -1};
 };
 
+// What a worker's output held.  `garbage` is not empty when the output is
+// not progress lines: a line of anything else, a fraction that is not a
+// number, a line longer than kMaxProgressLine.  Its executor then stops the
+// worker and the job fails with `garbage` as its message: a worker whose
+// own pipe is garbled is broken, and its results are not trusted.
+struct ProgressRead {
+  bool found = false;   // a progress line came: `progress` and `stage` are the last one's
+  std::string garbage;  // why the output is not progress lines (quoting it), or empty
+};
+inline constexpr std::size_t kMaxProgressLine = 4096;
+
 // Parses the worker's progress lines out of `buffer` (its output so far,
-// consumed up to the last newline); the last progress line's fraction and
-// stage, or false when there was none.
-bool read_progress_lines(std::string& buffer, double& progress, std::string& stage);
+// consumed up to the last newline).
+ProgressRead read_progress_lines(std::string& buffer, double& progress, std::string& stage);
 
 }  // namespace cgview::server

@@ -1,5 +1,7 @@
 #include "jobs/job.h"
 
+#include "artifacts/artifact_codec.h"
+
 namespace cgview::server {
 
 using nlohmann::json;
@@ -19,7 +21,16 @@ std::optional<JobState> job_state_from(const std::string& name) {
 json job_json(const Job& j) {
   auto opt = [](const std::string& s) { return s.empty() ? json(nullptr) : json(s); };
   json artifacts = j.artifacts.is_array() ? j.artifacts : json::array();
-  for (auto& a : artifacts) a.erase("file");
+  for (auto& a : artifacts) {
+    a.erase("file");
+    // What ?format= takes for it, so that a client lists the downloads without a copy of the list.
+    if (const ArtifactCodec* codec = a.is_object() ? artifact_codec(a.value("kind", "")) : nullptr) {
+      json formats = json::array();
+      for (const ArtifactFormat& f : codec->formats())
+        if (f.served) formats.push_back(f.name);
+      a["formats"] = std::move(formats);
+    }
+  }
   json out = {{"id", j.id},
               {"owner", j.owner},
               {"algorithm", j.algorithm},
@@ -33,7 +44,8 @@ json job_json(const Job& j) {
               {"created", j.created},
               {"started", opt(j.started)},
               {"finished", opt(j.finished)},
-              {"artifacts", artifacts}};
+              {"artifacts", artifacts},
+              {"warnings", j.warnings.is_array() ? j.warnings : json::array()}};
   if (!j.where.empty()) out["node"] = j.where;
   return out;
 }

@@ -33,6 +33,7 @@ struct Job {
   double progress = 0;
   bool cached = false;
   nlohmann::json artifacts = nlohmann::json::array();  // the worker's list: name, kind, file, ...
+  nlohmann::json warnings = nlohmann::json::array();   // the worker's (strings): what the user must be told
   std::string files;        // the job whose directory holds the artifacts (itself, or a cached one's)
   std::uint64_t bytes = 0;  // of its directory once ended (its owner's quota counts them)
   std::int64_t seq = 0;     // submission order

@@ -12,17 +12,17 @@ using nlohmann::json;
 
 JobStore::JobStore(const std::filesystem::path& data_dir) {
   db_ = open_database(data_dir / "cgview.db");
-  exec_sql(
-      db_,
-      "CREATE TABLE IF NOT EXISTS jobs ("
-      " id TEXT PRIMARY KEY, seq INTEGER NOT NULL, owner TEXT NOT NULL, algorithm TEXT NOT NULL,"
-      " mesh_id TEXT NOT NULL, mesh_sha TEXT NOT NULL, params TEXT NOT NULL, cache_key TEXT NOT NULL,"
-      " state TEXT NOT NULL, stage TEXT NOT NULL, progress REAL NOT NULL, error TEXT NOT NULL,"
-      " cached INTEGER NOT NULL, created TEXT NOT NULL, started TEXT NOT NULL, finished TEXT NOT NULL,"
-      " artifacts TEXT NOT NULL, files TEXT NOT NULL, inputs TEXT NOT NULL DEFAULT '{}', bytes INTEGER,"
-      " executor TEXT NOT NULL DEFAULT '', handle TEXT NOT NULL DEFAULT '', worker_token TEXT NOT NULL DEFAULT '');"
-      "CREATE INDEX IF NOT EXISTS jobs_cache ON jobs(cache_key);",
-      "jobs");
+  exec_sql(db_,
+           "CREATE TABLE IF NOT EXISTS jobs ("
+           " id TEXT PRIMARY KEY, seq INTEGER NOT NULL, owner TEXT NOT NULL, algorithm TEXT NOT NULL,"
+           " mesh_id TEXT NOT NULL, mesh_sha TEXT NOT NULL, params TEXT NOT NULL, cache_key TEXT NOT NULL,"
+           " state TEXT NOT NULL, stage TEXT NOT NULL, progress REAL NOT NULL, error TEXT NOT NULL,"
+           " cached INTEGER NOT NULL, created TEXT NOT NULL, started TEXT NOT NULL, finished TEXT NOT NULL,"
+           " artifacts TEXT NOT NULL, files TEXT NOT NULL, inputs TEXT NOT NULL DEFAULT '{}', bytes INTEGER,"
+           " executor TEXT NOT NULL DEFAULT '', handle TEXT NOT NULL DEFAULT '', worker_token TEXT NOT NULL DEFAULT '',"
+           " warnings TEXT NOT NULL DEFAULT '[]');"
+           "CREATE INDEX IF NOT EXISTS jobs_cache ON jobs(cache_key);",
+           "jobs");
   // A database from before algorithms of several inputs lacks the column.
   add_missing_column(db_, "jobs", "inputs", "TEXT NOT NULL DEFAULT '{}'", "jobs");
   // One from before result sizes were stored: NULL until the scheduler sizes the job once.
@@ -31,6 +31,8 @@ JobStore::JobStore(const std::filesystem::path& data_dir) {
   add_missing_column(db_, "jobs", "executor", "TEXT NOT NULL DEFAULT ''", "jobs");
   add_missing_column(db_, "jobs", "handle", "TEXT NOT NULL DEFAULT ''", "jobs");
   add_missing_column(db_, "jobs", "worker_token", "TEXT NOT NULL DEFAULT ''", "jobs");
+  // One from before a job's warnings were kept.
+  add_missing_column(db_, "jobs", "warnings", "TEXT NOT NULL DEFAULT '[]'", "jobs");
 }
 
 JobStore::~JobStore() { sqlite3_close(db_); }
@@ -40,8 +42,8 @@ std::vector<std::shared_ptr<Job>> JobStore::load() const {
   sqlite3_prepare_v2(
       db_,
       "SELECT id, seq, owner, algorithm, mesh_id, mesh_sha, params, cache_key, state, stage, progress,"
-      " error, cached, created, started, finished, artifacts, files, inputs, bytes, executor, handle, worker_token"
-      " FROM jobs ORDER BY seq",
+      " error, cached, created, started, finished, artifacts, files, inputs, bytes, executor, handle, worker_token,"
+      " warnings FROM jobs ORDER BY seq",
       -1, &s, nullptr);
   auto text = [&](int c) {
     const auto* p = sqlite3_column_text(s, c);
@@ -79,6 +81,8 @@ std::vector<std::shared_ptr<Job>> JobStore::load() const {
     j->executor = text(20);
     j->handle = text(21);
     j->worker_token_sha = text(22);
+    j->warnings = parse_json_or_discarded(text(23));
+    if (!j->warnings.is_array()) j->warnings = json::array();
     out.push_back(std::move(j));
   }
   sqlite3_finalize(s);
@@ -87,12 +91,13 @@ std::vector<std::shared_ptr<Job>> JobStore::load() const {
 
 void JobStore::put(const Job& j) {
   sqlite3_stmt* s = nullptr;
-  if (sqlite3_prepare_v2(db_,
-                         "INSERT OR REPLACE INTO jobs (id, seq, owner, algorithm, mesh_id, mesh_sha, params, cache_key,"
-                         " state, stage, progress, error, cached, created, started, finished, artifacts, files, inputs,"
-                         " bytes, executor, handle, worker_token)"
-                         " VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20,?21,?22,?23)",
-                         -1, &s, nullptr) != SQLITE_OK)
+  if (sqlite3_prepare_v2(
+          db_,
+          "INSERT OR REPLACE INTO jobs (id, seq, owner, algorithm, mesh_id, mesh_sha, params, cache_key,"
+          " state, stage, progress, error, cached, created, started, finished, artifacts, files, inputs,"
+          " bytes, executor, handle, worker_token, warnings)"
+          " VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20,?21,?22,?23,?24)",
+          -1, &s, nullptr) != SQLITE_OK)
     throw IoError(std::string("jobs: ") + sqlite3_errmsg(db_));
   int i = 0;
   auto t = [&](const std::string& v) { sqlite3_bind_text(s, ++i, v.data(), int(v.size()), SQLITE_TRANSIENT); };
@@ -108,7 +113,7 @@ void JobStore::put(const Job& j) {
   // sizes it then (a running job cancelled is sized when its worker ends).
   if (active(j.state) || j.in_flight) sqlite3_bind_null(s, ++i);
   else sqlite3_bind_int64(s, ++i, std::int64_t(j.bytes));
-  t(j.executor), t(j.handle), t(j.worker_token_sha);
+  t(j.executor), t(j.handle), t(j.worker_token_sha), t(j.warnings.dump());
   const int rc = sqlite3_step(s);
   sqlite3_finalize(s);
   if (rc == SQLITE_FULL) throw DiskFull(std::string("jobs: ") + sqlite3_errmsg(db_));

@@ -84,7 +84,8 @@ void LocalExecutor::check(std::vector<ExecutorEvent>& events) {
       ExecutorEvent e;
       e.job_id = it->first;
       e.kind = ExecutorEvent::Kind::ended;
-      if (r.timed_out) e.end.how = WorkerEnd::How::timed_out;
+      if (!r.garbage.empty()) e.end.how = WorkerEnd::How::garbled, e.end.detail = r.garbage;
+      else if (r.timed_out) e.end.how = WorkerEnd::How::timed_out;
       else if (WIFSIGNALED(status)) e.end.how = WorkerEnd::How::signaled, e.end.signal = WTERMSIG(status);
       else e.end.how = WorkerEnd::How::exited, e.end.code = WEXITSTATUS(status);
       events.push_back(std::move(e));
@@ -125,7 +126,17 @@ std::vector<ExecutorEvent> LocalExecutor::poll(std::chrono::milliseconds timeout
     ExecutorEvent e;
     e.job_id = ids[k];
     e.kind = ExecutorEvent::Kind::progress;
-    if (read_progress_lines(r.out, e.progress, e.stage) && !r.terminating) events.push_back(e);
+    if (r.garbage.empty()) {
+      const ProgressRead read = read_progress_lines(r.out, e.progress, e.stage);
+      if (!read.garbage.empty() && !r.terminating) {
+        r.garbage = read.garbage;
+        ::kill(r.pid, SIGKILL);
+      } else if (read.found && !r.terminating) {
+        events.push_back(e);
+      }
+    } else {
+      r.out.clear();  // stopped for its garbage: the rest is not read
+    }
     if (n == 0) {
       ::close(r.out_fd);
       r.out_fd = -1;

@@ -36,6 +36,7 @@ class LocalExecutor : public Executor {
     pid_t pid = -1;
     int out_fd = -1;  // the worker's stdout; -1 once it closed
     std::string out;
+    std::string garbage;  // why it was stopped: its output was not progress lines
     std::chrono::steady_clock::time_point launched, term_sent;
     double timeout_s = 0;
     bool terminating = false, timed_out = false;

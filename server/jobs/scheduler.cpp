@@ -137,6 +137,7 @@ json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std
         j->stage = "done";
         j->started = j->finished = j->created;
         j->artifacts = o.artifacts;
+        j->warnings = o.warnings;
         j->files = o.files;
       }
     }
@@ -273,6 +274,7 @@ void JobScheduler::end(Job& j, const WorkerEnd* how, std::vector<json>& events) 
     if (r.done) {
       j.state = JobState::done;
       j.artifacts = r.artifacts;
+      j.warnings = r.warnings;
       j.files = j.id;
       cache_[j.cache_key] = j.id;
       j.progress = 1;

@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "jobs/admission.h"
-#include "jobs/artifact_formats.h"
+#include "artifacts/artifact_codec.h"
 #include "jobs/executor.h"
 #include "jobs/fair_queue.h"
 #include "jobs/job.h"
@@ -83,6 +83,16 @@ class JobScheduler : private JobLookup {
   nlohmann::json algorithms_json() const { return admission_.algorithms_json(); }
   // Admits and queues a job (admission.h says what it checks); the job.
   // Throws as Admission::admit does, or QuotaExceeded.
+  // Data another tool made, stored as the artifact of a done job of the
+  // caller's (algorithm "import", its file's name as its parameter, `inputs`
+  // the mesh a field is for): it shows, slices, compares and feeds jobs as a
+  // result does.  `read` stores the artifact into the directory it is given
+  // and returns its entry and warnings (data_read.h); what it throws is
+  // thrown, with nothing kept.  Also throws QuotaExceeded, InvalidInput for
+  // an artifact whose files do not match its entry.
+  using DataReader = std::function<std::pair<nlohmann::json, std::vector<std::string>>(const std::filesystem::path&)>;
+  nlohmann::json import_data(const std::string& file_name, const nlohmann::json& inputs, const DataReader& read,
+                             const Caller& caller);
   nlohmann::json submit(const nlohmann::json& request, const Caller& caller = Caller::local(),
                         std::vector<std::string>* new_meshes = nullptr);
   // The jobs the caller may see (their own and those shared with them; an
@@ -98,8 +108,12 @@ class JobScheduler : private JobLookup {
   std::optional<nlohmann::json> cancel(const std::string& id, const Caller& caller = Caller::local());
   // An artifact of a done job in a format; throws std::out_of_range (no such
   // job or artifact), InvalidInput (job not done), UnsupportedFormat.
-  ArtifactBytes artifact(const std::string& id, const std::string& name, const std::string& format,
-                         const Caller& caller = Caller::local()) override;
+  ExportedArtifact artifact(const std::string& id, const std::string& name, const std::string& format,
+                            const Caller& caller = Caller::local()) override;
+  // A done job's artifact read back by its kind's codec, if it is of `kind`:
+  // throws as artifact() does (UnsupportedFormat for another kind).
+  ArtifactValue artifact_value(const std::string& id, const std::string& name, OutputKind kind,
+                               const Caller& caller = Caller::local()) const;
 
   // The worker's side of a job whose node does not see the data directory
   // (the Slurm executor's shared_data false).  Each call takes the job's
@@ -159,6 +173,10 @@ class JobScheduler : private JobLookup {
   // Who may see a job's events.
   Access job_access(const std::string& id) const;
   // artifact_file, under mutex_.
+  // A done job's artifact the caller may read: its job's directory and its
+  // entry in the worker's list; throws as artifact() does.
+  std::pair<std::filesystem::path, nlohmann::json> stored_artifact(const std::string& id, const std::string& name,
+                                                                   const Caller& caller) const;
   std::filesystem::path artifact_file_locked(const std::string& job, const std::string& name, const std::string& kind,
                                              const Caller& caller = Caller::local()) const;
   // The jobs the owner has queued or running (under mutex_).

@@ -117,26 +117,50 @@ fs::path JobScheduler::artifact_file_locked(const std::string& id, const std::st
   throw std::out_of_range("job " + id + " has no artifact '" + name + "'");
 }
 
-ArtifactBytes JobScheduler::artifact(const std::string& id, const std::string& name, const std::string& format,
-                                     const Caller& caller) {
-  json entry;
-  std::string files, mesh_id;
+std::pair<fs::path, json> JobScheduler::stored_artifact(const std::string& id, const std::string& name,
+                                                        const Caller& caller) const {
+  std::lock_guard lock(mutex_);
+  const Job& j = job_locked(id, caller);
+  if (j.state != JobState::done)
+    throw InvalidInput("job " + id + " is " + to_string(j.state) + ", not done: it has no artifacts");
+  for (const auto& a : j.artifacts)
+    if (a.value("name", "") == name) return {job_dir(j.files), a};
+  throw std::out_of_range("job " + id + " has no artifact '" + name + "'");
+}
+
+namespace {
+
+const ArtifactCodec& codec_of(const json& entry) {
+  const ArtifactCodec* codec = artifact_codec(entry.value("kind", ""));
+  if (!codec) throw UnsupportedFormat("artifact '" + entry.value("name", "") + "' is of no kind this server knows");
+  return *codec;
+}
+
+}  // namespace
+
+ExportedArtifact JobScheduler::artifact(const std::string& id, const std::string& name, const std::string& format,
+                                        const Caller& caller) {
+  const auto [dir, entry] = stored_artifact(id, name, caller);
+  std::string mesh_id;
   {
     std::lock_guard lock(mutex_);
-    const Job& j = job_locked(id, caller);
-    if (j.state != JobState::done)
-      throw InvalidInput("job " + id + " is " + to_string(j.state) + ", not done: it has no artifacts");
-    for (const auto& a : j.artifacts)
-      if (a.value("name", "") == name) entry = a;
-    files = j.files;
-    mesh_id = j.mesh_id;
+    mesh_id = job_locked(id, caller).mesh_id;
   }
-  if (entry.is_null()) throw std::out_of_range("job " + id + " has no artifact '" + name + "'");
-  return serve_artifact(job_dir(files), entry, name, format, [&] {
+  return codec_of(entry).exported(dir, entry, format, [&] {
     const auto rec = meshes_.store().get_mesh(mesh_id);
     if (!rec) throw std::out_of_range("the mesh " + mesh_id + " of job " + id + " was deleted");
     return *meshes_.mesh(*rec);
   });
+}
+
+ArtifactValue JobScheduler::artifact_value(const std::string& id, const std::string& name, OutputKind kind,
+                                           const Caller& caller) const {
+  const auto [dir, entry] = stored_artifact(id, name, caller);
+  const ArtifactCodec& codec = codec_of(entry);
+  if (codec.kind() != kind)
+    throw UnsupportedFormat("artifact '" + name + "' of job " + id + " is a " + entry.value("kind", "") + ", not a " +
+                            to_string(kind));
+  return codec.load(dir, entry);
 }
 
 }  // namespace cgview::server

@@ -208,7 +208,15 @@ void SlurmExecutor::read_progress(Tracked& t, std::vector<ExecutorEvent>& events
   ExecutorEvent e;
   e.job_id = t.spec.job_id;
   e.kind = ExecutorEvent::Kind::progress;
-  if (read_progress_lines(t.output, e.progress, e.stage) && !t.cancelling) events.push_back(std::move(e));
+  if (!t.garbage.empty()) return;
+  const ProgressRead read = read_progress_lines(t.output, e.progress, e.stage);
+  if (!read.garbage.empty() && !t.cancelling) {
+    t.garbage = read.garbage;
+    t.cancelling = true;
+    run_tool({scancel_.string(), t.slurm_id}, kToolLimit);
+  } else if (read.found && !t.cancelling) {
+    events.push_back(std::move(e));
+  }
 }
 
 WorkerEnd SlurmExecutor::ended(const Tracked& t, const std::string& state, const std::string& reason) const {
@@ -216,6 +224,11 @@ WorkerEnd SlurmExecutor::ended(const Tracked& t, const std::string& state, const
   const std::string said = "Slurm job " + t.slurm_id + " " + (state.empty() ? "unknown" : state) +
                            (reason.empty() || reason == "None" ? "" : ", " + reason);
   end.detail = said;
+  if (!t.garbage.empty()) {
+    end.how = WorkerEnd::How::garbled;
+    end.detail = t.garbage;
+    return end;
+  }
   if (t.timed_out || state == "TIMEOUT") {
     end.how = WorkerEnd::How::timed_out;
     return end;

@@ -55,6 +55,7 @@ class SlurmExecutor : public Executor {
     std::chrono::steady_clock::time_point started;
     std::uintmax_t output_read = 0;  // bytes of its output file read for progress
     std::string output;              // a partial line
+    std::string garbage;             // why it was cancelled: its output was not progress lines
     int unseen = 0;                  // polls in a row that squeue did not list it
   };
   // One squeue for every job; events for what changed.

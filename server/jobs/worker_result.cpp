@@ -38,6 +38,10 @@ std::string incomplete_artifact(const fs::path& dir, const json& artifacts) {
     } else if (size == 0 && a.value("kind", "") != "text") {  // an extracted message may be empty
       return "artifact '" + name + "': its file is empty";
     }
+    const json bytes = a.value("bytes", json());
+    if (!bytes.is_number_unsigned()) return "artifact '" + name + "': its size is not said";
+    if (size != bytes.get<std::uintmax_t>())
+      return "artifact '" + name + "': " + std::to_string(size) + " bytes of the " + bytes.dump() + " written";
   }
   return "";
 }
@@ -51,7 +55,9 @@ WorkerOutcome read_worker_outcome(const fs::path& dir, const WorkerEnd& end, con
   const bool oom_report = (end.how == How::exited && end.code == 3) || text.find("bad_alloc") != std::string::npos;
   char seconds[32];
   std::snprintf(seconds, sizeof seconds, "%g", limits.timeout_s);
-  if (end.how == How::timed_out) {
+  if (end.how == How::garbled) {
+    out.error = end.detail;
+  } else if (end.how == How::timed_out) {
     out.error = std::string("exceeded its time limit of ") + seconds + " s";
   } else if (exited_ok && fs::exists(dir / "result.json")) {
     const json result = parse_json_or_discarded(trimmed_file(dir / "result.json"));
@@ -63,6 +69,8 @@ WorkerOutcome read_worker_outcome(const fs::path& dir, const WorkerEnd& end, con
     } else {
       out.done = true;
       out.artifacts = result.value("artifacts", json::array());
+      for (const auto& w : result.value("warnings", json::array()))
+        if (w.is_string()) out.warnings.push_back(w);
     }
   } else if (end.how == How::out_of_memory || (oom_report && limits.memory_mb > 0)) {
     out.error = "exceeded its memory limit of " + std::to_string(limits.memory_mb) + " MB";

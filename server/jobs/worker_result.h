@@ -16,6 +16,7 @@ namespace cgview::server {
 struct WorkerOutcome {
   bool done = false;
   nlohmann::json artifacts = nlohmann::json::array();  // when done
+  nlohmann::json warnings = nlohmann::json::array();   // when done: the worker's, strings
   std::string error;                                   // when not
 };
 
@@ -29,7 +30,8 @@ WorkerOutcome read_worker_outcome(const std::filesystem::path& dir, const Worker
 
 // Why a worker's artifact list does not match its files ("" when it does):
 // each entry names a plain file of the job's directory that is there, a
-// scalar field's file holds its count of floats, and only text may be empty.
+// scalar field's file holds its count of floats, only text may be empty, and
+// each file has the size its worker wrote it with ("bytes").
 std::string incomplete_artifact(const std::filesystem::path& dir, const nlohmann::json& artifacts);
 
 }  // namespace cgview::server

@@ -92,7 +92,7 @@ void add_job_routes(Routes& routes, const RouteContext& ctx) {
                     [&ctx](const Params& p, const HttpRequest& req, const Caller& caller) {
                       const auto q = split_target(req.target).second;
                       const auto f = q.find("format");
-                      ArtifactBytes a;
+                      ExportedArtifact a;
                       try {
                         a = ctx.jobs().artifact(p.at("id"), p.at("name"), f == q.end() ? "" : f->second, caller);
                       } catch (const InvalidInput& e) {

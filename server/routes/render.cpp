@@ -43,25 +43,13 @@ ScalarField resolve_field(const RouteContext& ctx, const MeshRecord& rec, const 
     if (job_id.empty()) throw bad("no done job on mesh " + rec.id + " has a scalar field '" + name + "'");
   }
   if (job_id.empty() || name.empty()) throw bad("'" + spec + "' is not JOB_ID/NAME or NAME");
-  ArtifactBytes a;
   try {
-    a = ctx.config.jobs->artifact(job_id, name, "json", caller);
+    return std::get<ScalarField>(ctx.config.jobs->artifact_value(job_id, name, OutputKind::scalar_field, caller));
+  } catch (const UnsupportedFormat&) {
+    throw bad("artifact '" + name + "' of job " + job_id + " is not a scalar field");
   } catch (const std::exception& e) {
     throw bad(e.what());
   }
-  const json j = json::parse(a.bytes, nullptr, false);
-  if (!j.is_object() || !j.contains("values"))
-    throw bad("artifact '" + name + "' of job " + job_id + " is not a scalar field");
-  ScalarField f;
-  f.name = j.value("name", name);
-  f.location = j.value("location", "vertex") == "face" ? Location::face : Location::vertex;
-  const std::string hint = j.value("hint", "standard");
-  f.hint = hint == "symmetric"     ? ColorHint::symmetric
-           : hint == "magnitude"   ? ColorHint::magnitude
-           : hint == "categorical" ? ColorHint::categorical
-                                   : ColorHint::standard;
-  for (const auto& v : j["values"]) f.values.push_back(v.is_number() ? v.get<float>() : NAN);
-  return f;
 }
 
 // The PNG; a 400 names a bad parameter ("parameter" in the JSON).

@@ -66,6 +66,8 @@ void add_mesh_routes(Routes& routes, const RouteContext& ctx);
 void add_render_route(Routes& routes, const RouteContext& ctx);
 // /api/v1/algorithms and /api/v1/jobs...: submit, list, one, cancel, artifacts, share.
 void add_job_routes(Routes& routes, const RouteContext& ctx);
+// POST /api/v1/data: a voxel grid, skeleton or scalar field another tool made.
+void add_data_routes(Routes& routes, const RouteContext& ctx);
 // /api/v1/worker/jobs/...: a job's worker on a node without the data directory.
 void add_worker_routes(Routes& routes, const RouteContext& ctx);
 // /api/v1/health, /api/v1/me and /metrics.

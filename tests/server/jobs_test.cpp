@@ -440,15 +440,20 @@ TEST_F(JobsTest, SdfAndSkeletonJobs) {
                 .status,
             400);
 
-  // A skeleton from another tool, attached to the mesh: skeleton_file with
-  // the file's text; a malformed one is refused at submission, naming its line.
+  // A skeleton from another tool, uploaded as data for the mesh: a done
+  // job's skeleton like mcf's; a malformed one is refused naming its line.
   const std::string cg = write_skeleton_bytes(
       read_skeleton_bytes(artifact(mcf["id"], "skeleton", "cg"), SkeletonFormat::cg, "s.cg"), SkeletonFormat::cg);
-  const json attached = wait_end(submit("skeleton_file", {{"name", "mcf.cg"}, {"text", cg}})["id"]);
+  const auto up = http_call(server_.port(), Method::post, "/api/v1/data?name=mcf.cg&mesh=" + mesh_id_, cg);
+  ASSERT_EQ(up.status, 201) << up.body;
+  const json attached = up.body_json();
   ASSERT_EQ(attached["state"], "done") << attached.dump();
-  EXPECT_EQ(json::parse(artifact(attached["id"], "metrics", "json"))["nodes"], m["nodes"]);
-  const json bad = submit("skeleton_file", {{"name", "bad.cg"}, {"text", "v 0 0 0\nv 1 0 0\ne 1 3\n"}}, 400);
-  EXPECT_NE(bad["detail"].get<std::string>().find("bad.cg: line 3"), std::string::npos) << bad.dump();
+  EXPECT_EQ(
+      double(read_skeleton_bytes(artifact(attached["id"], "skeleton", "cg"), SkeletonFormat::cg, "s.cg").nodes.size()),
+      m["nodes"].get<double>());
+  const auto bad = http_call(server_.port(), Method::post, "/api/v1/data?name=bad.cg", "v 0 0 0\nv 1 0 0\ne 1 3\n");
+  EXPECT_EQ(bad.status, 400) << bad.body;
+  EXPECT_NE(bad.body_json().value("detail", "").find("bad.cg: line 3"), std::string::npos) << bad.body;
 }
 
 TEST_F(JobsTest, BadRequests) {
@@ -485,6 +490,80 @@ TEST_F(JobsTest, TruncatedArtifactsFailTheJobNamingThem) {
   EXPECT_EQ(j.value("error", ""), "the worker's results are incomplete: artifact 'distance': 7 bytes for 162 values")
       << j.dump();
   EXPECT_EQ(http_get(server_.port(), "/api/v1/jobs/" + j["id"].get<std::string>() + "/artifacts/distance").status, 400);
+}
+
+// A worker wrapped by a shell script that runs BEFORE it, then the worker
+// itself (--list passes through).
+fs::path wrapped_worker(const fs::path& dir, const std::string& name, const std::string& before) {
+  const fs::path script = dir / name;
+  const std::string worker = test::bin("cgview-worker-test");
+  test::write_text(script, "#!/bin/sh\n[ \"$1\" = --list ] && exec " + worker + " --list\n" + before + "\nexec " +
+                               worker + " \"$@\"\n");
+  ::chmod(script.c_str(), 0755);
+  return script;
+}
+
+// A worker that writes anything but progress lines on its progress pipe is
+// broken: it is stopped at once and its job fails quoting what it wrote,
+// rather than running on with its output ignored.
+TEST_F(JobsTest, GarbageOnTheProgressPipeFailsTheJobQuotingIt) {
+  server_.kill_now();
+  ASSERT_TRUE(
+      start({"--worker", wrapped_worker(dir_, "garbling-worker", "echo 'hello from a broken worker'").string()}));
+  const auto t0 = Clock::now();
+  const json j = wait_end(submit("test_sleep", {{"seconds", 30}})["id"]);
+  EXPECT_LT(Clock::now() - t0, 10s) << "stopped at once, not at the end of its 30 s";
+  EXPECT_EQ(j["state"], "failed") << j.dump();
+  EXPECT_EQ(j.value("error", ""),
+            "the worker wrote something other than progress on its progress pipe: \"hello from a broken worker\"");
+  EXPECT_EQ(worker_processes(j["id"]), 0);
+  EXPECT_TRUE(server_.alive());
+}
+
+TEST_F(JobsTest, OutputWithoutALineEndFailsTheJobSayingSo) {
+  server_.kill_now();
+  ASSERT_TRUE(
+      start({"--worker", wrapped_worker(dir_, "endless-worker", "head -c 70000 /dev/zero | tr '\\0' x").string()}));
+  const json j = wait_end(submit("test_sleep", {{"seconds", 30}})["id"]);
+  EXPECT_EQ(j["state"], "failed") << j.dump();
+  const std::string error = j.value("error", "");
+  EXPECT_EQ(error.rfind("the worker wrote something other than progress on its progress pipe: ", 0), 0u) << error;
+  EXPECT_NE(error.find(" bytes without a line end"), std::string::npos) << error;
+}
+
+// What an algorithm prints to stdout goes to the job's stderr, not to the
+// progress pipe: the job is done, and its progress still came.
+TEST_F(JobsTest, AnAlgorithmPrintingToStdoutStillSucceeds) {
+  const json j = wait_end(submit("test_chatty", json::object())["id"]);
+  EXPECT_EQ(j["state"], "done") << j.dump();
+  const std::string err = read_bytes(data_ / "jobs" / j["id"].get<std::string>() / "stderr.txt");
+  EXPECT_NE(err.find("progress banana"), std::string::npos) << err;
+  EXPECT_NE(err.find("a line from std::cout"), std::string::npos) << err;
+}
+
+// Any artifact cut short after its worker wrote it (here a mesh, whose
+// size no header gives) fails the job naming it, with both sizes.
+TEST_F(JobsTest, ATruncatedMeshArtifactFailsTheJobWithItsSizes) {
+  server_.kill_now();
+  const fs::path script = dir_ / "halving-worker";
+  test::write_text(
+      script, "#!/bin/sh\n" + test::bin("cgview-worker-test") +
+                  " \"$@\"; rc=$?\n[ \"$1\" = --list ] && exit $rc\n"
+                  "for f in \"$(dirname \"$1\")\"/*.ply; do truncate -s \"$(( $(stat -c %s \"$f\") / 2 ))\" \"$f\"; "
+                  "done\nexit $rc\n");
+  ::chmod(script.c_str(), 0755);
+  ASSERT_TRUE(start({"--worker", script.string()}));
+  const json j = wait_end(submit("test_translate", json::object())["id"]);
+  EXPECT_EQ(j["state"], "failed") << j.dump();
+  const std::string error = j.value("error", "");
+  std::size_t kept = 0, written = 0;
+  ASSERT_EQ(
+      std::sscanf(error.c_str(), "the worker's results are incomplete: artifact 'mesh': %zu bytes of the %zu written",
+                  &kept, &written),
+      2)
+      << error;
+  EXPECT_GT(written, 1000u);
+  EXPECT_EQ(kept, written / 2);
 }
 
 TEST_F(JobsTest, CrashMemoryAndTimeLimitsFailAlone) {
