@@ -46,8 +46,9 @@ std::string data_kind(const std::string& name, const std::string& kind);
 // the mesh), UnsupportedFormat, TooLarge.
 DataRead read_data(const DataRequest& request, std::string_view bytes, const std::filesystem::path& out_dir);
 
-// read_data in a child process (cgview-read --read-data DIR) under the
-// reader's limits; the artifact's files are moved into `out_dir`.  Throws
+// read_data in a child process (`reader.program --read-data DIR`: the
+// server runs cgview-read-data, beside cgview-read) under the reader's
+// limits; the artifact's files are moved into `out_dir`.  Throws
 // what read_data throws, as run_reader_child says.
 DataRead read_data_in_child(const UploadReader& reader, const DataRequest& request, std::string_view bytes,
                             const std::filesystem::path& out_dir);

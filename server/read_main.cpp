@@ -3,10 +3,8 @@
 // crash) happens in this process, under the server's memory and time limits
 // for it, and not in the server.
 //
-//   cgview-read --read-upload DIR   a mesh: DIR/request.json and DIR/upload in,
+//   cgview-read --read-upload DIR   DIR/request.json and DIR/upload in,
 //                                   DIR/result.json (or DIR/error.json) out
-//   cgview-read --read-data DIR     a voxel grid, skeleton or scalar field
-//                                   (data_read.h): the same, and DIR/out/
 //
 // A program of its own rather than a mode of cgview-worker: it links the
 // readers alone, and starts in about 6 ms where the worker, with every
@@ -14,12 +12,10 @@
 #include <cstdio>
 #include <string>
 
-#include "data_read.h"
 #include "upload_read.h"
 
 int main(int argc, char** argv) {
   if (argc == 3 && std::string(argv[1]) == "--read-upload") return cgview::server::read_upload_main(argv[2]);
-  if (argc == 3 && std::string(argv[1]) == "--read-data") return cgview::server::read_data_main(argv[2]);
-  std::fputs("usage: cgview-read --read-upload DIR | --read-data DIR (the server runs it for each upload)\n", stderr);
+  std::fputs("usage: cgview-read --read-upload DIR (the server runs it for each upload)\n", stderr);
   return 64;
 }

@@ -43,7 +43,9 @@ void add_data_routes(Routes& routes, const RouteContext& ctx) {
            data.mesh_faces = report.is_object() ? report.value("faces", std::size_t(0)) : 0;
            inputs["mesh"] = rec.id;
          }
-         const UploadReader& reader = ctx.meshes.reader();
+         // Read by cgview-read-data, beside the mesh uploads' cgview-read, under the same limits.
+         UploadReader reader = ctx.meshes.reader();
+         if (!reader.program.empty()) reader.program = reader.program.parent_path() / "cgview-read-data";
          const json job = jobs.import_data(
              data.name, inputs,
              [&](const std::filesystem::path& dir) {

@@ -79,7 +79,10 @@ test('the viewer asks for a token once, then works with it', async () => {
   await page.waitForFunction((meshId) => window.__cgview.lastLoaded?.id === meshId, id, { timeout: 60000 });
   assert.equal(await page.locator('#token-form').count(), 0, 'the form is not asked again');
   const secret = token.slice(21);
-  assert.ok(urls.every((u) => !u.includes(secret)), 'the token is in no URL');
+  assert.ok(
+    urls.every((u) => !u.includes(secret)),
+    'the token is in no URL',
+  );
   await page.close();
 });
 

@@ -78,7 +78,9 @@ test('a message extracted by chaos_extract shows in the job panel', async () => 
   assert.equal(extract.state, 'done', JSON.stringify(extract));
   const text = v.page.locator(`#jobs li.job[data-job-id="${extract.id}"] .text-content`);
   await text.waitFor({ timeout: 20000 });
-  await v.page.waitForFunction((id) => !document.querySelector(`#jobs li.job[data-job-id="${id}"] .text-content`)?.textContent?.includes('loading'), extract.id, { timeout: 10000 });
+  await v.page.waitForFunction((id) => !document.querySelector(`#jobs li.job[data-job-id="${id}"] .text-content`)?.textContent?.includes('loading'), extract.id, {
+    timeout: 10000,
+  });
   assert.equal(await text.innerText(), message);
   assert.deepEqual(v.problems, [], v.describeProblems());
 });

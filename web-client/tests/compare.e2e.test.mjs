@@ -50,7 +50,11 @@ function checkHistogram(h, count, what, filled = 3) {
   assert.ok(h.bins >= 32 && h.bins <= 64, `${what}: 32 to 64 bins: ${h.bins}`);
   assert.equal(h.counts.length, h.bins, `${what}: one bar per bin`);
   assert.equal(h.total, count, `${what}: every value is counted`);
-  assert.equal(h.counts.reduce((a, b) => a + b, 0), count, `${what}: the bars add up to the values`);
+  assert.equal(
+    h.counts.reduce((a, b) => a + b, 0),
+    count,
+    `${what}: the bars add up to the values`,
+  );
   assert.ok(h.counts.filter((n) => n > 0).length >= filled, `${what}: the values spread over ${filled} bins or more: ${h.counts}`);
 }
 
@@ -217,7 +221,14 @@ test('"One range per hint" colours the two curvatures over one range; the distan
   await v.page.waitForFunction((r) => JSON.stringify(window.__cgview.lastCompare.panes.map((p) => p.range)) !== r, JSON.stringify(own), { timeout: 10000 });
   const shared = await ranges();
   const hi = Math.max(own[0][1], own[1][1]);
-  assert.deepEqual(shared.slice(0, 2), [[-hi, hi], [-hi, hi]], 'both symmetric fields over their common range');
+  assert.deepEqual(
+    shared.slice(0, 2),
+    [
+      [-hi, hi],
+      [-hi, hi],
+    ],
+    'both symmetric fields over their common range',
+  );
   assert.deepEqual(shared[2], own[2], 'the only magnitude field keeps its range');
   const legends = v.page.locator('.compare-view .compare-pane .legend');
   assert.equal(await legends.nth(0).locator('.legend-max').innerText(), await legends.nth(1).locator('.legend-max').innerText());

@@ -59,13 +59,10 @@ async function pinViewport(page) {
       #viewport { position: fixed !important; left: 0; top: 0; z-index: 1000;
       width: ${VIEW_SIZE.width}px !important; height: ${VIEW_SIZE.height}px !important; }`,
   });
-  await page.waitForFunction(
-    ({ width, height }) => {
-      const c = document.querySelector('#viewport canvas');
-      return c && c.width === width && c.height === height;
-    },
-    VIEW_SIZE,
-  );
+  await page.waitForFunction(({ width, height }) => {
+    const c = document.querySelector('#viewport canvas');
+    return c && c.width === width && c.height === height;
+  }, VIEW_SIZE);
 }
 
 /** The canvas as a PNG, through the page's Screenshot button (a download). */
@@ -131,16 +128,16 @@ test('each display mode draws like its reference picture', async () => {
     if (update) fs.writeFileSync(reference, png);
     assert.ok(fs.existsSync(reference), `no reference picture ${reference}: make it with CGVIEW_UPDATE_REFERENCES=1`);
     const d = await difference(page, png, fs.readFileSync(reference));
-    assert.ok(matches(d), `${mode} differs from its reference: ${JSON.stringify(d)} (tolerance ${JSON.stringify(TOLERANCE)}); see ${path.join(artifactsDir, `display-${mode}.png`)}`);
+    assert.ok(
+      matches(d),
+      `${mode} differs from its reference: ${JSON.stringify(d)} (tolerance ${JSON.stringify(TOLERANCE)}); see ${path.join(artifactsDir, `display-${mode}.png`)}`,
+    );
   }
   // Each reference differs from every other one by far more than the tolerance: a mode drawn wrong cannot pass.
   for (let i = 0; i < MODES.length; ++i) {
     for (let j = i + 1; j < MODES.length; ++j) {
       const d = await difference(page, drawn[MODES[i]], drawn[MODES[j]]);
-      assert.ok(
-        d.meanAbs > 3 * TOLERANCE.meanAbs || d.farShare > 3 * TOLERANCE.farShare,
-        `${MODES[i]} and ${MODES[j]} look alike: ${JSON.stringify(d)}`,
-      );
+      assert.ok(d.meanAbs > 3 * TOLERANCE.meanAbs || d.farShare > 3 * TOLERANCE.farShare, `${MODES[i]} and ${MODES[j]} look alike: ${JSON.stringify(d)}`);
     }
   }
   await setMode(page, 'smooth');
@@ -149,7 +146,12 @@ test('each display mode draws like its reference picture', async () => {
 
 /** Boundary (used by one face) and non-manifold (more than two) edges of an OFF file's polygons, and its extent. */
 function offEdges(text) {
-  const tokens = text.split('\n').map((l) => l.replace(/#.*/, '')).join(' ').trim().split(/\s+/);
+  const tokens = text
+    .split('\n')
+    .map((l) => l.replace(/#.*/, ''))
+    .join(' ')
+    .trim()
+    .split(/\s+/);
   assert.equal(tokens[0], 'OFF');
   const [nv, nf] = [Number(tokens[1]), Number(tokens[2])];
   let k = 4;
@@ -369,10 +371,13 @@ test('a field recolours over a range typed in, its 1-99% percentiles and its ful
   // 1-99%: nearest-rank percentiles of the served values.
   const rank = (p) => sorted[Math.round((p / 100) * (sorted.length - 1))];
   await page.click('#field-clip');
-  await page.waitForFunction(([lo, hi]) => {
-    const f = window.__cgview.lastField;
-    return f && f.range[0] === lo && f.range[1] === hi;
-  }, [rank(1), rank(99)]);
+  await page.waitForFunction(
+    ([lo, hi]) => {
+      const f = window.__cgview.lastField;
+      return f && f.range[0] === lo && f.range[1] === hi;
+    },
+    [rank(1), rank(99)],
+  );
 
   // Toon keeps the field's colours (turbo: several hues, no plain orange).
   await setMode(page, 'toon');
@@ -391,10 +396,13 @@ test('a field recolours over a range typed in, its 1-99% percentiles and its ful
     await other.waitForFunction(() => window.__cgview?.viewRestored !== null, null, { timeout: 60000 });
     const restored = await other.evaluate(() => window.__cgview.viewRestored);
     assert.ok(!restored.error, `restoring failed: ${restored.error}`);
-    await other.waitForFunction(([id, lo, hi]) => {
-      const f = window.__cgview.lastField;
-      return f && f.jobId === id && f.range[0] === lo && f.range[1] === hi;
-    }, [jobId, rank(1), rank(99)]);
+    await other.waitForFunction(
+      ([id, lo, hi]) => {
+        const f = window.__cgview.lastField;
+        return f && f.jobId === id && f.range[0] === lo && f.range[1] === hi;
+      },
+      [jobId, rank(1), rank(99)],
+    );
     assert.equal((await other.evaluate(() => window.__cgview.lastField)).map, field.map);
     assert.equal(await other.evaluate(() => window.__cgview.display.mode), 'toon');
     const d = await difference(page, clippedPicture, await screenshot(other, 'field-link-second'));

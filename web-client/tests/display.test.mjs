@@ -40,7 +40,14 @@ test('three triangles on one edge make it non-manifold (and their six other side
 
 test('vertices split at equal positions (unindexed corners) are welded', () => {
   // The open square again, as six unindexed corners.
-  const p = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 0, 0], [1, 1, 0], [0, 1, 0]].flat();
+  const p = [
+    [0, 0, 0],
+    [1, 0, 0],
+    [1, 1, 0],
+    [0, 0, 0],
+    [1, 1, 0],
+    [0, 1, 0],
+  ].flat();
   const e = classifyEdges(p, null);
   assert.equal(count(e.boundary), 4);
   assert.equal(count(e.nonManifold), 0);

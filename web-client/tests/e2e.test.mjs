@@ -79,8 +79,7 @@ after(async () => {
 // Counts mesh-coloured and background pixels of a PNG.
 async function analyse(png) {
   const { data, width, height } = await pngPixels(page, png);
-  const isBackground = (r, g, b) =>
-    Math.abs(r - BACKGROUND[0]) <= 6 && Math.abs(g - BACKGROUND[1]) <= 6 && Math.abs(b - BACKGROUND[2]) <= 6;
+  const isBackground = (r, g, b) => Math.abs(r - BACKGROUND[0]) <= 6 && Math.abs(g - BACKGROUND[1]) <= 6 && Math.abs(b - BACKGROUND[2]) <= 6;
   function region(x0, y0, x1, y1) {
     let mesh = 0;
     let bg = 0;
@@ -149,10 +148,14 @@ test('uploading the elephant through the page lists, reports and draws it', asyn
   // Its thumbnail comes from the server's EGL renderer (render.png, 96 px).
   const thumb = item.locator('img.mesh-thumb');
   await thumb.waitFor();
-  await page.waitForFunction((id) => {
-    const img = document.querySelector(`#mesh-list li.mesh[data-mesh-id="${id}"] img.mesh-thumb`);
-    return img !== null && img.complete && img.naturalWidth > 0;
-  }, elephantId, { timeout: 30000 });
+  await page.waitForFunction(
+    (id) => {
+      const img = document.querySelector(`#mesh-list li.mesh[data-mesh-id="${id}"] img.mesh-thumb`);
+      return img !== null && img.complete && img.naturalWidth > 0;
+    },
+    elephantId,
+    { timeout: 30000 },
+  );
   assert.equal(await thumb.evaluate((img) => img.naturalWidth), 96, 'a 96 px thumbnail');
   assert.match(await thumb.getAttribute('src'), /\/render\.png\?width=96&height=96$/);
   assert.equal((await page.locator('#report tr[data-key="vertices"] td').innerText()).trim(), '2775');
@@ -178,7 +181,7 @@ test('uploading the elephant through the page lists, reports and draws it', asyn
   assert.deepEqual(pageProblems, [], describeProblems());
 });
 
-test('a bad upload shows the server\'s error detail in the page', async () => {
+test("a bad upload shows the server's error detail in the page", async () => {
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'cgview-e2e-bad-'));
   try {
     const bad = path.join(dir, 'bad.off');
@@ -210,8 +213,7 @@ test('a bad upload shows the server\'s error detail in the page', async () => {
 
 test('mesh_added and mesh_deleted events from other clients update the list', async () => {
   // Another client uploads over REST: the page learns of it over the WebSocket.
-  const cube = 'OFF\n8 6 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n' +
-    '4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n';
+  const cube = 'OFF\n8 6 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n' + '4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n';
   const r = await fetch(`${baseUrl}/api/v1/meshes?name=cube.off`, { method: 'POST', body: cube });
   assert.equal(r.status, 201, await r.clone().text());
   const mesh = await r.json();

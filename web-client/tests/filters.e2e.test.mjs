@@ -81,10 +81,12 @@ test('"Run on this" chains: hausdorff of the simplified mesh against the elephan
   assert.ok(stored.report.faces <= TARGET_FACES, `the stored input is the simplified mesh: ${JSON.stringify(stored.report)}`);
 
   // The distance field is drawn on it (one value per vertex), with a legend.
-  await v.page.waitForFunction((id) => window.__cgview.lastField?.jobId === id, jobId, { timeout: 60000 }).catch(async (e) => {
-    const error = await v.page.evaluate(() => window.__cgview.lastError);
-    throw new Error(`no field drawn (page error: ${error}): ${e.message}${v.describeProblems()}`);
-  });
+  await v.page
+    .waitForFunction((id) => window.__cgview.lastField?.jobId === id, jobId, { timeout: 60000 })
+    .catch(async (e) => {
+      const error = await v.page.evaluate(() => window.__cgview.lastError);
+      throw new Error(`no field drawn (page error: ${error}): ${e.message}${v.describeProblems()}`);
+    });
   const shown = await v.page.evaluate(() => window.__cgview.lastField);
   assert.equal(shown.meshId, job.inputs.mesh);
   assert.equal(shown.count, stored.report.vertices, 'one value per vertex of the simplified mesh');

@@ -26,10 +26,16 @@ test('a non-integer has at most four significant digits, within 5e-4 relative of
   for (let e = -8; e <= 8; ++e) {
     for (const m of [1.00049, 3.14159265, 9.87654321]) {
       const v = m * 10 ** e;
-      if (Number.isInteger(v)) continue;  // written whole
+      if (Number.isInteger(v)) continue; // written whole
       const shown = Number(formatNumber(v));
       assert.ok(Math.abs(shown - v) <= 5e-4 * v, `${v} shown as ${formatNumber(v)}`);
-      assert.ok(formatNumber(v).replace(/e.*$/, '').replace(/[-.]/g, '').replace(/^0+|0+$/g, '').length <= 4, `${v} shown as ${formatNumber(v)}`);
+      assert.ok(
+        formatNumber(v)
+          .replace(/e.*$/, '')
+          .replace(/[-.]/g, '')
+          .replace(/^0+|0+$/g, '').length <= 4,
+        `${v} shown as ${formatNumber(v)}`,
+      );
     }
   }
 });
@@ -49,12 +55,24 @@ test('a list of numbers is a tuple, any other list is comma-separated', () => {
   assert.equal(formatValue([-0.5, 0.123456, 2]), '(-0.5, 0.1235, 2)');
   assert.equal(formatValue(['a', 'b', 'c']), 'a, b, c');
   assert.equal(formatValue([1, 'x', null, true]), '1, x, —, yes');
-  assert.equal(formatValue([[0, 0, 0], [1.23456, 2, 3]]), '(0, 0, 0), (1.235, 2, 3)');
+  assert.equal(
+    formatValue([
+      [0, 0, 0],
+      [1.23456, 2, 3],
+    ]),
+    '(0, 0, 0), (1.235, 2, 3)',
+  );
   assert.equal(formatValue([]), '');
 });
 
 test('an object is braced key: value pairs, its numbers rounded the same way', () => {
   assert.equal(formatValue({ mean_edge: 0.0123456, count: 7 }), '{mean edge: 0.01235, count: 7}');
   assert.equal(formatValue({}), '{}');
-  assert.equal(formatValue([{ a: 1, b: 2 }, { a: 3, b: 4 }]), '{a: 1, b: 2}, {a: 3, b: 4}');
+  assert.equal(
+    formatValue([
+      { a: 1, b: 2 },
+      { a: 3, b: 4 },
+    ]),
+    '{a: 1, b: 2}, {a: 3, b: 4}',
+  );
 });

@@ -72,10 +72,7 @@ function samplePairs() {
 
 test('sample frames in tests/data/frames/ decode to their sidecar fields', async (t) => {
   const pairs = samplePairs();
-  assert.ok(
-    pairs.length > 0,
-    `no sample frames (*.bin with a *.json sidecar) in ${samplesDir}; the server's tests write them`,
-  );
+  assert.ok(pairs.length > 0, `no sample frames (*.bin with a *.json sidecar) in ${samplesDir}; the server's tests write them`);
   for (const pair of pairs) {
     await t.test(pair.name, () => {
       assert.ok(fs.existsSync(pair.json), `${pair.name}.bin has no ${pair.name}.json sidecar`);
@@ -197,7 +194,14 @@ test('the header is read little-endian at the offsets of API.md', () => {
   // A DataView over a Buffer's pooled ArrayBuffer: byteOffset must be honoured.
   const h = decodeFrameHeader(b);
   assert.deepEqual(h, {
-    magic: 'CGVF', version: 1, kind: 1, request_id: 77, chunk_index: 0, chunk_count: 1, header_bytes: 32, total: 8,
+    magic: 'CGVF',
+    version: 1,
+    kind: 1,
+    request_id: 77,
+    chunk_index: 0,
+    chunk_count: 1,
+    header_bytes: 32,
+    total: 8,
   });
   assert.equal(decodeFrame(b.buffer.slice(b.byteOffset, b.byteOffset + b.length)).payload.byteLength, 8);
 });
@@ -216,7 +220,11 @@ test('malformed headers are rejected with a FrameError naming the problem', () =
     ['chunk larger than total', (b) => (b.writeBigUInt64LE(2n, 24), b), /larger than the total/],
   ];
   for (const [name, corrupt, message] of cases) {
-    assert.throws(() => decodeFrame(corrupt(good())), (e) => e instanceof FrameError && message.test(e.message), name);
+    assert.throws(
+      () => decodeFrame(corrupt(good())),
+      (e) => e instanceof FrameError && message.test(e.message),
+      name,
+    );
   }
 });
 

@@ -58,11 +58,10 @@ process.on('exit', () => {
 // GET /api/v1/health answers ok.
 export async function startServer({ tmpPrefix = 'cgview-', extraArgs = [], timeoutMs = 30_000 } = {}) {
   const dataDir = fs.mkdtempSync(path.join(os.tmpdir(), tmpPrefix));
-  const proc = spawn(
-    serverBin,
-    ['--host', '127.0.0.1', '--port', '0', '--data-dir', dataDir, '--static-dir', dist, ...extraArgs],
-    { cwd: repo, stdio: ['ignore', 'pipe', 'pipe'] },
-  );
+  const proc = spawn(serverBin, ['--host', '127.0.0.1', '--port', '0', '--data-dir', dataDir, '--static-dir', dist, ...extraArgs], {
+    cwd: repo,
+    stdio: ['ignore', 'pipe', 'pipe'],
+  });
   const entry = { proc, dataDir };
   leftovers.add(entry);
   let serverLog = '';
@@ -88,10 +87,7 @@ export async function startServer({ tmpPrefix = 'cgview-', extraArgs = [], timeo
 
   try {
     const url = await new Promise((resolve, reject) => {
-      const timer = setTimeout(
-        () => reject(new Error(`cgview-server did not say where it serves within ${timeoutMs / 1000} s:\n${serverLog}`)),
-        timeoutMs,
-      );
+      const timer = setTimeout(() => reject(new Error(`cgview-server did not say where it serves within ${timeoutMs / 1000} s:\n${serverLog}`)), timeoutMs);
       const onData = (chunk) => {
         serverLog += chunk.toString();
         if (serverLog.length > 20000) serverLog = serverLog.slice(-20000);

@@ -110,7 +110,7 @@ test('the algorithm menu lists centroid_distance and renders its form from the p
   assert.equal(await form.locator('button.run').isEnabled(), true, 'Run is enabled with the elephant selected');
 });
 
-test('a parameter out of range shows the server\'s 400 detail beside the form', async (t) => {
+test("a parameter out of range shows the server's 400 detail beside the form", async (t) => {
   if (skipWithoutApi(t)) return;
   const form = page.locator('form.algorithm-form[data-algorithm="centroid_distance"]');
   await form.locator('input[data-param="exponent"]').fill('9');
@@ -144,10 +144,14 @@ test('running centroid_distance on the elephant: the job goes to done and the me
 
   const job = page.locator('#jobs li.job').first();
   await job.waitFor({ timeout: 15000 });
-  await page.locator('#jobs li.job[data-state="done"]').first().waitFor({ timeout: 60000 }).catch(async (e) => {
-    const states = await page.evaluate(() => window.__jobStates);
-    throw new Error(`the job never showed done: ${e.message}\nstates: ${states}${describeProblems()}\n${server.log()}`);
-  });
+  await page
+    .locator('#jobs li.job[data-state="done"]')
+    .first()
+    .waitFor({ timeout: 60000 })
+    .catch(async (e) => {
+      const states = await page.evaluate(() => window.__jobStates);
+      throw new Error(`the job never showed done: ${e.message}\nstates: ${states}${describeProblems()}\n${server.log()}`);
+    });
   const states = await page.evaluate(() => window.__jobStates);
   t.diagnostic(`job panel (state:stage:bar): ${states.join(' → ')}`);
   assert.ok(states.length >= 1 && states.at(-1).startsWith('done:'), `job panel states: ${states}`);
@@ -166,10 +170,12 @@ test('running centroid_distance on the elephant: the job goes to done and the me
   assert.ok(field, `the job has a scalar_field artifact: ${JSON.stringify(ours.artifacts)}`);
 
   // The colour map is drawn: values for every vertex, the legend shown.
-  await page.waitForFunction(() => window.__cgview.lastField !== null, null, { timeout: 30000 }).catch(async (e) => {
-    const error = await page.evaluate(() => window.__cgview.lastError);
-    throw new Error(`no field drawn (page error: ${error}): ${e.message}${describeProblems()}`);
-  });
+  await page
+    .waitForFunction(() => window.__cgview.lastField !== null, null, { timeout: 30000 })
+    .catch(async (e) => {
+      const error = await page.evaluate(() => window.__cgview.lastError);
+      throw new Error(`no field drawn (page error: ${error}): ${e.message}${describeProblems()}`);
+    });
   const shown = await page.evaluate(() => window.__cgview.lastField);
   assert.equal(shown.jobId, ours.id);
   assert.equal(shown.artifact, field.name);

@@ -91,11 +91,7 @@ test('a long job shows its progress live and the Cancel button cancels it', asyn
   );
   const first = await item.locator('progress').evaluate((p) => p.value);
   assert.match(await item.locator('.job-stage').innerText(), /\S/, 'a stage name is shown');
-  await page.waitForFunction(
-    ({ jobId, v }) => document.querySelector(`#jobs li.job[data-job-id="${jobId}"] progress`).value > v,
-    { jobId: id, v: first },
-    { timeout: 20000 },
-  );
+  await page.waitForFunction(({ jobId, v }) => document.querySelector(`#jobs li.job[data-job-id="${jobId}"] progress`).value > v, { jobId: id, v: first }, { timeout: 20000 });
 
   fs.mkdirSync(artifacts, { recursive: true });
   await page.screenshot({ path: path.join(artifacts, 'e2e-jobs-running.png') });

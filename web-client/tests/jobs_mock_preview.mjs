@@ -51,11 +51,29 @@ try {
       for (let i = 0; i < nv; ++i) for (let k = 0; k < 3; ++k) c[k] += pos[i * 3 + k] / nv;
       const values = new Float32Array(nv);
       for (let i = 0; i < nv; ++i) values[i] = Math.hypot(pos[i * 3] - c[0], pos[i * 3 + 1] - c[1], pos[i * 3 + 2] - c[2]) ** e;
-      let lo = Infinity, hi = -Infinity;
-      for (const v of values) { lo = Math.min(lo, v); hi = Math.max(hi, v); }
+      let lo = Infinity,
+        hi = -Infinity;
+      for (const v of values) {
+        lo = Math.min(lo, v);
+        hi = Math.max(hi, v);
+      }
       const id = `job${jobs.size + 1}`;
       fields.set(id, values);
-      const job = { id, algorithm: body.algorithm, inputs: body.inputs, params: body.params, state: 'queued', progress: 0, stage: '', error: null, cached: false, created: new Date().toISOString(), started: null, finished: null, artifacts: [] };
+      const job = {
+        id,
+        algorithm: body.algorithm,
+        inputs: body.inputs,
+        params: body.params,
+        state: 'queued',
+        progress: 0,
+        stage: '',
+        error: null,
+        cached: false,
+        created: new Date().toISOString(),
+        started: null,
+        finished: null,
+        artifacts: [],
+      };
       jobs.set(id, job);
       (async () => {
         for (const p of [0.1, 0.3, 0.5, 0.7, 0.9]) {
@@ -66,11 +84,17 @@ try {
         }
         await sleep(300);
         if (job.state === 'cancelled') return;
-        Object.assign(job, { state: 'done', progress: 1, stage: 'done', finished: new Date().toISOString(), artifacts: [
-          { name: 'distance', kind: 'scalar_field', location: 'vertex', range: [lo, hi], count: nv, hint: 'magnitude' },
-          { name: 'stats', kind: 'metrics' },
-          { name: 'blob', kind: 'mesh' },
-        ] });
+        Object.assign(job, {
+          state: 'done',
+          progress: 1,
+          stage: 'done',
+          finished: new Date().toISOString(),
+          artifacts: [
+            { name: 'distance', kind: 'scalar_field', location: 'vertex', range: [lo, hi], count: nv, hint: 'magnitude' },
+            { name: 'stats', kind: 'metrics' },
+            { name: 'blob', kind: 'mesh' },
+          ],
+        });
         send('job_done', job);
       })();
       return json(route, 201, job);

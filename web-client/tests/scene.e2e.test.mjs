@@ -128,7 +128,10 @@ test('a second mesh added with "+" shows beside the first, moves, hides and take
   assert.ok(g.n > 0.5 * blue.n && g.x > 0.5, `green where the blue was: ${g.n} pixels at x ${g.x.toFixed(2)}`);
   assert.ok(colourStats(green, isBlue).n < 20, 'no blue left');
   objects = await sceneObjects(page);
-  assert.deepEqual(objects.map((o) => o.mesh), [meshId, ico]);
+  assert.deepEqual(
+    objects.map((o) => o.mesh),
+    [meshId, ico],
+  );
 
   // The display mode is the scene's: in wireframe both objects are drawn as lines, each in its colour.
   await page.selectOption('#display-mode', 'wireframe');
@@ -144,10 +147,14 @@ test('a second mesh added with "+" shows beside the first, moves, hides and take
   // Overlays are those of the object picked in the Scene panel: the bounding box's size is the icosahedron's
   // (1.7013 across: vertices at ±0.5257 and ±0.8507), then twice that once scaled by 2, then the cube's again.
   const boxSize = (want) =>
-    page.waitForFunction((w) => {
-      const size = window.__cgview.display?.size;
-      return size && size.every((x) => Math.abs(x - w) < 1e-3);
-    }, want, { timeout: 10000 });
+    page.waitForFunction(
+      (w) => {
+        const size = window.__cgview.display?.size;
+        return size && size.every((x) => Math.abs(x - w) < 1e-3);
+      },
+      want,
+      { timeout: 10000 },
+    );
   await page.locator('#overlay-bbox').check();
   await boxSize(2);
   await page.locator('#scene .scene-object[data-index="1"] .scene-name').click();
@@ -169,7 +176,10 @@ test('side by side: one object per pane, and a drag orbits both', async () => {
   await page.waitForFunction(() => window.__cgview.scene.panes === 2);
   await settle(page);
   const objects = await sceneObjects(page);
-  assert.deepEqual(objects.map((o) => o.pane), [0, 1]);
+  assert.deepEqual(
+    objects.map((o) => o.pane),
+    [0, 1],
+  );
   for (const o of objects) assert.ok(inside(o.box), `${o.name} inside its pane: ${JSON.stringify(o.box)}`);
   const before = await canvasPixels(page, 'panes');
   const left = { orange: colourStats(before, isMeshOrange, 0, 0.5).n, green: colourStats(before, isGreen, 0, 0.5).n };
@@ -217,7 +227,10 @@ test('a view link reopens both meshes with their transform, colour and panes, an
     const got = await sceneObjects(other);
     const strip = (os) => os.map(({ mesh, visible, color, position, rotation, scale, pane }) => ({ mesh, visible, color, position, rotation, scale, pane }));
     assert.deepEqual(strip(got), strip(want));
-    assert.deepEqual(got.map((o) => o.mesh), [meshId, ico]);
+    assert.deepEqual(
+      got.map((o) => o.mesh),
+      [meshId, ico],
+    );
     assert.deepEqual(got[0].rotation, [0, 0, 30]);
     assert.equal(got[0].scale, 0.75);
     for (let i = 0; i < 2; ++i) {
@@ -242,7 +255,11 @@ test('a plain click shows one mesh alone again, a ctrl-click adds one; a link wi
   assert.ok(colourStats(alone, isGreen).n < 20 && colourStats(alone, isBlue).n < 20);
   // A ctrl-click adds to the scene, as "+" does.
   await page.locator(`#mesh-list li.mesh[data-mesh-id="${meshId}"]`).click({ modifiers: ['Control'] });
-  await page.waitForFunction((id) => window.__cgview.scene.objects.length === 2 && window.__cgview.scene.objects[1].mesh === id && window.__cgview.scene.objects[1].loaded, meshId, { timeout: 30000 });
+  await page.waitForFunction(
+    (id) => window.__cgview.scene.objects.length === 2 && window.__cgview.scene.objects[1].mesh === id && window.__cgview.scene.objects[1].loaded,
+    meshId,
+    { timeout: 30000 },
+  );
   assert.equal(await page.evaluate(() => window.__cgview.lastLoaded.id), ico, 'the shown mesh stays');
 
   const bad = { v: 1, mesh: meshId, camera: { position: [0, 0, 5], target: [0, 0, 0], up: [0, 1, 0], fov: 40 }, scene: [{ mesh: ico }] };

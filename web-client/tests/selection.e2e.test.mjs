@@ -42,8 +42,7 @@ function makeGrid() {
   const positions = vperm.map((g) => grid[g]);
   const tris = [];
   const v = (i, j) => where[j * (N + 1) + i];
-  for (let j = 0; j < N; ++j)
-    for (let i = 0; i < N; ++i) tris.push([v(i, j), v(i + 1, j), v(i + 1, j + 1)], [v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
+  for (let j = 0; j < N; ++j) for (let i = 0; i < N; ++i) tris.push([v(i, j), v(i + 1, j), v(i + 1, j + 1)], [v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
   const faces = shuffled(tris.length, 11).map((t) => tris[t]);
   return { positions, faces };
 }
@@ -52,9 +51,7 @@ const mesh = makeGrid();
 const file = path.join(fs.mkdtempSync(path.join(os.tmpdir(), 'cgview-selection-')), 'shuffled_grid.off');
 fs.writeFileSync(
   file,
-  `OFF\n${mesh.positions.length} ${mesh.faces.length} 0\n` +
-    mesh.positions.map((p) => p.join(' ')).join('\n') + '\n' +
-    mesh.faces.map((f) => `3 ${f.join(' ')}`).join('\n') + '\n',
+  `OFF\n${mesh.positions.length} ${mesh.faces.length} 0\n` + mesh.positions.map((p) => p.join(' ')).join('\n') + '\n' + mesh.faces.map((f) => `3 ${f.join(' ')}`).join('\n') + '\n',
 );
 
 const v = useViewer({ tmpPrefix: 'cgview-e2e-selection-', mesh: file });
@@ -140,7 +137,10 @@ test('a box selection selects exactly the faces whose centroids project into it,
   const expected = projected.flatMap(([x, y], i) => (x >= rect[0] && x <= rect[2] && y >= rect[1] && y <= rect[3] ? [i] : []));
   assert.ok(expected.length > 20, `the box holds faces: ${expected.length}`);
   const camBefore = await v.page.evaluate(() => window.__cgview.camera());
-  const s = await drag([[rect[0], rect[1]], [rect[2], rect[3]]]);
+  const s = await drag([
+    [rect[0], rect[1]],
+    [rect[2], rect[3]],
+  ]);
   assert.deepEqual(await v.page.evaluate(() => window.__cgview.camera()), camBefore, 'the drag did not move the camera');
   assert.equal(s.kind, 'faces');
   assert.equal(s.count, expected.length, 'the count');
@@ -153,9 +153,15 @@ test('a box selection selects exactly the faces whose centroids project into it,
   const rect2 = clearOf(projected, [cx + 4.2 * unit, cy - 1.3 * unit, cx + 6.1 * unit, cy + 0.6 * unit]);
   const more = projected.flatMap(([x, y], i) => (x >= rect2[0] && x <= rect2[2] && y >= rect2[1] && y <= rect2[3] ? [i] : []));
   await v.page.keyboard.down('Shift');
-  const s2 = await drag([[rect2[0], rect2[1]], [rect2[2], rect2[3]]]);
+  const s2 = await drag([
+    [rect2[0], rect2[1]],
+    [rect2[2], rect2[3]],
+  ]);
   await v.page.keyboard.up('Shift');
-  assert.deepEqual(s2.ids, [...expected, ...more].sort((a, b) => a - b));
+  assert.deepEqual(
+    s2.ids,
+    [...expected, ...more].sort((a, b) => a - b),
+  );
   boxIds = expected;
   assert.deepEqual(v.problems, [], v.describeProblems());
 });
@@ -166,8 +172,12 @@ test('grow and shrink go by one ring of faces sharing a vertex', async () => {
   await v.page.waitForFunction(() => window.__cgview.selection.count === 0);
   const view = await v.page.evaluate(() => window.__cgview.selectionView());
   const pts = boxIds.map((i) => project(centroid(mesh.faces[i]), view));
-  const xs = pts.map((p) => p[0]), ys = pts.map((p) => p[1]);
-  await drag([[Math.min(...xs) - 2, Math.min(...ys) - 2], [Math.max(...xs) + 2, Math.max(...ys) + 2]]);
+  const xs = pts.map((p) => p[0]),
+    ys = pts.map((p) => p[1]);
+  await drag([
+    [Math.min(...xs) - 2, Math.min(...ys) - 2],
+    [Math.max(...xs) + 2, Math.max(...ys) + 2],
+  ]);
   let s = await selection();
   assert.deepEqual(s.ids, boxIds);
   const grown = ring(boxIds, true);
@@ -191,11 +201,16 @@ test('a lasso selects the faces whose centroids fall inside the polygon', async 
   const [cx, cy] = project([0, 0, 0], view);
   const unit = project([1, 0, 0], view)[0] - cx;
   // A triangle, its corners off the centroids' lattice.
-  const poly = [[cx - 5.3 * unit, cy + 4.1 * unit], [cx + 4.7 * unit, cy + 4.2 * unit], [cx - 0.2 * unit, cy - 5.1 * unit]].map(([x, y]) => [Math.round(x), Math.round(y)]);
+  const poly = [
+    [cx - 5.3 * unit, cy + 4.1 * unit],
+    [cx + 4.7 * unit, cy + 4.2 * unit],
+    [cx - 0.2 * unit, cy - 5.1 * unit],
+  ].map(([x, y]) => [Math.round(x), Math.round(y)]);
   const inside = (x, y) => {
     let c = false;
     for (let i = 0, j = 2; i < 3; j = i++) {
-      const [xi, yi] = poly[i], [xj, yj] = poly[j];
+      const [xi, yi] = poly[i],
+        [xj, yj] = poly[j];
       if (yi > y !== yj > y && x < ((xj - xi) * (y - yi)) / (yj - yi) + xi) c = !c;
     }
     return c;
@@ -220,7 +235,10 @@ test('a lasso selects the faces whose centroids fall inside the polygon', async 
     }),
   );
   const differ = [...new Set([...s.ids, ...expected])].filter((i) => s.ids.includes(i) !== expected.includes(i));
-  assert.ok(differ.every((i) => near.has(i)), `only faces on the lasso's edge differ: ${differ}`);
+  assert.ok(
+    differ.every((i) => near.has(i)),
+    `only faces on the lasso's edge differ: ${differ}`,
+  );
   assert.ok(expected.length > 30 && Math.abs(s.count - expected.length) <= near.size, `${s.count} vs ${expected.length}`);
   await v.page.locator('#selection-shape-box').check();
 });
@@ -250,8 +268,12 @@ test('a click picks a face, and in vertex mode the nearest vertex of that face',
 test('extract_faces runs on the selection from the form: its output has exactly the selected faces', async () => {
   const view = await v.page.evaluate(() => window.__cgview.selectionView());
   const pts = boxIds.map((i) => project(centroid(mesh.faces[i]), view));
-  const xs = pts.map((p) => p[0]), ys = pts.map((p) => p[1]);
-  await drag([[Math.min(...xs) - 2, Math.min(...ys) - 2], [Math.max(...xs) + 2, Math.max(...ys) + 2]]);
+  const xs = pts.map((p) => p[0]),
+    ys = pts.map((p) => p[1]);
+  await drag([
+    [Math.min(...xs) - 2, Math.min(...ys) - 2],
+    [Math.max(...xs) + 2, Math.max(...ys) + 2],
+  ]);
   assert.deepEqual((await selection()).ids, boxIds);
   await v.page.locator('#algorithm-menu').selectOption('extract_faces');
   const form = v.page.locator('form.algorithm-form[data-algorithm="extract_faces"]');
@@ -264,7 +286,10 @@ test('extract_faces runs on the selection from the form: its output has exactly 
   const job = await (await fetch(`${v.server.url}/api/v1/jobs/${jobId}`)).json();
   assert.deepEqual(job.params.faces, boxIds, 'the job got the stored ids');
   const off = await (await fetch(`${v.server.url}/api/v1/jobs/${jobId}/artifacts/mesh?format=off`)).text();
-  const lines = off.trim().split('\n').filter((l) => l.trim() && !l.startsWith('#'));
+  const lines = off
+    .trim()
+    .split('\n')
+    .filter((l) => l.trim() && !l.startsWith('#'));
   const [nv, nf] = lines[1].split(/\s+/).map(Number);
   assert.equal(nf, boxIds.length);
   const P = lines.slice(2, 2 + nv).map((l) => l.trim().split(/\s+/).map(Number));
@@ -272,7 +297,11 @@ test('extract_faces runs on the selection from the form: its output has exactly 
     const [, a, b, c] = l.trim().split(/\s+/).map(Number);
     return [0, 1, 2].map((k) => ((P[a][k] + P[b][k] + P[c][k]) / 3).toFixed(4)).join(' ');
   });
-  const want = boxIds.map((i) => centroid(mesh.faces[i]).map((x) => x.toFixed(4)).join(' '));
+  const want = boxIds.map((i) =>
+    centroid(mesh.faces[i])
+      .map((x) => x.toFixed(4))
+      .join(' '),
+  );
   assert.deepEqual(got, want, 'the same faces, in the stored order');
 });
 
@@ -302,7 +331,12 @@ test('axis views (buttons and keys 1 / 3 / 7) look along the axes; reset frames 
     for (let a = 0; a < 3; ++a) assert.ok(Math.abs(cam.target[a] - dist * d[a] - cam.position[a]) < 1e-4 * dist, 'the camera looks at the centre');
   }
   await v.page.locator('body').click({ position: { x: 5, y: 5 } });
-  for (const [key, d] of [['3', [-1, 0, 0]], ['7', [0, -1, 0]], ['Shift+1', [0, 0, 1]], ['1', [0, 0, -1]]]) {
+  for (const [key, d] of [
+    ['3', [-1, 0, 0]],
+    ['7', [0, -1, 0]],
+    ['Shift+1', [0, 0, 1]],
+    ['1', [0, 0, -1]],
+  ]) {
     await v.page.keyboard.press(key);
     const cam = await v.page.evaluate(() => window.__cgview.camera());
     for (let a = 0; a < 3; ++a) assert.ok(Math.abs(cam.direction[a] - d[a]) < 1e-4, `${key}: ${JSON.stringify(cam.direction)}`);
@@ -331,7 +365,11 @@ test('fly mode: W moves the camera forward, A to the left; trackball mode rotate
   await v.page.keyboard.up('a');
   const c2 = await v.page.evaluate(() => window.__cgview.camera());
   const side = c2.position.map((p, a) => p - c1.position[a]);
-  const right = [c1.direction[1] * c1.up[2] - c1.direction[2] * c1.up[1], c1.direction[2] * c1.up[0] - c1.direction[0] * c1.up[2], c1.direction[0] * c1.up[1] - c1.direction[1] * c1.up[0]];
+  const right = [
+    c1.direction[1] * c1.up[2] - c1.direction[2] * c1.up[1],
+    c1.direction[2] * c1.up[0] - c1.direction[0] * c1.up[2],
+    c1.direction[0] * c1.up[1] - c1.direction[1] * c1.up[0],
+  ];
   assert.ok(side.reduce((s, x, a) => s + x * right[a], 0) < -0.05, `moved left: ${side}`);
   // Mouse-look turns the view.
   const box = await canvasBox();
@@ -361,10 +399,38 @@ test('fly mode: W moves the camera forward, A to the left; trackball mode rotate
 });
 
 test('visible only: a box over a cube seen from the front selects its front face; through selects all 12', async () => {
-  const cube = 'OFF\n8 12 0\n' +
-    [[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1], [-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]].map((p) => p.join(' ')).join('\n') + '\n' +
-    [[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4], [2, 3, 7], [2, 7, 6], [1, 2, 6], [1, 6, 5], [0, 4, 7], [0, 7, 3]]
-      .map((f) => `3 ${f.join(' ')}`).join('\n') + '\n';
+  const cube =
+    'OFF\n8 12 0\n' +
+    [
+      [-1, -1, -1],
+      [1, -1, -1],
+      [1, 1, -1],
+      [-1, 1, -1],
+      [-1, -1, 1],
+      [1, -1, 1],
+      [1, 1, 1],
+      [-1, 1, 1],
+    ]
+      .map((p) => p.join(' '))
+      .join('\n') +
+    '\n' +
+    [
+      [0, 2, 1],
+      [0, 3, 2],
+      [4, 5, 6],
+      [4, 6, 7],
+      [0, 1, 5],
+      [0, 5, 4],
+      [2, 3, 7],
+      [2, 7, 6],
+      [1, 2, 6],
+      [1, 6, 5],
+      [0, 4, 7],
+      [0, 7, 3],
+    ]
+      .map((f) => `3 ${f.join(' ')}`)
+      .join('\n') +
+    '\n';
   const r = await fetch(`${v.server.url}/api/v1/meshes?name=cube.off`, { method: 'POST', body: cube });
   assert.equal(r.status, 201);
   const id = (await r.json()).id;
@@ -374,7 +440,10 @@ test('visible only: a box over a cube seen from the front selects its front face
   await v.page.locator('#select-tool').click();
   await v.page.waitForFunction((i) => window.__cgview.selection?.ready === true && window.__cgview.selection.meshId === i, id, { timeout: 30000 });
   const box = await canvasBox();
-  const all = [[5, 5], [box.width - 5, box.height - 5]];
+  const all = [
+    [5, 5],
+    [box.width - 5, box.height - 5],
+  ];
   let s = await drag(all);
   assert.deepEqual(s.ids, [2, 3], 'the front face (z = +1) alone');
   await v.page.locator('#selection-through').check();

@@ -13,8 +13,7 @@ function grid(n) {
   for (let j = 0; j <= n; ++j) for (let i = 0; i <= n; ++i) positions.push(i, j, 0);
   const indices = [];
   const v = (i, j) => j * (n + 1) + i;
-  for (let j = 0; j < n; ++j)
-    for (let i = 0; i < n; ++i) indices.push(v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j), v(i + 1, j + 1), v(i, j + 1));
+  for (let j = 0; j < n; ++j) for (let i = 0; i < n; ++i) indices.push(v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j), v(i + 1, j + 1), v(i, j + 1));
   return { positions: new Float32Array(positions), indices: new Uint32Array(indices), vertices: (n + 1) ** 2, faces: 2 * n * n };
 }
 
@@ -66,7 +65,10 @@ test('points project through a view-projection matrix and fall in boxes and lass
   assert.deepEqual(S.pointsInRegion(p, { rect: [20, 20, 60, 60] }), [0, 2]);
   // A triangle lasso around (25, 25) only.
   assert.deepEqual(S.pointsInRegion(p, { polygon: [10, 10, 45, 10, 10, 45] }), [2]);
-  assert.deepEqual(S.pointsInRegion(p, { rect: [0, 0, 100, 100] }, (i) => i !== 1), [0, 2]);
+  assert.deepEqual(
+    S.pointsInRegion(p, { rect: [0, 0, 100, 100] }, (i) => i !== 1),
+    [0, 2],
+  );
   assert.equal(S.insidePolygon(5, 5, [0, 0, 10, 0, 10, 10, 0, 10]), true);
   assert.equal(S.insidePolygon(15, 5, [0, 0, 10, 0, 10, 10, 0, 10]), false);
 });
@@ -74,7 +76,10 @@ test('points project through a view-projection matrix and fall in boxes and lass
 test('centroids, areas and the vertices of faces', () => {
   const g = grid(2);
   const c = S.faceCentroids(g.positions, g.indices);
-  assert.deepEqual([...c.subarray(0, 3)].map((x) => +x.toFixed(5)), [0.66667, 0.33333, 0]);
+  assert.deepEqual(
+    [...c.subarray(0, 3)].map((x) => +x.toFixed(5)),
+    [0.66667, 0.33333, 0],
+  );
   assert.equal(S.facesArea(g.positions, g.indices, [0, 1, 7]), 1.5);
   assert.deepEqual(S.verticesOfFaces(g.indices, [0, 1]), [0, 1, 3, 4]);
 });

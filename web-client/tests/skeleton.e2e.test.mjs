@@ -73,11 +73,7 @@ test('two skeletons of the elephant drawn at once, each in its colour, then one 
   const distanceCell = table.locator('tr[data-metric="distance"] td').nth(1);
   // The table is drawn anew on each change: ask the page, not a handle.
   await v.page
-    .waitForFunction(
-      () => /^[0-9.e-]+ \/ [0-9.e-]+$/.test(document.querySelectorAll('#skeletons tr[data-metric="distance"] td')[1]?.textContent ?? ''),
-      null,
-      { timeout: 60000 },
-    )
+    .waitForFunction(() => /^[0-9.e-]+ \/ [0-9.e-]+$/.test(document.querySelectorAll('#skeletons tr[data-metric="distance"] td')[1]?.textContent ?? ''), null, { timeout: 60000 })
     .catch(async (e) => {
       throw new Error(`the distance cell reads '${await distanceCell.innerText()}': ${e.message}${v.describeProblems()}`);
     });
@@ -95,15 +91,21 @@ test('two skeletons of the elephant drawn at once, each in its colour, then one 
   await v.page.locator('#skeletons button.side-by-side').click();
   await v.page.waitForFunction(() => window.__cgview.lastCompare?.panes.length === 2, null, { timeout: 30000 });
   const panes = await v.page.evaluate(() => window.__cgview.lastCompare.panes.map((p) => `${p.jobId}/${p.artifact}`));
-  assert.deepEqual(panes, drawn.map((s) => s.key));
+  assert.deepEqual(
+    panes,
+    drawn.map((s) => s.key),
+  );
   const sideBySide = await pngPixels(v.page, await v.page.locator('#viewport canvas').screenshot({ path: path.join(artifacts, 'e2e-skeletons-side.png') }));
   const half = (pixels, right) => {
-    const w = pixels.width, h = pixels.height, out = new Uint8Array((w >> 1) * h * 4);
+    const w = pixels.width,
+      h = pixels.height,
+      out = new Uint8Array((w >> 1) * h * 4);
     for (let y = 0; y < h; ++y) out.set(pixels.data.subarray((y * w + (right ? w - (w >> 1) : 0)) * 4, (y * w + (right ? w : w >> 1)) * 4), y * (w >> 1) * 4);
     return { width: w >> 1, height: h, data: out };
   };
   for (const [i, s] of drawn.entries()) {
-    const own = half(sideBySide, i === 1), other = half(sideBySide, i === 0);
+    const own = half(sideBySide, i === 1),
+      other = half(sideBySide, i === 0);
     assert.ok(countColour(own, s.color) > 100, `pane ${i} shows ${s.color}`);
     assert.ok(countColour(other, s.color) < 20, `only pane ${i} shows ${s.color}`);
   }
@@ -138,9 +140,9 @@ test('a skeleton file chosen with "Load skeleton file…" is attached to the mes
 
   await v.page.locator('#skeletons button.load-skeleton').waitFor();
   await v.page.setInputFiles('#skeleton-file-input', file);
-  const li = v.page.locator('#jobs li.job[data-algorithm="skeleton_file"][data-state="done"]').first();
+  const li = v.page.locator('#jobs li.job[data-algorithm="import"][data-state="done"]').first();
   await li.waitFor({ timeout: 60000 }).catch((e) => {
-    throw new Error(`skeleton_file never showed done: ${e.message}${v.describeProblems()}\n${v.server.log()}`);
+    throw new Error(`the import of the skeleton file never showed done: ${e.message}${v.describeProblems()}\n${v.server.log()}`);
   });
   const jobId = await li.getAttribute('data-job-id');
   await v.page.waitForFunction((n) => window.__cgview.skeletons.length === n, before.length + 1, { timeout: 30000 });
@@ -148,9 +150,10 @@ test('a skeleton file chosen with "Load skeleton file…" is attached to the mes
   assert.equal(drawn.key, `${jobId}/skeleton`);
   assert.equal(drawn.nodes, nodes.length, 'every node of the file is drawn');
   assert.equal(drawn.edges, source.edges.length, 'every edge of the file is drawn');
-  // It was sent to the server as the file: the job's parameters are its name and text.
+  // It was uploaded as the file (POST /data) for the mesh shown: the import job names the file and the mesh.
   const job = await (await fetch(`${v.server.url}/api/v1/jobs/${jobId}`)).json();
-  assert.equal(job.params.name, 'elephant_tool.cg');
+  assert.equal(job.params.file, 'elephant_tool.cg');
+  assert.equal(job.inputs.mesh, v.meshId);
   // Its column in the comparison table, with the measures of its job.
   const table = v.page.locator('#skeletons table.skeleton-table');
   await table.locator(`th[data-skeleton="${jobId}/skeleton"]`).waitFor({ timeout: 30000 });
@@ -168,6 +171,6 @@ test('a skeleton file chosen with "Load skeleton file…" is attached to the mes
   assert.equal(await v.page.evaluate(() => window.__cgview.skeletons.length), count);
   // The refusal (the 400 and the browser's console line about it) is the one error of this test.
   const problems = v.problems.splice(0);
-  assert.ok(problems.length > 0 && problems.every((p) => /400.*\/api\/v1\/jobs/.test(p)), problems.join('\n'));
+  assert.ok(problems.length > 0 && problems.every((p) => /400.*\/api\/v1\/data/.test(p)), problems.join('\n'));
   fs.rmSync(dir, { recursive: true, force: true });
 });

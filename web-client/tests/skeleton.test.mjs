@@ -15,7 +15,19 @@ const { outputText } = ts.transpileModule(source, {
 const { parseSkeleton, nodeDegrees } = await import(`data:text/javascript;base64,${Buffer.from(outputText).toString('base64')}`);
 
 test('a Y skeleton parses, with its ends and branch node', () => {
-  const s = parseSkeleton({ nodes: [[0, 0, 0], [0, 1, 0], [-1, 2, 0], [1, 2, 0]], edges: [[0, 1], [1, 2], [1, 3]] });
+  const s = parseSkeleton({
+    nodes: [
+      [0, 0, 0],
+      [0, 1, 0],
+      [-1, 2, 0],
+      [1, 2, 0],
+    ],
+    edges: [
+      [0, 1],
+      [1, 2],
+      [1, 3],
+    ],
+  });
   assert.deepEqual([...s.nodes.subarray(3, 6)], [0, 1, 0]);
   assert.deepEqual([...nodeDegrees(s)], [1, 3, 1, 1]);
 });
@@ -25,5 +37,15 @@ test('bad skeletons are errors that say what is wrong', () => {
   assert.throws(() => parseSkeleton({ edges: [] }), /"nodes"/);
   assert.throws(() => parseSkeleton({ nodes: [[0, 0]] }), /node 0/);
   assert.throws(() => parseSkeleton({ nodes: [[0, 0, 0]], edges: [[0, 1]] }), /edge 0/);
-  assert.throws(() => parseSkeleton({ nodes: [[0, 0, 0], [1, 1, 1]], edges: [[0, -1]] }), /edge 0/);
+  assert.throws(
+    () =>
+      parseSkeleton({
+        nodes: [
+          [0, 0, 0],
+          [1, 1, 1],
+        ],
+        edges: [[0, -1]],
+      }),
+    /edge 0/,
+  );
 });

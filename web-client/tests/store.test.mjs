@@ -12,7 +12,10 @@ const initial = () => ({ meshes: [], selectedId: null, jobs: new Map(), scene: [
 test('a subscriber fires when its slice changes, and only then', () => {
   const store = new Store(initial());
   const seen = [];
-  store.subscribe((s) => s.selectedId, (value, previous) => seen.push([value, previous]));
+  store.subscribe(
+    (s) => s.selectedId,
+    (value, previous) => seen.push([value, previous]),
+  );
   store.update({ picked: 1 });
   store.update({ jobs: new Map() });
   assert.deepEqual(seen, [], 'other slices changed');
@@ -21,7 +24,10 @@ test('a subscriber fires when its slice changes, and only then', () => {
   store.update((s) => ({ selectedId: s.selectedId }));
   assert.deepEqual(seen, [['a', null]], 'set once, then set to the same value twice');
   store.update((s) => ({ selectedId: s.selectedId + 'b' }));
-  assert.deepEqual(seen, [['a', null], ['ab', 'a']]);
+  assert.deepEqual(seen, [
+    ['a', null],
+    ['ab', 'a'],
+  ]);
   assert.equal(store.get().selectedId, 'ab');
   assert.equal(store.get().picked, 1, 'an update keeps the fields it does not name');
 });
@@ -30,7 +36,10 @@ test('a selector of several slices compares them one by one', () => {
   const store = new Store(initial());
   const meshes = [{ id: 'a' }];
   let calls = 0;
-  store.subscribe((s) => [s.meshes, s.selectedId, s.scene.map((e) => e.mesh).join(' ')], () => ++calls);
+  store.subscribe(
+    (s) => [s.meshes, s.selectedId, s.scene.map((e) => e.mesh).join(' ')],
+    () => ++calls,
+  );
   store.update({ meshes });
   assert.equal(calls, 1);
   store.update({ meshes, picked: 3 });
@@ -46,10 +55,14 @@ test('a selector of several slices compares them one by one', () => {
 test('a custom equality, a first call on request, and unsubscribing', () => {
   const store = new Store(initial());
   const ids = [];
-  const stop = store.subscribe((s) => s.meshes, (m) => ids.push(m.map((x) => x.id).join()), {
-    equals: (a, b) => a.map((x) => x.id).join() === b.map((x) => x.id).join(),
-    now: true,
-  });
+  const stop = store.subscribe(
+    (s) => s.meshes,
+    (m) => ids.push(m.map((x) => x.id).join()),
+    {
+      equals: (a, b) => a.map((x) => x.id).join() === b.map((x) => x.id).join(),
+      now: true,
+    },
+  );
   assert.deepEqual(ids, ['']);
   store.update({ meshes: [{ id: 'a' }] });
   store.update({ meshes: [{ id: 'a' }] });
@@ -62,12 +75,21 @@ test('a custom equality, a first call on request, and unsubscribing', () => {
 test('a subscriber that updates is served first; later ones see each change once', () => {
   const store = new Store(initial());
   const order = [];
-  store.subscribe((s) => s.selectedId, (id) => {
-    order.push(`select ${id}`);
-    store.update({ picked: 0, scene: [{ mesh: id }] });
-  });
-  store.subscribe((s) => s.scene, (scene) => order.push(`scene ${scene.map((e) => e.mesh).join()}`));
-  store.subscribe((s) => s.selectedId, (id) => order.push(`list ${id}`));
+  store.subscribe(
+    (s) => s.selectedId,
+    (id) => {
+      order.push(`select ${id}`);
+      store.update({ picked: 0, scene: [{ mesh: id }] });
+    },
+  );
+  store.subscribe(
+    (s) => s.scene,
+    (scene) => order.push(`scene ${scene.map((e) => e.mesh).join()}`),
+  );
+  store.subscribe(
+    (s) => s.selectedId,
+    (id) => order.push(`list ${id}`),
+  );
   store.update({ selectedId: 'a' });
   assert.deepEqual(order, ['select a', 'scene a', 'list a']);
   order.length = 0;
@@ -79,8 +101,14 @@ test('a subscriber removed by an earlier one is not called', () => {
   const store = new Store(initial());
   let stopSecond = () => {};
   let second = 0;
-  store.subscribe((s) => s.picked, () => stopSecond());
-  stopSecond = store.subscribe((s) => s.picked, () => ++second);
+  store.subscribe(
+    (s) => s.picked,
+    () => stopSecond(),
+  );
+  stopSecond = store.subscribe(
+    (s) => s.picked,
+    () => ++second,
+  );
   store.update({ picked: 1 });
   assert.equal(second, 0);
 });

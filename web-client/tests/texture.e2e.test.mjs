@@ -39,10 +39,18 @@ function faceOnQuadObj(mtl) {
   const corner = faceOnCorner;
   return [
     mtl ? `mtllib ${mtl}` : '',
-    `v ${corner(-1, -1)}`, `v ${corner(1, -1)}`, `v ${corner(1, 1)}`, `v ${corner(-1, 1)}`,
-    'vt 0 0', 'vt 1 0', 'vt 1 1', 'vt 0 1',
+    `v ${corner(-1, -1)}`,
+    `v ${corner(1, -1)}`,
+    `v ${corner(1, 1)}`,
+    `v ${corner(-1, 1)}`,
+    'vt 0 0',
+    'vt 1 0',
+    'vt 1 1',
+    'vt 0 1',
     'usemtl quad',
-    'f 1/1 2/2 3/3', 'f 1/1 3/3 4/4', '',
+    'f 1/1 2/2 3/3',
+    'f 1/1 3/3 4/4',
+    '',
   ].join('\n');
 }
 const QUAD_MTL = 'newmtl quad\nKd 1 1 1\nmap_Kd quad.png\n';
@@ -107,16 +115,18 @@ async function quadPng(texels = TEXELS) {
 async function pick(files, mode) {
   const before = await v.page.evaluate(() => window.__cgview.lastLoaded?.id ?? null);
   await v.page.setInputFiles('#file-input', files);
-  await v.page.waitForFunction(
-    ([prev, m]) => {
-      const h = window.__cgview;
-      return h.lastLoaded && h.lastLoaded.id !== prev && (m === null ? true : h.texture?.meshId === h.lastLoaded.id && h.texture.mode === m);
-    },
-    [before, mode],
-    { timeout: 60000 },
-  ).catch((e) => {
-    throw new Error(`the upload was not shown (${mode}): ${e.message}${v.describeProblems()}\n${v.server.log()}`);
-  });
+  await v.page
+    .waitForFunction(
+      ([prev, m]) => {
+        const h = window.__cgview;
+        return h.lastLoaded && h.lastLoaded.id !== prev && (m === null ? true : h.texture?.meshId === h.lastLoaded.id && h.texture.mode === m);
+      },
+      [before, mode],
+      { timeout: 60000 },
+    )
+    .catch((e) => {
+      throw new Error(`the upload was not shown (${mode}): ${e.message}${v.describeProblems()}\n${v.server.log()}`);
+    });
   const id = await v.page.evaluate(() => window.__cgview.lastLoaded.id);
   return (await fetch(`${v.server.url}/api/v1/meshes/${id}`)).json();
 }
@@ -158,7 +168,10 @@ test('an OBJ, its MTL and a PNG chosen together show the texture face-on, and th
     for (const [where, got] of hues) {
       const h = hue(got);
       // Toon's few bands of light shift the hues a little more.
-      assert.ok(h !== null && hueDistance(h, hue(TEXELS[where])) <= (mode === 'toon' ? 30 : 20), `${mode}, ${where}: hue of ${got.map(Math.round)} is not that of ${TEXELS[where]}`);
+      assert.ok(
+        h !== null && hueDistance(h, hue(TEXELS[where])) <= (mode === 'toon' ? 30 : 20),
+        `${mode}, ${where}: hue of ${got.map(Math.round)} is not that of ${TEXELS[where]}`,
+      );
     }
   }
   await v.page.selectOption('#display-mode', 'smooth');
@@ -187,7 +200,11 @@ test('an OBJ, its MTL and a PNG chosen together show the texture face-on, and th
 
 // Three unit quads side by side facing the camera, one material each: a red
 // texture, a green Kd without a map, a blue texture.
-const STRIP = [['red', [255, 0, 0]], ['green', [0, 255, 0]], ['blue', [0, 0, 255]]];
+const STRIP = [
+  ['red', [255, 0, 0]],
+  ['green', [0, 255, 0]],
+  ['blue', [0, 0, 255]],
+];
 function stripObj() {
   const lines = ['mtllib strip.mtl', 'vt 0 0', 'vt 1 0', 'vt 1 1', 'vt 0 1'];
   STRIP.forEach(([name], i) => {
@@ -222,18 +239,30 @@ function assertStrip(img, what, tolerance = 20) {
   stripColours(img).forEach((got, i) => {
     const [name, want] = STRIP[i];
     const h = hue(got);
-    assert.ok(h !== null && hueDistance(h, hue(want)) <= tolerance && Math.max(...got) > 60,
-      `${what}: the ${name} quad shows ${got.map(Math.round)}`);
+    assert.ok(h !== null && hueDistance(h, hue(want)) <= tolerance && Math.max(...got) > 60, `${what}: the ${name} quad shows ${got.map(Math.round)}`);
   });
 }
 
 test('several materials on one mesh: each quad shows its own texture or colour, in the display modes too, and its Kd with textures off', async () => {
   const red = await quadPng({ topLeft: STRIP[0][1], topRight: STRIP[0][1], bottomLeft: STRIP[0][1], bottomRight: STRIP[0][1] });
   const blue = await quadPng({ topLeft: STRIP[2][1], topRight: STRIP[2][1], bottomLeft: STRIP[2][1], bottomRight: STRIP[2][1] });
-  const mesh = await pick([file('strip.obj', stripObj()), file('strip.mtl', STRIP_MTL),
-    { name: 'red.png', mimeType: 'image/png', buffer: red }, { name: 'blue.png', mimeType: 'image/png', buffer: blue }], 'texture');
-  assert.deepEqual(mesh.materials.map((m) => [m.name, m.faces, m.texture === null ? null : mesh.textures[m.texture].name]),
-    [['red', 2, 'red.png'], ['green', 2, null], ['blue', 2, 'blue.png']]);
+  const mesh = await pick(
+    [
+      file('strip.obj', stripObj()),
+      file('strip.mtl', STRIP_MTL),
+      { name: 'red.png', mimeType: 'image/png', buffer: red },
+      { name: 'blue.png', mimeType: 'image/png', buffer: blue },
+    ],
+    'texture',
+  );
+  assert.deepEqual(
+    mesh.materials.map((m) => [m.name, m.faces, m.texture === null ? null : mesh.textures[m.texture].name]),
+    [
+      ['red', 2, 'red.png'],
+      ['green', 2, null],
+      ['blue', 2, 'blue.png'],
+    ],
+  );
   assert.ok(!mesh.warnings.some((w) => /textur|material/.test(w)), JSON.stringify(mesh.warnings));
   await v.page.waitForFunction(() => window.__cgview.texture?.materials === 3, null, { timeout: 10000 });
   assertStrip(await canvasPixels('strip'), 'texture');
@@ -248,8 +277,7 @@ test('several materials on one mesh: each quad shows its own texture or colour, 
   await v.page.selectOption('#texture-mode', 'checkerboard');
   await v.page.waitForFunction(() => window.__cgview.texture?.mode === 'checkerboard', null, { timeout: 10000 });
   assert.equal(await v.page.evaluate(() => window.__cgview.texture.materials), 1);
-  for (const c of stripColours(await canvasPixels('strip-checkerboard')))
-    assert.ok(Math.max(...c) - Math.min(...c) < 40, `the checkerboard is grey, got ${c.map(Math.round)}`);
+  for (const c of stripColours(await canvasPixels('strip-checkerboard'))) assert.ok(Math.max(...c) - Math.min(...c) < 40, `the checkerboard is grey, got ${c.map(Math.round)}`);
 
   // Textures off: each material shows its Kd (white, green, white).
   await v.page.selectOption('#texture-mode', 'off');
@@ -264,7 +292,10 @@ test('several materials on one mesh: each quad shows its own texture or colour, 
 test('a missing texture image: the mesh shows untextured, with a warning in the page', async () => {
   const mesh = await pick([file('bare.obj', faceOnQuadObj('bare.mtl')), file('bare.mtl', QUAD_MTL)], 'checkerboard');
   assert.equal(mesh.textures.length, 0);
-  assert.ok(mesh.warnings.some((w) => w.includes("'quad.png' is not in the upload")), JSON.stringify(mesh.warnings));
+  assert.ok(
+    mesh.warnings.some((w) => w.includes("'quad.png' is not in the upload")),
+    JSON.stringify(mesh.warnings),
+  );
   await v.page.locator('#messages', { hasText: "'quad.png' is not in the upload" }).waitFor({ timeout: 10000 });
   assert.equal(await v.page.locator('#texture-mode option[value="texture"]').isDisabled(), true);
 });
@@ -272,11 +303,13 @@ test('a missing texture image: the mesh shows untextured, with a warning in the 
 test("assimp's spider (OBJ, MTL, JPEGs) shows its texture's colour", async () => {
   const dir = path.join(assimp, 'OBJ');
   const names = ['spider.obj', 'spider.mtl', ...fs.readdirSync(dir).filter((n) => n.endsWith('.jpg'))];
-  const mesh = await pick(names.map((n) => path.join(dir, n)), 'texture');
+  const mesh = await pick(
+    names.map((n) => path.join(dir, n)),
+    'texture',
+  );
   assert.equal(mesh.textures[0].name, 'drkwood2.jpg', 'the texture of the material on most faces');
   // Every material on its faces gets its own texture (the MTL's fifth, Brusttex, is on no face).
-  assert.deepEqual(mesh.materials.map((m) => mesh.textures[m.texture].name).sort(),
-    ['SpiderTex.jpg', 'drkwood2.jpg', 'engineflare1.jpg', 'wal67ar_small.jpg']);
+  assert.deepEqual(mesh.materials.map((m) => mesh.textures[m.texture].name).sort(), ['SpiderTex.jpg', 'drkwood2.jpg', 'engineflare1.jpg', 'wal67ar_small.jpg']);
   await v.page.waitForFunction(() => window.__cgview.texture?.materials === 4, null, { timeout: 10000 });
   // The reference: the JPEG's mean colour as the page's own decoder reads it.
   const jpeg = fs.readFileSync(path.join(dir, 'drkwood2.jpg')).toString('base64');
@@ -296,7 +329,8 @@ test("assimp's spider (OBJ, MTL, JPEGs) shows its texture's colour", async () =>
   }, jpeg);
   const want = hue(mean);
   const share = (img) => {
-    let near = 0, lit = 0;
+    let near = 0,
+      lit = 0;
     for (let i = 0; i < img.data.length; i += 4) {
       const px = [img.data[i], img.data[i + 1], img.data[i + 2]];
       const max = Math.max(...px);
@@ -311,8 +345,10 @@ test("assimp's spider (OBJ, MTL, JPEGs) shows its texture's colour", async () =>
   await v.page.selectOption('#texture-mode', 'off');
   await v.page.waitForFunction(() => window.__cgview.texture?.mode === 'off', null, { timeout: 10000 });
   const plain = share(await canvasPixels('spider-off'));
-  assert.ok(textured > 0.3 && textured > plain + 0.2,
-    `the texture's hue (${Math.round(want)}°) covers ${(100 * textured).toFixed(1)}% of the spider, ${(100 * plain).toFixed(1)}% untextured`);
+  assert.ok(
+    textured > 0.3 && textured > plain + 0.2,
+    `the texture's hue (${Math.round(want)}°) covers ${(100 * textured).toFixed(1)}% of the spider, ${(100 * plain).toFixed(1)}% untextured`,
+  );
 });
 
 test("a PLY with UVs (Blender's cube_uv.ply) gets the checkerboard", async () => {

@@ -36,9 +36,13 @@ test('voxelize, then its grid in the slice panel: a slice drawn in 2D and in 3D,
   await form.waitFor();
   await form.locator('input[data-param="resolution"]').fill('48');
   await form.locator('button.run').click();
-  await v.page.locator('#jobs li.job[data-state="done"]').first().waitFor({ timeout: 60000 }).catch((e) => {
-    throw new Error(`the voxelize job never showed done: ${e.message}${v.describeProblems()}\n${v.server.log()}`);
-  });
+  await v.page
+    .locator('#jobs li.job[data-state="done"]')
+    .first()
+    .waitFor({ timeout: 60000 })
+    .catch((e) => {
+      throw new Error(`the voxelize job never showed done: ${e.message}${v.describeProblems()}\n${v.server.log()}`);
+    });
   const slices = v.page.locator('#jobs .artifact-voxel_grid button.slices').first();
   await slices.click();
   const panel = v.page.locator('#voxel-slices');
@@ -78,9 +82,11 @@ test('voxelize, then its grid in the slice panel: a slice drawn in 2D and in 3D,
 test('the voxels above the threshold in 3D: every occupied voxel kept, its boundary drawn as cubes', async () => {
   const panel = v.page.locator('#voxel-slices');
   await panel.locator('input.voxels-3d').check();
-  await v.page.waitForFunction(() => window.__cgview.lastVoxels !== null, null, { timeout: 30000 }).catch((e) => {
-    throw new Error(`no voxels drawn: ${e.message}${v.describeProblems()}`);
-  });
+  await v.page
+    .waitForFunction(() => window.__cgview.lastVoxels !== null, null, { timeout: 30000 })
+    .catch((e) => {
+      throw new Error(`no voxels drawn: ${e.message}${v.describeProblems()}`);
+    });
   const shown = await v.page.evaluate(() => window.__cgview.lastVoxels);
   const jobId = await v.page.locator('#jobs li.job[data-state="done"]').first().getAttribute('data-job-id');
   const metrics = await (await fetch(`${v.server.url}/api/v1/jobs/${jobId}/artifacts/metrics?format=json`)).json();

@@ -125,10 +125,7 @@ export function decodeFrame(data: ArrayBuffer | ArrayBufferView): Frame {
 }
 
 /** Writes a frame (header + payload); the inverse of decodeFrame, for tests and tools. */
-export function encodeFrame(
-  fields: Pick<FrameHeader, 'kind' | 'request_id' | 'chunk_index' | 'chunk_count' | 'total'>,
-  payload: Uint8Array,
-): Uint8Array {
+export function encodeFrame(fields: Pick<FrameHeader, 'kind' | 'request_id' | 'chunk_index' | 'chunk_count' | 'total'>, payload: Uint8Array): Uint8Array {
   const out = new Uint8Array(FRAME_HEADER_BYTES + payload.byteLength);
   const view = new DataView(out.buffer);
   for (let i = 0; i < 4; ++i) out[i] = FRAME_MAGIC.charCodeAt(i);

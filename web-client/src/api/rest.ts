@@ -1,16 +1,14 @@
 // The REST half of protocol/API.md: list, upload, get, delete meshes; list
 // algorithms; submit, list, get and cancel jobs; fetch their artifacts;
-// the caller's usage and limits; share and unshare meshes and jobs.
+// upload data other tools made; the caller's usage and limits; share and
+// unshare meshes and jobs.
 import { authFetch } from './auth.ts';
 import type { Algorithm, ErrorBody, Health, Job, JobInput, Me, Mesh, Sharing } from './types.ts';
 
 const BASE = '/api/v1';
 
 /** The URL of a server-side render of a mesh (GET /meshes/{id}/render.png), e.g. a thumbnail. */
-export function renderUrl(
-  id: string,
-  params: { width?: number; height?: number; mode?: string; azimuth?: number; elevation?: number; field?: string } = {},
-): string {
+export function renderUrl(id: string, params: { width?: number; height?: number; mode?: string; azimuth?: number; elevation?: number; field?: string } = {}): string {
   const query = new URLSearchParams();
   for (const [key, value] of Object.entries(params)) {
     if (value !== undefined) query.set(key, String(value));
@@ -127,6 +125,23 @@ export function cancelJob(id: string): Promise<Job> {
   return request<Job>(`/jobs/${encodeURIComponent(id)}`, { method: 'DELETE' });
 }
 
+/**
+ * Uploads a file another tool made (a voxel grid, a skeleton, a scalar field)
+ * as the raw request body (POST /data): it comes back as a done `import` Job
+ * whose artifact it is. `kind` defaults from the name's extension; `mesh` is
+ * the stored mesh it belongs to.
+ */
+export function uploadData(name: string, body: Blob | ArrayBuffer, options: { kind?: string; mesh?: string } = {}): Promise<Job> {
+  const query = new URLSearchParams({ name });
+  if (options.kind) query.set('kind', options.kind);
+  if (options.mesh) query.set('mesh', options.mesh);
+  return request<Job>(`/data?${query}`, {
+    method: 'POST',
+    headers: { 'Content-Type': 'application/octet-stream' },
+    body,
+  });
+}
+
 /** The URL of a job's artifact in `format` (txt, csv, ply, json, f32 for scalar fields; mesh formats; json for metrics). */
 export function artifactUrl(jobId: string, name: string, format: string): string {
   return `${BASE}/jobs/${encodeURIComponent(jobId)}/artifacts/${encodeURIComponent(name)}?format=${encodeURIComponent(format)}`;
@@ -185,12 +200,7 @@ export function getMe(): Promise<Me> {
 }
 
 /** Shares a mesh or a job with users and/or everyone, or takes that back (add false). */
-export function setSharing(
-  kind: 'meshes' | 'jobs',
-  id: string,
-  who: { users?: string[]; everyone?: boolean },
-  add: boolean,
-): Promise<Sharing> {
+export function setSharing(kind: 'meshes' | 'jobs', id: string, who: { users?: string[]; everyone?: boolean }, add: boolean): Promise<Sharing> {
   return request<Sharing>(`/${kind}/${encodeURIComponent(id)}/${add ? 'share' : 'unshare'}`, {
     method: 'POST',
     headers: { 'Content-Type': 'application/json' },

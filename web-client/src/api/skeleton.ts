@@ -15,8 +15,7 @@ export function parseSkeleton(json: unknown): SkeletonData {
   if (!Array.isArray(nodes)) throw new Error('a skeleton needs a "nodes" array');
   const out = new Float32Array(nodes.length * 3);
   nodes.forEach((p, i) => {
-    if (!Array.isArray(p) || p.length !== 3 || !p.every((v) => typeof v === 'number' && Number.isFinite(v)))
-      throw new Error(`node ${i} is not [x, y, z]`);
+    if (!Array.isArray(p) || p.length !== 3 || !p.every((v) => typeof v === 'number' && Number.isFinite(v))) throw new Error(`node ${i} is not [x, y, z]`);
     out.set(p as number[], i * 3);
   });
   const list = edges === undefined ? [] : edges;

@@ -139,6 +139,10 @@ export interface ArtifactInfo {
   range?: [number, number];
   count?: number;
   hint?: string;
+  /** The formats GET /jobs/{id}/artifacts/{name}?format=F serves it in (its kind's codec); absent from older servers. */
+  formats?: string[];
+  /** Its stored size; absent from older servers. */
+  bytes?: number;
 }
 
 /** A job's input: a stored mesh's id, or an earlier job's output mesh. */
@@ -183,14 +187,7 @@ export type ServerEvent =
   | { type: 'job_failed'; job: Job }
   | { type: 'job_cancelled'; job: Job };
 
-export const SERVER_EVENT_TYPES: ReadonlySet<string> = new Set([
-  'mesh_added',
-  'mesh_deleted',
-  'job_progress',
-  'job_done',
-  'job_failed',
-  'job_cancelled',
-]);
+export const SERVER_EVENT_TYPES: ReadonlySet<string> = new Set(['mesh_added', 'mesh_deleted', 'job_progress', 'job_done', 'job_failed', 'job_cancelled']);
 
 /** The id of a job's input mesh ("mesh"), or null (a job on a voxel grid). */
 export function jobMeshId(job: Job | undefined): string | null {

@@ -145,23 +145,16 @@ export class CgviewSocket {
 
   /** A 2D slice of a done job's voxel grid artifact (get_slice). */
   getSlice(jobId: string, artifact: string, axis: Axis, index: number): Promise<{ begin: SliceBegin; slice: VoxelSlice }> {
-    return this.getPayload(
-      { type: 'get_slice', job_id: jobId, artifact, axis, index },
-      'slice',
-      'slice_end',
-      FrameKind.VoxelSlice,
-      async (begin, payload) => ({ begin: begin as unknown as SliceBegin, slice: await decodeSlicePayload(payload) }),
-    );
+    return this.getPayload({ type: 'get_slice', job_id: jobId, artifact, axis, index }, 'slice', 'slice_end', FrameKind.VoxelSlice, async (begin, payload) => ({
+      begin: begin as unknown as SliceBegin,
+      slice: await decodeSlicePayload(payload),
+    }));
   }
 
   /** A done job's animation artifact (get_animation): the .frames bytes, sent as zlib-compressed quantized deltas. */
   getAnimation(jobId: string, artifact: string): Promise<ArrayBuffer> {
-    return this.getPayload(
-      { type: 'get_animation', job_id: jobId, artifact },
-      'animation_begin',
-      'animation_end',
-      FrameKind.Animation,
-      (begin, payload) => decodeAnimationPayload(payload, Number(begin.raw_bytes)),
+    return this.getPayload({ type: 'get_animation', job_id: jobId, artifact }, 'animation_begin', 'animation_end', FrameKind.Animation, (begin, payload) =>
+      decodeAnimationPayload(payload, Number(begin.raw_bytes)),
     );
   }
 

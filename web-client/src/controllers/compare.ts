@@ -76,7 +76,12 @@ export class CompareController {
       this.take(list);
       this.view.show(
         loaded[0]!.ply,
-        loaded.map(({ data }, i) => ({ key: `${list[i]!.jobId}/${list[i]!.artifact}`, title: `${sources[i]!.job.algorithm} · ${data.name}`, data, hint: sources[i]!.artifact.hint })),
+        loaded.map(({ data }, i) => ({
+          key: `${list[i]!.jobId}/${list[i]!.artifact}`,
+          title: `${sources[i]!.job.algorithm} · ${data.name}`,
+          data,
+          hint: sources[i]!.artifact.hint,
+        })),
       );
       this.leaveButton.hidden = false;
     } catch (e) {

@@ -29,15 +29,19 @@ export class JobsController {
       run: (algorithm, params, inputs) => this.run(algorithm, params, inputs),
       selection: (kind) => this.selectionFor(kind),
     });
-    const panel = new JobsPanel(byId('jobs'), {
-      cancel: (id) => void this.cancel(id),
-      show: (jobId, artifact, kind) => void app.kinds.show(jobId, artifact, kind),
-      hide: (jobId, artifact, kind) => app.kinds.hide(jobId, artifact, kind),
-      compare: (jobId) => app.compare.compareJob(jobId),
-      addToComparison: (jobId, artifact) => app.compare.addToComparison(jobId, artifact),
-      runOn: (jobId, artifact) => this.setRunTarget(jobId, artifact),
-      share: (jobId) => openShareForm('jobs', jobId, `job ${jobOf(ctx, jobId)?.algorithm ?? ''} ${jobId.slice(0, 8)}`),
-    });
+    const panel = new JobsPanel(
+      byId('jobs'),
+      {
+        cancel: (id) => void this.cancel(id),
+        show: (jobId, artifact, kind) => void app.kinds.show(jobId, artifact, kind),
+        hide: (jobId, artifact, kind) => app.kinds.hide(jobId, artifact, kind),
+        compare: (jobId) => app.compare.compareJob(jobId),
+        addToComparison: (jobId, artifact) => app.compare.addToComparison(jobId, artifact),
+        runOn: (jobId, artifact) => this.setRunTarget(jobId, artifact),
+        share: (jobId) => openShareForm('jobs', jobId, `job ${jobOf(ctx, jobId)?.algorithm ?? ''} ${jobId.slice(0, 8)}`),
+      },
+      app.kinds,
+    );
     store.subscribe(
       (s) => [s.jobs, s.meshes, s.field, s.compared, s.added, s.runTarget, s.metrics, s.texts, s.skeletons, s.me?.user, s.me?.admin],
       () => {
@@ -58,7 +62,11 @@ export class JobsController {
       },
       { now: true },
     );
-    store.subscribe((s) => s.inputName, (name) => this.algorithms.setMesh(name), { now: true });
+    store.subscribe(
+      (s) => s.inputName,
+      (name) => this.algorithms.setMesh(name),
+      { now: true },
+    );
     store.subscribe(
       (s) => s.meshes,
       (meshes) => this.algorithms.setMeshes(meshes.map((m) => ({ id: m.id, name: m.name }))),
@@ -169,7 +177,10 @@ export class JobsController {
       this.upsert(await cancelJob(id));
     } catch (e) {
       this.ctx.error(`Cannot cancel the job: ${describe(e)}`);
-      void getJob(id).then((j) => this.upsert(j), () => {});
+      void getJob(id).then(
+        (j) => this.upsert(j),
+        () => {},
+      );
     }
   }
 
@@ -218,7 +229,10 @@ export class JobsController {
       if (this.asking.has(p.id)) return;
       this.asking.add(p.id);
       void getJob(p.id)
-        .then((j) => this.upsert(j), () => {})
+        .then(
+          (j) => this.upsert(j),
+          () => {},
+        )
         .finally(() => this.asking.delete(p.id));
       return;
     }

@@ -173,7 +173,15 @@ export class SceneController {
       const object = this.object(i);
       const pane = object ? viewer.paneOf(object) : -1;
       const { name, object: _, ...state } = e;
-      return { ...state, position: [...e.position] as SceneObjectState['position'], rotation: [...e.rotation] as SceneObjectState['rotation'], name, loaded: !!object, pane, box: object ? projectedBox(object, viewer.camera) : null };
+      return {
+        ...state,
+        position: [...e.position] as SceneObjectState['position'],
+        rotation: [...e.rotation] as SceneObjectState['rotation'],
+        name,
+        loaded: !!object,
+        pane,
+        box: object ? projectedBox(object, viewer.camera) : null,
+      };
     });
     return { panes: store.get().scenePanes ? objects.filter((o) => o.pane >= 0).length : 0, picked: store.get().picked, objects };
   }

@@ -65,7 +65,12 @@ export class ViewLinks {
     await app.loader.showing;
     const missing = scene.slice(1).filter((o) => !app.meshes.mesh(o.mesh));
     if (missing.length) this.ctx.error(`The view link's meshes ${missing.map((o) => o.mesh).join(', ')} no longer exist; the scene is shown without them.`);
-    await Promise.all(scene.slice(1).filter((o) => !missing.includes(o)).map((o) => app.scene.add(o.mesh, o)));
+    await Promise.all(
+      scene
+        .slice(1)
+        .filter((o) => !missing.includes(o))
+        .map((o) => app.scene.add(o.mesh, o)),
+    );
     display.restore(state.display, state.overlays);
     if (state.field) {
       const field = app.kinds.field;

@@ -3,14 +3,18 @@
 // points in place of the mesh, with the player's slider and play button over
 // the view; the camera frames the box of every frame.
 import * as THREE from 'three';
+import type { ArtifactInfo, Job } from '../api/types.ts';
 import { describe, jobOf, type AppContext } from '../controllers/context.ts';
-import { byId } from '../panels/dom.ts';
+import { artifactRow } from '../panels/artifact_row.ts';
+import { byId, el } from '../panels/dom.ts';
+import type { JobsActions, JobsView } from '../panels/jobs.ts';
 import { AnimationPlayer } from '../viewer/animation_player.ts';
 import { decodeFrames, framePositions } from '../viewer/frames.ts';
 import type { ArtifactKind } from './kind.ts';
 
 export class AnimationKind implements ArtifactKind {
   readonly kind = 'animation';
+  readonly storedFormat = 'frames';
   private readonly ctx: AppContext;
   private readonly player: AnimationPlayer;
   /** The animation being fetched: a later one, or hiding, makes it stale. */
@@ -23,6 +27,18 @@ export class AnimationKind implements ArtifactKind {
 
   load(): void {
     // Fetched when played.
+  }
+
+  /** "Play": the frames in place of the mesh, with the player. */
+  row(job: Job, a: ArtifactInfo, _view: JobsView, actions: JobsActions): HTMLElement {
+    const play = el('button', { type: 'button', class: 'button small play-animation' }, 'Play');
+    play.addEventListener('click', () => actions.show(job.id, a.name, a.kind));
+    return artifactRow(job, a, this.storedFormat, [play]);
+  }
+
+  rowState(): null {
+    // The row is the same whether the animation plays or not.
+    return null;
   }
 
   async show(jobId: string, artifactName: string): Promise<void> {
@@ -59,8 +75,13 @@ export class AnimationKind implements ArtifactKind {
           let sum = 0;
           for (let i = 0; i < positions.length; ++i) sum += positions[i]!;
           hooks.lastAnimation = {
-            jobId, artifact: artifactName, frame: k, frames: frames.frames, vertices: frames.vertices,
-            first: [positions[0]!, positions[1]!, positions[2]!], sum,
+            jobId,
+            artifact: artifactName,
+            frame: k,
+            frames: frames.frames,
+            vertices: frames.vertices,
+            first: [positions[0]!, positions[1]!, positions[2]!],
+            sum,
           };
         });
       });

@@ -1,12 +1,15 @@
 // One module per kind of artifact (Polyscope's one class per quantity): it
-// loads, shows, hides and disposes what a job made of that kind. The registry
-// (registry.ts) maps the server's kind string to its module, so a new kind is
-// one file here and one line there.
+// loads, shows, hides and disposes what a job made of that kind, and builds
+// its row in the job list. The registry (registry.ts) maps the server's kind
+// string to its module, so a new kind is one file here and one line there.
 import type { ArtifactInfo, Job } from '../api/types.ts';
+import type { JobsActions, JobsView } from '../panels/jobs.ts';
 
 export interface ArtifactKind {
   /** The server's artifact kind this module handles (protocol/API.md, a Job's artifacts). */
   readonly kind: string;
+  /** The format the server stores this kind in: the one download offered when a Job lists no `formats` (an older server). */
+  readonly storedFormat: string;
   /** A job with an artifact of this kind is done: fetches what the job list shows of it (most kinds fetch on show). */
   load(job: Job, artifact: ArtifactInfo): void;
   /** Draws or opens the artifact: its button in the job list. Resolves once it is shown (or has failed, with an error shown). */
@@ -15,4 +18,17 @@ export interface ArtifactKind {
   hide(jobId: string, artifact: string): void;
   /** Another mesh is chosen, or the one shown is gone: forgets what is drawn of this kind on it. */
   dispose(): void;
+  /**
+   * The artifact's row in the job list (panels/artifact_row.ts): its name,
+   * this kind's buttons and what it shows, and a download link per format.
+   */
+  row(job: Job, artifact: ArtifactInfo, view: JobsView, actions: JobsActions): HTMLElement;
+  /**
+   * What the row is built from besides the Job, as JSON can write it: the job
+   * list builds the row again only when this changes, so that progress events
+   * leave its buttons the same elements under the pointer.
+   */
+  rowState(job: Job, artifact: ArtifactInfo, view: JobsView): unknown;
+  /** Buttons this kind adds to a done job as a whole (the fields' Compare), or null. */
+  jobControls?(job: Job, actions: JobsActions): HTMLElement | null;
 }

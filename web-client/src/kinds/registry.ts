@@ -1,6 +1,7 @@
 // The artifact kinds the viewer knows, by the server's kind string: what a
-// job made is loaded, shown, hidden and disposed by its kind's module. A new
-// kind is a module in this folder and a line in `modules` below.
+// job made is loaded, shown, hidden and disposed by its kind's module, which
+// also builds its row in the job list. A new kind is a module in this folder
+// and a line in `modules` below.
 import type { Job } from '../api/types.ts';
 import type { AppContext } from '../controllers/context.ts';
 import { AnimationKind } from './animation.ts';
@@ -26,7 +27,7 @@ export class Kinds {
     this.byKind = new Map(modules.map((m) => [m.kind, m]));
   }
 
-  /** The module of a kind; undefined for a kind this viewer does not know (the job list offers its JSON). */
+  /** The module of a kind; undefined for a kind this viewer does not know (the job list offers its downloads). */
   of(kind: string): ArtifactKind | undefined {
     return this.byKind.get(kind);
   }

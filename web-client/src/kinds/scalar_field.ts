@@ -6,7 +6,10 @@ import type * as THREE from 'three';
 import { fetchArtifactF32 } from '../api/rest.ts';
 import { jobMeshId, type ArtifactInfo, type Job } from '../api/types.ts';
 import { describe, jobOf, type AppContext } from '../controllers/context.ts';
-import { byId } from '../panels/dom.ts';
+import { artifactRow } from '../panels/artifact_row.ts';
+import { byId, el } from '../panels/dom.ts';
+import type { JobsActions, JobsView } from '../panels/jobs.ts';
+import { artifactKey } from '../state/app_state.ts';
 import type { TestHooks } from '../test_hooks.ts';
 import { defaultMapFor } from '../viewer/colormaps.ts';
 import { Legend } from '../viewer/legend.ts';
@@ -33,6 +36,7 @@ interface DrawnField {
 
 export class ScalarFieldKind implements ArtifactKind {
   readonly kind = 'scalar_field';
+  readonly storedFormat = 'f32';
   private readonly ctx: AppContext;
   private readonly legend: Legend;
   /** The field drawn now. */
@@ -49,6 +53,33 @@ export class ScalarFieldKind implements ArtifactKind {
 
   load(): void {
     // Fetched when shown.
+  }
+
+  /** "Show" (on the mesh) and "Add to comparison" (beside the fields compared now, or the one shown). */
+  row(job: Job, a: ArtifactInfo, view: JobsView, actions: JobsActions): HTMLElement {
+    const [shown, compared] = this.rowState(job, a, view);
+    const show = el('button', { type: 'button', class: shown ? 'button small show active' : 'button small show' }, shown ? 'Shown' : 'Show');
+    show.addEventListener('click', () => actions.show(job.id, a.name, a.kind));
+    const add = el(
+      'button',
+      { type: 'button', class: compared ? 'button small compare-add active' : 'button small compare-add', title: 'Show beside the fields compared now (or the one shown)' },
+      compared ? 'Compared' : 'Add to comparison',
+    );
+    add.disabled = compared;
+    add.addEventListener('click', () => actions.addToComparison(job.id, a.name));
+    return artifactRow(job, a, this.storedFormat, [show, add]);
+  }
+
+  rowState(job: Job, a: ArtifactInfo, view: JobsView): [boolean, boolean] {
+    return [view.shown?.jobId === job.id && view.shown.artifact === a.name, view.compared.has(artifactKey(job.id, a.name))];
+  }
+
+  /** "Compare" on a job with two fields or more: all of them side by side. */
+  jobControls(job: Job, actions: JobsActions): HTMLElement | null {
+    if ((job.artifacts ?? []).filter((a) => a.kind === this.kind).length < 2) return null;
+    const compare = el('button', { type: 'button', class: 'button small compare', title: "Show this job's fields side by side" }, 'Compare');
+    compare.addEventListener('click', () => actions.compare(job.id));
+    return el('div', { class: 'job-actions' }, compare);
   }
 
   /**
@@ -80,8 +111,7 @@ export class ScalarFieldKind implements ArtifactKind {
     const { loader } = this.ctx.app;
     const [values, ply] = await Promise.all([fetchArtifactF32(jobId, artifact.name), loader.ply(meshId), loader.showing]);
     const location = artifact.location ?? (values.length === ply.faces && values.length !== ply.vertices ? 'face' : 'vertex');
-    let range: [number, number] =
-      artifact.range && artifact.range.length === 2 && artifact.range.every(Number.isFinite) ? artifact.range : finiteRange(values);
+    let range: [number, number] = artifact.range && artifact.range.length === 2 && artifact.range.every(Number.isFinite) ? artifact.range : finiteRange(values);
     if (artifact.hint === 'symmetric') {
       const m = Math.max(Math.abs(range[0]), Math.abs(range[1]));
       range = [-m, m];

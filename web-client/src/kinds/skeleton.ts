@@ -4,12 +4,14 @@
 // each one's distance to the first, side by side on demand; and skeleton
 // files made by other tools, attached to the mesh shown.
 import * as THREE from 'three';
-import { fetchArtifactJson, submitJob } from '../api/rest.ts';
+import { fetchArtifactJson, submitJob, uploadData } from '../api/rest.ts';
 import { parseSkeleton, type SkeletonData } from '../api/skeleton.ts';
 import type { ArtifactInfo, Job } from '../api/types.ts';
 import { MAX_PANES } from '../controllers/compare.ts';
 import { describe, jobOf, type AppContext } from '../controllers/context.ts';
-import { byId } from '../panels/dom.ts';
+import { artifactRow } from '../panels/artifact_row.ts';
+import { byId, el } from '../panels/dom.ts';
+import type { JobsActions, JobsView } from '../panels/jobs.ts';
 import { SkeletonsPanel } from '../panels/skeletons.ts';
 import { artifactKey, selectedMesh, splitKey } from '../state/app_state.ts';
 import { buildSkeleton, SKELETON_COLORS } from '../viewer/skeleton_renderer.ts';
@@ -26,12 +28,13 @@ interface DrawnSkeleton {
 
 export class SkeletonKind implements ArtifactKind {
   readonly kind = 'skeleton';
+  readonly storedFormat = 'obj';
   private readonly ctx: AppContext;
   /** The skeletons drawn over the mesh, by `${jobId}/${name}`, in the order shown. */
   private readonly drawn = new Map<string, DrawnSkeleton>();
   /** skeleton_distance jobs submitted for the comparison table, by `${first key}|${other key}` ('' while submitting). */
   private readonly distanceJobs = new Map<string, string>();
-  /** skeleton_file jobs from "Load skeleton file…": their skeleton is drawn when done. */
+  /** import jobs from "Load skeleton file…": their skeleton is drawn when done. */
   private readonly drawWhenDone = new Set<string>();
 
   constructor(ctx: AppContext) {
@@ -51,6 +54,19 @@ export class SkeletonKind implements ArtifactKind {
   load(job: Job, artifact: ArtifactInfo): void {
     if (!this.drawWhenDone.delete(job.id)) return;
     if (!this.drawn.has(artifactKey(job.id, artifact.name))) void this.show(job.id, artifact.name);
+  }
+
+  /** "Show" (over its mesh, in a colour of its own; a second click hides it) and, while drawn, its colour. */
+  row(job: Job, a: ArtifactInfo, view: JobsView, actions: JobsActions): HTMLElement {
+    const color = view.skeletons.get(artifactKey(job.id, a.name));
+    const show = el('button', { type: 'button', class: color ? 'button small show-skeleton active' : 'button small show-skeleton' }, color ? 'Shown' : 'Show');
+    show.addEventListener('click', () => (color ? actions.hide(job.id, a.name, a.kind) : actions.show(job.id, a.name, a.kind)));
+    const swatch = color ? el('span', { class: 'swatch', style: `background:${color}`, title: color }) : null;
+    return artifactRow(job, a, this.storedFormat, [show, swatch]);
+  }
+
+  rowState(job: Job, a: ArtifactInfo, view: JobsView): string {
+    return view.skeletons.get(artifactKey(job.id, a.name)) ?? '';
   }
 
   /** Draws a job's skeleton artifact over its mesh (selecting that mesh first when another one is shown). */
@@ -97,16 +113,19 @@ export class SkeletonKind implements ArtifactKind {
   }
 
   /**
-   * "Load skeleton file…": the file's text goes to a skeleton_file job on the
-   * shown mesh (the server parses it: a bad file is refused naming its line),
-   * whose skeleton is drawn when it is done, measured and compared as any.
+   * "Load skeleton file…": the file is uploaded (POST /data) for the shown
+   * mesh; the server reads it (a bad file is refused naming its line) and
+   * answers a done import job, whose skeleton is drawn, measured and compared
+   * as any job's. The kind is named so that a .txt file (the picker offers
+   * them for CGAL's .polylines.txt) is read as a skeleton or refused with the
+   * skeleton formats, never taken for a scalar field's values.
    */
   async loadFile(file: File): Promise<void> {
     const { app, store } = this.ctx;
     const mesh = selectedMesh(store.get());
     if (!mesh) return this.ctx.error('Choose a mesh first: a skeleton file is attached to the mesh shown.');
     try {
-      const job = await submitJob('skeleton_file', { mesh: mesh.id }, { name: file.name, text: await file.text() });
+      const job = await uploadData(file.name, file, { kind: this.kind, mesh: mesh.id });
       this.drawWhenDone.add(job.id);
       // A job_done event may have come before this answer: upsert keeps the
       // later state, and a job done already is drawn now.

@@ -4,11 +4,15 @@
 import { fetchArtifactBytes } from '../api/rest.ts';
 import type { ArtifactInfo, Job } from '../api/types.ts';
 import { describe, jobOf, type AppContext } from '../controllers/context.ts';
+import { artifactRow } from '../panels/artifact_row.ts';
+import { el } from '../panels/dom.ts';
+import type { JobsView } from '../panels/jobs.ts';
 import { artifactKey, withEntry } from '../state/app_state.ts';
 import type { ArtifactKind } from './kind.ts';
 
 export class TextKind implements ArtifactKind {
   readonly kind = 'text';
+  readonly storedFormat = 'txt';
   private readonly ctx: AppContext;
 
   constructor(ctx: AppContext) {
@@ -25,6 +29,18 @@ export class TextKind implements ArtifactKind {
       (bytes) => set(new TextDecoder('utf-8').decode(bytes)),
       (e) => set(`Cannot fetch ${artifact.name}: ${describe(e)}`),
     );
+  }
+
+  /** The text itself, under its download links. */
+  row(job: Job, a: ArtifactInfo, view: JobsView): HTMLElement {
+    const text = view.texts.get(artifactKey(job.id, a.name));
+    // At most 2000 characters here; the links have all the bytes.
+    const shown = text === undefined ? 'loading…' : text.length > 2000 ? `${text.slice(0, 2000)}…` : text;
+    return artifactRow(job, a, this.storedFormat, [], el('pre', { class: 'text-content' }, shown));
+  }
+
+  rowState(job: Job, a: ArtifactInfo, view: JobsView): boolean {
+    return view.texts.get(artifactKey(job.id, a.name)) !== undefined;
   }
 
   async show(jobId: string, artifact: string): Promise<void> {

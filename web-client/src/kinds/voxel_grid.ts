@@ -2,14 +2,19 @@
 // WebSocket), the slice's plane in the view (optionally cutting the mesh),
 // and the voxels above a threshold drawn in 3D.
 import { fetchArtifactBytes } from '../api/rest.ts';
+import type { ArtifactInfo, Job } from '../api/types.ts';
 import type { AppContext } from '../controllers/context.ts';
-import { byId } from '../panels/dom.ts';
+import { artifactRow, runOnButton } from '../panels/artifact_row.ts';
+import { byId, el } from '../panels/dom.ts';
+import type { JobsActions, JobsView } from '../panels/jobs.ts';
+import { artifactKey } from '../state/app_state.ts';
 import { VoxelSlicePanel } from '../panels/voxel_slices.ts';
 import { buildSlicePlane, sliceClipPlane } from '../viewer/slice_plane.ts';
 import type { ArtifactKind } from './kind.ts';
 
 export class VoxelGridKind implements ArtifactKind {
   readonly kind = 'voxel_grid';
+  readonly storedFormat = 'nrrd';
   private readonly panel: VoxelSlicePanel;
 
   constructor(ctx: AppContext) {
@@ -31,6 +36,17 @@ export class VoxelGridKind implements ArtifactKind {
 
   load(): void {
     // Sliced on demand.
+  }
+
+  /** "Slices" (the slice panel) and "Run on this". */
+  row(job: Job, a: ArtifactInfo, view: JobsView, actions: JobsActions): HTMLElement {
+    const slices = el('button', { type: 'button', class: 'button small slices' }, 'Slices');
+    slices.addEventListener('click', () => actions.show(job.id, a.name, a.kind));
+    return artifactRow(job, a, this.storedFormat, [slices, runOnButton(job, a, view, actions)]);
+  }
+
+  rowState(job: Job, a: ArtifactInfo, view: JobsView): boolean {
+    return view.target === artifactKey(job.id, a.name);
   }
 
   async show(jobId: string, artifact: string): Promise<void> {

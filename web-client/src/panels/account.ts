@@ -7,7 +7,8 @@ import type { Me } from '../api/types.ts';
 import { el, formatBytes } from './dom.ts';
 
 export function usageText(me: Me): string {
-  const storage = me.storage_bytes_limit === null ? `${formatBytes(me.storage_bytes_used)} stored` : `${formatBytes(me.storage_bytes_used)} of ${formatBytes(me.storage_bytes_limit)}`;
+  const storage =
+    me.storage_bytes_limit === null ? `${formatBytes(me.storage_bytes_used)} stored` : `${formatBytes(me.storage_bytes_used)} of ${formatBytes(me.storage_bytes_limit)}`;
   const jobs = me.jobs_limit === null ? '' : ` · ${me.jobs_active} of ${me.jobs_limit} jobs`;
   return `${me.user} — ${storage}${jobs}`;
 }

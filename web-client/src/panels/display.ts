@@ -7,16 +7,7 @@
 // scene gives one (panels/scene.ts); the overlays are of the shown (first) one.
 import * as THREE from 'three';
 import { RoomEnvironment } from 'three/addons/environments/RoomEnvironment.js';
-import {
-  applyDisplay,
-  DEFAULT_DISPLAY,
-  DISPLAY_MODES,
-  isDefaultDisplay,
-  isSurface,
-  MATERIAL_PRESETS,
-  sanitizeDisplay,
-  type DisplaySettings,
-} from '../viewer/display_modes.ts';
+import { applyDisplay, DEFAULT_DISPLAY, DISPLAY_MODES, isDefaultDisplay, isSurface, MATERIAL_PRESETS, sanitizeDisplay, type DisplaySettings } from '../viewer/display_modes.ts';
 import { percentileRange } from '../viewer/histogram.ts';
 import { DEFAULT_OVERLAYS, EDGE_COLORS, formatSize, sanitizeOverlays, updateOverlays, type OverlayInfo, type OverlaySettings } from '../viewer/overlays.ts';
 import type { Viewer } from '../viewer/viewer.ts';

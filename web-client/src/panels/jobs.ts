@@ -1,16 +1,15 @@
 // The job panel: every job, newest first, with its algorithm and mesh, state,
 // stage and a live progress bar (updated from the WebSocket's job_* events),
 // a cancel button while it is queued or running, and for a finished job its
-// artifacts: scalar fields can be shown on the mesh or compared side by side
-// ("Compare" shows every field of the job, "Add to comparison" adds one field
-// of any job on the same mesh), metrics are a table,
-// meshes can be added to the view beside their input, downloaded, or made the
-// input of the next job ("Run on this": a chain, API.md "Jobs chain").
-import { artifactUrl } from '../api/rest.ts';
+// artifacts, each in the row its kind builds (kinds/*.ts, found through the
+// registry: scalar fields shown or compared, meshes added to the view or run
+// on, metrics as a table...); a kind this viewer does not know gets a row of
+// its name and download links.
 import { jobMeshId } from '../api/types.ts';
 import type { ArtifactInfo, Job } from '../api/types.ts';
+import type { ArtifactKind } from '../kinds/kind.ts';
+import { artifactRow } from './artifact_row.ts';
 import { el } from './dom.ts';
-import { formatValue } from './format.ts';
 
 export interface JobsActions {
   cancel(id: string): void;
@@ -54,29 +53,25 @@ export interface JobsView {
   mayChange(owner: string | undefined): boolean;
 }
 
-const ACTIVE = new Set(['queued', 'running']);
-
-function metricsTable(data: unknown): HTMLElement {
-  if (typeof data === 'string') return el('p', { class: 'form-error' }, data);
-  const rows: HTMLTableRowElement[] = [];
-  const add = (prefix: string, value: unknown) => {
-    if (value && typeof value === 'object' && !Array.isArray(value)) {
-      for (const [k, v] of Object.entries(value as Record<string, unknown>)) add(prefix ? `${prefix} ${k}` : k, v);
-    } else {
-      rows.push(el('tr', {}, el('th', { scope: 'row' }, prefix.replace(/_/g, ' ')), el('td', {}, formatValue(value))));
-    }
-  };
-  add('', data);
-  return el('table', { class: 'kv metrics' }, ...rows);
+/** The artifact kinds' modules by the server's kind string (kinds/registry.ts). */
+export interface ArtifactKinds {
+  of(kind: string): ArtifactKind | undefined;
 }
+
+/** A kind this viewer does not know, from an older server that lists no formats, is offered as JSON, the format most kinds serve. */
+const UNKNOWN_KIND_FORMAT = 'json';
+
+const ACTIVE = new Set(['queued', 'running']);
 
 export class JobsPanel {
   private readonly root: HTMLElement;
   private readonly actions: JobsActions;
+  private readonly kinds: ArtifactKinds;
 
-  constructor(root: HTMLElement, actions: JobsActions) {
+  constructor(root: HTMLElement, actions: JobsActions, kinds: ArtifactKinds) {
     this.root = root;
     this.actions = actions;
+    this.kinds = kinds;
   }
 
   // Items by job id with what they were built from: progress events (up to
@@ -121,15 +116,8 @@ export class JobsPanel {
   private signature(job: Job, view: JobsView): string {
     const meshId = jobMeshId(job);
     const mesh = meshId ? view.meshName(meshId) : null;
-    const shown = view.shown?.jobId === job.id ? view.shown.artifact : '';
-    const metrics = (job.artifacts ?? [])
-      .map((a) => (view.metrics.get(`${job.id}/${a.name}`) === undefined && view.texts.get(`${job.id}/${a.name}`) === undefined ? 0 : 1))
-      .join('');
-    const added = (job.artifacts ?? [])
-      .map((a) => (view.added.has(`${job.id}/${a.name}`) ? 1 : 0) + (view.compared.has(`${job.id}/${a.name}`) ? 2 : 0))
-      .join('');
-    const skeletons = (job.artifacts ?? []).map((a) => view.skeletons.get(`${job.id}/${a.name}`) ?? '').join(',');
-    return JSON.stringify([job.state, job.cached, job.error, mesh, shown, metrics, added, skeletons, job.artifacts?.length ?? 0]);
+    const artifacts = (job.artifacts ?? []).map((a) => [a.name, a.kind, a.formats ?? null, a.bytes ?? null, this.kinds.of(a.kind)?.rowState(job, a, view) ?? null]);
+    return JSON.stringify([job.state, job.cached, job.error, mesh, view.mayChange(job.owner), artifacts]);
   }
 
   /** The parts that progress events change. */
@@ -145,7 +133,7 @@ export class JobsPanel {
 
   private item(job: Job, view: JobsView): HTMLElement {
     const meshId = jobMeshId(job);
-    const mesh = meshId ? view.meshName(meshId) ?? meshId.slice(0, 8) : '';
+    const mesh = meshId ? (view.meshName(meshId) ?? meshId.slice(0, 8)) : '';
     const fraction = Math.min(1, Math.max(0, job.state === 'done' ? 1 : job.progress || 0));
     const bar = el('progress', { max: '1', class: 'job-progress' });
     bar.value = fraction;
@@ -178,76 +166,19 @@ export class JobsPanel {
     }
     if (job.error) li.append(el('p', { class: 'job-error' }, job.error));
     if (job.state === 'done') {
-      if ((job.artifacts ?? []).filter((a) => a.kind === 'scalar_field').length >= 2) {
-        const compare = el('button', { type: 'button', class: 'button small compare', title: "Show this job's fields side by side" }, 'Compare');
-        compare.addEventListener('click', () => this.actions.compare(job.id));
-        li.append(el('div', { class: 'job-actions' }, compare));
+      const artifacts = job.artifacts ?? [];
+      for (const kind of new Set(artifacts.map((a) => a.kind))) {
+        const controls = this.kinds.of(kind)?.jobControls?.(job, this.actions);
+        if (controls) li.append(controls);
       }
-      for (const a of job.artifacts ?? []) li.append(this.artifact(job, a, view));
+      for (const a of artifacts) li.append(this.artifact(job, a, view));
     }
     return li;
   }
 
-  /** "Run on this": the artifact (a mesh, a voxel grid) becomes the next job's input. */
-  private runOnButton(job: Job, a: ArtifactInfo, view: JobsView): HTMLButtonElement {
-    const targeted = view.target === `${job.id}/${a.name}`;
-    const runOn = el('button', { type: 'button', class: targeted ? 'button small run-on active' : 'button small run-on', title: 'Run the next algorithm on this result' }, targeted ? 'Input of next run' : 'Run on this');
-    runOn.disabled = targeted;
-    runOn.addEventListener('click', () => this.actions.runOn(job.id, a.name));
-    return runOn;
-  }
-
+  /** The artifact's row, built by its kind's module; a kind this viewer does not know offers its downloads. */
   private artifact(job: Job, a: ArtifactInfo, view: JobsView): HTMLElement {
-    const row = el('div', { class: `artifact artifact-${a.kind}`, 'data-artifact': a.name });
-    const label = el('span', { class: 'artifact-name', title: a.kind }, a.name);
-    if (a.kind === 'scalar_field') {
-      const shown = view.shown?.jobId === job.id && view.shown.artifact === a.name;
-      const show = el('button', { type: 'button', class: shown ? 'button small show active' : 'button small show' }, shown ? 'Shown' : 'Show');
-      show.addEventListener('click', () => this.actions.show(job.id, a.name, a.kind));
-      const compared = view.compared.has(`${job.id}/${a.name}`);
-      const add = el('button', { type: 'button', class: compared ? 'button small compare-add active' : 'button small compare-add', title: 'Show beside the fields compared now (or the one shown)' }, compared ? 'Compared' : 'Add to comparison');
-      add.disabled = compared;
-      add.addEventListener('click', () => this.actions.addToComparison(job.id, a.name));
-      row.append(label, show, add, el('a', { href: artifactUrl(job.id, a.name, 'csv'), download: '' }, 'csv'));
-    } else if (a.kind === 'mesh') {
-      const added = view.added.has(`${job.id}/${a.name}`);
-      const add = el('button', { type: 'button', class: added ? 'button small add active' : 'button small add' }, added ? 'Added' : 'Add to view');
-      add.disabled = added;
-      add.addEventListener('click', () => this.actions.show(job.id, a.name, a.kind));
-      row.append(label, add, ' ', this.runOnButton(job, a, view), ' ', el('a', { href: artifactUrl(job.id, a.name, 'ply'), download: '' }, 'ply'), ' ', el('a', { href: artifactUrl(job.id, a.name, 'obj'), download: '' }, 'obj'));
-    } else if (a.kind === 'animation') {
-      const play = el('button', { type: 'button', class: 'button small play-animation' }, 'Play');
-      play.addEventListener('click', () => this.actions.show(job.id, a.name, a.kind));
-      row.append(label, play, ' ', el('a', { href: artifactUrl(job.id, a.name, 'frames'), download: '' }, 'frames'));
-    } else if (a.kind === 'text') {
-      row.append(label, ' ', el('a', { href: artifactUrl(job.id, a.name, 'txt'), download: '' }, 'txt'));
-      const text = view.texts.get(`${job.id}/${a.name}`);
-      // At most 2000 characters here; the link has all the bytes.
-      const shown = text === undefined ? 'loading…' : text.length > 2000 ? `${text.slice(0, 2000)}…` : text;
-      row.append(el('pre', { class: 'text-content' }, shown));
-    } else if (a.kind === 'voxel_grid') {
-      const slices = el('button', { type: 'button', class: 'button small slices' }, 'Slices');
-      slices.addEventListener('click', () => this.actions.show(job.id, a.name, a.kind));
-      row.append(label, slices, ' ', this.runOnButton(job, a, view));
-      for (const f of ['nrrd', 'vti', 'binvox']) row.append(' ', el('a', { href: artifactUrl(job.id, a.name, f), download: '' }, f));
-    } else if (a.kind === 'metrics') {
-      row.append(label);
-      const data = view.metrics.get(`${job.id}/${a.name}`);
-      row.append(data === undefined ? el('p', { class: 'empty' }, 'loading…') : metricsTable(data));
-    } else if (a.kind === 'skeleton') {
-      const color = view.skeletons.get(`${job.id}/${a.name}`);
-      const show = el(
-        'button',
-        { type: 'button', class: color ? 'button small show-skeleton active' : 'button small show-skeleton' },
-        color ? 'Shown' : 'Show',
-      );
-      show.addEventListener('click', () => (color ? this.actions.hide(job.id, a.name, a.kind) : this.actions.show(job.id, a.name, a.kind)));
-      row.append(label, show);
-      if (color) row.append(' ', el('span', { class: 'swatch', style: `background:${color}`, title: color }));
-      for (const f of ['obj', 'cg', 'polylines', 'json']) row.append(' ', el('a', { href: artifactUrl(job.id, a.name, f), download: '' }, f));
-    } else {
-      row.append(label, ' ', el('a', { href: artifactUrl(job.id, a.name, 'json'), download: '' }, 'json'));
-    }
-    return row;
+    const kind = this.kinds.of(a.kind);
+    return kind ? kind.row(job, a, view, this.actions) : artifactRow(job, a, UNKNOWN_KIND_FORMAT);
   }
 }

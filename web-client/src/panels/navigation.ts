@@ -16,15 +16,23 @@ const VIEWS: Array<[string, AxisView, string]> = [
 ];
 
 const KEYS: Record<string, [AxisView, AxisView]> = {
-  Digit1: ['-z', '+z'], Numpad1: ['-z', '+z'],
-  Digit3: ['-x', '+x'], Numpad3: ['-x', '+x'],
-  Digit7: ['-y', '+y'], Numpad7: ['-y', '+y'],
+  Digit1: ['-z', '+z'],
+  Numpad1: ['-z', '+z'],
+  Digit3: ['-x', '+x'],
+  Numpad3: ['-x', '+x'],
+  Digit7: ['-y', '+y'],
+  Numpad7: ['-y', '+y'],
 };
 
 export class NavigationPanel {
   constructor(root: HTMLElement, navigation: Navigation, error: (text: string) => void) {
     const mode = el('select', { id: 'navigation-mode', 'aria-label': 'Navigation', title: 'How the mouse moves the camera' });
-    for (const [value, text] of [['orbit', 'Orbit'], ['trackball', 'Trackball'], ['fly', 'Fly (WASD)']]) mode.append(el('option', { value }, text));
+    for (const [value, text] of [
+      ['orbit', 'Orbit'],
+      ['trackball', 'Trackball'],
+      ['fly', 'Fly (WASD)'],
+    ])
+      mode.append(el('option', { value }, text));
     mode.addEventListener('change', () => navigation.setMode(mode.value as NavigationMode));
     const views = el('span', { class: 'view-buttons' });
     for (const [text, axis, title] of VIEWS) {

@@ -20,7 +20,10 @@ function ordered(report: Record<string, unknown>): Array<[string, unknown]> {
     const i = FIRST.indexOf(key);
     return i < 0 ? FIRST.length : i;
   };
-  return entries.map((e, i) => ({ e, i })).sort((a, b) => rank(a.e[0]) - rank(b.e[0]) || a.i - b.i).map(({ e }) => e);
+  return entries
+    .map((e, i) => ({ e, i }))
+    .sort((a, b) => rank(a.e[0]) - rank(b.e[0]) || a.i - b.i)
+    .map(({ e }) => e);
 }
 
 function rows(report: Record<string, unknown>, prefix = ''): HTMLTableRowElement[] {
@@ -58,9 +61,7 @@ export class ReportPanel {
       el('tr', {}, el('th', { scope: 'row' }, 'uploaded'), el('td', {}, mesh.created)),
       mesh.sha256 ? el('tr', {}, el('th', { scope: 'row' }, 'sha256'), el('td', { class: 'hash', title: mesh.sha256 }, mesh.sha256.slice(0, 16) + '…')) : null,
     );
-    const warnings = mesh.warnings?.length
-      ? el('ul', { class: 'warnings' }, ...mesh.warnings.map((w) => el('li', {}, w)))
-      : null;
+    const warnings = mesh.warnings?.length ? el('ul', { class: 'warnings' }, ...mesh.warnings.map((w) => el('li', {}, w))) : null;
     const downloads = el(
       'p',
       { class: 'downloads' },

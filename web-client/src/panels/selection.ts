@@ -30,8 +30,24 @@ export class SelectionPanel {
       }
       return group;
     };
-    const kind = radio<SelectionKind>('kind', [['faces', 'Faces'], ['vertices', 'Vertices']], tool.kind, (v) => tool.setKind(v));
-    const shape = radio('shape', [['box', 'Box'], ['lasso', 'Lasso']], tool.shape, (v) => (tool.shape = v));
+    const kind = radio<SelectionKind>(
+      'kind',
+      [
+        ['faces', 'Faces'],
+        ['vertices', 'Vertices'],
+      ],
+      tool.kind,
+      (v) => tool.setKind(v),
+    );
+    const shape = radio(
+      'shape',
+      [
+        ['box', 'Box'],
+        ['lasso', 'Lasso'],
+      ],
+      tool.shape,
+      (v) => (tool.shape = v),
+    );
     const through = el('input', { type: 'checkbox', id: 'selection-through' });
     through.addEventListener('change', () => (tool.through = through.checked));
     const button = (id: string, text: string, title: string, fn: () => void) => {
@@ -76,7 +92,9 @@ export class SelectionPanel {
     }
     const what = state.kind === 'faces' ? (n === 1 ? 'face' : 'faces') : n === 1 ? 'vertex' : 'vertices';
     const ids = state.ids.slice(0, FIRST_IDS).join(', ') + (n > FIRST_IDS ? ', …' : '');
-    this.readout.replaceChildren(el('div', { class: 'selection-count', 'data-count': String(n) }, state.ready ? `${n} ${what}` : this.tool.active ? 'Loading…' : 'Press Select (S) to start.'));
+    this.readout.replaceChildren(
+      el('div', { class: 'selection-count', 'data-count': String(n) }, state.ready ? `${n} ${what}` : this.tool.active ? 'Loading…' : 'Press Select (S) to start.'),
+    );
     if (n) this.readout.append(el('div', { class: 'selection-ids' }, `ids ${ids}`));
     if (state.area !== null && n) this.readout.append(el('div', { class: 'selection-area' }, `area ${state.area.toPrecision(6)}`));
   }

@@ -46,10 +46,14 @@ export class SkeletonsPanel {
     const input = el('input', { type: 'file', id: 'skeleton-file-input', accept: SKELETON_FILE_TYPES, hidden: '' });
     input.addEventListener('change', () => {
       const file = input.files?.[0];
-      input.value = '';  // the same file chosen again is a change too
+      input.value = ''; // the same file chosen again is a change too
       if (file) onLoadFile(file);
     });
-    const button = el('button', { type: 'button', class: 'button small load-skeleton', title: 'A skeleton made by another tool: CGAL polylines, .cg, OBJ with l records or JSON' }, 'Load skeleton file…');
+    const button = el(
+      'button',
+      { type: 'button', class: 'button small load-skeleton', title: 'A skeleton made by another tool: CGAL polylines, .cg, OBJ with l records or JSON' },
+      'Load skeleton file…',
+    );
     button.addEventListener('click', () => input.click());
     this.load = el('div', { class: 'load-skeleton-row' }, button, input);
   }
@@ -62,8 +66,7 @@ export class SkeletonsPanel {
       return;
     }
     const head = el('tr', {}, el('th', {}, ''));
-    for (const c of columns)
-      head.append(el('th', { 'data-skeleton': c.key }, el('span', { class: 'swatch', style: `background:${c.color}` }), ' ', c.algorithm));
+    for (const c of columns) head.append(el('th', { 'data-skeleton': c.key }, el('span', { class: 'swatch', style: `background:${c.color}` }), ' ', c.algorithm));
     const rows = ROWS.map(([name, label]) => {
       const tr = el('tr', { 'data-metric': name }, el('th', { scope: 'row' }, label));
       for (const c of columns) tr.append(el('td', {}, c.metrics === undefined ? '…' : formatValue(c.metrics[name])));

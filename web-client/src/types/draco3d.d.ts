@@ -22,13 +22,7 @@ declare module 'draco3d/draco_decoder_nodejs.js' {
     /** The attribute whose metadata entry "name" is `name`, or -1. */
     GetAttributeIdByName(mesh: DracoMesh, name: string): number;
     GetAttribute(mesh: DracoMesh, id: number): DracoAttribute;
-    GetAttributeDataArrayForAllPoints(
-      mesh: DracoMesh,
-      attribute: DracoAttribute,
-      dataType: number,
-      byteLength: number,
-      ptr: number,
-    ): boolean;
+    GetAttributeDataArrayForAllPoints(mesh: DracoMesh, attribute: DracoAttribute, dataType: number, byteLength: number, ptr: number): boolean;
     GetTrianglesUInt32Array(mesh: DracoMesh, byteLength: number, ptr: number): boolean;
   }
   export interface DracoDecoderModule {

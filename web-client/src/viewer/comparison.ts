@@ -96,7 +96,10 @@ export class ComparisonView {
     this.panes = fields.map((field) => ({ field, object: buildScalarSurface(mesh, field.data, this.mapOf(field)) }));
     this.legends = cells.map((cell, i) => new Legend(cell, (name) => this.setMap(i, name)));
     this.panes.forEach((_, i) => this.recolour(i));
-    this.viewer.setPanes(this.panes.map((p) => p.object), () => this.drawn());
+    this.viewer.setPanes(
+      this.panes.map((p) => p.object),
+      () => this.drawn(),
+    );
   }
 
   /** Ends the comparison: the panes are disposed and the viewer shows one view again. */

@@ -44,6 +44,4 @@ export interface DecodeRequest {
   payload: ArrayBuffer;
 }
 
-export type DecodeResponse =
-  | { id: number; ok: true; mesh: DecodedMesh }
-  | { id: number; ok: false; error: string };
+export type DecodeResponse = { id: number; ok: true; mesh: DecodedMesh } | { id: number; ok: false; error: string };

@@ -171,11 +171,7 @@ export function groupLooks(mesh: THREE.Object3D): GroupLook[] | null {
  * there are no looks or it draws no texture (wireframe, points). A replaced
  * `material` is disposed.
  */
-export function withGroupLooks(
-  material: THREE.Material,
-  looks: GroupLook[] | null,
-  fallback: THREE.Color,
-): THREE.Material | THREE.Material[] {
+export function withGroupLooks(material: THREE.Material, looks: GroupLook[] | null, fallback: THREE.Color): THREE.Material | THREE.Material[] {
   const textured = material as THREE.MeshStandardMaterial;
   if (!looks || !('map' in textured) || (material as THREE.MeshBasicMaterial).isMeshBasicMaterial) return material;
   const out = looks.map((look) => {

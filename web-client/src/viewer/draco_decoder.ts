@@ -33,10 +33,7 @@ export class DracoDecoder {
     const worker = this.start();
     const id = this.nextId++;
     // Transfer a buffer that holds exactly the payload.
-    const buffer =
-      payload.byteOffset === 0 && payload.byteLength === payload.buffer.byteLength
-        ? (payload.buffer as ArrayBuffer)
-        : payload.slice().buffer;
+    const buffer = payload.byteOffset === 0 && payload.byteLength === payload.buffer.byteLength ? (payload.buffer as ArrayBuffer) : payload.slice().buffer;
     return new Promise<DecodedMesh>((resolve, reject) => {
       this.pending.set(id, { resolve, reject });
       const request: DecodeRequest = { id, payload: buffer };

@@ -43,7 +43,11 @@ export function classifyEdges(positions: ArrayLike<number>, index: ArrayLike<num
     const b = at(t + 1);
     const c = at(t + 2);
     if (a === b || b === c || c === a) continue;
-    for (const [u, v] of [[a, b], [b, c], [c, a]] as const) {
+    for (const [u, v] of [
+      [a, b],
+      [b, c],
+      [c, a],
+    ] as const) {
       const key = u < v ? u * vertexCount + v : v * vertexCount + u;
       uses.set(key, (uses.get(key) ?? 0) + 1);
     }

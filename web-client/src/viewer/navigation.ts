@@ -22,14 +22,26 @@ export type NavigationMode = 'orbit' | 'trackball' | 'fly';
 export type AxisView = '+x' | '-x' | '+y' | '-y' | '+z' | '-z';
 
 const AXES: Record<AxisView, [number, number, number]> = {
-  '+x': [1, 0, 0], '-x': [-1, 0, 0], '+y': [0, 1, 0], '-y': [0, -1, 0], '+z': [0, 0, 1], '-z': [0, 0, -1],
+  '+x': [1, 0, 0],
+  '-x': [-1, 0, 0],
+  '+y': [0, 1, 0],
+  '-y': [0, -1, 0],
+  '+z': [0, 0, 1],
+  '-z': [0, 0, -1],
 };
 
 /** The fly keys: forward, back, left, right, down, up. */
 const FLY_KEYS: Record<string, [number, number, number]> = {
-  KeyW: [0, 0, 1], ArrowUp: [0, 0, 1], KeyS: [0, 0, -1], ArrowDown: [0, 0, -1],
-  KeyA: [-1, 0, 0], ArrowLeft: [-1, 0, 0], KeyD: [1, 0, 0], ArrowRight: [1, 0, 0],
-  KeyQ: [0, -1, 0], KeyE: [0, 1, 0],
+  KeyW: [0, 0, 1],
+  ArrowUp: [0, 0, 1],
+  KeyS: [0, 0, -1],
+  ArrowDown: [0, 0, -1],
+  KeyA: [-1, 0, 0],
+  ArrowLeft: [-1, 0, 0],
+  KeyD: [1, 0, 0],
+  ArrowRight: [1, 0, 0],
+  KeyQ: [0, -1, 0],
+  KeyE: [0, 1, 0],
 };
 
 export interface CameraState {
@@ -236,7 +248,10 @@ export class Navigation {
       const forward = camera.getWorldDirection(new THREE.Vector3());
       const right = new THREE.Vector3().crossVectors(forward, camera.up).normalize();
       const step = this.flySpeed * dt;
-      camera.position.addScaledVector(right, move.x * step).addScaledVector(camera.up, move.y * step).addScaledVector(forward, move.z * step);
+      camera.position
+        .addScaledVector(right, move.x * step)
+        .addScaledVector(camera.up, move.y * step)
+        .addScaledVector(forward, move.z * step);
       this.viewer.requestRender();
       more = true;
     }

@@ -150,7 +150,11 @@ function faceNormals(geometry: THREE.BufferGeometry, length: number): THREE.Line
     c.fromBufferAttribute(pos, i(2));
     n.set(a, b, c);
     n.getNormal(normal);
-    centroid.copy(a).add(b).add(c).multiplyScalar(1 / 3);
+    centroid
+      .copy(a)
+      .add(b)
+      .add(c)
+      .multiplyScalar(1 / 3);
     centroid.toArray(out, 6 * t);
     centroid.addScaledVector(normal, length).toArray(out, 6 * t + 3);
   }

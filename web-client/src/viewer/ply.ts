@@ -12,23 +12,52 @@ export interface PlyMesh {
 }
 
 const SIZES: Record<string, number> = {
-  char: 1, int8: 1, uchar: 1, uint8: 1,
-  short: 2, int16: 2, ushort: 2, uint16: 2,
-  int: 4, int32: 4, uint: 4, uint32: 4, float: 4, float32: 4,
-  double: 8, float64: 8,
+  char: 1,
+  int8: 1,
+  uchar: 1,
+  uint8: 1,
+  short: 2,
+  int16: 2,
+  ushort: 2,
+  uint16: 2,
+  int: 4,
+  int32: 4,
+  uint: 4,
+  uint32: 4,
+  float: 4,
+  float32: 4,
+  double: 8,
+  float64: 8,
 };
 
 function reader(type: string): (v: DataView, at: number) => number {
   switch (type) {
-    case 'char': case 'int8': return (v, at) => v.getInt8(at);
-    case 'uchar': case 'uint8': return (v, at) => v.getUint8(at);
-    case 'short': case 'int16': return (v, at) => v.getInt16(at, true);
-    case 'ushort': case 'uint16': return (v, at) => v.getUint16(at, true);
-    case 'int': case 'int32': return (v, at) => v.getInt32(at, true);
-    case 'uint': case 'uint32': return (v, at) => v.getUint32(at, true);
-    case 'float': case 'float32': return (v, at) => v.getFloat32(at, true);
-    case 'double': case 'float64': return (v, at) => v.getFloat64(at, true);
-    default: throw new Error(`PLY: unknown property type "${type}"`);
+    case 'char':
+    case 'int8':
+      return (v, at) => v.getInt8(at);
+    case 'uchar':
+    case 'uint8':
+      return (v, at) => v.getUint8(at);
+    case 'short':
+    case 'int16':
+      return (v, at) => v.getInt16(at, true);
+    case 'ushort':
+    case 'uint16':
+      return (v, at) => v.getUint16(at, true);
+    case 'int':
+    case 'int32':
+      return (v, at) => v.getInt32(at, true);
+    case 'uint':
+    case 'uint32':
+      return (v, at) => v.getUint32(at, true);
+    case 'float':
+    case 'float32':
+      return (v, at) => v.getFloat32(at, true);
+    case 'double':
+    case 'float64':
+      return (v, at) => v.getFloat64(at, true);
+    default:
+      throw new Error(`PLY: unknown property type "${type}"`);
   }
 }
 

@@ -40,9 +40,7 @@ export function finiteRange(values: Float32Array): [number, number] {
 export function checkMatches(field: ScalarField, mesh: PlyMesh): void {
   const expected = field.location === 'face' ? mesh.faces : mesh.vertices;
   if (field.values.length !== expected) {
-    throw new Error(
-      `the field "${field.name}" has ${field.values.length} values, the mesh has ${expected} ${field.location === 'face' ? 'faces' : 'vertices'}`,
-    );
+    throw new Error(`the field "${field.name}" has ${field.values.length} values, the mesh has ${expected} ${field.location === 'face' ? 'faces' : 'vertices'}`);
   }
 }
 

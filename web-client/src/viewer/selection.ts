@@ -78,13 +78,7 @@ export function invert(selection: readonly number[], count: number): number[] {
  * One ring more (grow) or less (shrink). Faces: neighbours share a vertex.
  * Vertices: neighbours share an edge. `vertices` is the mesh's vertex count.
  */
-export function growShrink(
-  kind: SelectionKind,
-  selection: readonly number[],
-  indices: ArrayLike<number>,
-  vertices: number,
-  grow: boolean,
-): number[] {
+export function growShrink(kind: SelectionKind, selection: readonly number[], indices: ArrayLike<number>, vertices: number, grow: boolean): number[] {
   const selected = new Set(selection);
   const out = new Set(grow ? selection : []);
   if (kind === 'faces') {
@@ -128,7 +122,10 @@ export function insidePolygon(x: number, y: number, polygon: ArrayLike<number>):
   let inside = false;
   const n = polygon.length / 2;
   for (let i = 0, j = n - 1; i < n; j = i++) {
-    const xi = polygon[2 * i]!, yi = polygon[2 * i + 1]!, xj = polygon[2 * j]!, yj = polygon[2 * j + 1]!;
+    const xi = polygon[2 * i]!,
+      yi = polygon[2 * i + 1]!,
+      xj = polygon[2 * j]!,
+      yj = polygon[2 * j + 1]!;
     if (yi > y !== yj > y && x < ((xj - xi) * (y - yi)) / (yj - yi) + xi) inside = !inside;
   }
   return inside;
@@ -157,7 +154,9 @@ export function projectPoints(points: ArrayLike<number>, viewProjection: ArrayLi
   const n = points.length / 3;
   const out = new Float32Array(2 * n);
   for (let i = 0; i < n; ++i) {
-    const x = points[3 * i]!, y = points[3 * i + 1]!, z = points[3 * i + 2]!;
+    const x = points[3 * i]!,
+      y = points[3 * i + 1]!,
+      z = points[3 * i + 2]!;
     const w = m[3]! * x + m[7]! * y + m[11]! * z + m[15]!;
     const cz = (m[2]! * x + m[6]! * y + m[10]! * z + m[14]!) / w;
     if (!(w > 0) || cz < -1 || cz > 1) {
@@ -178,10 +177,15 @@ export type Region = { rect: [number, number, number, number] } | { polygon: num
 export function regionBounds(region: Region): [number, number, number, number] {
   if ('rect' in region) return region.rect;
   const p = region.polygon;
-  let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+  let x0 = Infinity,
+    y0 = Infinity,
+    x1 = -Infinity,
+    y1 = -Infinity;
   for (let i = 0; i < p.length; i += 2) {
-    x0 = Math.min(x0, p[i]!); x1 = Math.max(x1, p[i]!);
-    y0 = Math.min(y0, p[i + 1]!); y1 = Math.max(y1, p[i + 1]!);
+    x0 = Math.min(x0, p[i]!);
+    x1 = Math.max(x1, p[i]!);
+    y0 = Math.min(y0, p[i + 1]!);
+    y1 = Math.max(y1, p[i + 1]!);
   }
   return [x0, y0, x1, y1];
 }
@@ -192,7 +196,8 @@ export function pointsInRegion(projected: ArrayLike<number>, region: Region, kee
   const out: number[] = [];
   const n = projected.length / 2;
   for (let i = 0; i < n; ++i) {
-    const x = projected[2 * i]!, y = projected[2 * i + 1]!;
+    const x = projected[2 * i]!,
+      y = projected[2 * i + 1]!;
     if (!(x >= x0 && x <= x1 && y >= y0 && y <= y1)) continue;
     if ('polygon' in region && !insidePolygon(x, y, region.polygon)) continue;
     if (keep(i)) out.push(i);
@@ -204,10 +209,18 @@ export function pointsInRegion(projected: ArrayLike<number>, region: Region, kee
 export function facesArea(positions: ArrayLike<number>, indices: ArrayLike<number>, faces: readonly number[]): number {
   let sum = 0;
   for (const f of faces) {
-    const a = indices[3 * f]!, b = indices[3 * f + 1]!, c = indices[3 * f + 2]!;
-    const ux = positions[3 * b]! - positions[3 * a]!, uy = positions[3 * b + 1]! - positions[3 * a + 1]!, uz = positions[3 * b + 2]! - positions[3 * a + 2]!;
-    const vx = positions[3 * c]! - positions[3 * a]!, vy = positions[3 * c + 1]! - positions[3 * a + 1]!, vz = positions[3 * c + 2]! - positions[3 * a + 2]!;
-    const cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
+    const a = indices[3 * f]!,
+      b = indices[3 * f + 1]!,
+      c = indices[3 * f + 2]!;
+    const ux = positions[3 * b]! - positions[3 * a]!,
+      uy = positions[3 * b + 1]! - positions[3 * a + 1]!,
+      uz = positions[3 * b + 2]! - positions[3 * a + 2]!;
+    const vx = positions[3 * c]! - positions[3 * a]!,
+      vy = positions[3 * c + 1]! - positions[3 * a + 1]!,
+      vz = positions[3 * c + 2]! - positions[3 * a + 2]!;
+    const cx = uy * vz - uz * vy,
+      cy = uz * vx - ux * vz,
+      cz = ux * vy - uy * vx;
     sum += Math.sqrt(cx * cx + cy * cy + cz * cz) / 2;
   }
   return sum;

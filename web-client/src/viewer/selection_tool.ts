@@ -132,10 +132,7 @@ export class SelectionTool {
   private setMesh(meshId: string | null, ply: PlyMesh | null): void {
     if (this.target?.idMesh) this.target.idMesh.geometry.dispose();
     this.idScene.clear();
-    this.target =
-      meshId && ply
-        ? { meshId, ply, centroids: faceCentroids(ply.positions, ply.indices), around: vertexFaces(ply.indices, ply.vertices), idMesh: null }
-        : null;
+    this.target = meshId && ply ? { meshId, ply, centroids: faceCentroids(ply.positions, ply.indices), around: vertexFaces(ply.indices, ply.vertices), idMesh: null } : null;
     this.set([]);
   }
 
@@ -186,7 +183,13 @@ export class SelectionTool {
     const visible = this.through ? null : this.visibleFaces(regionBounds(region));
     if (this.kindNow === 'faces') {
       const projected = projectPoints(t.centroids, viewProjection, width, height);
-      this.set(combine(this.ids, pointsInRegion(projected, region, (f) => !visible || visible.has(f)), how));
+      this.set(
+        combine(
+          this.ids,
+          pointsInRegion(projected, region, (f) => !visible || visible.has(f)),
+          how,
+        ),
+      );
     } else {
       const projected = projectPoints(t.ply.positions, viewProjection, width, height);
       const seen = (v: number) => {
@@ -252,8 +255,13 @@ export class SelectionTool {
       geometry.setIndex(new THREE.BufferAttribute(index, 1));
       // Drawn over the surface: pulled towards the camera in depth.
       const material = new THREE.MeshBasicMaterial({
-        color: HIGHLIGHT, side: THREE.DoubleSide, transparent: true, opacity: 0.75,
-        polygonOffset: true, polygonOffsetFactor: -2, polygonOffsetUnits: -2,
+        color: HIGHLIGHT,
+        side: THREE.DoubleSide,
+        transparent: true,
+        opacity: 0.75,
+        polygonOffset: true,
+        polygonOffsetFactor: -2,
+        polygonOffsetUnits: -2,
       });
       object = new THREE.Mesh(geometry, material);
     } else {
@@ -290,7 +298,8 @@ export class SelectionTool {
     const y1 = Math.min(size.y - 1, Math.floor(size.y - 1 - rect[1] * scale));
     const out = new Set<number>();
     if (x1 >= x0 && y1 >= y0) {
-      const w = x1 - x0 + 1, h = y1 - y0 + 1;
+      const w = x1 - x0 + 1,
+        h = y1 - y0 + 1;
       const pixels = new Uint8Array(4 * w * h);
       renderer.readRenderTargetPixels(this.renderTarget, x0, y0, w, h, pixels);
       for (let i = 0; i < w * h; ++i) {

@@ -17,10 +17,7 @@ export function buildSlicePlane(canvas: HTMLCanvasElement, slice: VoxelSlice): T
   // is replaced at every slider step, so its texture goes with its material.
   material.addEventListener('dispose', () => texture.dispose());
   const plane = new THREE.Mesh(new THREE.PlaneGeometry(w, h), material);
-  const outline = new THREE.LineSegments(
-    new THREE.EdgesGeometry(new THREE.PlaneGeometry(w, h)),
-    new THREE.LineBasicMaterial({ color: 0x8fb8ff }),
-  );
+  const outline = new THREE.LineSegments(new THREE.EdgesGeometry(new THREE.PlaneGeometry(w, h)), new THREE.LineBasicMaterial({ color: 0x8fb8ff }));
   const group = new THREE.Group();
   group.add(plane, outline);
   // The plane's local (x, y) are the slice's (width, height) axes; its centre

@@ -30,11 +30,7 @@ export interface SpaceMouseReport {
 
 /** Parses one input report; null for a report of another kind or too short. */
 export function parseSpaceMouseReport(reportId: number, data: DataView): SpaceMouseReport | null {
-  const axes = (at: number): [number, number, number] => [
-    data.getInt16(at, true) / AXIS_RANGE,
-    data.getInt16(at + 2, true) / AXIS_RANGE,
-    data.getInt16(at + 4, true) / AXIS_RANGE,
-  ];
+  const axes = (at: number): [number, number, number] => [data.getInt16(at, true) / AXIS_RANGE, data.getInt16(at + 2, true) / AXIS_RANGE, data.getInt16(at + 4, true) / AXIS_RANGE];
   if (reportId === 1 && data.byteLength >= 12) return { translation: axes(0), rotation: axes(6), buttons: null };
   if (reportId === 1 && data.byteLength >= 6) return { translation: axes(0), rotation: null, buttons: null };
   if (reportId === 2 && data.byteLength >= 6) return { translation: null, rotation: axes(0), buttons: null };

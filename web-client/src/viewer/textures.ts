@@ -96,7 +96,11 @@ export class MeshTextures {
     private readonly onError: (text: string) => void,
   ) {
     this.select = el('select', { id: 'texture-mode', 'aria-label': 'Texture' });
-    for (const [value, label] of [['texture', 'on'], ['off', 'off'], ['checkerboard', 'checkerboard']] as const) {
+    for (const [value, label] of [
+      ['texture', 'on'],
+      ['off', 'off'],
+      ['checkerboard', 'checkerboard'],
+    ] as const) {
       this.select.append(el('option', { value }, label));
     }
     this.squaresInput = el('input', { id: 'texture-squares', type: 'range', min: '2', max: '64', step: '2', value: '8' });
@@ -205,8 +209,7 @@ export class MeshTextures {
     const materials = Array.isArray(surface.material) ? surface.material.length : 1;
     const image = mode === 'texture' ? (mesh.textures?.[0]?.name ?? null) : null;
     this.redraw(() => {
-      if (this.surface === surface && surface.userData.map === map)
-        this.onShown({ meshId: mesh.id, mode, squares, image, materials });
+      if (this.surface === surface && surface.userData.map === map) this.onShown({ meshId: mesh.id, mode, squares, image, materials });
     });
   }
 }

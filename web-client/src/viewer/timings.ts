@@ -67,17 +67,7 @@ const PHASES: ReadonlyArray<[measure: string, from: LoadStep, to: LoadStep]> = [
   ['total', 'request', 'gpu-done'],
 ];
 
-const STEPS: readonly LoadStep[] = [
-  'request',
-  'first-byte',
-  'first-chunk',
-  'last-chunk',
-  'decode-start',
-  'decode-end',
-  'geometry-built',
-  'first-frame',
-  'gpu-done',
-];
+const STEPS: readonly LoadStep[] = ['request', 'first-byte', 'first-chunk', 'last-chunk', 'decode-start', 'decode-end', 'geometry-built', 'first-frame', 'gpu-done'];
 
 /** Collects the marks of one load. A step marked twice keeps its first time. */
 export class LoadTimer {

@@ -75,9 +75,9 @@ export function decodeViewHash(hash: string): ViewState | null {
   if (typeof raw.mesh !== 'string' || !raw.mesh) throw new Error('the view link names no mesh');
   const cam = raw.camera;
   if (!isObject(cam) || !isVec3(cam.position) || !isVec3(cam.target) || !isVec3(cam.up)) {
-    throw new Error('the view link\'s camera needs position, target and up as three numbers each');
+    throw new Error("the view link's camera needs position, target and up as three numbers each");
   }
-  if (typeof cam.fov !== 'number' || !(cam.fov > 0 && cam.fov < 180)) throw new Error('the view link\'s camera fov is not between 0 and 180');
+  if (typeof cam.fov !== 'number' || !(cam.fov > 0 && cam.fov < 180)) throw new Error("the view link's camera fov is not between 0 and 180");
   const state: ViewState = {
     v: 1,
     mesh: raw.mesh,
@@ -87,39 +87,44 @@ export function decodeViewHash(hash: string): ViewState | null {
   if (cam.near !== undefined || cam.far !== undefined) {
     const { near, far } = cam;
     if (typeof near !== 'number' || typeof far !== 'number' || !(near > 0) || !(far > near) || !Number.isFinite(far)) {
-      throw new Error('the view link\'s camera near and far must be numbers with 0 < near < far');
+      throw new Error("the view link's camera near and far must be numbers with 0 < near < far");
     }
     state.camera.near = near;
     state.camera.far = far;
   }
   if (raw.display !== undefined) {
-    if (!isObject(raw.display)) throw new Error('the view link\'s display is not an object');
+    if (!isObject(raw.display)) throw new Error("the view link's display is not an object");
     state.display = raw.display;
   }
   if (raw.overlays !== undefined) {
-    if (!isObject(raw.overlays)) throw new Error('the view link\'s overlays is not an object');
+    if (!isObject(raw.overlays)) throw new Error("the view link's overlays is not an object");
     state.overlays = raw.overlays;
   }
   if (raw.field !== undefined) {
     const f = raw.field;
     if (
-      !isObject(f) || typeof f.job !== 'string' || typeof f.artifact !== 'string' || typeof f.map !== 'string' ||
-      !Array.isArray(f.range) || f.range.length !== 2 || !f.range.every((x) => typeof x === 'number' && Number.isFinite(x))
+      !isObject(f) ||
+      typeof f.job !== 'string' ||
+      typeof f.artifact !== 'string' ||
+      typeof f.map !== 'string' ||
+      !Array.isArray(f.range) ||
+      f.range.length !== 2 ||
+      !f.range.every((x) => typeof x === 'number' && Number.isFinite(x))
     ) {
-      throw new Error('the view link\'s field needs job, artifact, map and a range of two numbers');
+      throw new Error("the view link's field needs job, artifact, map and a range of two numbers");
     }
     state.field = { job: f.job, artifact: f.artifact, map: f.map, range: [f.range[0], f.range[1]] };
   }
   if (raw.scene !== undefined) {
     const scene = raw.scene;
     if (!Array.isArray(scene) || !scene.every((o) => isObject(o) && typeof o.mesh === 'string' && o.mesh !== '')) {
-      throw new Error('the view link\'s scene must be a list of objects that each name a mesh');
+      throw new Error("the view link's scene must be a list of objects that each name a mesh");
     }
-    if (scene.length === 0 || (scene[0] as Record<string, unknown>).mesh !== raw.mesh) throw new Error('the view link\'s scene must begin with its mesh');
+    if (scene.length === 0 || (scene[0] as Record<string, unknown>).mesh !== raw.mesh) throw new Error("the view link's scene must begin with its mesh");
     state.scene = scene as Array<Record<string, unknown>>;
   }
   if (raw.panes !== undefined) {
-    if (typeof raw.panes !== 'boolean') throw new Error('the view link\'s panes is not true or false');
+    if (typeof raw.panes !== 'boolean') throw new Error("the view link's panes is not true or false");
     state.panes = raw.panes;
   }
   return state;
