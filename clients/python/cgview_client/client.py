@@ -115,6 +115,35 @@ class Client:
         from . import interop
         return self.upload_arrays(*interop.from_meshio(mesh), name=name)
 
+    def upload_data(self, path, mesh=None, kind=None, property=None, name=None):
+        """Uploads data another tool made, as meshes are uploaded: a voxel
+        grid (.nrrd .binvox .vti .vox .vdb), a skeleton (.polylines.txt .cg
+        .obj .json) or a scalar field for a stored mesh (.ply whose vertices
+        or faces carry a property: the first, or `property`; .txt with one
+        value a line; mesh= is required).  kind ("voxel_grid", "skeleton",
+        "scalar_field") overrides the extension.  The done "import" Job whose
+        one artifact is the data (job.grid(), job.skeleton(), job.field()),
+        and an input of the next job ({"job": id, "artifact": name})."""
+        with open(path, "rb") as f:
+            data = f.read()
+        return self.upload_data_bytes(data, name or os.path.basename(path), mesh, kind, property)
+
+    def upload_data_bytes(self, data, name, mesh=None, kind=None, property=None):
+        query = {"name": name}
+        if mesh is not None:
+            query["mesh"] = mesh["id"] if isinstance(mesh, dict) else mesh
+        if kind:
+            query["kind"] = kind
+        if property:
+            query["property"] = property
+        return Job(self, json.loads(self.request("POST", "/data", data, query, "application/octet-stream")[0]))
+
+    def upload_field(self, values, mesh, name="field"):
+        """Uploads a scalar field from an array of one value per vertex, or
+        per face, of a stored mesh (NaN: no value there); the import Job."""
+        text = "".join(f"{float(v)!r}\n" for v in values)
+        return self.upload_data_bytes(text.encode(), f"{name}.txt", mesh, "scalar_field")
+
     def find_mesh(self, ref):
         """A mesh by id or by name (the newest of that name), or an upload of
         the file ref names; LookupError when it is none of them."""

@@ -88,6 +88,27 @@ class ClientTest(unittest.TestCase):
         self.assertEqual(self.client.job(job["id"])["state"], "done")
         self.assertIn(job["id"], [j["id"] for j in self.client.jobs()])
 
+    def test_data_from_other_tools_comes_back_as_arrays(self):
+        import numpy as np
+        faces = self.mesh["report"]["faces"]
+        values = np.arange(faces, dtype=np.float32) / faces
+        values[5] = np.nan
+        job = self.client.upload_field(values, self.mesh, name="wear")
+        self.assertEqual((job["state"], job["algorithm"]), ("done", "import"))
+        back = job.field("wear")
+        self.assertEqual(back.shape, (faces,))
+        self.assertTrue(np.isnan(back[5]))
+        np.testing.assert_array_equal(np.delete(back, 5), np.delete(values, 5))
+        self.assertEqual(job["warnings"], [f"1 of the {faces} values are missing (nan): those faces show no colour"])
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "tree.polylines.txt")
+            with open(path, "w") as f:
+                f.write("3 0 0 0 0 0 1 0 0 2\n2 0 0 1 1 0 1\n")
+            skeleton = self.client.upload_data(path, mesh=self.mesh).skeleton()
+            self.assertEqual((len(skeleton.nodes), len(skeleton.edges)), (4, 3))
+        with self.assertRaisesRegex(CGViewError, "3 values, but the mesh has 2775 vertices"):
+            self.client.upload_data_bytes(b"1\n2\n3\n", "few.txt", self.mesh)
+
     def test_errors_name_what_is_wrong(self):
         with self.assertRaises(CGViewError) as e:
             self.client.submit("centroid_distance", self.mesh["id"], {"exponent": 9})
