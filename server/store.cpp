@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <random>
+#include <set>
 
 #include "core/errors.h"
 #include "io/mesh_io.h"
@@ -182,9 +183,20 @@ Store::Store(const fs::path& data_dir) : dir_(data_dir) {
     s.step();
     count_ = std::size_t(s.integer(0));
   }
-  // Blobs left by a crash between file write and row insert are orphans.
-  for (const auto& e : fs::directory_iterator(dir_ / "blobs", ec))
-    if (e.path().extension() == ".part") fs::remove(e.path(), ec);
+  // A crash while a blob is written leaves its .part file; one between the
+  // blob's write and its row's insert, a blob no record names.  Neither was
+  // ever seen by a user, and neither is kept.
+  std::set<std::string> ids;
+  {
+    Stmt s(db_, "SELECT id FROM meshes");
+    while (s.step()) ids.insert(s.text(0));
+  }
+  std::vector<fs::path> orphans;
+  for (const auto& e : fs::directory_iterator(dir_ / "blobs", ec)) {
+    const std::string name = e.path().filename().string();
+    if (e.path().extension() == ".part" || !ids.count(name.substr(0, name.find('.')))) orphans.push_back(e.path());
+  }
+  for (const fs::path& p : orphans) fs::remove(p, ec);
 }
 
 Store::~Store() { sqlite3_close(db_); }

@@ -78,7 +78,7 @@ void JobScheduler::load() {
         j->bytes = dir_bytes(job_dir(j->id));
         unsized.push_back(j);
       }
-      if (j->state == JobState::done && !j->cached) cache_[j->cache_key] = j->id;
+      if (j->state == JobState::done && !j->cached && !j->cache_key.empty()) cache_[j->cache_key] = j->id;
       continue;
     }
     // Still with its executor (a Slurm job by its id): followed again as it was.
@@ -106,6 +106,13 @@ void JobScheduler::load() {
   }
   unsized.insert(unsized.end(), restarted.begin(), restarted.end());
   if (!unsized.empty()) store_.put_all(unsized);
+  // A directory no job names: an import killed before its row was stored.
+  // No user saw it; it goes.
+  std::error_code ec;
+  std::vector<fs::path> orphans;
+  for (const auto& e : fs::directory_iterator(meshes_.store().data_dir() / "jobs", ec))
+    if (!jobs_.count(e.path().filename().string())) orphans.push_back(e.path());
+  for (const fs::path& p : orphans) fs::remove_all(p, ec);
 }
 
 void JobScheduler::save(const Job& j) {
