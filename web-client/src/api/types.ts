@@ -164,6 +164,8 @@ export interface Job {
   started: string | null;
   finished: string | null;
   artifacts: ArtifactInfo[];
+  /** What the algorithm (or an import) says the user must know: faces left without a value, parts of a file not used, values missing; absent from older servers. */
+  warnings?: string[];
 }
 
 /** What a job_progress event carries. */

@@ -1,9 +1,11 @@
 // Algorithms and jobs: the algorithm menu, submitting a job (on the selected
-// mesh, or on a job's output chosen with "Run on this"), following its
-// progress from the WebSocket's job_* events, cancelling it, and handing what
-// it made to the artifact kinds (kinds/registry.ts). The job list and the
-// algorithm form render from the state.
-import { ApiError, cancelJob, getJob, listAlgorithms, listJobs, submitJob } from '../api/rest.ts';
+// mesh, or on a job's output chosen with "Run on this"), importing data other
+// tools made (an import job, done at once), following progress from the
+// WebSocket's job_* events, cancelling, and handing what a job made to the
+// artifact kinds (kinds/registry.ts). The job list and the algorithm form
+// render from the state.
+import { needsMesh, type DataKind } from '../api/data_files.ts';
+import { ApiError, cancelJob, getJob, listAlgorithms, listJobs, submitJob, uploadData } from '../api/rest.ts';
 import type { Algorithm, Job, JobInput, JobProgress } from '../api/types.ts';
 import { AlgorithmsPanel } from '../panels/algorithms.ts';
 import { byId } from '../panels/dom.ts';
@@ -146,6 +148,38 @@ export class JobsController {
     // A job_done event may have come before this answer: upsert keeps the later state.
     this.upsert(job);
     app.account.refreshSoon(); // one more job in use
+  }
+
+  /**
+   * Uploads a file another tool made (POST /data) as `kind`, for the mesh
+   * shown (a voxel grid needs none, and is tied to the mesh when one is
+   * shown), then shows what it became as its button in the job list would: a
+   * field on the mesh, a skeleton over it, a grid's slices. The server
+   * answers with the import job done; its warnings (values missing, parts of
+   * the file not used) are in its entry of the job list and said in a notice.
+   */
+  async importFile(file: File, kind: DataKind): Promise<void> {
+    const { app, progress } = this.ctx;
+    const mesh = app.meshes.selected();
+    if (!mesh && needsMesh(kind)) {
+      const what = kind === 'skeleton' ? 'a skeleton' : "a scalar field's values";
+      return this.ctx.error(`Choose a mesh first: ${file.name} is ${what} for the mesh shown.`);
+    }
+    let job: Job;
+    progress.show('uploading', null, file.name);
+    try {
+      job = await uploadData(file.name, file, { kind, mesh: mesh?.id });
+    } catch (e) {
+      return this.ctx.error(`Cannot load ${file.name}: ${describe(e)}`);
+    } finally {
+      progress.hide();
+    }
+    // A job_done event may have come before this answer: upsert keeps the later state.
+    this.upsert(job);
+    app.account.refreshSoon(); // its files count against the caller's storage
+    for (const w of job.warnings ?? []) this.ctx.notice(`${file.name}: ${w}`);
+    const artifact = job.artifacts?.find((a) => a.kind === kind);
+    if (artifact) await app.kinds.show(job.id, artifact.name, artifact.kind);
   }
 
   /**

@@ -1,6 +1,8 @@
 // The stored meshes: the list (kept up to date from the server's mesh_*
-// events), choosing the one shown, uploads, deletes and sharing. The mesh
-// list and the report panel render from the state.
+// events), choosing the one shown, uploads (data files among them go to the
+// jobs controller as imports), deletes and sharing. The mesh list and the
+// report panel render from the state.
+import { dataKindOf } from '../api/data_files.ts';
 import { deleteMesh, listMeshes, uploadMesh } from '../api/rest.ts';
 import { jobMeshId, type Job, type Mesh } from '../api/types.ts';
 import { byId } from '../panels/dom.ts';
@@ -57,13 +59,19 @@ export class MeshesController {
     }
   }
 
-  /** Uploads files one after the other (a mesh with its MTL and images as one zip) and shows the last one uploaded. */
+  /**
+   * Uploads files one after the other (a mesh with its MTL and images as one
+   * zip) and shows the last mesh uploaded; then the data files among them
+   * (voxel grids, skeletons, a field's values: api/data_files.ts), each for
+   * the mesh shown then, so that a mesh dropped with its data gets it.
+   */
   async upload(files: File[]): Promise<void> {
     const { progress } = this.ctx;
     let last: Mesh | null = null;
     let uploads: Array<{ name: string; body: Blob }> = [];
+    const data = files.filter((f) => dataKindOf(f.name) !== null);
     try {
-      uploads = await uploadsOf(files);
+      uploads = await uploadsOf(files.filter((f) => dataKindOf(f.name) === null));
     } catch (e) {
       this.ctx.error(`Upload failed: ${describe(e)}`);
     }
@@ -81,6 +89,7 @@ export class MeshesController {
       }
     }
     if (last) this.select(last.id);
+    for (const file of data) await this.ctx.app.jobs.importFile(file, dataKindOf(file.name)!);
   }
 
   /** Shows the mesh alone: the scene starts again from it, and what was drawn on the last one goes. */

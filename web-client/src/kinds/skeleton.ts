@@ -2,9 +2,10 @@
 // JSON), each in its own colour so that skeletons from several algorithms
 // compare at a glance (the paper's Figure 5); a table of their metrics and of
 // each one's distance to the first, side by side on demand; and skeleton
-// files made by other tools, attached to the mesh shown.
+// files made by other tools, attached to the mesh shown (the table's panel
+// also has the button that loads a field's values for it).
 import * as THREE from 'three';
-import { fetchArtifactJson, submitJob, uploadData } from '../api/rest.ts';
+import { fetchArtifactJson, submitJob } from '../api/rest.ts';
 import { parseSkeleton, type SkeletonData } from '../api/skeleton.ts';
 import type { ArtifactInfo, Job } from '../api/types.ts';
 import { MAX_PANES } from '../controllers/compare.ts';
@@ -34,8 +35,6 @@ export class SkeletonKind implements ArtifactKind {
   private readonly drawn = new Map<string, DrawnSkeleton>();
   /** skeleton_distance jobs submitted for the comparison table, by `${first key}|${other key}` ('' while submitting). */
   private readonly distanceJobs = new Map<string, string>();
-  /** import jobs from "Load skeleton file…": their skeleton is drawn when done. */
-  private readonly drawWhenDone = new Set<string>();
 
   constructor(ctx: AppContext) {
     this.ctx = ctx;
@@ -43,6 +42,8 @@ export class SkeletonKind implements ArtifactKind {
       byId('skeletons'),
       () => void this.compare(),
       (file) => void this.loadFile(file),
+      // Explicitly a field: a .ply is a mesh to the upload control.
+      (file) => void ctx.app.jobs.importFile(file, 'scalar_field'),
     );
     ctx.store.subscribe(
       (s) => [s.skeletons, s.jobs, s.metrics, selectedMesh(s) !== null],
@@ -51,9 +52,8 @@ export class SkeletonKind implements ArtifactKind {
     );
   }
 
-  load(job: Job, artifact: ArtifactInfo): void {
-    if (!this.drawWhenDone.delete(job.id)) return;
-    if (!this.drawn.has(artifactKey(job.id, artifact.name))) void this.show(job.id, artifact.name);
+  load(): void {
+    // Fetched when shown.
   }
 
   /** "Show" (over its mesh, in a colour of its own; a second click hides it) and, while drawn, its colour. */
@@ -120,21 +120,8 @@ export class SkeletonKind implements ArtifactKind {
    * them for CGAL's .polylines.txt) is read as a skeleton or refused with the
    * skeleton formats, never taken for a scalar field's values.
    */
-  async loadFile(file: File): Promise<void> {
-    const { app, store } = this.ctx;
-    const mesh = selectedMesh(store.get());
-    if (!mesh) return this.ctx.error('Choose a mesh first: a skeleton file is attached to the mesh shown.');
-    try {
-      const job = await uploadData(file.name, file, { kind: this.kind, mesh: mesh.id });
-      this.drawWhenDone.add(job.id);
-      // A job_done event may have come before this answer: upsert keeps the
-      // later state, and a job done already is drawn now.
-      app.jobs.upsert(job);
-      const now = jobOf(this.ctx, job.id);
-      if (now?.state === 'done' && this.drawWhenDone.has(job.id)) app.jobs.upsert(now);
-    } catch (e) {
-      this.ctx.error(`Cannot load the skeleton file ${file.name}: ${describe(e)}`);
-    }
+  loadFile(file: File): Promise<void> {
+    return this.ctx.app.jobs.importFile(file, this.kind);
   }
 
   /** The skeletons drawn, side by side: one pane each, over the plain surface, through the one camera. */

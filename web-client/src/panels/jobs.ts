@@ -1,6 +1,7 @@
 // The job panel: every job, newest first, with its algorithm and mesh, state,
 // stage and a live progress bar (updated from the WebSocket's job_* events),
 // a cancel button while it is queued or running, and for a finished job its
+// warnings (what the algorithm or an import says the user must know) and its
 // artifacts, each in the row its kind builds (kinds/*.ts, found through the
 // registry: scalar fields shown or compared, meshes added to the view or run
 // on, metrics as a table...); a kind this viewer does not know gets a row of
@@ -117,7 +118,7 @@ export class JobsPanel {
     const meshId = jobMeshId(job);
     const mesh = meshId ? view.meshName(meshId) : null;
     const artifacts = (job.artifacts ?? []).map((a) => [a.name, a.kind, a.formats ?? null, a.bytes ?? null, this.kinds.of(a.kind)?.rowState(job, a, view) ?? null]);
-    return JSON.stringify([job.state, job.cached, job.error, mesh, view.mayChange(job.owner), artifacts]);
+    return JSON.stringify([job.state, job.cached, job.error, job.warnings ?? [], mesh, view.mayChange(job.owner), artifacts]);
   }
 
   /** The parts that progress events change. */
@@ -166,6 +167,8 @@ export class JobsPanel {
     }
     if (job.error) li.append(el('p', { class: 'job-error' }, job.error));
     if (job.state === 'done') {
+      const warnings = job.warnings ?? [];
+      if (warnings.length) li.append(el('ul', { class: 'warnings job-warnings' }, ...warnings.map((w) => el('li', {}, w))));
       const artifacts = job.artifacts ?? [];
       for (const kind of new Set(artifacts.map((a) => a.kind))) {
         const controls = this.kinds.of(kind)?.jobControls?.(job, this.actions);

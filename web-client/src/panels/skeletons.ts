@@ -2,7 +2,9 @@
 // drawn over the mesh (its colour, its algorithm), one row per measure of its
 // job's metrics (skeleton_metrics' names), and the distance of each to the
 // first, measured by the server's skeleton_distance (symmetric Hausdorff and
-// mean), so that the numbers are the API's.
+// mean), so that the numbers are the API's. Below it, the buttons that load
+// what another tool made for the mesh shown: a skeleton, or a field's values
+// (a PLY with a scalar property, which the upload control takes for a mesh).
 import { el } from './dom.ts';
 import { formatNumber, formatValue } from './format.ts';
 
@@ -29,33 +31,40 @@ const ROWS: Array<[string, string]> = [
 
 /** The skeleton files the server reads (io/skeleton_io.h: the extension names the format). */
 export const SKELETON_FILE_TYPES = '.cg,.polylines,.txt,.obj,.json';
+/** The scalar field files the server reads for a stored mesh (API.md, POST /data). */
+export const FIELD_FILE_TYPES = '.ply,.txt';
 
 export class SkeletonsPanel {
-  /** A "Load skeleton file…" button and its hidden file input, kept across renders. */
+  /** The "Load skeleton file…" and "Load field file…" buttons and their hidden file inputs, kept across renders. */
   private readonly load: HTMLElement;
 
   /**
    * onSideBySide: show the skeletons in synchronized panes, one each;
-   * onLoadFile: a skeleton file chosen with "Load skeleton file…", to attach to the shown mesh.
+   * onLoadFile: a skeleton file chosen with "Load skeleton file…", to attach to the shown mesh;
+   * onLoadField: a file chosen with "Load field file…", values for the shown mesh.
    */
   constructor(
     private readonly root: HTMLElement,
     private readonly onSideBySide: () => void,
     onLoadFile: (file: File) => void,
+    onLoadField: (file: File) => void,
   ) {
-    const input = el('input', { type: 'file', id: 'skeleton-file-input', accept: SKELETON_FILE_TYPES, hidden: '' });
-    input.addEventListener('change', () => {
-      const file = input.files?.[0];
-      input.value = ''; // the same file chosen again is a change too
-      if (file) onLoadFile(file);
-    });
-    const button = el(
-      'button',
-      { type: 'button', class: 'button small load-skeleton', title: 'A skeleton made by another tool: CGAL polylines, .cg, OBJ with l records or JSON' },
+    const skeleton = loadButton(
+      { id: 'skeleton-file-input', accept: SKELETON_FILE_TYPES },
+      { class: 'load-skeleton', title: 'A skeleton made by another tool: CGAL polylines, .cg, OBJ with l records or JSON' },
       'Load skeleton file…',
+      onLoadFile,
     );
-    button.addEventListener('click', () => input.click());
-    this.load = el('div', { class: 'load-skeleton-row' }, button, input);
+    const field = loadButton(
+      { id: 'field-file-input', accept: FIELD_FILE_TYPES },
+      {
+        class: 'load-field',
+        title: 'Values another tool computed for this mesh: a PLY whose vertices or faces carry a scalar property, or text with one value a line (nan for none)',
+      },
+      'Load field file…',
+      onLoadField,
+    );
+    this.load = el('div', { class: 'load-skeleton-row' }, ...skeleton, ...field);
   }
 
   /** hasMesh: a mesh is shown, which a skeleton file can be attached to. */
@@ -80,4 +89,17 @@ export class SkeletonsPanel {
     side.addEventListener('click', () => this.onSideBySide());
     this.root.replaceChildren(el('table', { class: 'kv skeleton-table' }, head, ...rows, distance), side, this.load);
   }
+}
+
+/** A button that opens a hidden file input, and the input, which hands the file chosen to `onFile`. */
+function loadButton(input: { id: string; accept: string }, button: { class: string; title: string }, label: string, onFile: (file: File) => void): [HTMLElement, HTMLElement] {
+  const picker = el('input', { type: 'file', id: input.id, accept: input.accept, hidden: '' });
+  picker.addEventListener('change', () => {
+    const file = picker.files?.[0];
+    picker.value = ''; // the same file chosen again is a change too
+    if (file) onFile(file);
+  });
+  const open = el('button', { type: 'button', class: `button small ${button.class}`, title: button.title }, label);
+  open.addEventListener('click', () => picker.click());
+  return [open, picker];
 }

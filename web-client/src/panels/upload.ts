@@ -1,9 +1,11 @@
 // Uploading: a file picker, and files dropped anywhere on the page.  A mesh
 // chosen together with its MTL and images goes up as one zip (the server
-// unpacks it: README "Textured meshes").
+// unpacks it: README "Textured meshes"); data other tools made (voxel grids,
+// skeletons, a field's values: api/data_files.ts) goes up on its own.
 import { zipSync } from 'three/examples/jsm/libs/fflate.module.js';
+import { DATA_EXTENSIONS } from '../api/data_files.ts';
 
-export const ACCEPTED = ['.off', '.obj', '.ply', '.stl', '.drc', '.glb', '.gltf', '.zip', '.mtl', '.png', '.jpg', '.jpeg'];
+export const ACCEPTED = ['.off', '.obj', '.ply', '.stl', '.drc', '.glb', '.gltf', '.zip', '.mtl', '.png', '.jpg', '.jpeg', ...DATA_EXTENSIONS];
 /** Files that go with a mesh rather than being one. */
 const COMPANIONS = ['.mtl', '.png', '.jpg', '.jpeg'];
 
