@@ -27,6 +27,11 @@ json JobScheduler::import_data(const std::string& file_name, const json& inputs,
   try {
     fs::create_directories(dir);
     auto [entry, warnings] = read(dir);
+    // Its name is the reader's (a child's, as untrusted as the file): a plain word, since files are named after it.
+    const std::string name = entry.is_object() ? entry.value("name", "") : "";
+    if (name.empty() || name.size() > 64 ||
+        name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") != std::string::npos)
+      throw InvalidInput(file_name + ": the reader named its artifact '" + name.substr(0, 64) + "'");
     const json artifacts = json::array({entry});
     // The same check as a worker's results get: a plain file of its size, whole.
     if (const std::string broken = incomplete_artifact(dir, artifacts); !broken.empty())
