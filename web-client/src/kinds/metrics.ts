@@ -1,14 +1,10 @@
 // `metrics` artifacts: a JSON object of numbers, fetched when the job is done
 // and shown as a table in its row of the job list.
 import { fetchArtifactJson } from '../api/rest.ts';
-import type { ArtifactInfo, Job } from '../api/types.ts';
-import { describe, jobOf, type AppContext } from '../controllers/context.ts';
-import { artifactRow } from '../panels/artifact_row.ts';
+import type { AppContext } from '../controllers/context.ts';
 import { el } from '../panels/dom.ts';
 import { formatValue } from '../panels/format.ts';
-import type { JobsView } from '../panels/jobs.ts';
-import { artifactKey, withEntry } from '../state/app_state.ts';
-import type { ArtifactKind } from './kind.ts';
+import { ListedKind } from './listed.ts';
 
 /** The metrics as a table of name and value (a nested object's names joined), or the error sentence fetching them gave. */
 function metricsTable(data: unknown): HTMLElement {
@@ -25,48 +21,20 @@ function metricsTable(data: unknown): HTMLElement {
   return el('table', { class: 'kv metrics' }, ...rows);
 }
 
-export class MetricsKind implements ArtifactKind {
+export class MetricsKind extends ListedKind<unknown> {
   readonly kind = 'metrics';
   readonly storedFormat = 'json';
-  private readonly ctx: AppContext;
 
   constructor(ctx: AppContext) {
-    this.ctx = ctx;
+    super(ctx, 'metrics');
   }
 
-  load(job: Job, artifact: ArtifactInfo): void {
-    const { store } = this.ctx;
-    const key = artifactKey(job.id, artifact.name);
-    if (store.get().metrics.has(key)) return;
-    const set = (value: unknown) => store.update((s) => ({ metrics: withEntry(s.metrics, key, value) }));
-    set(undefined);
-    fetchArtifactJson(job.id, artifact.name).then(
-      (data) => set(data),
-      (e) => set(`Cannot fetch ${artifact.name}: ${describe(e)}`),
-    );
+  protected fetch(jobId: string, name: string): Promise<unknown> {
+    return fetchArtifactJson(jobId, name);
   }
 
   /** The metrics as a table, under the download links. */
-  row(job: Job, a: ArtifactInfo, view: JobsView): HTMLElement {
-    const data = view.metrics.get(artifactKey(job.id, a.name));
-    return artifactRow(job, a, this.storedFormat, [], data === undefined ? el('p', { class: 'empty' }, 'loading…') : metricsTable(data));
-  }
-
-  rowState(job: Job, a: ArtifactInfo, view: JobsView): boolean {
-    return view.metrics.get(artifactKey(job.id, a.name)) !== undefined;
-  }
-
-  async show(jobId: string, artifact: string): Promise<void> {
-    const job = jobOf(this.ctx, jobId);
-    const info = job?.artifacts?.find((a) => a.name === artifact);
-    if (job && info) this.load(job, info);
-  }
-
-  hide(): void {
-    // A table in the job list: nothing is drawn in the view.
-  }
-
-  dispose(): void {
-    // The table belongs to the job, whatever mesh is shown.
+  protected content(value: unknown): HTMLElement {
+    return value === undefined ? el('p', { class: 'empty' }, 'loading…') : metricsTable(value);
   }
 }
