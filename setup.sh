@@ -53,6 +53,8 @@ TEST_APT_PACKAGES=(
   # The Python client's arrays, Open3D and meshio interop, and its package
   # built offline in a venv (clients/python).
   python3-numpy python3-open3d python3-meshio python3-setuptools python3-wheel python3-venv
+  # The paper's figures as notebooks, run headless by the tests (clients/python/notebooks).
+  python3-nbclient python3-ipykernel python3-matplotlib
 )
 [ "$TESTS" = 0 ] || APT_PACKAGES+=("${TEST_APT_PACKAGES[@]}")
 

@@ -13,8 +13,8 @@ from .errors import CGViewError, JobFailed
 from .objects import Job, Mesh
 from .params import ParameterError
 from . import args
-from .progress import ProgressBar
+from .progress import NotebookProgressBar, ProgressBar
 from .views import render_around
 
-__all__ = ["Client", "CGViewError", "JobFailed", "Job", "Mesh", "ParameterError", "ProgressBar", "DEFAULT_URL",
-           "render_around"]
+__all__ = ["Client", "CGViewError", "JobFailed", "Job", "Mesh", "ParameterError", "ProgressBar", "NotebookProgressBar",
+           "DEFAULT_URL", "render_around"]

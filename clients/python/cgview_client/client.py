@@ -173,15 +173,20 @@ class Client:
         return Job(self, self.get_json(f"/jobs/{quote(job_id)}"))
 
     def submit(self, algorithm, mesh, params=None, inputs=None, **keywords):
-        """Submits a job on a mesh (a Mesh or its id: the input 'mesh');
-        inputs: the others by name; parameters as params={...} or keywords
-        (rays=25), checked against the algorithm's schema first
-        (params.ParameterError names a misspelt one's closest match).  The Job."""
+        """Submits a job on a mesh (a Mesh or its id: the input 'mesh'; None
+        for an algorithm that takes no mesh, as grid_surface and
+        skeleton_distance); inputs: the others by name; parameters as
+        params={...} or keywords (rays=25), checked against the algorithm's
+        schema first (params.ParameterError names a misspelt one's closest
+        match).  The Job."""
         given = {**(params or {}), **keywords}
         parameters.check(self.algorithms.describe(algorithm), given)
-        mesh_id = mesh["id"] if isinstance(mesh, dict) else mesh
         named = {k: (v["id"] if isinstance(v, Mesh) else v) for k, v in (inputs or {}).items()}
-        body = {"algorithm": algorithm, "inputs": {"mesh": mesh_id, **named}, "params": given}
+        if mesh is not None:
+            # A Mesh or the server's dict of one: its id; else an id, or a
+            # {"job", "artifact"} that chains an earlier job's mesh.
+            named = {"mesh": mesh["id"] if isinstance(mesh, dict) and "id" in mesh else mesh, **named}
+        body = {"algorithm": algorithm, "inputs": named, "params": given}
         return Job(self, self.send_json("POST", "/jobs", body))
 
     def cancel(self, job_id):
@@ -218,16 +223,26 @@ class Client:
                 events.close()
 
     def run(self, algorithm, mesh, params=None, inputs=None, on_progress=None, timeout=None, **keywords):
-        """submit() then wait(): the done Job, or JobFailed; Ctrl-C cancels it."""
+        """submit() then wait(): the done Job, or JobFailed; Ctrl-C cancels it.
+        In a notebook an HTML progress bar shows (on_progress=False: none)."""
         return self.submit(algorithm, mesh, params, inputs, **keywords).result(timeout, on_progress)
 
-    def map(self, algorithm, meshes, params=None, timeout=None, **keywords):
+    def map(self, algorithm, meshes, params=None, timeout=None, on_progress=None, **keywords):
         """Runs the algorithm on each mesh: submits them all, then waits for
         each; the done Jobs in the order of `meshes` (JobFailed for the first
-        that failed).  Ctrl-C cancels those not ended."""
+        that failed).  Ctrl-C cancels those not ended.  In a notebook one HTML
+        progress bar shows them all (on_progress=False: none)."""
+        from .progress import NotebookProgressBar, default_progress
         jobs = [self.submit(algorithm, m, params, **keywords) for m in meshes]
+        bar = default_progress(on_progress, total=len(jobs))
         try:
-            return [job.result(timeout) for job in jobs]
+            done = []
+            for job in jobs:
+                if isinstance(bar, NotebookProgressBar) and done:
+                    bar.next()
+                # False, not None: the bar above, or none, and not a bar per job.
+                done.append(job.result(timeout, bar or False))
+            return done
         except KeyboardInterrupt:
             for job in jobs:
                 if job.refresh()["state"] not in TERMINAL_STATES:

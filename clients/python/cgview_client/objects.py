@@ -60,10 +60,13 @@ class Job(dict):
 
     def result(self, timeout=None, on_progress=None):
         """Waits for the job to end: itself when done, else JobFailed.  Ctrl-C
-        (KeyboardInterrupt) cancels the job before it goes on up."""
+        (KeyboardInterrupt) cancels the job before it goes on up.  In a
+        notebook an HTML progress bar shows unless on_progress says otherwise
+        (a callable, or False for none)."""
         from .errors import JobFailed
+        from .progress import default_progress
         try:
-            self.update(self._client.wait(self.id, on_progress, timeout))
+            self.update(self._client.wait(self.id, default_progress(on_progress), timeout))
         except KeyboardInterrupt:
             self._client.cancel(self.id)
             raise

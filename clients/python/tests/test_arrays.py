@@ -86,6 +86,16 @@ class ArraysTest(WithElephant):
         self.assertIsInstance(metrics, dict)
         self.assertTrue(metrics)
 
+    def test_a_job_without_a_mesh_input_and_a_chained_mesh(self):
+        grid = self.client.run("voxelize", self.mesh, resolution=20)
+        # grid_surface takes a voxel grid only: mesh None sends no 'mesh' input.
+        surface = self.client.run("grid_surface", None, inputs={"grid": {"job": grid.id, "artifact": "grid"}})
+        self.assertEqual(surface["inputs"].get("mesh"), None)
+        self.assertEqual(surface.metrics()["voxels"], grid.metrics()["occupied_voxels"])
+        # A {"job", "artifact"} mesh chains an earlier job's mesh as the input 'mesh'.
+        distance = self.client.run("centroid_distance", {"job": surface.id, "artifact": "mesh"})
+        self.assertEqual(distance.field().shape, (len(surface.mesh()[0]),))
+
     @unittest.skipIf(open3d is None, "open3d is not installed (Debian: python3-open3d)")
     def test_open3d_meshes_both_ways(self):
         box = open3d.geometry.TriangleMesh.create_box(2.0, 1.0, 0.5)
