@@ -114,13 +114,9 @@ class MeshService {
   UploadReader reader_;
 };
 
-// The material part of a stored mesh's JSON: has_uvs, textures (one per
-// texture blob: name, mime, bytes, ...) and, when the material gives them,
-// kd and materials; a mesh stored before textures existed reads as untextured.
-nlohmann::json material_of(const MeshRecord& record);
-// The JSON object of a stored mesh (API.md's Mesh).
-nlohmann::json mesh_json(const MeshRecord& record);
-// The same, serialized, without parsing the stored report again.
-std::string mesh_json_text(const MeshRecord& record);
+// The JSON shapes of a stored mesh are the protocol's (protocol/mesh_json.h).
+using protocol::material_of;
+using protocol::mesh_json;
+using protocol::mesh_json_text;
 
 }  // namespace cgview::server

@@ -20,6 +20,8 @@
 #include <string_view>
 #include <vector>
 
+#include "mesh_json.h"
+
 struct sqlite3;
 
 namespace cgview::server {
@@ -62,20 +64,8 @@ struct UserRecord {
   int tokens = 0;  // live tokens
 };
 
-struct MeshRecord {
-  std::string id;      // 16 hex digits
-  std::string name;    // as uploaded ("elephant.off")
-  std::string format;  // "off", "ply", ...
-  std::uint64_t bytes = 0;
-  std::string sha256;         // of the uploaded bytes
-  std::string created;        // ISO 8601 UTC
-  std::string report_json;    // protocol::to_json(MeshReport), serialized
-  std::string warnings_json;  // JSON array of strings
-  std::string owner = "local";
-  // JSON object: has_uvs, and textures (one per texture blob: name, mime,
-  // bytes, material, kd); "{}" for a mesh stored before textures existed.
-  std::string material_json = "{}";
-};
+// A stored mesh's record: its shape is the protocol's (protocol/mesh_json.h).
+using protocol::MeshRecord;
 
 class Store {
  public:

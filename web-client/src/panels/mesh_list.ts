@@ -12,10 +12,17 @@ import { el } from './dom.ts';
 /** Thumbnails are rendered at 96 px and shown at 48 CSS px (sharp on high-DPI screens). */
 const THUMBNAIL_PX = 96;
 
-/** How long a delete waits for the mesh's thumbnail to arrive (a lazy image not yet in view never does). */
-const THUMBNAIL_WAIT_MS = 3000;
+/** How long a delete waits at most for the mesh's thumbnail (its render may queue behind others on a busy server). */
+const THUMBNAIL_WAIT_MS = 20000;
 
-/** Resolves once the image has loaded or failed, or after `ms`. */
+/**
+ * Resolves once the thumbnail has arrived or failed, or after `ms`. The
+ * server renders it from the stored mesh, so a render still on its way
+ * answers 404 once the mesh is deleted (taking the src away does not stop
+ * the request in Chromium). Thumbnails are asked for at once, not lazily, so
+ * that one not yet arrived is always one on its way: a lazy image not yet in
+ * view cannot be told from one whose request is queued.
+ */
 function imageSettled(img: HTMLImageElement | null, ms: number): Promise<void> {
   if (!img || !img.isConnected || (img.complete && img.dataset.fetching === undefined)) return Promise.resolve();
   return new Promise((resolve) => {
@@ -74,9 +81,6 @@ export class MeshListPanel {
         ev.stopPropagation();
         remove.disabled = true;
         remove.closest('li')?.classList.add('deleting');
-        // The server renders the thumbnail from the stored mesh, so a render still on its
-        // way would answer 404 once the mesh is gone (taking its src away does not stop
-        // the request in Chromium): the delete waits for it, a few seconds at most.
         void imageSettled(thumb, THUMBNAIL_WAIT_MS).then(() => this.actions.remove(mesh.id));
       });
       const item = el(
@@ -114,7 +118,6 @@ export class MeshListPanel {
       const img = el('img', {
         class: 'mesh-thumb',
         alt: '',
-        loading: 'lazy',
         decoding: 'async',
         width: '48',
         height: '48',
