@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "artifacts/artifact_codec.h"
+#include "core/ascii.h"
 #include "core/errors.h"
 #include "io/mesh_io.h"
 #include "io/parse_json.h"
@@ -19,11 +20,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-std::string lower(std::string s) {
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 const char* const kKnown =
     "voxel grids (.nrrd, .binvox, .vti, .vox, .vdb), skeletons (.polylines.txt, .cg, .obj, .json) and scalar fields "
@@ -41,7 +37,7 @@ std::string artifact_name(const std::string& from, const std::string& fallback) 
 }
 
 VoxelGrid read_grid(const std::string& name, std::string_view bytes, const fs::path& scratch) {
-  const std::string n = lower(name);
+  const std::string n = ascii_lower(name);
   const std::string b(bytes);
   if (n.ends_with(".nrrd")) return decode_nrrd(b, name);
   if (n.ends_with(".binvox")) return decode_binvox(b, name);
@@ -87,7 +83,7 @@ std::vector<float> read_values(const std::string& name, std::string_view text) {
 
 ScalarField read_field(const DataRequest& req, std::string_view bytes, std::vector<std::string>& warnings) {
   if (!req.for_mesh) throw InvalidInput(req.name + ": a scalar field is uploaded for a stored mesh: add ?mesh=ID");
-  const std::string n = lower(req.name);
+  const std::string n = ascii_lower(req.name);
   ScalarField f;
   f.name = artifact_name(fs::path(req.name).stem().string(), "field");
   bool location_known = false;
@@ -150,7 +146,7 @@ ScalarField read_field(const DataRequest& req, std::string_view bytes, std::vect
 }  // namespace
 
 std::string data_kind(const std::string& name, const std::string& kind) {
-  const std::string n = lower(name);
+  const std::string n = ascii_lower(name);
   if (n.ends_with(".raw"))
     throw UnsupportedFormat(name +
                             ": a .raw grid needs its .json beside it, which one upload cannot carry: upload the grid "

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <fstream>
 
+#include "core/ascii.h"
 #include "core/errors.h"
 #include "io/mesh_io.h"
 #include "io/parse_json.h"
@@ -201,9 +202,7 @@ json Router::openapi() const {
     op["responses"]["400"] = error_ref;
     if (r.pattern.find('{') != std::string::npos || (is_job && r.method == "POST")) op["responses"]["404"] = error_ref;
     op["responses"]["401"] = error_ref;
-    std::string method = r.method;
-    for (char& c : method) c = char(std::tolower(static_cast<unsigned char>(c)));
-    paths[r.pattern][method] = op;
+    paths[r.pattern][ascii_lower(r.method)] = op;
   }
   paths["/api/v1/ws"]["get"] = {
       {"summary", "WebSocket: JSON requests and events, binary mesh frames (protocol/API.md)"},

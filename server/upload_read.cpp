@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 
 #include "child_process.h"
+#include "core/ascii.h"
 #include "core/errors.h"
 #include "core/mesh_report.h"
 #include "io/materials.h"
@@ -25,17 +26,12 @@ namespace cgview::server {
 namespace fs = std::filesystem;
 
 namespace {
-std::string lower(std::string s) {
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 // The uploaded file that a mesh or MTL names, matched by base name without
 // case (files written on Windows name ".\\Tex.JPG" for "tex.jpg").
 const BundleFile* find_file(const std::vector<BundleFile>& files, const std::string& referenced) {
-  const std::string want = lower(file_base_name(referenced));
+  const std::string want = ascii_lower(file_base_name(referenced));
   for (const auto& f : files)
-    if (lower(file_base_name(f.name)) == want) return &f;
+    if (ascii_lower(file_base_name(f.name)) == want) return &f;
   return nullptr;
 }
 
@@ -156,7 +152,7 @@ std::string clean_upload_name(const std::string& name) {
 UploadRead read_upload(const std::string& name, const std::string& format, std::string_view bytes,
                        std::size_t max_unpacked_bytes) {
   std::string n = clean_upload_name(name);
-  const bool bundle = format == "zip" || (format.empty() && lower(n).ends_with(".zip"));
+  const bool bundle = format == "zip" || (format.empty() && ascii_lower(n).ends_with(".zip"));
   std::vector<BundleFile> files;
   std::string_view mesh_bytes = bytes;
   const BundleFile* mesh_file = nullptr;

@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/ascii.h"
 #include "core/errors.h"
 #include "io/mesh_io.h"
 
@@ -23,11 +24,6 @@ namespace {
 
 // Stored artifacts are the server's own files, checked when their job ended.
 constexpr std::uint64_t kAnySize = ~std::uint64_t(0);
-
-std::string lower(std::string s) {
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 }  // namespace
 
@@ -92,20 +88,20 @@ std::string ArtifactCodec::format_list(bool served_only) const {
 }
 
 const ArtifactFormat& ArtifactCodec::format_of_path(const fs::path& path) const {
-  const std::string name = lower(path.filename().string());
+  const std::string name = ascii_lower(path.filename().string());
   const ArtifactFormat* best = nullptr;
   for (const ArtifactFormat& f : formats())
     if (f.written && name.size() > f.extension.size() && name.ends_with(f.extension) &&
         (!best || f.extension.size() > best->extension.size()))
       best = &f;
   if (!best)
-    throw UnsupportedFormat(noun() + " cannot be saved as '" + lower(path.extension().string()) + "' (use " +
+    throw UnsupportedFormat(noun() + " cannot be saved as '" + ascii_lower(path.extension().string()) + "' (use " +
                             format_list(false) + ")");
   return *best;
 }
 
 const ArtifactFormat& ArtifactCodec::format_named(std::string name) const {
-  name = lower(name);
+  name = ascii_lower(name);
   if (name.empty()) name = served_default();
   for (const ArtifactFormat& f : formats())
     if (f.served && f.name == name) return f;
@@ -135,7 +131,7 @@ ExportedArtifact ArtifactCodec::exported(const fs::path& dir, const json& entry,
   const std::string file = entry.value("file", "");
   ExportedArtifact out{"", f.content_type, name + f.extension};
   // The stored file is sent as it is (an older job's may be in another of the kind's formats).
-  if (lower(fs::path(file).extension().string()) == f.extension) {
+  if (ascii_lower(fs::path(file).extension().string()) == f.extension) {
     out.bytes = read_file_bytes(dir / file, kAnySize);
     return out;
   }

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <memory>
 
+#include "core/ascii.h"
 #include "core/errors.h"
 #include "io/readers.h"
 
@@ -57,7 +58,7 @@ MeshFormat format_from_name(const std::string& path_or_name) {
   else if (slash != std::string::npos || ext.empty())
     throw UnsupportedFormat("'" + path_or_name + "' has no extension to tell its format (one of " + readable_formats() +
                             ")");
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  ext = ascii_lower(ext);
   for (MeshFormat f : kAll)
     if (ext == to_string(f)) return f;
   throw UnsupportedFormat("unknown mesh format '." + ext + "' of '" + path_or_name + "' (known: " + readable_formats() +

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "core/ascii.h"
 #include "core/errors.h"
 #include "io/mesh_io.h"
 #include "io/parse_json.h"
@@ -20,11 +21,7 @@ static_assert(std::endian::native == std::endian::little, "the voxel writers ass
 
 constexpr std::uint64_t kMaxRead = std::uint64_t(16) << 30;
 
-std::string ext_of(const std::filesystem::path& p) {
-  std::string e = p.extension().string();
-  for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return e;
-}
+std::string ext_of(const std::filesystem::path& p) { return ascii_lower(p.extension().string()); }
 
 std::string num(double v) {
   char buf[32];
