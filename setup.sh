@@ -32,6 +32,8 @@ APT_PACKAGES=(
   libopenvdb-dev libembree-dev
   libsqlite3-dev libssl-dev zlib1g-dev libzip-dev prometheus-cpp-dev
   libcgal-demo
+  # Each job's worker starts in a sandbox (server/sandbox.h).
+  bubblewrap
   nodejs npm
 )
 TEST_APT_PACKAGES=(

@@ -64,21 +64,27 @@ long ServerProcess::peak_rss_kb() const {
   return -1;
 }
 
-std::string upload(unsigned short port, const std::string& name, const std::string& bytes) {
+std::pair<int, std::string> call(unsigned short port, const std::string& method, const std::string& target,
+                                 const std::string& body) {
   net::io_context ioc;
   beast::tcp_stream s(ioc);
   s.connect(tcp::endpoint(net::ip::make_address("127.0.0.1"), port));
-  http::request<http::string_body> req(http::verb::post, "/api/v1/meshes?name=" + name, 11);
+  http::request<http::string_body> req(http::string_to_verb(method), target, 11);
   req.set(http::field::host, "127.0.0.1");
-  req.body() = bytes;
+  req.body() = body;
   req.prepare_payload();
   http::write(s, req);
   beast::flat_buffer buf;
   http::response_parser<http::string_body> p;
   p.body_limit(1 << 30);
   http::read(s, buf, p);
-  if (p.get().result_int() != 201) throw std::runtime_error("upload failed: " + p.get().body());
-  return json::parse(p.get().body())["id"];
+  return {p.get().result_int(), p.get().body()};
+}
+
+std::string upload(unsigned short port, const std::string& name, const std::string& bytes) {
+  const auto [status, body] = call(port, "POST", "/api/v1/meshes?name=" + name, bytes);
+  if (status != 201) throw std::runtime_error("upload failed: " + body);
+  return json::parse(body)["id"];
 }
 
 }  // namespace cgview::bench

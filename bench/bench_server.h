@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <sys/types.h>
@@ -24,6 +25,9 @@ struct ServerProcess {
   long peak_rss_kb() const;
 };
 
+// One request on its own connection: the status and the body.
+std::pair<int, std::string> call(unsigned short port, const std::string& method, const std::string& target,
+                                 const std::string& body = "");
 // POST /api/v1/meshes?name=NAME on its own connection; the new mesh's id.
 // Throws "upload failed: BODY" unless the answer is 201.
 std::string upload(unsigned short port, const std::string& name, const std::string& bytes);

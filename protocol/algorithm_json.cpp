@@ -63,6 +63,70 @@ json to_json(const Algorithm& a) {
           {"params", {{"type", "object"}, {"properties", props}, {"additionalProperties", false}}}};
 }
 
+namespace {
+
+OutputKind kind_from(const std::string& k) {
+  for (OutputKind o : {OutputKind::mesh, OutputKind::scalar_field, OutputKind::voxel_grid, OutputKind::skeleton,
+                       OutputKind::metrics, OutputKind::text, OutputKind::animation})
+    if (k == to_string(o)) return o;
+  throw InvalidInput("an algorithm's description names no kind '" + k + "'");
+}
+
+ParamValue value_from(const json& v) {
+  if (v.is_boolean()) return v.get<bool>();
+  if (v.is_number_integer()) return v.get<long long>();
+  if (v.is_number()) return v.get<double>();
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_array()) {
+    Ids ids;
+    for (const auto& e : v)
+      if (e.is_number_unsigned()) ids.push_back(Index(e.get<unsigned long long>()));
+    return ids;
+  }
+  throw InvalidInput("an algorithm's description has a default of no known type: " + v.dump());
+}
+
+}  // namespace
+
+Algorithm algorithm_from_json(const json& d) {
+  if (!d.is_object() || !d.value("name", json()).is_string())
+    throw InvalidInput("an algorithm's description must be an object with a name");
+  Algorithm a;
+  a.info.name = d["name"];
+  a.info.title = d.value("title", "");
+  a.info.description = d.value("description", "");
+  a.info.area = d.value("area", "");
+  a.info.inputs.clear();
+  for (const auto& in : d.value("inputs", json::array()))
+    a.info.inputs.push_back({in.value("name", ""), kind_from(in.value("kind", "mesh")), in.value("description", "")});
+  for (const auto& out : d.value("outputs", json::array()))
+    a.info.outputs.emplace_back(out.value("name", ""), kind_from(out.value("kind", "")));
+  const json props = d.value("params", json::object()).value("properties", json::object());
+  for (const auto& [name, s] : props.items()) {
+    ParamSpec p;
+    p.name = name;
+    const std::string type = s.value("type", "");
+    if (s.contains("x-cgview-selection"))
+      p.type = s["x-cgview-selection"] == "vertices" ? ParamType::vertices : ParamType::faces;
+    else if (type == "integer") p.type = ParamType::integer;
+    else if (type == "number") p.type = ParamType::number;
+    else if (type == "boolean") p.type = ParamType::boolean;
+    else if (type == "string" && s.contains("enum")) p.type = ParamType::choice;
+    else if (type == "string") p.type = ParamType::text;
+    else throw InvalidInput("parameter '" + name + "' of the description has no known type");
+    p.default_value = value_from(s.value("default", json()));
+    if (p.type == ParamType::number && std::holds_alternative<long long>(p.default_value))
+      p.default_value = double(std::get<long long>(p.default_value));
+    p.info.label = s.value("title", name);
+    p.info.help = s.value("description", "");
+    if (s.contains("minimum")) p.info.min = s["minimum"].get<double>();
+    if (s.contains("maximum")) p.info.max = s["maximum"].get<double>();
+    if (s.contains("enum")) p.info.choices = s["enum"].get<std::vector<std::string>>();
+    a.params.push_back(std::move(p));
+  }
+  return a;
+}
+
 std::map<std::string, ParamValue> params_from_json(const Algorithm& a, const json& params) {
   std::map<std::string, ParamValue> out;
   if (params.is_null()) return out;

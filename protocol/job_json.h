@@ -45,6 +45,8 @@ struct JobRecord {
   // results over the API (where the nodes do not share the data directory);
   // "" once it ended: the token dies with the job.
   std::string worker_token_sha;
+  // A plugin's algorithm (plugins): {"id", "name", "library": its file}; null otherwise.
+  nlohmann::json plugin = nullptr;
 };
 
 // The job as clients see it (GET /api/v1/jobs/ID): artifacts without their

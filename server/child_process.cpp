@@ -51,6 +51,19 @@ pid_t spawn_child(const std::vector<std::string>& args, const ChildOptions& opti
     0, 0
   };
   ::setrlimit(RLIMIT_CORE, &core);
+  if (options.file_mb > 0) {
+    const rlim_t f = rlim_t(options.file_mb) << 20;
+    struct rlimit rl {
+      f, f
+    };
+    ::setrlimit(RLIMIT_FSIZE, &rl);
+  }
+  if (options.processes > 0) {
+    struct rlimit rl {
+      rlim_t(options.processes), rlim_t(options.processes)
+    };
+    ::setrlimit(RLIMIT_NPROC, &rl);
+  }
   const int null = ::open("/dev/null", O_RDWR);
   if (null >= 0) ::dup2(null, 0);
   if (options.stdout_fd >= 0) ::dup2(options.stdout_fd, 1);
@@ -111,6 +124,8 @@ std::string signal_name(int sig) {
       return "SIGILL";
     case SIGXCPU:
       return "SIGXCPU";
+    case SIGXFSZ:
+      return "SIGXFSZ";
     default:
       return "signal " + std::to_string(sig);
   }

@@ -21,6 +21,10 @@ struct ChildOptions {
   int stdout_fd = -1;                 // the child's stdout (closed in the parent by the caller); -1: /dev/null
   std::filesystem::path stderr_file;  // the child's stderr, truncated; empty: /dev/null
   bool stderr_to_stdout = false;      // stderr goes where stdout goes (stderr_file unused)
+  // A sandboxed child (sandbox.h): its processes (RLIMIT_NPROC, counted per
+  // user; 0: none) and the largest file it may write (RLIMIT_FSIZE; 0: none).
+  int processes = 0;
+  std::size_t file_mb = 0;
 };
 
 // Forks and execs argv[0] (a path) with argv; the child's pid, or -1 when

@@ -116,6 +116,11 @@ const std::map<std::string, Setter>& server_keys() {
   return keys;
 }
 
+bool boolean(const json& v, const std::string& key) {
+  if (!v.is_boolean()) bad(key, "must be true or false, got " + v.dump());
+  return v.get<bool>();
+}
+
 // storage_mb: a number of MB (fractions allowed), or null (unlimited).
 std::optional<std::uint64_t> storage(const json& v, const std::string& key) {
   if (v.is_null()) return std::nullopt;
@@ -148,7 +153,8 @@ void apply_config(const json& doc, ServerConfig& config) {
       for (const auto& [key, v] : object(body, section).items()) {
         if (key == "storage_mb") config.jobs.quotas.defaults.storage_bytes = storage(v, "limits." + key);
         else if (key == "concurrent_jobs") config.jobs.quotas.defaults.concurrent_jobs = jobs(v, "limits." + key);
-        else bad("limits." + key, "unknown key (limits are storage_mb and concurrent_jobs)");
+        else if (key == "plugins") config.jobs.quotas.defaults.plugins = boolean(v, "limits." + key);
+        else bad("limits." + key, "unknown key (limits are storage_mb, concurrent_jobs and plugins)");
       }
     } else if (section == "users") {
       for (const auto& [name, limits] : object(body, section).items()) {
@@ -158,7 +164,8 @@ void apply_config(const json& doc, ServerConfig& config) {
         for (const auto& [key, v] : object(limits, where).items()) {
           if (key == "storage_mb") o.storage_bytes = storage(v, where + "." + key);
           else if (key == "concurrent_jobs") o.concurrent_jobs = jobs(v, where + "." + key);
-          else bad(where + "." + key, "unknown key (a user's limits are storage_mb and concurrent_jobs)");
+          else if (key == "plugins") o.plugins = boolean(v, where + "." + key);
+          else bad(where + "." + key, "unknown key (a user's limits are storage_mb, concurrent_jobs and plugins)");
         }
       }
     } else if (section == "slurm") {
@@ -193,8 +200,25 @@ void apply_config(const json& doc, ServerConfig& config) {
               "poll_s, "
               "shared_data, server_url, on_lost, worker)");
       }
+    } else if (section == "sandbox") {
+      SandboxConfig& sb = config.sandbox;
+      for (const auto& [key, v] : object(body, section).items()) {
+        const std::string k = "sandbox." + key;
+        if (key == "mode") {
+          sb.mode = text(v, k);
+          if (sb.mode != "auto" && sb.mode != "required" && sb.mode != "off")
+            bad(k, "is \"auto\", \"required\" or \"off\", got " + v.dump());
+        } else if (key == "processes") sb.processes = int(integer(v, k, 8, 1 << 20));
+        else if (key == "file_mb") sb.file_mb = std::size_t(integer(v, k, 1, 1LL << 30));
+        else if (key == "hidden") {
+          if (!v.is_array()) bad(k, "must be a list of paths, got " + v.dump());
+          for (const auto& h : v) sb.hidden.push_back(text(h, k));
+        } else if (key == "plugins_without_sandbox") config.plugins_without_sandbox = boolean(v, k);
+        else
+          bad(k, "unknown key (the sandbox section knows mode, processes, file_mb, hidden, plugins_without_sandbox)");
+      }
     } else {
-      bad(section, "unknown key (the sections are server, limits, users and slurm)");
+      bad(section, "unknown key (the sections are server, limits, users, slurm and sandbox)");
     }
   }
 }

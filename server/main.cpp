@@ -66,6 +66,8 @@ const char* kHelp =
     "  --on-restart WHAT    jobs left queued or running by a previous run: requeue (default) or interrupt\n"
     "  --executor WHERE     where jobs run: local (this machine, default) or slurm (the config's slurm section)\n"
     "  --job-cpus N         CPUs of a job (Slurm's --cpus-per-task; default 1)\n"
+    "  --sandbox MODE       each job's worker in bubblewrap: auto (where it starts, default), required, off\n"
+    "  --plugin-dir DIR     the lab's plugins (*.cpp) for every user, rebuilt when a file changes\n"
     "  -h, --help           this help\n";
 
 // A few sample meshes of different kinds (the whole set is 143 files).
@@ -183,7 +185,12 @@ int main(int argc, char** argv) {
       else if (a == "--tls-key") config.tls_key = value();
       else if (a == "--workers") config.workers = int(number(1, 256));
       else if (a == "--worker") config.jobs.worker = value();
-      else if (a == "--reader") config.reader = value();
+      else if (a == "--plugin-dir") config.plugin_dir = value();
+      else if (a == "--sandbox") {
+        config.sandbox.mode = value();
+        if (config.sandbox.mode != "auto" && config.sandbox.mode != "required" && config.sandbox.mode != "off")
+          throw std::invalid_argument("--sandbox is auto, required or off");
+      } else if (a == "--reader") config.reader = value();
       else if (a == "--gl-platform") config.gl_platform = render::parse_gl_platform(value(), "--gl-platform");
       else if (a == "--job-workers") config.jobs.max_workers = int(number(1, 1024));
       else if (a == "--job-timeout-s") config.jobs.timeout_s = double(number(0, 100000000));

@@ -10,6 +10,7 @@ UserLimits QuotaConfig::limits(const Caller& caller) const {
   if (const auto it = users.find(caller.user); it != users.end()) {
     if (it->second.storage_bytes) l.storage_bytes = *it->second.storage_bytes;
     if (it->second.concurrent_jobs) l.concurrent_jobs = *it->second.concurrent_jobs;
+    if (it->second.plugins) l.plugins = *it->second.plugins;
   }
   return l;
 }

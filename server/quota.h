@@ -21,6 +21,7 @@ namespace cgview::server {
 struct UserLimits {
   std::optional<std::uint64_t> storage_bytes;
   std::optional<int> concurrent_jobs;
+  bool plugins = true;  // may build and run plugins (where the server sandboxes them)
 };
 
 // A user's own limits: each field given (the outer optional) replaces the
@@ -28,6 +29,7 @@ struct UserLimits {
 struct UserOverride {
   std::optional<std::optional<std::uint64_t>> storage_bytes;
   std::optional<std::optional<int>> concurrent_jobs;
+  std::optional<bool> plugins;
 };
 
 struct QuotaConfig {

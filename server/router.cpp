@@ -69,6 +69,7 @@ Router::Router(MeshService& meshes, RouterConfig config)
   add_job_routes(routes_, context_);
   add_data_routes(routes_, context_);
   add_worker_routes(routes_, context_);
+  add_plugin_routes(routes_, context_);
   routes_.push_back({"GET",
                      "/api/v1/openapi.json",
                      "This API's OpenAPI 3 document",

@@ -20,6 +20,8 @@
 
 namespace cgview::server {
 
+class PluginService;
+
 class JobScheduler;
 class Metrics;
 class RenderService;
@@ -30,8 +32,9 @@ struct RouterConfig {
   JobScheduler* jobs = nullptr;  // the algorithm and job routes answer 503 without one
   render::GlPlatform gl_platform = render::GlPlatform::automatic;  // for render.png
   int renderers = 2;                                               // EGL contexts rendering at once (render.png)
-  bool auth_required = false;  // every /api/ request needs a bearer token (else: Caller::local() without one)
-  Metrics* metrics = nullptr;  // counts every request; GET /metrics serves it (404 without one)
+  bool auth_required = false;        // every /api/ request needs a bearer token (else: Caller::local() without one)
+  Metrics* metrics = nullptr;        // counts every request; GET /metrics serves it (404 without one)
+  PluginService* plugins = nullptr;  // users' plugins; the plugin routes answer 500 without one
 };
 
 class Router {

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "jobs/scheduler.h"
+#include "sandbox.h"
 #include "render/egl_context.h"
 
 namespace cgview::server {
@@ -65,6 +66,12 @@ struct ServerConfig {
   std::filesystem::path reader;
   double upload_timeout_s = 120;
   PreviewConfig preview;  // when get_mesh with lod "progressive" first streams a decimated preview
+  // Where each job's worker starts (sandbox.h), and users' plugins
+  // (plugin_service.h): off for users other than the local one where the
+  // sandbox cannot start, unless plugins_without_sandbox says otherwise.
+  SandboxConfig sandbox;
+  bool plugins_without_sandbox = false;
+  std::filesystem::path plugin_dir;  // the lab's plugins, for every user (--plugin-dir)
 };
 
 class Server {

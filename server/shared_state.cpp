@@ -42,15 +42,45 @@ std::optional<ssl::context> tls_context(const ServerConfig& c) {
   return ctx;
 }
 
+// The sandbox, probed once; said at start when it cannot be used.
+std::shared_ptr<const Sandbox> make_sandbox(const ServerConfig& c) {
+  auto s = std::make_shared<const Sandbox>(c.sandbox);
+  if (!s->enabled()) {
+    if (c.sandbox.mode == "required") throw std::runtime_error("the sandbox is required but " + s->why_not());
+    std::fprintf(stderr, "cgview-server: warning: jobs run without a sandbox (%s); users' plugins are off%s\n",
+                 s->why_not().c_str(),
+                 c.plugins_without_sandbox ? " unless sandbox.plugins_without_sandbox (set: they are ON)"
+                                           : " but for the local user");
+  }
+  return s;
+}
+
+JobConfig with_sandbox(JobConfig j, std::shared_ptr<const Sandbox> s) {
+  j.sandbox = std::move(s);
+  return j;
+}
+
+PluginConfig plugin_config(const ServerConfig& c, const Sandbox& s) {
+  PluginConfig p;
+  p.sandboxed = s.enabled();
+  p.allow_without_sandbox = c.plugins_without_sandbox;
+  p.admin_dir = c.plugin_dir;
+  p.allowed = [q = c.jobs.quotas](const Caller& caller) { return q.limits(caller).plugins; };
+  return p;
+}
+
 }  // namespace
 
 Shared::Shared(const ServerConfig& c)
     : config(c),
       store(c.data_dir),
       meshes(store),
-      jobs(std::make_unique<JobScheduler>(meshes, c.jobs)),
-      router(meshes, {c.static_dir, "0.1.0", jobs.get(), c.gl_platform, std::max(1, c.workers),
-                      c.auth_required || !boost::asio::ip::make_address(c.host).is_loopback(), &metrics}),
+      sandbox(make_sandbox(c)),
+      jobs(std::make_unique<JobScheduler>(meshes, with_sandbox(c.jobs, sandbox))),
+      plugins(std::make_unique<PluginService>(store, *jobs, plugin_config(c, *sandbox))),
+      router(meshes,
+             {c.static_dir, "0.1.0", jobs.get(), c.gl_platform, std::max(1, c.workers),
+              c.auth_required || !boost::asio::ip::make_address(c.host).is_loopback(), &metrics, plugins.get()}),
       rate(c.rate_per_s, c.rate_burst),
       ws(meshes,
          {[j = jobs.get()](const std::string& job, const std::string& name, const std::string& format,
@@ -65,13 +95,22 @@ Shared::Shared(const ServerConfig& c)
                        std::chrono::milliseconds(std::llround(c.upload_timeout_s * 1000))});
   meshes.set_preview(c.preview);
   rate.on_refused = [m = &metrics] { m->rate_limited(); };
-  jobs->on_event = [r = &router, m = &metrics](const json& e, const Access& readers) {
+  jobs->set_plugin_resolver([p = plugins.get()](const std::string& id, const std::string& algorithm,
+                                                const Caller& caller) { return p->resolve(id, algorithm, caller); });
+  jobs->on_event = [r = &router, m = &metrics, p = plugins.get()](const json& e, const Access& readers) {
     m->job_event(e);
+    p->on_job_event(e);
     if (r->on_event) r->on_event(e, readers);
   };
 }
 
-Shared::~Shared() { jobs.reset(); }  // its thread sends events through the router
+// The plugins' scanner submits jobs: it stops first.  The scheduler's thread
+// sends events through the router and the plugins: it stops before them.
+Shared::~Shared() {
+  plugins->stop();
+  jobs.reset();
+  plugins.reset();
+}
 
 void Shared::broadcast(const json& event, const Access& readers) {
   std::vector<std::shared_ptr<EventSink>> live;

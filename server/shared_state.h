@@ -20,6 +20,7 @@
 
 #include "metrics.h"
 #include "mesh_service.h"
+#include "plugin_service.h"
 #include "rate_limit.h"
 #include "router.h"
 #include "server.h"
@@ -46,7 +47,9 @@ struct Shared {
   Metrics metrics;  // before the router and the scheduler, which report to it
   Store store;
   MeshService meshes;
+  std::shared_ptr<const Sandbox> sandbox;  // where workers start (sandbox.h)
   std::unique_ptr<JobScheduler> jobs;
+  std::unique_ptr<PluginService> plugins;  // users' algorithms (plugin_service.h)
   Router router;
   RateLimiter rate;
   WsHandler ws;

@@ -5,6 +5,7 @@
 //     {"algorithm": "hausdorff", "params": {...}, "inputs": {"mesh": "/path/a.off", "reference": "/path/b.ply"}, "out":
 //     "/dir"}
 //   (an input the algorithm declares as a voxel_grid is a grid file: .nrrd, .binvox, ...)
+//   ("plugin": "/path/lib.so" loads a user's algorithm library first: plugins/plugin.h)
 //   cgview-worker --list        prints every algorithm linked in, as JSON (protocol/algorithm_json)
 //
 // Progress goes to stdout as lines "progress FRACTION STAGE" (at most ~10 a
@@ -31,6 +32,7 @@
 #include "io/mesh_io.h"
 #include "artifacts/artifact_codec.h"
 #include "registry/artifact_io.h"
+#include "plugins/plugin.h"
 #include "registry/registry.h"
 
 namespace {
@@ -63,6 +65,7 @@ int run_job(const fs::path& spec_path, fs::path& out) {
   if (!f) throw IoError("cannot read the job file " + spec_path.string());
   const json spec = json::parse(f);
   out = spec.at("out").get<std::string>();
+  if (spec.contains("plugin")) load_plugin(spec["plugin"].get<std::string>());
   const Algorithm& algo = find_algorithm(spec.at("algorithm").get<std::string>());
   const auto values = protocol::params_from_json(algo, spec.value("params", json::object()));
   // Every input is a file ("inputs": {"mesh": path, "reference": path}): a

@@ -15,6 +15,7 @@
 #include "io/samples.h"
 #include "io/skeleton_io.h"
 #include "mesh_report_json.h"
+#include "plugin_option.h"
 #include "registry/artifact_io.h"
 #include "registry/registry.h"
 #include "render/renderer.h"
@@ -46,6 +47,8 @@ const char* kMainHelp =
     "  list [--json]          the registered algorithms and their parameters\n"
     "  run ALGO MESH [--PARAM VALUE]... [-o OUT]\n"
     "                         run an algorithm (cgview run ALGO --help lists its parameters)\n"
+    "  run --plugin FILE.cpp ALGO MESH ...\n"
+    "                         build your own algorithm file (as the template) and run it\n"
     "  render MESH -o OUT.png [--mode smooth] [--size 800x600] [--views N]\n"
     "                         a picture (or a contact sheet of N views) from the EGL renderer\n"
     "\n"
@@ -228,11 +231,12 @@ std::string param_line(const ParamSpec& p) {
   return s + "\n";
 }
 
-int cmd_list(const std::vector<std::string>& args) {
+int cmd_list(std::vector<std::string> args) {
+  cli::take_plugin_options(args);
   if (wants_help(args)) {
     std::fputs(
-        "usage: cgview list [--json]\n\nThe registered algorithms, with their parameters (--json: with JSON "
-        "Schemas).\n",
+        "usage: cgview list [--json] [--plugin FILE.cpp]\n\nThe registered algorithms, with their parameters (--json: "
+        "with JSON Schemas), and those of the plugins named.\n",
         stdout);
     return 0;
   }
@@ -282,13 +286,16 @@ class ProgressPrinter {
   std::chrono::steady_clock::time_point last_{};
 };
 
-int cmd_run(const std::vector<std::string>& args) {
+int cmd_run(std::vector<std::string> args) {
+  cli::take_plugin_options(args);
   if (args.empty() || args[0] == "-h" || args[0] == "--help") {
     std::fputs(
         "usage: cgview run ALGO MESH [--PARAM VALUE]... [-o OUT]\n\n"
         "Runs a registered algorithm on a mesh and saves its results. With several results,\n"
         "OUT names the first and the others are saved beside it as OUTSTEM-NAME.EXT.\n"
-        "A scalar field saves as .txt, .csv or .ply; see cgview list for the algorithms.\n",
+        "A scalar field saves as .txt, .csv or .ply; see cgview list for the algorithms.\n"
+        "--plugin FILE.cpp builds an algorithm file of your own (see docs/TUTORIAL.md) and\n"
+        "runs its algorithm as any other: cgview run --plugin height.cpp height MESH\n",
         stdout);
     return 0;
   }

@@ -40,9 +40,17 @@ void detail::set_precheck(const std::string& name,
   it->second.precheck = std::move(check);
 }
 
+namespace {
+std::vector<std::string>* registration_clashes = nullptr;
+}
+
+void detail::set_registration_clashes(std::vector<std::string>* sink) { registration_clashes = sink; }
+
 void register_algorithm(Algorithm a) {
   const std::string name = a.info.name;
-  if (!table().emplace(name, std::move(a)).second) throw std::logic_error("two algorithms are named '" + name + "'");
+  if (table().emplace(name, std::move(a)).second) return;
+  if (registration_clashes) registration_clashes->push_back(name);
+  else throw std::logic_error("two algorithms are named '" + name + "'");
 }
 
 const char* to_string(ParamType t) {

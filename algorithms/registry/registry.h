@@ -244,6 +244,11 @@ struct ValueAssigner {
   void vertices(const char* n, Ids& v, const ParamInfo& = {}) { set(n, v); }
 };
 
+// While a plugin loads (plugins/plugin.h): an algorithm whose name is taken
+// is not registered and its name goes to `sink`, instead of a throw that
+// could not leave the library's initialisation.  nullptr: throw again.
+void set_registration_clashes(std::vector<std::string>* sink);
+
 void check_names(const std::string& algorithm, const std::map<std::string, ParamValue>& values,
                  const std::vector<ParamSpec>& specs);
 

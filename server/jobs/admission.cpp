@@ -47,27 +47,36 @@ Admission::Admission(MeshService& meshes, const fs::path& worker) : meshes_(mesh
 json Admission::algorithms_json() const {
   json list = json::array();
   for (const auto& [name, a] : algorithms_)
-    if (a.value("area", "") != "test") list.push_back(a);
+    if (a.value("area", "") != "test" && a.value("area", "") != "system") list.push_back(a);
   return {{"algorithms", list}};
 }
 
-Job Admission::admit(const json& req, const Caller& caller, JobLookup& jobs,
-                     std::vector<std::string>* new_meshes) const {
+Job Admission::admit(const json& req, const Caller& caller, JobLookup& jobs, std::vector<std::string>* new_meshes,
+                     bool system) const {
   const std::string& owner = caller.user;
   if (!req.is_object()) throw InvalidInput("the body must be a JSON object");
   if (!req.contains("algorithm") || !req["algorithm"].is_string()) throw InvalidInput("\"algorithm\" must be a string");
   const std::string algorithm = req["algorithm"].get<std::string>();
-  if (!algorithms_.count(algorithm)) throw std::out_of_range("no algorithm '" + algorithm + "'");
+  std::optional<PluginAlgorithm> plugin;
+  if (req.contains("plugin")) {
+    if (!req["plugin"].is_string()) throw InvalidInput("\"plugin\" must be a plugin's id");
+    if (!plugins_) throw InvalidInput("this server runs no plugins");
+    plugin = plugins_(req["plugin"].get<std::string>(), algorithm, caller);
+  } else if (!algorithms_.count(algorithm) || (!system && algorithms_.at(algorithm).value("area", "") == "system")) {
+    throw std::out_of_range("no algorithm '" + algorithm + "'");
+  }
   // Each input the algorithm declares is a stored mesh: its id, or an earlier
   // job's output mesh {"job": id, "artifact": name}.
   const json inputs = req.value("inputs", json::object());
-  json specs = algorithms_.at(algorithm).value("inputs", json::array());
-  if (specs.empty()) specs = json::array({{{"name", "mesh"}, {"kind", "mesh"}}});
+  // An algorithm that lists no inputs takes one mesh; one that lists none (an empty list) takes none.
+  const json& described = plugin ? plugin->description : algorithms_.at(algorithm);
+  json specs = described.value("inputs", json::array({{{"name", "mesh"}, {"kind", "mesh"}}}));
   const auto shape = [](const std::string& name) {
     return "\"inputs\" must be {\"" + name + "\": \"<mesh id>\"} or {\"" + name +
            "\": {\"job\": \"<job id>\", \"artifact\": \"<name>\"}}";
   };
-  if (!inputs.is_object()) throw InvalidInput(shape(specs[0].value("name", "mesh")));
+  if (!inputs.is_object())
+    throw InvalidInput(specs.empty() ? "\"inputs\" must be {}" : shape(specs[0].value("name", "mesh")));
   std::string names;
   for (const auto& spec : specs) names += (names.empty() ? "" : ", ") + spec.value("name", "");
   for (const auto& [name, v] : inputs.items()) {
@@ -144,15 +153,21 @@ Job Admission::admit(const json& req, const Caller& caller, JobLookup& jobs,
   // Canonical parameters: checked, every one present (defaults filled in).
   json canonical = json::object();
   const auto& registry = algorithms();
-  if (const auto it = registry.find(algorithm); it != registry.end()) {
-    const auto values = protocol::params_from_json(it->second, params_in);
-    for (const ParamSpec& p : it->second.params) {
+  // A plugin's algorithm is checked against its description (the server
+  // never loads a user's code).
+  std::optional<Algorithm> described_algorithm;
+  if (plugin) described_algorithm = protocol::algorithm_from_json(plugin->description);
+  const auto it = plugin ? registry.end() : registry.find(algorithm);
+  const Algorithm* known = plugin ? &*described_algorithm : it != registry.end() ? &it->second : nullptr;
+  if (known) {
+    const auto values = protocol::params_from_json(*known, params_in);
+    for (const ParamSpec& p : known->params) {
       const auto v = values.find(p.name);
       canonical[p.name] = value_json(v == values.end() ? p.default_value : v->second);
     }
     if (const auto in = summaries.find("mesh"); in != summaries.end())
-      check_selections(it->second.params, values, in->second.vertices, in->second.faces);
-    if (it->second.precheck) it->second.precheck(summaries, values);
+      check_selections(known->params, values, in->second.vertices, in->second.faces);
+    if (known->precheck) known->precheck(summaries, values);
   } else {
     // Only the worker knows it (a test algorithm): the worker checks.
     if (!params_in.is_null() && !params_in.is_object()) throw InvalidInput("\"params\" must be a JSON object");
@@ -166,6 +181,11 @@ Job Admission::admit(const json& req, const Caller& caller, JobLookup& jobs,
   j.inputs = resolved;
   j.params = canonical;
   // A one-mesh job keeps the key it always had (its cached results stay valid).
+  // A plugin's job is keyed by its library's content too: a rebuilt plugin runs again.
+  if (plugin) {
+    j.plugin = {{"id", plugin->plugin_id}, {"library", plugin->library}};
+    input_shas += "\nplugin=" + plugin->library_sha;
+  }
   j.cache_key =
       sha256_hex((mesh ? mesh->sha256 : std::string()) + input_shas + "\n" + algorithm + "\n" + canonical.dump());
   return j;

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -36,6 +37,16 @@ class JobLookup {
   virtual void check_job_count(const Caller& caller) const = 0;
 };
 
+// A plugin's algorithm as the plugin service finds it for a caller.
+struct PluginAlgorithm {
+  nlohmann::json description;  // as GET /api/v1/algorithms lists an algorithm
+  std::string plugin_id, library, library_sha;
+};
+// Throws std::out_of_range (no such plugin or algorithm for this caller),
+// Forbidden (plugins are off for them) or InvalidInput (not built).
+using PluginResolver =
+    std::function<PluginAlgorithm(const std::string& plugin, const std::string& algorithm, const Caller& caller)>;
+
 class Admission {
  public:
   // Asks `worker` (cgview-worker) what it runs; when it cannot say, the
@@ -50,12 +61,17 @@ class Admission {
   // the caller cannot read) or InvalidInput (naming the input or parameter
   // and the rule broken).  An input that names an earlier job's output mesh
   // stores that mesh (its id appended to `new_meshes`).
-  Job admit(const nlohmann::json& request, const Caller& caller, JobLookup& jobs,
-            std::vector<std::string>* new_meshes) const;
+  // A request with "plugin": ID runs that plugin's algorithm, resolved here.
+  // `system`: the server's own request, which may name a hidden system
+  // algorithm (plugin_build); a client's never does.
+  Job admit(const nlohmann::json& request, const Caller& caller, JobLookup& jobs, std::vector<std::string>* new_meshes,
+            bool system = false) const;
+  void set_plugin_resolver(PluginResolver r) { plugins_ = std::move(r); }
 
  private:
   MeshService& meshes_;
   std::map<std::string, nlohmann::json> algorithms_;  // by name, as the worker lists them
+  PluginResolver plugins_;
 };
 
 }  // namespace cgview::server

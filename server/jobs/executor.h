@@ -32,6 +32,11 @@ struct LaunchSpec {
   // the worker (job.json, fetched too, names those files).  Empty otherwise.
   std::string server_url, token;
   std::map<std::string, std::string> remote_inputs;
+  // What a sandboxed worker (sandbox.h) sees besides the system and its
+  // directory: its input files and plugin library, read-only; the data
+  // directory they live in is otherwise hidden.
+  std::vector<std::pair<std::filesystem::path, std::string>> read_only;  // file -> where the job sees it
+  std::filesystem::path data_dir;
 };
 
 // How a worker ended, as its executor saw it; the scheduler reads the

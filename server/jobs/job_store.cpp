@@ -33,6 +33,8 @@ JobStore::JobStore(const std::filesystem::path& data_dir) {
   add_missing_column(db_, "jobs", "worker_token", "TEXT NOT NULL DEFAULT ''", "jobs");
   // One from before a job's warnings were kept.
   add_missing_column(db_, "jobs", "warnings", "TEXT NOT NULL DEFAULT '[]'", "jobs");
+  // One from before plugins.
+  add_missing_column(db_, "jobs", "plugin", "TEXT NOT NULL DEFAULT ''", "jobs");
 }
 
 JobStore::~JobStore() { sqlite3_close(db_); }
@@ -43,7 +45,7 @@ std::vector<std::shared_ptr<Job>> JobStore::load() const {
       db_,
       "SELECT id, seq, owner, algorithm, mesh_id, mesh_sha, params, cache_key, state, stage, progress,"
       " error, cached, created, started, finished, artifacts, files, inputs, bytes, executor, handle, worker_token,"
-      " warnings FROM jobs ORDER BY seq",
+      " warnings, plugin FROM jobs ORDER BY seq",
       -1, &s, nullptr);
   auto text = [&](int c) {
     const auto* p = sqlite3_column_text(s, c);
@@ -74,7 +76,8 @@ std::vector<std::shared_ptr<Job>> JobStore::load() const {
     j->files = text(17);
     // A job from before several inputs has only its mesh.
     j->inputs = parse_json_or_discarded(text(18));
-    if (!j->inputs.is_object() || j->inputs.empty()) j->inputs = {{"mesh", j->mesh_id}};
+    if (!j->inputs.is_object()) j->inputs = json::object();
+    if (j->inputs.empty() && !j->mesh_id.empty()) j->inputs = {{"mesh", j->mesh_id}};
     // NULL: not sized yet (the scheduler sizes it once); in_flight marks that here.
     if (sqlite3_column_type(s, 19) != SQLITE_NULL) j->bytes = std::uint64_t(sqlite3_column_int64(s, 19));
     else j->in_flight = true;
@@ -83,6 +86,8 @@ std::vector<std::shared_ptr<Job>> JobStore::load() const {
     j->worker_token_sha = text(22);
     j->warnings = parse_json_or_discarded(text(23));
     if (!j->warnings.is_array()) j->warnings = json::array();
+    j->plugin = parse_json_or_discarded(text(24));
+    if (!j->plugin.is_object()) j->plugin = nullptr;
     out.push_back(std::move(j));
   }
   sqlite3_finalize(s);
@@ -95,8 +100,8 @@ void JobStore::put(const Job& j) {
           db_,
           "INSERT OR REPLACE INTO jobs (id, seq, owner, algorithm, mesh_id, mesh_sha, params, cache_key,"
           " state, stage, progress, error, cached, created, started, finished, artifacts, files, inputs,"
-          " bytes, executor, handle, worker_token, warnings)"
-          " VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20,?21,?22,?23,?24)",
+          " bytes, executor, handle, worker_token, warnings, plugin)"
+          " VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20,?21,?22,?23,?24,?25)",
           -1, &s, nullptr) != SQLITE_OK)
     throw IoError(std::string("jobs: ") + sqlite3_errmsg(db_));
   int i = 0;
@@ -114,6 +119,7 @@ void JobStore::put(const Job& j) {
   if (active(j.state) || j.in_flight) sqlite3_bind_null(s, ++i);
   else sqlite3_bind_int64(s, ++i, std::int64_t(j.bytes));
   t(j.executor), t(j.handle), t(j.worker_token_sha), t(j.warnings.dump());
+  t(j.plugin.is_object() ? j.plugin.dump() : std::string());
   const int rc = sqlite3_step(s);
   sqlite3_finalize(s);
   if (rc == SQLITE_FULL) throw DiskFull(std::string("jobs: ") + sqlite3_errmsg(db_));

@@ -16,9 +16,10 @@ namespace cgview::server {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-LocalExecutor::LocalExecutor(fs::path worker, int max_workers)
+LocalExecutor::LocalExecutor(fs::path worker, int max_workers, std::shared_ptr<const Sandbox> sandbox)
     : worker_(std::move(worker)),
-      max_workers_(max_workers > 0 ? max_workers : int(std::max(1u, std::thread::hardware_concurrency()))) {}
+      max_workers_(max_workers > 0 ? max_workers : int(std::max(1u, std::thread::hardware_concurrency()))),
+      sandbox_(std::move(sandbox)) {}
 
 LocalExecutor::~LocalExecutor() { shutdown(); }
 
@@ -29,7 +30,34 @@ std::string LocalExecutor::launch(const LaunchSpec& job) {
   child.memory_mb = job.memory_mb;
   child.stdout_fd = fds[1];
   child.stderr_file = job.dir / "stderr.txt";
-  const pid_t pid = spawn_child({worker_.string(), (job.dir / "job.json").string()}, child);
+  const std::vector<std::string> argv = {worker_.string(), (job.dir / "job.json").string()};
+  // The lowest slot no run holds: a root server's sandbox user for this run.
+  int slot = 0;
+  for (bool taken = true; taken; ++slot) {
+    taken = false;
+    for (const auto& [id, r] : runs_) taken = taken || r.slot == slot;
+    if (!taken) break;
+  }
+  pid_t pid = -1;
+  if (sandbox_ && sandbox_->enabled()) {
+    Sandbox::Command c;
+    try {
+      // The worker program too is mounted where the job sees it: it may lie
+      // where the job may not walk (a wrapper script in a test's /tmp).
+      const std::string program = std::string(kSandboxPrograms) + "/" + worker_.filename().string();
+      auto readable = job.read_only;
+      readable.push_back({worker_, program});
+      c = sandbox_->wrap({program, std::string(kSandboxJob) + "/job.json"},
+                         {.writable = job.dir, .readable = readable, .hidden = {job.data_dir}}, slot, child);
+    } catch (const std::exception& e) {
+      ::close(fds[0]);
+      ::close(fds[1]);
+      throw LaunchError(e.what());
+    }
+    pid = spawn_child(c.argv, c.options);
+  } else {
+    pid = spawn_child(argv, child);
+  }
   ::close(fds[1]);
   if (pid < 0) {
     ::close(fds[0]);
@@ -38,6 +66,7 @@ std::string LocalExecutor::launch(const LaunchSpec& job) {
   ::fcntl(fds[0], F_SETFL, O_NONBLOCK);
   Run& r = runs_[job.job_id];
   r.pid = pid;
+  r.slot = slot;
   r.out_fd = fds[0];
   r.launched = Clock::now();
   r.timeout_s = job.timeout_s;
@@ -87,6 +116,9 @@ void LocalExecutor::check(std::vector<ExecutorEvent>& events) {
       if (!r.garbage.empty()) e.end.how = WorkerEnd::How::garbled, e.end.detail = r.garbage;
       else if (r.timed_out) e.end.how = WorkerEnd::How::timed_out;
       else if (WIFSIGNALED(status)) e.end.how = WorkerEnd::How::signaled, e.end.signal = WTERMSIG(status);
+      // bubblewrap exits with 128 + the signal that ended the worker inside.
+      else if (sandbox_ && sandbox_->enabled() && WEXITSTATUS(status) > 128)
+        e.end.how = WorkerEnd::How::signaled, e.end.signal = WEXITSTATUS(status) - 128;
       else e.end.how = WorkerEnd::How::exited, e.end.code = WEXITSTATUS(status);
       events.push_back(std::move(e));
       it = runs_.erase(it);

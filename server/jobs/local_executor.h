@@ -12,14 +12,18 @@
 #include <mutex>
 #include <set>
 
+#include <memory>
+
 #include "jobs/executor.h"
+#include "sandbox.h"
 
 namespace cgview::server {
 
 class LocalExecutor : public Executor {
  public:
-  // `worker`: the cgview-worker executable.
-  LocalExecutor(std::filesystem::path worker, int max_workers);
+  // `worker`: the cgview-worker executable; `sandbox`: where each worker
+  // starts (nullptr or off: a plain child process).
+  LocalExecutor(std::filesystem::path worker, int max_workers, std::shared_ptr<const Sandbox> sandbox = nullptr);
   ~LocalExecutor() override;
 
   const char* name() const override { return "local"; }
@@ -34,6 +38,7 @@ class LocalExecutor : public Executor {
  private:
   struct Run {
     pid_t pid = -1;
+    int slot = -1;    // the sandbox's user for it (a root server's)
     int out_fd = -1;  // the worker's stdout; -1 once it closed
     std::string out;
     std::string garbage;  // why it was stopped: its output was not progress lines
@@ -47,6 +52,7 @@ class LocalExecutor : public Executor {
 
   std::filesystem::path worker_;
   int max_workers_;
+  std::shared_ptr<const Sandbox> sandbox_;
   std::map<std::string, Run> runs_;     // by job id
   std::vector<ExecutorEvent> pending_;  // started events, sent at the next poll
   std::mutex cancel_mutex_;

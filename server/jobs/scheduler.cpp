@@ -1,5 +1,7 @@
 #include "jobs/scheduler.h"
 
+#include "sandbox.h"
+
 #include <algorithm>
 #include <chrono>
 
@@ -20,7 +22,7 @@ using Clock = std::chrono::steady_clock;
 namespace {
 
 std::unique_ptr<Executor> make_executor(const JobConfig& c) {
-  if (c.executor == "local") return std::make_unique<LocalExecutor>(c.worker, c.max_workers);
+  if (c.executor == "local") return std::make_unique<LocalExecutor>(c.worker, c.max_workers, c.sandbox);
   if (c.executor == "slurm") return std::make_unique<SlurmExecutor>(c.slurm, c.worker);
   throw InvalidInput("executor '" + c.executor + "': it is local or slurm");
 }
@@ -54,6 +56,16 @@ JobScheduler::~JobScheduler() {
 
 fs::path JobScheduler::job_dir(const std::string& id) const { return meshes_.store().data_dir() / "jobs" / id; }
 
+WorkerLimits JobScheduler::limits_of_workers() const {
+  WorkerLimits l{config_.timeout_s, config_.memory_mb};
+  if (config_.executor == "local" && config_.sandbox && config_.sandbox->enabled()) {
+    l.sandboxed = true;
+    l.processes = config_.sandbox->config().processes;
+    l.file_mb = config_.sandbox->config().file_mb;
+  }
+  return l;
+}
+
 LaunchSpec JobScheduler::spec(const Job& j) const {
   LaunchSpec s;
   s.job_id = j.id;
@@ -62,6 +74,7 @@ LaunchSpec JobScheduler::spec(const Job& j) const {
   s.timeout_s = config_.timeout_s;
   s.memory_mb = config_.memory_mb;
   s.cpus = std::max(1, config_.cpus);
+  s.data_dir = meshes_.store().data_dir();
   return s;
 }
 
@@ -124,8 +137,8 @@ void JobScheduler::save(const Job& j) {
   }
 }
 
-json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std::string>* new_meshes) {
-  auto j = std::make_shared<Job>(admission_.admit(req, caller, *this, new_meshes));
+json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std::string>* new_meshes, bool system) {
+  auto j = std::make_shared<Job>(admission_.admit(req, caller, *this, new_meshes, system));
   const std::string& owner = caller.user;
   j->id = new_id();
   j->created = now_iso8601();
@@ -241,9 +254,31 @@ std::optional<LaunchSpec> JobScheduler::prepare(Job& j) {
     s.token = random_hex(32);
     j.worker_token_sha = sha256_hex(s.token);
   }
+  // In the sandbox the job sees its own paths (sandbox.h): the data
+  // directory's, and the directories above it, are not its to walk.
+  const bool sandboxed = limits_of_workers().sandboxed;
+  for (const auto& [name, path] : files->items()) {
+    const fs::path file = path.get<std::string>();
+    const std::string inside = std::string(kSandboxInputs) + "/" + name + "/" + file.filename().string();
+    s.read_only.push_back({file, sandboxed ? inside : file.string()});
+    if (sandboxed) inputs[name] = inside;
+  }
+  if (sandboxed) out = kSandboxJob;
+  json spec = {{"algorithm", j.algorithm}, {"params", j.params}, {"inputs", inputs}, {"out", out}};
+  // A plugin's algorithm: the worker loads its library first.
+  if (j.plugin.is_object()) {
+    const std::string library = j.plugin.value("library", "");
+    std::error_code lib_ec;
+    if (library.empty() || !fs::exists(library, lib_ec)) {
+      j.error = "the plugin's library is gone (rebuild the plugin)";
+      return std::nullopt;
+    }
+    const std::string inside = std::string(kSandboxPlugin) + "/" + fs::path(library).filename().string();
+    spec["plugin"] = sandboxed ? inside : library;
+    s.read_only.push_back({library, sandboxed ? inside : library});
+  }
   try {
-    write_file_bytes(dir / "job.json",
-                     json{{"algorithm", j.algorithm}, {"params", j.params}, {"inputs", inputs}, {"out", out}}.dump());
+    write_file_bytes(dir / "job.json", spec.dump());
   } catch (const DiskFull&) {
     j.error = "the server's storage is full: the job could not start";
     return std::nullopt;
@@ -258,6 +293,8 @@ void JobScheduler::end(Job& j, const WorkerEnd* how, std::vector<json>& events) 
   in_flight_.erase(j.id);
   j.in_flight = false;
   j.worker_token_sha.clear();  // the worker's token dies with its job
+  std::error_code tmp_ec;
+  fs::remove_all(job_dir(j.id) / "tmp", tmp_ec);  // a sandboxed job's /tmp (sandbox.h)
   j.bytes = dir_bytes(job_dir(j.id));
   if (j.cancelled) {  // already cancelled (state, event): only its size is new
     save(j);
@@ -277,7 +314,7 @@ void JobScheduler::end(Job& j, const WorkerEnd* how, std::vector<json>& events) 
     return;
   }
   if (how) {
-    const WorkerOutcome r = read_worker_outcome(job_dir(j.id), *how, {config_.timeout_s, config_.memory_mb});
+    const WorkerOutcome r = read_worker_outcome(job_dir(j.id), *how, limits_of_workers());
     if (r.done) {
       j.state = JobState::done;
       j.artifacts = r.artifacts;

@@ -33,10 +33,13 @@
 #include "jobs/job.h"
 #include "jobs/job_store.h"
 #include "jobs/slurm_config.h"
+#include "jobs/worker_result.h"
 #include "mesh_service.h"
 #include "quota.h"
 
 namespace cgview::server {
+
+class Sandbox;
 
 struct JobConfig {
   std::filesystem::path worker;    // the cgview-worker executable
@@ -48,6 +51,8 @@ struct JobConfig {
   QuotaConfig quotas;              // per-user storage and concurrent-job limits
   std::string executor = "local";  // or "slurm"
   SlurmConfig slurm;
+  // Where local workers start (sandbox.h); nullptr: plain child processes.
+  std::shared_ptr<const Sandbox> sandbox;
 };
 
 // A worker's request with a token that is not its job's (or the job ended): 401.
@@ -81,6 +86,8 @@ class JobScheduler : private JobLookup {
 
   // GET /api/v1/algorithms: the algorithms a client may run (test ones hidden).
   nlohmann::json algorithms_json() const { return admission_.algorithms_json(); }
+  // How a request's "plugin" is found (plugin_service.h); set before start.
+  void set_plugin_resolver(PluginResolver r) { admission_.set_plugin_resolver(std::move(r)); }
   // Admits and queues a job (admission.h says what it checks); the job.
   // Throws as Admission::admit does, or QuotaExceeded.
   // Data another tool made, stored as the artifact of a done job of the
@@ -93,8 +100,9 @@ class JobScheduler : private JobLookup {
   using DataReader = std::function<std::pair<nlohmann::json, std::vector<std::string>>(const std::filesystem::path&)>;
   nlohmann::json import_data(const std::string& file_name, const nlohmann::json& inputs, const DataReader& read,
                              const Caller& caller);
+  // `system`: the server's own job (a plugin build), which may run a hidden system algorithm.
   nlohmann::json submit(const nlohmann::json& request, const Caller& caller = Caller::local(),
-                        std::vector<std::string>* new_meshes = nullptr);
+                        std::vector<std::string>* new_meshes = nullptr, bool system = false);
   // The jobs the caller may see (their own and those shared with them; an
   // admin's: all); get, cancel and artifact answer nullopt or
   // std::out_of_range for any other.
@@ -155,6 +163,8 @@ class JobScheduler : private JobLookup {
   // it, or nullopt with job.error set (under mutex_).
   std::optional<LaunchSpec> prepare(Job& job);
   LaunchSpec spec(const Job& job) const;
+  // The limits its workers run under, for the messages of their failures.
+  WorkerLimits limits_of_workers() const;
   // Every input of the job by name -> its file on this machine; "" with
   // *error set when one is gone (under mutex_).
   std::optional<nlohmann::json> input_files(const Job& job, std::string* error) const;

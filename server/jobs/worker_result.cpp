@@ -1,5 +1,6 @@
 #include "jobs/worker_result.h"
 
+#include <csignal>
 #include <cstdio>
 
 #include "child_process.h"
@@ -76,6 +77,8 @@ WorkerOutcome read_worker_outcome(const fs::path& dir, const WorkerEnd& end, con
     out.error = "exceeded its memory limit of " + std::to_string(limits.memory_mb) + " MB";
   } else if (end.how == How::exited && end.code == 4) {
     out.error = "the server's storage is full: the job's results could not be written";
+  } else if (end.how == How::signaled && end.signal == SIGXFSZ && limits.file_mb > 0) {
+    out.error = "wrote a file over its file-size limit of " + std::to_string(limits.file_mb) + " MB";
   } else if (end.how == How::signaled) {
     out.error = "killed by signal " + signal_name(end.signal);
   } else if (end.how == How::node_failed) {
@@ -86,6 +89,23 @@ WorkerOutcome read_worker_outcome(const fs::path& dir, const WorkerEnd& end, con
     out.error = "the worker could not be started";
   } else {
     out.error = text.empty() ? "the worker exited with status " + std::to_string(end.code) : text;
+  }
+  // What the system answered inside the sandbox, said as the rule it met.
+  if (!out.done && limits.sandboxed) {
+    const std::pair<const char*, std::string> hints[] = {
+        {"Read-only file system", "the sandbox: a job writes only in its own directory"},
+        {"Network is unreachable", "the sandbox: a job has no network"},
+        {"Connection refused", "the sandbox: a job has no network"},
+        {"Resource temporarily unavailable",
+         "the sandbox's process limit: " + std::to_string(limits.processes) + " processes and threads"},
+        {"No such file or directory", "the sandbox: the server's data and other jobs are not visible to a job"},
+        {"Permission denied", "the sandbox: a job reads only its inputs"},
+    };
+    for (const auto& [what, hint] : hints)
+      if (out.error.find(what) != std::string::npos) {
+        out.error += " (" + hint + ")";
+        break;
+      }
   }
   return out;
 }

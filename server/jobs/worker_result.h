@@ -24,6 +24,11 @@ struct WorkerOutcome {
 struct WorkerLimits {
   double timeout_s = 0;
   std::size_t memory_mb = 0;
+  // Where it ran in the sandbox (sandbox.h): its process and file-size
+  // limits, so that a failure the sandbox caused says so.
+  bool sandboxed = false;
+  int processes = 0;
+  std::size_t file_mb = 0;
 };
 
 WorkerOutcome read_worker_outcome(const std::filesystem::path& dir, const WorkerEnd& end, const WorkerLimits& limits);

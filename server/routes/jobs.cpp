@@ -5,6 +5,7 @@
 #include "io/parse_json.h"
 #include "jobs/scheduler.h"
 #include "mesh_service.h"
+#include "plugin_service.h"
 #include "store.h"
 
 namespace cgview::server {
@@ -27,8 +28,13 @@ void add_job_routes(Routes& routes, const RouteContext& ctx) {
                     "/api/v1/algorithms",
                     "The algorithms a job may run, with a JSON Schema of their parameters",
                     {},
-                    [&ctx](const Params&, const HttpRequest&, const Caller&) {
-                      return json_response(200, ctx.jobs().algorithms_json());
+                    [&ctx](const Params&, const HttpRequest&, const Caller& caller) {
+                      json list = ctx.jobs().algorithms_json();
+                      // The caller's plugins' algorithms too, each with "plugin": its id.
+                      if (ctx.config.plugins)
+                        for (const auto& a : ctx.config.plugins->algorithms_json(caller))
+                          list["algorithms"].push_back(a);
+                      return json_response(200, list);
                     },
                     false});
   routes.push_back(

@@ -70,6 +70,8 @@ void add_job_routes(Routes& routes, const RouteContext& ctx);
 void add_data_routes(Routes& routes, const RouteContext& ctx);
 // /api/v1/worker/jobs/...: a job's worker on a node without the data directory.
 void add_worker_routes(Routes& routes, const RouteContext& ctx);
+// /api/v1/plugins...: a user's own algorithms (plugin_service.h).
+void add_plugin_routes(Routes& routes, const RouteContext& ctx);
 // /api/v1/health, /api/v1/me and /metrics.
 void add_account_routes(Routes& routes, const RouteContext& ctx);
 

@@ -21,8 +21,16 @@ void RouterFixture::open(const std::filesystem::path& store_dir, std::optional<s
   if (jobs) {
     jobs->worker = bin("cgview-worker-test");
     jobs_ = std::make_unique<server::JobScheduler>(*meshes_, std::move(*jobs));
+    // Users' plugins beside the jobs, as the server has them (unsandboxed here:
+    // the router's tests build none).
+    plugins_ = std::make_unique<server::PluginService>(*store_, *jobs_, server::PluginConfig{});
+    jobs_->set_plugin_resolver(
+        [p = plugins_.get()](const std::string& id, const std::string& algorithm, const server::Caller& caller) {
+          return p->resolve(id, algorithm, caller);
+        });
     jobs_->start();
     rc.jobs = jobs_.get();
+    rc.plugins = plugins_.get();
   }
   router_ = std::make_unique<server::Router>(*meshes_, std::move(rc));
 }
@@ -38,7 +46,9 @@ void RouterFixture::open_with_users(const std::filesystem::path& dir, server::Jo
 
 void RouterFixture::TearDown() {
   router_.reset();
+  if (plugins_) plugins_->stop();
   jobs_.reset();
+  plugins_.reset();
   meshes_.reset();
   store_.reset();
   std::error_code ec;

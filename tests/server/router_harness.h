@@ -13,6 +13,7 @@
 
 #include "jobs/scheduler.h"
 #include "mesh_service.h"
+#include "plugin_service.h"
 #include "router.h"
 #include "server_harness.h"  // read_bytes
 #include "store.h"
@@ -42,6 +43,7 @@ class RouterFixture : public ::testing::Test {
   std::unique_ptr<server::Store> store_;
   std::unique_ptr<server::MeshService> meshes_;
   std::unique_ptr<server::JobScheduler> jobs_;
+  std::unique_ptr<server::PluginService> plugins_;
   std::unique_ptr<server::Router> router_;
   std::string alice_, bob_;
 };

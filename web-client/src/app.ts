@@ -12,6 +12,7 @@ import { JobsController } from './controllers/jobs.ts';
 import { MeshLoader } from './controllers/mesh_loader.ts';
 import { MeshesController } from './controllers/meshes.ts';
 import { SceneController } from './controllers/scene.ts';
+import { UndoOffers } from './controllers/undo.ts';
 import { ViewLinks } from './controllers/view_links.ts';
 import { Kinds } from './kinds/registry.ts';
 import { AccountPanel } from './panels/account.ts';
@@ -19,6 +20,7 @@ import { DisplayPanel } from './panels/display.ts';
 import { byId } from './panels/dom.ts';
 import { MessagesPanel } from './panels/messages.ts';
 import { NavigationPanel } from './panels/navigation.ts';
+import { installPlayground } from './panels/playground_toggle.ts';
 import { ProgressPanel } from './panels/progress.ts';
 import { SelectionPanel } from './panels/selection.ts';
 import { UploadControl } from './panels/upload.ts';
@@ -58,6 +60,7 @@ export class App {
       store.update({ message: { level: 'error', text } });
     });
     const notice = (text: string): void => store.update({ message: { level: 'notice', text } });
+    const undo = new UndoOffers(store, hooks);
     const textures = new MeshTextures(
       byId('texture-panel'),
       (onDrawn) => viewer.redraw(onDrawn),
@@ -68,7 +71,7 @@ export class App {
     store.subscribe(
       (s) => s.message,
       (m) => {
-        if (m) messages[m.level](m.text);
+        if (m) messages.show(m);
       },
     );
     const status = byId('connection');
@@ -94,8 +97,9 @@ export class App {
       },
       (enabled) => navigation.setEnabled(enabled),
     );
-    selectionPanel = new SelectionPanel(byId('selection'), selectionTool, () => navigation.mode !== 'fly');
+    selectionPanel = new SelectionPanel(byId('selection'), selectionTool, () => navigation.mode !== 'fly', undo);
     hooks.camera = () => navigation.state();
+    hooks.clipping = () => ({ near: viewer.camera.near, far: viewer.camera.far });
     hooks.selectionView = () => selectionTool.view();
     const display = new DisplayPanel(byId('display'), viewer, {
       setFieldRange: (range) => app.kinds.field.setRange(range),
@@ -103,7 +107,20 @@ export class App {
       others: () => app.scene.others(),
       colorOf: (object) => app.scene.entryOf(object)?.color ?? null,
     });
-    const ctx: AppContext = { store, hooks, viewer, socket: this.socket, display, progress: new ProgressPanel(byId('progress')), textures, selectionTool, app, error, notice };
+    const ctx: AppContext = {
+      store,
+      hooks,
+      viewer,
+      socket: this.socket,
+      display,
+      progress: new ProgressPanel(byId('progress')),
+      textures,
+      selectionTool,
+      undo,
+      app,
+      error,
+      notice,
+    };
     app.account = new AccountController(store, new AccountPanel(byId('account')));
     app.loader = new MeshLoader(ctx, new DracoDecoder());
     app.meshes = new MeshesController(ctx);
@@ -117,6 +134,7 @@ export class App {
       display.screenshot(`cgview-${name}.png`, (blob) => (hooks.lastScreenshot = blob ? { bytes: blob.size } : null));
     });
     byId('copy-link').addEventListener('click', () => this.links.copy());
+    installPlayground(ctx);
   }
 
   async start(): Promise<void> {

@@ -24,6 +24,8 @@ export interface TestHooks {
   timings: LoadTimings | null;
   /** Frames rendered so far. */
   frames: number;
+  /** "Undo" offers not yet ended (controllers/undo.ts): what they hold back (a DELETE) is not sent yet. */
+  pendingUndo: number;
   /** The last error message shown in the page, or null. */
   lastError: string | null;
   /**
@@ -55,6 +57,8 @@ export interface TestHooks {
   selection?: { meshId: string | null; ready: boolean; kind: string; count: number; ids: number[]; area: number | null };
   /** The camera now: position, view direction, up, orbit centre, navigation mode. */
   camera?: () => CameraState;
+  /** The camera's near and far planes as the last frame drew with them. */
+  clipping?: () => { near: number; far: number };
   /** The camera's view for the selection: canvas size in CSS pixels, projection × view (column-major). */
   selectionView?: () => { width: number; height: number; viewProjection: number[] };
   /** The display mode, material and overlays of the shown object, set after the first frame with each change (panels/display.ts). */
@@ -102,6 +106,7 @@ export function installTestHooks(orbit: TestHooks['orbit']): TestHooks {
     lastLoaded: null,
     timings: null,
     frames: 0,
+    pendingUndo: 0,
     lastError: null,
     lastField: null,
     lastVoxels: null,

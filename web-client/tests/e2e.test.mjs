@@ -14,7 +14,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { chromiumBin, dist, isMeshOrange, launchBrowser, pngPixels, repo, serverBin, startServer } from './harness.mjs';
+import { chromiumBin, dist, isMeshOrange, launchBrowser, pngPixels, repo, serverBin, sleep, startServer } from './harness.mjs';
 
 const elephant = path.join(repo, 'build', 'samples', 'elephant.off');
 const artifacts = path.join(repo, 'build', 'test-artifacts');
@@ -234,7 +234,10 @@ test('the delete button removes the shown mesh and clears the view', async () =>
   await item.waitFor({ state: 'detached', timeout: 10000 });
   await page.waitForFunction(() => window.__cgview.lastLoaded === null);
   assert.match(await page.locator('#report').innerText(), /Choose a mesh/);
-  const list = await (await fetch(`${baseUrl}/api/v1/meshes`)).json();
-  assert.ok(!list.meshes.some((m) => m.id === id), 'the server no longer has it');
+  // The server is asked once "Undo" is no longer offered.
+  await page.waitForFunction(() => window.__cgview.pendingUndo === 0, null, { timeout: 20000 });
+  const gone = async () => !(await (await fetch(`${baseUrl}/api/v1/meshes`)).json()).meshes.some((m) => m.id === id);
+  for (let i = 0; i < 50 && !(await gone()); ++i) await sleep(200);
+  assert.ok(await gone(), 'the server no longer has it');
   assert.deepEqual(pageProblems, [], describeProblems());
 });

@@ -45,7 +45,8 @@ async function failure(response: Response): Promise<ApiError> {
   return new ApiError(response.status, response.statusText || 'error', text.slice(0, 300));
 }
 
-async function request<T>(path: string, init?: RequestInit): Promise<T> {
+/** A JSON request to the API (BASE + path) with the caller's token; rejects with an ApiError. */
+export async function request<T>(path: string, init?: RequestInit): Promise<T> {
   let response: Response;
   try {
     response = await authFetch(BASE + path, init);
@@ -86,7 +87,8 @@ export function uploadMesh(name: string, body: Blob | ArrayBuffer, format?: stri
 }
 
 export function deleteMesh(id: string): Promise<void> {
-  return request<void>(`/meshes/${encodeURIComponent(id)}`, { method: 'DELETE' });
+  // keepalive: a delete held back for "Undo" is sent as the page goes away, and must outlive it.
+  return request<void>(`/meshes/${encodeURIComponent(id)}`, { method: 'DELETE', keepalive: true });
 }
 
 /** The URL that downloads a mesh converted to `format` (obj, off, ply, stl, glb, drc). */
@@ -102,12 +104,16 @@ export async function listAlgorithms(): Promise<Algorithm[]> {
   return body.algorithms;
 }
 
-/** Submits a job: 201 with the Job (already `done`, `cached: true`, when the result is stored). */
-export function submitJob(algorithm: string, inputs: Record<string, JobInput>, params: Record<string, unknown>): Promise<Job> {
+/**
+ * Submits a job: 201 with the Job (already `done`, `cached: true`, when the
+ * result is stored). `plugin`: the id of the user's plugin the algorithm
+ * comes from (its names are the user's own, so the server needs it).
+ */
+export function submitJob(algorithm: string, inputs: Record<string, JobInput>, params: Record<string, unknown>, plugin?: string): Promise<Job> {
   return request<Job>('/jobs', {
     method: 'POST',
     headers: { 'Content-Type': 'application/json' },
-    body: JSON.stringify({ algorithm, inputs, params }),
+    body: JSON.stringify(plugin ? { algorithm, plugin, inputs, params } : { algorithm, inputs, params }),
   });
 }
 
@@ -199,8 +205,8 @@ export function getMe(): Promise<Me> {
   return request<Me>('/me');
 }
 
-/** Shares a mesh or a job with users and/or everyone, or takes that back (add false). */
-export function setSharing(kind: 'meshes' | 'jobs', id: string, who: { users?: string[]; everyone?: boolean }, add: boolean): Promise<Sharing> {
+/** Shares a mesh, a job or a plugin with users and/or everyone, or takes that back (add false). */
+export function setSharing(kind: 'meshes' | 'jobs' | 'plugins', id: string, who: { users?: string[]; everyone?: boolean }, add: boolean): Promise<Sharing> {
   return request<Sharing>(`/${kind}/${encodeURIComponent(id)}/${add ? 'share' : 'unshare'}`, {
     method: 'POST',
     headers: { 'Content-Type': 'application/json' },

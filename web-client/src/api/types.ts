@@ -127,6 +127,8 @@ export interface Algorithm {
   inputs: Array<{ name: string; kind: string; description?: string }>;
   outputs: Array<{ name: string; kind: string }>;
   params: ParamsSchema;
+  /** The id of the caller's plugin it comes from (absent: built in); a job of it names the plugin. */
+  plugin?: string;
 }
 
 export type JobState = 'queued' | 'running' | 'done' | 'failed' | 'cancelled' | 'interrupted';

@@ -1,7 +1,7 @@
 // Side by side: the fields of one mesh (each in a pane with its colour map
 // and legend), the skeletons drawn over it, or the scene's objects; all
 // through the one camera (viewer/comparison.ts). "Leave comparison" goes back
-// to one view.
+// to one view, and offers the comparison back for a few seconds.
 import type * as THREE from 'three';
 import { jobMeshId } from '../api/types.ts';
 import { byId } from '../panels/dom.ts';
@@ -28,6 +28,8 @@ export class CompareController {
   private readonly leaveButton: HTMLButtonElement;
   /** The comparison being prepared: a later one, or leaving, makes it stale. */
   private token = 0;
+  /** Shows the comparison now shown (or last shown) again: what "Undo" after leaving it does. */
+  private again: (() => void) | null = null;
 
   constructor(ctx: AppContext) {
     this.ctx = ctx;
@@ -36,7 +38,7 @@ export class CompareController {
       ctx.hooks.lastCompare = meshId && compared.length ? { meshId, panes: panes.map((p, i) => ({ ...compared[i]!, map: p.map, range: p.range })) } : null;
     });
     this.leaveButton = byId<HTMLButtonElement>('leave-compare');
-    this.leaveButton.addEventListener('click', () => this.leave());
+    this.leaveButton.addEventListener('click', () => this.leaveWithUndo());
   }
 
   /** "Compare": every scalar field of the job side by side (at most MAX_PANES). */
@@ -74,6 +76,7 @@ export class CompareController {
       const loaded = await Promise.all(sources.map((s) => field.fetch(s.job.id, s.artifact, meshId)));
       if (token !== this.token || this.ctx.store.get().selectedId !== meshId) return;
       this.take(list);
+      this.again = () => void this.compareFields(list);
       this.view.show(
         loaded[0]!.ply,
         loaded.map(({ data }, i) => ({
@@ -104,6 +107,7 @@ export class CompareController {
       const ply = await app.loader.ply(meshId);
       if (token !== this.token || store.get().selectedId !== meshId) return;
       this.take(list);
+      this.again = () => void this.compareObjects(list, build, what);
       this.view.showObjects(build(ply));
       this.leaveButton.hidden = false;
     } catch (e) {
@@ -120,6 +124,27 @@ export class CompareController {
     this.ctx.app.kinds.field.hideLegend();
     this.view.showObjects(items, false);
     this.leaveButton.hidden = false;
+    this.again = () => this.ctx.app.scene.sideBySide();
+  }
+
+  /**
+   * The user's way back to one view ("Leave comparison", the scene's side
+   * by side turned off): leaves, and offers the comparison back for a few
+   * seconds, on the same mesh and while no other comparison has begun.
+   */
+  leaveWithUndo(): void {
+    const { store } = this.ctx;
+    const { compared, scenePanes, selectedId } = store.get();
+    const again = this.again;
+    if (!compared.length && !scenePanes) return;
+    this.leave();
+    if (!again) return;
+    this.ctx.undo.offer('Left the comparison.', {
+      undo: () => {
+        const now = store.get();
+        if (now.selectedId === selectedId && !now.compared.length && !now.scenePanes) again();
+      },
+    });
   }
 
   /** Back to one view: the field drawn before the comparison (if any) with its legend. */

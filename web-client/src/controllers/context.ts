@@ -19,6 +19,7 @@ import type { JobsController } from './jobs.ts';
 import type { MeshLoader } from './mesh_loader.ts';
 import type { MeshesController } from './meshes.ts';
 import type { SceneController } from './scene.ts';
+import type { UndoOffers } from './undo.ts';
 
 export interface Controllers {
   account: AccountController;
@@ -39,6 +40,8 @@ export interface AppContext {
   readonly progress: ProgressPanel;
   readonly textures: MeshTextures;
   readonly selectionTool: SelectionTool;
+  /** Offers "Undo" for what destroys (a delete, a cleared selection, a comparison left). */
+  readonly undo: UndoOffers;
   readonly app: Controllers;
   /** Shows an error in the page (and in the hooks' lastError). */
   error(text: string): void;

@@ -15,6 +15,8 @@ import { artifactKey, withEntry } from '../state/app_state.ts';
 import { describe, jobOf, type AppContext } from './context.ts';
 
 const FINAL = new Set(['done', 'failed', 'cancelled', 'interrupted']);
+/** Jobs the page runs for itself (a plugin's build): not listed, their artifacts not fetched. */
+const HIDDEN = new Set(['plugin_build']);
 
 export class JobsController {
   private readonly ctx: AppContext;
@@ -28,7 +30,7 @@ export class JobsController {
     this.ctx = ctx;
     const { store, app } = ctx;
     this.algorithms = new AlgorithmsPanel(byId('algorithms'), {
-      run: (algorithm, params, inputs) => this.run(algorithm, params, inputs),
+      run: async (algorithm, params, inputs) => void (await this.run(algorithm, params, inputs)),
       selection: (kind) => this.selectionFor(kind),
     });
     const panel = new JobsPanel(
@@ -49,7 +51,7 @@ export class JobsController {
       () => {
         const s = store.get();
         panel.render({
-          jobs: [...s.jobs.values()].sort((a, b) => String(a.created ?? '').localeCompare(String(b.created ?? ''))),
+          jobs: [...s.jobs.values()].filter((j) => !HIDDEN.has(j.algorithm)).sort((a, b) => String(a.created ?? '').localeCompare(String(b.created ?? ''))),
           meshName: (id) => s.meshes.find((m) => m.id === id)?.name ?? null,
           // The single field is hidden while fields are compared.
           shown: s.field && !s.compared.length ? s.field : null,
@@ -115,9 +117,9 @@ export class JobsController {
    * Submits a job on the selected mesh, or on the job output chosen with "Run
    * on this" (a chain: the server stores that output as a mesh of its own and
    * announces it); `extra` names the meshes of the algorithm's other inputs.
-   * Rejects with the server's detail (shown beside the form).
+   * Resolves with the Job submitted; rejects with the server's detail (shown beside the form).
    */
-  async run(algorithm: Algorithm, params: Record<string, unknown>, extra: Record<string, string> = {}): Promise<void> {
+  async run(algorithm: Algorithm, params: Record<string, unknown>, extra: Record<string, string> = {}): Promise<Job> {
     const { store, app } = this.ctx;
     const target = store.get().runTarget;
     const mesh = app.meshes.selected();
@@ -133,7 +135,7 @@ export class JobsController {
     };
     let job: Job;
     try {
-      job = await submitJob(algorithm.name, inputs, params);
+      job = await submitJob(algorithm.name, inputs, params, algorithm.plugin);
     } catch (e) {
       throw new Error(describe(e));
     }
@@ -148,6 +150,7 @@ export class JobsController {
     // A job_done event may have come before this answer: upsert keeps the later state.
     this.upsert(job);
     app.account.refreshSoon(); // one more job in use
+    return job;
   }
 
   /**
@@ -186,7 +189,7 @@ export class JobsController {
    * The selection to send as a job's faces or vertices parameter: its ids (the
    * stored mesh's), when it is of that kind and on the mesh the job runs on.
    */
-  private selectionFor(kind: string): number[] {
+  selectionFor(kind: string): number[] {
     const { selectionTool, store, app } = this.ctx;
     const state = selectionTool.state();
     if (store.get().runTarget || state.meshId !== store.get().selectedId || state.kind !== kind) return [];
@@ -242,6 +245,7 @@ export class JobsController {
 
   /** What a job's new state brings: a done job's artifacts to their kinds, and the field of a job submitted here shown. */
   private settled(job: Job): void {
+    if (HIDDEN.has(job.algorithm)) return;
     if (job.state === 'done') {
       this.ctx.app.kinds.load(job);
       if (this.autoShow.delete(job.id)) {

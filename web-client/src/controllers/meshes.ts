@@ -1,7 +1,9 @@
 // The stored meshes: the list (kept up to date from the server's mesh_*
 // events), choosing the one shown, uploads (data files among them go to the
 // jobs controller as imports), deletes and sharing. The mesh list and the
-// report panel render from the state.
+// report panel render from the state. A delete takes the mesh away at once
+// and offers "Undo" for a few seconds (controllers/undo.ts); the server is
+// asked to delete it only then.
 import { dataKindOf } from '../api/data_files.ts';
 import { deleteMesh, listMeshes, uploadMesh } from '../api/rest.ts';
 import { jobMeshId, type Job, type Mesh } from '../api/types.ts';
@@ -16,13 +18,15 @@ import { describe, type AppContext } from './context.ts';
 export class MeshesController {
   private readonly ctx: AppContext;
   private readonly list: MeshListPanel;
+  /** Meshes deleted here whose DELETE is held back or on its way: the server's list still has them, the page does not. */
+  private readonly deleting = new Set<string>();
 
   constructor(ctx: AppContext) {
     this.ctx = ctx;
     this.list = new MeshListPanel(byId('mesh-list'), {
       select: (id) => this.select(id),
       addToScene: (id) => void ctx.app.scene.add(id),
-      remove: (id) => void this.remove(id),
+      remove: (id) => this.remove(id),
       share: (id) => openShareForm('meshes', id, this.mesh(id)?.name ?? id),
       mayChange: (owner) => ctx.app.account.mayChange(owner),
     });
@@ -49,7 +53,7 @@ export class MeshesController {
   async refresh(): Promise<void> {
     const { store } = this.ctx;
     try {
-      const meshes = await listMeshes();
+      const meshes = (await listMeshes()).filter((m) => !this.deleting.has(m.id));
       store.update({ meshes });
       const id = store.get().selectedId;
       if (id && !meshes.some((m) => m.id === id)) this.forget(id);
@@ -111,18 +115,52 @@ export class MeshesController {
     if (meshId && this.ctx.store.get().selectedId !== meshId && this.mesh(meshId)) this.select(meshId);
   }
 
-  async remove(id: string): Promise<void> {
+  /**
+   * Takes the mesh away (from the list, the view and the scene) and offers
+   * it back for a few seconds; then deletes it on the server. Undone, it
+   * comes back as it was shown: alone or with the scene around it, or beside
+   * the mesh shown.
+   */
+  remove(id: string): void {
     const mesh = this.mesh(id);
+    if (!mesh) return;
+    const { store, app } = this.ctx;
+    const shown = store.get().selectedId === id;
+    const scene = store.get().scene.map(({ object: _, ...entry }) => entry);
+    this.deleting.add(id);
+    this.forget(id);
+    this.ctx.undo.offer(`Deleted ${mesh.name}.`, {
+      undo: () => {
+        this.deleting.delete(id);
+        this.upsert(mesh);
+        const now = store.get().scene;
+        if (shown && !store.get().selectedId) {
+          this.select(id);
+          for (const entry of scene.slice(1)) if (this.mesh(entry.mesh)) void app.scene.add(entry.mesh, entry);
+        } else if (now.length && now[0]!.mesh === scene[0]?.mesh) {
+          for (const entry of scene.slice(1)) if (entry.mesh === id) void app.scene.add(id, entry);
+        }
+      },
+      commit: () => void this.destroy(id, mesh.name),
+    });
+  }
+
+  /** Deletes the mesh on the server; one that could not be deleted comes back into the list. */
+  private async destroy(id: string, name: string): Promise<void> {
     try {
       await deleteMesh(id);
-      this.forget(id);
     } catch (e) {
-      this.ctx.error(`Cannot delete ${mesh?.name ?? id}: ${describe(e)}`);
+      this.ctx.error(`Cannot delete ${name}: ${describe(e)}`);
+      this.deleting.delete(id);
+      await this.refresh();
+    } finally {
+      this.deleting.delete(id);
     }
   }
 
   /** A mesh added or changed on the server. */
   upsert(mesh: Mesh): void {
+    if (this.deleting.has(mesh.id)) return;
     this.ctx.app.loader.forgetPly(mesh.id);
     this.ctx.store.update((s) => {
       const i = s.meshes.findIndex((m) => m.id === mesh.id);

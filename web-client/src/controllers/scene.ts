@@ -1,7 +1,8 @@
 // The scene: several meshes at once. The selected mesh comes first (whatever
 // the viewer shows for it: its surface, a field on it, an animation), then
 // the meshes added beside it with "+", each with its visibility, colour and
-// transform; side by side, one per pane, on demand.
+// transform; side by side, one per pane, on demand. An object taken out with
+// the Scene panel's ✕ is offered back for a few seconds.
 import type * as THREE from 'three';
 import type { Mesh } from '../api/types.ts';
 import { byId } from '../panels/dom.ts';
@@ -21,10 +22,10 @@ export class SceneController {
     this.ctx = ctx;
     const panel = new ScenePanel(byId('scene'), {
       change: (i, patch) => this.change(i, patch),
-      remove: (i) => this.remove(i),
+      remove: (i) => this.removeWithUndo(i),
       fitAll: () => ctx.viewer.fitAll(),
       pick: (i) => this.pick(i),
-      sideBySide: (on) => (on ? this.sideBySide() : ctx.app.compare.leave()),
+      sideBySide: (on) => (on ? this.sideBySide() : ctx.app.compare.leaveWithUndo()),
     });
     ctx.store.subscribe(
       (s) => [s.scene, s.scenePanes, s.picked],
@@ -143,6 +144,20 @@ export class SceneController {
     if (wasPanes) app.compare.leave();
     if (entry.object) viewer.removeExtra(entry.object);
     if (wasPanes && this.entries.length >= 2) this.sideBySide();
+  }
+
+  /** The Scene panel's ✕: takes the object out and offers it back, with its colour and transform, for a few seconds. */
+  private removeWithUndo(index: number): void {
+    const entry = this.entries[index];
+    if (!entry || index === 0) return;
+    const first = this.entries[0]!.mesh;
+    const { object: _, ...state } = entry;
+    this.remove(index);
+    this.ctx.undo.offer(`${entry.name} removed from the scene.`, {
+      undo: () => {
+        if (this.entries[0]?.mesh === first && this.ctx.app.meshes.mesh(state.mesh)) void this.add(state.mesh, state);
+      },
+    });
   }
 
   /** The scene's objects side by side, one per pane, all through the one camera; framed together. */

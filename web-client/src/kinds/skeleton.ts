@@ -1,9 +1,11 @@
 // `skeleton` artifacts: curve skeletons drawn over their mesh (fetched as
 // JSON), each in its own colour so that skeletons from several algorithms
 // compare at a glance (the paper's Figure 5); a table of their metrics and of
-// each one's distance to the first, side by side on demand; and skeleton
-// files made by other tools, attached to the mesh shown (the table's panel
-// also has the button that loads a field's values for it).
+// each one's distance to the first, side by side on demand; through the
+// surface or hidden by it ("X-ray", on at first: a curve skeleton lies inside
+// its mesh); and skeleton files made by other tools, attached to the mesh
+// shown (the table's panel also has the button that loads a field's values
+// for it).
 import * as THREE from 'three';
 import { fetchArtifactJson, submitJob } from '../api/rest.ts';
 import { parseSkeleton, type SkeletonData } from '../api/skeleton.ts';
@@ -15,7 +17,7 @@ import { byId, el } from '../panels/dom.ts';
 import type { JobsActions, JobsView } from '../panels/jobs.ts';
 import { SkeletonsPanel } from '../panels/skeletons.ts';
 import { artifactKey, selectedMesh, splitKey } from '../state/app_state.ts';
-import { buildSkeleton, SKELETON_COLORS } from '../viewer/skeleton_renderer.ts';
+import { buildSkeleton, setSkeletonXray, SKELETON_COLORS } from '../viewer/skeleton_renderer.ts';
 import { buildPlainSurface, SURFACE_COLOR } from '../viewer/surface_renderer.ts';
 import type { ArtifactKind } from './kind.ts';
 
@@ -35,6 +37,10 @@ export class SkeletonKind implements ArtifactKind {
   private readonly drawn = new Map<string, DrawnSkeleton>();
   /** skeleton_distance jobs submitted for the comparison table, by `${first key}|${other key}` ('' while submitting). */
   private readonly distanceJobs = new Map<string, string>();
+  /** Whether skeletons show through the surface (the panel's "X-ray"). */
+  private xray = true;
+  /** The skeletons in the panes of the last side by side (the viewer disposes of them with the panes; x-ray on them then changes nothing seen). */
+  private paneSkeletons: THREE.Object3D[] = [];
 
   constructor(ctx: AppContext) {
     this.ctx = ctx;
@@ -44,6 +50,7 @@ export class SkeletonKind implements ArtifactKind {
       (file) => void this.loadFile(file),
       // Explicitly a field: a .ply is a mesh to the upload control.
       (file) => void ctx.app.jobs.importFile(file, 'scalar_field'),
+      (on) => this.setXray(on),
     );
     ctx.store.subscribe(
       (s) => [s.skeletons, s.jobs, s.metrics, selectedMesh(s) !== null],
@@ -85,7 +92,7 @@ export class SkeletonKind implements ArtifactKind {
       const palette = SKELETON_COLORS;
       const used = new Set([...this.drawn.values()].map((v) => v.color));
       const color = palette.find((c) => !used.has(c)) ?? palette[this.drawn.size % palette.length]!;
-      const object = buildSkeleton(data, color);
+      const object = buildSkeleton(data, color, this.xray);
       this.drawn.set(key, { object, data, color, nodes: data.nodes.length / 3, edges: data.edges.length / 2 });
       viewer.addExtra(object, () => this.report());
       this.publish();
@@ -124,18 +131,27 @@ export class SkeletonKind implements ArtifactKind {
     return this.ctx.app.jobs.importFile(file, this.kind);
   }
 
+  /** Shows every skeleton, over the mesh and in the panes, through the surface or hidden by it. */
+  private setXray(on: boolean): void {
+    this.xray = on;
+    for (const o of [...[...this.drawn.values()].map((s) => s.object), ...this.paneSkeletons]) setSkeletonXray(o, on);
+    this.ctx.viewer.redraw();
+  }
+
   /** The skeletons drawn, side by side: one pane each, over the plain surface, through the one camera. */
   private compare(): Promise<void> {
     const list = [...this.drawn].slice(0, MAX_PANES);
     return this.ctx.app.compare.compareObjects(
       list.map(([key]) => splitKey(key)),
-      (ply) =>
-        list.map(([key, s]) => {
+      (ply) => {
+        this.paneSkeletons = list.map(([, s]) => buildSkeleton(s.data, s.color, this.xray));
+        return list.map(([key, s], i) => {
           const group = new THREE.Group();
-          group.add(buildPlainSurface(ply.positions, ply.indices, SURFACE_COLOR), buildSkeleton(s.data, s.color));
+          group.add(buildPlainSurface(ply.positions, ply.indices, SURFACE_COLOR), this.paneSkeletons[i]!);
           const { jobId } = splitKey(key);
           return { key, title: jobOf(this.ctx, jobId)?.algorithm ?? jobId, object: group, color: s.color };
-        }),
+        });
+      },
       'the skeletons',
     );
   }

@@ -46,7 +46,8 @@ function stepFor(schema: ParamSchema): string {
   return 'any';
 }
 
-function control(name: string, schema: ParamSchema, id: string, selection: (kind: string) => number[]): { input: HTMLElement; read: () => unknown } {
+/** The input of one parameter (also the playground's form) and how to read its value. */
+export function control(name: string, schema: ParamSchema, id: string, selection: (kind: string) => number[]): { input: HTMLElement; read: () => unknown } {
   const kind = schema['x-cgview-selection'];
   if (typeof kind === 'string') {
     const box = el('input', { id, name, type: 'checkbox', 'data-param': name, 'data-selection': kind });

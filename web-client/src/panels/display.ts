@@ -5,6 +5,8 @@
 // later keeps the mode chosen. With several meshes in the scene, the mode and
 // material apply to every object of it, each in its own colour where the
 // scene gives one (panels/scene.ts); the overlays are of the shown (first) one.
+// A comparison's panes (fields or skeletons side by side) draw their surfaces
+// in the mode too (viewer.onPanesChange).
 import * as THREE from 'three';
 import { RoomEnvironment } from 'three/addons/environments/RoomEnvironment.js';
 import { applyDisplay, DEFAULT_DISPLAY, DISPLAY_MODES, isDefaultDisplay, isSurface, MATERIAL_PRESETS, sanitizeDisplay, type DisplaySettings } from '../viewer/display_modes.ts';
@@ -58,6 +60,8 @@ export class DisplayPanel {
   private overlays: OverlaySettings = { ...DEFAULT_OVERLAYS };
   private info: OverlayInfo = { size: null, boundaryEdges: null, nonManifoldEdges: null };
   private object: THREE.Object3D | null = null;
+  /** The surfaces of a comparison's panes (fields, skeletons over the mesh), drawn in the mode as the shown one is. */
+  private paneSurfaces: THREE.Mesh[] = [];
   /** The scene object whose overlays are drawn, when not the shown one. */
   private overlayObject: THREE.Object3D | null = null;
   private environment: THREE.Texture | null = null;
@@ -160,6 +164,7 @@ export class DisplayPanel {
     full.addEventListener('click', () => this.callbacks.setFieldRange(null));
 
     viewer.onShownChange((object) => this.attach(object));
+    viewer.onPanesChange((panes) => this.attachPanes(panes));
   }
 
   /** The settings, for the view link. */
@@ -224,7 +229,7 @@ export class DisplayPanel {
   }
 
   private targets(): THREE.Object3D[] {
-    return [...(this.object ? [this.object] : []), ...(this.callbacks.others?.() ?? [])];
+    return [...(this.object ? [this.object] : []), ...(this.callbacks.others?.() ?? []), ...this.paneSurfaces];
   }
 
   private readInputs(): void {
@@ -287,6 +292,12 @@ export class DisplayPanel {
     if (object && (!isDefaultDisplay(this.settings) || this.callbacks.colorOf?.(object))) this.applyTo(object);
     this.vertexColors.row.hidden = !(isSurface(object) && object.geometry.getAttribute('color') && !object.name.startsWith('scalar:'));
     this.refreshOverlays();
+  }
+
+  /** New panes of a comparison: their surfaces (a pane's object, or the surfaces in its group) are drawn in the mode too. */
+  private attachPanes(panes: readonly THREE.Object3D[]): void {
+    this.paneSurfaces = panes.flatMap((p) => (isSurface(p) ? [p] : p.children.filter(isSurface)));
+    if (!isDefaultDisplay(this.settings)) for (const o of this.paneSurfaces) this.applyTo(o);
   }
 
   private applyAll(): void {

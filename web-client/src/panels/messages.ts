@@ -1,4 +1,7 @@
-// Messages shown in the page: errors stay until dismissed, notices fade.
+// Messages shown in the page: errors stay until dismissed, notices fade. A
+// message may carry an action, a button ("Undo") that runs it and dismisses
+// the message.
+import type { Message } from '../state/app_state.ts';
 import { el } from './dom.ts';
 
 const MAX_SHOWN = 5;
@@ -10,17 +13,23 @@ export class MessagesPanel {
     this.root = root;
   }
 
-  error(text: string): void {
-    this.add('error', text, 0);
+  /** Shows a message of the state, with its action. */
+  show(m: Message): void {
+    this.add(m.level, m.text, m.level === 'error' ? 0 : (m.timeoutMs ?? 4000), m.action);
   }
 
-  notice(text: string): void {
-    this.add('notice', text, 4000);
-  }
-
-  private add(kind: 'error' | 'notice', text: string, timeoutMs: number): void {
+  private add(kind: 'error' | 'notice', text: string, timeoutMs: number, action?: Message['action']): void {
     const close = el('button', { type: 'button', class: 'close', 'aria-label': 'Dismiss' }, '✕');
-    const item = el('div', { class: `message ${kind}`, role: kind === 'error' ? 'alert' : 'status' }, el('span', { class: 'text' }, text), close);
+    const item = el('div', { class: `message ${kind}`, role: kind === 'error' ? 'alert' : 'status' }, el('span', { class: 'text' }, text));
+    if (action) {
+      const button = el('button', { type: 'button', class: 'button small message-action' }, action.label);
+      button.addEventListener('click', () => {
+        item.remove();
+        action.run();
+      });
+      item.append(button);
+    }
+    item.append(close);
     close.addEventListener('click', () => item.remove());
     this.root.append(item);
     while (this.root.children.length > MAX_SHOWN) this.root.firstElementChild!.remove();

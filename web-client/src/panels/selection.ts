@@ -1,6 +1,9 @@
 // The selection panel: the tool's switch, faces or vertices, box or lasso,
 // visible only or through, grow / shrink / invert / clear, and the readout
-// (count, the first ids, the area of the selected faces).
+// (count, the first ids, the area of the selected faces). A selection
+// emptied by the user (Clear, a click on nothing, the other kind chosen)
+// can be given back with the "Undo" its notice offers.
+import type { UndoOffers } from '../controllers/undo.ts';
 import type { SelectionState, SelectionTool } from '../viewer/selection_tool.ts';
 import type { SelectionKind } from '../viewer/selection.ts';
 import { typing } from '../viewer/navigation.ts';
@@ -12,10 +15,22 @@ export class SelectionPanel {
   private readonly readout: HTMLElement;
   private readonly toggle: HTMLButtonElement;
   private readonly tool: SelectionTool;
+  private readonly root: HTMLElement;
+  /** The selection as last rendered: an emptied one is offered back. */
+  private last: Pick<SelectionState, 'meshId' | 'kind' | 'ids'> | null = null;
 
-  /** shortcut(): whether the S key may toggle the tool now (not in fly mode, where S moves back). */
-  constructor(root: HTMLElement, tool: SelectionTool, shortcut: () => boolean = () => true) {
+  /**
+   * shortcut(): whether the S key may toggle the tool now (not in fly mode, where S moves back);
+   * undo: offers an emptied selection back (none: it is gone).
+   */
+  constructor(
+    root: HTMLElement,
+    tool: SelectionTool,
+    shortcut: () => boolean = () => true,
+    private readonly undo: UndoOffers | null = null,
+  ) {
     this.tool = tool;
+    this.root = root;
     this.toggle = el('button', { type: 'button', class: 'button', id: 'select-tool', 'aria-pressed': 'false', title: 'Select with the mouse (S); the camera stays put' }, 'Select');
     this.toggle.addEventListener('click', () => this.setActive(!tool.active));
 
@@ -85,6 +100,9 @@ export class SelectionPanel {
   }
 
   render(state: SelectionState): void {
+    this.offerBack(state);
+    const kind = this.root.querySelector<HTMLInputElement>(`#selection-kind-${state.kind}`);
+    if (kind) kind.checked = true;
     const n = state.ids.length;
     if (!state.meshId) {
       this.readout.replaceChildren(el('p', { class: 'empty' }, 'Choose a mesh first.'));
@@ -97,5 +115,23 @@ export class SelectionPanel {
     );
     if (n) this.readout.append(el('div', { class: 'selection-ids' }, `ids ${ids}`));
     if (state.area !== null && n) this.readout.append(el('div', { class: 'selection-area' }, `area ${state.area.toPrecision(6)}`));
+  }
+
+  /** A selection of the same mesh emptied since the last render: a notice offers it back. */
+  private offerBack(state: SelectionState): void {
+    const last = this.last;
+    this.last = { meshId: state.meshId, kind: state.kind, ids: state.ids };
+    if (!this.undo || !last || !state.meshId || last.meshId !== state.meshId || !last.ids.length || state.ids.length) return;
+    const n = last.ids.length;
+    const what = last.kind === 'faces' ? (n === 1 ? 'face' : 'faces') : n === 1 ? 'vertex' : 'vertices';
+    this.undo.offer(`Selection of ${n} ${what} cleared.`, {
+      undo: () => {
+        const now = this.tool.state();
+        // Not over a selection made since, nor on another mesh.
+        if (now.meshId !== last.meshId || now.ids.length) return;
+        this.tool.setKind(last.kind);
+        this.tool.select(last.ids);
+      },
+    });
   }
 }

@@ -1,4 +1,4 @@
-// "Share…" on a mesh or a job: a small form that shares it with users (by
+// "Share…" on a mesh, a job or a plugin: a small form that shares it with users (by
 // name, comma-separated) and/or everyone, or takes that back, with the
 // server's routes (POST …/share, …/unshare); it shows who reads it now, or
 // the server's reason for refusing (403: not the owner; 400: no such user).
@@ -12,7 +12,7 @@ function describeSharing(s: Sharing): string {
 }
 
 /** Opens the form for one item (one at a time: a second call replaces the first). */
-export function openShareForm(kind: 'meshes' | 'jobs', id: string, title: string): HTMLFormElement {
+export function openShareForm(kind: 'meshes' | 'jobs' | 'plugins', id: string, title: string): HTMLFormElement {
   document.getElementById('share-form')?.remove();
   const users = el('input', { type: 'text', name: 'users', placeholder: 'user names, comma-separated', autocomplete: 'off' });
   const everyone = el('input', { type: 'checkbox', name: 'everyone' });

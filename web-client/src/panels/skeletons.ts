@@ -37,18 +37,26 @@ export const FIELD_FILE_TYPES = '.ply,.txt';
 export class SkeletonsPanel {
   /** The "Load skeleton file…" and "Load field file…" buttons and their hidden file inputs, kept across renders. */
   private readonly load: HTMLElement;
+  /** The "X-ray" check, kept across renders. */
+  private readonly xray: HTMLElement;
 
   /**
    * onSideBySide: show the skeletons in synchronized panes, one each;
    * onLoadFile: a skeleton file chosen with "Load skeleton file…", to attach to the shown mesh;
-   * onLoadField: a file chosen with "Load field file…", values for the shown mesh.
+   * onLoadField: a file chosen with "Load field file…", values for the shown mesh;
+   * onXray: whether the skeletons show through the surface (on at first).
    */
   constructor(
     private readonly root: HTMLElement,
     private readonly onSideBySide: () => void,
     onLoadFile: (file: File) => void,
     onLoadField: (file: File) => void,
+    onXray: (on: boolean) => void,
   ) {
+    const xray = el('input', { type: 'checkbox', class: 'skeleton-xray' });
+    xray.checked = true;
+    xray.addEventListener('change', () => onXray(xray.checked));
+    this.xray = el('label', { class: 'check skeleton-xray-row', title: 'Show the skeletons through the surface; off, the surface hides them' }, xray, ' X-ray');
     const skeleton = loadButton(
       { id: 'skeleton-file-input', accept: SKELETON_FILE_TYPES },
       { class: 'load-skeleton', title: 'A skeleton made by another tool: CGAL polylines, .cg, OBJ with l records or JSON' },
@@ -87,7 +95,7 @@ export class SkeletonsPanel {
     const side = el('button', { type: 'button', class: 'button small side-by-side' }, 'Side by side');
     side.disabled = columns.length < 2;
     side.addEventListener('click', () => this.onSideBySide());
-    this.root.replaceChildren(el('table', { class: 'kv skeleton-table' }, head, ...rows, distance), side, this.load);
+    this.root.replaceChildren(el('table', { class: 'kv skeleton-table' }, head, ...rows, distance), el('div', { class: 'skeleton-actions' }, side, this.xray), this.load);
   }
 }
 

@@ -32,6 +32,10 @@ export interface SceneEntry extends SceneObjectState {
 export interface Message {
   level: 'error' | 'notice';
   text: string;
+  /** A button on the message ("Undo"): pressing it runs `run` and dismisses the message. */
+  action?: { label: string; run: () => void };
+  /** How long a notice stays (the default: a few seconds). */
+  timeoutMs?: number;
 }
 
 export interface AppState {

@@ -1,4 +1,6 @@
-// The camera as plain numbers (for the view link) and back.
+// The camera as plain numbers (for the view link) and back. The near and far
+// planes are not part of it: they follow the camera (viewer.ts), so that the
+// same camera over the same objects draws the same picture with its own.
 import type { Viewer } from './viewer.ts';
 import type { ViewState } from './view_state.ts';
 
@@ -9,21 +11,15 @@ export function readCamera(viewer: Viewer): ViewState['camera'] {
     target: viewer.controls.target.toArray() as [number, number, number],
     up: c.up.toArray() as [number, number, number],
     fov: c.fov,
-    near: c.near,
-    far: c.far,
   };
 }
 
-/** Puts the camera where `camera` says (near and far, when given; otherwise those of the fit to the shown object stay). */
+/** Puts the camera where `camera` says (the near and far of a link made before they followed the camera are not needed). */
 export function applyCamera(viewer: Viewer, camera: ViewState['camera']): void {
   const c = viewer.camera;
   c.position.fromArray(camera.position);
   c.up.fromArray(camera.up).normalize();
   c.fov = camera.fov;
-  if (camera.near !== undefined && camera.far !== undefined) {
-    c.near = camera.near;
-    c.far = camera.far;
-  }
   c.updateProjectionMatrix();
   viewer.controls.target.fromArray(camera.target);
   viewer.controls.update();

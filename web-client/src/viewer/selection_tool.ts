@@ -160,6 +160,11 @@ export class SelectionTool {
     this.set([]);
   }
 
+  /** Selects exactly `ids`, of the kind now (a cleared selection given back). */
+  select(ids: readonly number[]): void {
+    if (this.target) this.set([...ids]);
+  }
+
   invert(): void {
     const t = this.target;
     if (t) this.set(invert(this.ids, this.kindNow === 'faces' ? t.ply.faces : t.ply.vertices));

@@ -83,7 +83,7 @@ export function decodeViewHash(hash: string): ViewState | null {
     mesh: raw.mesh,
     camera: { position: cam.position, target: cam.target, up: cam.up, fov: cam.fov },
   };
-  // The clipping planes (optional): the depth precision they give decides how lines on faces draw.
+  // The clipping planes: links made before they followed the camera carry them; checked, then not used.
   if (cam.near !== undefined || cam.far !== undefined) {
     const { near, far } = cam;
     if (typeof near !== 'number' || typeof far !== 'number' || !(near > 0) || !(far > near) || !Number.isFinite(far)) {

@@ -12,8 +12,13 @@
 // that every pane is drawn with; nothing copies camera state between views.
 // The scene's objects side by side use the same panes with objects already
 // shown (setPanes(..., owned = false)).
+//
+// The near and far planes follow the camera: before every frame they are
+// set from the camera's distance to the box of what that frame draws (every
+// pane's object, the overlays): viewer/framing.ts.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { followBox, frameBox } from './framing.ts';
 
 export const BACKGROUND = '#1b1d22';
 
@@ -47,6 +52,8 @@ export class Viewer {
   private afterFrame: Array<() => void> = [];
   /** Called when the shown object changes (display modes and overlays follow it). */
   private readonly shownListeners: Array<(object: THREE.Object3D | null) => void> = [];
+  /** Called when the panes change (display modes follow the comparison's objects). */
+  private readonly panesListeners: Array<(owned: readonly THREE.Object3D[]) => void> = [];
 
   constructor(container: HTMLElement, options: ViewerOptions = {}) {
     this.container = container;
@@ -89,6 +96,21 @@ export class Viewer {
    */
   onShownChange(listener: (object: THREE.Object3D | null) => void): void {
     this.shownListeners.push(listener);
+  }
+
+  /**
+   * Calls `listener` whenever the panes change, with the objects the viewer
+   * owns in them (made for a comparison; none for the scene's side by side,
+   * whose objects are the shown one and the extras), before the first frame
+   * that draws them.
+   */
+  onPanesChange(listener: (owned: readonly THREE.Object3D[]) => void): void {
+    this.panesListeners.push(listener);
+  }
+
+  /** The objects the viewer owns in its panes (see onPanesChange). */
+  get ownPanes(): readonly THREE.Object3D[] {
+    return this.panesOwned ? this.panes : [];
   }
 
   private shownChanged(): void {
@@ -189,6 +211,7 @@ export class Viewer {
     this.panes = objects;
     this.panesOwned = owned;
     if (owned) for (const o of objects) this.scene.add(o);
+    for (const listener of this.panesListeners) listener(this.ownPanes);
     this.resize();
     // Panes of another width: frame the surface again so that it fits them.
     if (paneGrid(objects.length).cols !== cols) this.fitToView();
@@ -249,25 +272,15 @@ export class Viewer {
 
   /** Frames `box`'s bounding sphere, looking from the front-right-above. */
   private fitBox(box: THREE.Box3): void {
-    if (box.isEmpty()) return;
-    const sphere = box.getBoundingSphere(new THREE.Sphere());
-    const radius = Math.max(sphere.radius, 1e-6);
-
-    // Distance at which the sphere fits both the vertical and horizontal field of view.
-    const vFov = THREE.MathUtils.degToRad(this.camera.fov);
-    const hFov = 2 * Math.atan(Math.tan(vFov / 2) * this.camera.aspect);
-    const distance = (radius / Math.sin(Math.min(vFov, hFov) / 2)) * 1.05;
-
-    const direction = new THREE.Vector3(0.55, 0.35, 1).normalize();
-    this.camera.position.copy(sphere.center).addScaledVector(direction, distance);
-    this.camera.near = Math.max(distance - radius * 2, distance / 1000);
-    this.camera.far = distance + radius * 4;
-    this.camera.updateProjectionMatrix();
-    this.controls.target.copy(sphere.center);
-    this.controls.minDistance = radius * 0.05;
-    this.controls.maxDistance = radius * 50;
-    this.controls.update();
+    frameBox(this.camera, this.controls, box);
     this.requestRender();
+  }
+
+  /** The world box of what a frame draws: the visible objects and the overlays over them. */
+  private drawnBox(): THREE.Box3 {
+    const box = this.visibleBox();
+    for (const o of this.scene.children) if (o.visible && o.name.startsWith('overlay:')) box.union(new THREE.Box3().setFromObject(o));
+    return box;
   }
 
   /** Renders one frame at the next animation frame (several requests make one frame). */
@@ -302,6 +315,7 @@ export class Viewer {
     // Off while another navigation mode or the selection tool has the mouse
     // (its update() would turn the camera back to the orbit target).
     if (this.controls.enabled && !this.controls.update()) this.settleControls();
+    followBox(this.camera, this.controls.target, this.drawnBox());
     if (this.panes.length) this.renderPanes();
     else this.renderer.render(this.scene, this.camera);
     this.options.onFrame?.();

@@ -1,0 +1,147 @@
+#include "sandbox.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <set>
+
+#include "core/errors.h"
+
+namespace cgview::server {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The read-only system, fresh /dev and /proc, an empty /run to mount the
+// job's files under, and namespaces of its own (the network's included: no
+// socket reaches the server or the outside).  A root server's bwrap is
+// privileged and makes no user namespace: setpriv then drops the job to its
+// own user, with no capabilities left.
+std::vector<std::string> base_args(const fs::path& bwrap, bool root) {
+  std::vector<std::string> a = {bwrap.string(), "--ro-bind", "/",     "/",           "--dev",
+                                "/dev",         "--proc",    "/proc", "--tmpfs",     "/run",
+                                "--perms",      "0755",      "--dir", "/run/cgview", "--die-with-parent",
+                                "--new-session"};
+  if (root)
+    a.insert(a.end(), {"--unshare-ipc", "--unshare-pid", "--unshare-net", "--unshare-uts", "--unshare-cgroup-try"});
+  else a.insert(a.end(), {"--unshare-all", "--cap-drop", "ALL"});
+  return a;
+}
+
+std::vector<std::string> drop_to(const fs::path& setpriv, long id) {
+  const std::string n = std::to_string(id);
+  return {setpriv.string(),  "--reuid=" + n,        "--regid=" + n,  "--clear-groups",
+          "--inh-caps=-all", "--bounding-set=-all", "--no-new-privs"};
+}
+
+}  // namespace
+
+Sandbox::Sandbox(SandboxConfig config, fs::path bwrap) : config_(std::move(config)), bwrap_(std::move(bwrap)) {
+  if (config_.mode == "off") {
+    why_not_ = "the sandbox is off (sandbox.mode)";
+    return;
+  }
+  if (bwrap_.empty()) bwrap_ = find_program("bwrap");
+  if (bwrap_.empty()) {
+    why_not_ = "bubblewrap (bwrap) is not installed";
+    return;
+  }
+  const bool root = ::geteuid() == 0;
+  if (root && (setpriv_ = find_program("setpriv")).empty()) {
+    why_not_ = "setpriv (util-linux) is not installed";
+    return;
+  }
+  // A real run, as a worker would start, tells whether this machine allows it.
+  std::vector<std::string> argv = base_args(bwrap_, root);
+  argv.push_back("--");
+  if (root)
+    argv = [&] {
+      auto d = drop_to(setpriv_, config_.uid_base);
+      argv.insert(argv.end(), d.begin(), d.end());
+      return argv;
+    }();
+  argv.push_back("/bin/true");
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0) {
+    why_not_ = "pipe failed";
+    return;
+  }
+  ChildOptions o;
+  o.stdout_fd = fds[1];
+  o.stderr_to_stdout = true;
+  const pid_t pid = spawn_child(argv, o);
+  ::close(fds[1]);
+  std::string out;
+  char buf[1024];
+  for (ssize_t n; pid > 0 && (n = ::read(fds[0], buf, sizeof buf)) > 0;) out.append(buf, std::size_t(n));
+  ::close(fds[0]);
+  const auto status = pid > 0 ? wait_child(pid, std::chrono::seconds(10)) : std::nullopt;
+  enabled_ = status && WIFEXITED(*status) && WEXITSTATUS(*status) == 0;
+  if (!enabled_) {
+    while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
+    why_not_ = "bubblewrap cannot start here" + (out.empty() ? std::string() : ": " + out);
+  }
+}
+
+Sandbox::Command Sandbox::wrap(const std::vector<std::string>& argv, const SandboxMounts& mounts, int slot,
+                               ChildOptions options) const {
+  Command c;
+  c.options = std::move(options);
+  if (!enabled_) {
+    c.argv = argv;
+    return c;
+  }
+  c.options.processes = config_.processes;
+  c.options.file_mb = config_.file_mb;
+  const bool root = ::geteuid() == 0;
+  const long uid = config_.uid_base + slot;
+  c.argv = base_args(bwrap_, root);
+  std::vector<fs::path> hidden = mounts.hidden;
+  hidden.insert(hidden.end(), config_.hidden.begin(), config_.hidden.end());
+  std::error_code ec;
+  for (const fs::path& h : hidden) {
+    if (h.empty() || !fs::exists(h, ec)) continue;
+    if (fs::is_directory(h, ec)) c.argv.insert(c.argv.end(), {"--tmpfs", h.string(), "--remount-ro", h.string()});
+    else c.argv.insert(c.argv.end(), {"--ro-bind", "/dev/null", h.string()});
+  }
+  // The directories above each mount under /run/cgview, walkable by the job's user.
+  std::set<std::string> dirs;
+  auto parents = [&](const std::string& inside) {
+    for (fs::path d = fs::path(inside).parent_path(); d.string().size() > std::string("/run/cgview").size();
+         d = d.parent_path())
+      dirs.insert(d.string());
+  };
+  for (const auto& [file, inside] : mounts.readable) parents(inside);
+  parents(kSandboxJob);
+  for (const std::string& d : dirs) c.argv.insert(c.argv.end(), {"--perms", "0755", "--dir", d});
+  for (const auto& [file, inside] : mounts.readable) c.argv.insert(c.argv.end(), {"--ro-bind", file.string(), inside});
+  if (!mounts.writable.empty()) {
+    // The job's /tmp is in its own directory: what it leaves there counts
+    // as its files do (a tmpfs would be memory no limit holds).
+    const fs::path tmp = mounts.writable / "tmp";
+    fs::create_directories(tmp, ec);
+    if (root) {
+      for (const fs::path& d : {mounts.writable, tmp})
+        if (::chown(d.c_str(), uid_t(uid), gid_t(uid)) != 0)
+          throw IoError("cannot give " + d.string() + " to the sandbox's user: " + std::strerror(errno));
+      for (const auto& e : fs::directory_iterator(mounts.writable, ec))
+        (void)::chown(e.path().c_str(), uid_t(uid), gid_t(uid));
+    }
+    c.argv.insert(c.argv.end(), {"--bind", mounts.writable.string(), kSandboxJob, "--bind", tmp.string(), "/tmp",
+                                 "--chdir", kSandboxJob});
+  }
+  c.argv.push_back("--");
+  if (root) {
+    const auto d = drop_to(setpriv_, uid);
+    c.argv.insert(c.argv.end(), d.begin(), d.end());
+  }
+  c.argv.insert(c.argv.end(), argv.begin(), argv.end());
+  return c;
+}
+
+}  // namespace cgview::server

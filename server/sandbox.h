@@ -1,0 +1,80 @@
+// The sandbox every job's worker (and every plugin build, which runs as a
+// job) starts in: Debian's bubblewrap, with no network, a read-only view of
+// the system, the server's data directory hidden, only the job's own
+// directory writable, its own process, IPC and user namespaces, and limits
+// on processes and on the size of a file, beside the time and memory limits
+// the executor already sets.  A server running as root runs each worker as
+// a user of its own (root is exempt from the process limit, and the job's
+// files are then the only ones that user has).
+//
+// Where bubblewrap cannot start (no user namespaces, not installed), the
+// server says so at start; workers then run as before, and plugins (code
+// from users) are refused unless the admin allows them knowingly.
+#pragma once
+
+#include <sys/types.h>
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "child_process.h"
+
+namespace cgview::server {
+
+struct SandboxConfig {
+  std::string mode = "auto";       // "auto": bubblewrap where it works; "required": refuse to start without; "off"
+  int processes = 256;             // processes and threads of one job
+  std::size_t file_mb = 4096;      // the largest file a job writes
+  long uid_base = 2'000'000'000L;  // a root server's workers run as uid_base + slot (bwrap maps ids below 2^31)
+  std::vector<std::filesystem::path> hidden;  // more paths a job must not see (the config file's secrets)
+};
+
+// Where a sandboxed job sees its directory, its inputs and its plugin: its
+// own paths, since a root server's job user may not walk the data
+// directory's (a 0700 directory above it, as mktemp makes).
+// (Under /run, an empty tmpfs in the sandbox: the system's sockets there,
+// munge's among them, are not the job's.)
+inline constexpr const char* kSandboxJob = "/run/cgview/job";
+inline constexpr const char* kSandboxInputs = "/run/cgview/in";
+inline constexpr const char* kSandboxPlugin = "/run/cgview/plugin";
+inline constexpr const char* kSandboxPrograms = "/run/cgview/bin";
+
+// What one sandboxed run sees besides the read-only system.
+struct SandboxMounts {
+  std::filesystem::path writable;  // the job's directory (given to the job's user), seen at kSandboxJob;
+                                   // its tmp/ is the job's /tmp
+  std::vector<std::pair<std::filesystem::path, std::string>> readable;  // a file -> where the job sees it, read-only
+  std::vector<std::filesystem::path> hidden;  // replaced by an empty read-only directory (the data directory)
+};
+
+class Sandbox {
+ public:
+  // Probes bubblewrap once (a run of /bin/true in a full sandbox).
+  Sandbox(SandboxConfig config, std::filesystem::path bwrap = {});
+  bool enabled() const { return enabled_; }
+  // Why it is off ("bwrap is not installed", its own error), for the start message.
+  const std::string& why_not() const { return why_not_; }
+  const SandboxConfig& config() const { return config_; }
+
+  // The command to run `argv` sandboxed, and the child options that go with
+  // it (its limits; memory_mb and stdout are the caller's).  `slot` picks
+  // the user of a root server's run (one per run at a time), who is given
+  // the job's directory.  Throws IoError when it cannot be.  Unchanged argv
+  // where the sandbox is off.
+  struct Command {
+    std::vector<std::string> argv;
+    ChildOptions options;
+  };
+  Command wrap(const std::vector<std::string>& argv, const SandboxMounts& mounts, int slot,
+               ChildOptions options = {}) const;
+
+ private:
+  SandboxConfig config_;
+  std::filesystem::path bwrap_, setpriv_;
+  bool enabled_ = false;
+  std::string why_not_;
+};
+
+}  // namespace cgview::server

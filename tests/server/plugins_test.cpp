@@ -1,0 +1,275 @@
+// Users' plugins on the real server, in the real sandbox (bubblewrap): a
+// plugin saved, built (its compile errors as data, at their lines), run by
+// the API with results equal to the built-in algorithm it copies, unknown
+// to another user until shared; a hostile plugin's every way out (the
+// server's database, another user's job, a write outside its directory,
+// sockets to the server and the outside, a fork bomb, 10 GB of memory, an
+// endless loop, a 10 GB file, a segfault) fails that job alone, with the
+// limit it hit in its message, while another user's job goes on; the lab's
+// plugin directory is picked up, and a changed file rebuilt, without a
+// restart; a server that cannot sandbox says so and refuses users' plugins.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+
+#include "io/mesh_io.h"
+#include "server_harness.h"
+#include "test_support.h"
+
+namespace cgview::test {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using namespace std::chrono_literals;
+
+std::string source_file(const std::string& name) { return read_bytes(fs::path(CGVIEW_SOURCE_DIR) / name); }
+
+// The template with another registered name: a plugin that must give what
+// the built-in centroid_distance gives.
+std::string template_as(const std::string& name) {
+  std::string s = source_file("algorithms/examples/centroid_distance.cpp");
+  const std::string from = "CGVIEW_REGISTER_ALGORITHM(centroid_distance,";
+  s.replace(s.find(from), from.size(), "CGVIEW_REGISTER_ALGORITHM(" + name + ",");
+  return s;
+}
+
+class Plugins : public ServerFixture {
+ protected:
+  Plugins() : ServerFixture("plugins-") {}
+  void SetUp() override {
+    ServerFixture::SetUp();
+    alice_ = server_command(data_, "user add alice");
+    bob_ = server_command(data_, "user add bob");
+    ASSERT_FALSE(alice_.empty());
+    std::ofstream(dir_ / "config.json") << json{{"sandbox", {{"processes", 64}, {"file_mb", 64}}}}.dump();
+    fs::create_directories(dir_ / "lab");
+    ASSERT_TRUE(server_.start(data_,
+                              {"--auth", "required", "--config", (dir_ / "config.json").string(), "--job-timeout-s",
+                               "6", "--job-memory-mb", "2048", "--plugin-dir", (dir_ / "lab").string()},
+                              dir_));
+    alice_mesh_ = upload(alice_, "sphere.off");
+    bob_mesh_ = upload(bob_, "sphere.off");
+  }
+  HttpResult as(const std::string& token, const std::string& method, const std::string& target,
+                const json& body = nullptr) {
+    return call_as(port(), token, method, target, body.is_null() ? "" : body.dump());
+  }
+  std::string upload(const std::string& token, const std::string& sample_name) {
+    const HttpResult up =
+        call_as(port(), token, "POST", "/api/v1/meshes?name=" + sample_name, read_bytes(sample(sample_name)));
+    EXPECT_EQ(up.status, 201u) << up.body;
+    return up.body_json().value("id", "");
+  }
+  json wait_job(const std::string& token, const std::string& id) {
+    json j;
+    for (int i = 0; i < 1200; ++i) {
+      j = as(token, "GET", "/api/v1/jobs/" + id).body_json();
+      if (j.value("state", "") != "queued" && j.value("state", "") != "running") break;
+      std::this_thread::sleep_for(50ms);
+    }
+    return j;
+  }
+  // Saves and builds a plugin; the plugin as it stands after its build.
+  json build(const std::string& token, const std::string& name, const std::string& source) {
+    const HttpResult c = as(token, "POST", "/api/v1/plugins", {{"name", name}, {"source", source}});
+    EXPECT_EQ(c.status, 201u) << c.body;
+    const std::string id = c.body_json().value("id", "");
+    const HttpResult b = as(token, "POST", "/api/v1/plugins/" + id + "/build");
+    EXPECT_EQ(b.status, 202u) << b.body;
+    const json job = wait_job(token, b.body_json().value("id", ""));
+    EXPECT_EQ(job.value("state", ""), "done") << job.dump();
+    return as(token, "GET", "/api/v1/plugins/" + id).body_json();
+  }
+  json run(const std::string& token, const std::string& plugin, const std::string& algorithm, const std::string& mesh,
+           const json& params) {
+    const HttpResult r =
+        as(token, "POST", "/api/v1/jobs",
+           {{"algorithm", algorithm}, {"plugin", plugin}, {"inputs", {{"mesh", mesh}}}, {"params", params}});
+    EXPECT_EQ(r.status, 201u) << r.body;
+    return wait_job(token, r.body_json().value("id", ""));
+  }
+  std::string alice_, bob_, alice_mesh_, bob_mesh_;
+};
+
+TEST_F(Plugins, ABuiltPluginRunsAsTheBuiltInAlgorithmItCopiesAndIsListedForItsOwnerAlone) {
+  const json p = build(alice_, "mine", template_as("mine_distance"));
+  ASSERT_EQ(p["build"]["state"], "ok") << p.dump();
+  EXPECT_EQ(p["build"]["algorithms"], json({"mine_distance"}));
+  const std::string id = p["id"];
+  const json params = {{"exponent", 2}, {"normalize", true}};
+  const json mine = run(alice_, id, "mine_distance", alice_mesh_, params);
+  ASSERT_EQ(mine.value("state", ""), "done") << mine.dump();
+  EXPECT_EQ(mine["plugin"], id);
+  // The reference: the built-in algorithm the file copies, on the same mesh.
+  const HttpResult ref =
+      as(alice_, "POST", "/api/v1/jobs",
+         {{"algorithm", "centroid_distance"}, {"inputs", {{"mesh", alice_mesh_}}}, {"params", params}});
+  const json builtin = wait_job(alice_, ref.body_json().value("id", ""));
+  ASSERT_EQ(builtin.value("state", ""), "done");
+  const std::string a =
+      as(alice_, "GET", "/api/v1/jobs/" + mine["id"].get<std::string>() + "/artifacts/distance?format=txt").body;
+  const std::string b =
+      as(alice_, "GET", "/api/v1/jobs/" + builtin["id"].get<std::string>() + "/artifacts/distance?format=txt").body;
+  EXPECT_FALSE(a.empty());
+  EXPECT_EQ(a, b);
+  // A misspelt parameter is refused at submission, from the build's description.
+  const HttpResult bad = as(alice_, "POST", "/api/v1/jobs",
+                            {{"algorithm", "mine_distance"},
+                             {"plugin", id},
+                             {"inputs", {{"mesh", alice_mesh_}}},
+                             {"params", {{"exponnt", 2}}}});
+  EXPECT_EQ(bad.status, 400u);
+  EXPECT_NE(bad.body.find("exponent"), std::string::npos) << bad.body;
+  // Alice's algorithms list it; Bob's do not, and Bob cannot see, run or change it.
+  auto lists = [&](const std::string& token) {
+    const json list =
+        as(token, "GET", "/api/v1/algorithms").body_json();  // kept: a loop over a temporary's part dangles
+    for (const auto& a : list["algorithms"])
+      if (a.value("plugin", "") == id) return true;
+    return false;
+  };
+  EXPECT_TRUE(lists(alice_));
+  EXPECT_FALSE(lists(bob_));
+  EXPECT_EQ(as(bob_, "GET", "/api/v1/plugins/" + id).status, 404u);
+  EXPECT_EQ(as(bob_, "GET", "/api/v1/plugins").body_json()["plugins"].size(), 0u);
+  const HttpResult bob_run = as(bob_, "POST", "/api/v1/jobs",
+                                {{"algorithm", "mine_distance"}, {"plugin", id}, {"inputs", {{"mesh", bob_mesh_}}}});
+  EXPECT_EQ(bob_run.status, 404u) << bob_run.body;
+  // Bob's own plugin of the same name is his: names never clash between users.
+  const json bobs = build(bob_, "mine", template_as("mine_distance"));
+  EXPECT_EQ(bobs["build"]["state"], "ok");
+  EXPECT_NE(bobs["id"], id);
+  // Shared, Alice's runs for Bob too, and is still hers alone to change.
+  EXPECT_EQ(as(alice_, "POST", "/api/v1/plugins/" + id + "/share", {{"users", {"bob"}}}).status, 200u);
+  EXPECT_TRUE(lists(bob_));
+  EXPECT_EQ(run(bob_, id, "mine_distance", bob_mesh_, json::object()).value("state", ""), "done");
+  EXPECT_EQ(as(bob_, "PUT", "/api/v1/plugins/" + id, {{"name", "stolen"}}).status, 403u);
+  EXPECT_EQ(as(bob_, "DELETE", "/api/v1/plugins/" + id).status, 403u);
+  // Renamed and deleted by its owner.
+  EXPECT_EQ(as(alice_, "PUT", "/api/v1/plugins/" + id, {{"name", "renamed"}}).body_json()["name"], "renamed");
+  EXPECT_EQ(as(alice_, "DELETE", "/api/v1/plugins/" + id).status, 204u);
+  EXPECT_EQ(as(alice_, "GET", "/api/v1/plugins/" + id).status, 404u);
+}
+
+TEST_F(Plugins, CompileErrorsComeBackAsDataAtTheirLines) {
+  std::string src = template_as("broken");
+  const std::string good = "field.values[i] = float(";
+  const std::size_t at = src.find(good);
+  ASSERT_NE(at, std::string::npos);
+  src.replace(at, good.size(), "field.values[i] = flot(");
+  const int line = 1 + int(std::count(src.begin(), src.begin() + long(at), '\n'));
+  const int column = int(at - src.rfind('\n', at)) + int(std::string("field.values[i] = ").size());
+  const json p = build(alice_, "broken", src);
+  EXPECT_EQ(p["build"]["state"], "failed");
+  ASSERT_FALSE(p["build"]["diagnostics"].empty()) << p.dump();
+  const json d = p["build"]["diagnostics"][0];
+  EXPECT_EQ(d["file"], "broken.cpp");
+  EXPECT_EQ(d["line"], line);
+  EXPECT_EQ(d["column"], column);
+  EXPECT_EQ(d["severity"], "error");
+  EXPECT_NE(d["message"].get<std::string>().find("flot"), std::string::npos);
+  EXPECT_NE(p["build"]["error"].get<std::string>().find("broken.cpp:" + std::to_string(line)), std::string::npos);
+  // A name taken by a built-in algorithm is refused as an error of the file.
+  const json clash = build(alice_, "clash", source_file("algorithms/examples/centroid_distance.cpp"));
+  EXPECT_EQ(clash["build"]["state"], "failed");
+  EXPECT_NE(clash["build"]["error"].get<std::string>().find("centroid_distance"), std::string::npos);
+}
+
+TEST_F(Plugins, EveryWayOutOfTheSandboxFailsItsJobAloneWithTheLimitItHit) {
+  const json p = build(alice_, "escape", source_file("tests/server/plugins/escape.cpp"));
+  ASSERT_EQ(p["build"]["state"], "ok") << p.dump();
+  const std::string id = p["id"];
+  // Bob's job, and one of his results that Alice's plugin will look for.
+  const HttpResult r =
+      as(bob_, "POST", "/api/v1/jobs", {{"algorithm", "centroid_distance"}, {"inputs", {{"mesh", bob_mesh_}}}});
+  const json bobs = wait_job(bob_, r.body_json().value("id", ""));
+  ASSERT_EQ(bobs.value("state", ""), "done");
+  const fs::path bob_result = data_ / "jobs" / bobs["id"].get<std::string>() / "result.json";
+  ASSERT_TRUE(fs::exists(bob_result));
+  struct Attempt {
+    std::string attempt, target, expect;
+  };
+  const std::vector<Attempt> attempts = {
+      {"read_file", (data_ / "cgview.db").string(), "the server's data and other jobs are not visible"},
+      {"read_file", bob_result.string(), "the server's data and other jobs are not visible"},
+      {"write_file", "/usr/cgview-escaped.txt", "a job writes only in its own directory"},
+      {"write_file", (data_ / "escaped.txt").string(), "(the sandbox: "},
+      {"connect_local", std::to_string(port()), "a job has no network"},
+      {"connect_outside", "", "a job has no network"},
+      {"fork_bomb", "", "process limit: 64"},
+      {"allocate", "", "exceeded its memory limit of 2048 MB"},
+      {"loop", "", "exceeded its time limit of 6 s"},
+      {"big_file", "", "file-size limit of 64 MB"},
+      {"segfault", "", "SIGSEGV"},
+  };
+  // Bob's long job runs beside them all.
+  const HttpResult bob_long = as(bob_, "POST", "/api/v1/jobs",
+                                 {{"algorithm", "sdf"}, {"inputs", {{"mesh", bob_mesh_}}}, {"params", {{"rays", 64}}}});
+  ASSERT_EQ(bob_long.status, 201u) << bob_long.body;
+  for (const Attempt& a : attempts) {
+    const json j = run(alice_, id, "escape", alice_mesh_, {{"attempt", a.attempt}, {"target", a.target}});
+    EXPECT_EQ(j.value("state", ""), "failed") << a.attempt << " " << a.target << ": " << j.dump();
+    EXPECT_NE(j.value("error", json("")).get<std::string>().find(a.expect), std::string::npos)
+        << a.attempt << ": " << j.value("error", json("")).dump();
+    EXPECT_EQ(as(bob_, "GET", "/api/v1/health").status, 200u);
+  }
+  EXPECT_FALSE(fs::exists("/usr/cgview-escaped.txt"));
+  EXPECT_FALSE(fs::exists(data_ / "escaped.txt"));
+  EXPECT_EQ(wait_job(bob_, bob_long.body_json().value("id", "")).value("state", ""), "done");
+  // The server's own files are as they were: Bob's result is still read back.
+  EXPECT_EQ(as(bob_, "GET", "/api/v1/jobs/" + bobs["id"].get<std::string>() + "/artifacts/distance?format=txt").status,
+            200u);
+}
+
+TEST_F(Plugins, TheLabsPluginDirectoryIsPickedUpAndAChangedFileRebuiltWithoutARestart) {
+  { std::ofstream(dir_ / "lab" / "lab_height.cpp") << template_as("lab_distance"); }
+  auto lab = [&]() -> json {
+    for (int i = 0; i < 600; ++i) {
+      const json list = as(bob_, "GET", "/api/v1/plugins").body_json();
+      for (const auto& p : list["plugins"])
+        if (p.value("origin", "") == "lab" && p["build"].value("state", "") == "ok") return p;
+      std::this_thread::sleep_for(100ms);
+    }
+    return nullptr;
+  };
+  const json first = lab();
+  ASSERT_TRUE(first.is_object()) << as(bob_, "GET", "/api/v1/plugins").body << server_.stderr_text();
+  EXPECT_EQ(first["build"]["algorithms"], json({"lab_distance"}));
+  // Every user runs it, no one but the directory changes it.
+  EXPECT_EQ(run(bob_, first["id"], "lab_distance", bob_mesh_, json::object()).value("state", ""), "done");
+  EXPECT_EQ(run(alice_, first["id"], "lab_distance", alice_mesh_, json::object()).value("state", ""), "done");
+  EXPECT_EQ(as(alice_, "PUT", "/api/v1/plugins/" + first["id"].get<std::string>(), {{"name", "x"}}).status, 403u);
+  // The file changes (another algorithm name): the next look rebuilds it.
+  std::this_thread::sleep_for(1100ms);  // a new modification time, whatever the filesystem's resolution
+  { std::ofstream(dir_ / "lab" / "lab_height.cpp") << template_as("lab_distance_two"); }
+  json second;
+  for (int i = 0; i < 600; ++i) {
+    second = as(bob_, "GET", "/api/v1/plugins/" + first["id"].get<std::string>()).body_json();
+    if (second["build"]["algorithms"] == json({"lab_distance_two"}) && second["build"]["state"] == "ok") break;
+    std::this_thread::sleep_for(100ms);
+  }
+  EXPECT_EQ(second["build"]["algorithms"], json({"lab_distance_two"})) << second.dump();
+  EXPECT_EQ(run(bob_, first["id"], "lab_distance_two", bob_mesh_, json::object()).value("state", ""), "done");
+}
+
+class NoSandbox : public ServerFixture {
+ protected:
+  NoSandbox() : ServerFixture("no-sandbox-") {}
+};
+
+TEST_F(NoSandbox, AServerThatCannotSandboxSaysSoAndRefusesUsersPlugins) {
+  const std::string alice = server_command(data_, "user add alice");
+  ASSERT_TRUE(server_.start(data_, {"--auth", "required", "--sandbox", "off"}, dir_));
+  EXPECT_NE(server_.stderr_text().find("without a sandbox"), std::string::npos) << server_.stderr_text();
+  const HttpResult r = call_as(port(), alice, "POST", "/api/v1/plugins",
+                               json{{"name", "x"}, {"source", template_as("x_distance")}}.dump());
+  EXPECT_EQ(r.status, 403u) << r.body;
+  EXPECT_NE(r.body.find("cannot sandbox"), std::string::npos) << r.body;
+}
+
+}  // namespace
+}  // namespace cgview::test

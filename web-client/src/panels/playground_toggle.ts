@@ -1,0 +1,61 @@
+// The "Code" button of the top bar: shows and hides the code panel (a
+// column beside the view, in place of the right sidebar, its width dragged
+// at its left edge), loading it (the editor and the plugin controller: a
+// chunk of their own) the first time it is shown.
+import type { AppContext } from '../controllers/context.ts';
+import { byId, el } from './dom.ts';
+import './playground.css';
+
+const MIN_WIDTH = 320;
+/** The view keeps at least this much of the window beside the panel. */
+const VIEW_MIN = 240;
+
+export function installPlayground(ctx: AppContext): void {
+  const button = byId<HTMLButtonElement>('playground-toggle');
+  const section = byId('playground');
+  let loaded: Promise<{ shown(): void } | null> | null = null;
+
+  const handle = el('div', { class: 'playground-resize', role: 'separator', 'aria-orientation': 'vertical', 'aria-label': 'Resize the code panel', title: 'Drag to resize' });
+  section.append(handle);
+  handle.addEventListener('pointerdown', (down) => {
+    down.preventDefault();
+    handle.setPointerCapture(down.pointerId);
+    const right = section.getBoundingClientRect().right;
+    const layout = section.parentElement!;
+    const move = (ev: PointerEvent): void => {
+      const left = layout.getBoundingClientRect().left;
+      const width = Math.round(Math.min(Math.max(MIN_WIDTH, right - ev.clientX), right - left - VIEW_MIN));
+      layout.style.setProperty('--playground-width', `${width}px`);
+    };
+    const up = (): void => {
+      handle.removeEventListener('pointermove', move);
+      handle.removeEventListener('pointerup', up);
+      handle.removeEventListener('pointercancel', up);
+    };
+    handle.addEventListener('pointermove', move);
+    handle.addEventListener('pointerup', up);
+    handle.addEventListener('pointercancel', up);
+  });
+
+  const show = (open: boolean): void => {
+    section.hidden = !open;
+    button.setAttribute('aria-pressed', String(open));
+    if (!open) return;
+    if (!loaded) {
+      const body = el('div', { class: 'playground-body' });
+      section.prepend(body);
+      loaded = import('../controllers/plugins.ts').then(
+        (m) => new m.PluginsController(ctx, body),
+        (e: unknown) => {
+          loaded = null;
+          body.remove();
+          ctx.error(`Cannot load the code panel: ${(e as Error).message}`);
+          return null;
+        },
+      );
+    } else {
+      void loaded.then((c) => c?.shown());
+    }
+  };
+  button.addEventListener('click', () => show(section.hidden));
+}
