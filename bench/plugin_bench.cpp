@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
     else if (a == "--server") server = argv[i + 1];
   }
   const fs::path data = fs::temp_directory_path() / ("cgview-plugin-bench-" + std::to_string(::getpid()));
-  double build_to_field = 0, builtin = 0, cached = 0, compile_pch = 0, compile_plain = 0;
+  double build_to_field = 0, builtin = 0, cached = 0, compile_pch = 0, compile_plain = 0, unsandboxed = 0;
   {
     cgview::bench::ServerProcess srv(server, data);
     const unsigned short port = srv.port;
@@ -93,6 +93,19 @@ int main(int argc, char** argv) {
       builtin += since(t2) / runs;
     }
   }
+  // What the sandbox costs a job: the built-in algorithm on a server without it.
+  {
+    cgview::bench::ServerProcess srv(server, data / "off", {"--sandbox", "off"});
+    const std::string mesh = cgview::bench::upload(
+        srv.port, "elephant.off", cgview::read_file_bytes(*cgview::resolve_mesh_path("elephant"), 1 << 30));
+    for (int r = 0; r < runs; ++r) {
+      const auto t2 = Clock::now();
+      wait_job(srv.port, post(srv.port, "/api/v1/jobs",
+                              {{"algorithm", "centroid_distance"}, {"inputs", {{"mesh", mesh}}},
+                               {"params", {{"exponent", 1.0 + 0.001 * r}}}})["id"]);
+      unsandboxed += since(t2) / runs;
+    }
+  }
   // The compiler alone, with and without the precompiled public header.
   const fs::path dir = data / "compile";
   fs::create_directories(dir);
@@ -109,6 +122,8 @@ int main(int argc, char** argv) {
   std::printf("  Build -> colour map (save, build job, run job, field)  %7.2f s   goal < 5 s\n", build_to_field);
   std::printf("  the built-in algorithm's job alone                     %7.2f s   ratio %.1fx\n", builtin,
               build_to_field / builtin);
+  std::printf("  the same job on a server without the sandbox            %7.2f s   sandbox %.2fx\n", unsandboxed,
+              builtin / unsandboxed);
   std::printf("  an unchanged file built again (the cache)              %7.2f s\n", cached);
   std::printf("  g++ with the precompiled header                        %7.2f s\n", compile_pch);
   std::printf("  g++ without it                                         %7.2f s   ratio %.2fx\n", compile_plain,

@@ -273,6 +273,10 @@ std::optional<LaunchSpec> JobScheduler::prepare(Job& j) {
       j.error = "the plugin's library is gone (rebuild the plugin)";
       return std::nullopt;
     }
+    if (remote_data()) {
+      j.error = "plugins run on a Slurm cluster only where its nodes share the data directory (slurm.shared_data)";
+      return std::nullopt;
+    }
     const std::string inside = std::string(kSandboxPlugin) + "/" + fs::path(library).filename().string();
     spec["plugin"] = sandboxed ? inside : library;
     s.read_only.push_back({library, sandboxed ? inside : library});
