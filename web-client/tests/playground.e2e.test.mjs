@@ -20,11 +20,11 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { artifactsDir, hueStats, pngPixels, repo, settle, useViewer } from './harness.mjs';
-import { importTs } from './ts_module.mjs';
 
 const samples = process.env.CGVIEW_SAMPLES ?? path.join(repo, 'build', 'samples');
 const v = useViewer({ tmpPrefix: 'cgview-playground-', mesh: path.join(samples, 'elephant.off') });
-const { TEMPLATE } = await importTs('panels/playground_template.ts');
+// The template's one home (panels/playground_template.ts imports it as text).
+const TEMPLATE = fs.readFileSync(new URL('../../docs/examples/height.cpp', import.meta.url), 'utf8');
 
 // Where g++ will point: the line of `float(` in the template and its column.
 const templateLines = TEMPLATE.split('\n');

@@ -75,6 +75,22 @@ TEST(Plugin, ACopyOfTheTemplateBuildsLoadsAndGivesWhatTheBuiltInGives) {
   fs::remove_all(dir);
 }
 
+// The code panel's template and the tutorial's example, one file: it builds
+// and registers the name the panel gives it.
+TEST(Plugin, TheTemplateOfTheCodePanelBuilds) {
+  const fs::path dir = scratch("template");
+  const PluginBuild b = build_plugin(fs::path(CGVIEW_SOURCE_DIR) / "docs/examples/height.cpp", dir / "height.so");
+  ASSERT_TRUE(b.ok) << b.output;
+  for (const auto& d : b.diagnostics) ADD_FAILURE() << "the template warns: " << d.message;
+  EXPECT_EQ(load_plugin(dir / "height.so"), std::vector<std::string>{"height"});
+  Context ctx;
+  const auto r = find_algorithm("height").run(read_mesh(sample("elephant.off")), {}, ctx);
+  ASSERT_EQ(r.artifacts.size(), 1u);
+  const auto& values = std::get<ScalarField>(r.artifacts[0].value).values;
+  EXPECT_EQ(*std::min_element(values.begin(), values.end()), 0.0f);  // from the lowest vertex
+  fs::remove_all(dir);
+}
+
 TEST(Plugin, AnErrorComesBackAtItsLineAndAClashingNameIsRefused) {
   const fs::path dir = scratch("bad");
   const std::string src = template_as("bad_distance", "= float(", "= flot(");
