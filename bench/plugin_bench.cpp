@@ -101,7 +101,8 @@ int main(int argc, char** argv) {
     for (int r = 0; r < runs; ++r) {
       const auto t2 = Clock::now();
       wait_job(srv.port, post(srv.port, "/api/v1/jobs",
-                              {{"algorithm", "centroid_distance"}, {"inputs", {{"mesh", mesh}}},
+                              {{"algorithm", "centroid_distance"},
+                               {"inputs", {{"mesh", mesh}}},
                                {"params", {{"exponent", 1.0 + 0.001 * r}}}})["id"]);
       unsandboxed += since(t2) / runs;
     }

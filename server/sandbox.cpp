@@ -101,14 +101,7 @@ Sandbox::Command Sandbox::wrap(const std::vector<std::string>& argv, const Sandb
   const bool root = ::geteuid() == 0;
   const long uid = config_.uid_base + slot;
   c.argv = base_args(bwrap_, root);
-  std::vector<fs::path> hidden = mounts.hidden;
-  hidden.insert(hidden.end(), config_.hidden.begin(), config_.hidden.end());
   std::error_code ec;
-  for (const fs::path& h : hidden) {
-    if (h.empty() || !fs::exists(h, ec)) continue;
-    if (fs::is_directory(h, ec)) c.argv.insert(c.argv.end(), {"--tmpfs", h.string(), "--remount-ro", h.string()});
-    else c.argv.insert(c.argv.end(), {"--ro-bind", "/dev/null", h.string()});
-  }
   // The directories above each mount under /run/cgview, walkable by the job's user.
   std::set<std::string> dirs;
   auto parents = [&](const std::string& inside) {
@@ -135,6 +128,20 @@ Sandbox::Command Sandbox::wrap(const std::vector<std::string>& argv, const Sandb
     c.argv.insert(c.argv.end(), {"--bind", mounts.writable.string(), kSandboxJob, "--bind", tmp.string(), "/tmp",
                                  "--chdir", kSandboxJob});
   }
+  // After /tmp: a build tree under /tmp (a CI's clone) keeps its programs and headers.
+  std::vector<fs::path> visible = mounts.visible;
+  visible.insert(visible.end(), config_.visible.begin(), config_.visible.end());
+  for (const fs::path& v : visible)
+    if (!v.empty() && fs::exists(v, ec)) c.argv.insert(c.argv.end(), {"--ro-bind", v.string(), v.string()});
+  // Hidden last: no mount above may show the data directory again.
+  std::vector<fs::path> hidden = mounts.hidden;
+  hidden.insert(hidden.end(), config_.hidden.begin(), config_.hidden.end());
+  for (const fs::path& h : hidden) {
+    if (h.empty() || !fs::exists(h, ec)) continue;
+    if (fs::is_directory(h, ec)) c.argv.insert(c.argv.end(), {"--tmpfs", h.string(), "--remount-ro", h.string()});
+    else c.argv.insert(c.argv.end(), {"--ro-bind", "/dev/null", h.string()});
+  }
+
   c.argv.push_back("--");
   if (root) {
     const auto d = drop_to(setpriv_, uid);

@@ -29,6 +29,10 @@ struct SandboxConfig {
   std::size_t file_mb = 4096;      // the largest file a job writes
   long uid_base = 2'000'000'000L;  // a root server's workers run as uid_base + slot (bwrap maps ids below 2^31)
   std::vector<std::filesystem::path> hidden;  // more paths a job must not see (the config file's secrets)
+  // Directories a job reads at their own paths even where they lie under
+  // /tmp (the job's /tmp is its own): the plugins' headers and compiler
+  // cache of a build tree, set by the server.
+  std::vector<std::filesystem::path> visible;
 };
 
 // Where a sandboxed job sees its directory, its inputs and its plugin: its
@@ -47,6 +51,8 @@ struct SandboxMounts {
                                    // its tmp/ is the job's /tmp
   std::vector<std::pair<std::filesystem::path, std::string>> readable;  // a file -> where the job sees it, read-only
   std::vector<std::filesystem::path> hidden;  // replaced by an empty read-only directory (the data directory)
+  std::vector<std::filesystem::path>
+      visible;  // read-only at their own paths, over the job's /tmp too (the worker's directory)
 };
 
 class Sandbox {

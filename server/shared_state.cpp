@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "jobs/scheduler.h"
+#include "plugins/plugin.h"
 
 namespace cgview::server {
 
@@ -44,7 +45,12 @@ std::optional<ssl::context> tls_context(const ServerConfig& c) {
 
 // The sandbox, probed once; said at start when it cannot be used.
 std::shared_ptr<const Sandbox> make_sandbox(const ServerConfig& c) {
-  auto s = std::make_shared<const Sandbox>(c.sandbox);
+  // The plugins' headers and precompiled header, wherever the build left them.
+  SandboxConfig sc = c.sandbox;
+  const PluginToolchain tc = default_toolchain();
+  sc.visible.push_back(tc.include_dir);
+  if (!tc.pch_dir.empty()) sc.visible.push_back(tc.pch_dir);
+  auto s = std::make_shared<const Sandbox>(sc);
   if (!s->enabled()) {
     if (c.sandbox.mode == "required") throw std::runtime_error("the sandbox is required but " + s->why_not());
     std::fprintf(stderr, "cgview-server: warning: jobs run without a sandbox (%s); users' plugins are off%s\n",

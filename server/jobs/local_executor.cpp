@@ -47,8 +47,10 @@ std::string LocalExecutor::launch(const LaunchSpec& job) {
       const std::string program = std::string(kSandboxPrograms) + "/" + worker_.filename().string();
       auto readable = job.read_only;
       readable.push_back({worker_, program});
-      c = sandbox_->wrap({program, std::string(kSandboxJob) + "/job.json"},
-                         {.writable = job.dir, .readable = readable, .hidden = {job.data_dir}}, slot, child);
+      c = sandbox_->wrap(
+          {program, std::string(kSandboxJob) + "/job.json"},
+          {.writable = job.dir, .readable = readable, .hidden = {job.data_dir}, .visible = {worker_.parent_path()}},
+          slot, child);
     } catch (const std::exception& e) {
       ::close(fds[0]);
       ::close(fds[1]);
