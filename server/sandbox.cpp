@@ -131,8 +131,16 @@ Sandbox::Command Sandbox::wrap(const std::vector<std::string>& argv, const Sandb
   // After /tmp: a build tree under /tmp (a CI's clone) keeps its programs and headers.
   std::vector<fs::path> visible = mounts.visible;
   visible.insert(visible.end(), config_.visible.begin(), config_.visible.end());
-  for (const fs::path& v : visible)
-    if (!v.empty() && fs::exists(v, ec)) c.argv.insert(c.argv.end(), {"--ro-bind", v.string(), v.string()});
+  for (const fs::path& v : visible) {
+    if (v.empty() || !fs::exists(v, ec)) continue;
+    // Under the job's /tmp, the directories above it are made anew: walkable
+    // by the job's user (bwrap would make them 0700).
+    std::vector<std::string> above;
+    for (fs::path d = v.parent_path(); d.string().starts_with("/tmp/"); d = d.parent_path())
+      above.push_back(d.string());
+    for (auto d = above.rbegin(); d != above.rend(); ++d) c.argv.insert(c.argv.end(), {"--perms", "0755", "--dir", *d});
+    c.argv.insert(c.argv.end(), {"--ro-bind", v.string(), v.string()});
+  }
   // Hidden last: no mount above may show the data directory again.
   std::vector<fs::path> hidden = mounts.hidden;
   hidden.insert(hidden.end(), config_.hidden.begin(), config_.hidden.end());
