@@ -50,6 +50,10 @@ std::shared_ptr<const Sandbox> make_sandbox(const ServerConfig& c) {
   const PluginToolchain tc = default_toolchain();
   sc.visible.push_back(tc.include_dir);
   if (!tc.pch_dir.empty()) sc.visible.push_back(tc.pch_dir);
+  // And CGView's programs (a worker wrapped by a script calls them).
+  std::error_code ec;
+  if (const auto self = std::filesystem::read_symlink("/proc/self/exe", ec); !ec)
+    sc.visible.push_back(self.parent_path());
   auto s = std::make_shared<const Sandbox>(sc);
   if (!s->enabled()) {
     if (c.sandbox.mode == "required") throw std::runtime_error("the sandbox is required but " + s->why_not());
