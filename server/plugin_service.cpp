@@ -264,8 +264,9 @@ void PluginService::finish_build(Plugin& p, const json& job) {
   p.diagnostics = json::array();
   if (state != "done") {
     p.state = "failed";
-    p.error = job.value("error", json("the build " + state)).is_string() ? job.value("error", "") : state;
-    if (p.error.empty()) p.error = "the build was " + state;
+    const json error = job.value("error", json());
+    p.error =
+        error.is_string() && !error.get<std::string>().empty() ? error.get<std::string>() : "the build was " + state;
     save(p);
     return;
   }
