@@ -129,8 +129,9 @@ Sandbox::Command Sandbox::wrap(const std::vector<std::string>& argv, const Sandb
                                  "--chdir", kSandboxJob});
   }
   // After /tmp: a build tree under /tmp (a CI's clone) keeps its programs and headers.
-  std::vector<fs::path> visible = mounts.visible;
-  visible.insert(visible.end(), config_.visible.begin(), config_.visible.end());
+  // (Once each: the worker's directory is most often the server's own.)
+  std::set<fs::path> visible(mounts.visible.begin(), mounts.visible.end());
+  visible.insert(config_.visible.begin(), config_.visible.end());
   for (const fs::path& v : visible) {
     if (v.empty() || !fs::exists(v, ec)) continue;
     // Under the job's /tmp, the directories above it are made anew: walkable

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <thread>
 
 #include "child_process.h"
@@ -33,11 +34,7 @@ std::string LocalExecutor::launch(const LaunchSpec& job) {
   const std::vector<std::string> argv = {worker_.string(), (job.dir / "job.json").string()};
   // The lowest slot no run holds: a root server's sandbox user for this run.
   int slot = 0;
-  for (bool taken = true; taken; ++slot) {
-    taken = false;
-    for (const auto& [id, r] : runs_) taken = taken || r.slot == slot;
-    if (!taken) break;
-  }
+  while (std::any_of(runs_.begin(), runs_.end(), [&](const auto& run) { return run.second.slot == slot; })) ++slot;
   pid_t pid = -1;
   if (sandbox_ && sandbox_->enabled()) {
     Sandbox::Command c;
