@@ -29,6 +29,7 @@ export class PluginsController {
   /** The algorithm Run runs: the built plugin's first. */
   private algorithm: Algorithm | null = null;
   private busy = false;
+  private listsAsked = 0;
 
   constructor(ctx: AppContext, root: HTMLElement) {
     this.ctx = ctx;
@@ -93,13 +94,16 @@ export class PluginsController {
   }
 
   private async refreshList(): Promise<void> {
+    // Lists asked for earlier may answer later: only the latest is shown, or a rename could be undone on screen.
+    const asked = ++this.listsAsked;
     let plugins: Plugin[];
     try {
       plugins = await listPlugins();
     } catch (e) {
-      this.panel.status(`Cannot list the plugins: ${describe(e)}`, 'error');
+      if (asked === this.listsAsked) this.panel.status(`Cannot list the plugins: ${describe(e)}`, 'error');
       return;
     }
+    if (asked !== this.listsAsked) return;
     const me = this.ctx.store.get().me?.user;
     const group = (p: Plugin): PluginGroup => (p.origin === 'lab' ? 'lab' : !me || p.owner === me ? 'yours' : 'shared');
     const sorted = [...plugins].sort((a, b) => a.name.localeCompare(b.name));
@@ -210,8 +214,8 @@ export class PluginsController {
     }
     this.plugin = await updatePlugin(this.plugin.id, { name });
     this.panel.nameInput.value = this.plugin.name;
+    await this.refreshList(); // the chooser shows the new name by the time the status says so
     this.panel.status(`Renamed ${this.plugin.name}.`, 'ok');
-    void this.refreshList();
   }
 
   private share(): void {
