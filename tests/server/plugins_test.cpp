@@ -7,8 +7,11 @@
 // endless loop, a 10 GB file, a segfault) fails that job alone, with the
 // limit it hit in its message, while another user's job goes on; the lab's
 // plugin directory is picked up, and a changed file rebuilt, without a
-// restart; a server that cannot sandbox says so and refuses users' plugins.
+// restart; a server killed with SIGKILL leaves no sandbox running; a server
+// that cannot sandbox says so and refuses users' plugins.
 #include <gtest/gtest.h>
+
+#include <signal.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -223,6 +226,40 @@ TEST_F(Plugins, EveryWayOutOfTheSandboxFailsItsJobAloneWithTheLimitItHit) {
   // The server's own files are as they were: Bob's result is still read back.
   EXPECT_EQ(as(bob_, "GET", "/api/v1/jobs/" + bobs["id"].get<std::string>() + "/artifacts/distance?format=txt").status,
             200u);
+}
+
+// The processes whose command line names this test's data directory: a
+// job's bwrap does (its job directory is bound in).
+std::vector<pid_t> processes_naming(const fs::path& dir) {
+  std::vector<pid_t> found;
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::string cmdline = read_bytes(e.path() / "cmdline");
+    for (char& c : cmdline)
+      if (c == '\0') c = ' ';
+    if (cmdline.find(dir.string()) != std::string::npos && cmdline.find("cgview-server") == std::string::npos)
+      found.push_back(pid_t(std::stoi(name)));
+  }
+  return found;
+}
+
+TEST_F(Plugins, AKilledServerLeavesNoSandboxRunning) {
+  const json p = build(alice_, "escape", source_file("tests/server/plugins/escape.cpp"));
+  ASSERT_EQ(p["build"]["state"], "ok") << p.dump();
+  const HttpResult r = as(alice_, "POST", "/api/v1/jobs",
+                          {{"algorithm", "escape"},
+                           {"plugin", p["id"]},
+                           {"inputs", {{"mesh", alice_mesh_}}},
+                           {"params", {{"attempt", "loop"}}}});
+  ASSERT_EQ(r.status, 201u) << r.body;
+  for (int i = 0; i < 200 && processes_naming(data_).empty(); ++i) std::this_thread::sleep_for(25ms);
+  ASSERT_FALSE(processes_naming(data_).empty()) << "the looping job's sandbox never started";
+  EXPECT_EQ(server_.stop(SIGKILL), 128 + SIGKILL);
+  std::vector<pid_t> left;
+  for (int i = 0; i < 200 && !(left = processes_naming(data_)).empty(); ++i) std::this_thread::sleep_for(25ms);
+  for (const pid_t pid : left) ::kill(pid, SIGKILL);  // this test's own, by id
+  EXPECT_TRUE(left.empty()) << left.size() << " sandbox processes outlived the server";
 }
 
 TEST_F(Plugins, TheLabsPluginDirectoryIsPickedUpAndAChangedFileRebuiltWithoutARestart) {
