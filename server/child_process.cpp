@@ -11,14 +11,58 @@
 
 #include <cerrno>
 #include <cstdlib>
+#include <string_view>
+#include <thread>
 
 namespace cgview::server {
+
+namespace {
+
+constexpr int kServerFd = 3;
+
+// The read end of the server's life pipe: made once; its write end is never
+// closed, so it closes when the server's process ends, however it ends.
+int server_life_fd() {
+  static const int fd = [] {
+    int fds[2];
+    if (::pipe2(fds, O_CLOEXEC) != 0) return -1;
+    return fds[0];
+  }();
+  return fd;
+}
+
+}  // namespace
+
+void end_with_server() {
+  const char* v = std::getenv("CGVIEW_SERVER_FD");
+  if (!v) return;
+  const int fd = std::atoi(v);
+  ::unsetenv("CGVIEW_SERVER_FD");
+  ::fcntl(fd, F_SETFD, FD_CLOEXEC);  // not the compiler's, nor a plugin's children's
+  std::thread([fd] {
+    char c;
+    ssize_t n;
+    do n = ::read(fd, &c, 1);
+    while (n < 0 && errno == EINTR);
+    if (n > 0) return;  // the server never writes to it
+    ::kill(0, SIGKILL);
+    ::_exit(137);
+  }).detach();
+}
 
 pid_t spawn_child(const std::vector<std::string>& args, const ChildOptions& options) {
   std::vector<std::string> copy = args;
   std::vector<char*> argv;
   for (auto& a : copy) argv.push_back(a.data());
   argv.push_back(nullptr);
+  // The environment is made before the fork (nothing that allocates after it).
+  const int life = options.end_with_server ? server_life_fd() : -1;
+  std::string life_var = "CGVIEW_SERVER_FD=" + std::to_string(kServerFd);
+  std::vector<char*> envp;
+  for (char** e = environ; *e; ++e)
+    if (!std::string_view(*e).starts_with("CGVIEW_SERVER_FD=")) envp.push_back(*e);
+  if (life >= 0) envp.push_back(life_var.data());
+  envp.push_back(nullptr);
   const std::string err = options.stderr_file.string();
   const rlim_t limit = rlim_t(options.memory_mb) << 20;
   // Until it execs, the child is a copy of the server, Asio's signal handler
@@ -39,7 +83,7 @@ pid_t spawn_child(const std::vector<std::string>& args, const ChildOptions& opti
   ::signal(SIGTERM, SIG_DFL);
   ::signal(SIGINT, SIG_DFL);
   ::pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
-  ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // a killed server leaves no child behind
+  if (life < 0) ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // a killed server leaves no child behind
   ::setpgid(0, 0);
   if (limit > 0) {
     struct rlimit rl {
@@ -74,10 +118,13 @@ pid_t spawn_child(const std::vector<std::string>& args, const ChildOptions& opti
   if (options.stderr_to_stdout) ::dup2(1, 2);
   else if (e >= 0) ::dup2(e, 2);
   else if (null >= 0) ::dup2(null, 2);
+  // Last, as the stdio descriptors above may have taken 3 meanwhile.
+  if (life == kServerFd) ::fcntl(kServerFd, F_SETFD, 0);
+  else if (life >= 0) ::dup2(life, kServerFd);
   // Nothing else of the server's: its listening socket, clients' sockets and
   // the store's files are not the child's to hold open or write.
-  ::close_range(3, ~0U, 0);
-  ::execv(argv[0], argv.data());
+  ::close_range(life >= 0 ? kServerFd + 1 : kServerFd, ~0U, 0);
+  ::execve(argv[0], argv.data(), envp.data());
   ::_exit(127);
 }
 

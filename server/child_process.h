@@ -25,7 +25,22 @@ struct ChildOptions {
   // user; 0: none) and the largest file it may write (RLIMIT_FSIZE; 0: none).
   int processes = 0;
   std::size_t file_mb = 0;
+  // A child that must end with the server (a job's worker, an upload's
+  // reader, through the sandbox): it gets the read end of a pipe whose
+  // write end only the server holds, as fd 3 named by CGVIEW_SERVER_FD, and
+  // watches it (end_with_server), instead of the parent-death signal.  That
+  // signal, sent to bubblewrap while it sets a sandbox up, leaves the
+  // sandbox's first process waiting forever for a parent that is gone;
+  // left alone, bubblewrap finishes, starts the child, and the child ends.
+  bool end_with_server = false;
 };
+
+// The child's side of ChildOptions::end_with_server: where CGVIEW_SERVER_FD
+// names such a pipe, a thread waits on it and, when it reads anything but
+// data (the server is gone, or the descriptor was closed under it), kills
+// the child's process group: the child and what it started.  Nothing where
+// the variable is not set (a worker run by hand, or by Slurm).
+void end_with_server();
 
 // Forks and execs argv[0] (a path) with argv; the child's pid, or -1 when
 // fork fails.  A child that cannot exec exits with status 127.

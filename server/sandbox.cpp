@@ -160,4 +160,31 @@ Sandbox::Command Sandbox::wrap(const std::vector<std::string>& argv, const Sandb
   return c;
 }
 
+Sandbox::Slot& Sandbox::Slot::operator=(Slot&& o) noexcept {
+  if (this != &o) {
+    give_back();
+    held_ = std::move(o.held_);
+    number_ = o.number_;
+  }
+  return *this;
+}
+
+void Sandbox::Slot::give_back() {
+  if (!held_) return;
+  std::lock_guard lock(held_->mutex);
+  held_->numbers.erase(number_);
+  held_.reset();
+}
+
+Sandbox::Slot Sandbox::take_slot() const {
+  Slot s;
+  std::lock_guard lock(slots_->mutex);
+  int n = 0;
+  while (slots_->numbers.count(n)) ++n;
+  slots_->numbers.insert(n);
+  s.held_ = slots_;
+  s.number_ = n;
+  return s;
+}
+
 }  // namespace cgview::server

@@ -16,6 +16,9 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <memory>
+#include <mutex>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -76,11 +79,34 @@ class Sandbox {
   Command wrap(const std::vector<std::string>& argv, const SandboxMounts& mounts, int slot,
                ChildOptions options = {}) const;
 
+  // A slot no other run (a job's worker, an upload's reader) holds while
+  // this one lives: the lowest free, given back when it is destroyed.
+  class Slot {
+   public:
+    Slot() = default;
+    Slot(Slot&& o) noexcept : held_(std::move(o.held_)), number_(o.number_) {}
+    Slot& operator=(Slot&& o) noexcept;
+    ~Slot() { give_back(); }
+    int number() const { return number_; }
+
+   private:
+    friend class Sandbox;
+    struct Held {
+      std::mutex mutex;
+      std::set<int> numbers;
+    };
+    void give_back();
+    std::shared_ptr<Held> held_;
+    int number_ = -1;
+  };
+  Slot take_slot() const;
+
  private:
   SandboxConfig config_;
   std::filesystem::path bwrap_, setpriv_;
   bool enabled_ = false;
   std::string why_not_;
+  std::shared_ptr<Slot::Held> slots_ = std::make_shared<Slot::Held>();
 };
 
 }  // namespace cgview::server

@@ -102,7 +102,7 @@ Shared::Shared(const ServerConfig& c)
   meshes.set_max_upload_bytes(c.max_upload_bytes);  // what a zip upload may unpack to
   if (!c.reader.empty())
     meshes.set_reader({c.reader, c.data_dir / "tmp", c.jobs.memory_mb,
-                       std::chrono::milliseconds(std::llround(c.upload_timeout_s * 1000))});
+                       std::chrono::milliseconds(std::llround(c.upload_timeout_s * 1000)), sandbox, c.data_dir});
   meshes.set_preview(c.preview);
   rate.on_refused = [m = &metrics] { m->rate_limited(); };
   jobs->set_plugin_resolver([p = plugins.get()](const std::string& id, const std::string& algorithm,

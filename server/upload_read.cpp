@@ -191,13 +191,14 @@ ReadDir::~ReadDir() {
   fs::remove_all(path_, ec);
 }
 
-void run_reader_child(const UploadReader& reader, const char* mode, const std::string& name, const ReadDir& dir) {
-  ChildOptions options;
-  options.memory_mb = reader.memory_mb;
-  options.stderr_file = dir.path() / "stderr.txt";
-  const pid_t pid = spawn_child({reader.program.string(), mode, dir.path().string()}, options);
-  if (pid < 0) throw IoError("cannot start a process to read the upload (fork failed)");
-  const std::optional<int> status = wait_child(pid, reader.time_limit);
+namespace {
+
+// What a reader's exit says: nothing when it read the file, else what it
+// refused it for, as the read would have thrown.
+void reader_status(const UploadReader& reader, const std::string& name, const ReadDir& dir, std::optional<int> status) {
+  // bubblewrap exits 128 + N for a child killed by signal N.
+  if (status && WIFEXITED(*status) && WEXITSTATUS(*status) > 128 && reader.sandbox && reader.sandbox->enabled())
+    status = WEXITSTATUS(*status) - 128;  // as a raw status: WIFSIGNALED, its signal in the low bits
   const std::string limit_mb = std::to_string(reader.memory_mb) + " MB";
   if (!status) {
     char secs[32];
@@ -234,6 +235,32 @@ void run_reader_child(const UploadReader& reader, const char* mode, const std::s
                      "; nothing was stored");
 }
 
+}  // namespace
+
+void run_reader_child(const UploadReader& reader, const char* mode, const std::string& name, const ReadDir& dir) {
+  std::vector<std::string> argv = {reader.program.string(), mode, dir.path().string()};
+  ChildOptions options;
+  options.memory_mb = reader.memory_mb;
+  options.stderr_file = dir.path() / "stderr.txt";
+  options.end_with_server = true;
+  Sandbox::Slot slot;  // held until the reader is gone
+  if (reader.sandbox && reader.sandbox->enabled()) {
+    slot = reader.sandbox->take_slot();
+    const std::string program = std::string(kSandboxPrograms) + "/" + reader.program.filename().string();
+    Sandbox::Command c = reader.sandbox->wrap({program, mode, kSandboxJob},
+                                              {.writable = dir.path(),
+                                               .readable = {{reader.program, program}},
+                                               .hidden = {reader.hidden},
+                                               .visible = {reader.program.parent_path()}},
+                                              slot.number(), options);
+    argv = std::move(c.argv);
+    options = std::move(c.options);
+  }
+  const pid_t pid = spawn_child(argv, options);
+  if (pid < 0) throw IoError("cannot start a process to read the upload (fork failed)");
+  reader_status(reader, name, dir, wait_child(pid, reader.time_limit));
+}
+
 int reader_main(const fs::path& dir, const std::function<void()>& read) {
   auto refuse = [&](const char* kind, const std::string& detail) {
     try {
@@ -244,6 +271,7 @@ int reader_main(const fs::path& dir, const std::function<void()>& read) {
     }
     return 2;
   };
+  end_with_server();
   try {
     read();
     return 0;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "sandbox.h"
 
 namespace cgview::server {
 
@@ -48,6 +49,11 @@ struct UploadReader {
   std::filesystem::path temp_dir;  // the child's files (the upload, its results), one directory per upload
   std::size_t memory_mb = 8192;    // the child's address space; 0: no limit
   std::chrono::milliseconds time_limit{120000};
+  // The jobs' sandbox: a file's parser is as exposed to its bytes as a job
+  // to its code, so a reader sees only its own directory, never the data
+  // directory (`hidden`).  Null or off: a plain child.
+  std::shared_ptr<const Sandbox> sandbox;
+  std::filesystem::path hidden;
 };
 
 // read_upload run by `reader.program --read-upload DIR` (cgview-read) in a child process

@@ -29,6 +29,7 @@
 #include <unistd.h>
 
 #include "algorithm_json.h"
+#include "child_process.h"
 #include "io/mesh_io.h"
 #include "artifacts/artifact_codec.h"
 #include "registry/artifact_io.h"
@@ -109,6 +110,7 @@ int main(int argc, char** argv) {
     std::fputs("usage: cgview-worker JOB.json | --list\n", stderr);
     return 64;
   }
+  cgview::server::end_with_server();  // a worker whose server is gone ends, sandbox and all
   fs::path out;
   auto fail = [&](int code, const std::string& msg) {
     std::fprintf(stderr, "%s\n", msg.c_str());

@@ -31,12 +31,12 @@ std::string LocalExecutor::launch(const LaunchSpec& job) {
   child.memory_mb = job.memory_mb;
   child.stdout_fd = fds[1];
   child.stderr_file = job.dir / "stderr.txt";
+  child.end_with_server = true;
   const std::vector<std::string> argv = {worker_.string(), (job.dir / "job.json").string()};
-  // The lowest slot no run holds: a root server's sandbox user for this run.
-  int slot = 0;
-  while (std::any_of(runs_.begin(), runs_.end(), [&](const auto& run) { return run.second.slot == slot; })) ++slot;
   pid_t pid = -1;
+  Sandbox::Slot slot;
   if (sandbox_ && sandbox_->enabled()) {
+    slot = sandbox_->take_slot();
     Sandbox::Command c;
     try {
       // The worker program too is mounted where the job sees it: it may lie
@@ -47,7 +47,7 @@ std::string LocalExecutor::launch(const LaunchSpec& job) {
       c = sandbox_->wrap(
           {program, std::string(kSandboxJob) + "/job.json"},
           {.writable = job.dir, .readable = readable, .hidden = {job.data_dir}, .visible = {worker_.parent_path()}},
-          slot, child);
+          slot.number(), child);
     } catch (const std::exception& e) {
       ::close(fds[0]);
       ::close(fds[1]);
@@ -65,7 +65,7 @@ std::string LocalExecutor::launch(const LaunchSpec& job) {
   ::fcntl(fds[0], F_SETFL, O_NONBLOCK);
   Run& r = runs_[job.job_id];
   r.pid = pid;
-  r.slot = slot;
+  r.slot = std::move(slot);
   r.out_fd = fds[0];
   r.launched = Clock::now();
   r.timeout_s = job.timeout_s;

@@ -38,8 +38,8 @@ class LocalExecutor : public Executor {
  private:
   struct Run {
     pid_t pid = -1;
-    int slot = -1;    // the sandbox's user for it (a root server's)
-    int out_fd = -1;  // the worker's stdout; -1 once it closed
+    Sandbox::Slot slot;  // the sandbox's user for it (a root server's)
+    int out_fd = -1;     // the worker's stdout; -1 once it closed
     std::string out;
     std::string garbage;  // why it was stopped: its output was not progress lines
     std::chrono::steady_clock::time_point launched, term_sent;

@@ -3,7 +3,8 @@
 // limit and its own time limit.  Hostile files of each class (counts that
 // lie, deep nesting, numbers that overflow, every format's decoder) answer
 // 4xx with what was wrong, never 500; a reader that crashes or hangs costs
-// its upload a 400 or 413; and meanwhile the server answers others.
+// its upload a 400 or 413; a reader sees only its own directory (the
+// jobs' sandbox); and meanwhile the server answers others.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -160,6 +161,27 @@ TEST_F(UploadIsolation, AReaderThatCrashesFailsItsUploadAlone) {
   expect_refused(upload("a.off", read_bytes(sample("elephant.off"))), 400, "SIGSEGV");
   expect_healthy();
   EXPECT_EQ(meshes(), 0u);
+}
+
+TEST_F(UploadIsolation, AReaderSeesOnlyItsOwnDirectoryNeitherTheDataNorTheNetwork) {
+  // The stand-in reader does what a parser taken over by its file could:
+  // it looks for the server's database, writes beside it, and looks for a
+  // network (a namespace of its own has only loopback); then it says in its
+  // refusal what it found.
+  std::string body = R"sh(found=''
+[ -e 'DATA/cgview.db' ] && found="$found database"
+touch 'DATA/escaped' 2>/dev/null && found="$found wrote"
+[ "$(grep -c : /proc/net/dev)" -gt 1 ] && found="$found network"
+ls /run/cgview/job/upload >/dev/null || found="$found no-upload"
+printf '{"error":"invalid_mesh","detail":"found:%s."}' "$found" > "$2/error.json"
+exit 2)sh";
+  for (std::size_t at; (at = body.find("DATA")) != std::string::npos;) body.replace(at, 4, data_.string());
+  const fs::path nosy = script("nosy-reader", body);
+  ASSERT_TRUE(server_.start(data_, {"--reader", nosy.string()}, dir_));
+  ASSERT_TRUE(fs::exists(data_ / "cgview.db"));
+  expect_refused(upload("a.off", read_bytes(sample("elephant.off"))), 400, "found:.");
+  EXPECT_FALSE(fs::exists(data_ / "escaped"));
+  expect_healthy();
 }
 
 TEST_F(UploadIsolation, AReaderOverItsTimeLimitIs413WhileOthersAreServed) {
