@@ -194,11 +194,13 @@ void apply_config(const json& doc, ServerConfig& config) {
           if (m != "requeue" && m != "fail") bad(k, "is \"requeue\" or \"fail\", got " + v.dump());
           sl.requeue_lost = m == "requeue";
         } else if (key == "worker") sl.worker = text(v, k);
-        else
+        else if (key == "sandbox") {
+          if (!v.is_boolean()) bad(k, "must be true or false, got " + v.dump());
+          sl.sandbox = v.get<bool>();
+        } else
           bad(k,
               "unknown key (the slurm section knows partition, account, qos, sbatch_args, max_jobs, max_pending, "
-              "poll_s, "
-              "shared_data, server_url, on_lost, worker)");
+              "poll_s, shared_data, server_url, on_lost, worker, sandbox)");
       }
     } else if (section == "sandbox") {
       SandboxConfig& sb = config.sandbox;

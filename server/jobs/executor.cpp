@@ -11,6 +11,19 @@
 
 namespace cgview::server {
 
+Sandbox::Command sandboxed_worker(const Sandbox& sandbox, const LaunchSpec& job, const std::filesystem::path& worker,
+                                  int slot, ChildOptions options) {
+  // The worker program too is mounted where the job sees it: it may lie
+  // where the job may not walk (a wrapper script in a test's /tmp).
+  const std::string program = std::string(kSandboxPrograms) + "/" + worker.filename().string();
+  auto readable = job.read_only;
+  readable.push_back({worker, program});
+  return sandbox.wrap(
+      {program, std::string(kSandboxJob) + "/job.json"},
+      {.writable = job.dir, .readable = readable, .hidden = {job.data_dir}, .visible = {worker.parent_path()}}, slot,
+      std::move(options));
+}
+
 WakePipe::WakePipe() {
   if (::pipe2(fds_, O_CLOEXEC | O_NONBLOCK) != 0) throw IoError("jobs: pipe failed");
 }

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "sandbox.h"
+
 namespace cgview::server {
 
 struct LaunchSpec {
@@ -75,6 +77,12 @@ struct LaunchError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The command that runs `worker` on the job in `sandbox`: its directory the
+// only writable one, its inputs, plugin and the worker read-only where
+// job.json names them, the data directory hidden.  Throws IoError.
+Sandbox::Command sandboxed_worker(const Sandbox& sandbox, const LaunchSpec& job, const std::filesystem::path& worker,
+                                  int slot, ChildOptions options = {});
+
 class Executor {
  public:
   virtual ~Executor() = default;
@@ -98,6 +106,8 @@ class Executor {
   // The server stops: workers that cannot outlive it are killed (their jobs
   // run again at the next start); the cluster's go on.
   virtual void shutdown() = 0;
+  // Whether its workers start in the sandbox (they then see the paths of sandbox.h).
+  virtual bool sandboxed() const { return false; }
 };
 
 // A pipe that ends an executor's wait from another thread (cancel, a new

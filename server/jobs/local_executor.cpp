@@ -39,15 +39,7 @@ std::string LocalExecutor::launch(const LaunchSpec& job) {
     slot = sandbox_->take_slot();
     Sandbox::Command c;
     try {
-      // The worker program too is mounted where the job sees it: it may lie
-      // where the job may not walk (a wrapper script in a test's /tmp).
-      const std::string program = std::string(kSandboxPrograms) + "/" + worker_.filename().string();
-      auto readable = job.read_only;
-      readable.push_back({worker_, program});
-      c = sandbox_->wrap(
-          {program, std::string(kSandboxJob) + "/job.json"},
-          {.writable = job.dir, .readable = readable, .hidden = {job.data_dir}, .visible = {worker_.parent_path()}},
-          slot.number(), child);
+      c = sandboxed_worker(*sandbox_, job, worker_, slot.number(), child);
     } catch (const std::exception& e) {
       ::close(fds[0]);
       ::close(fds[1]);

@@ -34,6 +34,7 @@ class LocalExecutor : public Executor {
   std::vector<ExecutorEvent> poll(std::chrono::milliseconds timeout) override;
   void wake() override;
   void shutdown() override;
+  bool sandboxed() const override { return sandbox_ && sandbox_->enabled(); }
 
  private:
   struct Run {

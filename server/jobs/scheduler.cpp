@@ -23,7 +23,7 @@ namespace {
 
 std::unique_ptr<Executor> make_executor(const JobConfig& c) {
   if (c.executor == "local") return std::make_unique<LocalExecutor>(c.worker, c.max_workers, c.sandbox);
-  if (c.executor == "slurm") return std::make_unique<SlurmExecutor>(c.slurm, c.worker);
+  if (c.executor == "slurm") return std::make_unique<SlurmExecutor>(c.slurm, c.worker, c.sandbox);
   throw InvalidInput("executor '" + c.executor + "': it is local or slurm");
 }
 
@@ -58,7 +58,7 @@ fs::path JobScheduler::job_dir(const std::string& id) const { return meshes_.sto
 
 WorkerLimits JobScheduler::limits_of_workers() const {
   WorkerLimits l{config_.timeout_s, config_.memory_mb};
-  if (config_.executor == "local" && config_.sandbox && config_.sandbox->enabled()) {
+  if (executor_->sandboxed()) {
     l.sandboxed = true;
     l.processes = config_.sandbox->config().processes;
     l.file_mb = config_.sandbox->config().file_mb;

@@ -26,6 +26,10 @@ struct SlurmConfig {
   // (true) or failed with that reason.
   bool requeue_lost = false;
   std::filesystem::path worker;  // cgview-worker on the nodes ("": the server's own path)
+  // With a shared data directory, workers start in the server's sandbox
+  // (sandbox.h) on the nodes too, which then need bubblewrap (and setpriv
+  // where the server runs as root); false runs them as plain processes.
+  bool sandbox = true;
 };
 
 }  // namespace cgview::server

@@ -57,8 +57,8 @@ std::string first_line(std::string s) {
 
 }  // namespace
 
-SlurmExecutor::SlurmExecutor(SlurmConfig config, fs::path worker)
-    : config_(std::move(config)), worker_(std::move(worker)) {
+SlurmExecutor::SlurmExecutor(SlurmConfig config, fs::path worker, std::shared_ptr<const Sandbox> sandbox)
+    : config_(std::move(config)), sandbox_(std::move(sandbox)), worker_(std::move(worker)) {
   if (!config_.worker.empty()) worker_ = config_.worker;
   if (config_.max_jobs < 1) config_.max_jobs = 1;
   if (config_.max_pending < 1) config_.max_pending = 1;
@@ -69,6 +69,10 @@ SlurmExecutor::SlurmExecutor(SlurmConfig config, fs::path worker)
   scontrol_ = find_program("scontrol");
   if (sbatch_.empty() || squeue_.empty() || scancel_.empty() || scontrol_.empty())
     throw InvalidInput("slurm: sbatch, squeue, scancel and scontrol must be on PATH (Debian's slurm-client)");
+}
+
+bool SlurmExecutor::sandboxed() const {
+  return config_.sandbox && config_.shared_data && sandbox_ && sandbox_->enabled();
 }
 
 int SlurmExecutor::capacity() const {
@@ -102,14 +106,22 @@ std::vector<std::string> SlurmExecutor::sbatch_command(const LaunchSpec& job) co
   return a;
 }
 
-std::string SlurmExecutor::batch_script(const LaunchSpec& job) const {
+std::string SlurmExecutor::batch_script(const LaunchSpec& job, int slot) const {
   const std::string limit = job.memory_mb > 0 ? "ulimit -v " + std::to_string(job.memory_mb * 1024) + "; " : "";
   if (job.token.empty()) {
     // The worker under the job's address-space limit (as a local worker
     // runs), and its exit status kept beside its results: 128+N for a signal.
+    // In the sandbox, the same bubblewrap command a local worker starts
+    // with, under its process and file-size limits (prlimit: util-linux).
+    std::string command = quoted(worker_.string()) + " " + quoted((job.dir / "job.json").string());
+    if (sandboxed()) {
+      const Sandbox::Command c = sandboxed_worker(*sandbox_, job, worker_, slot);
+      command = "prlimit --nproc=" + std::to_string(c.options.processes) +
+                " --fsize=" + std::to_string(std::uint64_t(c.options.file_mb) << 20) + " --";
+      for (const std::string& a : c.argv) command += " " + quoted(a);
+    }
     return "#!/bin/sh\n# CGView job " + job.job_id + "\ncd " + quoted(job.dir.string()) +
-           " || exit 97\nrm -f worker.exit\n(" + limit + "exec " + quoted(worker_.string()) + " " +
-           quoted((job.dir / "job.json").string()) +
+           " || exit 97\nrm -f worker.exit\n(" + limit + "exec " + command +
            ")\nrc=$?\necho $rc > worker.exit.tmp && mv worker.exit.tmp worker.exit\nexit $rc\n";
   }
   // No shared directory: curl fetches job.json and the inputs with the job's
@@ -154,7 +166,14 @@ std::string SlurmExecutor::batch_script(const LaunchSpec& job) const {
 }
 
 std::string SlurmExecutor::launch(const LaunchSpec& job) {
-  const std::string script = batch_script(job);
+  Sandbox::Slot slot;
+  if (sandboxed()) slot = sandbox_->take_slot();
+  std::string script;
+  try {
+    script = batch_script(job, slot.number());
+  } catch (const std::exception& e) {
+    throw LaunchError(e.what());
+  }
   try {
     write_file_bytes(job.dir / "slurm-job.sh", script);
   } catch (const std::exception& e) {
@@ -170,6 +189,7 @@ std::string SlurmExecutor::launch(const LaunchSpec& job) {
   Tracked& t = jobs_[job.job_id];
   t.spec = job;
   t.slurm_id = id;
+  t.slot = std::move(slot);
   return id;
 }
 

@@ -26,7 +26,9 @@ namespace cgview::server {
 class SlurmExecutor : public Executor {
  public:
   // Throws InvalidInput when Slurm's tools are not on PATH.
-  SlurmExecutor(SlurmConfig config, std::filesystem::path worker);
+  // A sandbox that is on wraps each worker (with a shared data directory
+  // and slurm.sandbox): the nodes run the same bubblewrap command.
+  SlurmExecutor(SlurmConfig config, std::filesystem::path worker, std::shared_ptr<const Sandbox> sandbox = {});
 
   const char* name() const override { return "slurm"; }
   // Its running jobs and max_pending more, at most max_jobs.
@@ -37,16 +39,18 @@ class SlurmExecutor : public Executor {
   std::vector<ExecutorEvent> poll(std::chrono::milliseconds timeout) override;
   void wake() override;
   void shutdown() override {}  // the cluster's jobs outlive the server
+  bool sandboxed() const override;
 
   // The sbatch command line for a job, and its batch script.
   std::vector<std::string> sbatch_command(const LaunchSpec& job) const;
-  std::string batch_script(const LaunchSpec& job) const;
+  std::string batch_script(const LaunchSpec& job, int slot = 0) const;
   // How many squeue calls it made (one per poll cycle).
   std::uint64_t squeue_calls() const { return squeue_calls_; }
 
  private:
   struct Tracked {
     LaunchSpec spec;
+    Sandbox::Slot slot;  // its sandbox's user (a root server's), while it is in the cluster
     std::string slurm_id;
     bool running = false;     // a started event was sent
     bool cancelling = false;  // scancel sent
@@ -65,6 +69,7 @@ class SlurmExecutor : public Executor {
   void read_progress(Tracked& t, std::vector<ExecutorEvent>& events);
 
   SlurmConfig config_;
+  std::shared_ptr<const Sandbox> sandbox_;
   std::filesystem::path worker_;
   std::filesystem::path sbatch_, squeue_, scancel_, scontrol_;
   std::map<std::string, Tracked> jobs_;  // by CGView job id

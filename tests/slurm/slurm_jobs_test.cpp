@@ -2,7 +2,8 @@
 // machine (slurm_cluster.h) and the real cgview-server: jobs land on every
 // node, their results equal the local executor's byte for byte, and cancel,
 // the time and memory limits, a crash, a killed node, a server killed and
-// started again, and a job Slurm forgot each end as a person expects.
+// started again, and a job Slurm forgot each end as a person expects; a
+// user's plugin is built and run on the nodes in the sandbox.
 #include <gtest/gtest.h>
 #include <sched.h>
 #include <signal.h>
@@ -182,6 +183,42 @@ TEST_F(SlurmJobs, JobsLandOnEveryNodeAndResultsEqualTheLocalExecutorsByteForByte
   EXPECT_TRUE(artifact(sdf2["id"], "sdf", "f32") == sdf_slurm) << "sdf differs between the executors";
   EXPECT_TRUE(artifact(vox2["id"], vox_name, "nrrd") == vox_slurm) << "the voxel grid differs between the executors";
   EXPECT_GT(sdf_slurm.size(), 100u);
+}
+
+TEST_F(SlurmJobs, APluginIsBuiltAndRunOnTheNodesInTheSandbox) {
+  ASSERT_TRUE(start());
+  const std::string mesh = upload("sphere.off");
+  const std::string source = read_bytes(fs::path(CGVIEW_SOURCE_DIR) / "tests/server/plugins/escape.cpp");
+  const auto made =
+      http_call(port(), Method::post, "/api/v1/plugins", json{{"name", "escape"}, {"source", source}}.dump());
+  ASSERT_EQ(made.status, 201u) << made.body;
+  const std::string plugin = made.body_json().value("id", "");
+  const auto build = http_call(port(), Method::post, "/api/v1/plugins/" + plugin + "/build", "");
+  ASSERT_EQ(build.status, 202u) << build.body;
+  const json built = wait_end(build.body_json().value("id", ""), 120s);
+  ASSERT_EQ(built.value("state", ""), "done") << built.dump();
+  EXPECT_FALSE(slurm_id(built["id"]).empty()) << "the build ran on the cluster";
+  auto attempt = [&](const std::string& what, const std::string& target) {
+    const auto r = http_call(port(), Method::post, "/api/v1/jobs",
+                             json{{"algorithm", "escape"},
+                                  {"plugin", plugin},
+                                  {"inputs", {{"mesh", mesh}}},
+                                  {"params", {{"attempt", what}, {"target", target}}}}
+                                 .dump());
+    EXPECT_EQ(r.status, 201u) << r.body;
+    return wait_end(r.body_json().value("id", ""));
+  };
+  // On a node, as on the server: the data directory is not there, nor a network.
+  const json read = attempt("read_file", (data_ / "cgview.db").string());
+  EXPECT_EQ(read.value("state", ""), "failed") << read.dump();
+  EXPECT_NE(read.value("error", json("")).get<std::string>().find("not visible"), std::string::npos) << read.dump();
+  EXPECT_FALSE(slurm_id(read["id"]).empty()) << "it ran on the cluster";
+  const json net = attempt("connect_local", std::to_string(port()));
+  EXPECT_NE(net.value("error", json("")).get<std::string>().find("a job has no network"), std::string::npos)
+      << net.dump();
+  // Its batch script is the bubblewrap command.
+  EXPECT_NE(read_bytes(data_ / "jobs" / read["id"].get<std::string>() / "slurm-job.sh").find("bwrap"),
+            std::string::npos);
 }
 
 TEST_F(SlurmJobs, CancelStopsTheSlurmJobWithinSeconds) {
