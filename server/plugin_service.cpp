@@ -163,17 +163,35 @@ json PluginService::to_json(const Plugin& p, bool with_source) const {
   return out;
 }
 
-json PluginService::list(const Caller& caller) const {
+json PluginService::list(const Caller& caller) {
   std::lock_guard lock(mutex_);
+  settle_builds_locked();
   json out = json::array();
   for (const auto& [id, p] : plugins_)
     if (access_locked(p).allows(caller)) out.push_back(to_json(p, false));
   return {{"plugins", out}};
 }
 
-json PluginService::get(const std::string& id, const Caller& caller) const {
+json PluginService::get(const std::string& id, const Caller& caller) {
   std::lock_guard lock(mutex_);
+  settle_builds_locked();
   return to_json(readable(id, caller), true);
+}
+
+void PluginService::settle_builds_locked() {
+  for (auto& [id, p] : plugins_) {
+    if (p.state != "building") continue;
+    const auto job = jobs_.get(p.build_job);
+    const std::string state = job ? job->value("state", "") : "";
+    if (state == "queued" || state == "running") continue;
+    try {
+      if (job) finish_build(p, *job);
+      else p.state = "none";  // the job is gone
+    } catch (const std::exception& e) {
+      p.state = "failed";
+      p.error = e.what();
+    }
+  }
 }
 
 json PluginService::create(const json& body, const Caller& caller) {

@@ -59,8 +59,10 @@ class PluginService {
   // The plugins the caller reads (their own, those shared with them, the
   // lab's), without their source; one with it.  An unknown id, or another
   // user's not shared, throws std::out_of_range.
-  nlohmann::json list(const Caller& caller) const;
-  nlohmann::json get(const std::string& id, const Caller& caller) const;
+  // A build whose job has ended is settled first: a client that saw the
+  // job end reads the build's outcome, not "building".
+  nlohmann::json list(const Caller& caller);
+  nlohmann::json get(const std::string& id, const Caller& caller);
   // Saves a new plugin (name: a plain name, source: C++ text); changes one
   // of the caller's own ({"name"}, {"source"} or both: a new source is built
   // again); deletes one.  Throws InvalidInput, PluginsOff, Forbidden.
@@ -98,6 +100,7 @@ class PluginService {
   Access access_locked(const Plugin& p) const;
   void save(const Plugin& p);
   // Reads an ended build job's results into its plugin (under mutex_).
+  void settle_builds_locked();
   void finish_build(Plugin& p, const nlohmann::json& job);
   nlohmann::json start_build(Plugin& p, const Caller& caller);  // under mutex_
 
