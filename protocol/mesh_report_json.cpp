@@ -21,6 +21,7 @@ nlohmann::json to_json(const MeshReport& r) {
       {"duplicate_faces", r.duplicate_faces},
       {"closed", r.closed},
       {"oriented", r.oriented},
+      {"faces_inward", r.faces_inward},
       {"isolated_vertices", r.isolated_vertices},
       {"boundary_edges", r.boundary_edges},
       {"non_manifold_edges", r.non_manifold_edges},

@@ -170,7 +170,12 @@ UploadRead read_upload(const std::string& name, const std::string& format, std::
   out.name = n;
   out.format = to_string(f);
   if (mesh_file) out.unpacked_mesh = mesh_file->bytes;
-  out.report_json = protocol::to_json(mesh_report(r.mesh)).dump();
+  const MeshReport report = mesh_report(r.mesh);
+  if (report.faces_inward)
+    r.warnings.push_back(n +
+                         ": the mesh is closed but its faces all face inward (a negative volume): shading looks "
+                         "inside out; the SDF turns it outward for its run; Repair or Orient outward turns it");
+  out.report_json = protocol::to_json(report).dump();
   out.warnings_json = nlohmann::json(r.warnings).dump();
   out.material_json = textures.material.dump();
   out.textures = std::move(textures.blobs);

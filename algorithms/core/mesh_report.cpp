@@ -104,6 +104,7 @@ MeshReport mesh_report(const Mesh& mesh) {
     if (twice >= 0 && twice % 2 == 0) r.genus = twice / 2;
   }
   if (r.closed && r.oriented) r.volume = signed_volume(mesh);
+  r.faces_inward = r.volume && *r.volume < 0;
   return r;
 }
 

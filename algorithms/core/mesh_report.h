@@ -32,6 +32,10 @@ struct MeshReport {
   std::optional<std::int64_t> genus;                 // when manifold and oriented
   double area = 0;                                   // total surface area
   std::optional<double> volume;                      // enclosed volume, when closed and oriented
+  // Closed and oriented with a negative volume: every face points into the
+  // solid (a common export error).  What needs the inside (the SDF) would
+  // cast its rays outward; orient_outward (core/orient.h) turns it.
+  bool faces_inward = false;
 };
 
 // Computes the report in O(n log n).  Never throws for a validated mesh.

@@ -4,7 +4,11 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <list>
 #include <sstream>
+
+#include "core/mesh_report.h"
+#include "core/orient.h"
 
 namespace cgview {
 
@@ -48,6 +52,26 @@ void detail::set_registration_clashes(std::vector<std::string>* sink) { registra
 
 void register_algorithm(Algorithm a) {
   const std::string name = a.info.name;
+  std::vector<std::string> outward;
+  for (const InputSpec& in : a.info.inputs)
+    if (in.outward && in.kind == OutputKind::mesh) outward.push_back(in.name);
+  if (!outward.empty())
+    a.run = [run = std::move(a.run), outward, title = a.info.title](
+                const Inputs& inputs, const std::map<std::string, ParamValue>& params, Context& ctx) {
+      Inputs turned = inputs;
+      std::list<Mesh> copies;  // stable addresses for `turned`
+      std::vector<std::string> said;
+      for (const std::string& in : outward) {
+        if (!inputs.has(in) || !mesh_report(inputs.mesh(in)).faces_inward) continue;
+        flip_faces(copies.emplace_back(inputs.mesh(in)));
+        turned.add(in, copies.back());
+        said.push_back("the " + in + " is a closed mesh whose faces all face inward (a negative volume): " + title +
+                       " ran on it turned outward; Repair or Orient outward turns the mesh itself");
+      }
+      AlgorithmResult r = run(copies.empty() ? inputs : turned, params, ctx);
+      r.warnings.insert(r.warnings.begin(), said.begin(), said.end());
+      return r;
+    };
   if (table().emplace(name, std::move(a)).second) return;
   if (registration_clashes) registration_clashes->push_back(name);
   else throw std::logic_error("two algorithms are named '" + name + "'");

@@ -115,6 +115,10 @@ struct InputSpec {  // initializers as in ParamInfo
   std::string name{};
   OutputKind kind = OutputKind::mesh;
   std::string help{};
+  // The algorithm needs the mesh's inside (rays cast along the inward
+  // normal): a closed mesh whose faces face inward is turned outward for
+  // the run (face indices kept), and a warning says so.
+  bool outward = false;
 };
 
 // The inputs of one run, by name; it refers to values the caller owns.

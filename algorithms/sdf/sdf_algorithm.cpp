@@ -47,4 +47,5 @@ CGVIEW_REGISTER_ALGORITHM(
      .outputs = {{"sdf", cgview::OutputKind::scalar_field},
                  {"sdf_normalized", cgview::OutputKind::scalar_field},
                  {"sdf_vertex", cgview::OutputKind::scalar_field},
-                 {"metrics", cgview::OutputKind::metrics}}});
+                 {"metrics", cgview::OutputKind::metrics}},
+     .inputs = {cgview::sdf::kSdfInput}});

@@ -104,4 +104,5 @@ CGVIEW_REGISTER_ALGORITHM(
      .outputs = {{"sdf_fast", cgview::OutputKind::scalar_field},
                  {"sdf", cgview::OutputKind::scalar_field},
                  {"error", cgview::OutputKind::scalar_field},
-                 {"metrics", cgview::OutputKind::metrics}}});
+                 {"metrics", cgview::OutputKind::metrics}},
+     .inputs = {cgview::sdf::kSdfInput}});

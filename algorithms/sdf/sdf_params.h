@@ -69,4 +69,11 @@ std::vector<Artifact> sdf_fields(const Mesh& mesh, const std::string& name, cons
 // Warnings for rays that found no inside (open meshes).
 void warn_missing(const RawSdf& raw, std::vector<std::string>& warnings);
 
+// The input of every SDF algorithm: it casts along the inward normal, so a
+// closed mesh facing inward is turned outward first (InputSpec::outward).
+inline const InputSpec kSdfInput{.name = "mesh",
+                                 .kind = OutputKind::mesh,
+                                 .help = "the mesh (one whose faces face inward is turned outward)",
+                                 .outward = true};
+
 }  // namespace cgview::sdf

@@ -73,4 +73,5 @@ CGVIEW_REGISTER_ALGORITHM(sdf_segmentation, cgview::sdf::Params, cgview::sdf::ru
                                           "Needs a manifold mesh.",
                            .area = "sdf",
                            .outputs = {{"segments", cgview::OutputKind::scalar_field},
-                                       {"metrics", cgview::OutputKind::metrics}}});
+                                       {"metrics", cgview::OutputKind::metrics}},
+                           .inputs = {cgview::sdf::kSdfInput}});

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "algorithm_support.h"
+#include "core/orient.h"
 #include "core/surface_mesh.h"
 #include "io/mesh_io.h"
 #include "sdf/sdf.h"
@@ -84,6 +85,27 @@ TEST(Sdf, SphereWithTheDefaultConeIsTheMeanOfItsChords) {
   EXPECT_LT(hi - lo, 0.02 * hi);
   EXPECT_GT(lo, r);  // between the shortest chord (r, at 60 degrees) and the diameter
   EXPECT_LT(hi, 2 * r);
+}
+
+TEST(Sdf, AMeshFacingInwardIsTurnedOutwardForItsRunAndTheResultSaysSo) {
+  // The rays go along the inward normal: facing inward they would leave
+  // the ball, and most faces would have no value.
+  const Mesh out = test::uv_sphere(1.0, 16, 32);
+  Mesh in = out;
+  flip_faces(in);
+  for (const char* name : {"sdf", "sdf_fast"}) {
+    SCOPED_TRACE(name);
+    const AlgorithmResult a = run_algorithm(name, out, {{"smooth", false}});
+    const AlgorithmResult b = run_algorithm(name, in, {{"smooth", false}});
+    const ScalarField& fa = artifact<ScalarField>(a, name == std::string("sdf") ? "sdf" : "sdf_fast");
+    const ScalarField& fb = artifact<ScalarField>(b, name == std::string("sdf") ? "sdf" : "sdf_fast");
+    ASSERT_EQ(fa.values.size(), fb.values.size());
+    for (std::size_t f = 0; f < fa.values.size(); ++f) ASSERT_FLOAT_EQ(fa.values[f], fb.values[f]) << "face " << f;
+    EXPECT_TRUE(a.warnings.empty() || a.warnings.front().find("face inward") == std::string::npos);
+    ASSERT_FALSE(b.warnings.empty());
+    EXPECT_NE(b.warnings.front().find("faces all face inward"), std::string::npos) << b.warnings.front();
+    EXPECT_NE(b.warnings.front().find("turned outward"), std::string::npos);
+  }
 }
 
 TEST(Sdf, LongCylinderGivesItsDiameterAwayFromTheCaps) {

@@ -26,6 +26,9 @@ function ordered(report: Record<string, unknown>): Array<[string, unknown]> {
     .map(({ e }) => e);
 }
 
+// Facts that are defects when true (a closed mesh facing inward), marked as a "no" is.
+const BAD_WHEN_TRUE = new Set(['faces_inward']);
+
 function rows(report: Record<string, unknown>, prefix = ''): HTMLTableRowElement[] {
   const out: HTMLTableRowElement[] = [];
   for (const [key, value] of prefix ? Object.entries(report) : ordered(report)) {
@@ -34,7 +37,8 @@ function rows(report: Record<string, unknown>, prefix = ''): HTMLTableRowElement
       out.push(...rows(value as Record<string, unknown>, name));
       continue;
     }
-    const cls = typeof value === 'boolean' ? (value ? 'yes' : 'no') : '';
+    const good = BAD_WHEN_TRUE.has(key) ? !value : value;
+    const cls = typeof value === 'boolean' ? (good ? 'yes' : 'no') : '';
     out.push(el('tr', { 'data-key': prefix ? undefined : key }, el('th', { scope: 'row', title: key }, name), el('td', { class: cls }, formatValue(value))));
   }
   return out;
