@@ -359,6 +359,11 @@ TEST_F(SlurmJobs, AJobSlurmForgotFailsSayingSo) {
   // leaves the controller's memory (MinJobAge 2 s).
   cluster_.run("scancel " + sid);
   ASSERT_TRUE(forgotten(sid)) << "the controller still knows the job";
+  // Lost without a trace, as with its node: the exit status its batch script
+  // may have written on the way down (a sandboxed worker's bwrap ends in
+  // time for it to) is gone too.
+  std::error_code ec;
+  fs::remove(data_ / "jobs" / job["id"].get<std::string>() / "worker.exit", ec);
   ASSERT_TRUE(start());
   const json j = wait_end(job["id"], 20s);
   EXPECT_EQ(j.value("state", ""), "failed");
