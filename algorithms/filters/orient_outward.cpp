@@ -21,7 +21,8 @@ AlgorithmResult run(const Mesh& mesh, const Params&, Context& ctx) {
   if (mesh.num_faces() == 0) throw InvalidInput("orient_outward needs a mesh with faces");
   const MeshReport before = mesh_report(mesh);
   Mesh out = mesh;
-  const bool flipped = orient_outward(out);
+  const bool flipped = before.faces_inward;  // orient_outward's own test, on the report already made
+  if (flipped) flip_faces(out);
   AlgorithmResult result;
   if (!before.closed || !before.oriented)
     result.warnings.push_back(std::string("the mesh has no inside to face (it is ") +
