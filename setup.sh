@@ -32,8 +32,10 @@ APT_PACKAGES=(
   libopenvdb-dev libembree-dev
   libsqlite3-dev libssl-dev zlib1g-dev libzip-dev prometheus-cpp-dev
   libcgal-demo
-  # Each job's worker starts in a sandbox (server/sandbox.h).
-  bubblewrap
+  # Each job's worker and each upload's reader starts in a sandbox
+  # (server/sandbox.h): bubblewrap, with util-linux's setpriv (a root
+  # server's per-job user) and prlimit (its limits on Slurm nodes).
+  bubblewrap util-linux
   nodejs npm
 )
 TEST_APT_PACKAGES=(
@@ -101,7 +103,7 @@ ensure_node() {
 
 check_tools() {
   local t
-  local tools=(cmake ninja g++ ccache node npm)
+  local tools=(cmake ninja g++ ccache node npm bwrap setpriv prlimit)
   [ "$TESTS" = 0 ] || tools+=(draco_decoder assimp python3 clang++ sbatch slurmctld slurmd munged)
   for t in "${tools[@]}"; do
     # slurmctld, slurmd and munged are in /usr/sbin, which a user's PATH may lack.
