@@ -147,10 +147,14 @@ std::optional<int> wait_child(pid_t pid, std::chrono::milliseconds limit) {
       ::usleep(2000);
     }
   }
-  ::kill(-pid, SIGKILL);
-  ::kill(pid, SIGKILL);
+  kill_child(pid, SIGKILL);
   ::waitpid(pid, &status, 0);
   return std::nullopt;
+}
+
+void kill_child(pid_t pid, int sig) {
+  ::kill(-pid, sig);
+  ::kill(pid, sig);  // before it has made its group
 }
 
 std::string signal_name(int sig) {

@@ -46,6 +46,12 @@ void end_with_server();
 // fork fails.  A child that cannot exec exits with status 127.
 pid_t spawn_child(const std::vector<std::string>& argv, const ChildOptions& options);
 
+// Sends `sig` to the child and to its process group: what it started there
+// goes with it (bubblewrap killed while it sets a sandbox up leaves the
+// sandbox's first process in that group, waiting for it forever).  The
+// group is the child's as long as the child is not reaped.
+void kill_child(pid_t pid, int sig);
+
 // Waits for the child to exit, at most `limit`; its wait status, or nullopt
 // when the time ran out (the child, and its process group, are then killed
 // with SIGKILL and reaped).

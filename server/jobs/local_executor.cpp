@@ -90,14 +90,14 @@ void LocalExecutor::check(std::vector<ExecutorEvent>& events) {
     if (cancels.count(it->first) && !r.terminating) {
       r.terminating = true;
       r.term_sent = now;
-      ::kill(r.pid, SIGTERM);
+      kill_child(r.pid, SIGTERM);
     }
     if (!r.terminating && !r.timed_out && r.timeout_s > 0 &&
         now - r.launched > std::chrono::duration<double>(r.timeout_s)) {
       r.timed_out = true;
-      ::kill(r.pid, SIGKILL);
+      kill_child(r.pid, SIGKILL);
     }
-    if (r.terminating && now - r.term_sent > std::chrono::seconds(1)) ::kill(r.pid, SIGKILL);
+    if (r.terminating && now - r.term_sent > std::chrono::seconds(1)) kill_child(r.pid, SIGKILL);
     int status = 0;
     // Reaped once its stdout closed (it exited, or closed it and goes on).
     if (r.out_fd < 0 && ::waitpid(r.pid, &status, WNOHANG) == r.pid) {
@@ -153,7 +153,7 @@ std::vector<ExecutorEvent> LocalExecutor::poll(std::chrono::milliseconds timeout
       const ProgressRead read = read_progress_lines(r.out, e.progress, e.stage);
       if (!read.garbage.empty() && !r.terminating) {
         r.garbage = read.garbage;
-        ::kill(r.pid, SIGKILL);
+        kill_child(r.pid, SIGKILL);
       } else if (read.found && !r.terminating) {
         events.push_back(e);
       }
@@ -172,7 +172,7 @@ std::vector<ExecutorEvent> LocalExecutor::poll(std::chrono::milliseconds timeout
 void LocalExecutor::shutdown() {
   for (auto& [id, r] : runs_) {
     if (r.pid > 0) {
-      ::kill(r.pid, SIGKILL);
+      kill_child(r.pid, SIGKILL);
       ::waitpid(r.pid, nullptr, 0);
     }
     if (r.out_fd >= 0) ::close(r.out_fd);

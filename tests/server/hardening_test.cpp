@@ -320,6 +320,10 @@ TEST_F(Hardening, JobsCancelledAtOnceDoNotStopTheServer) {
   std::this_thread::sleep_for(300ms);
   EXPECT_TRUE(server_.alive());
   expect_healthy();
+  // Nothing of theirs is left: bubblewrap cancelled while it set a sandbox
+  // up left the sandbox's first process waiting for it forever.
+  for (const auto& [pid, cmdline] : test::processes_outliving(data_, 5s))
+    ADD_FAILURE() << "outlived its cancelled job: " << pid << " " << cmdline.substr(0, 300);
 }
 
 // ---------------------------------------------------------------- rate limit

@@ -229,22 +229,6 @@ TEST_F(Plugins, EveryWayOutOfTheSandboxFailsItsJobAloneWithTheLimitItHit) {
             200u);
 }
 
-// The processes whose command line names this test's data directory: a
-// job's bwrap does (its job directory is bound in).
-std::map<pid_t, std::string> processes_naming(const fs::path& dir) {
-  std::map<pid_t, std::string> found;
-  for (const auto& e : fs::directory_iterator("/proc")) {
-    const std::string name = e.path().filename().string();
-    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
-    std::string cmdline = read_bytes(e.path() / "cmdline");
-    for (char& c : cmdline)
-      if (c == '\0') c = ' ';
-    if (cmdline.find(dir.string()) != std::string::npos && cmdline.find("cgview-server") == std::string::npos)
-      found[pid_t(std::stoi(name))] = cmdline;
-  }
-  return found;
-}
-
 TEST_F(Plugins, AKilledServerLeavesNoSandboxRunning) {
   const json p = build(alice_, "escape", source_file("tests/server/plugins/escape.cpp"));
   ASSERT_EQ(p["build"]["state"], "ok") << p.dump();
@@ -257,12 +241,8 @@ TEST_F(Plugins, AKilledServerLeavesNoSandboxRunning) {
   for (int i = 0; i < 200 && processes_naming(data_).empty(); ++i) std::this_thread::sleep_for(25ms);
   ASSERT_FALSE(processes_naming(data_).empty()) << "the looping job's sandbox never started";
   EXPECT_EQ(server_.stop(SIGKILL), 128 + SIGKILL);
-  std::map<pid_t, std::string> left;
-  for (int i = 0; i < 200 && !(left = processes_naming(data_)).empty(); ++i) std::this_thread::sleep_for(25ms);
-  for (const auto& [pid, cmdline] : left) {
-    ::kill(pid, SIGKILL);  // this test's own, by id
+  for (const auto& [pid, cmdline] : processes_outliving(data_, 5s))
     ADD_FAILURE() << "outlived the server: " << pid << " " << cmdline.substr(0, 300);
-  }
 }
 
 TEST_F(Plugins, TheLabsPluginDirectoryIsPickedUpAndAChangedFileRebuiltWithoutARestart) {

@@ -47,6 +47,32 @@ std::string read_bytes(const fs::path& p) {
   return s.str();
 }
 
+std::map<pid_t, std::string> processes_naming(const fs::path& dir) {
+  std::map<pid_t, std::string> found;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator("/proc", ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::string cmdline = read_bytes(e.path() / "cmdline");
+    for (char& c : cmdline)
+      if (c == '\0') c = ' ';
+    if (cmdline.find(dir.string()) != std::string::npos && cmdline.find("cgview-server") == std::string::npos)
+      found[pid_t(std::stoi(name))] = cmdline;
+  }
+  return found;
+}
+
+std::map<pid_t, std::string> processes_outliving(const fs::path& dir, std::chrono::milliseconds limit) {
+  const auto end = std::chrono::steady_clock::now() + limit;
+  std::map<pid_t, std::string> left = processes_naming(dir);
+  while (!left.empty() && std::chrono::steady_clock::now() < end) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
+    left = processes_naming(dir);
+  }
+  for (const auto& [pid, cmdline] : left) ::kill(pid, SIGKILL);
+  return left;
+}
+
 // ---------------------------------------------------------------- the server
 
 bool ServerProcess::start(const fs::path& data_dir, const std::vector<std::string>& extra, const fs::path& log_dir) {

@@ -27,6 +27,14 @@ namespace cgview::test {
 // The whole file, binary.
 std::string read_bytes(const std::filesystem::path& p);
 
+// The processes whose command line names `dir`, the server's own left out:
+// a job's bubblewrap does (its job directory is bound in).
+std::map<pid_t, std::string> processes_naming(const std::filesystem::path& dir);
+
+// Waits up to `limit` for processes_naming(dir) to be empty; those still
+// there are killed (this test's own, by id) and returned, to be reported.
+std::map<pid_t, std::string> processes_outliving(const std::filesystem::path& dir, std::chrono::milliseconds limit);
+
 // ---------------------------------------------------------------- the server
 
 // One cgview-server child process; killed when this goes out of scope.
