@@ -1,5 +1,7 @@
 #include "algorithm_json.h"
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 
 namespace cgview::protocol {
@@ -14,6 +16,7 @@ json value_json(const ParamValue& v) {
 
 json to_json(const Algorithm& a) {
   json props = json::object();
+  json order = json::array();  // the properties come sorted by name: forms follow the declared order
   for (const ParamSpec& p : a.params) {
     json s;
     switch (p.type) {
@@ -47,7 +50,10 @@ json to_json(const Algorithm& a) {
     s["default"] = value_json(p.default_value);
     if (p.info.min) s["minimum"] = *p.info.min;
     if (p.info.max) s["maximum"] = *p.info.max;
+    if (p.info.advanced) s["x-cgview-advanced"] = true;
+    if (!p.info.when.param.empty()) s["x-cgview-when"] = {{"param", p.info.when.param}, {"in", p.info.when.values}};
     props[p.name] = s;
+    order.push_back(p.name);
   }
   json inputs = json::array();
   for (const InputSpec& in : a.info.inputs)
@@ -60,7 +66,8 @@ json to_json(const Algorithm& a) {
           {"area", a.info.area},
           {"inputs", inputs},
           {"outputs", outputs},
-          {"params", {{"type", "object"}, {"properties", props}, {"additionalProperties", false}}}};
+          {"params",
+           {{"type", "object"}, {"properties", props}, {"additionalProperties", false}, {"x-cgview-order", order}}}};
 }
 
 namespace {
@@ -101,8 +108,18 @@ Algorithm algorithm_from_json(const json& d) {
     a.info.inputs.push_back({in.value("name", ""), kind_from(in.value("kind", "mesh")), in.value("description", "")});
   for (const auto& out : d.value("outputs", json::array()))
     a.info.outputs.emplace_back(out.value("name", ""), kind_from(out.value("kind", "")));
-  const json props = d.value("params", json::object()).value("properties", json::object());
-  for (const auto& [name, s] : props.items()) {
+  const json params = d.value("params", json::object());
+  const json props = params.value("properties", json::object());
+  // The declared order where the description gives it, then the rest by name.
+  std::vector<std::string> names;
+  for (const auto& n : params.value("x-cgview-order", json::array()))
+    if (n.is_string() && props.contains(n.get<std::string>()) &&
+        std::find(names.begin(), names.end(), n.get<std::string>()) == names.end())
+      names.push_back(n);
+  for (const auto& [name, s] : props.items())
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  for (const std::string& name : names) {
+    const json& s = props[name];
     ParamSpec p;
     p.name = name;
     const std::string type = s.value("type", "");
@@ -122,8 +139,14 @@ Algorithm algorithm_from_json(const json& d) {
     if (s.contains("minimum")) p.info.min = s["minimum"].get<double>();
     if (s.contains("maximum")) p.info.max = s["maximum"].get<double>();
     if (s.contains("enum")) p.info.choices = s["enum"].get<std::vector<std::string>>();
+    p.info.advanced = s.value("x-cgview-advanced", false);
+    if (const json w = s.value("x-cgview-when", json()); w.is_object()) {
+      p.info.when.param = w.value("param", "");
+      p.info.when.values = w.value("in", std::vector<std::string>{});
+    }
     a.params.push_back(std::move(p));
   }
+  check_conditions(a.params);
   return a;
 }
 

@@ -9,6 +9,7 @@
 #include <new>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <sys/wait.h>
 
 #include "child_process.h"
@@ -55,6 +56,7 @@ const BundleFile& mesh_file_of(const std::vector<BundleFile>& files) {
 struct Textures {
   nlohmann::json material = nlohmann::json::object();  // has_uvs, textures, kd, materials
   std::vector<std::string> blobs;                      // one per material["textures"] entry
+  std::set<const BundleFile*> used;                    // the upload's files a material or the mesh took
 };
 
 // The texture named `image` among the uploaded files as a textures[] entry
@@ -67,6 +69,7 @@ std::optional<std::size_t> add_texture(Textures& t, const ReadResult& r, const s
                        (bundle ? "" : " (upload a zip of the mesh and its images)"));
     return std::nullopt;
   }
+  t.used.insert(f);
   const std::string mime = image_mime_type(f->bytes);
   if (mime.empty()) {
     warnings.push_back("the texture '" + image + "' is not a PNG or JPEG image: its faces show untextured");
@@ -84,57 +87,128 @@ std::optional<std::size_t> add_texture(Textures& t, const ReadResult& r, const s
   return t.blobs.size() - 1;
 }
 
-// The textures and diffuse colours of a mesh from the files uploaded with it:
-// for an OBJ, `materials` lists the materials its faces use in order of first
-// use (the order of the material ids in its Draco stream), each with its Kd
-// and the index of its texture in `textures`, or null.
+// The upload's files of one kind (MTL libraries, PNG or JPEG images).
+std::vector<const BundleFile*> files_that_are(const std::vector<BundleFile>& files, bool images) {
+  std::vector<const BundleFile*> out;
+  for (const auto& f : files)
+    if (images ? !image_mime_type(f.bytes).empty() : ascii_lower(f.name).ends_with(".mtl")) out.push_back(&f);
+  return out;
+}
+
+// An OBJ's materials: `materials` lists those its faces use in order of
+// first use (the order of the material ids in its Draco stream), each with
+// its Kd and the index of its texture in `textures`, or null.  An OBJ that
+// names no library or no material, uploaded with exactly one, gets that one
+// (said in a warning); with several or none, the warning says what it shows.
+void find_obj_textures(Textures& t, const ReadResult& r, std::string_view mesh_bytes,
+                       const std::vector<BundleFile>& files, bool bundle, std::vector<std::string>& warnings) {
+  const ObjMaterialUse use = obj_material_use(mesh_bytes);
+  std::vector<Material> mtl;
+  for (const auto& lib : use.libraries) {
+    if (const BundleFile* f = find_file(files, lib)) {
+      t.used.insert(f);
+      for (auto& m : parse_mtl(f->bytes)) mtl.push_back(std::move(m));
+    } else {
+      warnings.push_back(bundle ? "the material library '" + lib + "' is not in the zip: the mesh shows untextured"
+                                : "the OBJ names the material library '" + lib +
+                                      "': upload a zip of the OBJ, the MTL and its images to see its textures");
+    }
+  }
+  if (use.libraries.empty()) {
+    const auto libraries = files_that_are(files, false);
+    if (libraries.size() == 1) {
+      t.used.insert(libraries[0]);
+      mtl = parse_mtl(libraries[0]->bytes);
+      warnings.push_back("the OBJ names no material library (no mtllib line): the upload's only one, '" +
+                         file_base_name(libraries[0]->name) + "', is used");
+    } else if (libraries.size() > 1) {
+      warnings.push_back("the OBJ names no material library (no mtllib line) and the upload holds " +
+                         std::to_string(libraries.size()) + ": none is used (add an mtllib line to the OBJ)");
+    }
+  }
+  if (use.face_material.size() != r.mesh.num_faces()) return;  // not the faces read_obj read: draw it plain
+  // Textures in order of the faces they cover, so textures[0] is the main one.
+  std::vector<std::size_t> order(use.names.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return use.faces.at(use.names[a]) > use.faces.at(use.names[b]);
+  });
+  std::vector<nlohmann::json> entries(use.names.size());
+  for (const std::size_t i : order) {
+    const std::string& name = use.names[i];
+    const std::size_t faces = use.faces.at(name);
+    const std::string n_faces = std::to_string(faces) + (faces == 1 ? " face" : " faces");
+    auto m = std::find_if(mtl.begin(), mtl.end(), [&](const Material& x) { return x.name == name; });
+    std::string image;
+    if (m == mtl.end() && name.empty()) {
+      // Faces before any usemtl line.
+      const auto images = files_that_are(files, true);
+      if (mtl.size() == 1) {
+        m = mtl.begin();
+        warnings.push_back(n_faces + " name no material (no usemtl line before them): the library's only one, '" +
+                           m->name + "', is used for them");
+      } else if (mtl.empty() && images.size() == 1 && r.mesh.has_uvs()) {
+        image = images[0]->name;
+        warnings.push_back("the OBJ names no material (no mtllib or usemtl line): the upload's only image, '" +
+                           file_base_name(image) + "', is used as its texture");
+      } else if (r.mesh.has_uvs()) {
+        warnings.push_back(
+            n_faces + " have texture coordinates but name no material (no usemtl line" +
+            (use.libraries.empty() ? std::string(" and no mtllib line") : std::string()) +
+            "): they show a checkerboard of their texture coordinates" +
+            (images.size() > 1 || mtl.size() > 1 ? "; the upload holds several materials or images" : ""));
+      }
+    } else if (m == mtl.end() && !mtl.empty()) {
+      warnings.push_back("the material '" + name + "' of " + n_faces +
+                         " is in no material library uploaded: they show untextured");
+    }
+    nlohmann::json e = {{"name", name}, {"faces", faces}, {"kd", nullptr}, {"texture", nullptr}};
+    if (m != mtl.end() && m->kd) e["kd"] = *m->kd;
+    if (m != mtl.end() && !m->map_kd.empty()) image = m->map_kd;
+    if (!image.empty())
+      if (const auto tex = add_texture(t, r, files, bundle, image, warnings)) {
+        e["texture"] = *tex;
+        auto& te = t.material["textures"][*tex];
+        if (!te.contains("material")) {
+          te["material"] = m != mtl.end() ? m->name : name;
+          if (m != mtl.end() && m->kd) te["kd"] = *m->kd;
+        }
+      }
+    if (!t.material.contains("kd") && m != mtl.end() && m->kd) t.material["kd"] = *m->kd;
+    entries[i] = std::move(e);
+  }
+  t.material["materials"] = entries;
+}
+
+// The textures and diffuse colours of a mesh from the files uploaded with
+// it, and a warning listing those of its files nothing used.
 Textures find_textures(const ReadResult& r, std::string_view mesh_bytes, const std::vector<BundleFile>& files,
-                       bool bundle, std::vector<std::string>& warnings) {
+                       const BundleFile* mesh_file, bool bundle, std::vector<std::string>& warnings) {
   Textures t;
   t.material["has_uvs"] = r.mesh.has_uvs();
   t.material["textures"] = nlohmann::json::array();
   if (r.format == MeshFormat::obj) {
-    const ObjMaterialUse use = obj_material_use(mesh_bytes);
-    std::vector<Material> mtl;
-    for (const auto& lib : use.libraries) {
-      if (const BundleFile* f = find_file(files, lib)) {
-        for (auto& m : parse_mtl(f->bytes)) mtl.push_back(std::move(m));
+    find_obj_textures(t, r, mesh_bytes, files, bundle, warnings);
+  } else if (r.format == MeshFormat::ply) {
+    std::string image = ply_texture_file(mesh_bytes);
+    const auto images = files_that_are(files, true);
+    if (image.empty() && r.mesh.has_uvs()) {
+      if (images.size() == 1) {
+        image = images[0]->name;
+        warnings.push_back("the PLY names no texture (no 'comment TextureFile' line): the upload's only image, '" +
+                           file_base_name(image) + "', is used");
       } else {
-        warnings.push_back(bundle ? "the material library '" + lib + "' is not in the zip: the mesh shows untextured"
-                                  : "the OBJ names the material library '" + lib +
-                                        "': upload a zip of the OBJ, the MTL and its images to see its textures");
+        warnings.push_back(std::string("the PLY has texture coordinates but names no texture (no 'comment "
+                                       "TextureFile' line): it shows a checkerboard of its texture coordinates") +
+                           (images.size() > 1 ? "; the upload holds several images" : ""));
       }
     }
-    if (use.face_material.size() != r.mesh.num_faces()) return t;  // not the faces read_obj read: draw it plain
-    // Textures in order of the faces they cover, so textures[0] is the main one.
-    std::vector<std::size_t> order(use.names.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      return use.faces.at(use.names[a]) > use.faces.at(use.names[b]);
-    });
-    std::vector<nlohmann::json> entries(use.names.size());
-    for (const std::size_t i : order) {
-      const std::string& name = use.names[i];
-      const auto m = std::find_if(mtl.begin(), mtl.end(), [&](const Material& x) { return x.name == name; });
-      nlohmann::json e = {{"name", name}, {"faces", use.faces.at(name)}, {"kd", nullptr}, {"texture", nullptr}};
-      if (m != mtl.end() && m->kd) e["kd"] = *m->kd;
-      if (m != mtl.end() && !m->map_kd.empty())
-        if (const auto tex = add_texture(t, r, files, bundle, m->map_kd, warnings)) {
-          e["texture"] = *tex;
-          auto& te = t.material["textures"][*tex];
-          if (!te.contains("material")) {
-            te["material"] = name;
-            if (m->kd) te["kd"] = *m->kd;
-          }
-        }
-      if (!t.material.contains("kd") && m != mtl.end() && m->kd) t.material["kd"] = *m->kd;
-      entries[i] = std::move(e);
-    }
-    t.material["materials"] = entries;
-  } else if (r.format == MeshFormat::ply) {
-    const std::string image = ply_texture_file(mesh_bytes);
     if (!image.empty()) add_texture(t, r, files, bundle, image, warnings);
   }
+  std::string unused;
+  for (const auto& f : files)
+    if (&f != mesh_file && !t.used.count(&f)) unused += (unused.empty() ? "" : ", ") + f.name;
+  if (!unused.empty()) warnings.push_back("files of the upload not used: " + unused);
   return t;
 }
 
@@ -165,7 +239,7 @@ UploadRead read_upload(const std::string& name, const std::string& format, std::
   const MeshFormat f = format_from_name(format.empty() || bundle ? n : "x." + format);
   ReadResult r = read_mesh_bytes(mesh_bytes, f, n);
   if (r.mesh.num_faces() == 0) throw InvalidInput(n + ": the mesh has no faces");
-  Textures textures = find_textures(r, mesh_bytes, files, bundle, r.warnings);
+  Textures textures = find_textures(r, mesh_bytes, files, mesh_file, bundle, r.warnings);
   UploadRead out;
   out.name = n;
   out.format = to_string(f);

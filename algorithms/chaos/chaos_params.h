@@ -20,16 +20,28 @@ struct MapParamFields {
               .help = "ikeda (u) on (x, y); cat (grid) on (x, y); logistic (r) on each coordinate; henon (a, b) on "
                       "(x, y); composite: Ikeda on (x, y), (y, z), (z, x)",
               .choices = {"ikeda", "cat", "logistic", "henon", "composite"}});
-    v.number("u", u, {.label = "Ikeda u", .min = 0, .max = 1, .help = "Ikeda's parameter; chaotic near 0.9"});
-    v.number("r", r, {.label = "Logistic r", .min = 0, .max = 4, .help = "logistic map's parameter; chaotic near 4"});
-    v.number("a", a, {.label = "Henon a", .min = 0, .max = 2, .help = "Henon's a (classic 1.4)"});
-    v.number("b", b, {.label = "Henon b", .min = -1, .max = 1, .help = "Henon's b (classic 0.3)"});
-    v.integer(
-        "grid", grid,
-        {.label = "Cat grid N",
-         .min = 2,
-         .max = 1 << 20,
-         .help = "the cat map acts on an N x N grid of the (x, y) box; its period is the Pisano period of N / 2"});
+    v.number("u", u,
+             {.label = "Ikeda u",
+              .min = 0,
+              .max = 1,
+              .help = "Ikeda's parameter; chaotic near 0.9",
+              .when = {"map", {"ikeda", "composite"}}});
+    v.number("r", r,
+             {.label = "Logistic r",
+              .min = 0,
+              .max = 4,
+              .help = "logistic map's parameter; chaotic near 4",
+              .when = {"map", {"logistic"}}});
+    v.number("a", a,
+             {.label = "Henon a", .min = 0, .max = 2, .help = "Henon's a (classic 1.4)", .when = {"map", {"henon"}}});
+    v.number("b", b,
+             {.label = "Henon b", .min = -1, .max = 1, .help = "Henon's b (classic 0.3)", .when = {"map", {"henon"}}});
+    v.integer("grid", grid,
+              {.label = "Cat grid N",
+               .min = 2,
+               .max = 1 << 20,
+               .help = "the cat map acts on an N x N grid of the (x, y) box; its period is the Pisano period of N / 2",
+               .when = {"map", {"cat"}}});
   }
   MapParams map_params() const {
     MapParams p;

@@ -24,9 +24,12 @@ struct Params {
               .help = "keep_largest: the component with the most faces; drop_smaller_than: remove components with "
                       "fewer than min_faces faces; count: only count them (the mesh comes back unchanged)",
               .choices = {"keep_largest", "drop_smaller_than", "count"}});
-    v.integer(
-        "min_faces", min_faces,
-        {.label = "Minimum faces", .min = 1, .max = 1e9, .help = "for drop_smaller_than: the smallest size kept"});
+    v.integer("min_faces", min_faces,
+              {.label = "Minimum faces",
+               .min = 1,
+               .max = 1e9,
+               .help = "for drop_smaller_than: the smallest size kept",
+               .when = {"mode", {"drop_smaller_than"}}});
     v.boolean(
         "repair", repair,
         {.label = "Repair first",

@@ -34,7 +34,8 @@ struct Params {
              {.label = "Time step",
               .min = 1e-8,
               .max = 1,
-              .help = "mean_curvature_flow only: the step of each iteration; larger smooths faster"});
+              .help = "mean_curvature_flow only: the step of each iteration; larger smooths faster",
+              .when = {"method", {"mean_curvature_flow"}}});
     v.integer("iterations", iterations, {.label = "Iterations", .min = 1, .max = 1000});
     v.boolean(
         "repair", repair,

@@ -50,8 +50,27 @@ std::vector<std::string>* registration_clashes = nullptr;
 
 void detail::set_registration_clashes(std::vector<std::string>* sink) { registration_clashes = sink; }
 
+void check_conditions(const std::vector<ParamSpec>& specs) {
+  for (const ParamSpec& p : specs) {
+    const ParamCondition& w = p.info.when;
+    if (w.param.empty()) continue;
+    const auto on = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& s) { return s.name == w.param; });
+    const std::string what = "parameter '" + p.name + "' applies when '" + w.param + "' ";
+    if (on == specs.end() || on->name == p.name) throw InvalidInput(what + "is, but there is no such other parameter");
+    if (on->type != ParamType::choice && on->type != ParamType::boolean)
+      throw InvalidInput(what + "is, but only a choice or a boolean can say when");
+    if (w.values.empty()) throw InvalidInput(what + "has one of no values");
+    const std::vector<std::string> can =
+        on->type == ParamType::boolean ? std::vector<std::string>{"true", "false"} : on->info.choices;
+    for (const std::string& v : w.values)
+      if (std::find(can.begin(), can.end(), v) == can.end())
+        throw InvalidInput(what + "is '" + v + "', which it cannot be");
+  }
+}
+
 void register_algorithm(Algorithm a) {
   const std::string name = a.info.name;
+  check_conditions(a.params);
   std::vector<std::string> outward;
   for (const InputSpec& in : a.info.inputs)
     if (in.outward && in.kind == OutputKind::mesh) outward.push_back(in.name);

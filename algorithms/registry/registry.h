@@ -52,13 +52,24 @@ enum class ParamType { integer, number, boolean, choice, text, faces, vertices }
 using Ids = std::vector<Index>;
 using ParamValue = std::variant<long long, double, bool, std::string, Ids>;
 
+// A parameter that applies only while another one, a choice or a boolean,
+// has one of some values ({"map", {"ikeda", "composite"}}; a boolean's
+// values are "true" and "false"): forms show it only then.  Empty: always.
+struct ParamCondition {
+  std::string param{};
+  std::vector<std::string> values{};
+};
+
 // Every member has an initializer so that a designated initializer naming
 // only some ({.label = ..., .help = ...}) draws no -Wmissing-field-initializers.
+// Forms list the parameters in their declared order: the most used first.
 struct ParamInfo {
   std::string label{};  // for forms; defaults to the name
   std::optional<double> min{}, max{};
   std::string help{};
   std::vector<std::string> choices{};  // for choice parameters
+  bool advanced{};                     // forms fold it under "Advanced": render contexts, internal limits
+  ParamCondition when{};
 };
 
 struct ParamSpec {
@@ -188,6 +199,9 @@ const std::map<std::string, Algorithm>& algorithms();
 // The algorithm of that name; throws std::out_of_range naming it.
 const Algorithm& find_algorithm(const std::string& name);
 void register_algorithm(Algorithm algorithm);
+// Throws InvalidInput unless every parameter's `when` names another
+// parameter of the list, a choice or a boolean, and values it can take.
+void check_conditions(const std::vector<ParamSpec>& specs);
 
 // Converts text (a CLI argument) to a parameter's type; throws InvalidInput.
 // A selection is a list of ids separated by commas or white space ("1,2,3").

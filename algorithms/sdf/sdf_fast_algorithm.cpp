@@ -25,13 +25,15 @@ struct Params : SdfParamFields {
     v.choice("solver", solver,
              {.label = "Solver",
               .help = "conjugate_gradient (from each face's nearest sample) or cholesky (sparse LDLT), both Eigen's",
-              .choices = {"conjugate_gradient", "cholesky"}});
+              .choices = {"conjugate_gradient", "cholesky"},
+              .advanced = true});
     v.number(
         "curvature_weight", curvature_weight,
         {.label = "Curvature guidance",
          .min = -100,
          .max = 100,
-         .help = "weight of the faces' negative mean curvature in the Poisson equation (0: harmonic interpolation)"});
+         .help = "weight of the faces' negative mean curvature in the Poisson equation (0: harmonic interpolation)",
+         .advanced = true});
     v.boolean("compare", compare,
               {.label = "Compare with the full SDF", .help = "also compute the SDF on every face, and the error map"});
     describe_sdf(v);

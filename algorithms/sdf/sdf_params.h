@@ -31,12 +31,14 @@ struct SdfParamFields {
         {.label = "Ray weights",
          .help = "inverse_angle: each length weighted by the inverse of its angle to the cone's axis (Shapira et al.); "
                  "uniform: all rays alike (CGAL's sdf_values)",
-         .choices = {"inverse_angle", "uniform"}});
+         .choices = {"inverse_angle", "uniform"},
+         .advanced = true});
     v.choice("outliers", outliers,
              {.label = "Outliers",
               .help = "std_dev: drop lengths further than one standard deviation from the median (Shapira et al.); "
                       "mad: further than 1.5 median absolute deviations (CGAL); none: keep all",
-              .choices = {"std_dev", "mad", "none"}});
+              .choices = {"std_dev", "mad", "none"},
+              .advanced = true});
     v.boolean(
         "smooth", smooth,
         {.label = "Bilateral smoothing",
@@ -45,7 +47,9 @@ struct SdfParamFields {
               {.label = "Smoothing window (rings)",
                .min = 0,
                .max = 64,
-               .help = "0: floor(sqrt(faces / 2000)) + 1, as CGAL"});
+               .help = "0: floor(sqrt(faces / 2000)) + 1, as CGAL",
+               .advanced = true,
+               .when = {"smooth", {"true"}}});
   }
   SdfOptions options() const {
     SdfOptions o;

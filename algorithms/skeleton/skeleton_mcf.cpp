@@ -33,26 +33,34 @@ struct Params {
              {.label = "Max triangle angle (degrees)",
               .min = 90,
               .max = 179,
-              .help = "edges opposite larger angles are split while contracting"});
+              .help = "edges opposite larger angles are split while contracting",
+              .advanced = true});
     v.number("min_edge_length", min_edge_length,
              {.label = "Min edge length",
               .min = 1e-6,
               .max = 0.5,
-              .help = "shorter edges collapse; a fraction of the bounding box's diagonal (CGAL: 0.002)"});
+              .help = "shorter edges collapse; a fraction of the bounding box's diagonal (CGAL: 0.002)",
+              .advanced = true});
     v.number("quality_speed_tradeoff", quality_speed_tradeoff,
              {.label = "Quality/speed",
               .min = 1e-4,
               .max = 100,
-              .help = "larger: faster contraction, a less smooth skeleton (w_H)"});
+              .help = "larger: faster contraction, a less smooth skeleton (w_H)",
+              .advanced = true});
     v.boolean("medially_centered", medially_centered,
               {.label = "Medially centred", .help = "pull towards the medial axis (Voronoi poles)"});
     v.number("medially_centered_speed_tradeoff", medially_centered_speed_tradeoff,
-             {.label = "Centring/speed", .min = 1e-4, .max = 100, .help = "weight of the medial pull (w_M)"});
+             {.label = "Centring/speed",
+              .min = 1e-4,
+              .max = 100,
+              .help = "weight of the medial pull (w_M)",
+              .when = {"medially_centered", {"true"}}});
     v.number("area_variation_factor", area_variation_factor,
              {.label = "Convergence",
               .min = 1e-8,
               .max = 0.1,
-              .help = "stop when the area changes by less than this fraction of the original in one iteration"});
+              .help = "stop when the area changes by less than this fraction of the original in one iteration",
+              .advanced = true});
     v.integer("max_iterations", max_iterations,
               {.label = "Max iterations", .min = 1, .max = 10000, .help = "contraction iterations at most"});
   }

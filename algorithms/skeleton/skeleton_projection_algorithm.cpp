@@ -25,7 +25,8 @@ struct Params : ProjectionParams {
               {.label = "Medial axis: min radius",
                .min = 0,
                .max = 100,
-               .help = "medial pixels nearer the outline (pixels) are dropped"});
+               .help = "medial pixels nearer the outline (pixels) are dropped",
+               .advanced = true});
     v.number("threshold", threshold,
              {.label = "Vote threshold",
               .min = 0.001,
@@ -37,24 +38,29 @@ struct Params : ProjectionParams {
              {.label = "Branch votes",
               .min = 0,
               .max = 1,
-              .help = "branches whose mean votes are below this x the main path's are pruned"});
+              .help = "branches whose mean votes are below this x the main path's are pruned",
+              .advanced = true});
     v.number("merge_distance", merge_distance,
              {.label = "Merge distance",
               .min = 0,
               .max = 0.99,
-              .help = "internal arcs shorter than this x the diagonal are collapsed"});
+              .help = "internal arcs shorter than this x the diagonal are collapsed",
+              .advanced = true});
     v.integer("smoothing", smoothing,
               {.label = "Smoothing", .min = 0, .max = 1000, .help = "Laplacian iterations; ends and junctions stay"});
-    v.integer("contexts", contexts,
-              {.label = "Render contexts", .min = 1, .max = 64, .help = "EGL contexts drawing at once"});
+    v.integer(
+        "contexts", contexts,
+        {.label = "Render contexts", .min = 1, .max = 64, .help = "EGL contexts drawing at once", .advanced = true});
     v.integer("render_faces", render_faces,
               {.label = "Faces drawn",
                .min = 0,
                .max = 1 << 30,
-               .help = "bigger meshes are drawn decimated (vertex clustering); 0: never"});
+               .help = "bigger meshes are drawn decimated (vertex clustering); 0: never",
+               .advanced = true});
     v.boolean("intermediate", intermediate,
               {.label = "Keep intermediate results",
-               .help = "also the vote grid and the first view's silhouette with its medial axis"});
+               .help = "also the vote grid and the first view's silhouette with its medial axis",
+               .advanced = true});
   }
 };
 

@@ -23,7 +23,8 @@ struct Params {
              {.label = "Memory limit (MB)",
               .min = 1,
               .max = 1e6,
-              .help = "refuse a grid that needs more memory (1 byte per voxel, and 12 more for the distances)"});
+              .help = "refuse a grid that needs more memory (1 byte per voxel, and 12 more for the distances)",
+              .advanced = true});
   }
 };
 

@@ -28,7 +28,8 @@ struct Params {
              {.label = "Memory limit (MB)",
               .min = 1,
               .max = 1e6,
-              .help = "refuse a grid that needs more memory (1 byte per voxel)"});
+              .help = "refuse a grid that needs more memory (1 byte per voxel)",
+              .advanced = true});
   }
 };
 

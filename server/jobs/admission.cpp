@@ -7,6 +7,7 @@
 #include "core/errors.h"
 #include "quota.h"
 #include "registry/registry.h"
+#include "upload_read.h"
 
 namespace cgview::server {
 
@@ -119,7 +120,13 @@ Job Admission::admit(const json& req, const Caller& caller, JobLookup& jobs, std
         // Refused before it stores anything (even where the job would be a cache hit).
         jobs.check_job_count(caller);
         jobs.check_storage(caller, ply.bytes.size(), "the mesh of " + from + "/" + artifact_name);
-        id = meshes_.upload(from + "-" + artifact_name + ".ply", "ply", ply.bytes, owner).id;
+        // The client's name for it ("elephant · simplify 1000"), else one after the job.
+        std::string stored_as = from + "-" + artifact_name + ".ply";
+        if (v.contains("name")) {
+          if (!v["name"].is_string()) throw InvalidInput("input '" + name + "': \"name\" must be a string");
+          stored_as = clean_upload_name(v["name"]);
+        }
+        id = meshes_.upload(stored_as, "ply", ply.bytes, owner).id;
         if (new_meshes) new_meshes->push_back(id);
       }
     } else {

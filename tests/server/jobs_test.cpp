@@ -295,8 +295,14 @@ TEST_F(JobsTest, VoxelizeJobServesItsGridAndSlicesOverWebSocket) {
 TEST_F(JobsTest, AJobRunsOnAnEarlierJobsOutputMesh) {
   const json first = wait_end(submit("test_translate", json::object())["id"]);
   ASSERT_EQ(first["state"], "done") << first.dump();
+  // Named as the viewer names a result; a name that cannot be a mesh's is refused first.
+  const json badly = {{"algorithm", "centroid_distance"},
+                      {"inputs", {{"mesh", {{"job", first["id"]}, {"artifact", "mesh"}, {"name", "a/b"}}}}}};
+  const auto refused = http_call(server_.port(), Method::post, "/api/v1/jobs", badly.dump());
+  EXPECT_EQ(refused.status, 400u) << refused.body;
+  EXPECT_NE(refused.body.find("'/'"), std::string::npos) << refused.body;
   const json body = {{"algorithm", "centroid_distance"},
-                     {"inputs", {{"mesh", {{"job", first["id"]}, {"artifact", "mesh"}}}}},
+                     {"inputs", {{"mesh", {{"job", first["id"]}, {"artifact", "mesh"}, {"name", "box · translate"}}}}},
                      {"params", json::object()}};
   const auto r = http_call(server_.port(), Method::post, "/api/v1/jobs", body.dump());
   ASSERT_EQ(r.status, 201) << r.body;
@@ -307,6 +313,7 @@ TEST_F(JobsTest, AJobRunsOnAnEarlierJobsOutputMesh) {
   EXPECT_NE(chained_mesh, mesh_id_);
   const json m = http_get(server_.port(), "/api/v1/meshes/" + chained_mesh).body_json();
   const json original = http_get(server_.port(), "/api/v1/meshes/" + mesh_id_).body_json();
+  EXPECT_EQ(m["name"], "box · translate");
   EXPECT_EQ(m["report"]["vertices"], original["report"]["vertices"]);
   EXPECT_NEAR(m["report"]["bbox"]["min"][0].get<double>(), original["report"]["bbox"]["min"][0].get<double>() + 1.0,
               1e-5);

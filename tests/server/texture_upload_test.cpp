@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <map>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "draco_faces.h"
@@ -94,7 +95,8 @@ TEST_F(TextureUploadTest, ObjMtlAndImageKeepTheirTexture) {
   EXPECT_EQ(mesh["bytes"], kQuad.size());
   EXPECT_EQ(mesh["sha256"], sha256_hex(kQuad)) << "the stored file is the OBJ, not the zip";
   EXPECT_EQ(mesh["has_uvs"], true);
-  EXPECT_EQ(mesh["warnings"], json::array());
+  // Every file of the upload that nothing used is named; macOS's are not files of the user's.
+  EXPECT_EQ(mesh["warnings"], json::array({"files of the upload not used: readme.txt"}));
   ASSERT_EQ(mesh["textures"].size(), 1u);
   const json& t = mesh["textures"][0];
   EXPECT_EQ(t["name"], "wood.jpg");
@@ -135,6 +137,13 @@ TEST_F(TextureUploadTest, SpiderKeepsEveryMaterialsTexture) {
     if (e.path().extension() == ".jpg") files.emplace_back(e.path().filename().string(), read_bytes(e.path()));
   const json mesh = upload("spider.zip", make_zip(files));
   EXPECT_EQ(mesh["warnings"].dump().find("textur"), std::string::npos) << mesh["warnings"];
+  // The images no material of the spider names are listed as not used.
+  std::set<std::string> shown;
+  for (const auto& t : mesh["textures"]) shown.insert(t["name"]);
+  const std::string warnings = mesh["warnings"].dump();
+  for (const auto& [name, bytes] : files)
+    if (name.ends_with(".jpg"))
+      EXPECT_EQ(warnings.find(name) != std::string::npos, !shown.count(name)) << name << " " << warnings;
   const std::vector<Material> mtl = parse_mtl(files[1].second);
   const ObjMaterialUse use = obj_material_use(files[0].second);
   ASSERT_EQ(mesh["materials"].size(), 4u) << mesh;
@@ -185,6 +194,53 @@ TEST_F(TextureUploadTest, MissingImageIsAWarning) {
   EXPECT_NE(alone["warnings"].dump().find("upload a zip"), std::string::npos) << alone["warnings"];
 }
 
+// An OBJ with texture coordinates that names no material library and no
+// material, uploaded with exactly one MTL or one image, shows it, and says so;
+// with several, or none, it says what it shows instead.
+TEST_F(TextureUploadTest, AnObjNamingNoMaterialTakesTheUploadsOnlyOne) {
+  const std::string bare =
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+      "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n";
+  auto said = [](const json& mesh, const std::string& part) {
+    return mesh["warnings"].dump().find(part) != std::string::npos;
+  };
+  // One MTL (with one material) and its image.
+  const json one = upload("quad.zip", make_zip({{"quad.obj", bare}, {"quad.mtl", kMtl}, {"maps/wood.jpg", jpeg_}}));
+  ASSERT_EQ(one["textures"].size(), 1u) << one;
+  EXPECT_EQ(one["textures"][0]["name"], "wood.jpg");
+  EXPECT_EQ(one["materials"][0]["texture"], 0);
+  EXPECT_EQ(one["kd"], json::array({0.5, 0.25, 1.0}));
+  EXPECT_TRUE(said(one, "no mtllib line): the upload's only one, 'quad.mtl', is used")) << one["warnings"];
+  EXPECT_TRUE(said(one, "2 faces name no material (no usemtl line before them): the library's only one, 'skin'"))
+      << one["warnings"];
+  EXPECT_FALSE(said(one, "not used")) << one["warnings"];
+  const HttpResponse image = call("GET", "/api/v1/meshes/" + one["id"].get<std::string>() + "/textures/0");
+  EXPECT_TRUE(image.body == jpeg_);
+  // Only an image.
+  const json png = upload("quad.zip", make_zip({{"quad.obj", bare}, {"wood.jpg", jpeg_}}));
+  ASSERT_EQ(png["textures"].size(), 1u) << png;
+  EXPECT_EQ(png["materials"][0]["texture"], 0);
+  EXPECT_TRUE(said(png, "the upload's only image, 'wood.jpg', is used as its texture")) << png["warnings"];
+  // Two images: neither is guessed, both are listed as not used.
+  const json two = upload("quad.zip", make_zip({{"quad.obj", bare}, {"a.jpg", jpeg_}, {"b.jpg", jpeg_}}));
+  EXPECT_EQ(two["textures"], json::array());
+  EXPECT_TRUE(said(two, "name no material (no usemtl line and no mtllib line): they show a checkerboard"))
+      << two["warnings"];
+  EXPECT_TRUE(said(two, "files of the upload not used: a.jpg, b.jpg")) << two["warnings"];
+  // Two libraries: neither is guessed.
+  const json libs = upload("quad.zip", make_zip({{"quad.obj", bare}, {"a.mtl", kMtl}, {"b.mtl", kMtl}}));
+  EXPECT_TRUE(said(libs, "the upload holds 2: none is used")) << libs["warnings"];
+  EXPECT_TRUE(said(libs, "not used: a.mtl, b.mtl")) << libs["warnings"];
+  // Alone: the checkerboard is said; a mesh without texture coordinates says nothing of materials.
+  EXPECT_TRUE(said(upload("quad.obj", bare), "checkerboard"));
+  EXPECT_EQ(upload("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")["warnings"], json::array());
+  // A material named by usemtl that its library lacks.
+  const json missing = upload("quad.zip", make_zip({{"quad.obj", "mtllib quad.mtl\n" + bare.substr(0, bare.find("f ")) +
+                                                                     "usemtl bark\n" + bare.substr(bare.find("f "))},
+                                                    {"quad.mtl", kMtl}}));
+  EXPECT_TRUE(said(missing, "the material 'bark' of 2 faces is in no material library uploaded")) << missing;
+}
+
 TEST_F(TextureUploadTest, PlyTextureFile) {
   const std::string ply =
       "ply\nformat ascii 1.0\ncomment TextureFile wood.jpg\nelement vertex 3\nproperty float x\nproperty float y\n"
@@ -199,6 +255,15 @@ TEST_F(TextureUploadTest, PlyTextureFile) {
   const json cube = upload("cube_uv.ply", read_bytes("/usr/share/assimp/models/PLY/cube_uv.ply"));
   EXPECT_EQ(cube["has_uvs"], true);
   EXPECT_EQ(cube["textures"], json::array());
+  EXPECT_NE(cube["warnings"].dump().find("names no texture (no 'comment TextureFile' line): it shows a checkerboard"),
+            std::string::npos)
+      << cube["warnings"];
+  // Zipped with one image, it takes it.
+  const std::string bare = std::string(ply).replace(ply.find("comment TextureFile wood.jpg\n"), 29, "");
+  const json zipped = upload("tri.zip", make_zip({{"tri.ply", bare}, {"wood.jpg", jpeg_}}));
+  ASSERT_EQ(zipped["textures"].size(), 1u) << zipped;
+  EXPECT_NE(zipped["warnings"].dump().find("the upload's only image, 'wood.jpg', is used"), std::string::npos)
+      << zipped["warnings"];
   // A mesh without UVs says so.
   const json plain = upload("tri.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
   EXPECT_EQ(plain["has_uvs"], false);

@@ -394,6 +394,65 @@ TEST(AlgorithmJson, ParamsFromJsonRejectsNamingTheParameter) {
   EXPECT_NE(m.find("params"), std::string::npos) << m;
 }
 
+// What forms need beside the schema: the declared order (the properties
+// come sorted by name), the advanced ones, and when a parameter applies.
+TEST(AlgorithmJson, FormsGetTheDeclaredOrderTheAdvancedOnesAndWhenEachApplies) {
+  const json chaos = protocol::to_json(find_algorithm("chaos_map"));
+  EXPECT_EQ(chaos["params"]["x-cgview-order"], json({"map", "u", "r", "a", "b", "grid", "steps"}));
+  EXPECT_EQ(chaos["params"]["properties"]["u"]["x-cgview-when"],
+            json({{"param", "map"}, {"in", {"ikeda", "composite"}}}));
+  EXPECT_EQ(chaos["params"]["properties"]["r"]["x-cgview-when"], json({{"param", "map"}, {"in", {"logistic"}}}));
+  EXPECT_FALSE(chaos["params"]["properties"]["steps"].contains("x-cgview-when"));
+  const json skeleton = protocol::to_json(find_algorithm("skeleton_projection"));
+  EXPECT_EQ(skeleton["params"]["properties"]["contexts"]["x-cgview-advanced"], true);
+  EXPECT_FALSE(skeleton["params"]["properties"]["views"].contains("x-cgview-advanced"));
+  const json mcf = protocol::to_json(find_algorithm("skeleton_mcf"));
+  EXPECT_EQ(mcf["params"]["properties"]["medially_centered_speed_tradeoff"]["x-cgview-when"]["in"], json({"true"}));
+
+  // A plugin's description read back keeps all three, in its order.
+  const Algorithm back = protocol::algorithm_from_json(chaos);
+  std::vector<std::string> names;
+  for (const ParamSpec& p : back.params) names.push_back(p.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"map", "u", "r", "a", "b", "grid", "steps"}));
+  EXPECT_EQ(back.params[1].info.when.param, "map");
+  EXPECT_EQ(back.params[1].info.when.values, (std::vector<std::string>{"ikeda", "composite"}));
+  EXPECT_TRUE(protocol::algorithm_from_json(skeleton).params.size() > 0);
+  for (const ParamSpec& p : protocol::algorithm_from_json(skeleton).params)
+    EXPECT_EQ(p.info.advanced, skeleton["params"]["properties"][p.name].contains("x-cgview-advanced")) << p.name;
+
+  // Every built-in's conditions hold (registration checks them).
+  for (const auto& [name, a] : algorithms()) EXPECT_NO_THROW(check_conditions(a.params)) << name;
+}
+
+TEST(AlgorithmJson, AConditionOnWhatCannotSayWhenIsRefused) {
+  auto spec = [](std::string name, ParamType type, ParamInfo info) {
+    return ParamSpec{std::move(name), type, ParamValue(std::string()), std::move(info)};
+  };
+  const ParamSpec mode = spec("mode", ParamType::choice, {.choices = {"a", "b"}});
+  const ParamSpec flag = spec("flag", ParamType::boolean, {});
+  const ParamSpec size = spec("size", ParamType::number, {});
+  auto message = [&](ParamCondition when) {
+    ParamSpec p = spec("p", ParamType::number, {.when = std::move(when)});
+    return invalid_input_message([&] { check_conditions({mode, flag, size, p}); });
+  };
+  ParamSpec fine = spec("p", ParamType::number, {.when = {"mode", {"b"}}});
+  EXPECT_NO_THROW(check_conditions({mode, flag, size, fine}));
+  fine.info.when = {"flag", {"false"}};
+  EXPECT_NO_THROW(check_conditions({mode, flag, size, fine}));
+  EXPECT_EQ(message({"nothing", {"b"}}),
+            "parameter 'p' applies when 'nothing' is, but there is no such other parameter");
+  EXPECT_EQ(message({"p", {"b"}}), "parameter 'p' applies when 'p' is, but there is no such other parameter");
+  EXPECT_EQ(message({"size", {"1"}}),
+            "parameter 'p' applies when 'size' is, but only a choice or a boolean can say when");
+  EXPECT_EQ(message({"mode", {"c"}}), "parameter 'p' applies when 'mode' is 'c', which it cannot be");
+  EXPECT_EQ(message({"flag", {"yes"}}), "parameter 'p' applies when 'flag' is 'yes', which it cannot be");
+  EXPECT_EQ(message({"mode", {}}), "parameter 'p' applies when 'mode' has one of no values");
+  // A plugin's description naming a missing parameter is refused as it is read.
+  json d = protocol::to_json(find_algorithm("chaos_map"));
+  d["params"]["properties"]["u"]["x-cgview-when"]["param"] = "mapp";
+  EXPECT_NE(invalid_input_message([&] { protocol::algorithm_from_json(d); }).find("'mapp'"), std::string::npos);
+}
+
 // ---------------------------------------------------------------- a one-file algorithm
 
 TEST(OneFileAlgorithm, RegisteredByItsFileAlone) {
