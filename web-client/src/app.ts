@@ -51,6 +51,7 @@ export class App {
       onFrame: () => {
         ++hooks.frames;
         hooks.scene = app.scene.report();
+        this.links.changed();
       },
     });
     // Before the Display panel's listener: the overlays measure the object where the scene puts it.
@@ -60,6 +61,7 @@ export class App {
       store.update({ message: { level: 'error', text } });
     });
     const notice = (text: string): void => store.update({ message: { level: 'notice', text } });
+    const warning = (text: string): void => store.update({ message: { level: 'warning', text } });
     const undo = new UndoOffers(store, hooks);
     const textures = new MeshTextures(
       byId('texture-panel'),
@@ -67,7 +69,10 @@ export class App {
       (state) => (hooks.texture = state),
       error,
     );
-    const messages = new MessagesPanel(byId('messages'));
+    // Messages stack at the top of the left sidebar, which the code panel never replaces: never over the view.
+    const messagesRoot = byId('messages');
+    document.querySelector('.sidebar.left')?.prepend(messagesRoot);
+    const messages = new MessagesPanel(messagesRoot);
     store.subscribe(
       (s) => s.message,
       (m) => {
@@ -106,6 +111,7 @@ export class App {
       drawn: (report) => (hooks.display = report),
       others: () => app.scene.others(),
       colorOf: (object) => app.scene.entryOf(object)?.color ?? null,
+      meshOf: (object) => app.scene.entryOf(object)?.mesh ?? null,
     });
     const ctx: AppContext = {
       store,
@@ -120,6 +126,7 @@ export class App {
       app,
       error,
       notice,
+      warning,
     };
     app.account = new AccountController(store, new AccountPanel(byId('account')));
     app.loader = new MeshLoader(ctx, new DracoDecoder());

@@ -100,8 +100,10 @@ test('the header shows the user and their quota; over it an upload shows why; si
   assert.equal(me.json.storage_bytes_used, fs.statSync(elephant).size);
   assert.equal(me.json.storage_bytes_limit, Math.round(0.2 * 1048576));
 
-  // A second one does not: the server's reason is shown, and nothing more is stored.
-  await page.locator('#file-input').setInputFiles(elephant);
+  // A second one does not (another file: the same one again is only selected): the server's reason is shown, and nothing more is stored.
+  await page
+    .locator('#file-input')
+    .setInputFiles({ name: 'elephant-copy.off', mimeType: 'application/octet-stream', buffer: Buffer.concat([fs.readFileSync(elephant), Buffer.from('\n')]) });
   const alert = page.locator('#messages .message.error').last();
   await alert.waitFor({ timeout: 30000 });
   assert.match(await alert.textContent(), /storage quota of 204\.8 KB exceeded: 169\.7 KB used, this upload is 169\.7 KB/);

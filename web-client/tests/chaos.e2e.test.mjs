@@ -2,8 +2,9 @@
 // against the real server: the job is run from the generated form on the
 // elephant, its animation artifact (.frames) is played, and moving the
 // slider changes the positions drawn (window.__cgview.lastAnimation, set
-// after the frame is rendered); the play button advances the frames.  The
-// canvas at the last frame is kept in build/test-artifacts/e2e-chaos-animate.png.
+// after the frame is rendered); "Play" in the job list and the player's
+// play button advance the frames. The canvas at the last frame is kept in
+// build/test-artifacts/e2e-chaos-animate.png.
 // A message hidden by chaos_embed and read back by a chained chaos_extract
 // (submitted over REST by another client) shows in the job panel.
 //
@@ -33,13 +34,17 @@ test('chaos_animate from the form: the slider and the play button change the pos
     throw new Error(`chaos_animate never showed done: ${e.message}${v.describeProblems()}\n${v.server.log()}`);
   });
   const row = done.locator('.artifact-animation');
+  // "Play" plays the frames through at once, and stops on the last one.
   await row.locator('button.play-animation').click();
-  await v.page.waitForFunction(() => window.__cgview.lastAnimation?.frame === 0, null, { timeout: 30000 });
+  await v.page.waitForFunction(() => window.__cgview.lastAnimation?.frame === 8, null, { timeout: 30000 });
+  await v.page.locator('#animation-player button.player-play', { hasText: 'Play' }).waitFor({ timeout: 5000 });
+  const slider = v.page.locator('#animation-player input.player-slider');
+  await slider.fill('0');
+  await v.page.waitForFunction(() => window.__cgview.lastAnimation?.frame === 0, null, { timeout: 10000 });
   const first = await v.page.evaluate(() => window.__cgview.lastAnimation);
   assert.equal(first.frames, 9, 'frame 0 (the input) and 8 steps');
   assert.equal(first.vertices, 2775);
 
-  const slider = v.page.locator('#animation-player input.player-slider');
   await slider.fill('5');
   await v.page.waitForFunction(() => window.__cgview.lastAnimation?.frame === 5, null, { timeout: 10000 });
   const fifth = await v.page.evaluate(() => window.__cgview.lastAnimation);

@@ -213,7 +213,14 @@ test('overlays: the edge counts on an open mesh equal those of its OFF file, the
   for (let c = 0; c < 3; ++c) {
     assert.ok(Math.abs(shown.size[c] - expected.size[c]) <= 1e-3 * Math.max(...expected.size), `box size ${shown.size} vs the OFF's ${expected.size}`);
   }
-  assert.match(readout, /Box \d\.\d+ × \d\.\d+ × \d\.\d+/);
+  // Each side as the viewer writes numbers: an integer exact ("1"), any other to 4 significant digits.
+  const sides = /Box (\S+) × (\S+) × (\S+)/.exec(readout);
+  assert.ok(sides, readout);
+  for (let c = 0; c < 3; ++c) {
+    assert.match(sides[c + 1], /^\d+(\.\d+)?$/, readout);
+    assert.ok(sides[c + 1].replace('.', '').replace(/^0+/, '').length <= 4, `4 significant digits at most: ${readout}`);
+    assert.ok(Math.abs(Number(sides[c + 1]) - expected.size[c]) <= 5e-4 * Math.max(...expected.size), `the side ${c} as shown: ${readout} vs ${expected.size}`);
+  }
   const withEdges = await screenshot(page, 'edges-on');
   const [before, after] = [await redPixels(page, plain), await redPixels(page, withEdges)];
   assert.ok(after > before + 50, `the boundary edges are drawn in red: ${before} red pixels before, ${after} after`);

@@ -62,7 +62,7 @@ test('"Run on this" chains: hausdorff of the simplified mesh against the elephan
   const done = v.page.locator(`#jobs li.job[data-job-id="${simplifyJob}"]`);
   await done.locator('.artifact-mesh[data-artifact="mesh"] button.run-on').click();
   const form = await selectAlgorithm('hausdorff');
-  assert.match(await form.locator('.run-target').innerText(), /mesh of simplify/, 'the form runs on the chosen output');
+  assert.match(await form.locator('.run-target').innerText(), /elephant · simplify 1000/, 'the form runs on the chosen output, named after what it was made from');
   // The reference chooser lists the stored meshes; the elephant is the reference.
   const reference = form.locator('select[data-input="reference"]');
   const options = await reference.locator('option').evaluateAll((os) => os.map((o) => o.value));
@@ -99,9 +99,9 @@ test('"Run on this" chains: hausdorff of the simplified mesh against the elephan
   const table = li.locator('.artifact-metrics table.metrics');
   await table.waitFor({ timeout: 15000 });
   const text = await table.innerText();
-  const m = /hausdorff relative\s+([0-9.e-]+)/.exec(text);
-  assert.ok(m, `the table shows the relative distance:\n${text}`);
-  assert.ok(Number(m[1]) > 0 && Number(m[1]) < 0.05, `simplified to ${TARGET_FACES} faces stays within 5% of the diagonal: ${m[1]}`);
+  const m = /hausdorff relative\s+([0-9.e-]+) % of diagonal/.exec(text);
+  assert.ok(m, `the table shows the relative distance, in per cent of the diagonal:\n${text}`);
+  assert.ok(Number(m[1]) > 0 && Number(m[1]) < 5, `simplified to ${TARGET_FACES} faces stays within 5% of the diagonal: ${m[1]} %`);
   assert.deepEqual(v.problems, [], v.describeProblems());
 });
 
@@ -120,7 +120,7 @@ test('"Run on this" on a voxel grid: grid_surface takes the grid of voxelize, an
 
   await vox.locator('.artifact-voxel_grid[data-artifact="grid"] button.run-on').click();
   form = await selectAlgorithm('grid_surface');
-  assert.match(await form.locator('.run-target').innerText(), /grid of voxelize/);
+  assert.match(await form.locator('.run-target').innerText(), /elephant · voxelize 24/);
   await form.locator('button.run').click();
   const li = await waitDone('grid_surface');
   const jobId = await li.getAttribute('data-job-id');

@@ -266,3 +266,35 @@ export function useViewer(options) {
   });
   return v;
 }
+
+/** Submits a job through the API; resolves with its id (asserts 201). */
+export async function submitJob(v, algorithm, inputs, params = {}) {
+  const r = await fetch(`${v.server.url}/api/v1/jobs`, { method: 'POST', body: JSON.stringify({ algorithm, inputs, params }) });
+  if (r.status !== 201) throw new Error(`POST /jobs ${algorithm}: HTTP ${r.status} ${await r.text()}`);
+  return (await r.json()).id;
+}
+
+/** The job's row in the Jobs panel once it shows done. */
+export async function doneRow(v, jobId) {
+  const li = v.page.locator(`#jobs li.job[data-job-id="${jobId}"][data-state="done"]`);
+  await li.waitFor({ timeout: 120000 }).catch(async (e) => {
+    const job = await (await fetch(`${v.server.url}/api/v1/jobs/${jobId}`)).json();
+    throw new Error(`job ${jobId} never showed done: ${e.message}\n${JSON.stringify(job)}${v.describeProblems()}`);
+  });
+  return li;
+}
+
+/** Significant digits of a number as written ("0.001235" → 4, "-175" → 3, "22460" → 4, "1.2e-7" → 2). */
+export function significantDigits(text) {
+  let mantissa = text.replace(/^-/, '').replace(/e.*$/i, '');
+  // A whole number's trailing zeros only place it ("22460" is 2.246e4).
+  if (!mantissa.includes('.')) mantissa = mantissa.replace(/0+$/, '');
+  return mantissa.replace('.', '').replace(/^0+/, '').length;
+}
+
+/** Throws unless `text` is a number of at most four significant digits; returns it. */
+export function shortNumber(text, what) {
+  if (!/^-?[0-9.]+(e[-+]?[0-9]+)?$/.test(text)) throw new Error(`${what} is not a number: "${text}"`);
+  if (significantDigits(text) > 4) throw new Error(`${what} has more than 4 significant digits: "${text}"`);
+  return Number(text);
+}

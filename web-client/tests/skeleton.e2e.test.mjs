@@ -64,6 +64,7 @@ test('two skeletons of the elephant drawn at once, each in its colour, then one 
     const jobId = await li.getAttribute('data-job-id');
     const metrics = await (await fetch(`${v.server.url}/api/v1/jobs/${jobId}/artifacts/metrics?format=json`)).json();
     assert.equal(await table.locator('tr[data-metric="endpoints"] td').nth(i).innerText(), String(metrics.endpoints));
+    assert.match(await table.locator('tr[data-metric="length"] td').nth(i).innerText(), /^[0-9.]+ mesh units$/, 'a length, with its unit');
   }
   const distanceJob = v.page.locator('#jobs li.job[data-algorithm="skeleton_distance"][data-state="done"]').first();
   await distanceJob.waitFor({ timeout: 120000 }).catch(async (e) => {
@@ -73,13 +74,19 @@ test('two skeletons of the elephant drawn at once, each in its colour, then one 
   const distanceCell = table.locator('tr[data-metric="distance"] td').nth(1);
   // The table is drawn anew on each change: ask the page, not a handle.
   await v.page
-    .waitForFunction(() => /^[0-9.e-]+ \/ [0-9.e-]+$/.test(document.querySelectorAll('#skeletons tr[data-metric="distance"] td')[1]?.textContent ?? ''), null, { timeout: 60000 })
+    .waitForFunction(() => /^[0-9.e-]+ \/ [0-9.e-]+ mesh units$/.test(document.querySelectorAll('#skeletons tr[data-metric="distance"] td')[1]?.textContent ?? ''), null, {
+      timeout: 60000,
+    })
     .catch(async (e) => {
       throw new Error(`the distance cell reads '${await distanceCell.innerText()}': ${e.message}${v.describeProblems()}`);
     });
   const distanceId = await distanceJob.getAttribute('data-job-id');
   const d = await (await fetch(`${v.server.url}/api/v1/jobs/${distanceId}/artifacts/metrics?format=json`)).json();
-  const [h, mean] = (await distanceCell.innerText()).split(' / ').map(Number);
+  // Both distances are lengths: the unit once, after them.
+  const [h, mean] = (await distanceCell.innerText())
+    .replace(/ mesh units$/, '')
+    .split(' / ')
+    .map(Number);
   assert.ok(Math.abs(h - d.hausdorff) <= 1e-3 * d.hausdorff && Math.abs(mean - d.mean) <= 1e-3 * d.mean, `${h} / ${mean} against ${JSON.stringify(d)}`);
   assert.ok(d.hausdorff > 0 && d.hausdorff < 0.5, `two skeletons of one elephant are close: ${JSON.stringify(d)}`);
 

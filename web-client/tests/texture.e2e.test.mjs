@@ -34,7 +34,8 @@ function faceOnCorner(sx, sy) {
   return [0, 1, 2].map((i) => sx * x[i] + sy * y[i]).join(' ');
 }
 
-// A unit quad facing the camera, its u along the screen's right and v along its up.
+// A unit quad facing the camera, its u along the screen's right and v along
+// its up; with no `mtl`, it names no material at all (no mtllib, no usemtl).
 function faceOnQuadObj(mtl) {
   const corner = faceOnCorner;
   return [
@@ -47,7 +48,7 @@ function faceOnQuadObj(mtl) {
     'vt 1 0',
     'vt 1 1',
     'vt 0 1',
-    'usemtl quad',
+    mtl ? 'usemtl quad' : '',
     'f 1/1 2/2 3/3',
     'f 1/1 3/3 4/4',
     '',
@@ -179,6 +180,14 @@ test('an OBJ, its MTL and a PNG chosen together show the texture face-on, and th
 
   await v.page.selectOption('#texture-mode', 'checkerboard');
   await v.page.locator('#texture-squares').fill('2');
+  // The value beside the slider follows it.
+  assert.equal(
+    await v.page
+      .locator('label', { has: v.page.getByRole('slider', { name: 'Squares', exact: true }) })
+      .locator('.slider-value')
+      .innerText(),
+    '2',
+  );
   await v.page.waitForFunction(() => window.__cgview.texture?.mode === 'checkerboard' && window.__cgview.texture.squares === 2, null, { timeout: 10000 });
   const checker = await canvasPixels('checkerboard');
   const lum = Object.fromEntries(Object.entries(QUADRANTS).map(([k, [fx, fy]]) => [k, luminance(sample(checker, fx, fy))]));
@@ -298,6 +307,18 @@ test('a missing texture image: the mesh shows untextured, with a warning in the 
   );
   await v.page.locator('#messages', { hasText: "'quad.png' is not in the upload" }).waitFor({ timeout: 10000 });
   assert.equal(await v.page.locator('#texture-mode option[value="texture"]').isDisabled(), true);
+});
+
+test('an OBJ naming no material, chosen with one MTL and its PNG, shows the texture and says what it took', async () => {
+  const png = await quadPng();
+  const mesh = await pick([file('plain.obj', faceOnQuadObj(null)), file('quad.mtl', QUAD_MTL), { name: 'quad.png', mimeType: 'image/png', buffer: png }], 'texture');
+  assert.equal(mesh.textures.length, 1, JSON.stringify(mesh));
+  const img = await canvasPixels('no-material');
+  for (const [where, [fx, fy]] of Object.entries(QUADRANTS)) {
+    const got = sample(img, fx, fy);
+    assert.ok(hue(got) !== null && hueDistance(hue(got), hue(TEXELS[where])) <= 20, `${where}: hue of ${got.map(Math.round)} is not that of ${TEXELS[where]}`);
+  }
+  await v.page.locator('#messages', { hasText: "the upload's only one, 'quad.mtl', is used" }).waitFor({ timeout: 10000 });
 });
 
 test("assimp's spider (OBJ, MTL, JPEGs) shows its texture's colour", async () => {

@@ -77,10 +77,7 @@ export function installAuthorizedDownloads(root: Document = document): void {
     void authFetch(a.href).then(async (r) => {
       if (!r.ok) return;
       const name = /filename="([^"]+)"/.exec(r.headers.get('Content-Disposition') ?? '')?.[1] ?? 'download';
-      const blobUrl = URL.createObjectURL(await r.blob());
-      const link = Object.assign(root.createElement('a'), { href: blobUrl, download: name });
-      link.click();
-      setTimeout(() => URL.revokeObjectURL(blobUrl), 10_000);
+      saveBlob(await r.blob(), name, root);
     });
   });
 }
@@ -112,4 +109,14 @@ export function tokenForm(message: string): Promise<void> {
     input.focus();
   });
   return asking;
+}
+
+/** Saves `blob` as a file named `name` (the browser's download), its blob URL let go once the download has it. */
+export function saveBlob(blob: Blob, name: string, root: Document = document): void {
+  const url = URL.createObjectURL(blob);
+  const link = Object.assign(root.createElement('a'), { href: url, download: name });
+  root.body.append(link);
+  link.click();
+  link.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10_000);
 }

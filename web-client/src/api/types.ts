@@ -107,6 +107,10 @@ export interface ParamSchema {
   minimum?: number;
   maximum?: number;
   enum?: unknown[];
+  /** Forms fold it under "Advanced" (render contexts, internal limits). */
+  'x-cgview-advanced'?: boolean;
+  /** It applies only while the parameter named has one of these values (a boolean's as "true" / "false"). */
+  'x-cgview-when'?: { param: string; in: string[] };
   [key: string]: unknown;
 }
 
@@ -116,6 +120,8 @@ export interface ParamsSchema {
   properties?: Record<string, ParamSchema>;
   required?: string[];
   additionalProperties?: boolean;
+  /** The parameters' names in their declared order, the most used first (`properties` comes sorted by name). */
+  'x-cgview-order'?: string[];
   [key: string]: unknown;
 }
 
@@ -148,7 +154,8 @@ export interface ArtifactInfo {
 }
 
 /** A job's input: a stored mesh's id, or an earlier job's output mesh. */
-export type JobInput = string | { job: string; artifact: string };
+/** A stored mesh's id, or an earlier job's artifact; `name` names the mesh the server stores from an output mesh. */
+export type JobInput = string | { job: string; artifact: string; name?: string };
 
 export interface Job {
   id: string;

@@ -1,6 +1,7 @@
 // Side by side: the fields of one mesh (each in a pane with its colour map
 // and legend), the skeletons drawn over it, or the scene's objects; all
-// through the one camera (viewer/comparison.ts). "Leave comparison" goes back
+// through the one camera (viewer/comparison.ts), framed together or, with
+// "Fit each pane", each pane on its own object. "Leave comparison" goes back
 // to one view, and offers the comparison back for a few seconds.
 import type * as THREE from 'three';
 import { jobMeshId } from '../api/types.ts';
@@ -9,7 +10,7 @@ import type { ArtifactRef } from '../state/app_state.ts';
 import { ComparisonView } from '../viewer/comparison.ts';
 import type { PlyMesh } from '../viewer/ply.ts';
 import { describe, jobOf, type AppContext } from './context.ts';
-import type { FieldSource } from '../kinds/scalar_field.ts';
+import { fieldLegendTitle, type FieldSource } from '../kinds/scalar_field.ts';
 
 /** A pane's prepared object (a skeleton over its mesh, a scene object). */
 export interface PaneObject {
@@ -60,8 +61,8 @@ export class CompareController {
     void this.compareFields([...now, { jobId, artifact }]);
   }
 
-  /** Shows the fields (all on one mesh) side by side in synchronized panes, each with its legend. */
-  private async compareFields(list: ArtifactRef[]): Promise<void> {
+  /** Shows the fields (all on one mesh) side by side in synchronized panes, each with its legend (a view link's). */
+  async compareFields(list: ArtifactRef[]): Promise<void> {
     const field = this.ctx.app.kinds.field;
     const sources: FieldSource[] = [];
     for (const c of list) {
@@ -81,7 +82,7 @@ export class CompareController {
         loaded[0]!.ply,
         loaded.map(({ data }, i) => ({
           key: `${list[i]!.jobId}/${list[i]!.artifact}`,
-          title: `${sources[i]!.job.algorithm} · ${data.name}`,
+          title: fieldLegendTitle(sources[i]!.job.algorithm, data.name),
           data,
           hint: sources[i]!.artifact.hint,
         })),

@@ -47,6 +47,8 @@ export interface AppContext {
   error(text: string): void;
   /** Shows a notice that fades. */
   notice(text: string): void;
+  /** Shows a warning: it fades too, but stays longer than a notice. */
+  warning(text: string): void;
 }
 
 /** An error's words for the page: the server's detail where it gave one. */

@@ -3,20 +3,52 @@
 // tools made (an import job, done at once), following progress from the
 // WebSocket's job_* events, cancelling, and handing what a job made to the
 // artifact kinds (kinds/registry.ts). The job list and the algorithm form
-// render from the state.
+// render from the state. A job's results are named after what they were made
+// from ("elephant · simplify 1000"), and a mesh run on is stored by the server
+// under that name.
 import { needsMesh, type DataKind } from '../api/data_files.ts';
 import { ApiError, cancelJob, getJob, listAlgorithms, listJobs, submitJob, uploadData } from '../api/rest.ts';
-import type { Algorithm, Job, JobInput, JobProgress } from '../api/types.ts';
+import type { Algorithm, Job, JobInput, JobProgress, ParamSchema } from '../api/types.ts';
 import { AlgorithmsPanel } from '../panels/algorithms.ts';
+import { orderedParams } from '../panels/param_control.ts';
 import { byId } from '../panels/dom.ts';
 import { JobsPanel } from '../panels/jobs.ts';
 import { openShareForm } from '../panels/share.ts';
 import { artifactKey, withEntry } from '../state/app_state.ts';
 import { describe, jobOf, type AppContext } from './context.ts';
+import { uploadName } from './meshes.ts';
 
 const FINAL = new Set(['done', 'failed', 'cancelled', 'interrupted']);
 /** Jobs the page runs for itself (a plugin's build): not listed, their artifacts not fetched. */
 const HIDDEN = new Set(['plugin_build']);
+/** What a mesh file's name ends with; a result's name ("elephant · smooth 0.5") has none to strip. */
+const MESH_EXTENSION = /\.(off|obj|ply|stl|drc|glb|gltf|zip)$/i;
+/** The name the server gives a mesh it stored from a job's output ("<job id>-<artifact>.ply"). */
+const CHAINED_NAME = /^([0-9a-f]{16})-(.+)\.ply$/;
+
+/** A parameter's value as a result's name shows it: "1000", "laplacian", "outward=false", "12 faces". */
+function paramWords(name: string, schema: ParamSchema | undefined, value: unknown): string {
+  if (Array.isArray(value)) return `${value.length} ${typeof schema?.['x-cgview-selection'] === 'string' ? schema['x-cgview-selection'] : name}`;
+  if (typeof value === 'boolean') return `${name}=${value}`;
+  return String(value);
+}
+
+/**
+ * The value of the job's first parameter, in the algorithm's declared order,
+ * that differs from its default; '' when all are default (or the algorithm is
+ * not known here).
+ */
+export function mainParamValue(job: Pick<Job, 'params'>, algorithm: Algorithm | undefined): string {
+  const properties = algorithm?.params?.properties ?? {};
+  for (const name of orderedParams(algorithm?.params)) {
+    const schema = properties[name];
+    if (!(name in (job.params ?? {}))) continue;
+    const value = job.params[name];
+    if (value === undefined || JSON.stringify(value) === JSON.stringify(schema?.default)) continue;
+    return paramWords(name, schema, value);
+  }
+  return '';
+}
 
 export class JobsController {
   private readonly ctx: AppContext;
@@ -25,6 +57,8 @@ export class JobsController {
   private readonly autoShow = new Set<string>();
   /** Jobs asked for with GET /jobs/{id} (progress of a job not seen yet). */
   private readonly asking = new Set<string>();
+  /** The algorithms the server listed last: their parameters' defaults name results. */
+  private known: readonly Algorithm[] = [];
 
   constructor(ctx: AppContext) {
     this.ctx = ctx;
@@ -37,8 +71,9 @@ export class JobsController {
       byId('jobs'),
       {
         cancel: (id) => void this.cancel(id),
-        show: (jobId, artifact, kind) => void app.kinds.show(jobId, artifact, kind),
-        hide: (jobId, artifact, kind) => app.kinds.hide(jobId, artifact, kind),
+        // A mesh result is a scene object of its own, beside its source.
+        show: (jobId, artifact, kind) => void (kind === 'mesh' ? app.scene.addResult(jobId, artifact) : app.kinds.show(jobId, artifact, kind)),
+        hide: (jobId, artifact, kind) => (kind === 'mesh' ? app.scene.removeResult(jobId, artifact) : app.kinds.hide(jobId, artifact, kind)),
         compare: (jobId) => app.compare.compareJob(jobId),
         addToComparison: (jobId, artifact) => app.compare.addToComparison(jobId, artifact),
         runOn: (jobId, artifact) => this.setRunTarget(jobId, artifact),
@@ -72,6 +107,11 @@ export class JobsController {
       { now: true },
     );
     store.subscribe(
+      (s) => s.runTarget?.kind ?? null,
+      (kind) => this.algorithms.setRunKind(kind),
+      { now: true },
+    );
+    store.subscribe(
       (s) => s.meshes,
       (meshes) => this.algorithms.setMeshes(meshes.map((m) => ({ id: m.id, name: m.name }))),
     );
@@ -89,6 +129,7 @@ export class JobsController {
       const algorithms = await listAlgorithms();
       hooks.algorithmsApi = true;
       store.update({ algorithmsApi: true });
+      this.known = algorithms;
       this.algorithms.render(algorithms);
       this.algorithms.setMesh(store.get().inputName);
       await this.refresh();
@@ -129,10 +170,11 @@ export class JobsController {
       throw new Error(`${algorithm.name} runs on a ${first.kind}: choose one with "Run on this" in the job list.`);
     }
     if (!target && !mesh) throw new Error('Choose a mesh first.');
-    const inputs: Record<string, JobInput> = {
-      ...extra,
-      [first.name]: target ? { job: target.jobId, artifact: target.artifact } : mesh!.id,
-    };
+    let input: JobInput = target ? { job: target.jobId, artifact: target.artifact } : mesh!.id;
+    // The server stores a result run on as a mesh, under the name it has here.
+    if (target?.kind === 'mesh' && first.kind === 'mesh')
+      input = { job: target.jobId, artifact: target.artifact, name: uploadName(this.resultName(target.jobId, target.artifact)) };
+    const inputs: Record<string, JobInput> = { ...extra, [first.name]: input };
     let job: Job;
     try {
       job = await submitJob(algorithm.name, inputs, params, algorithm.plugin);
@@ -159,7 +201,7 @@ export class JobsController {
    * shown), then shows what it became as its button in the job list would: a
    * field on the mesh, a skeleton over it, a grid's slices. The server
    * answers with the import job done; its warnings (values missing, parts of
-   * the file not used) are in its entry of the job list and said in a notice.
+   * the file not used) are in its entry of the job list and said in a warning.
    */
   async importFile(file: File, kind: DataKind): Promise<void> {
     const { app, progress } = this.ctx;
@@ -180,7 +222,7 @@ export class JobsController {
     // A job_done event may have come before this answer: upsert keeps the later state.
     this.upsert(job);
     app.account.refreshSoon(); // its files count against the caller's storage
-    for (const w of job.warnings ?? []) this.ctx.notice(`${file.name}: ${w}`);
+    for (const w of job.warnings ?? []) this.ctx.warning(`${file.name}: ${w}`);
     const artifact = job.artifacts?.find((a) => a.kind === kind);
     if (artifact) await app.kinds.show(job.id, artifact.name, artifact.kind);
   }
@@ -206,7 +248,60 @@ export class JobsController {
     const job = jobOf(this.ctx, jobId);
     if (!job) return;
     const kind = job.artifacts?.find((a) => a.name === artifact)?.kind ?? 'mesh';
-    this.ctx.store.update({ runTarget: { jobId, artifact, kind }, inputName: `${artifact} of ${job.algorithm}` });
+    this.ctx.store.update({ runTarget: { jobId, artifact, kind }, inputName: this.resultName(jobId, artifact) });
+  }
+
+  /**
+   * What a job's result is called: "<source mesh's name> · <algorithm> <main
+   * parameter value>" ("elephant · simplify 1000"), the source named without
+   * its extension, the value that of the first declared parameter that
+   * differs from its default (none when all are default), and the artifact's
+   * name after it when the job made several of its kind.
+   */
+  resultName(jobId: string, artifact: string): string {
+    return this.nameOf(jobId, artifact, 0);
+  }
+
+  /** The stored mesh a job's results lie over: its first input, or the source of the result it ran on. */
+  sourceMeshOf(jobId: string): string | null {
+    for (let depth = 0, job = jobOf(this.ctx, jobId); job && depth < 8; ++depth) {
+      const input = job.inputs?.[this.firstInput(job)];
+      if (typeof input === 'string') return input;
+      job = input ? jobOf(this.ctx, input.job) : undefined;
+    }
+    return null;
+  }
+
+  private nameOf(jobId: string, artifact: string, depth: number): string {
+    const job = jobOf(this.ctx, jobId);
+    if (!job) return artifact;
+    const value = mainParamValue(job, this.algorithmOf(job));
+    const kind = job.artifacts?.find((a) => a.name === artifact)?.kind;
+    const several = (job.artifacts ?? []).filter((a) => a.kind === kind).length > 1;
+    const input = job.inputs?.[this.firstInput(job)];
+    let source = 'mesh';
+    // A chain's depth is bounded so that a cycle of jobs (never made by the server) cannot hang the page.
+    if (typeof input === 'string') source = this.meshStem(input, depth);
+    else if (input && depth < 8) source = this.nameOf(input.job, input.artifact, depth + 1);
+    return `${source} · ${job.algorithm}${value ? ` ${value}` : ''}${several ? ` ${artifact}` : ''}`;
+  }
+
+  /** A stored mesh's name without its extension; one the server named after a job ("<job id>-mesh.ply") is named as that job's result. */
+  private meshStem(meshId: string, depth: number): string {
+    const name = this.ctx.app.meshes.mesh(meshId)?.name;
+    if (!name) return 'mesh';
+    const chained = CHAINED_NAME.exec(name);
+    if (chained && depth < 8 && jobOf(this.ctx, chained[1]!)) return this.nameOf(chained[1]!, chained[2]!, depth + 1);
+    return name.replace(MESH_EXTENSION, '') || name;
+  }
+
+  private algorithmOf(job: Job): Algorithm | undefined {
+    return this.known.find((a) => a.name === job.algorithm);
+  }
+
+  /** The name of the job's first input ("mesh" for most algorithms, "grid" for grid_surface). */
+  private firstInput(job: Job): string {
+    return this.algorithmOf(job)?.inputs?.[0]?.name ?? ('mesh' in (job.inputs ?? {}) ? 'mesh' : (Object.keys(job.inputs ?? {})[0] ?? 'mesh'));
   }
 
   async cancel(id: string): Promise<void> {

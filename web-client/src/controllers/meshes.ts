@@ -3,11 +3,14 @@
 // jobs controller as imports), deletes and sharing. The mesh list and the
 // report panel render from the state. A delete takes the mesh away at once
 // and offers "Undo" for a few seconds (controllers/undo.ts); the server is
-// asked to delete it only then.
+// asked to delete it only then. A file whose content the user already has is
+// not stored again: the mesh they have is shown. Over an empty view, the
+// first screen offers samples and the file picker.
 import { dataKindOf } from '../api/data_files.ts';
 import { deleteMesh, listMeshes, uploadMesh } from '../api/rest.ts';
 import { jobMeshId, type Job, type Mesh } from '../api/types.ts';
 import { byId } from '../panels/dom.ts';
+import { FirstScreen, samplesOf } from '../panels/first_screen.ts';
 import { MeshListPanel } from '../panels/mesh_list.ts';
 import { ReportPanel } from '../panels/report.ts';
 import { openShareForm } from '../panels/share.ts';
@@ -15,11 +18,39 @@ import { uploadsOf } from '../panels/upload.ts';
 import { selectedMesh } from '../state/app_state.ts';
 import { describe, type AppContext } from './context.ts';
 
+/** The server refuses names of more than 255 bytes, or with '/', '\\' or control characters. */
+export function uploadName(name: string): string {
+  let n = name.replace(/[\u0000-\u001f\u007f/\\]/g, '-');
+  const bytes = (t: string) => new TextEncoder().encode(t).length;
+  if (bytes(n) > 255) {
+    while (bytes(`${n}…`) > 255) n = n.slice(0, -1);
+    n = `${n}…`;
+  }
+  return n;
+}
+
+/** The SHA-256 of the bytes in hex, as a Mesh's sha256; null where the page has no WebCrypto (plain http off localhost). */
+async function sha256Hex(body: Blob | ArrayBuffer): Promise<string | null> {
+  const subtle = globalThis.crypto?.subtle;
+  if (!subtle) return null;
+  const digest = new Uint8Array(await subtle.digest('SHA-256', body instanceof Blob ? await body.arrayBuffer() : body));
+  return Array.from(digest, (b) => b.toString(16).padStart(2, '0')).join('');
+}
+
 export class MeshesController {
   private readonly ctx: AppContext;
   private readonly list: MeshListPanel;
   /** Meshes deleted here whose DELETE is held back or on its way: the server's list still has them, the page does not. */
   private readonly deleting = new Set<string>();
+  /**
+   * The meshes this page uploaded, by the SHA-256 of the bytes it sent: a
+   * zip's differs from its mesh's (the sha256 the server keeps), so the
+   * same zip again is found here.
+   */
+  private readonly sent = new Map<string, string>();
+  private readonly first: FirstScreen;
+  /** Whether the server's list has come once: till then the first screen would offer no samples. */
+  private listed = false;
 
   constructor(ctx: AppContext) {
     this.ctx = ctx;
@@ -39,6 +70,14 @@ export class MeshesController {
       () => this.renderList(),
     );
     store.subscribe(selectedMesh, (mesh) => report.render(mesh));
+    this.first = new FirstScreen(byId('viewport'), {
+      show: (id) => this.select(id),
+      upload: () => byId<HTMLInputElement>('file-input').click(),
+    });
+    store.subscribe(
+      (s) => [s.meshes, s.scene.length === 0],
+      () => this.renderFirst(),
+    );
   }
 
   mesh(id: string): Mesh | null {
@@ -60,6 +99,9 @@ export class MeshesController {
     } catch (e) {
       this.renderList();
       this.ctx.error(`Cannot list meshes: ${describe(e)}`);
+    } finally {
+      this.listed = true;
+      this.renderFirst();
     }
   }
 
@@ -82,9 +124,9 @@ export class MeshesController {
     for (const file of uploads) {
       progress.show('uploading', null, file.name);
       try {
-        const mesh = await uploadMesh(file.name, file.body);
-        this.upsert(mesh);
-        for (const w of mesh.warnings ?? []) this.ctx.notice(`${mesh.name}: ${w}`);
+        const { mesh, known } = await this.findOrUpload(file.name, file.body);
+        if (known) this.ctx.notice(`${file.name}: already uploaded as ${mesh.name}.`);
+        else for (const w of mesh.warnings ?? []) this.ctx.warning(`${mesh.name}: ${w}`);
         last = mesh;
       } catch (e) {
         this.ctx.error(`Upload of ${file.name} failed: ${describe(e)}`);
@@ -94,6 +136,39 @@ export class MeshesController {
     }
     if (last) this.select(last.id);
     for (const file of data) await this.ctx.app.jobs.importFile(file, dataKindOf(file.name)!);
+  }
+
+  /**
+   * The user's mesh of this content (`known`), or the mesh the upload made.
+   * Where the page cannot hash (no WebCrypto), the server's sha256 of the
+   * new mesh tells a twin, which is deleted again; a zip is told only by its
+   * own bytes, as the same mesh may come with other images.
+   */
+  private async findOrUpload(name: string, body: Blob | ArrayBuffer, format?: string): Promise<{ mesh: Mesh; known: boolean }> {
+    const hash = await sha256Hex(body);
+    const known = hash ? (this.ownWithContent(hash) ?? this.mesh(this.sent.get(hash) ?? '')) : null;
+    if (known) return { mesh: known, known: true };
+    const mesh = await uploadMesh(name, body, format);
+    if (hash) this.sent.set(hash, mesh.id);
+    const zip = format === 'zip' || (!format && /\.zip$/i.test(name));
+    const twin = !hash && !zip && mesh.sha256 ? this.ownWithContent(mesh.sha256, mesh.id) : null;
+    if (!twin) {
+      this.upsert(mesh);
+      return { mesh, known: false };
+    }
+    this.deleting.add(mesh.id);
+    this.forget(mesh.id); // its mesh_added event may have come first
+    void deleteMesh(mesh.id)
+      .catch(() => {})
+      .finally(() => this.deleting.delete(mesh.id));
+    return { mesh: twin, known: true };
+  }
+
+  /** The user's own mesh (not a sample, not another's shared) whose stored file has this SHA-256. */
+  private ownWithContent(sha256: string, except?: string): Mesh | null {
+    const { meshes, me } = this.ctx.store.get();
+    const own = (m: Mesh) => (me ? m.owner === me.user : m.owner !== 'system');
+    return meshes.find((m) => m.sha256 === sha256 && m.id !== except && own(m)) ?? null;
   }
 
   /** Shows the mesh alone: the scene starts again from it, and what was drawn on the last one goes. */
@@ -136,7 +211,7 @@ export class MeshesController {
         const now = store.get().scene;
         if (shown && !store.get().selectedId) {
           this.select(id);
-          for (const entry of scene.slice(1)) if (this.mesh(entry.mesh)) void app.scene.add(entry.mesh, entry);
+          for (const entry of scene.slice(1)) if (this.mesh(entry.mesh) || app.scene.isResult(entry.mesh)) void app.scene.add(entry.mesh, entry);
         } else if (now.length && now[0]!.mesh === scene[0]?.mesh) {
           for (const entry of scene.slice(1)) if (entry.mesh === id) void app.scene.add(id, entry);
         }
@@ -185,6 +260,12 @@ export class MeshesController {
     hooks.lastLoaded = null;
     hooks.timings = null;
     app.scene.clear();
+  }
+
+  /** The first screen over an empty view, once the list (and so the samples) has come. */
+  private renderFirst(): void {
+    const s = this.ctx.store.get();
+    this.first.render(samplesOf(s.meshes), this.listed && s.scene.length === 0);
   }
 
   private renderList(): void {

@@ -1,23 +1,92 @@
 // View links: the view (mesh, camera, display, overlays, field, scene and
-// panes) in the page's #view= hash, made with "Copy link" and opened when the
-// page starts with one (viewer/view_state.ts is the format).
+// panes) in the page's hash, `#view=...` (viewer/view_state.ts is the
+// format). The address bar follows the view: once the view has been still
+// for a moment (the camera settled, a mode chosen), the hash is written
+// again, so that a reload or a bookmark reopens it and "Copy link" copies
+// it. A big change (another mesh, an object added to or taken from the
+// scene, a comparison entered or left) makes a new history entry rather
+// than rewriting this one, so that Back returns to the view before it; the
+// page opened with a link, Back and Forward all show the hash's view.
+//
+// Beside `view`, the hash may hold what that format has no place for:
+// `up=z` (the shown mesh's up axis, which the camera's numbers assume) and
+// `compare` once per field compared side by side.
+import type { ArtifactRef, SceneEntry } from '../state/app_state.ts';
+import { artifactKey, splitKey } from '../state/app_state.ts';
 import { applyCamera, readCamera } from '../viewer/camera_state.ts';
 import { isIdentity, sanitizeScene, type SceneObjectState } from '../viewer/scene_state.ts';
 import { decodeViewHash, encodeViewHash, type ViewState } from '../viewer/view_state.ts';
-import { describe, type AppContext } from './context.ts';
+import { describe, jobOf, type AppContext } from './context.ts';
+
+/** How long the view stays still before the address follows it (a camera's glide ends well within). */
+const FOLLOW_MS = 400;
+
+/** Query parameters that look like credentials: never carried into a link. */
+const CREDENTIALS = /^(token|access_token|id_token|auth|authorization|api_key|apikey|password|secret)$/i;
+
+/** The view as the hash holds it, and the part whose change makes a new history entry. */
+interface WrittenView {
+  hash: string;
+  entry: string;
+}
 
 export class ViewLinks {
   private readonly ctx: AppContext;
+  private timer = 0;
+  /** Restores under way: the address holds the view being opened, not yet the one shown. */
+  private opening = 0;
+  /** Counts restores: a later one makes an earlier one stale. */
+  private restoring = 0;
+  /** The big part of the view the current history entry holds; null: none written yet. */
+  private entry: string | null = null;
 
   constructor(ctx: AppContext) {
     this.ctx = ctx;
+    window.addEventListener('popstate', () => void this.restore());
   }
 
-  /** "Copy link": the view in the page's hash; copied to the clipboard where the page may. */
+  /** The view may have changed (a frame was drawn): the address follows once the view has been still for a moment. */
+  changed(): void {
+    window.clearTimeout(this.timer);
+    this.timer = window.setTimeout(() => this.follow(), FOLLOW_MS);
+  }
+
+  /** "Copy link": the view in the page's address, copied to the clipboard where the page may. */
   copy(): void {
-    const { store, display, viewer, hooks, app } = this.ctx;
-    const { selectedId: meshId, scene: entries, scenePanes } = store.get();
-    if (!meshId) return this.ctx.error('Choose a mesh first: a view link reopens a mesh.');
+    const { store, display, hooks } = this.ctx;
+    if (!store.get().selectedId) return this.ctx.error('Choose a mesh first: a view link reopens a mesh.');
+    window.clearTimeout(this.timer);
+    this.follow();
+    const url = location.href;
+    display.showLink(url);
+    hooks.lastLink = url;
+    navigator.clipboard?.writeText(url).then(
+      () => this.ctx.notice('View link copied.'),
+      () => this.ctx.notice('View link: copy it from the Display panel.'),
+    );
+  }
+
+  /** Writes the view into the address: a new history entry for a big change, else this entry again. */
+  private follow(): void {
+    if (this.opening) return;
+    const view = this.view();
+    if (!view) {
+      // The mesh shown is gone (deleted): a reload would only say so. A link that never opened keeps its hash, to be read.
+      if (this.entry !== null) history.replaceState(history.state, '', this.url(''));
+      this.entry = null;
+      return;
+    }
+    const url = this.url(view.hash);
+    if (this.entry !== null && this.entry !== view.entry) history.pushState(null, '', url);
+    else if (url !== location.href) history.replaceState(history.state, '', url);
+    this.entry = view.entry;
+  }
+
+  /** The view shown, as the hash holds it; null with no mesh shown. */
+  private view(): WrittenView | null {
+    const { store, display, viewer, app } = this.ctx;
+    const { selectedId: meshId, scene: entries, scenePanes, compared } = store.get();
+    if (!meshId) return null;
     const { display: settings, overlays } = display.state();
     const state: ViewState = { v: 1, mesh: meshId, camera: readCamera(viewer), display: { ...settings }, overlays: { ...overlays } };
     // The scene, when there is more to it than the mesh as it was loaded (old readers see the mesh alone).
@@ -27,60 +96,118 @@ export class ViewLinks {
     const f = app.kinds.field.drawn();
     if (f && f.meshId === meshId) state.field = { job: f.jobId, artifact: f.artifact, map: f.map, range: f.range };
     // Never the token: it stays in this browser's storage (api/auth.ts).
-    const url = `${location.origin}${location.pathname}${location.search}${encodeViewHash(state)}`;
-    history.replaceState(null, '', url);
-    display.showLink(url);
-    hooks.lastLink = url;
-    navigator.clipboard?.writeText(url).then(
-      () => this.ctx.notice('View link copied.'),
-      () => this.ctx.notice('View link: copy it from the Display panel.'),
-    );
+    const params = new URLSearchParams(encodeViewHash(state).slice(1));
+    if (display.upAxis() === 'z') params.set('up', 'z');
+    // Skeletons side by side are built by their kind from more than a list: only fields come back from a link.
+    if (compared.every((c) => this.isField(c))) for (const c of compared) params.append('compare', artifactKey(c.jobId, c.artifact));
+    const entry = JSON.stringify([meshId, meshesOf(entries), scenePanes, compared.map((c) => artifactKey(c.jobId, c.artifact))]);
+    return { hash: `#${params}`, entry };
   }
 
-  /** Opens the view of the page's #view= link, if any: its mesh, display, overlays and field, then its camera. */
+  private isField(c: ArtifactRef): boolean {
+    return jobOf(this.ctx, c.jobId)?.artifacts?.some((a) => a.name === c.artifact && a.kind === 'scalar_field') ?? false;
+  }
+
+  /** This page's address with `hash`, and without any credential its query may carry. */
+  private url(hash: string): string {
+    const query = new URLSearchParams(location.search);
+    for (const k of [...query.keys()]) if (CREDENTIALS.test(k)) query.delete(k);
+    const search = query.toString() ? `?${query}` : '';
+    return `${location.origin}${location.pathname}${search}${hash}`;
+  }
+
+  /**
+   * Opens the view of the page's hash, if it holds one (the page opened with
+   * a link, Back, Forward): its mesh, scene, display, overlays, field and
+   * comparison, then its camera. Then the address holds the view shown.
+   */
   async restore(): Promise<void> {
+    const token = ++this.restoring;
+    ++this.opening;
+    try {
+      await this.open(() => token === this.restoring);
+    } finally {
+      --this.opening;
+    }
+    if (token !== this.restoring) return;
+    const view = this.view();
+    if (!view) return;
+    history.replaceState(history.state, '', this.url(view.hash));
+    this.entry = view.entry;
+  }
+
+  private async open(current: () => boolean): Promise<void> {
     const { store, display, viewer, hooks, app } = this.ctx;
     let state: ViewState | null;
+    let scene: SceneObjectState[] = [];
     try {
       state = decodeViewHash(location.hash);
+      if (state?.scene) scene = sanitizeScene(state.scene);
     } catch (e) {
       hooks.viewRestored = { error: describe(e) };
       return this.ctx.error(`Cannot open the view link: ${describe(e)}`);
     }
     if (!state) return;
+    hooks.viewRestored = null;
     if (!app.meshes.mesh(state.mesh)) {
       const error = `the mesh ${state.mesh} of the view link no longer exists`;
       hooks.viewRestored = { error };
       return this.ctx.error(`Cannot open the view link: ${error}`);
     }
-    let scene: SceneObjectState[] = [];
-    try {
-      scene = state.scene ? sanitizeScene(state.scene) : [];
-    } catch (e) {
-      hooks.viewRestored = { error: describe(e) };
-      return this.ctx.error(`Cannot open the view link: ${describe(e)}`);
+    const params = new URLSearchParams(location.hash.slice(1));
+    const up = params.get('up') === 'z' ? 'z' : 'y';
+    const compare = params.getAll('compare').map(splitKey);
+    const now = store.get();
+    const drawn = app.kinds.field.drawn();
+    // The same mesh and scene with the same field (Back out of a comparison, say): no need to load them again.
+    const same =
+      now.selectedId === state.mesh &&
+      meshesOf(now.scene) === (scene.length ? scene.map((o) => o.mesh) : [state.mesh]).join(' ') &&
+      (drawn ? state.field?.job === drawn.jobId && state.field.artifact === drawn.artifact : !state.field);
+    if (same) {
+      if ((!state.panes && now.scenePanes) || keysOf(compare) !== keysOf(now.compared)) app.compare.leave();
+      display.restore(state.display, state.overlays);
+      if (state.field) app.kinds.field.setRange(state.field.range);
+    } else {
+      app.meshes.select(state.mesh);
+      if (scene[0]) app.scene.change(0, scene[0]);
+      await app.loader.showing;
+      if (!current()) return;
+      // A job's output mesh stands in the scene as `job:<job>/<artifact>`: drawn again from its job, missing only when the job is gone.
+      const missing = scene.slice(1).filter((o) => !app.scene.canAdd(o.mesh));
+      if (missing.length) this.ctx.error(`The view link's meshes ${missing.map((o) => o.mesh).join(', ')} no longer exist; the scene is shown without them.`);
+      await Promise.all(
+        scene
+          .slice(1)
+          .filter((o) => !missing.includes(o))
+          .map((o) => app.scene.add(o.mesh, o)),
+      );
+      if (!current()) return;
+      display.restore(state.display, state.overlays);
+      if (state.field) {
+        const field = app.kinds.field;
+        field.chooseMap(state.field.map);
+        await field.show(state.field.job, state.field.artifact);
+        if (!current()) return;
+        field.setRange(state.field.range);
+      }
     }
-    app.meshes.select(state.mesh);
-    if (scene[0]) app.scene.change(0, scene[0]);
-    await app.loader.showing;
-    const missing = scene.slice(1).filter((o) => !app.meshes.mesh(o.mesh));
-    if (missing.length) this.ctx.error(`The view link's meshes ${missing.map((o) => o.mesh).join(', ')} no longer exist; the scene is shown without them.`);
-    await Promise.all(
-      scene
-        .slice(1)
-        .filter((o) => !missing.includes(o))
-        .map((o) => app.scene.add(o.mesh, o)),
-    );
-    display.restore(state.display, state.overlays);
-    if (state.field) {
-      const field = app.kinds.field;
-      field.chooseMap(state.field.map);
-      await field.show(state.field.job, state.field.artifact);
-      field.setRange(state.field.range);
+    display.setUpAxis(up);
+    if (state.panes && !store.get().scenePanes && store.get().scene.length > 1) app.scene.sideBySide();
+    if (compare.length && keysOf(compare) !== keysOf(store.get().compared)) {
+      await app.compare.compareFields(compare);
+      if (!current()) return;
     }
-    if (state.panes && store.get().scene.length > 1) app.scene.sideBySide();
     applyCamera(viewer, state.camera);
     const mode = display.state().display.mode;
     viewer.redraw(() => (hooks.viewRestored = { camera: readCamera(viewer), mode }));
   }
+}
+
+function meshesOf(entries: readonly SceneEntry[]): string {
+  return entries.map((e) => e.mesh).join(' ');
+}
+
+function keysOf(list: readonly ArtifactRef[]): string {
+  return list.map((c) => artifactKey(c.jobId, c.artifact)).join(' ');
 }

@@ -1,7 +1,9 @@
 // `animation` artifacts (chaos_animate's .frames): fetched over the
 // WebSocket as quantized deltas (protocol/API.md, get_animation) and shown as
 // points in place of the mesh, with the player's slider and play button over
-// the view; the camera frames the box of every frame.
+// the view; the camera frames the box of every frame. "Play" in the job list
+// plays it at once (and pauses it, as "Pause", while it plays); once something
+// else takes the points' place, the player goes with them.
 import * as THREE from 'three';
 import type { ArtifactInfo, Job } from '../api/types.ts';
 import { describe, jobOf, type AppContext } from '../controllers/context.ts';
@@ -19,10 +21,15 @@ export class AnimationKind implements ArtifactKind {
   private readonly player: AnimationPlayer;
   /** The animation being fetched: a later one, or hiding, makes it stale. */
   private token = 0;
+  /** The animation shown, as `${jobId}/${artifact}`, and its points. */
+  private shown: { key: string; points: THREE.Points } | null = null;
 
   constructor(ctx: AppContext) {
     this.ctx = ctx;
-    this.player = new AnimationPlayer(byId('viewport'));
+    this.player = new AnimationPlayer(byId('viewport'), () => this.syncButtons());
+    ctx.viewer.onShownChange((object) => {
+      if (this.shown && object !== this.shown.points) this.hide();
+    });
   }
 
   load(): void {
@@ -30,14 +37,40 @@ export class AnimationKind implements ArtifactKind {
   }
 
   /** "Play": the frames in place of the mesh, with the player. */
-  row(job: Job, a: ArtifactInfo, _view: JobsView, actions: JobsActions): HTMLElement {
-    const play = el('button', { type: 'button', class: 'button small play-animation' }, 'Play');
-    play.addEventListener('click', () => actions.show(job.id, a.name, a.kind));
+  row(job: Job, a: ArtifactInfo, _view: JobsView, _actions: JobsActions): HTMLElement {
+    const key = `${job.id}/${a.name}`;
+    const play = el('button', { type: 'button', class: 'button small play-animation', 'data-key': key }, this.label(key));
+    play.addEventListener('click', () => void this.toggle(job.id, a.name));
     return artifactRow(job, a, this.storedFormat, [play]);
   }
 
+  /** The job list's button: plays the animation (shown first, if it is not), or pauses it while it plays. */
+  private async toggle(jobId: string, artifact: string): Promise<void> {
+    const key = `${jobId}/${artifact}`;
+    if (this.shown?.key === key) {
+      if (this.player.playing) this.player.stop();
+      else this.player.start();
+      return;
+    }
+    // show() takes the next token at once when it begins a fetch; play once that fetch is shown, if nothing came after it.
+    const token = this.token + 1;
+    const shown = this.show(jobId, artifact);
+    if (this.token !== token) return;
+    await shown;
+    if (this.token === token && this.shown?.key === key) this.player.start();
+  }
+
+  private label(key: string): string {
+    return this.shown?.key === key && this.player.playing ? 'Pause' : 'Play';
+  }
+
+  /** The job list's buttons say what pressing them does now. */
+  private syncButtons(): void {
+    for (const b of document.querySelectorAll<HTMLButtonElement>('button.play-animation')) b.textContent = this.label(b.dataset.key ?? '');
+  }
+
   rowState(): null {
-    // The row is the same whether the animation plays or not.
+    // The row's button follows the player in place (syncButtons): the row itself stays as built.
     return null;
   }
 
@@ -65,7 +98,10 @@ export class AnimationKind implements ArtifactKind {
       points.name = 'animation';
       hooks.lastAnimation = null;
       this.ctx.textures.detach();
+      // Replaced on purpose: the player is shown again below, not hidden as for another object.
+      this.shown = null;
       viewer.show(points);
+      this.shown = { key: `${jobId}/${artifactName}`, points };
       this.player.show(`${job.algorithm} · ${artifactName}`, frames.frames, (k) => {
         if (viewer.object !== points) return;
         framePositions(frames, k, positions);
@@ -93,7 +129,9 @@ export class AnimationKind implements ArtifactKind {
 
   hide(): void {
     ++this.token;
+    this.shown = null;
     this.player.hide();
+    this.syncButtons();
     this.ctx.hooks.lastAnimation = null;
   }
 

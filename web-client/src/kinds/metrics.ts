@@ -1,12 +1,13 @@
 // `metrics` artifacts: a JSON object of numbers, fetched when the job is done
-// and shown as a table in its row of the job list.
+// and shown as a table in its row of the job list, each number with the unit
+// its name says (panels/format.ts).
 import { fetchArtifactJson } from '../api/rest.ts';
 import type { AppContext } from '../controllers/context.ts';
 import { el } from '../panels/dom.ts';
-import { formatValue } from '../panels/format.ts';
+import { metricCell } from '../panels/format.ts';
 import { ListedKind } from './listed.ts';
 
-/** The metrics as a table of name and value (a nested object's names joined), or the error sentence fetching them gave. */
+/** The metrics as a table of name and value with its unit (a nested object's names joined), or the error sentence fetching them gave. */
 function metricsTable(data: unknown): HTMLElement {
   if (typeof data === 'string') return el('p', { class: 'form-error' }, data);
   const rows: HTMLTableRowElement[] = [];
@@ -14,7 +15,7 @@ function metricsTable(data: unknown): HTMLElement {
     if (value && typeof value === 'object' && !Array.isArray(value)) {
       for (const [k, v] of Object.entries(value as Record<string, unknown>)) add(prefix ? `${prefix} ${k}` : k, v);
     } else {
-      rows.push(el('tr', {}, el('th', { scope: 'row' }, prefix.replace(/_/g, ' ')), el('td', {}, formatValue(value))));
+      rows.push(el('tr', { 'data-metric': prefix }, el('th', { scope: 'row' }, prefix.replace(/_/g, ' ')), metricCell(prefix, value)));
     }
   };
   add('', data);

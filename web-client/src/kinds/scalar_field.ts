@@ -1,13 +1,15 @@
 // `scalar_field` artifacts: a value per vertex or per face, fetched as f32
 // with its location and range from the Job, drawn on the mesh as stored (the
-// server's vertex order: viewer/ply.ts) in a colour map, with a legend whose
-// map can be changed, and a range the Display panel can narrow.
+// server's vertex order: viewer/ply.ts) in a colour map, with a legend (what
+// the values are and their unit, the range's min and max) whose map can be
+// changed, and a range the Display panel can narrow.
 import type * as THREE from 'three';
 import { fetchArtifactF32 } from '../api/rest.ts';
 import { jobMeshId, type ArtifactInfo, type Job } from '../api/types.ts';
 import { describe, jobOf, type AppContext } from '../controllers/context.ts';
 import { artifactRow } from '../panels/artifact_row.ts';
 import { byId, el } from '../panels/dom.ts';
+import { fieldUnit, withUnit } from '../panels/format.ts';
 import type { JobsActions, JobsView } from '../panels/jobs.ts';
 import { artifactKey } from '../state/app_state.ts';
 import type { TestHooks } from '../test_hooks.ts';
@@ -32,6 +34,11 @@ interface DrawnField {
   object: THREE.Mesh;
   map: string;
   fullRange: [number, number];
+}
+
+/** A field's legend heading: the job's algorithm, the artifact and its values' unit ("curvature · mean_curvature (mesh units⁻¹)"). */
+export function fieldLegendTitle(algorithm: string, artifact: string): string {
+  return withUnit(algorithm ? `${algorithm} · ${artifact}` : artifact, fieldUnit(artifact));
 }
 
 export class ScalarFieldKind implements ArtifactKind {
@@ -180,7 +187,7 @@ export class ScalarFieldKind implements ArtifactKind {
   showLegend(): void {
     const f = this.field;
     if (!f) return;
-    this.legend.show(`${jobOf(this.ctx, f.jobId)?.algorithm ?? ''} · ${f.artifact}`, f.data.range, f.map, f.data.values);
+    this.legend.show(fieldLegendTitle(jobOf(this.ctx, f.jobId)?.algorithm ?? '', f.artifact), f.data.range, f.map, f.data.values);
   }
 
   /** Hides the one view's legend (the panes have their own). */

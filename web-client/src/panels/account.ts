@@ -36,7 +36,8 @@ export class AccountPanel {
     this.text.textContent = usageText(me);
     const over = me.storage_bytes_limit !== null && me.storage_bytes_used >= me.storage_bytes_limit;
     this.text.classList.toggle('over', over);
-    this.text.title = over ? 'Storage quota reached: delete meshes to upload more' : '';
+    // The line is cut with an ellipsis when the toolbar is short of room: its title keeps the whole of it.
+    this.text.title = over ? `${this.text.textContent} — storage quota reached: delete meshes to upload more` : this.text.textContent;
     this.signOut.hidden = !getToken();
   }
 }

@@ -4,13 +4,22 @@
 // enum → a select; string → a text input; a selection (an array with
 // x-cgview-selection: faces or vertices) → "use current selection (N faces)",
 // which sends the viewer's selection's ids. Titles are the labels,
-// descriptions the help text. Run submits a job on the selected mesh; the
-// server's validation errors (400 detail) are shown beside the form. An
-// algorithm of several inputs (hausdorff's `reference`) gets a mesh chooser
-// for each input after the first. Nothing here knows any algorithm by name: a
-// new one needs no JavaScript.
+// descriptions the help text. The fields come in the algorithm's declared
+// order (x-cgview-order), those marked x-cgview-advanced folded under
+// "Advanced", and one with x-cgview-when only shown, and sent, while the
+// parameter it names has one of the values listed. Run submits a job on the
+// selected mesh; the server's validation errors (400 detail) are shown beside
+// the form. An algorithm of several inputs (hausdorff's `reference`) gets a
+// mesh chooser for each input after the first.
+//
+// The menu is grouped by the algorithms' area, narrowed by a search box, and,
+// once a job's output is chosen with "Run on this", holds only the
+// algorithms whose first input is of that output's kind. Nothing here knows
+// any algorithm by name: a new one needs no JavaScript.
 import type { Algorithm, ParamSchema } from '../api/types.ts';
 import { el } from './dom.ts';
+import { control, orderedParams } from './param_control.ts';
+import './algorithms.css';
 
 export interface AlgorithmsActions {
   /**
@@ -30,70 +39,53 @@ export interface MeshChoice {
 interface Field {
   name: string;
   schema: ParamSchema;
+  row: HTMLElement;
+  advanced: boolean;
   /** The value to send, or undefined to leave the parameter to the server's default. */
   read(): unknown;
+  reset(): void;
 }
 
-function stepFor(schema: ParamSchema): string {
-  if (schema.type === 'integer') return '1';
-  if (typeof schema.multipleOf === 'number') return String(schema.multipleOf);
-  const lo = typeof schema.minimum === 'number' ? schema.minimum : null;
-  const hi = typeof schema.maximum === 'number' ? schema.maximum : null;
-  if (lo !== null && hi !== null && hi > lo) {
-    // About a hundredth of the range, a power of ten: 0.1..4 → 0.01.
-    return String(10 ** Math.floor(Math.log10((hi - lo) / 100)));
-  }
-  return 'any';
+/** Areas listed after the others: examples teach, they are not tools. */
+const LAST_AREAS = ['examples', 'other'];
+
+/** The kind of object an algorithm runs on: its first input's. */
+function firstKind(algorithm: Algorithm): string {
+  return algorithm.inputs?.[0]?.kind ?? 'mesh';
 }
 
-/** The input of one parameter (also the playground's form) and how to read its value. */
-export function control(name: string, schema: ParamSchema, id: string, selection: (kind: string) => number[]): { input: HTMLElement; read: () => unknown } {
-  const kind = schema['x-cgview-selection'];
-  if (typeof kind === 'string') {
-    const box = el('input', { id, name, type: 'checkbox', 'data-param': name, 'data-selection': kind });
-    box.checked = true;
-    const text = el('span', { class: 'selection-use', 'data-selection-kind': kind }, `use current selection (${selection(kind).length} ${kind})`);
-    const label = el('label', { class: 'check' }, box, ' ', text);
-    return { input: label, read: () => (box.checked ? selection(kind) : undefined) };
+/** "voxel_grid" → "a voxel grid". */
+function aKind(kind: string): string {
+  const words = kind.replace(/_/g, ' ');
+  return /^[aeiou]/i.test(words) ? `an ${words}` : `a ${words}`;
+}
+
+/**
+ * The algorithms the search words find, each word anywhere. Those it finds by
+ * name, title or area come alone when there are any: a word that only a
+ * description mentions ("voxel" in how skeleton_projection works inside)
+ * would otherwise bury what the user asked for; descriptions are searched
+ * when nothing else matches ("medial").
+ */
+export function searchAlgorithms(algorithms: readonly Algorithm[], query: string): Algorithm[] {
+  const words = query.toLowerCase().split(/\s+/).filter(Boolean);
+  if (!words.length) return [...algorithms];
+  const has = (text: string) => words.every((w) => text.includes(w));
+  const named = algorithms.filter((a) => has(`${a.name} ${a.name.replace(/_/g, ' ')} ${a.title ?? ''} ${a.area ?? ''}`.toLowerCase()));
+  if (named.length) return named;
+  return algorithms.filter((a) => has(`${a.name} ${a.title ?? ''} ${a.area ?? ''} ${a.description ?? ''}`.toLowerCase()));
+}
+
+/** The algorithms by area: areas alphabetical (examples last), the algorithms in the order given. */
+function byArea(algorithms: readonly Algorithm[]): Array<[string, Algorithm[]]> {
+  const areas = new Map<string, Algorithm[]>();
+  for (const a of algorithms) {
+    const area = a.area || 'other';
+    if (!areas.has(area)) areas.set(area, []);
+    areas.get(area)!.push(a);
   }
-  if (Array.isArray(schema.enum)) {
-    const values = schema.enum;
-    const select = el('select', { id, name, 'data-param': name });
-    values.forEach((v, i) => {
-      const option = el('option', { value: String(i) }, String(v));
-      if (v === schema.default) option.selected = true;
-      select.append(option);
-    });
-    return { input: select, read: () => values[Number(select.value)] };
-  }
-  switch (schema.type) {
-    case 'boolean': {
-      const input = el('input', { id, name, type: 'checkbox', 'data-param': name });
-      input.checked = schema.default === true;
-      return { input, read: () => input.checked };
-    }
-    case 'integer':
-    case 'number': {
-      const input = el('input', { id, name, type: 'number', 'data-param': name, step: stepFor(schema) });
-      if (typeof schema.minimum === 'number') input.min = String(schema.minimum);
-      if (typeof schema.maximum === 'number') input.max = String(schema.maximum);
-      if (typeof schema.default === 'number') input.value = String(schema.default);
-      return {
-        input,
-        read: () => {
-          const text = input.value.trim();
-          if (text === '') return undefined;
-          // What the user typed goes to the server as typed: it checks the rules.
-          return Number(text);
-        },
-      };
-    }
-    default: {
-      const input = el('input', { id, name, type: 'text', 'data-param': name });
-      if (typeof schema.default === 'string') input.value = schema.default;
-      return { input, read: () => input.value };
-    }
-  }
+  const rank = (area: string) => LAST_AREAS.indexOf(area);
+  return [...areas].sort(([x], [y]) => rank(x) - rank(y) || x.localeCompare(y));
 }
 
 export class AlgorithmsPanel {
@@ -103,6 +95,13 @@ export class AlgorithmsPanel {
   private chosen: string | null = null;
   private meshName: string | null = null;
   private meshes: MeshChoice[] = [];
+  /** The kind of the job output chosen with "Run on this"; null: jobs run on the selected mesh. */
+  private runKind: string | null = null;
+  private readonly search: HTMLInputElement;
+  private readonly menu: HTMLSelectElement;
+  /** Why the menu is empty (nothing found, nothing runs on the chosen output). */
+  private readonly none: HTMLElement;
+  private formElement: HTMLFormElement | null = null;
   /** The choosers of the chosen algorithm's extra inputs, by input name. */
   private inputSelects = new Map<string, HTMLSelectElement>();
   private running = false;
@@ -113,11 +112,34 @@ export class AlgorithmsPanel {
   constructor(root: HTMLElement, actions: AlgorithmsActions) {
     this.root = root;
     this.actions = actions;
+    this.search = el('input', {
+      type: 'search',
+      id: 'algorithm-search',
+      class: 'algorithm-search',
+      'aria-label': 'Search algorithms',
+      placeholder: 'Search algorithms',
+      autocomplete: 'off',
+      spellcheck: 'false',
+    });
+    this.search.addEventListener('input', () => this.refreshMenu());
+    this.search.addEventListener('keydown', (ev) => {
+      if (ev.key === 'Escape' && this.search.value) {
+        this.search.value = '';
+        this.refreshMenu();
+      }
+    });
+    this.menu = el('select', { id: 'algorithm-menu', 'aria-label': 'Algorithm' });
+    this.menu.addEventListener('change', () => {
+      this.chosen = this.menu.value;
+      this.showForm();
+    });
+    this.none = el('p', { class: 'empty algorithm-none', role: 'status', hidden: '' });
   }
 
   /** Shows why there is no menu (no algorithms API on this server, say). */
   unavailable(text: string): void {
     this.algorithms = [];
+    this.formElement = null;
     this.root.replaceChildren(el('p', { class: 'empty' }, text));
   }
 
@@ -128,28 +150,20 @@ export class AlgorithmsPanel {
       this.unavailable('The server has no algorithms.');
       return;
     }
-    if (!this.chosen || !algorithms.some((a) => a.name === this.chosen)) this.chosen = algorithms[0]!.name;
-    const menu = el('select', { id: 'algorithm-menu', 'aria-label': 'Algorithm' });
-    const areas = new Map<string, Algorithm[]>();
-    for (const a of algorithms) {
-      const area = a.area || 'other';
-      if (!areas.has(area)) areas.set(area, []);
-      areas.get(area)!.push(a);
-    }
-    for (const [area, list] of areas) {
-      const group = el('optgroup', { label: area });
-      for (const a of list) {
-        const option = el('option', { value: a.name, title: a.description }, a.title || a.name);
-        if (a.name === this.chosen) option.selected = true;
-        group.append(option);
-      }
-      menu.append(group);
-    }
-    menu.addEventListener('change', () => {
-      this.chosen = menu.value;
-      this.root.querySelector('form')?.replaceWith(this.form());
-    });
-    this.root.replaceChildren(menu, this.form());
+    // A new list may have changed the chosen algorithm's schema (a plugin rebuilt).
+    this.formElement = null;
+    this.root.replaceChildren(this.search, this.menu, this.none);
+    this.refreshMenu();
+  }
+
+  /**
+   * The kind of the job output the next job runs on ("Run on this"), or null
+   * for the selected mesh: the menu offers only the algorithms that run on it.
+   */
+  setRunKind(kind: string | null): void {
+    if (kind === this.runKind) return;
+    this.runKind = kind;
+    if (this.algorithms.length) this.refreshMenu();
   }
 
   /** The mesh jobs will run on (its name), or null: Run is disabled. */
@@ -172,6 +186,45 @@ export class AlgorithmsPanel {
     for (const select of this.inputSelects.values()) this.fillChooser(select);
   }
 
+  /**
+   * Fills the menu with the algorithms that run on the chosen object and that
+   * the search finds, grouped by area; the form follows the choice, which
+   * moves to the first one offered when the old one is no longer offered.
+   */
+  private refreshMenu(): void {
+    // A stored mesh is the default input: every algorithm stays listed, and
+    // one that needs another kind says so beside Run.
+    const fitting = this.runKind ? this.algorithms.filter((a) => firstKind(a) === this.runKind) : this.algorithms;
+    const found = searchAlgorithms(fitting, this.search.value);
+    let why = '';
+    if (!fitting.length) why = `No algorithm runs on ${aKind(this.runKind!)}: choose a mesh, or another result with "Run on this".`;
+    else if (!found.length) why = `No algorithm matches “${this.search.value.trim()}”.`;
+    this.none.textContent = why;
+    this.none.hidden = !why;
+    this.search.hidden = !fitting.length;
+    this.menu.hidden = !found.length;
+    if (!found.length) {
+      this.menu.replaceChildren();
+      this.formElement?.remove();
+      this.formElement = null;
+      return;
+    }
+    if (!found.some((a) => a.name === this.chosen)) this.chosen = found[0]!.name;
+    this.menu.replaceChildren(
+      ...byArea(found).map(([area, list]) => el('optgroup', { label: area }, ...list.map((a) => el('option', { value: a.name, title: a.description }, a.title || a.name)))),
+    );
+    this.menu.value = this.chosen!;
+    if (this.formElement?.dataset.algorithm !== this.chosen) this.showForm();
+  }
+
+  private showForm(): void {
+    const form = this.form();
+    if (this.formElement?.isConnected) this.formElement.replaceWith(form);
+    else this.root.append(form);
+    this.formElement = form;
+    this.menu.title = this.menu.selectedOptions[0]?.textContent ?? '';
+  }
+
   private fillChooser(select: HTMLSelectElement): void {
     const keep = select.value;
     select.replaceChildren(...this.meshes.map((m) => el('option', { value: m.id }, m.name)));
@@ -180,14 +233,18 @@ export class AlgorithmsPanel {
 
   private updateRun(): void {
     if (this.runButton) this.runButton.disabled = this.running || this.meshName === null;
-    if (this.target) this.target.textContent = this.meshName ? `on ${this.meshName}` : 'Choose a mesh first.';
+    if (!this.target) return;
+    const algorithm = this.algorithms.find((a) => a.name === this.chosen);
+    const kind = algorithm ? firstKind(algorithm) : 'mesh';
+    if (!this.runKind && kind !== 'mesh') this.target.textContent = `needs ${aKind(kind)}: choose one with "Run on this" in the job list`;
+    else this.target.textContent = this.meshName ? `on ${this.meshName}` : 'Choose a mesh first.';
+    this.target.title = this.target.textContent;
   }
 
   private form(): HTMLFormElement {
     const algorithm = this.algorithms.find((a) => a.name === this.chosen)!;
     const form = el('form', { class: 'algorithm-form', 'data-algorithm': algorithm.name, novalidate: '' });
     form.append(el('p', { class: 'algorithm-description' }, algorithm.description));
-    const fields: Field[] = [];
     this.inputSelects = new Map();
     for (const input of (algorithm.inputs ?? []).slice(1)) {
       if (input.kind !== 'mesh') continue;
@@ -200,24 +257,42 @@ export class AlgorithmsPanel {
       if (input.description) row.append(el('small', { class: 'param-help' }, input.description));
       form.append(row);
     }
-    const properties = algorithm.params?.properties ?? {};
-    for (const [name, schema] of Object.entries(properties)) {
-      const id = `param-${algorithm.name}-${name}`;
-      const { input, read } = control(name, schema, id, (kind) => this.actions.selection?.(kind) ?? []);
-      fields.push({ name, schema, read });
-      const label = el('label', { for: id, class: 'param-label' }, schema.title || name);
-      const help = schema.description ? el('small', { class: 'param-help' }, schema.description) : null;
-      const range =
-        typeof schema.minimum === 'number' || typeof schema.maximum === 'number'
-          ? el('small', { class: 'param-range' }, `${schema.minimum ?? '−∞'} … ${schema.maximum ?? '∞'}`)
-          : null;
-      const row = el('div', { class: `param param-${schema.type}`, 'data-param-row': name });
-      if (schema.type === 'boolean' && !Array.isArray(schema.enum)) row.append(input, label);
-      else row.append(label, input, ...(range ? [range] : []));
-      if (help) row.append(help);
-      form.append(row);
-    }
+
+    const fields = this.fields(algorithm);
+    const byName = new Map(fields.map((f) => [f.name, f]));
+    // A parameter applies while the one it depends on applies and has one of
+    // the values named (a boolean's as "true" / "false").
+    const applies = (f: Field, seen: Set<string> = new Set()): boolean => {
+      const when = f.schema['x-cgview-when'];
+      if (!when || typeof when.param !== 'string' || !Array.isArray(when.in)) return true;
+      const on = byName.get(when.param);
+      if (!on || seen.has(on.name)) return true;
+      seen.add(f.name);
+      return applies(on, seen) && when.in.map(String).includes(String(on.read()));
+    };
+    const basic = fields.filter((f) => !f.advanced);
+    const advanced = fields.filter((f) => f.advanced);
+    form.append(...basic.map((f) => f.row));
+    const fold = advanced.length
+      ? el('details', { class: 'advanced' }, el('summary', {}, 'Advanced'), el('div', { class: 'advanced-params' }, ...advanced.map((f) => f.row)))
+      : null;
+    if (fold) form.append(fold);
+    const showApplicable = () => {
+      for (const f of fields) f.row.hidden = !applies(f);
+      if (fold) fold.hidden = advanced.every((f) => f.row.hidden);
+    };
+    showApplicable();
+    form.addEventListener('change', showApplicable);
+
     this.errorBox = el('div', { class: 'form-error', role: 'alert', hidden: '' });
+    if (fields.length) {
+      const reset = el('button', { type: 'button', class: 'button small reset-params', title: 'Put every parameter back to its default' }, 'Reset to defaults');
+      reset.addEventListener('click', () => {
+        for (const f of fields) f.reset();
+        showApplicable();
+      });
+      form.append(el('div', { class: 'form-tools' }, reset));
+    }
     this.runButton = el('button', { type: 'submit', class: 'button run' }, 'Run');
     this.target = el('span', { class: 'run-target' });
     form.append(el('div', { class: 'run-row' }, this.runButton, this.target), this.errorBox);
@@ -227,6 +302,7 @@ export class AlgorithmsPanel {
       ev.preventDefault();
       const params: Record<string, unknown> = {};
       for (const f of fields) {
+        if (!applies(f)) continue;
         const v = f.read();
         if (v !== undefined) params[f.name] = v;
       }
@@ -249,5 +325,26 @@ export class AlgorithmsPanel {
         });
     });
     return form;
+  }
+
+  /** A row per parameter, in the declared order. */
+  private fields(algorithm: Algorithm): Field[] {
+    const properties = algorithm.params?.properties ?? {};
+    return orderedParams(algorithm.params).map((name) => {
+      const schema = properties[name]!;
+      const id = `param-${algorithm.name}-${name}`;
+      const { input, read, reset } = control(name, schema, id, (kind) => this.actions.selection?.(kind) ?? []);
+      const label = el('label', { for: id, class: 'param-label' }, schema.title || name);
+      const help = schema.description ? el('small', { class: 'param-help' }, schema.description) : null;
+      const range =
+        typeof schema.minimum === 'number' || typeof schema.maximum === 'number'
+          ? el('small', { class: 'param-range' }, `${schema.minimum ?? '−∞'} … ${schema.maximum ?? '∞'}`)
+          : null;
+      const row = el('div', { class: `param param-${schema.type}`, 'data-param-row': name });
+      if (schema.type === 'boolean' && !Array.isArray(schema.enum)) row.append(input, label);
+      else row.append(label, input, ...(range ? [range] : []));
+      if (help) row.append(help);
+      return { name, schema, row, advanced: schema['x-cgview-advanced'] === true, read, reset };
+    });
   }
 }

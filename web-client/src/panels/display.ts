@@ -6,20 +6,27 @@
 // material apply to every object of it, each in its own colour where the
 // scene gives one (panels/scene.ts); the overlays are of the shown (first) one.
 // A comparison's panes (fields or skeletons side by side) draw their surfaces
-// in the mode too (viewer.onPanesChange).
+// in the mode too (viewer.onPanesChange). The up axis of the shown mesh is
+// chosen here too (viewer/up_axis.ts).
 import * as THREE from 'three';
+import { saveBlob } from '../api/auth.ts';
 import { RoomEnvironment } from 'three/addons/environments/RoomEnvironment.js';
 import { applyDisplay, DEFAULT_DISPLAY, DISPLAY_MODES, isDefaultDisplay, isSurface, MATERIAL_PRESETS, sanitizeDisplay, type DisplaySettings } from '../viewer/display_modes.ts';
 import { percentileRange } from '../viewer/histogram.ts';
-import { DEFAULT_OVERLAYS, EDGE_COLORS, formatSize, sanitizeOverlays, updateOverlays, type OverlayInfo, type OverlaySettings } from '../viewer/overlays.ts';
+import { DEFAULT_OVERLAYS, formatSize, sanitizeOverlays, updateOverlays, type OverlayInfo, type OverlaySettings } from '../viewer/overlays.ts';
+import { setObjectUp, storeUpAxis, storedUpAxis, type UpAxis } from '../viewer/up_axis.ts';
 import type { Viewer } from '../viewer/viewer.ts';
+import { checkbox, edgeLegend, row, slider, sliderRow } from './display_controls.ts';
 import { el } from './dom.ts';
+import { formatMetric, formatNumber } from './format.ts';
 
 /** What the panel reports after each change has been drawn (window.__cgview.display). */
 export interface DisplayReport extends DisplaySettings, OverlayInfo {
   overlays: OverlaySettings;
   /** The shown object's name ("surface", "scalar:NAME"), or null. */
   object: string | null;
+  /** The shown mesh's up axis. */
+  up: UpAxis;
 }
 
 export interface DisplayCallbacks {
@@ -31,6 +38,8 @@ export interface DisplayCallbacks {
   others?: () => THREE.Object3D[];
   /** An object's own colour in the scene, in place of the material's; null: the material's. */
   colorOf?: (object: THREE.Object3D) => string | null;
+  /** The mesh an object of the scene draws (its up axis is that mesh's), or null. */
+  meshOf?: (object: THREE.Object3D) => string | null;
 }
 
 const MODE_LABELS: Record<string, string> = {
@@ -42,17 +51,9 @@ const MODE_LABELS: Record<string, string> = {
   toon: 'Toon',
 };
 
-function checkbox(id: string, text: string): { row: HTMLLabelElement; input: HTMLInputElement } {
-  const input = el('input', { type: 'checkbox', id });
-  return { row: el('label', { class: 'display-check' }, input, ` ${text}`), input };
-}
-
-function slider(id: string, min: number, max: number, step: number): HTMLInputElement {
-  return el('input', { type: 'range', id, min: String(min), max: String(max), step: String(step) });
-}
-
-function row(text: string, control: HTMLElement): HTMLLabelElement {
-  return el('label', { class: 'display-row' }, el('span', {}, text), control);
+/** The normal length, a fraction of the box's diagonal, as the units of panels/format.ts write it. */
+function normalLengthText(fraction: number): string {
+  return formatMetric('normal_length_relative', fraction).text;
 }
 
 export class DisplayPanel {
@@ -62,12 +63,20 @@ export class DisplayPanel {
   private object: THREE.Object3D | null = null;
   /** The surfaces of a comparison's panes (fields, skeletons over the mesh), drawn in the mode as the shown one is. */
   private paneSurfaces: THREE.Mesh[] = [];
+  /** The objects of a comparison's panes, all of the shown mesh: they are drawn with its up axis. */
+  private paneObjects: readonly THREE.Object3D[] = [];
   /** The scene object whose overlays are drawn, when not the shown one. */
   private overlayObject: THREE.Object3D | null = null;
   private environment: THREE.Texture | null = null;
   private field: { range: [number, number]; full: [number, number]; values: Float32Array } | null = null;
 
   private readonly mode = el('select', { id: 'display-mode', 'aria-label': 'Display mode' });
+  private readonly up = el(
+    'select',
+    { id: 'display-up', 'aria-label': 'Up axis', title: "Which of the mesh's axes points up; remembered for this mesh" },
+    el('option', { value: 'y' }, 'Y up'),
+    el('option', { value: 'z' }, 'Z up'),
+  );
   private readonly preset = el('select', { id: 'display-preset', 'aria-label': 'Material' });
   private readonly color = el('input', { type: 'color', id: 'display-color' });
   private readonly roughness = slider('display-roughness', 0, 1, 0.05);
@@ -83,6 +92,11 @@ export class DisplayPanel {
     edges: checkbox('overlay-edges', 'Boundary / non-manifold edges'),
   };
   private readonly normalLength = slider('overlay-normal-length', 0.005, 0.2, 0.005);
+  private readonly roughnessValue = el('output', { class: 'slider-value' });
+  private readonly metalnessValue = el('output', { class: 'slider-value' });
+  private readonly normalLengthValue = el('output', { class: 'slider-value' });
+  /** The field range as written in its inputs (4 significant digits) and as it is: an input left as written means the exact value. */
+  private fieldShown: { text: [string, string]; exact: [number, number] } | null = null;
   private readonly readout = el('div', { class: 'display-readout', id: 'overlay-readout' });
   private readonly fieldBox = el('div', { class: 'field-range', id: 'field-range' });
   private readonly fieldMin = el('input', { type: 'number', id: 'field-min', step: 'any', 'aria-label': 'Field minimum' });
@@ -108,26 +122,20 @@ export class DisplayPanel {
     );
     this.fieldBox.hidden = true;
     this.link.hidden = true;
-    const edgeLegend = el(
-      'div',
-      { class: 'display-edge-legend' },
-      el('span', { style: `color:${EDGE_COLORS.boundary}` }, '■ boundary'),
-      ' ',
-      el('span', { style: `color:${EDGE_COLORS.nonManifold}` }, '■ non-manifold'),
-    );
     root.append(
       row('Mode', this.mode),
+      row('Up axis', this.up),
       row('Material', this.preset),
       row('Colour', this.color),
-      row('Roughness', this.roughness),
-      row('Metalness', this.metalness),
+      sliderRow('Roughness', this.roughness, this.roughnessValue),
+      sliderRow('Metalness', this.metalness, this.metalnessValue),
       this.pointSizeRow,
       this.toonBandsRow,
       this.vertexColors.row,
       el('div', { class: 'display-subhead' }, 'Overlays'),
       ...Object.values(this.checks).map((c) => c.row),
-      row('Normal length', this.normalLength),
-      edgeLegend,
+      sliderRow('Normal length', this.normalLength, this.normalLengthValue),
+      edgeLegend(),
       this.readout,
       this.fieldBox,
       this.link,
@@ -139,6 +147,7 @@ export class DisplayPanel {
       input.addEventListener('input', change);
       input.addEventListener('change', change);
     }
+    this.up.addEventListener('change', () => this.setUpAxis(this.up.value === 'z' ? 'z' : 'y'));
     this.preset.addEventListener('change', () => {
       const p = MATERIAL_PRESETS.find((m) => m.name === this.preset.value);
       if (!p) return;
@@ -149,9 +158,16 @@ export class DisplayPanel {
     this.normalLength.addEventListener('change', overlayChange);
     this.normalLength.addEventListener('input', overlayChange);
 
+    // While the value is being dragged, before readInputs has the settings.
+    this.roughness.addEventListener('input', () => (this.roughnessValue.value = formatNumber(Number(this.roughness.value))));
+    this.metalness.addEventListener('input', () => (this.metalnessValue.value = formatNumber(Number(this.metalness.value))));
+    this.normalLength.addEventListener('input', () => (this.normalLengthValue.value = normalLengthText(Number(this.normalLength.value))));
+
     const rangeChange = () => {
-      const lo = Number(this.fieldMin.value);
-      const hi = Number(this.fieldMax.value);
+      const shown = this.fieldShown;
+      const exactly = (input: HTMLInputElement, i: 0 | 1) => (shown && input.value === shown.text[i] ? shown.exact[i] : Number(input.value));
+      const lo = exactly(this.fieldMin, 0);
+      const hi = exactly(this.fieldMax, 1);
       if (this.fieldMin.value !== '' && this.fieldMax.value !== '' && Number.isFinite(lo) && Number.isFinite(hi) && lo < hi) {
         this.callbacks.setFieldRange([lo, hi]);
       }
@@ -180,13 +196,54 @@ export class DisplayPanel {
     this.applyAll();
   }
 
+  /** The shown mesh's up axis. */
+  upAxis(): UpAxis {
+    const mesh = this.object && this.meshOf(this.object);
+    return mesh ? storedUpAxis(mesh) : 'y';
+  }
+
+  /**
+   * Makes `axis` the shown mesh's up axis: kept for the mesh, put on its
+   * objects (the shown one, its panes, its copies in the scene), and the
+   * view framed again, since the objects turned.
+   */
+  setUpAxis(axis: UpAxis): void {
+    const mesh = this.object && this.meshOf(this.object);
+    if (!mesh) {
+      this.up.value = 'y';
+      return;
+    }
+    storeUpAxis(mesh, axis);
+    this.up.value = axis;
+    let turned = false;
+    for (const o of [...(this.object ? [this.object] : []), ...(this.callbacks.others?.() ?? []), ...this.paneObjects]) {
+      if (this.meshOfOrShown(o) === mesh && setObjectUp(o, axis)) turned = true;
+    }
+    if (!turned) return;
+    this.viewer.fitAll();
+    this.refreshOverlays();
+  }
+
+  /** The mesh an object draws; the panes' objects are the shown mesh's. */
+  private meshOfOrShown(object: THREE.Object3D): string | null {
+    if (this.paneObjects.includes(object)) return this.object && this.meshOf(this.object);
+    return this.meshOf(object);
+  }
+
+  private meshOf(object: THREE.Object3D): string | null {
+    return this.callbacks.meshOf?.(object) ?? null;
+  }
+
   /** The field drawn now (its range and full range, and its values for percentiles), or null. */
   setField(field: { range: [number, number]; full: [number, number]; values: Float32Array } | null): void {
     this.field = field;
     this.fieldBox.hidden = !field;
     if (field) {
-      this.fieldMin.value = String(field.range[0]);
-      this.fieldMax.value = String(field.range[1]);
+      const text: [string, string] = [formatNumber(field.range[0]), formatNumber(field.range[1])];
+      this.fieldShown = { text, exact: [...field.range] };
+      [this.fieldMin.value, this.fieldMax.value] = text;
+      this.fieldMin.title = `${field.range[0]}`;
+      this.fieldMax.title = `${field.range[1]}`;
     }
   }
 
@@ -201,14 +258,7 @@ export class DisplayPanel {
   screenshot(fileName: string, done?: (blob: Blob | null) => void): void {
     this.viewer.redraw(() => {
       this.viewer.renderer.domElement.toBlob((blob) => {
-        if (blob) {
-          const url = URL.createObjectURL(blob);
-          const a = el('a', { href: url, download: fileName });
-          document.body.append(a);
-          a.click();
-          a.remove();
-          setTimeout(() => URL.revokeObjectURL(url), 10_000);
-        }
+        if (blob) saveBlob(blob, fileName);
         done?.(blob);
       }, 'image/png');
     });
@@ -223,6 +273,8 @@ export class DisplayPanel {
 
   /** Draws `object` (one of the scene's) in the mode and material, in its own colour. */
   applyTo(object: THREE.Object3D | null): void {
+    const mesh = object && this.meshOf(object);
+    if (mesh) setObjectUp(object, storedUpAxis(mesh));
     if (!isSurface(object)) return;
     const color = this.callbacks.colorOf?.(object) ?? null;
     applyDisplay(object, color ? { ...this.settings, color } : this.settings, () => this.env());
@@ -284,11 +336,18 @@ export class DisplayPanel {
     this.toonBandsRow.hidden = s.mode !== 'toon';
     for (const [k, c] of Object.entries(this.checks)) c.input.checked = this.overlays[k as keyof typeof this.checks];
     this.normalLength.value = String(this.overlays.normalLength);
+    this.roughnessValue.value = formatNumber(s.roughness);
+    this.metalnessValue.value = formatNumber(s.metalness);
+    this.normalLengthValue.value = normalLengthText(this.overlays.normalLength);
   }
 
   /** A new shown object: the mode and the overlays follow it (a default display leaves it as built). */
   private attach(object: THREE.Object3D | null): void {
     this.object = object;
+    const mesh = object && this.meshOf(object);
+    // Before the viewer frames it: the camera frames the object as drawn, turned.
+    if (mesh) setObjectUp(object, storedUpAxis(mesh));
+    this.up.value = mesh ? storedUpAxis(mesh) : 'y';
     if (object && (!isDefaultDisplay(this.settings) || this.callbacks.colorOf?.(object))) this.applyTo(object);
     this.vertexColors.row.hidden = !(isSurface(object) && object.geometry.getAttribute('color') && !object.name.startsWith('scalar:'));
     this.refreshOverlays();
@@ -296,6 +355,9 @@ export class DisplayPanel {
 
   /** New panes of a comparison: their surfaces (a pane's object, or the surfaces in its group) are drawn in the mode too. */
   private attachPanes(panes: readonly THREE.Object3D[]): void {
+    this.paneObjects = [...panes];
+    const axis = this.upAxis();
+    for (const p of panes) setObjectUp(p, axis);
     this.paneSurfaces = panes.flatMap((p) => (isSurface(p) ? [p] : p.children.filter(isSurface)));
     if (!isDefaultDisplay(this.settings)) for (const o of this.paneSurfaces) this.applyTo(o);
   }
@@ -328,7 +390,7 @@ export class DisplayPanel {
     this.readout.dataset.boundary = this.info.boundaryEdges === null ? '' : String(this.info.boundaryEdges);
     this.readout.dataset.nonManifold = this.info.nonManifoldEdges === null ? '' : String(this.info.nonManifoldEdges);
     const object = this.object;
-    const report: DisplayReport = { ...this.settings, ...this.info, overlays: { ...this.overlays }, object: object?.name ?? null };
+    const report: DisplayReport = { ...this.settings, ...this.info, overlays: { ...this.overlays }, object: object?.name ?? null, up: this.upAxis() };
     this.viewer.redraw(() => {
       if (this.object === object) this.callbacks.drawn(report);
     });

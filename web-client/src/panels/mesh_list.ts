@@ -93,7 +93,8 @@ export class MeshListPanel {
           title: `${mesh.name} (${mesh.format})`,
         },
         ...(thumb ? [thumb] : []),
-        el('span', { class: 'mesh-name' }, mesh.name),
+        // The name is cut with an ellipsis in a narrow sidebar: its own tooltip gives it whole.
+        el('span', { class: 'mesh-name', title: mesh.name }, mesh.name),
         el('span', { class: 'mesh-counts' }, counts),
         add,
         share,

@@ -1,7 +1,7 @@
 // The navigation controls of the toolbar: the mode (orbit, trackball, fly),
 // views along the axes (buttons, and keys 1 / 3 / 7 as Blender's numpad:
 // front, right, top; with Shift or Ctrl the opposite side), reset (Home), and
-// "Connect 3D mouse" where the browser offers WebHID.
+// "3D mouse" (connect one) where the browser offers WebHID.
 import { Navigation, typing, type AxisView, type NavigationMode } from '../viewer/navigation.ts';
 import { el } from './dom.ts';
 
@@ -44,7 +44,12 @@ export class NavigationPanel {
     reset.addEventListener('click', () => navigation.reset());
     root.replaceChildren(mode, views, reset);
     if (Navigation.hasHid()) {
-      const connect = el('button', { type: 'button', class: 'button small', id: 'connect-3d-mouse', title: 'A 3Dconnexion SpaceMouse through WebHID' }, 'Connect 3D mouse');
+      // A short label, so that the toolbar stays one row at 1280 px; the title says what it does.
+      const connect = el(
+        'button',
+        { type: 'button', class: 'button small', id: 'connect-3d-mouse', title: 'Connect a 3D mouse: a 3Dconnexion SpaceMouse through WebHID' },
+        '3D mouse',
+      );
       connect.addEventListener('click', () => {
         navigation.connectSpaceMouse().then(
           (name) => {

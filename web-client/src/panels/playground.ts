@@ -6,7 +6,7 @@
 // (controllers/plugins.ts) tells it and hands it the clicks.
 import type { Plugin, PluginDiagnostic } from '../api/plugins.ts';
 import type { Algorithm } from '../api/types.ts';
-import { control } from './algorithms.ts';
+import { control, orderedParams } from './param_control.ts';
 import { el } from './dom.ts';
 
 export interface PlaygroundActions {
@@ -177,7 +177,9 @@ export class PlaygroundPanel {
     this.form.dataset.algorithm = algorithm?.name ?? '';
     if (!algorithm) return;
     this.form.append(el('p', { class: 'algorithm-description' }, `${algorithm.title || algorithm.name}: ${algorithm.description}`));
-    for (const [name, schema] of Object.entries(algorithm.params?.properties ?? {})) {
+    const properties = algorithm.params?.properties ?? {};
+    for (const name of orderedParams(algorithm.params)) {
+      const schema = properties[name]!;
       const id = `playground-param-${name}`;
       const { input, read } = control(name, schema, id, (kind) => this.actions.selection(kind));
       this.fields.push({ name, read });

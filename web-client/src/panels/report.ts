@@ -1,9 +1,10 @@
 // The report of the shown mesh: every key the server sends, in its order,
-// then the mesh's metadata, warnings and download links.
+// each value with its unit (panels/format.ts), then the mesh's metadata,
+// warnings and download links.
 import { downloadUrl } from '../api/rest.ts';
 import type { Mesh } from '../api/types.ts';
 import { el, formatBytes } from './dom.ts';
-import { formatValue } from './format.ts';
+import { metricCell } from './format.ts';
 
 const DOWNLOAD_FORMATS = ['obj', 'off', 'ply', 'stl', 'glb', 'drc'];
 
@@ -29,17 +30,39 @@ function ordered(report: Record<string, unknown>): Array<[string, unknown]> {
 // Facts that are defects when true (a closed mesh facing inward), marked as a "no" is.
 const BAD_WHEN_TRUE = new Set(['faces_inward']);
 
+/** The bounding box's diagonal, which the relative metrics of the jobs are fractions of; null without a box. */
+function diagonal(bbox: unknown): number | null {
+  const box = bbox as { min?: unknown; max?: unknown } | null;
+  const ok = (p: unknown): p is number[] => Array.isArray(p) && p.length === 3 && p.every((c) => typeof c === 'number');
+  if (!box || !ok(box.min) || !ok(box.max)) return null;
+  const [a, b] = [box.min, box.max];
+  return Math.hypot(b[0]! - a[0]!, b[1]! - a[1]!, b[2]! - a[2]!);
+}
+
 function rows(report: Record<string, unknown>, prefix = ''): HTMLTableRowElement[] {
   const out: HTMLTableRowElement[] = [];
   for (const [key, value] of prefix ? Object.entries(report) : ordered(report)) {
     const name = prefix ? `${prefix} ${label(key)}` : label(key);
     if (value && typeof value === 'object' && !Array.isArray(value)) {
-      out.push(...rows(value as Record<string, unknown>, name));
+      // The server's JSON objects come with sorted keys: a box reads min first.
+      const inner = Object.entries(value as Record<string, unknown>).sort(([a], [b]) => Number(b === 'min') - Number(a === 'min'));
+      out.push(...rows(Object.fromEntries(inner), name));
+      const d = key === 'bbox' && !prefix ? diagonal(value) : null;
+      if (d !== null) {
+        out.push(
+          el(
+            'tr',
+            { class: 'derived' },
+            el('th', { scope: 'row', title: 'computed here from bbox min and max; the relative metrics of jobs are fractions of it' }, 'bbox diagonal'),
+            metricCell('bbox diagonal', d),
+          ),
+        );
+      }
       continue;
     }
     const good = BAD_WHEN_TRUE.has(key) ? !value : value;
     const cls = typeof value === 'boolean' ? (good ? 'yes' : 'no') : '';
-    out.push(el('tr', { 'data-key': prefix ? undefined : key }, el('th', { scope: 'row', title: key }, name), el('td', { class: cls }, formatValue(value))));
+    out.push(el('tr', { 'data-key': prefix ? undefined : key }, el('th', { scope: 'row', title: key }, name), metricCell(name, value, cls)));
   }
   return out;
 }

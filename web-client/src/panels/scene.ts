@@ -3,13 +3,21 @@
 // box, a colour swatch, its transform (translation x/y/z, rotation x/y/z in
 // degrees, uniform scale) and a remove button; "Fit all" frames every
 // visible object, "Side by side" draws each in its own pane. A click on an
-// object's name chooses it for the Display panel's overlays. The app owns
-// the scene (app.ts); the panel shows it and reports edits.
+// object's name chooses it for the Display panel's overlays. A job's result
+// added to the view has "Beside" and "In place": beside its source, or over
+// it to compare. The app owns the scene (app.ts); the panel shows it and
+// reports edits.
 import type { SceneObjectState, Vec3 } from '../viewer/scene_state.ts';
 import { el } from './dom.ts';
 
+/** Where a result stands: over its source, beside it, or elsewhere (moved by hand). */
+export type Placement = 'in place' | 'beside' | 'moved';
+
 export interface SceneRow extends SceneObjectState {
   name: string;
+  /** A job's result: its source's name, and where it stands against it. */
+  source?: string;
+  placement?: Placement;
 }
 
 export interface SceneActions {
@@ -22,6 +30,8 @@ export interface SceneActions {
   pick(index: number): void;
   /** The objects side by side (true) or together (false). */
   sideBySide(on: boolean): void;
+  /** Result `index` over its source ("in place") or beside it. */
+  place(index: number, where: Exclude<Placement, 'moved'>): void;
 }
 
 function numberInput(cls: string, value: number, step: string, label: string): HTMLInputElement {
@@ -89,9 +99,25 @@ export class ScenePanel {
       'li',
       { class: picked ? 'scene-object picked' : 'scene-object', 'data-index': String(index), 'data-mesh-id': row.mesh },
       el('div', { class: 'scene-head' }, visible, color, name, remove),
+      row.source === undefined ? null : this.placeButtons(row, index),
       vec('scene-t', row.position, '0.1', 'Move', 'position'),
       vec('scene-r', row.rotation, '5', 'Turn°', 'rotation'),
       el('div', { class: 'scene-vec' }, el('span', { class: 'scene-vec-label' }, 'Scale'), scale),
+    );
+  }
+
+  private placeButtons(row: SceneRow, index: number): HTMLElement {
+    const button = (where: Exclude<Placement, 'moved'>, label: string, title: string) => {
+      const b = el('button', { type: 'button', class: 'button small scene-place', 'data-place': where, title, 'aria-pressed': String(row.placement === where) }, label);
+      b.classList.toggle('active', row.placement === where);
+      b.addEventListener('click', () => this.actions.place(index, where));
+      return b;
+    };
+    return el(
+      'div',
+      { class: 'scene-placement', role: 'group', 'aria-label': `Where ${row.name} stands` },
+      button('beside', 'Beside', `${row.name} beside ${row.source}`),
+      button('in place', 'In place', `${row.name} over ${row.source}, to compare`),
     );
   }
 }

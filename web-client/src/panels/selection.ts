@@ -8,6 +8,7 @@ import type { SelectionState, SelectionTool } from '../viewer/selection_tool.ts'
 import type { SelectionKind } from '../viewer/selection.ts';
 import { typing } from '../viewer/navigation.ts';
 import { el } from './dom.ts';
+import { formatNumber, metricUnit, withUnit } from './format.ts';
 
 const FIRST_IDS = 12;
 
@@ -114,7 +115,8 @@ export class SelectionPanel {
       el('div', { class: 'selection-count', 'data-count': String(n) }, state.ready ? `${n} ${what}` : this.tool.active ? 'Loading…' : 'Press Select (S) to start.'),
     );
     if (n) this.readout.append(el('div', { class: 'selection-ids' }, `ids ${ids}`));
-    if (state.area !== null && n) this.readout.append(el('div', { class: 'selection-area' }, `area ${state.area.toPrecision(6)}`));
+    if (state.area !== null && n)
+      this.readout.append(el('div', { class: 'selection-area', title: `${state.area}` }, `${withUnit('area', metricUnit('area'))}: ${formatNumber(state.area)}`));
   }
 
   /** A selection of the same mesh emptied since the last render: a notice offers it back. */

@@ -6,7 +6,7 @@
 // what another tool made for the mesh shown: a skeleton, or a field's values
 // (a PLY with a scalar property, which the upload control takes for a mesh).
 import { el } from './dom.ts';
-import { formatNumber, formatValue } from './format.ts';
+import { formatMetric, metricCell } from './format.ts';
 
 export interface SkeletonColumn {
   key: string;
@@ -86,12 +86,11 @@ export class SkeletonsPanel {
     for (const c of columns) head.append(el('th', { 'data-skeleton': c.key }, el('span', { class: 'swatch', style: `background:${c.color}` }), ' ', c.algorithm));
     const rows = ROWS.map(([name, label]) => {
       const tr = el('tr', { 'data-metric': name }, el('th', { scope: 'row' }, label));
-      for (const c of columns) tr.append(el('td', {}, c.metrics === undefined ? '…' : formatValue(c.metrics[name])));
+      for (const c of columns) tr.append(c.metrics === undefined ? el('td', {}, '…') : metricCell(name, c.metrics[name]));
       return tr;
     });
     const distance = el('tr', { 'data-metric': 'distance' }, el('th', { scope: 'row' }, 'distance to the first (Hausdorff / mean)'));
-    for (const c of columns)
-      distance.append(el('td', {}, c.distance === null ? '—' : c.distance === undefined ? '…' : `${formatNumber(c.distance.hausdorff)} / ${formatNumber(c.distance.mean)}`));
+    for (const c of columns) distance.append(c.distance === null ? el('td', {}, '—') : c.distance === undefined ? el('td', {}, '…') : distanceCell(c.distance));
     const side = el('button', { type: 'button', class: 'button small side-by-side' }, 'Side by side');
     side.disabled = columns.length < 2;
     side.addEventListener('click', () => this.onSideBySide());
@@ -110,4 +109,13 @@ function loadButton(input: { id: string; accept: string }, button: { class: stri
   const open = el('button', { type: 'button', class: `button small ${button.class}`, title: button.title }, label);
   open.addEventListener('click', () => picker.click());
   return [open, picker];
+}
+
+/** "0.01 / 0.005 mesh units": both distances are lengths, so the unit is written once, after them. */
+function distanceCell(d: { hausdorff: number; mean: number }): HTMLTableCellElement {
+  const hausdorff = formatMetric('hausdorff', d.hausdorff);
+  const mean = formatMetric('mean', d.mean);
+  const td = el('td', { title: `Hausdorff ${hausdorff.title}; mean ${mean.title}` }, `${hausdorff.value} / ${mean.value}`);
+  if (mean.unit) td.append(el('span', { class: 'unit' }, ` ${mean.unit}`));
+  return td;
 }

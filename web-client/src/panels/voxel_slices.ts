@@ -1,15 +1,18 @@
 // The voxel slice panel: for a voxel grid artifact, an axis, a
 // slider through the grid's slices and, for float grids, a threshold slider;
 // each slice is fetched over the WebSocket (get_slice, a zlib-compressed
-// binary frame), drawn in a 2D canvas, and handed to the viewer, which shows
-// it as a textured plane moving through the mesh. "3D" fetches the whole grid
-// (its NRRD artifact) and shows the voxels above the threshold as cubes; the
-// threshold slider updates both views.
+// binary frame), drawn in a 2D canvas with its legend (the colour ramp over
+// the slice's range, what the values are and their unit, the threshold),
+// and handed to the viewer, which shows it as a textured plane moving through
+// the mesh. "3D" fetches the whole grid (its NRRD artifact) and shows the
+// voxels above the threshold as cubes; the threshold slider updates both
+// views. Each slider shows its value beside it.
 import type { SliceBegin } from '../api/ws.ts';
 import { buildVoxels, parseNrrd, valueRange, type VoxelVolume } from '../viewer/voxel_renderer.ts';
 import type * as THREE from 'three';
 import { AXES, type Axis, type VoxelSlice } from '../api/voxel_slice.ts';
 import { el } from './dom.ts';
+import { fieldUnit, formatNumber, withUnit } from './format.ts';
 
 export interface SliceSource {
   getSlice(jobId: string, artifact: string, axis: Axis, index: number): Promise<{ begin: SliceBegin; slice: VoxelSlice }>;
@@ -24,6 +27,11 @@ export interface VoxelsShown {
   /** The voxels above the threshold as one object (null: hide), with their counts. */
   (shown: { object: THREE.Object3D; count: number; kept: number; threshold: number } | null): void;
 }
+
+/** The colours of the slice's drawing: an empty voxel (or one under the threshold), and the ramp from the slice's min to its max. */
+const OFF_RGB: [number, number, number] = [20, 22, 28];
+const RAMP = (t: number): [number, number, number] => [80 + 175 * t, 160 + 60 * t, 230];
+const css = ([r, g, b]: [number, number, number]): string => `rgb(${Math.round(r)}, ${Math.round(g)}, ${Math.round(b)})`;
 
 export class VoxelSlicePanel {
   private readonly root: HTMLElement;
@@ -41,6 +49,20 @@ export class VoxelSlicePanel {
   private readonly slider = el('input', { type: 'range', min: '0', max: '0', value: '0', 'aria-label': 'Slice index' });
   private readonly thresholdSlider = el('input', { type: 'range', min: '0', max: '1000', value: '0', 'aria-label': 'Threshold' });
   private readonly label = el('span', { class: 'slice-label' });
+  private readonly thresholdLabel = el('span', { class: 'threshold-label' }, 'off');
+  private readonly legendTitle = el('div', { class: 'slice-legend-title' });
+  private readonly legendMin = el('span', { class: 'slice-legend-min' });
+  private readonly legendCut = el('span', { class: 'slice-legend-cut' });
+  private readonly legendMax = el('span', { class: 'slice-legend-max' });
+  private readonly legendMark = el('div', { class: 'slice-legend-mark' });
+  private readonly legend = el(
+    'div',
+    { class: 'slice-legend', role: 'group', 'aria-label': 'Slice legend' },
+    this.legendTitle,
+    el('div', { class: 'slice-legend-bar', style: `background: linear-gradient(to right, ${css(RAMP(0))}, ${css(RAMP(1))})` }, this.legendMark),
+    el('div', { class: 'slice-legend-labels' }, this.legendMin, this.legendCut, this.legendMax),
+    el('div', { class: 'slice-legend-note' }, el('span', { class: 'slice-legend-off', style: `background: ${css(OFF_RGB)}` }), ' empty, or under the threshold'),
+  );
   private readonly cut = el('input', { type: 'checkbox', 'aria-label': 'Cut the mesh at the slice' });
   private readonly error = el('p', { class: 'empty' });
   private readonly show3d = el('input', { type: 'checkbox', 'aria-label': 'Show the voxels above the threshold in 3D', class: 'voxels-3d' });
@@ -114,12 +136,14 @@ export class VoxelSlicePanel {
       el('h2', {}, `Slices of ${this.target.artifact}`),
       el('div', { class: 'slice-controls' }, 'axis ', axes, ' ', close),
       el('label', {}, 'slice ', this.slider, ' ', this.label),
-      el('label', {}, 'threshold ', this.thresholdSlider),
+      el('label', {}, 'threshold ', this.thresholdSlider, ' ', this.thresholdLabel),
       el('label', {}, this.cut, ' cut the mesh at the slice (section view)'),
       el('label', {}, this.show3d, ' the voxels above the threshold in 3D'),
       this.canvas,
+      this.legend,
       this.error,
     );
+    this.legend.hidden = !this.last;
   }
 
   // One request at a time; a slider moved meanwhile asks again once it is answered.
@@ -177,6 +201,7 @@ export class VoxelSlicePanel {
     }
     const span = hi > lo ? hi - lo : 1;
     const cut = lo + this.threshold * span;
+    this.drawLegend(lo, hi, cut);
     for (let y = 0; y < slice.height; ++y) {
       for (let x = 0; x < slice.width; ++x) {
         const v = slice.values[x + slice.width * y]!;
@@ -184,14 +209,36 @@ export class VoxelSlicePanel {
         const o = 4 * (x + slice.width * (slice.height - 1 - y));
         const on = v !== 0 && v > cut - (this.threshold === 0 ? Infinity : 0);
         const t = (v - lo) / span;
-        image.data[o] = on ? 80 + 175 * t : 20;
-        image.data[o + 1] = on ? 160 + 60 * t : 22;
-        image.data[o + 2] = on ? 230 : 28;
+        const [r, g, b] = on ? RAMP(t) : OFF_RGB;
+        image.data[o] = r;
+        image.data[o + 1] = g;
+        image.data[o + 2] = b;
         image.data[o + 3] = on ? 230 : 90;
       }
     }
     ctx.putImageData(image, 0, 0);
     this.onShown({ canvas: this.canvas, slice, begin: this.last.begin, cut: this.cut.checked });
+  }
+
+  /**
+   * The legend of the slice drawn: the ramp's ends are the slice's own min
+   * and max (each slice is scaled to its range), the mark where the threshold
+   * cuts; and the threshold slider's value, as the share of the range and the
+   * value it stands for in this slice.
+   */
+  private drawLegend(lo: number, hi: number, cut: number): void {
+    const unit = this.target ? fieldUnit(this.target.artifact) : null;
+    const symbol = unit ? ` ${unit.symbol}` : '';
+    this.legendTitle.textContent = `${withUnit(this.target?.artifact ?? 'values', unit)}, over this slice’s range`;
+    this.legendTitle.title = this.legendTitle.textContent;
+    this.legendMin.textContent = formatNumber(lo);
+    this.legendMax.textContent = formatNumber(hi);
+    const on = this.threshold > 0;
+    this.legendCut.textContent = on ? `≥ ${formatNumber(cut)}` : '';
+    this.legendMark.hidden = !on;
+    this.legendMark.style.left = `${100 * this.threshold}%`;
+    this.thresholdLabel.textContent = on ? `${formatNumber(100 * this.threshold)}\u00a0% (≥ ${formatNumber(cut)}${symbol})` : 'off';
+    this.legend.hidden = false;
   }
 
   /** The voxels above the threshold in 3D (the grid fetched once per artifact). */

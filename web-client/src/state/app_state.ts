@@ -28,9 +28,9 @@ export interface SceneEntry extends SceneObjectState {
   object: THREE.Mesh | null;
 }
 
-/** A message shown in the page; each one is a new object. */
+/** A message shown in the page; each one is a new object. A warning is a notice that stays longer, to be read. */
 export interface Message {
-  level: 'error' | 'notice';
+  level: 'error' | 'warning' | 'notice';
   text: string;
   /** A button on the message ("Undo"): pressing it runs `run` and dismisses the message. */
   action?: { label: string; run: () => void };

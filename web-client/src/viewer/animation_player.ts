@@ -1,5 +1,6 @@
 // The animation player over the viewport: a title, a play/pause button and a
 // slider over the frames (chaos_animate's frames, the paper's Figure 11).
+// Playing steps through the frames on a timer until the last one.
 export class AnimationPlayer {
   private readonly root: HTMLElement;
   private readonly title: HTMLElement;
@@ -8,8 +9,11 @@ export class AnimationPlayer {
   private readonly label: HTMLElement;
   private timer: number | null = null;
   private onFrame: ((k: number) => void) | null = null;
+  /** Told when playing starts or stops (the job list's "Play" says "Pause" meanwhile). */
+  private readonly onPlaying: (playing: boolean) => void;
 
-  constructor(container: HTMLElement) {
+  constructor(container: HTMLElement, onPlaying: (playing: boolean) => void = () => {}) {
+    this.onPlaying = onPlaying;
     this.root = document.createElement('div');
     this.root.className = 'player';
     this.root.id = 'animation-player';
@@ -47,6 +51,30 @@ export class AnimationPlayer {
     this.go(0);
   }
 
+  get playing(): boolean {
+    return this.timer !== null;
+  }
+
+  /** Plays from the frame shown (from the first, when at the last). */
+  start(): void {
+    if (this.timer !== null || !this.onFrame) return;
+    if (Number(this.slider.value) >= Number(this.slider.max)) this.go(0);
+    this.timer = window.setInterval(() => {
+      const k = Math.min(Number(this.slider.value) + 1, Number(this.slider.max));
+      this.go(k);
+      if (k >= Number(this.slider.max)) this.stop(); // the last frame stays shown
+    }, 150);
+    this.playingChanged();
+  }
+
+  /** Pauses on the frame shown. */
+  stop(): void {
+    if (this.timer === null) return;
+    window.clearInterval(this.timer);
+    this.timer = null;
+    this.playingChanged();
+  }
+
   hide(): void {
     this.stop();
     this.onFrame = null;
@@ -59,19 +87,9 @@ export class AnimationPlayer {
     this.onFrame?.(k);
   }
 
-  private start(): void {
-    if (Number(this.slider.value) >= Number(this.slider.max)) this.go(0);
-    this.play.textContent = 'Pause';
-    this.timer = window.setInterval(() => {
-      const k = Math.min(Number(this.slider.value) + 1, Number(this.slider.max));
-      this.go(k);
-      if (k >= Number(this.slider.max)) this.stop(); // the last frame stays shown
-    }, 150);
-  }
-
-  private stop(): void {
-    if (this.timer !== null) window.clearInterval(this.timer);
-    this.timer = null;
-    this.play.textContent = 'Play';
+  private playingChanged(): void {
+    const playing = this.timer !== null;
+    this.play.textContent = playing ? 'Pause' : 'Play';
+    this.onPlaying(playing);
   }
 }

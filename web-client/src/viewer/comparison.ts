@@ -6,13 +6,25 @@
 // equal colours across panes; each field keeps its own range otherwise.
 // Whatever algorithms made the fields: this is the scalar-field renderer
 // repeated per pane, nothing in it knows one algorithm from another.
+//
+// "Fit each pane": objects of very different sizes (a 1-unit part beside a
+// 1000-unit assembly) framed together leave the small one a dot. Then each
+// pane is drawn from its own camera: the one camera moved, for that pane's
+// draw only, by the similarity that takes the framed sphere to the bounding
+// sphere of the pane's object (same direction, distance scaled), so that
+// orbiting and zooming still move every pane alike. It is done in the
+// scene's onBeforeRender, which three calls at the start of each pane's
+// render, before the camera's matrices are read; onAfterRender puts the
+// camera back.
+import * as THREE from 'three';
 import { el } from '../panels/dom.ts';
+import { clipPlanes } from './clipping.ts';
 import { defaultMapFor } from './colormaps.ts';
+import { frameBox } from './framing.ts';
 import { Legend } from './legend.ts';
 import type { PlyMesh } from './ply.ts';
 import { buildScalarSurface, colourGeometry, type ScalarField } from './scalar_field_renderer.ts';
 import { paneGrid, type Viewer } from './viewer.ts';
-import type * as THREE from 'three';
 
 export interface ComparedField {
   /** Identifies the field across show() calls (a chosen colour map is kept): `${jobId}/${artifact}`. */
@@ -35,6 +47,13 @@ export class ComparisonView {
   private readonly maps = new Map<string, string>();
   /** Whether the fields of one hint share their common range (kept across comparisons). */
   private sameRange = false;
+  /** The objects in the panes, in pane order. */
+  private paneObjects: THREE.Object3D[] = [];
+  /** With "Fit each pane": the sphere the one camera is framed on, which each pane's object stands in for. */
+  private fitted: THREE.Sphere | null = null;
+  /** The one camera as the frame set it, while a pane is drawn from its own. */
+  private saved: { position: THREE.Vector3; near: number; far: number } | null = null;
+  private fitButton: HTMLButtonElement | null = null;
 
   constructor(viewer: Viewer, container: HTMLElement, onDrawn: ComparisonView['onDrawn']) {
     this.viewer = viewer;
@@ -67,9 +86,10 @@ export class ComparisonView {
         el('div', { class: 'legend compare-title' }, ...(it.color ? [el('span', { class: 'swatch', style: `background:${it.color}` }), ' '] : []), it.title),
       ),
     );
-    this.root = el('div', { class: 'compare-view', style: `grid-template-columns: repeat(${cols}, 1fr); grid-template-rows: repeat(${rows}, 1fr)` }, ...cells);
+    this.root = el('div', { class: 'compare-view', style: `grid-template-columns: repeat(${cols}, 1fr); grid-template-rows: repeat(${rows}, 1fr)` }, ...cells, this.options());
     this.container.append(this.root);
     this.objectPanes = items.length;
+    this.paneObjects = items.map((it) => it.object);
     const drawn = () => this.onDrawn(items.map((it) => ({ key: it.key, map: '', range: [0, 0] as [number, number] })));
     this.viewer.setPanes(
       items.map((it) => it.object),
@@ -94,6 +114,7 @@ export class ComparisonView {
     this.root = el('div', { class: 'compare-view', style: `grid-template-columns: repeat(${cols}, 1fr); grid-template-rows: repeat(${rows}, 1fr)` }, ...cells, options);
     this.container.append(this.root);
     this.panes = fields.map((field) => ({ field, object: buildScalarSurface(mesh, field.data, this.mapOf(field)) }));
+    this.paneObjects = this.panes.map((p) => p.object);
     this.legends = cells.map((cell, i) => new Legend(cell, (name) => this.setMap(i, name)));
     this.panes.forEach((_, i) => this.recolour(i));
     this.viewer.setPanes(
@@ -108,7 +129,87 @@ export class ComparisonView {
     this.removeOverlay();
     this.panes = [];
     this.objectPanes = 0;
+    this.paneObjects = [];
     this.viewer.setPanes([]);
+  }
+
+  /** The bar under panes of different objects (fields are all on one surface: one framing fits them all). */
+  private options(): HTMLElement {
+    const fit = el(
+      'button',
+      { type: 'button', class: 'button small compare-fit', 'aria-pressed': 'false', title: 'Frame each pane on its own object (objects of very different sizes)' },
+      'Fit each pane',
+    );
+    fit.addEventListener('click', () => this.fitEach(!this.fitted));
+    this.fitButton = fit;
+    return el('div', { class: 'compare-options' }, fit);
+  }
+
+  /** Frames each pane on its own object (on), or all of them together again (off). */
+  fitEach(on: boolean): void {
+    const scene = this.viewer.scene;
+    if (on) {
+      const first = this.paneObjects[0];
+      const box = first ? new THREE.Box3().setFromObject(first) : new THREE.Box3();
+      if (box.isEmpty()) return;
+      frameBox(this.viewer.camera, this.viewer.controls, box);
+      this.fitted = box.getBoundingSphere(new THREE.Sphere());
+      scene.onBeforeRender = (renderer) => this.paneCamera(renderer);
+      scene.onAfterRender = () => this.restoreCamera();
+    } else {
+      if (!this.fitted) return;
+      this.endFitEach();
+      this.viewer.fitAll();
+    }
+    this.fitButton?.setAttribute('aria-pressed', String(on));
+    this.viewer.requestRender();
+  }
+
+  private endFitEach(): void {
+    if (!this.fitted) return;
+    this.fitted = null;
+    const scene = this.viewer.scene;
+    scene.onBeforeRender = THREE.Object3D.prototype.onBeforeRender;
+    scene.onAfterRender = THREE.Object3D.prototype.onAfterRender;
+  }
+
+  /** Before a pane's render: the camera framing that pane's object as the one camera frames the fitted sphere. */
+  private paneCamera(renderer: THREE.WebGLRenderer): void {
+    const fitted = this.fitted;
+    if (!fitted) return;
+    const viewport = renderer.getViewport(new THREE.Vector4());
+    let i = 0;
+    for (let r = this.viewer.paneRect(0); r; r = this.viewer.paneRect(++i)) {
+      if (r.x === viewport.x && r.y === viewport.y && r.width === viewport.z && r.height === viewport.w) break;
+    }
+    const object = this.paneObjects[i];
+    if (!object) return;
+    const box = new THREE.Box3().setFromObject(object);
+    if (box.isEmpty()) return;
+    const sphere = box.getBoundingSphere(new THREE.Sphere());
+    const k = Math.max(sphere.radius, 1e-9) / Math.max(fitted.radius, 1e-9);
+    const camera = this.viewer.camera;
+    this.saved = { position: camera.position.clone(), near: camera.near, far: camera.far };
+    const target = this.viewer.controls.target.clone().sub(fitted.center).multiplyScalar(k).add(sphere.center);
+    camera.position.sub(fitted.center).multiplyScalar(k).add(sphere.center);
+    camera.updateMatrixWorld(true); // its lights ride with it
+    const forward = camera.getWorldDirection(new THREE.Vector3());
+    const { near, far } = clipPlanes(camera.position.toArray(), forward.toArray(), box.min.toArray(), box.max.toArray(), camera.position.distanceTo(target));
+    camera.near = near;
+    camera.far = far;
+    camera.updateProjectionMatrix();
+  }
+
+  private restoreCamera(): void {
+    const saved = this.saved;
+    if (!saved) return;
+    this.saved = null;
+    const camera = this.viewer.camera;
+    camera.position.copy(saved.position);
+    camera.near = saved.near;
+    camera.far = saved.far;
+    camera.updateProjectionMatrix();
+    camera.updateMatrixWorld(true);
   }
 
   private mapOf(field: ComparedField): string {
@@ -151,7 +252,10 @@ export class ComparisonView {
     this.onDrawn(this.panes.map((p, i) => ({ key: p.field.key, map: this.mapOf(p.field), range: this.shown(i).range })));
   }
 
+  /** Takes the panes' overlay away; the panes that follow are framed together until asked otherwise. */
   private removeOverlay(): void {
+    this.endFitEach();
+    this.fitButton = null;
     for (const l of this.legends) l.dispose();
     this.legends = [];
     this.root?.remove();

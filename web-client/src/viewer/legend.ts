@@ -6,18 +6,12 @@
 import { COLOR_MAPS, colorMap, cssGradient, sample } from './colormaps.ts';
 import { histogram } from './histogram.ts';
 import { el } from '../panels/dom.ts';
+import { formatNumber } from '../panels/format.ts';
 
 /** Bins of the legend's histogram. */
 export const HISTOGRAM_BINS = 48;
 
 const SVG = 'http://www.w3.org/2000/svg';
-
-function formatValue(v: number): string {
-  if (v === 0) return '0';
-  const a = Math.abs(v);
-  if (a >= 1e5 || a < 1e-3) return v.toExponential(3);
-  return Number(v.toPrecision(4)).toString();
-}
 
 export class Legend {
   private readonly root: HTMLElement;
@@ -53,8 +47,8 @@ export class Legend {
     this.title.title = title;
     this.select.value = map.name;
     this.bar.style.background = cssGradient(map);
-    this.min.textContent = formatValue(range[0]);
-    this.max.textContent = formatValue(range[1]);
+    this.min.textContent = formatNumber(range[0]);
+    this.max.textContent = formatNumber(range[1]);
     this.root.dataset.map = map.name;
     this.drawHistogram(values, range, map.name);
     this.root.hidden = false;

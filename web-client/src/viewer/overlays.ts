@@ -8,6 +8,7 @@
 // DOM to keep in step with the camera.
 import * as THREE from 'three';
 import { VertexNormalsHelper } from 'three/addons/helpers/VertexNormalsHelper.js';
+import { formatNumber } from '../panels/format.ts';
 import { classifyEdges, type EdgeClasses } from './mesh_edges.ts';
 import type { Viewer } from './viewer.ts';
 
@@ -57,15 +58,9 @@ export interface OverlayInfo {
   nonManifoldEdges: number | null;
 }
 
-/** A length for labels: three significant digits ("2.00", "0.500", "1.25e+4"). */
-export function formatLength(v: number): string {
-  const a = Math.abs(v);
-  return a !== 0 && (a >= 1e4 || a < 1e-2) ? v.toExponential(2) : v.toPrecision(3);
-}
-
-/** "2.00 × 1.00 × 0.500" */
+/** "2 × 1 × 0.5": each side as every other number in the viewer is written (panels/format.ts). */
 export function formatSize(size: [number, number, number]): string {
-  return size.map(formatLength).join(' × ');
+  return size.map(formatNumber).join(' × ');
 }
 
 /** A text label as a sprite `height` world units tall, drawn over everything. */
@@ -106,17 +101,22 @@ function boundingBox(box: THREE.Box3, size: THREE.Vector3, textHeight: number): 
     [size.z, new THREE.Vector3(max.x, min.y, mid.z)],
   ];
   for (const [length, position] of at) {
-    const sprite = label(formatLength(length), BOX_COLOR, textHeight);
+    const sprite = label(formatNumber(length), BOX_COLOR, textHeight);
     sprite.position.copy(position);
     group.add(sprite);
   }
   return group;
 }
 
-function axes(origin: THREE.Vector3, length: number, textHeight: number): THREE.Object3D {
+/**
+ * The object's own axes (`turn`: its world rotation), from `origin`: a mesh
+ * drawn Z up has its Z axis drawn, and labelled, pointing up.
+ */
+function axes(origin: THREE.Vector3, length: number, textHeight: number, turn: THREE.Quaternion): THREE.Object3D {
   const group = new THREE.Group();
   const helper = new THREE.AxesHelper(length);
   helper.position.copy(origin);
+  helper.quaternion.copy(turn);
   group.add(helper);
   const names: Array<[string, string, THREE.Vector3]> = [
     ['X', '#ff6b5b', new THREE.Vector3(1, 0, 0)],
@@ -125,7 +125,7 @@ function axes(origin: THREE.Vector3, length: number, textHeight: number): THREE.
   ];
   for (const [name, color, dir] of names) {
     const sprite = label(name, color, textHeight);
-    sprite.position.copy(origin).addScaledVector(dir, length * 1.08);
+    sprite.position.copy(origin).addScaledVector(dir.applyQuaternion(turn), length * 1.08);
     group.add(sprite);
   }
   return group;
@@ -221,7 +221,16 @@ export function updateOverlays(viewer: Viewer, object: THREE.Object3D | null, s:
     const diagonal = Math.max(size.length(), 1e-9);
     const textHeight = diagonal * 0.05;
     if (s.bbox) built.bbox = boundingBox(box, size, textHeight);
-    if (s.axes) built.axes = axes(box.min, Math.max(size.x, size.y, size.z) * 0.5, textHeight);
+    if (s.axes) {
+      object.updateWorldMatrix(true, false);
+      const turn = new THREE.Quaternion();
+      object.matrixWorld.decompose(new THREE.Vector3(), turn, new THREE.Vector3());
+      // From the corner of the object's own box, where its axes run along its edges (the world box's is another corner once it is turned).
+      const geometry = (object as THREE.Mesh).isMesh ? (object as THREE.Mesh).geometry : null;
+      if (geometry && !geometry.boundingBox) geometry.computeBoundingBox();
+      const origin = geometry?.boundingBox ? geometry.boundingBox.min.clone().applyMatrix4(object.matrixWorld) : box.min;
+      built.axes = axes(origin, Math.max(size.x, size.y, size.z) * 0.5, textHeight, turn);
+    }
     const mesh = object as THREE.Mesh;
     if (mesh.isMesh) {
       const length = s.normalLength * diagonal;

@@ -15,8 +15,14 @@
 // projects into the region, hidden ones too (MeshLab's default). A click
 // reads the id buffer at the pixel: the face drawn there; for a vertex, the
 // corner of that face nearest the pointer.
+//
+// The stored positions are the mesh's own coordinates; the shown object may
+// be turned (Z up) or moved (the Scene panel's Move/Turn), so they are
+// projected, drawn in the id buffer and highlighted through its matrixWorld.
 import * as THREE from 'three';
 import type { PlyMesh } from './ply.ts';
+import { idMesh } from './id_mesh.ts';
+import { highlight } from './selection_highlight.ts';
 import {
   combine,
   faceCentroids,
@@ -45,8 +51,6 @@ export interface SelectionState {
   /** The total area of the selected faces (faces only). */
   area: number | null;
 }
-
-const HIGHLIGHT = '#ff2d75';
 
 interface Target {
   meshId: string;
@@ -184,7 +188,7 @@ export class SelectionTool {
   selectRegion(region: Region, how: Combine = 'replace'): void {
     const t = this.target;
     if (!t) return;
-    const { width, height, viewProjection } = this.view();
+    const { width, height, viewProjection } = this.modelView();
     const visible = this.through ? null : this.visibleFaces(regionBounds(region));
     if (this.kindNow === 'faces') {
       const projected = projectPoints(t.centroids, viewProjection, width, height);
@@ -220,7 +224,7 @@ export class SelectionTool {
       this.set(combine(this.ids, [f], how));
       return;
     }
-    const { width, height, viewProjection } = this.view();
+    const { width, height, viewProjection } = this.modelView();
     const corners = new Float32Array(9);
     for (let c = 0; c < 3; ++c) corners.set(t.ply.positions.subarray(3 * t.ply.indices[3 * f + c]!, 3 * t.ply.indices[3 * f + c]! + 3), 3 * c);
     const p = projectPoints(corners, viewProjection, width, height);
@@ -239,6 +243,21 @@ export class SelectionTool {
     return { width: canvas.clientWidth, height: canvas.clientHeight, viewProjection: m.toArray() };
   }
 
+  /** Where the mesh selected on stands: the shown object's world matrix (identity when nothing is shown). */
+  private model(): THREE.Matrix4 {
+    const object = this.viewer.object;
+    if (!object) return new THREE.Matrix4();
+    object.updateWorldMatrix(true, false);
+    return object.matrixWorld.clone();
+  }
+
+  /** view(), with the stored positions carried where the shown object stands. */
+  private modelView(): { width: number; height: number; viewProjection: number[] } {
+    const v = this.view();
+    const m = new THREE.Matrix4().fromArray(v.viewProjection).multiply(this.model());
+    return { ...v, viewProjection: m.toArray() };
+  }
+
   private set(ids: number[]): void {
     this.ids = ids;
     this.drawHighlight();
@@ -251,29 +270,18 @@ export class SelectionTool {
       this.viewer.setOverlay('selection', null);
       return;
     }
-    const geometry = new THREE.BufferGeometry();
-    geometry.setAttribute('position', new THREE.BufferAttribute(t.ply.positions, 3));
-    let object: THREE.Object3D;
-    if (this.kindNow === 'faces') {
-      const index = new Uint32Array(3 * this.ids.length);
-      this.ids.forEach((f, k) => index.set(t.ply.indices.subarray(3 * f, 3 * f + 3), 3 * k));
-      geometry.setIndex(new THREE.BufferAttribute(index, 1));
-      // Drawn over the surface: pulled towards the camera in depth.
-      const material = new THREE.MeshBasicMaterial({
-        color: HIGHLIGHT,
-        side: THREE.DoubleSide,
-        transparent: true,
-        opacity: 0.75,
-        polygonOffset: true,
-        polygonOffsetFactor: -2,
-        polygonOffsetUnits: -2,
-      });
-      object = new THREE.Mesh(geometry, material);
-    } else {
-      geometry.setIndex(new THREE.BufferAttribute(new Uint32Array(this.ids), 1));
-      object = new THREE.Points(geometry, new THREE.PointsMaterial({ color: HIGHLIGHT, size: 7, sizeAttenuation: false, depthTest: false }));
-    }
+    const object = highlight(t.ply, this.kindNow, this.ids);
     object.renderOrder = 1;
+    // Follows the shown object as it is turned or moved, without a redraw of the highlight.
+    object.matrixAutoUpdate = false;
+    object.matrix.copy(this.model());
+    object.frustumCulled = false;
+    object.onBeforeRender = () => {
+      const shown = this.viewer.object;
+      if (!shown) return;
+      object.matrix.copy(shown.matrixWorld);
+      object.matrixWorld.copy(shown.matrixWorld);
+    };
     this.viewer.setOverlay('selection', object);
   }
 
@@ -288,8 +296,10 @@ export class SelectionTool {
     if (this.renderTarget.width !== size.x || this.renderTarget.height !== size.y) this.renderTarget.setSize(size.x, size.y);
     if (!t.idMesh) {
       t.idMesh = idMesh(t.ply);
+      t.idMesh.matrixAutoUpdate = false;
       this.idScene.add(t.idMesh);
     }
+    t.idMesh.matrix.copy(this.model());
     const clear = renderer.getClearColor(new THREE.Color());
     const alpha = renderer.getClearAlpha();
     renderer.setRenderTarget(this.renderTarget);
@@ -368,27 +378,4 @@ export class SelectionTool {
     const r = this.viewer.renderer.domElement.getBoundingClientRect();
     return [e.clientX - r.left, e.clientY - r.top];
   }
-}
-
-/** Each face in its own colour, id + 1 in 24 bits (0: nothing drawn): a triangle soup. */
-function idMesh(ply: PlyMesh): THREE.Mesh {
-  const faces = ply.faces;
-  const positions = new Float32Array(9 * faces);
-  const colors = new Uint8Array(9 * faces);
-  for (let f = 0; f < faces; ++f) {
-    const id = f + 1;
-    for (let c = 0; c < 3; ++c) {
-      const v = ply.indices[3 * f + c]!;
-      positions.set(ply.positions.subarray(3 * v, 3 * v + 3), 9 * f + 3 * c);
-      colors[9 * f + 3 * c] = id & 255;
-      colors[9 * f + 3 * c + 1] = (id >> 8) & 255;
-      colors[9 * f + 3 * c + 2] = (id >> 16) & 255;
-    }
-  }
-  const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
-  geometry.setAttribute('color', new THREE.BufferAttribute(colors, 3, true));
-  // Exact colours: no lighting, no tone mapping; render targets get no colour-space conversion.
-  const material = new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide, toneMapped: false });
-  return new THREE.Mesh(geometry, material);
 }

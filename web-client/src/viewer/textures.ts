@@ -81,6 +81,7 @@ export interface TextureState {
 export class MeshTextures {
   private readonly select: HTMLSelectElement;
   private readonly squaresInput: HTMLInputElement;
+  private readonly squaresValue: HTMLOutputElement;
   private readonly squaresRow: HTMLElement;
   private surface: THREE.Mesh | null = null;
   private mesh: Mesh | null = null;
@@ -104,11 +105,16 @@ export class MeshTextures {
       this.select.append(el('option', { value }, label));
     }
     this.squaresInput = el('input', { id: 'texture-squares', type: 'range', min: '2', max: '64', step: '2', value: '8' });
-    this.squaresRow = el('label', { class: 'texture-squares' }, 'Squares ', this.squaresInput);
+    this.squaresInput.setAttribute('aria-label', 'Squares');
+    this.squaresValue = el('output', { class: 'slider-value', for: 'texture-squares' }, this.squaresInput.value);
+    this.squaresRow = el('label', { class: 'texture-squares' }, 'Squares ', this.squaresInput, this.squaresValue);
     panel.replaceChildren(el('label', {}, 'Texture ', this.select), this.squaresRow);
     panel.hidden = true;
     this.select.addEventListener('change', () => this.apply());
-    this.squaresInput.addEventListener('input', () => this.apply());
+    this.squaresInput.addEventListener('input', () => {
+      this.squaresValue.value = this.squaresInput.value;
+      this.apply();
+    });
   }
 
   /** Takes a new surface of `mesh`: the panel shows when it has UVs, and its texture (or a checkerboard) goes on. */
