@@ -53,13 +53,40 @@ std::optional<Caller> Auth::check_token(std::string_view token) const {
   // cgv_ + 16 hex + _ + 64 hex
   if (token.size() != kPrefix.size() + 16 + 1 + 64 || !token.starts_with(kPrefix) || token[kPrefix.size() + 16] != '_')
     return std::nullopt;
-  const auto row = store_.find_token(std::string(token.substr(kPrefix.size(), 16)));
+  const std::string id(token.substr(kPrefix.size(), 16));
+  const std::string_view secret = token.substr(kPrefix.size() + 17);
+  // A session (a redeemed ticket) stands for its token while that token is not revoked.
+  if (const auto grant = tickets_->session(id, secret)) return token_caller(grant->token_id, &grant->user);
+  const auto row = store_.find_token(id);
   if (!row) return std::nullopt;
-  const std::string hash = sha256_hex(token.substr(kPrefix.size() + 17));
-  if (!same_digest(row->second, hash)) return std::nullopt;
-  const auto user = store_.get_user(row->first);
-  if (!user) return std::nullopt;
-  return Caller{user->name, user->admin};
+  if (!same_digest(row->second, sha256_hex(secret))) return std::nullopt;
+  return token_caller(id);
+}
+
+std::optional<Caller> Auth::token_caller(const std::string& token_id, const std::string* user) const {
+  const auto row = store_.find_token(token_id);
+  if (!row || (user && row->first != *user)) return std::nullopt;
+  const auto record = store_.get_user(row->first);
+  if (!record) return std::nullopt;
+  return Caller{record->name, record->admin};
+}
+
+std::optional<std::string> Auth::issue_ticket(std::string_view authorization, std::chrono::seconds life) const {
+  constexpr std::string_view bearer = "Bearer ";
+  if (authorization.size() <= bearer.size() || !starts_with_nocase(authorization, bearer)) return std::nullopt;
+  const std::string_view token = authorization.substr(bearer.size());
+  if (token.size() != kPrefix.size() + 16 + 1 + 64 || !token.starts_with(kPrefix)) return std::nullopt;
+  const std::string id(token.substr(kPrefix.size(), 16));
+  const auto row = store_.find_token(id);
+  // Only a stored token makes tickets (the router has checked its secret); a session's id is not stored.
+  if (!row || !same_digest(row->second, sha256_hex(token.substr(kPrefix.size() + 17)))) return std::nullopt;
+  return tickets_->issue({row->first, id}, life);
+}
+
+std::optional<Tickets::Session> Auth::redeem_ticket(std::string_view ticket) const {
+  auto session = tickets_->redeem(ticket);
+  if (!session || !token_caller(session->grant.token_id, &session->grant.user)) return std::nullopt;
+  return session;
 }
 
 std::string Auth::add_user(const std::string& name, bool admin) {

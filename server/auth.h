@@ -5,11 +5,14 @@
 // never logged.
 #pragma once
 
+#include <chrono>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 
 #include "store.h"
+#include "tickets.h"
 
 namespace cgview::server {
 
@@ -17,7 +20,7 @@ class Auth {
  public:
   // required: every request needs a token; else one without a token is
   // Caller::local() (a loopback server's single user).
-  Auth(Store& store, bool required) : store_(store), required_(required) {}
+  Auth(Store& store, bool required) : store_(store), required_(required), tickets_(std::make_unique<Tickets>()) {}
 
   bool required() const { return required_; }
   // The caller of a request from its Authorization header ("Bearer TOKEN",
@@ -28,10 +31,26 @@ class Auth {
   // Creates the user if needed (or changes admin) and returns a new token.
   std::string add_user(const std::string& name, bool admin);
 
+  // Sign-in tickets (tickets.h).  A ticket for the token of `authorization`
+  // ("Bearer TOKEN", already authenticated), redeemable once within `life`;
+  // nullopt when it names no stored token: none given (the local user), or a
+  // session's (a session makes no tickets, so that it cannot outlive its end).
+  std::optional<std::string> issue_ticket(std::string_view authorization,
+                                          std::chrono::seconds life = Tickets::kTicketLife) const;
+  // A session for a ticket; nullopt when the ticket is forged, used or
+  // expired, or its token was revoked since.
+  std::optional<Tickets::Session> redeem_ticket(std::string_view ticket) const;
+  // Replaces the tickets' clock (tests).
+  void set_ticket_clock(std::function<Tickets::Clock::time_point()> now) const { tickets_->set_clock(std::move(now)); }
+
  private:
   std::optional<Caller> check_token(std::string_view token) const;
+  // The caller of a stored token's id, if the token still is (not revoked) and is `user`'s.
+  std::optional<Caller> token_caller(const std::string& token_id, const std::string* user = nullptr) const;
   Store& store_;
   bool required_;
+  // Tickets and sessions change while Auth is used read-only (by the router, the WebSockets).
+  std::unique_ptr<Tickets> tickets_;
 };
 
 // True when s begins with prefix, ASCII case ignored (an HTTP auth scheme).

@@ -63,7 +63,9 @@ Router::Router(MeshService& meshes, RouterConfig config)
                [this](const json& event, const Access& readers) {
                  if (on_event) on_event(event, readers);
                }} {
+  context_.auth = &auth_;
   add_account_routes(routes_, context_);
+  add_ticket_routes(routes_, context_);
   add_mesh_routes(routes_, context_);
   add_render_route(routes_, context_);
   add_job_routes(routes_, context_);
@@ -100,8 +102,10 @@ HttpResponse Router::dispatch(const HttpRequest& req, std::string& route) const 
   const auto [path, query] = split_target(req.target);
   // The web client's files are public (it asks for a token); the API and the metrics are not.
   std::optional<Caller> caller;
-  // A worker's routes take its job's token instead (JobScheduler::worker_*).
-  if ((path.starts_with("/api/") || path == "/metrics") && !path.starts_with("/api/v1/worker/")) {
+  // A worker's routes take its job's token instead (JobScheduler::worker_*); a
+  // ticket's redemption takes the ticket (routes/tickets.cpp).
+  if ((path.starts_with("/api/") || path == "/metrics") && !path.starts_with("/api/v1/worker/") &&
+      path != "/api/v1/tickets/redeem") {
     caller = auth_.authenticate(req.authorization);
     if (!caller) {
       HttpResponse r =

@@ -46,6 +46,8 @@ struct RouteContext {
   // Sends an event to the WebSocket clients who may read it.
   std::function<void(const nlohmann::json& event, const Access& readers)> emit;
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+  // Users, tokens and sign-in tickets (the router's).
+  const Auth* auth = nullptr;
 
   // The job scheduler; throws where the server runs no jobs (a 500 naming it).
   JobScheduler& jobs() const;
@@ -74,6 +76,8 @@ void add_worker_routes(Routes& routes, const RouteContext& ctx);
 void add_plugin_routes(Routes& routes, const RouteContext& ctx);
 // /api/v1/health, /api/v1/me and /metrics.
 void add_account_routes(Routes& routes, const RouteContext& ctx);
+// /api/v1/tickets: sign-in tickets for a page that must not hold a token in its URL (tickets.h).
+void add_ticket_routes(Routes& routes, const RouteContext& ctx);
 
 // The built web client's file at a request path (GET anything not under /api/).
 HttpResponse serve_static(const std::filesystem::path& static_dir, const std::string& path);

@@ -24,10 +24,14 @@ class Client:
     $CGVIEW_TOKEN; the server needs none from loopback unless it runs with
     --auth required); ca_file: the PEM certificate(s) to trust for https://
     instead of the system's (default $CGVIEW_CA_FILE), e.g. a self-signed
-    server's own."""
+    server's own.  For show() in a notebook: view_url, the server's address
+    as the notebook's browser reaches it (default $CGVIEW_VIEW_URL, else
+    url); embed=False shows the server's picture alone, no live viewer."""
 
-    def __init__(self, url=None, token=None, timeout=300, ca_file=None):
+    def __init__(self, url=None, token=None, timeout=300, ca_file=None, view_url=None, embed=True):
         self.url = (url or os.environ.get("CGVIEW_URL") or DEFAULT_URL).rstrip("/")
+        self.view_url = (view_url or os.environ.get("CGVIEW_VIEW_URL") or self.url).rstrip("/")
+        self.embed = embed
         self.token = token if token is not None else os.environ.get("CGVIEW_TOKEN") or None
         self.timeout = timeout
         self.ca_file = ca_file or os.environ.get("CGVIEW_CA_FILE") or None
@@ -74,6 +78,13 @@ class Client:
         """Who the token is: user, admin, storage_bytes_used and _limit,
         jobs_active and jobs_limit (a limit is None where there is none)."""
         return self.get_json("/me")
+
+    def ticket(self, expires_s=None):
+        """A sign-in ticket for this client's token, {"ticket", "expires_s"}:
+        a page redeems it once, within expires_s (at most 60), for a session
+        of the same user (protocol/API.md, "Sign-in tickets"); show() hands
+        one to the viewer, so that no token goes into a URL."""
+        return self.send_json("POST", "/tickets", {} if expires_s is None else {"expires_s": expires_s})
 
     def share(self, kind, item_id, users=(), everyone=False, unshare=False):
         """Shares a mesh or a job (kind "meshes" or "jobs") with users and/or

@@ -41,6 +41,15 @@ class Mesh(dict):
         from . import interop
         return interop.to_meshio(*self.arrays())
 
+    def show(self, field=None, mode=None, width=800, height=500):
+        """In a notebook, the viewer on this mesh in the output cell, over the
+        server's picture of it (which is what an exported notebook shows);
+        field: a scalar field to colour it by ("JOB_ID/NAME", "NAME" or a
+        Job); mode: points, wireframe, flat, smooth or toon.  A
+        notebook.View (its .url(), .png())."""
+        from . import notebook
+        return notebook.mesh_view(self._client, self, field, mode, width, height)
+
 
 class Job(dict):
     """A job: its JSON fields (refreshed by wait/result), and its artifacts
@@ -77,6 +86,13 @@ class Job(dict):
     def cancel(self):
         self.update(self._client.cancel(self.id))
         return self
+
+    def show(self, artifact=None, mode=None, width=800, height=500):
+        """In a notebook, the viewer on this done job's mesh coloured by its
+        scalar field (the first, or `artifact`), over the server's picture
+        of it; a job without one shows its input mesh.  A notebook.View."""
+        from . import notebook
+        return notebook.job_view(self._client, self, artifact, mode, width, height)
 
     def _artifact(self, name, kind):
         for a in self.get("artifacts", []):

@@ -5,9 +5,14 @@
 // as the WebSocket's first message.  Tokens never go into URLs (they would
 // be logged): thumbnails and downloads are fetched, then shown from blob URLs.
 
+import { clearSession, sessionToken } from './tickets.ts';
+
 const KEY = 'cgview.token';
 
+/** The credential requests carry: this tab's session from a sign-in ticket (api/tickets.ts), else the stored token. */
 export function getToken(): string | null {
+  const session = sessionToken();
+  if (session) return session;
   try {
     return localStorage.getItem(KEY);
   } catch {
@@ -16,6 +21,7 @@ export function getToken(): string | null {
 }
 
 export function setToken(token: string | null): void {
+  clearSession(); // a token typed, refused or forgotten ends a ticket's session too
   if (token) localStorage.setItem(KEY, token);
   else localStorage.removeItem(KEY);
 }
