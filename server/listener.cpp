@@ -3,6 +3,8 @@
 // the first bytes say whether the client speaks TLS.  Server's public face.
 #include "server.h"
 
+#include <chrono>
+#include <cstdio>
 #include <utility>  // Boost 1.74's asio/awaitable.hpp uses std::exchange without it
 
 #include <boost/asio.hpp>
@@ -82,7 +84,22 @@ struct Server::Impl {
   }
   void accept() {
     acceptor.async_accept(net::make_strand(ioc), [this](beast::error_code ec, tcp::socket socket) {
+      if (ec == net::error::no_descriptors || ec == std::errc::too_many_files_open_in_system) {
+        // Out of file descriptors: the connection waits in the backlog, so
+        // accepting again at once would spin on the same error.  Wait for a
+        // connection to close, and say so once an episode.
+        if (!out_of_descriptors)
+          std::fprintf(stderr, "cgview-server: out of file descriptors (%s): new connections wait\n",
+                       ec.message().c_str());
+        out_of_descriptors = true;
+        backoff.expires_after(std::chrono::milliseconds(50));
+        backoff.async_wait([this](beast::error_code) {
+          if (acceptor.is_open()) accept();
+        });
+        return;
+      }
       if (!ec) {
+        out_of_descriptors = false;
         // Small messages (JSON replies, a stream's last chunk) go out at
         // once instead of waiting up to 40 ms for the client's delayed ACK.
         beast::error_code ignored;
@@ -97,6 +114,8 @@ struct Server::Impl {
   net::io_context ioc{1};
   std::shared_ptr<Shared> shared;
   tcp::acceptor acceptor;
+  net::steady_timer backoff{ioc};
+  bool out_of_descriptors = false;
 };
 
 Server::Server(const ServerConfig& config) : impl_(std::make_unique<Impl>(config)) {}

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <sys/resource.h>
+
 #include "auth.h"
 #include "config.h"
 #include "io/samples.h"
@@ -109,6 +111,20 @@ int user_command(const std::vector<std::string>& args, const std::filesystem::pa
     std::printf("revoked %d token%s of %s\n", n, n == 1 ? "" : "s", args[2].c_str());
   }
   return 0;
+}
+
+// Each connection is a file descriptor, and a login's soft limit (1024 on
+// Debian) is far below what the server holds: take the hard limit, as nginx's
+// worker_rlimit_nofile and Go's runtime do.  Returns the limit in force.
+rlim_t raise_open_file_limit() {
+  rlimit l{};
+  if (getrlimit(RLIMIT_NOFILE, &l) != 0) return 0;
+  if (l.rlim_cur < l.rlim_max) {
+    rlimit raised = l;
+    raised.rlim_cur = l.rlim_max;
+    if (setrlimit(RLIMIT_NOFILE, &raised) == 0) return raised.rlim_cur;
+  }
+  return l.rlim_cur;
 }
 
 }  // namespace
@@ -236,6 +252,10 @@ int main(int argc, char** argv) {
   const std::filesystem::path bin_dir = (ec ? std::filesystem::path(argv[0]) : self).parent_path();
   if (config.jobs.worker.empty()) config.jobs.worker = bin_dir / "cgview-worker";
   if (config.reader.empty()) config.reader = bin_dir / "cgview-read";
+  if (const rlim_t files = raise_open_file_limit(); files < 4096)
+    std::fprintf(
+        stderr, "cgview-server: at most %llu open files (ulimit -Hn): fewer connections than that are served at once\n",
+        static_cast<unsigned long long>(files));
   // The renderer says once when only a software renderer is there.
   render::set_render_log([](const std::string& m) { std::fprintf(stderr, "cgview-server: %s\n", m.c_str()); });
   try {

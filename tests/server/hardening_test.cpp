@@ -24,8 +24,10 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <regex>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -33,6 +35,7 @@
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <poll.h>
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -297,6 +300,61 @@ TEST_F(Hardening, ConnectionsPerAddressAreCapped) {
   expect_error(http_get(port(), "/api/v1/health"), 503, "too_many_connections");
   held.pop_back();
   std::this_thread::sleep_for(300ms);  // the server has seen it close
+  expect_healthy();
+}
+
+// Each connection is a file descriptor: a server started under a login's
+// soft limit (here 64) takes its hard limit, and holds more connections than
+// the soft limit allowed.
+TEST_F(Hardening, TheServerTakesItsHardLimitOfOpenFiles) {
+  rlimit mine{};
+  ASSERT_EQ(getrlimit(RLIMIT_NOFILE, &mine), 0);
+  if (mine.rlim_max < 1024) GTEST_SKIP() << "this machine's hard limit of open files is " << mine.rlim_max;
+  rlimit low = mine;
+  low.rlim_cur = 64;  // the server inherits it
+  ASSERT_EQ(setrlimit(RLIMIT_NOFILE, &low), 0);
+  const bool started = start({});
+  ASSERT_EQ(setrlimit(RLIMIT_NOFILE, &mine), 0);
+  ASSERT_TRUE(started);
+  rlimit server{};
+  ASSERT_EQ(prlimit(server_.pid(), RLIMIT_NOFILE, nullptr, &server), 0);
+  EXPECT_EQ(server.rlim_cur, mine.rlim_max);
+  std::vector<std::unique_ptr<RawSocket>> held;
+  for (int i = 0; i < 200; ++i) held.push_back(std::make_unique<RawSocket>(port()));
+  // Each is accepted: a request on the last one is answered.
+  ASSERT_TRUE(held.back()->send("GET /api/v1/health HTTP/1.1\r\nHost: x\r\n\r\n"));
+  EXPECT_EQ(status_of(held.back()->read_all(2s)), 200u);
+}
+
+// Out of file descriptors, a connection waits in the backlog: the server
+// waits for one to close instead of retrying the accept at once (a loop at
+// a full core), says so once, and serves again when connections close.
+TEST_F(Hardening, OutOfFileDescriptorsTheServerWaitsAndServesAgainOnceConnectionsClose) {
+  ASSERT_TRUE(start({}));
+  const auto open_now =
+      std::distance(fs::directory_iterator("/proc/" + std::to_string(server_.pid()) + "/fd"), fs::directory_iterator{});
+  const rlimit few{rlim_t(open_now + 10), rlim_t(open_now + 10)};
+  ASSERT_EQ(prlimit(server_.pid(), RLIMIT_NOFILE, &few, nullptr), 0);
+  std::vector<std::unique_ptr<RawSocket>> held;
+  for (int i = 0; i < 30; ++i) held.push_back(std::make_unique<RawSocket>(port()));  // the kernel's backlog takes them
+  std::this_thread::sleep_for(500ms);
+  const auto cpu_s = [&] {
+    std::ifstream f("/proc/" + std::to_string(server_.pid()) + "/stat");
+    std::string text((std::istreambuf_iterator<char>(f)), {});
+    std::istringstream rest(text.substr(text.rfind(')') + 2));
+    std::string field;
+    long ticks = 0;
+    for (int i = 3; i <= 15 && rest >> field; ++i)
+      if (i == 14 || i == 15) ticks += std::stol(field);  // utime, stime
+    return double(ticks) / double(sysconf(_SC_CLK_TCK));
+  };
+  const double before = cpu_s();
+  const auto t = Clock::now();
+  std::this_thread::sleep_for(1500ms);
+  EXPECT_LT((cpu_s() - before) / since(t), 0.5) << "the server spins while out of file descriptors";
+  EXPECT_NE(server_.stderr_text().find("out of file descriptors"), std::string::npos) << server_.stderr_text();
+  held.clear();
+  std::this_thread::sleep_for(500ms);  // the server has seen them close
   expect_healthy();
 }
 
