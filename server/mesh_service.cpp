@@ -8,6 +8,7 @@
 
 #include "core/cluster_decimate.h"
 #include "core/errors.h"
+#include "face_order.h"
 #include "io/draco_io.h"
 #include "io/materials.h"
 #include "io/mesh_io.h"
@@ -118,10 +119,12 @@ std::shared_ptr<const EncodedMesh> MeshService::cached(
 }
 
 namespace {
-std::shared_ptr<const EncodedMesh> encode(const Mesh& m, int bits, std::span<const std::uint32_t> face_material = {}) {
+std::shared_ptr<const EncodedMesh> encode(const Mesh& m, int bits, std::span<const std::uint32_t> face_material = {},
+                                          bool stored_ids = false) {
   auto enc = std::make_shared<EncodedMesh>();
   WriteOptions wo;
   wo.position_bits = bits;
+  wo.stored_ids = stored_ids;
   enc->bytes = write_draco_with_materials(m, face_material, wo);
   enc->vertices = m.num_vertices();
   enc->faces = m.num_faces();
@@ -139,11 +142,18 @@ std::shared_ptr<const EncodedMesh> MeshService::draco(const MeshRecord& rec, int
   check_quantization_bits(bits);
   return cached(rec.sha256 + "/" + std::to_string(bits), [&] {
     const std::shared_ptr<const Mesh> m = mesh(rec);
-    auto enc = encode(*m, bits, face_materials(store_, rec, m->num_faces()));
+    auto enc = encode(*m, bits, face_materials(store_, rec, m->num_faces()), true);
     std::lock_guard lock(mutex_);
     ++encodings_computed_;
     return enc;
   });
+}
+
+std::string MeshService::face_order(const MeshRecord& rec, int bits) {
+  const std::shared_ptr<const EncodedMesh> enc = draco(rec, bits);
+  std::call_once(enc->face_order_once,
+                 [&] { enc->face_order = protocol::pack_face_order(draco_face_order(enc->bytes, *mesh(rec))); });
+  return enc->face_order;
 }
 
 bool MeshService::has_preview(const MeshRecord& rec) const {

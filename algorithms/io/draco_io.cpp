@@ -10,6 +10,7 @@
 #include <array>
 #include <cstring>
 #include <deque>
+#include <numeric>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
@@ -29,7 +30,8 @@ namespace {
 // pair: a vertex on a material boundary becomes one point per material, all
 // pointing at the vertex's attribute values, and a GENERIC attribute named
 // kDracoMaterialAttribute holds each point's material.
-std::unique_ptr<draco::Mesh> to_draco(const Mesh& input, std::span<const std::uint32_t> face_material = {}) {
+std::unique_ptr<draco::Mesh> to_draco(const Mesh& input, std::span<const std::uint32_t> face_material = {},
+                                      bool stored_ids = false) {
   const Mesh mesh = with_per_vertex_attributes(input);
   if (!face_material.empty() && face_material.size() != mesh.num_faces())
     throw InvalidInput("the material list has " + std::to_string(face_material.size()) + " faces, the mesh " +
@@ -106,6 +108,28 @@ std::unique_ptr<draco::Mesh> to_draco(const Mesh& input, std::span<const std::ui
     auto metadata = std::make_unique<draco::AttributeMetadata>();
     metadata->AddEntryString("name", kDracoMaterialAttribute);
     metadata->set_att_unique_id(mat->unique_id());
+    out->AddAttributeMetadata(out->num_attributes() - 1, std::move(metadata));
+  }
+  if (stored_ids) {
+    // with_per_vertex_attributes keeps the faces and their corners in order:
+    // a corner names the input's vertex its new vertex was made from.
+    std::vector<std::uint32_t> vertex_of(n);
+    if (input.attributes_per_vertex()) std::iota(vertex_of.begin(), vertex_of.end(), 0u);
+    else
+      for (std::size_t f = 0; f < mesh.num_faces(); ++f)
+        for (int k = 0; k < 3; ++k) vertex_of[mesh.faces[f][k]] = std::uint32_t(input.faces[f][k]);
+    const std::size_t points = out->num_points();
+    draco::GeometryAttribute ga;
+    ga.Init(draco::GeometryAttribute::GENERIC, nullptr, 1, draco::DT_UINT32, false, 4, 0);
+    draco::PointAttribute* ids =
+        out->attribute(out->AddAttribute(ga, true, draco::AttributeValueIndex::ValueType(points)));
+    for (std::size_t p = 0; p < points; ++p) {
+      const std::uint32_t v = vertex_of[identity ? p : point_vertex[p]];
+      ids->SetAttributeValue(draco::AttributeValueIndex(draco::AttributeValueIndex::ValueType(p)), &v);
+    }
+    auto metadata = std::make_unique<draco::AttributeMetadata>();
+    metadata->AddEntryString("name", kDracoVertexIdAttribute);
+    metadata->set_att_unique_id(ids->unique_id());
     out->AddAttributeMetadata(out->num_attributes() - 1, std::move(metadata));
   }
   out->SetNumFaces(mesh.num_faces());
@@ -1024,7 +1048,7 @@ void read_gltf(std::string_view bytes, const std::string& name, bool binary, Rea
 }
 
 std::string write_draco(const Mesh& mesh, const WriteOptions& options, std::span<const std::uint32_t> face_material) {
-  auto dm = to_draco(mesh, face_material);
+  auto dm = to_draco(mesh, face_material, options.stored_ids);
   draco::Encoder encoder;
   encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, options.position_bits);
   encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, options.normal_bits);
@@ -1055,6 +1079,60 @@ namespace cgview {
 std::string write_draco_with_materials(const Mesh& mesh, std::span<const std::uint32_t> face_material,
                                        const WriteOptions& options) {
   return detail::write_draco(mesh, options, face_material);
+}
+
+std::vector<std::uint32_t> draco_face_order(std::string_view bytes, const Mesh& written) {
+  draco::DecoderBuffer buffer;
+  buffer.Init(bytes.data(), bytes.size());
+  draco::Decoder decoder;
+  auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
+  if (!decoded.ok()) throw InvalidInput("Draco could not decode the mesh: " + decoded.status().error_msg_string());
+  const draco::Mesh& dm = *decoded.value();
+  const draco::AttributeMetadata* named = dm.GetAttributeMetadataByStringEntry("name", kDracoVertexIdAttribute);
+  const draco::PointAttribute* ids = named ? dm.GetAttributeByUniqueId(named->att_unique_id()) : nullptr;
+  if (!ids || ids->num_components() != 1)
+    throw InvalidInput("the Draco bytes carry no vertex ids (written without stored_ids)");
+  // The written faces by their corners, sorted: a decoded face's corners may
+  // come rotated.  Equal faces (the same three vertices) are taken in order.
+  using Key = std::array<std::uint32_t, 3>;
+  auto key = [](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    Key k{a, b, c};
+    std::sort(k.begin(), k.end());
+    return k;
+  };
+  struct Hash {
+    std::size_t operator()(const Key& k) const {
+      return (std::size_t(k[0]) * 0x9E3779B97F4A7C15ull) ^ (std::size_t(k[1]) * 0xC2B2AE3D27D4EB4Full) ^
+             (std::size_t(k[2]) * 0x165667B19E3779F9ull);
+    }
+  };
+  std::unordered_map<Key, std::uint32_t, Hash> first;  // a key's first face; more in `next`
+  std::vector<std::uint32_t> next(written.num_faces(), ~0u);
+  first.reserve(written.num_faces());
+  for (std::size_t f = written.num_faces(); f-- > 0;) {
+    const auto& t = written.faces[f];
+    const auto [it, fresh] =
+        first.try_emplace(key(std::uint32_t(t[0]), std::uint32_t(t[1]), std::uint32_t(t[2])), std::uint32_t(f));
+    if (!fresh) {
+      next[f] = it->second;
+      it->second = std::uint32_t(f);
+    }
+  }
+  auto id_of = [&](draco::PointIndex p) {
+    std::uint32_t v = 0;
+    ids->GetMappedValue(p, &v);
+    return v;
+  };
+  std::vector<std::uint32_t> order(dm.num_faces());
+  for (std::size_t f = 0; f < dm.num_faces(); ++f) {
+    const auto& face = dm.face(draco::FaceIndex(static_cast<draco::FaceIndex::ValueType>(f)));
+    const auto it = first.find(key(id_of(face[0]), id_of(face[1]), id_of(face[2])));
+    if (it == first.end() || it->second == ~0u)
+      throw InvalidInput("decoded face " + std::to_string(f) + " is none of the written mesh's faces");
+    order[f] = it->second;
+    it->second = next[it->second];
+  }
+  return order;
 }
 
 }  // namespace cgview

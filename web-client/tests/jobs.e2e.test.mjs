@@ -138,6 +138,11 @@ test('running centroid_distance on the elephant: the job goes to done and the me
       }
     }).observe(root, { childList: true, subtree: true, attributes: true, characterData: true });
   });
+  // The mesh was streamed once: the field is drawn on it, not on a second download.
+  const asked = [];
+  const onRequest = (r) => asked.push(r.url());
+  page.on('request', onRequest);
+  t.after(() => page.off('request', onRequest));
   const form = page.locator('form.algorithm-form[data-algorithm="centroid_distance"]');
   await form.locator('input[data-param="exponent"]').fill('1.5');
   await form.locator('button.run').click();
@@ -182,6 +187,15 @@ test('running centroid_distance on the elephant: the job goes to done and the me
   assert.equal(shown.meshId, elephantId);
   assert.equal(shown.location, 'vertex');
   assert.equal(shown.count, ELEPHANT.vertices, 'one value per vertex');
+  assert.deepEqual(
+    asked.filter((u) => /\/download\b/.test(u)),
+    [],
+    'no second download of the mesh',
+  );
+  assert.ok(
+    asked.some((u) => u.includes(`/meshes/${elephantId}/face_order`)),
+    `the streamed faces' stored order was asked for: ${asked.join(' ')}`,
+  );
   assert.equal(shown.map, 'turbo', 'a distance (hint magnitude) is drawn on turbo');
   const legend = page.locator('#legend');
   assert.ok(await legend.isVisible(), 'the legend is shown');

@@ -194,6 +194,12 @@ export async function fetchMeshBytes(id: string, format: string, signal?: AbortS
   return response.arrayBuffer();
 }
 
+/** The stored face of each face of a mesh's Draco stream at `bits` (GET /meshes/{id}/face_order): packed, see viewer/stored_order.ts. */
+export async function fetchFaceOrder(id: string, bits = 14, signal?: AbortSignal): Promise<ArrayBuffer> {
+  const response = await fetchOk(`${BASE}/meshes/${encodeURIComponent(id)}/face_order?quantization=${bits}`, signal);
+  return response.arrayBuffer();
+}
+
 /** A mesh's texture image n (GET /meshes/{id}/textures/{n}), typed by the server (image/png or image/jpeg). */
 export async function fetchMeshTexture(id: string, n: number, signal?: AbortSignal): Promise<Blob> {
   const response = await fetchOk(`${BASE}/meshes/${encodeURIComponent(id)}/textures/${n}`, signal);

@@ -1,14 +1,16 @@
 // Brings a stored mesh into the viewer: streamed over the WebSocket (a big
 // mesh's decimated preview first), decoded in the worker, drawn, timed; and
-// the mesh in the server's vertex order (binary PLY), which fields and
-// selections are in.
+// the mesh in the server's vertex and face order, which fields and
+// selections are in: made from the streamed mesh and its face order
+// (viewer/stored_order.ts), or, for a mesh not streamed here, its binary PLY.
 import type * as THREE from 'three';
-import { fetchMeshBytes } from '../api/rest.ts';
+import { fetchFaceOrder, fetchMeshBytes } from '../api/rest.ts';
 import type { Mesh } from '../api/types.ts';
 import type { MeshTransfer } from '../api/ws.ts';
 import { readCamera } from '../viewer/camera_state.ts';
 import type { DracoDecoder } from '../viewer/draco_decoder.ts';
 import { parsePly, type PlyMesh } from '../viewer/ply.ts';
+import { storedOrder, unpackFaceOrder } from '../viewer/stored_order.ts';
 import { buildSurface } from '../viewer/surface_renderer.ts';
 import { LoadTimer } from '../viewer/timings.ts';
 import { describe, isAbort, type AppContext } from './context.ts';
@@ -20,6 +22,8 @@ export class MeshLoader {
   private readonly decoder: DracoDecoder;
   private load: { id: string; controller: AbortController } | null = null;
   private readonly plyCache = new Map<string, Promise<PlyMesh>>();
+  /** The last meshes streamed in full, by id: what their stored order is made from. */
+  private readonly streamed = new Map<string, DecodedMesh>();
   /** The latest show(): what is drawn on the mesh waits for it. */
   showing: Promise<void> = Promise.resolve();
 
@@ -28,11 +32,20 @@ export class MeshLoader {
     this.decoder = decoder;
   }
 
-  /** The mesh as stored, in the server's vertex order (fetched once). */
+  /** The mesh in the server's vertex and face order (made once): from the streamed mesh where it was streamed here. */
   ply(meshId: string): Promise<PlyMesh> {
     let p = this.plyCache.get(meshId);
     if (!p) {
-      p = fetchMeshBytes(meshId, 'ply').then(parsePly);
+      p = (async () => {
+        if (this.load?.id === meshId) await this.showing; // being streamed: wait for it
+        const decoded = this.streamed.get(meshId);
+        if (decoded?.vertexIds) {
+          const order = await unpackFaceOrder(await fetchFaceOrder(meshId), decoded.indices.length / 3);
+          const vertices = this.ctx.store.get().meshes.find((m) => m.id === meshId)?.report.vertices ?? 0;
+          return storedOrder(decoded, order, vertices);
+        }
+        return parsePly(await fetchMeshBytes(meshId, 'ply'));
+      })();
       p.catch(() => this.plyCache.delete(meshId));
       this.plyCache.set(meshId, p);
     }
@@ -176,6 +189,9 @@ export class MeshLoader {
     if (!current()) return null;
     timer.mark('decode-end');
     timer.setWorkerTiming(decoded.timing);
+    this.streamed.delete(mesh.id);
+    this.streamed.set(mesh.id, decoded);
+    while (this.streamed.size > 2) this.streamed.delete(this.streamed.keys().next().value as string);
     return { decoded, bytes };
   }
 }

@@ -33,6 +33,17 @@ export interface DecodedMesh {
    * mesh's `materials`. Null for a one-material mesh.
    */
   groups: MaterialGroup[] | null;
+  /**
+   * The stored vertex of each point (the server's "vertex_id" attribute:
+   * Draco renumbers vertices), or null when the payload has none (a preview).
+   */
+  vertexIds: Uint32Array | null;
+  /**
+   * Where the faces were sorted by material: the face of the Draco stream
+   * each face of `indices` was (its position in the decoder's order). Null:
+   * the decoder's order.
+   */
+  faceSource: Uint32Array | null;
   vertices: number;
   faces: number;
   /** How long the worker took, measured inside it. */

@@ -98,7 +98,7 @@ function groupByMaterial(
   mesh: DracoMesh,
   attr: DracoAttribute,
   indices: Uint32Array,
-): { indices: Uint32Array; groups: MaterialGroup[] } {
+): { indices: Uint32Array; groups: MaterialGroup[]; faceSource: Uint32Array } {
   const ids = readAttribute(draco, decoder, mesh, attr, draco.DT_UINT32, Uint32Array, 'the material ids');
   const faces = indices.length / 3;
   let materials = 0;
@@ -111,13 +111,15 @@ function groupByMaterial(
     if (next[m + 1] > next[m]) groups.push({ start: 3 * next[m], count: 3 * (next[m + 1] - next[m]), material: m });
   }
   const sorted = new Uint32Array(indices.length);
+  const faceSource = new Uint32Array(faces);
   for (let f = 0; f < faces; ++f) {
-    const at = 3 * next[ids[indices[3 * f]]]++;
-    sorted[at] = indices[3 * f];
-    sorted[at + 1] = indices[3 * f + 1];
-    sorted[at + 2] = indices[3 * f + 2];
+    const k = next[ids[indices[3 * f]]]++;
+    faceSource[k] = f;
+    sorted[3 * k] = indices[3 * f];
+    sorted[3 * k + 1] = indices[3 * f + 1];
+    sorted[3 * k + 2] = indices[3 * f + 2];
   }
-  return { indices: sorted, groups };
+  return { indices: sorted, groups, faceSource };
 }
 
 function decode(draco: DracoDecoderModule, payload: ArrayBuffer): Omit<DecodedMesh, 'timing'> {
@@ -167,12 +169,19 @@ function decode(draco: DracoDecoderModule, payload: ArrayBuffer): Omit<DecodedMe
       if (attr.num_components() === 2) uvs = readFloat32(draco, decoder, mesh, attr);
     }
     let groups: MaterialGroup[] | null = null;
+    let faceSource: Uint32Array | null = null;
     const materialId = decoder.GetAttributeIdByName(mesh, 'material');
     if (materialId >= 0) {
       const attr = decoder.GetAttribute(mesh, materialId);
-      if (attr.num_components() === 1) ({ indices, groups } = groupByMaterial(draco, decoder, mesh, attr, indices));
+      if (attr.num_components() === 1) ({ indices, groups, faceSource } = groupByMaterial(draco, decoder, mesh, attr, indices));
     }
-    return { positions, indices, normals, colors, uvs, groups, vertices: mesh.num_points(), faces };
+    let vertexIds: Uint32Array | null = null;
+    const vertexIdId = decoder.GetAttributeIdByName(mesh, 'vertex_id');
+    if (vertexIdId >= 0) {
+      const attr = decoder.GetAttribute(mesh, vertexIdId);
+      if (attr.num_components() === 1) vertexIds = readAttribute(draco, decoder, mesh, attr, draco.DT_UINT32, Uint32Array, 'the vertex ids');
+    }
+    return { positions, indices, normals, colors, uvs, groups, vertexIds, faceSource, vertices: mesh.num_points(), faces };
   } finally {
     draco.destroy(mesh);
     draco.destroy(decoder);
@@ -194,6 +203,8 @@ scope.onmessage = (ev) => {
       if (mesh.normals) transfer.push(mesh.normals.buffer);
       if (mesh.colors) transfer.push(mesh.colors.array.buffer);
       if (mesh.uvs) transfer.push(mesh.uvs.buffer);
+      if (mesh.vertexIds) transfer.push(mesh.vertexIds.buffer);
+      if (mesh.faceSource) transfer.push(mesh.faceSource.buffer);
       scope.postMessage({ id, ok: true, mesh }, transfer);
     })
     .catch((e: unknown) => {

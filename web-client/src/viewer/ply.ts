@@ -1,8 +1,10 @@
 // A reader for the binary little-endian PLY that the server writes
 // (GET /meshes/{id}/download?format=ply): vertex x y z (any numeric type,
 // other vertex properties skipped) and triangle faces as a list property.
-// The scalar-field renderer uses it because PLY keeps the server's vertex and
-// face order, which the Draco stream (Edgebreaker) does not.
+// PLY keeps the server's vertex and face order, which the Draco stream
+// (Edgebreaker) does not: it is how the viewer gets that order for a mesh it
+// has not streamed (a job's output mesh); a streamed mesh gets it from its
+// stored ids instead (viewer/stored_order.ts).
 
 export interface PlyMesh {
   positions: Float32Array;

@@ -4,7 +4,9 @@
 // Vertex order: the Draco stream that the viewer shows is Edgebreaker-encoded
 // and does not keep the server's vertex or face order, while scalar fields are
 // indexed in the server's order. So the coloured surface is built from the
-// mesh downloaded as binary PLY (viewer/ply.ts), which keeps that order.
+// mesh in the stored order (a PlyMesh): made from the streamed mesh and its
+// stored ids (viewer/stored_order.ts), or read from a binary PLY (viewer/ply.ts)
+// for a mesh not streamed here.
 //
 // Per-vertex fields: an indexed geometry with a colour per vertex, smooth
 // shaded, colours interpolated across faces. Per-face fields: the geometry is
