@@ -170,6 +170,41 @@ test('the address follows the view, holds no token, and a reload shows the same 
   assert.deepEqual(v.problems, [], v.describeProblems());
 });
 
+test("a skeleton drawn and a grid's slices are kept in the address, and a reload shows them again", async () => {
+  const { page } = v;
+  /** Data for the cube, uploaded as another tool's file: its import job, done. */
+  const importData = async (name, body) => {
+    const r = await fetch(`${v.server.url}/api/v1/data?name=${encodeURIComponent(name)}&mesh=${cube}`, { method: 'POST', body });
+    assert.equal(r.status, 201, await r.clone().text());
+    return r.json();
+  };
+  const bone = await importData('bone.polylines.txt', '2 0 -0.4 0 0 0.4 0\n');
+  const header = 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n';
+  const grid = await importData('two.nrrd', Buffer.concat([Buffer.from(header, 'ascii'), Buffer.from([0, 1, 0, 1, 0, 1, 0, 1])]));
+  const keys = [bone, grid].map((j) => `${j.id}/${j.artifacts[0].name}`);
+  await page.waitForFunction((ids) => ids.every((id) => document.querySelector(`#jobs li.job[data-job-id="${id}"]`)), [bone.id, grid.id], { timeout: 15000 });
+  // A link that shows them (as a notebook's view of such a job opens the viewer), then a reload.
+  const { url } = await waitForAddress((s) => s.mesh === cube, 'the cube');
+  await page.goto(`${url.split('&show=')[0]}&${keys.map((k) => `show=${encodeURIComponent(k)}`).join('&')}`);
+  await page.reload();
+  await page.waitForFunction(() => window.__cgview?.viewRestored != null, null, { timeout: 60000 });
+  const restored = await page.evaluate(() => window.__cgview.viewRestored);
+  assert.ok(!restored.error, `restoring failed: ${restored.error}`);
+  await page.waitForFunction((k) => window.__cgview.skeletons.some((s) => s.key === k), keys[0], { timeout: 15000 });
+  const skeleton = (await page.evaluate(() => window.__cgview.skeletons)).find((s) => s.key === keys[0]);
+  assert.deepEqual([skeleton.nodes, skeleton.edges], [2, 1], 'the bone drawn');
+  const panel = page.locator('#voxel-slices');
+  await panel.waitFor({ state: 'visible', timeout: 10000 });
+  assert.equal(await panel.locator('h2').textContent(), 'Slices of grid');
+  // The address keeps them: the view written again holds both.
+  const again = await waitForAddress((_, params) => params.getAll('show').length === 2, 'the shown skeleton and grid');
+  assert.deepEqual(again.params.getAll('show'), keys);
+  // Hidden, they leave the address.
+  await panel.getByRole('button', { name: /close/i }).click();
+  await waitForAddress((_, params) => !params.getAll('show').includes(keys[1]), 'the grid closed');
+  assert.deepEqual(v.problems, [], v.describeProblems());
+});
+
 test('another mesh, or a comparison, makes a history entry: Back returns to the view before it', async () => {
   const { page } = v;
   await settle(page);

@@ -75,12 +75,16 @@ def js_json(value):
     raise TypeError(f"{type(value).__name__} is not JSON")
 
 
-def view_hash(state, ticket=None):
+def view_hash(state, ticket=None, shows=()):
     """The page hash (with its '#') that opens `state` (a ViewState: v, mesh,
     camera, display, field...), as the viewer's encodeViewHash writes it;
-    with a ticket, `&ticket=` after it for the page to sign in with."""
+    `shows`: "JOB/ARTIFACT" keys of skeletons to draw and a voxel grid whose
+    slices to open (the hash's `show=`, controllers/view_links.ts); with a
+    ticket, `&ticket=` after it for the page to sign in with."""
+    from urllib.parse import quote
     b64 = base64.urlsafe_b64encode(js_json(state).encode()).decode().rstrip("=")
-    return f"#view={b64}" + (f"&ticket={ticket}" if ticket else "")
+    return (f"#view={b64}" + "".join(f"&show={quote(k, safe='')}" for k in shows) +
+            (f"&ticket={ticket}" if ticket else ""))
 
 
 def decode_view_hash(hash_):
@@ -89,7 +93,7 @@ def decode_view_hash(hash_):
     params = parse_qs(hash_.lstrip("#"), keep_blank_values=True)
     b64 = params.pop("view")[0]
     state = json.loads(base64.urlsafe_b64decode(b64 + "=" * (-len(b64) % 4)))
-    return state, {k: v[0] for k, v in params.items()}
+    return state, {k: (v if k == "show" else v[0]) for k, v in params.items()}
 
 
 def camera(bbox, azimuth=AZIMUTH, elevation=ELEVATION, fov=FOV):
@@ -141,12 +145,14 @@ class View:
     display(view)).  .url() is the view's link, .png() the picture's bytes,
     .html() the output's HTML."""
 
-    def __init__(self, client, mesh, field=None, mode=None, width=800, height=500, caption=None):
+    def __init__(self, client, mesh, field=None, mode=None, width=800, height=500, caption=None, scene=None,
+                 shows=()):
         if mode is not None and mode not in MODES:
             raise ValueError(f"mode must be one of {', '.join(MODES)}, not {mode!r}")
         self.client, self.mesh, self.field, self.mode = client, mesh, field, mode
         self.width, self.height = int(width), int(height)
         self.caption = caption
+        self.scene, self.shows = scene, tuple(shows)
         self._png = None
 
     def state(self):
@@ -156,12 +162,14 @@ class View:
             state["display"] = {"mode": self.mode}
         if self.field:
             state["field"] = self.field
+        if self.scene:
+            state["scene"] = self.scene
         return state
 
     def url(self, ticket=None):
         """The viewer's address opened on this view (for the browser: the
         client's view_url); with a ticket, one the page signs in with."""
-        return f"{self.client.view_url}/{view_hash(self.state(), ticket)}"
+        return f"{self.client.view_url}/{view_hash(self.state(), ticket, self.shows)}"
 
     def png(self):
         """The server's picture of the view (render.png, the view's size), fetched once."""
@@ -270,9 +278,10 @@ def mesh_view(client, mesh, field=None, mode=None, width=800, height=500):
 
 def job_view(client, job, artifact=None, mode=None, width=800, height=500):
     """The View of a job: its mesh coloured by its scalar field (the first, or
-    `artifact`).  A job without one (a mesh, a skeleton, a voxel grid: the
-    view link has no place for them yet) shows its input mesh, and the
-    caption says what to open in the viewer's job list."""
+    `artifact`); else its skeletons drawn over its mesh and its voxel grid's
+    slices open, or its output mesh in place of its input (the job's first,
+    or `artifact`).  The picture is of the input mesh (render.png draws
+    stored meshes and fields), and its caption says so."""
     if job.get("state") != "done":
         raise CGViewError(400, "bad_request", f"job {job['id']} is {job.get('state')}, not done: nothing to show yet")
     mesh_id = (job.get("inputs") or {}).get("mesh")
@@ -282,9 +291,21 @@ def job_view(client, job, artifact=None, mode=None, width=800, height=500):
     field = _field_artifact(job, artifact)
     if field is not None:
         return View(client, mesh, field_state(client, job, field), mode, width, height)
-    names = [a["name"] for a in job.get("artifacts") or []]
+    artifacts = job.get("artifacts") or []
+    names = [a["name"] for a in artifacts]
     if artifact is not None and artifact not in names:
         raise LookupError(f"job {job['id']} has no artifact {artifact!r} (it has {names})")
-    caption = (f"{mesh.get('name') or mesh_id}: the input of {job.get('algorithm')} {job['id']}; "
-               f"its {', '.join(names) or 'results'} open from the viewer's job list")
-    return View(client, mesh, None, mode, width, height, caption=caption)
+    chosen = [a for a in artifacts if artifact in (None, a["name"])]
+    key = lambda a: f"{job['id']}/{a['name']}"  # noqa: E731
+    shows = [key(a) for a in chosen if a["kind"] == "skeleton"]
+    shows += [key(a) for a in chosen if a["kind"] == "voxel_grid"][:1]  # one grid's slices are open at a time
+    meshes = [a for a in chosen if a["kind"] == "mesh"]
+    scene = None
+    if meshes and not shows:
+        # The output mesh stands in the scene as the viewer keeps a job's mesh (`job:JOB/ARTIFACT`), its input hidden.
+        scene = [{"mesh": mesh_id, "visible": False}, {"mesh": "job:" + key(meshes[0]), "visible": True}]
+    shown = [k.split("/", 1)[1] for k in shows] or ([meshes[0]["name"]] if scene else [])
+    what = f"with its {', '.join(shown)}" if shown else f"its {', '.join(names) or 'results'} open from the job list"
+    caption = (f"{mesh.get('name') or mesh_id}, the input of {job.get('algorithm')} {job['id']}, {what} "
+               f"(the picture: the input mesh)")
+    return View(client, mesh, None, mode, width, height, caption=caption, scene=scene, shows=shows)

@@ -222,14 +222,31 @@ class ShowOnLoopbackTest(unittest.TestCase):
         self.assertTrue(view.url().startswith("https://cgview.lab.example.org/#view="))
         self.assertIn("'https://cgview.lab.example.org'", view.html().replace('"', "'"))  # the messages' origin
 
-    def test_a_job_without_a_field_shows_its_mesh(self):
+    def test_a_job_without_a_field_shows_its_mesh_skeleton_or_grid(self):
         moved = self.client.run("orient_outward", self.mesh, on_progress=False)  # a mesh, no field
         self.assertNotIn("scalar_field", [a["kind"] for a in moved["artifacts"]])
         view = moved.show(width=64, height=48)
         state = view.state()
         self.assertEqual(state["mesh"], self.mesh.id)
         self.assertNotIn("field", state)
-        self.assertIn("job list", view.html())
+        [made] = [a["name"] for a in moved["artifacts"] if a["kind"] == "mesh"]
+        # The output mesh in the scene as the viewer keeps a job's mesh, the input hidden.
+        self.assertEqual(state["scene"], [{"mesh": self.mesh.id, "visible": False},
+                                          {"mesh": f"job:{moved.id}/{made}", "visible": True}])
+        self.assertIn(f"with its {made}", view.html())
+        # A skeleton is drawn and a grid's slices open: the link's `show`.
+        bone = self.client.upload_data_bytes(b"2 0 0 0 0 1 0\n", "bone.polylines.txt", self.mesh)
+        grid = self.client.upload_data_bytes(
+            b"NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n" + bytes(range(8)),
+            "cube.nrrd", self.mesh)
+        for job, kind in ((bone, "skeleton"), (grid, "voxel_grid")):
+            [a] = job["artifacts"]
+            self.assertEqual(a["kind"], kind)
+            view = job.show(width=64, height=48)
+            state, rest = decode_view_hash(fragment(view.url()))
+            self.assertEqual(state["mesh"], self.mesh.id)
+            self.assertEqual(rest, {"show": [f"{job.id}/{a['name']}"]})
+            self.assertNotIn("scene", state)
         with self.assertRaises(LookupError):
             moved.show(artifact="nothing")
         with self.assertRaises(LookupError):

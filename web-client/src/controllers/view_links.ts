@@ -9,8 +9,9 @@
 // page opened with a link, Back and Forward all show the hash's view.
 //
 // Beside `view`, the hash may hold what that format has no place for:
-// `up=z` (the shown mesh's up axis, which the camera's numbers assume) and
-// `compare` once per field compared side by side.
+// `up=z` (the shown mesh's up axis, which the camera's numbers assume),
+// `compare` once per field compared side by side, and `show` once per
+// skeleton drawn or voxel grid whose slices are open (`JOB/ARTIFACT`).
 import type { ArtifactRef, SceneEntry } from '../state/app_state.ts';
 import { artifactKey, splitKey } from '../state/app_state.ts';
 import { applyCamera, readCamera } from '../viewer/camera_state.ts';
@@ -100,6 +101,7 @@ export class ViewLinks {
     if (display.upAxis() === 'z') params.set('up', 'z');
     // Skeletons side by side are built by their kind from more than a list: only fields come back from a link.
     if (compared.every((c) => this.isField(c))) for (const c of compared) params.append('compare', artifactKey(c.jobId, c.artifact));
+    if (!compared.length) for (const key of app.kinds.shownKeys()) params.append('show', key);
     const entry = JSON.stringify([meshId, meshesOf(entries), scenePanes, compared.map((c) => artifactKey(c.jobId, c.artifact))]);
     return { hash: `#${params}`, entry };
   }
@@ -157,6 +159,7 @@ export class ViewLinks {
     const params = new URLSearchParams(location.hash.slice(1));
     const up = params.get('up') === 'z' ? 'z' : 'y';
     const compare = params.getAll('compare').map(splitKey);
+    const shows = params.getAll('show').map(splitKey);
     const now = store.get();
     const drawn = app.kinds.field.drawn();
     // The same mesh and scene with the same field (Back out of a comparison, say): no need to load them again.
@@ -193,6 +196,15 @@ export class ViewLinks {
       }
     }
     display.setUpAxis(up);
+    // Skeletons drawn and a grid's slices, by their kind.
+    const unknown: string[] = [];
+    for (const s of shows) {
+      const kind = jobOf(this.ctx, s.jobId)?.artifacts?.find((a) => a.name === s.artifact)?.kind;
+      if (!kind) unknown.push(artifactKey(s.jobId, s.artifact));
+      else if (!app.kinds.shownKeys().includes(artifactKey(s.jobId, s.artifact))) await app.kinds.show(s.jobId, s.artifact, kind);
+      if (!current()) return;
+    }
+    if (unknown.length) this.ctx.error(`The view link's ${unknown.join(', ')} no longer exist; the view is shown without them.`);
     if (state.panes && !store.get().scenePanes && store.get().scene.length > 1) app.scene.sideBySide();
     if (compare.length && keysOf(compare) !== keysOf(store.get().compared)) {
       await app.compare.compareFields(compare);

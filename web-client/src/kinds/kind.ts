@@ -16,6 +16,8 @@ export interface ArtifactKind {
   show(jobId: string, artifact: string): Promise<void>;
   /** Stops drawing the artifact, if it is drawn. */
   hide(jobId: string, artifact: string): void;
+  /** The artifacts of this kind drawn or open now, as `${jobId}/${artifact}` keys, which view links keep (`show=`); none: this kind is not kept. */
+  shownKeys?(): string[];
   /** Another mesh is chosen, or the one shown is gone: forgets what is drawn of this kind on it. */
   dispose(): void;
   /**

@@ -41,6 +41,11 @@ export class Kinds {
     return this.of(kind)?.show(jobId, artifact) ?? Promise.resolve();
   }
 
+  /** The skeletons drawn and the grid whose slices are open, as `${jobId}/${artifact}` keys (view links' `show=`). */
+  shownKeys(): string[] {
+    return [...this.byKind.values()].flatMap((m) => m.shownKeys?.() ?? []);
+  }
+
   hide(jobId: string, artifact: string, kind: string): void {
     this.of(kind)?.hide(jobId, artifact);
   }

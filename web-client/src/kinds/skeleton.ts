@@ -101,6 +101,10 @@ export class SkeletonKind implements ArtifactKind {
     }
   }
 
+  shownKeys(): string[] {
+    return [...this.drawn.keys()];
+  }
+
   hide(jobId: string, artifact: string): void {
     const key = artifactKey(jobId, artifact);
     const drawn = this.drawn.get(key);

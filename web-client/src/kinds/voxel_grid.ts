@@ -57,6 +57,11 @@ export class VoxelGridKind implements ArtifactKind {
     this.panel.close();
   }
 
+  shownKeys(): string[] {
+    const t = this.panel.opened();
+    return t ? [artifactKey(t.jobId, t.artifact)] : [];
+  }
+
   dispose(): void {
     // The slices are of a job's grid, not of the mesh shown: they stay open.
   }

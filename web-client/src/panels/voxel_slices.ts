@@ -103,6 +103,11 @@ export class VoxelSlicePanel {
     this.fetch();
   }
 
+  /** The grid the panel is open on, or null. */
+  opened(): { jobId: string; artifact: string } | null {
+    return this.target;
+  }
+
   close(): void {
     this.target = null;
     this.last = null;
