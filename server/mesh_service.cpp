@@ -8,7 +8,7 @@
 
 #include "core/cluster_decimate.h"
 #include "core/errors.h"
-#include "face_order.h"
+#include "stored_order.h"
 #include "io/draco_io.h"
 #include "io/materials.h"
 #include "io/mesh_io.h"
@@ -119,12 +119,10 @@ std::shared_ptr<const EncodedMesh> MeshService::cached(
 }
 
 namespace {
-std::shared_ptr<const EncodedMesh> encode(const Mesh& m, int bits, std::span<const std::uint32_t> face_material = {},
-                                          bool stored_ids = false) {
+std::shared_ptr<const EncodedMesh> encode(const Mesh& m, int bits, std::span<const std::uint32_t> face_material = {}) {
   auto enc = std::make_shared<EncodedMesh>();
   WriteOptions wo;
   wo.position_bits = bits;
-  wo.stored_ids = stored_ids;
   enc->bytes = write_draco_with_materials(m, face_material, wo);
   enc->vertices = m.num_vertices();
   enc->faces = m.num_faces();
@@ -142,18 +140,23 @@ std::shared_ptr<const EncodedMesh> MeshService::draco(const MeshRecord& rec, int
   check_quantization_bits(bits);
   return cached(rec.sha256 + "/" + std::to_string(bits), [&] {
     const std::shared_ptr<const Mesh> m = mesh(rec);
-    auto enc = encode(*m, bits, face_materials(store_, rec, m->num_faces()), true);
+    auto enc = encode(*m, bits, face_materials(store_, rec, m->num_faces()));
     std::lock_guard lock(mutex_);
     ++encodings_computed_;
     return enc;
   });
 }
 
-std::string MeshService::face_order(const MeshRecord& rec, int bits) {
+std::string MeshService::stored_order(const MeshRecord& rec, int bits) {
   const std::shared_ptr<const EncodedMesh> enc = draco(rec, bits);
-  std::call_once(enc->face_order_once,
-                 [&] { enc->face_order = protocol::pack_face_order(draco_face_order(enc->bytes, *mesh(rec))); });
-  return enc->face_order;
+  std::call_once(enc->stored_order_once, [&] {
+    const std::shared_ptr<const Mesh> m = mesh(rec);
+    WriteOptions wo;  // as encode() wrote the stream
+    wo.position_bits = bits;
+    const DracoStoredOrder order = draco_stored_order(enc->bytes, *m, face_materials(store_, rec, m->num_faces()), wo);
+    enc->stored_order = protocol::pack_stored_order(order.points, order.faces);
+  });
+  return enc->stored_order;
 }
 
 bool MeshService::has_preview(const MeshRecord& rec) const {

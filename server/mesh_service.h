@@ -29,10 +29,10 @@ struct EncodedMesh {
   std::string bytes;  // the Draco bitstream
   std::uint64_t vertices = 0, faces = 0;
   bool has_normals = false, has_colors = false;
-  // The stored face of each streamed face, packed (protocol/face_order.h):
-  // made from `bytes` on first request, for full meshes (written with stored ids).
-  mutable std::once_flag face_order_once;
-  mutable std::string face_order;
+  // The stored vertex of each streamed point and the stored face of each
+  // streamed face, packed (protocol/stored_order.h): made on first request.
+  mutable std::once_flag stored_order_once;
+  mutable std::string stored_order;
 };
 
 // When a mesh gets a preview (a coarse version streamed before it): more
@@ -65,10 +65,10 @@ class MeshService {
   std::shared_ptr<const Mesh> mesh(const MeshRecord& record);
   // The Draco encoding at a position quantization (1..30 bits).
   std::shared_ptr<const EncodedMesh> draco(const MeshRecord& record, int position_bits);
-  // The stored face of each face of draco(record, position_bits), packed
-  // (protocol/face_order.h); with the stream's vertex ids, what lets the
-  // viewer colour fields and select on the one mesh it downloaded.
-  std::string face_order(const MeshRecord& record, int position_bits);
+  // The stored vertex of each point and the stored face of each face of
+  // draco(record, position_bits), packed (protocol/stored_order.h): what
+  // lets the viewer colour fields and select on the one mesh it streamed.
+  std::string stored_order(const MeshRecord& record, int position_bits);
   // Whether the mesh is big enough to get a preview (its report's face count).
   bool has_preview(const MeshRecord& record) const;
   // The preview's Draco encoding (14 bits): the mesh decimated by vertex

@@ -177,7 +177,16 @@ void WsHandler::get_mesh(const json& msg, const json& id, const Caller& caller, 
   };
   const bool preview = lod != "full" && meshes_.has_preview(*rec);
   if (preview) send(meshes_.preview(*rec), "preview");
-  if (!preview || lod == "progressive") send(meshes_.draco(*rec, bits), "full");
+  if (!preview || lod == "progressive") {
+    send(meshes_.draco(*rec, bits), "full");
+    // The viewer asks for the stored order to colour a field or to select:
+    // made now, after the stream is queued, it is ready by then.
+    try {
+      meshes_.stored_order(*rec, bits);
+    } catch (const std::exception&) {
+      // Asked for again then, and its error answered there.
+    }
+  }
 }
 
 // get_animation: a job's animation artifact (chaos_animate's frames) as

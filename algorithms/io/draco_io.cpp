@@ -25,6 +25,9 @@ namespace cgview::detail {
 
 namespace {
 
+// The GENERIC attribute with each point's vertex in the written mesh (draco_stored_order).
+constexpr const char* kVertexIdAttribute = "vertex_id";
+
 // A draco::Mesh with one point per vertex (attributes made per vertex
 // first), or, given each face's material, one point per (vertex, material)
 // pair: a vertex on a material boundary becomes one point per material, all
@@ -128,7 +131,7 @@ std::unique_ptr<draco::Mesh> to_draco(const Mesh& input, std::span<const std::ui
       ids->SetAttributeValue(draco::AttributeValueIndex(draco::AttributeValueIndex::ValueType(p)), &v);
     }
     auto metadata = std::make_unique<draco::AttributeMetadata>();
-    metadata->AddEntryString("name", kDracoVertexIdAttribute);
+    metadata->AddEntryString("name", kVertexIdAttribute);
     metadata->set_att_unique_id(ids->unique_id());
     out->AddAttributeMetadata(out->num_attributes() - 1, std::move(metadata));
   }
@@ -1047,8 +1050,9 @@ void read_gltf(std::string_view bytes, const std::string& name, bool binary, Rea
   GltfReader(bytes, name, result).read(binary);
 }
 
-std::string write_draco(const Mesh& mesh, const WriteOptions& options, std::span<const std::uint32_t> face_material) {
-  auto dm = to_draco(mesh, face_material, options.stored_ids);
+std::string write_draco(const Mesh& mesh, const WriteOptions& options, std::span<const std::uint32_t> face_material,
+                        bool stored_ids) {
+  auto dm = to_draco(mesh, face_material, stored_ids);
   draco::Encoder encoder;
   encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, options.position_bits);
   encoder.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, options.normal_bits);
@@ -1061,7 +1065,7 @@ std::string write_draco(const Mesh& mesh, const WriteOptions& options, std::span
   return to_string(buf);
 }
 
-std::string write_draco(const Mesh& mesh, const WriteOptions& options) { return write_draco(mesh, options, {}); }
+std::string write_draco(const Mesh& mesh, const WriteOptions& options) { return write_draco(mesh, options, {}, false); }
 
 std::string write_glb(const Mesh& mesh) {
   auto dm = to_draco(mesh);
@@ -1078,22 +1082,72 @@ namespace cgview {
 
 std::string write_draco_with_materials(const Mesh& mesh, std::span<const std::uint32_t> face_material,
                                        const WriteOptions& options) {
-  return detail::write_draco(mesh, options, face_material);
+  return detail::write_draco(mesh, options, face_material, false);
 }
 
-std::vector<std::uint32_t> draco_face_order(std::string_view bytes, const Mesh& written) {
+namespace {
+std::unique_ptr<draco::Mesh> decode_draco(std::string_view bytes) {
   draco::DecoderBuffer buffer;
   buffer.Init(bytes.data(), bytes.size());
   draco::Decoder decoder;
   auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
   if (!decoded.ok()) throw InvalidInput("Draco could not decode the mesh: " + decoded.status().error_msg_string());
-  const draco::Mesh& dm = *decoded.value();
-  const draco::AttributeMetadata* named = dm.GetAttributeMetadataByStringEntry("name", kDracoVertexIdAttribute);
-  const draco::PointAttribute* ids = named ? dm.GetAttributeByUniqueId(named->att_unique_id()) : nullptr;
-  if (!ids || ids->num_components() != 1)
-    throw InvalidInput("the Draco bytes carry no vertex ids (written without stored_ids)");
+  return std::move(decoded).value();
+}
+}  // namespace
+
+DracoStoredOrder draco_stored_order(std::string_view bytes, const Mesh& written,
+                                    std::span<const std::uint32_t> face_material, const WriteOptions& options) {
+  const std::unique_ptr<draco::Mesh> plain = decode_draco(bytes);
+  const std::unique_ptr<draco::Mesh> dm = decode_draco(detail::write_draco(written, options, face_material, true));
+  // The attribute must not change Draco's traversal: the same points, at the same places, and the same faces.
+  const draco::PointAttribute* pa = plain->GetNamedAttribute(draco::GeometryAttribute::POSITION);
+  const draco::PointAttribute* pb = dm->GetNamedAttribute(draco::GeometryAttribute::POSITION);
+  std::string differs;
+  if (!pa || !pb || plain->num_points() != dm->num_points() || plain->num_faces() != dm->num_faces())
+    differs = std::to_string(plain->num_points()) + " points and " + std::to_string(plain->num_faces()) +
+              " faces against " + std::to_string(dm->num_points()) + " and " + std::to_string(dm->num_faces());
+  // Draco may number the points otherwise once there is one more attribute,
+  // but the faces come in the same order, each with the same corners (at the
+  // same quantized places) in the same turn: that gives the plain stream's
+  // point of each point of the other.
+  using P = std::array<float, 3>;
+  auto at = [](const draco::PointAttribute* a, draco::PointIndex p) {
+    P x;
+    a->GetMappedValue(p, x.data());
+    return x;
+  };
+  std::vector<std::uint32_t> plain_of(dm->num_points(), ~0u);
+  for (draco::FaceIndex f(0); differs.empty() && f < plain->num_faces(); ++f) {
+    const auto &fa = plain->face(f), &fb = dm->face(f);
+    int turn = -1;
+    for (int r = 0; r < 3 && turn < 0; ++r) {
+      bool ok = true;
+      for (int k = 0; k < 3 && ok; ++k) {
+        const std::uint32_t b = fb[(k + r) % 3].value();
+        ok = at(pa, fa[k]) == at(pb, fb[(k + r) % 3]) && (plain_of[b] == ~0u || plain_of[b] == fa[k].value());
+      }
+      if (ok) turn = r;
+    }
+    if (turn < 0) differs = "face " + std::to_string(f.value());
+    else
+      for (int k = 0; k < 3; ++k) plain_of[fb[(k + turn) % 3].value()] = fa[k].value();
+  }
+  if (!differs.empty())
+    throw InvalidInput("the Draco stream does not decode as the mesh written with its vertex ids does (" + differs +
+                       ")");
+  const draco::AttributeMetadata* named = dm->GetAttributeMetadataByStringEntry("name", detail::kVertexIdAttribute);
+  const draco::PointAttribute* ids = named ? dm->GetAttributeByUniqueId(named->att_unique_id()) : nullptr;
+  if (!ids || ids->num_components() != 1) throw Error("Draco lost the vertex ids");
+  DracoStoredOrder order;
+  order.points.assign(plain->num_points(), 0);
+  std::vector<std::uint32_t> stored_of(dm->num_points());  // the ids stream's points' stored vertices
+  for (draco::PointIndex p(0); p < dm->num_points(); ++p) {
+    ids->GetMappedValue(p, &stored_of[p.value()]);
+    if (plain_of[p.value()] != ~0u) order.points[plain_of[p.value()]] = stored_of[p.value()];
+  }
   // The written faces by their corners, sorted: a decoded face's corners may
-  // come rotated.  Equal faces (the same three vertices) are taken in order.
+  // come turned.  Equal faces (the same three vertices) are taken in order.
   using Key = std::array<std::uint32_t, 3>;
   auto key = [](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
     Key k{a, b, c};
@@ -1118,18 +1172,13 @@ std::vector<std::uint32_t> draco_face_order(std::string_view bytes, const Mesh& 
       it->second = std::uint32_t(f);
     }
   }
-  auto id_of = [&](draco::PointIndex p) {
-    std::uint32_t v = 0;
-    ids->GetMappedValue(p, &v);
-    return v;
-  };
-  std::vector<std::uint32_t> order(dm.num_faces());
-  for (std::size_t f = 0; f < dm.num_faces(); ++f) {
-    const auto& face = dm.face(draco::FaceIndex(static_cast<draco::FaceIndex::ValueType>(f)));
-    const auto it = first.find(key(id_of(face[0]), id_of(face[1]), id_of(face[2])));
+  order.faces.resize(dm->num_faces());
+  for (draco::FaceIndex f(0); f < dm->num_faces(); ++f) {
+    const auto& face = dm->face(f);
+    const auto it = first.find(key(stored_of[face[0].value()], stored_of[face[1].value()], stored_of[face[2].value()]));
     if (it == first.end() || it->second == ~0u)
-      throw InvalidInput("decoded face " + std::to_string(f) + " is none of the written mesh's faces");
-    order[f] = it->second;
+      throw InvalidInput("decoded face " + std::to_string(f.value()) + " is none of the written mesh's faces");
+    order.faces[f.value()] = it->second;
     it->second = next[it->second];
   }
   return order;

@@ -70,10 +70,6 @@ struct WriteOptions {
   int normal_bits = 10;    // Draco
   int uv_bits = 12;        // Draco
   int draco_speed = 5;     // Draco: 0 (best compression) .. 10 (fastest)
-  // Draco: each point carries the index of the vertex it was made from (a
-  // GENERIC attribute named kDracoVertexIdAttribute), since Draco renumbers
-  // vertices and faces (draco_io.h, draco_face_order).
-  bool stored_ids = false;
 };
 
 // Writes a mesh in the format named by the path's extension.

@@ -82,14 +82,14 @@ void add_mesh_routes(Routes& routes, const RouteContext& ctx) {
          return r;
        }});
   routes.push_back({"GET",
-                    "/api/v1/meshes/{id}/face_order",
-                    "The stored face of each face of the mesh's Draco stream (zlib of int32 differences)",
+                    "/api/v1/meshes/{id}/stored_order",
+                    "The stored vertex and face of each point and face of the mesh's Draco stream (zlib)",
                     {{"quantization", "the stream's position bits, 1..30 (default 14)"}},
                     [&ctx](const Params& p, const HttpRequest& req, const Caller& caller) {
                       const MeshRecord rec = ctx.mesh(p.at("id"), caller);
                       HttpResponse r;
                       r.body =
-                          ctx.meshes.face_order(rec, int_param(split_target(req.target).second, "quantization", 14));
+                          ctx.meshes.stored_order(rec, int_param(split_target(req.target).second, "quantization", 14));
                       r.content_type = "application/octet-stream";
                       return r;
                     }});

@@ -193,8 +193,8 @@ test('running centroid_distance on the elephant: the job goes to done and the me
     'no second download of the mesh',
   );
   assert.ok(
-    asked.some((u) => u.includes(`/meshes/${elephantId}/face_order`)),
-    `the streamed faces' stored order was asked for: ${asked.join(' ')}`,
+    asked.some((u) => u.includes(`/meshes/${elephantId}/stored_order`)),
+    `the stream's stored order was asked for: ${asked.join(' ')}`,
   );
   assert.equal(shown.map, 'turbo', 'a distance (hint magnitude) is drawn on turbo');
   const legend = page.locator('#legend');

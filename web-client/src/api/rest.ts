@@ -194,9 +194,9 @@ export async function fetchMeshBytes(id: string, format: string, signal?: AbortS
   return response.arrayBuffer();
 }
 
-/** The stored face of each face of a mesh's Draco stream at `bits` (GET /meshes/{id}/face_order): packed, see viewer/stored_order.ts. */
-export async function fetchFaceOrder(id: string, bits = 14, signal?: AbortSignal): Promise<ArrayBuffer> {
-  const response = await fetchOk(`${BASE}/meshes/${encodeURIComponent(id)}/face_order?quantization=${bits}`, signal);
+/** Where each point and face of a mesh's Draco stream at `bits` came from (GET /meshes/{id}/stored_order): packed, see viewer/stored_order.ts. */
+export async function fetchStoredOrder(id: string, bits = 14, signal?: AbortSignal): Promise<ArrayBuffer> {
+  const response = await fetchOk(`${BASE}/meshes/${encodeURIComponent(id)}/stored_order?quantization=${bits}`, signal);
   return response.arrayBuffer();
 }
 

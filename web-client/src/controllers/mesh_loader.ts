@@ -1,16 +1,16 @@
 // Brings a stored mesh into the viewer: streamed over the WebSocket (a big
 // mesh's decimated preview first), decoded in the worker, drawn, timed; and
 // the mesh in the server's vertex and face order, which fields and
-// selections are in: made from the streamed mesh and its face order
+// selections are in: made from the streamed mesh and its stored order
 // (viewer/stored_order.ts), or, for a mesh not streamed here, its binary PLY.
 import type * as THREE from 'three';
-import { fetchFaceOrder, fetchMeshBytes } from '../api/rest.ts';
+import { fetchMeshBytes, fetchStoredOrder } from '../api/rest.ts';
 import type { Mesh } from '../api/types.ts';
 import type { MeshTransfer } from '../api/ws.ts';
 import { readCamera } from '../viewer/camera_state.ts';
 import type { DracoDecoder } from '../viewer/draco_decoder.ts';
 import { parsePly, type PlyMesh } from '../viewer/ply.ts';
-import { storedOrder, unpackFaceOrder } from '../viewer/stored_order.ts';
+import { storedMesh, unpackStoredOrder } from '../viewer/stored_order.ts';
 import { buildSurface } from '../viewer/surface_renderer.ts';
 import { LoadTimer } from '../viewer/timings.ts';
 import { describe, isAbort, type AppContext } from './context.ts';
@@ -39,10 +39,10 @@ export class MeshLoader {
       p = (async () => {
         if (this.load?.id === meshId) await this.showing; // being streamed: wait for it
         const decoded = this.streamed.get(meshId);
-        if (decoded?.vertexIds) {
-          const order = await unpackFaceOrder(await fetchFaceOrder(meshId), decoded.indices.length / 3);
+        if (decoded) {
+          const order = await unpackStoredOrder(await fetchStoredOrder(meshId));
           const vertices = this.ctx.store.get().meshes.find((m) => m.id === meshId)?.report.vertices ?? 0;
-          return storedOrder(decoded, order, vertices);
+          return storedMesh(decoded, order, vertices);
         }
         return parsePly(await fetchMeshBytes(meshId, 'ply'));
       })();

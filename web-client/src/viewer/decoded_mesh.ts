@@ -34,11 +34,6 @@ export interface DecodedMesh {
    */
   groups: MaterialGroup[] | null;
   /**
-   * The stored vertex of each point (the server's "vertex_id" attribute:
-   * Draco renumbers vertices), or null when the payload has none (a preview).
-   */
-  vertexIds: Uint32Array | null;
-  /**
    * Where the faces were sorted by material: the face of the Draco stream
    * each face of `indices` was (its position in the decoder's order). Null:
    * the decoder's order.

@@ -175,13 +175,7 @@ function decode(draco: DracoDecoderModule, payload: ArrayBuffer): Omit<DecodedMe
       const attr = decoder.GetAttribute(mesh, materialId);
       if (attr.num_components() === 1) ({ indices, groups, faceSource } = groupByMaterial(draco, decoder, mesh, attr, indices));
     }
-    let vertexIds: Uint32Array | null = null;
-    const vertexIdId = decoder.GetAttributeIdByName(mesh, 'vertex_id');
-    if (vertexIdId >= 0) {
-      const attr = decoder.GetAttribute(mesh, vertexIdId);
-      if (attr.num_components() === 1) vertexIds = readAttribute(draco, decoder, mesh, attr, draco.DT_UINT32, Uint32Array, 'the vertex ids');
-    }
-    return { positions, indices, normals, colors, uvs, groups, vertexIds, faceSource, vertices: mesh.num_points(), faces };
+    return { positions, indices, normals, colors, uvs, groups, faceSource, vertices: mesh.num_points(), faces };
   } finally {
     draco.destroy(mesh);
     draco.destroy(decoder);
@@ -203,7 +197,6 @@ scope.onmessage = (ev) => {
       if (mesh.normals) transfer.push(mesh.normals.buffer);
       if (mesh.colors) transfer.push(mesh.colors.array.buffer);
       if (mesh.uvs) transfer.push(mesh.uvs.buffer);
-      if (mesh.vertexIds) transfer.push(mesh.vertexIds.buffer);
       if (mesh.faceSource) transfer.push(mesh.faceSource.buffer);
       scope.postMessage({ id, ok: true, mesh }, transfer);
     })

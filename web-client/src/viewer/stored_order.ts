@@ -1,23 +1,31 @@
 // The mesh in the server's stored order (vertices and faces as the file has
 // them, which fields and selections use), made from the mesh the viewer
-// streamed: Draco renumbers both, so the stream carries each point's stored
-// vertex (DecodedMesh.vertexIds) and the server sends each streamed face's
-// stored index (GET /meshes/{id}/face_order, protocol/face_order.h). No
-// second download of the mesh.
+// streamed: Draco renumbers both, and the server says where each streamed
+// point and face came from (GET /meshes/{id}/stored_order,
+// protocol/stored_order.h). No second download of the mesh.
 import type { DecodedMesh } from './decoded_mesh.ts';
 import type { PlyMesh } from './ply.ts';
 
-/** The stored index of each face in the decoder's order, from face_order's bytes (zlib of int32 differences). */
-export async function unpackFaceOrder(packed: ArrayBuffer, faces: number): Promise<Uint32Array> {
+/** Each streamed point's stored vertex and each streamed face's stored face, in the decoder's order. */
+export interface StoredOrder {
+  points: Uint32Array;
+  faces: Uint32Array;
+}
+
+/** The stored order from its bytes: zlib of 32-bit words P, F, then P and F differences. */
+export async function unpackStoredOrder(packed: ArrayBuffer): Promise<StoredOrder> {
   const raw = await new Response(new Blob([packed]).stream().pipeThrough(new DecompressionStream('deflate'))).arrayBuffer();
-  if (raw.byteLength !== faces * 4) throw new Error(`the face order has ${raw.byteLength / 4} faces, the mesh ${faces}`);
-  const order = new Uint32Array(raw);
-  let previous = 0;
-  for (let f = 0; f < faces; ++f) {
-    previous = (previous + order[f]) >>> 0; // differences modulo 2^32
-    order[f] = previous;
-  }
-  return order;
+  const words = new Uint32Array(raw, 0, Math.floor(raw.byteLength / 4));
+  const points = words[0] ?? 0;
+  const faces = words[1] ?? 0;
+  if (raw.byteLength !== 4 * (2 + points + faces)) throw new Error(`the stored order has ${raw.byteLength} bytes, not 8 + 4 × (${points} + ${faces})`);
+  const sums = (from: number, n: number) => {
+    const out = words.slice(from, from + n);
+    let previous = 0;
+    for (let i = 0; i < n; ++i) out[i] = previous = (previous + out[i]) >>> 0; // differences modulo 2^32
+    return out;
+  };
+  return { points: sums(2, points), faces: sums(2 + points, faces) };
 }
 
 /**
@@ -26,11 +34,12 @@ export async function unpackFaceOrder(packed: ArrayBuffer, faces: number): Promi
  * origin), each at its point's (quantized) position; each face at its stored
  * index with its points' stored vertices, in the stream's turn.
  */
-export function storedOrder(decoded: DecodedMesh, order: Uint32Array, vertices: number): PlyMesh {
-  const ids = decoded.vertexIds;
-  if (!ids) throw new Error('the streamed mesh carries no vertex ids');
+export function storedMesh(decoded: DecodedMesh, order: StoredOrder, vertices: number): PlyMesh {
   const faces = decoded.indices.length / 3;
-  if (order.length !== faces) throw new Error(`the face order has ${order.length} faces, the mesh ${faces}`);
+  if (order.points.length !== decoded.vertices || order.faces.length !== faces) {
+    throw new Error(`the stored order is of ${order.points.length} points and ${order.faces.length} faces, the mesh streamed ${decoded.vertices} and ${faces}`);
+  }
+  const ids = order.points;
   let count = vertices;
   for (let p = 0; p < ids.length; ++p) count = Math.max(count, ids[p] + 1);
   const positions = new Float32Array(3 * count);
@@ -43,7 +52,7 @@ export function storedOrder(decoded: DecodedMesh, order: Uint32Array, vertices: 
   const indices = new Uint32Array(3 * faces);
   const source = decoded.faceSource;
   for (let k = 0; k < faces; ++k) {
-    const s = 3 * order[source ? source[k] : k];
+    const s = 3 * order.faces[source ? source[k] : k];
     indices[s] = ids[decoded.indices[3 * k]];
     indices[s + 1] = ids[decoded.indices[3 * k + 1]];
     indices[s + 2] = ids[decoded.indices[3 * k + 2]];
