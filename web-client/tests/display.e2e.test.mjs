@@ -36,7 +36,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { artifactsDir, hueStats, pngPixels, repo, settle, useViewer, webClient } from './harness.mjs';
+import { artifactsDir, hueStats, orbitDrag, pngPixels, repo, settle, useViewer, webClient } from './harness.mjs';
 
 const samples = process.env.CGVIEW_SAMPLES ?? path.join(repo, 'build', 'samples');
 const referenceDir = path.join(webClient, 'tests', 'reference');
@@ -281,13 +281,7 @@ test('the view link reopens the same view: camera, mode, overlays and picture', 
   await page.check('#overlay-axes');
   await page.waitForFunction(() => window.__cgview.display?.overlays.axes && window.__cgview.display.preset === 'ceramic');
   // Orbit and zoom with the mouse, then wait for the damping to stop.
-  const box = await page.locator('#viewport canvas').boundingBox();
-  const cx = box.x + box.width / 2;
-  const cy = box.y + box.height / 2;
-  await page.mouse.move(cx, cy);
-  await page.mouse.down();
-  await page.mouse.move(cx + 60, cy + 25, { steps: 8 });
-  await page.mouse.up();
+  await orbitDrag(page, 60, 25);
   await page.mouse.wheel(0, -200);
   await settle(page);
   const first = await screenshot(page, 'link-first');

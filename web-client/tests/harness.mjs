@@ -298,3 +298,41 @@ export function shortNumber(text, what) {
   if (significantDigits(text) > 4) throw new Error(`${what} has more than 4 significant digits: "${text}"`);
   return Number(text);
 }
+
+/** An axis-aligned box of sides sx, sy, sz about the origin, its faces turned outwards: its corners and 12 triangles (0-based). */
+export function boxCorners(sx = 1, sy = 1, sz = 1) {
+  const corners = [];
+  for (let i = 0; i < 8; ++i) corners.push([(i & 1 ? 0.5 : -0.5) * sx, (i & 2 ? 0.5 : -0.5) * sy, (i & 4 ? 0.5 : -0.5) * sz]);
+  const quads = [
+    [0, 2, 3, 1],
+    [4, 5, 7, 6],
+    [0, 1, 5, 4],
+    [2, 6, 7, 3],
+    [0, 4, 6, 2],
+    [1, 3, 7, 5],
+  ];
+  return {
+    corners,
+    triangles: quads.flatMap(([a, b, c, d]) => [
+      [a, b, c],
+      [a, c, d],
+    ]),
+  };
+}
+
+/** The box of boxCorners as OFF text. */
+export function boxOff(sx = 1, sy = 1, sz = 1) {
+  const { corners, triangles } = boxCorners(sx, sy, sz);
+  return `OFF\n8 12 0\n${corners.map((p) => p.join(' ')).join('\n')}\n${triangles.map((t) => `3 ${t.join(' ')}`).join('\n')}\n`;
+}
+
+/** Drags the left button across the canvas from its middle by (dx, dy) pixels, as a user orbits. */
+export async function orbitDrag(page, dx, dy) {
+  const box = await page.locator('#viewport canvas').boundingBox();
+  const cx = box.x + box.width / 2;
+  const cy = box.y + box.height / 2;
+  await page.mouse.move(cx, cy);
+  await page.mouse.down();
+  await page.mouse.move(cx + dx, cy + dy, { steps: 8 });
+  await page.mouse.up();
+}

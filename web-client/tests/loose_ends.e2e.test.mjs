@@ -21,7 +21,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { artifactsDir, doneRow, pngPixels, repo, settle, shortNumber, sleep, submitJob, useViewer } from './harness.mjs';
+import { artifactsDir, boxCorners, doneRow, pngPixels, repo, settle, shortNumber, sleep, submitJob, useViewer } from './harness.mjs';
 
 const samples = process.env.CGVIEW_SAMPLES ?? path.join(repo, 'build', 'samples');
 const v = useViewer({ tmpPrefix: 'cgview-loose-ends-', mesh: path.join(samples, 'elephant.off') });
@@ -157,17 +157,9 @@ test("an upload's warnings and an import's are warnings: they stay longer than a
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'cgview-loose-ends-files-'));
   try {
     // A box whose OBJ names a material library not uploaded with it.
-    const corners = [];
-    for (let i = 0; i < 8; ++i) corners.push(`v ${i & 1 ? 0.5 : -0.5} ${i & 2 ? 0.5 : -0.5} ${i & 4 ? 0.5 : -0.5}`);
-    const quads = [
-      [1, 3, 4, 2],
-      [5, 6, 8, 7],
-      [1, 2, 6, 5],
-      [3, 7, 8, 4],
-      [1, 5, 7, 3],
-      [2, 4, 8, 6],
-    ];
-    const faces = quads.flatMap(([a, b, c, d]) => [`f ${a} ${b} ${c}`, `f ${a} ${c} ${d}`]);
+    const box = boxCorners();
+    const corners = box.corners.map((p) => `v ${p.join(' ')}`);
+    const faces = box.triangles.map((t) => `f ${t.map((i) => i + 1).join(' ')}`);
     const obj = path.join(dir, 'boxed.obj');
     fs.writeFileSync(obj, `mtllib boxed.mtl\n${corners.join('\n')}\n${faces.join('\n')}\n`);
     await page.setInputFiles('#file-input', obj);

@@ -18,29 +18,13 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { artifactsDir, pngPixels, repo, settle, sleep, useViewer } from './harness.mjs';
+import { artifactsDir, boxOff, orbitDrag, pngPixels, repo, settle, sleep, useViewer } from './harness.mjs';
 
 const samples = process.env.CGVIEW_SAMPLES ?? path.join(repo, 'build', 'samples');
 const v = useViewer({ tmpPrefix: 'cgview-state-' });
 /** How long a notice stays (panels/messages.ts), and a margin. */
 const NOTICE_MS = 5000;
 const MARGIN_MS = 2500;
-
-/** An axis-aligned box of sides sx, sy, sz about the origin, as OFF text, its faces turned outwards. */
-function boxOff(sx, sy, sz) {
-  const vertices = [];
-  for (let i = 0; i < 8; ++i) vertices.push(`${(i & 1 ? 0.5 : -0.5) * sx} ${(i & 2 ? 0.5 : -0.5) * sy} ${(i & 4 ? 0.5 : -0.5) * sz}`);
-  const quads = [
-    [0, 2, 3, 1],
-    [4, 5, 7, 6],
-    [0, 1, 5, 4],
-    [2, 6, 7, 3],
-    [0, 4, 6, 2],
-    [1, 3, 7, 5],
-  ];
-  const faces = quads.flatMap(([a, b, c, d]) => [`3 ${a} ${b} ${c}`, `3 ${a} ${c} ${d}`]);
-  return `OFF\n8 12 0\n${vertices.join('\n')}\n${faces.join('\n')}\n`;
-}
 
 async function upload(name, body) {
   const r = await fetch(`${v.server.url}/api/v1/meshes?name=${encodeURIComponent(name)}`, { method: 'POST', body });
@@ -142,13 +126,7 @@ test('a notice goes by itself, an error stays until dismissed, and no message co
 
 test('the address follows the view, holds no token, and a reload shows the same view', async () => {
   const { page } = v;
-  const box = await page.locator('#viewport canvas').boundingBox();
-  const cx = box.x + box.width / 2;
-  const cy = box.y + box.height / 2;
-  await page.mouse.move(cx, cy);
-  await page.mouse.down();
-  await page.mouse.move(cx + 80, cy + 30, { steps: 8 });
-  await page.mouse.up();
+  await orbitDrag(page, 80, 30);
   await settle(page);
   const camera = await page.evaluate(() => window.__cgview.camera());
   await waitForAddress((s) => s.mesh === cube && near(s.camera.position, camera.position), 'the orbited camera');
