@@ -40,9 +40,14 @@ export class MeshLoader {
         if (this.load?.id === meshId) await this.showing; // being streamed: wait for it
         const decoded = this.streamed.get(meshId);
         if (decoded) {
-          const order = await unpackStoredOrder(await fetchStoredOrder(meshId));
-          const vertices = this.ctx.store.get().meshes.find((m) => m.id === meshId)?.report.vertices ?? 0;
-          return storedMesh(decoded, order, vertices);
+          try {
+            const order = await unpackStoredOrder(await fetchStoredOrder(meshId));
+            const vertices = this.ctx.store.get().meshes.find((m) => m.id === meshId)?.report.vertices ?? 0;
+            return storedMesh(decoded, order, vertices);
+          } catch (e) {
+            // The server could not map its stream (API.md, stored_order): the mesh once more, as stored.
+            console.warn(`cgview: no stored order for ${meshId} (${describe(e)}): fetching it as PLY`);
+          }
         }
         return parsePly(await fetchMeshBytes(meshId, 'ply'));
       })();
