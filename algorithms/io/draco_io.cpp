@@ -1133,6 +1133,12 @@ DracoStoredOrder draco_stored_order(std::string_view bytes, const Mesh& written,
     else
       for (int k = 0; k < 3; ++k) plain_of[fb[(k + turn) % 3].value()] = fa[k].value();
   }
+  // One point for one point: each of the plain stream's points named once.
+  std::vector<std::uint32_t> matches(plain->num_points(), 0);
+  for (const std::uint32_t a : plain_of)
+    if (a != ~0u) ++matches[a];
+  for (std::size_t a = 0; differs.empty() && a < matches.size(); ++a)
+    if (matches[a] != 1) differs = "point " + std::to_string(a) + " matched " + std::to_string(matches[a]) + " times";
   if (!differs.empty())
     throw InvalidInput("the Draco stream does not decode as the mesh written with its vertex ids does (" + differs +
                        ")");
@@ -1144,7 +1150,7 @@ DracoStoredOrder draco_stored_order(std::string_view bytes, const Mesh& written,
   std::vector<std::uint32_t> stored_of(dm->num_points());  // the ids stream's points' stored vertices
   for (draco::PointIndex p(0); p < dm->num_points(); ++p) {
     ids->GetMappedValue(p, &stored_of[p.value()]);
-    if (plain_of[p.value()] != ~0u) order.points[plain_of[p.value()]] = stored_of[p.value()];
+    order.points[plain_of[p.value()]] = stored_of[p.value()];
   }
   // The written faces by their corners, sorted: a decoded face's corners may
   // come turned.  Equal faces (the same three vertices) are taken in order.
