@@ -119,11 +119,16 @@ std::shared_ptr<const EncodedMesh> MeshService::cached(
 }
 
 namespace {
-std::shared_ptr<const EncodedMesh> encode(const Mesh& m, int bits, std::span<const std::uint32_t> face_material = {}) {
-  auto enc = std::make_shared<EncodedMesh>();
+// How the streams are written: stored_order() writes the mesh again with these.
+WriteOptions stream_options(int bits) {
   WriteOptions wo;
   wo.position_bits = bits;
-  enc->bytes = write_draco_with_materials(m, face_material, wo);
+  return wo;
+}
+
+std::shared_ptr<const EncodedMesh> encode(const Mesh& m, int bits, std::span<const std::uint32_t> face_material = {}) {
+  auto enc = std::make_shared<EncodedMesh>();
+  enc->bytes = write_draco_with_materials(m, face_material, stream_options(bits));
   enc->vertices = m.num_vertices();
   enc->faces = m.num_faces();
   enc->has_normals = m.has_normals();
@@ -151,9 +156,8 @@ std::string MeshService::stored_order(const MeshRecord& rec, int bits) {
   const std::shared_ptr<const EncodedMesh> enc = draco(rec, bits);
   std::call_once(enc->stored_order_once, [&] {
     const std::shared_ptr<const Mesh> m = mesh(rec);
-    WriteOptions wo;  // as encode() wrote the stream
-    wo.position_bits = bits;
-    const DracoStoredOrder order = draco_stored_order(enc->bytes, *m, face_materials(store_, rec, m->num_faces()), wo);
+    const DracoStoredOrder order =
+        draco_stored_order(enc->bytes, *m, face_materials(store_, rec, m->num_faces()), stream_options(bits));
     enc->stored_order = protocol::pack_stored_order(order.points, order.faces);
   });
   return enc->stored_order;
