@@ -45,6 +45,8 @@ TEST_APT_PACKAGES=(
   # The fuzz targets (tests/fuzz): clang's sanitizer and libFuzzer runtimes are
   # in libclang-rt-14-dev, which clang only recommends.
   clang libfuzzer-14-dev libclang-rt-14-dev
+  # A campaign's CPU time, fork mode's children included (tests/fuzz/run.sh).
+  time
   python3 python3-websocket python3-prometheus-client
   openssl
   # The layout check of the C++ files (tests/style).

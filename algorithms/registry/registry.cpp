@@ -230,6 +230,12 @@ ParamValue check_param(const ParamSpec& spec, const ParamValue& value) {
   return value;
 }
 
+std::size_t detail::enum_index(const ParamInfo& i, const std::string& choice) {
+  const auto it = std::find(i.choices.begin(), i.choices.end(), choice);
+  if (it == i.choices.end()) throw InvalidInput("'" + choice + "' is not a choice");  // check_param said so first
+  return std::size_t(it - i.choices.begin());
+}
+
 ParamValue parse_param(const ParamSpec& spec, const std::string& text) {
   switch (spec.type) {
     case ParamType::integer: {

@@ -222,6 +222,18 @@ void check_selections(const std::vector<ParamSpec>& specs, const std::map<std::s
 
 namespace detail {
 
+// A choice held as an enum: its values are the choices, in order (the
+// first choice is the enum's 0).  Throws InvalidInput for a value past them.
+template <class E>
+std::string enum_name(const char* param, E v, const ParamInfo& i) {
+  const auto k = static_cast<std::size_t>(v);
+  if (k >= i.choices.size())
+    throw InvalidInput("parameter '" + std::string(param) + "': " + std::to_string(k) + " is not one of its " +
+                       std::to_string(i.choices.size()) + " choices");
+  return i.choices[k];
+}
+std::size_t enum_index(const ParamInfo& i, const std::string& choice);
+
 // Collects the specs of a Params struct (defaults from a default instance).
 struct SpecCollector {
   std::vector<ParamSpec> specs;
@@ -230,6 +242,11 @@ struct SpecCollector {
   void number(const char* n, double& v, ParamInfo i = {}) { add(n, ParamType::number, v, i); }
   void boolean(const char* n, bool& v, ParamInfo i = {}) { add(n, ParamType::boolean, v, i); }
   void choice(const char* n, std::string& v, ParamInfo i) { add(n, ParamType::choice, v, i); }
+  template <class E>
+    requires std::is_enum_v<E>
+  void choice(const char* n, E& v, ParamInfo i) {
+    add(n, ParamType::choice, enum_name(n, v, i), i);
+  }
   void text(const char* n, std::string& v, ParamInfo i = {}) { add(n, ParamType::text, v, i); }
   void faces(const char* n, Ids& v, ParamInfo i = {}) { add(n, ParamType::faces, v, i); }
   void vertices(const char* n, Ids& v, ParamInfo i = {}) { add(n, ParamType::vertices, v, i); }
@@ -257,9 +274,38 @@ struct ValueAssigner {
   void number(const char* n, double& v, const ParamInfo& = {}) { set(n, v); }
   void boolean(const char* n, bool& v, const ParamInfo& = {}) { set(n, v); }
   void choice(const char* n, std::string& v, const ParamInfo&) { set(n, v); }
+  template <class E>
+    requires std::is_enum_v<E>
+  void choice(const char* n, E& v, const ParamInfo& i) {
+    std::string name;
+    set(n, name);
+    if (!name.empty()) v = E(enum_index(i, name));
+  }
   void text(const char* n, std::string& v, const ParamInfo& = {}) { set(n, v); }
   void faces(const char* n, Ids& v, const ParamInfo& = {}) { set(n, v); }
   void vertices(const char* n, Ids& v, const ParamInfo& = {}) { set(n, v); }
+};
+
+// Checks each field of a Params struct against its own description (type,
+// range, choices): the ranges live in `describe` and nowhere else.
+struct ValueChecker {
+  template <class T>
+  void check(const char* n, ParamType t, const T& v, const ParamInfo& i) {
+    check_param(ParamSpec{n, t, ParamValue{v}, i}, ParamValue{v});
+  }
+  void integer(const char* n, long long& v, const ParamInfo& i = {}) { check(n, ParamType::integer, v, i); }
+  void integer(const char* n, int& v, const ParamInfo& i = {}) { check(n, ParamType::integer, (long long)v, i); }
+  void number(const char* n, double& v, const ParamInfo& i = {}) { check(n, ParamType::number, v, i); }
+  void boolean(const char*, bool&, const ParamInfo& = {}) {}
+  void choice(const char* n, std::string& v, const ParamInfo& i) { check(n, ParamType::choice, v, i); }
+  template <class E>
+    requires std::is_enum_v<E>
+  void choice(const char* n, E& v, const ParamInfo& i) {
+    enum_name(n, v, i);
+  }
+  void text(const char* n, std::string& v, const ParamInfo& i = {}) { check(n, ParamType::text, v, i); }
+  void faces(const char* n, Ids& v, const ParamInfo& i = {}) { check(n, ParamType::faces, v, i); }
+  void vertices(const char* n, Ids& v, const ParamInfo& i = {}) { check(n, ParamType::vertices, v, i); }
 };
 
 // While a plugin loads (plugins/plugin.h): an algorithm whose name is taken
@@ -317,7 +363,108 @@ struct PrecheckRegistrar {
   }
 };
 
+// An algorithm written as a function (see algorithms/filters/smooth.h):
+//   NameResult name(const Mesh&, const NameParams& = {}, Context* = nullptr);
+// or, for several inputs, a function of (const Inputs&, const NameParams&,
+// Context*) that picks them by name.  Its result struct lists its artifacts
+// with `template <class V> void outputs(V& v) { v("mesh", mesh); ... }` (a
+// std::optional one is left out while empty) and has `warnings`.
+template <class F>
+struct FunctionTraits : FunctionTraits<decltype(&F::operator())> {};
+template <class R, class In, class P>
+struct FunctionTraits<R (*)(In, const P&, Context*)> {
+  using Result = R;
+  using Params = P;
+};
+template <class C, class R, class In, class P>
+struct FunctionTraits<R (C::*)(In, const P&, Context*) const> {
+  using Result = R;
+  using Params = P;
+};
+
+template <class T>
+struct ArtifactKind;
+template <>
+struct ArtifactKind<Mesh> : std::integral_constant<OutputKind, OutputKind::mesh> {};
+template <>
+struct ArtifactKind<ScalarField> : std::integral_constant<OutputKind, OutputKind::scalar_field> {};
+template <>
+struct ArtifactKind<VoxelGrid> : std::integral_constant<OutputKind, OutputKind::voxel_grid> {};
+template <>
+struct ArtifactKind<Skeleton> : std::integral_constant<OutputKind, OutputKind::skeleton> {};
+template <>
+struct ArtifactKind<Metrics> : std::integral_constant<OutputKind, OutputKind::metrics> {};
+template <>
+struct ArtifactKind<Text> : std::integral_constant<OutputKind, OutputKind::text> {};
+template <>
+struct ArtifactKind<Animation> : std::integral_constant<OutputKind, OutputKind::animation> {};
+template <class T>
+struct ArtifactKind<std::optional<T>> : ArtifactKind<T> {};
+
+// Names the outputs a result struct declares, with their kinds.
+struct OutputCollector {
+  std::vector<std::pair<std::string, OutputKind>> outputs;
+  template <class T>
+  void operator()(const char* name, T&) {
+    outputs.emplace_back(name, ArtifactKind<T>::value);
+  }
+};
+// Moves a result struct's artifacts into an AlgorithmResult.
+struct ArtifactMover {
+  std::vector<Artifact>& artifacts;
+  template <class T>
+  void operator()(const char* name, T& v) {
+    artifacts.push_back({name, std::move(v)});
+  }
+  template <class T>
+  void operator()(const char* name, std::optional<T>& v) {
+    if (v) artifacts.push_back({name, std::move(*v)});
+  }
+};
+
+template <class Fn>
+Algorithm make_function_algorithm(std::string name, AlgorithmInfo info, Fn fn) {
+  using Params = typename FunctionTraits<Fn>::Params;
+  using Result = typename FunctionTraits<Fn>::Result;
+  if (info.outputs.empty()) {
+    Result r;
+    OutputCollector c;
+    r.outputs(c);
+    info.outputs = std::move(c.outputs);
+  }
+  return make_algorithm<Params>(std::move(name), std::move(info),
+                                [fn](const Inputs& in, const Params& p, Context& ctx) -> AlgorithmResult {
+                                  Result r = [&] {
+                                    if constexpr (std::is_invocable_v<Fn, const Inputs&, const Params&, Context*>)
+                                      return fn(in, p, &ctx);
+                                    else return fn(in.mesh("mesh"), p, &ctx);
+                                  }();
+                                  AlgorithmResult out;
+                                  ArtifactMover move{out.artifacts};
+                                  r.outputs(move);
+                                  out.warnings = std::move(r.warnings);
+                                  return out;
+                                });
+}
+
 }  // namespace detail
+
+// Throws InvalidInput naming the first parameter outside its description's
+// range or choices: what a function-algorithm checks first, so that a direct
+// call is held to the same rules as a job.
+template <class P>
+void check_params(const P& p) {
+  P copy = p;
+  detail::ValueChecker c;
+  copy.describe(c);
+}
+
+// The context of a direct call made without one: no progress, never cancelled.
+inline const Context& context_or_none(const Context* ctx) {
+  static const Context none;
+  return ctx ? *ctx : none;
+}
+
 }  // namespace cgview
 
 // Registers an algorithm at program start.  NAME: snake_case identifier.
@@ -326,6 +473,15 @@ struct PrecheckRegistrar {
 #define CGVIEW_REGISTER_PRECHECK(NAME, PARAMS, FN)                                                     \
   namespace {                                                                                          \
   const ::cgview::detail::PrecheckRegistrar<PARAMS, decltype(&FN)> cgview_precheck_##NAME{#NAME, &FN}; \
+  }
+
+// Registers a function-algorithm (make_function_algorithm): NAME, the
+// function (a function of the mesh, or of the Inputs for several), and the
+// AlgorithmInfo; its outputs come from the result struct.
+#define CGVIEW_REGISTER_FUNCTION(NAME, FN, ...)                                                           \
+  namespace {                                                                                             \
+  const ::cgview::detail::Registrar cgview_registrar_##NAME{                                              \
+      ::cgview::detail::make_function_algorithm(#NAME, ::cgview::AlgorithmInfo __VA_ARGS__, FN)}; \
   }
 
 #define CGVIEW_REGISTER_ALGORITHM(NAME, PARAMS, FN, ...)                                         \

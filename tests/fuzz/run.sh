@@ -4,7 +4,7 @@
 #
 #   tests/fuzz/run.sh --ci [TARGET...]          each target 20 s on the committed corpus
 #                                               (what ctest runs: a parser regression fails it)
-#   tests/fuzz/run.sh --campaign S [TARGET...]  each target S seconds of CPU on both cores,
+#   tests/fuzz/run.sh --campaign S [TARGET...]  each target S seconds on CGVIEW_JOBS cores (default: all),
 #                                               growing BUILD/fuzz/corpus/TARGET from the seeds
 #
 # A finding (crash, leak, sanitizer report, timeout over 10 s, more than
@@ -40,8 +40,11 @@ for t in "${TARGETS[@]}"; do
   # Fork mode counts out-of-memory inputs and timeouts without stopping; they are findings too.
   if [ "$MODE" = --campaign ]; then args+=(-fork="${CGVIEW_JOBS:-$(nproc)}" -ignore_crashes=0 -ignore_ooms=0 -ignore_timeouts=0); fi
   log="$BUILD/findings/$t.log"
-  if "$BUILD/fuzz_$t" "${args[@]}" "$work" "corpus/$t" >"$log" 2>&1; then
-    echo "fuzz_$t: $(grep -E '^#[0-9]+' "$log" | tail -1 | sed 's/^#/runs /')"
+  # /usr/bin/time counts the CPU of fork mode's children too: a campaign's
+  # size is its CPU time, which the wall clock overstates on a busy machine.
+  cpu="$BUILD/findings/$t.cpu"
+  if /usr/bin/time -f '%U %S' -o "$cpu" "$BUILD/fuzz_$t" "${args[@]}" "$work" "corpus/$t" >"$log" 2>&1; then
+    echo "fuzz_$t: $(grep -E '^#[0-9]+' "$log" | tail -1 | sed 's/^#/runs /'); $(awk '{printf "%.1f CPU-min", ($1+$2)/60}' "$cpu")"
   else
     echo "fuzz_$t: FINDING (log: $log)"; grep -E 'ERROR|SUMMARY|Test unit written' "$log" | head -5
     failed+=("$t")

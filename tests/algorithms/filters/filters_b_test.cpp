@@ -1,4 +1,4 @@
-// Everyday filters on CGAL, group B: simplify, smooth, remesh, fill_holes,
+// Everyday filters on CGAL, group B: simplify, remesh, fill_holes,
 // run through the registry on shapes with known answers.
 #include <gtest/gtest.h>
 
@@ -102,21 +102,6 @@ TEST(RemeshTest, ZeroMeansInputMeanEdgeLength) {
   EXPECT_NEAR(mean_edge_length(out), before, 0.2 * before);
 }
 
-TEST(SmoothTest, MeanCurvatureFlowReducesRadiusVariance) {
-  const Mesh noisy = noisy_sphere();
-  const Mesh out = mesh_of(run_algorithm("smooth", noisy, {{"method", std::string("mean_curvature_flow")}}));
-  EXPECT_EQ(out.num_vertices(), noisy.num_vertices());
-  EXPECT_LT(radius_variance(out), 0.5 * radius_variance(noisy));
-}
-
-TEST(SmoothTest, AngleSmoothingKeepsAClosedMesh) {
-  const Mesh noisy = noisy_sphere();
-  const Mesh out =
-      mesh_of(run_algorithm("smooth", noisy, {{"method", std::string("angle_and_area")}, {"iterations", 2LL}}));
-  EXPECT_EQ(out.num_vertices(), noisy.num_vertices());
-  EXPECT_TRUE(mesh_report(out).closed);
-}
-
 TEST(FillHolesTest, ClosesTheElephant) {
   const Mesh holed = read_mesh(test::sample("elephant-with-holes.off"));
   const Mesh whole = read_mesh(test::sample("elephant.off"));
@@ -142,7 +127,7 @@ TEST(FillHolesTest, TriangulateModeAndSizeLimit) {
 }
 
 TEST(FiltersBTest, NonManifoldInputIsRefused) {
-  for (const char* name : {"simplify", "smooth", "remesh", "fill_holes"}) {
+  for (const char* name : {"simplify", "remesh", "fill_holes"}) {
     try {
       run_algorithm(name, non_manifold());
       ADD_FAILURE() << name << " accepted a non-manifold mesh";
@@ -155,7 +140,7 @@ TEST(FiltersBTest, NonManifoldInputIsRefused) {
 
 TEST(FiltersBTest, CancelledJobsThrow) {
   const Mesh sphere = test::uv_sphere(1.0, 16, 32);
-  for (const char* name : {"simplify", "remesh", "smooth"}) {
+  for (const char* name : {"simplify", "remesh"}) {
     Context ctx({}, [] { return true; });
     EXPECT_THROW(find_algorithm(name).run(sphere, {}, ctx), Cancelled) << name;
   }

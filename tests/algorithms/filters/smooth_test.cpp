@@ -1,0 +1,47 @@
+// smooth on a noisy sphere: mean curvature flow pulls it back to round;
+// angle smoothing keeps it closed.
+#include "filters/smooth.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "core/mesh_report.h"
+#include "filter_shapes.h"
+#include "invalid_input.h"
+
+namespace cgview {
+namespace {
+
+TEST(SmoothTest, MeanCurvatureFlowReducesRadiusVariance) {
+  const Mesh noisy = test::noisy_sphere();
+  const Mesh out = smooth(noisy, {.method = SmoothMethod::mean_curvature_flow}).mesh;
+  EXPECT_EQ(out.num_vertices(), noisy.num_vertices());
+  EXPECT_LT(test::radius_variance(out), 0.5 * test::radius_variance(noisy));
+}
+
+TEST(SmoothTest, AngleSmoothingKeepsAClosedMesh) {
+  const Mesh noisy = test::noisy_sphere();
+  const Mesh out = smooth(noisy, {.method = SmoothMethod::angle_and_area, .iterations = 2}).mesh;
+  EXPECT_EQ(out.num_vertices(), noisy.num_vertices());
+  EXPECT_TRUE(mesh_report(out).closed);
+}
+
+TEST(SmoothTest, NonManifoldInputIsRefused) {
+  EXPECT_NE(test::invalid_input_message([] { smooth(test::non_manifold()); }).find("smooth needs a manifold mesh"),
+            std::string::npos);
+}
+
+TEST(SmoothTest, RangesComeFromTheDescription) {
+  EXPECT_NE(test::invalid_input_message([] { smooth(test::uv_sphere(), {.iterations = 0}); })
+                .find("parameter 'iterations': 0 is under the minimum 1"),
+            std::string::npos);
+}
+
+TEST(SmoothTest, CancelledJobsThrow) {
+  Context ctx({}, [] { return true; });
+  EXPECT_THROW(smooth(test::uv_sphere(1.0, 16, 32), {}, &ctx), Cancelled);
+}
+
+}  // namespace
+}  // namespace cgview
