@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "bench_server.h"
+#include "centroid_distance_plugin.h"
 #include "io/mesh_io.h"
 #include "io/samples.h"
 #include "plugins/plugin.h"
@@ -43,10 +44,7 @@ json wait_job(unsigned short port, const std::string& id) {
 }
 
 std::string template_as(const std::string& name, int run) {
-  std::string s =
-      cgview::read_file_bytes(fs::path(CGVIEW_SOURCE_DIR) / "algorithms/examples/centroid_distance.cpp", 1 << 20);
-  const std::string reg = "CGVIEW_REGISTER_ALGORITHM(centroid_distance,";
-  s.replace(s.find(reg), reg.size(), "CGVIEW_REGISTER_ALGORITHM(" + name + ",");
+  const std::string s = cgview::test::centroid_distance_plugin(CGVIEW_SOURCE_DIR, name);
   return s + "// run " + std::to_string(run) + "\n";  // a new text each run: no cache
 }
 

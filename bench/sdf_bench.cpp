@@ -23,31 +23,27 @@
 #include "io/mesh_io.h"
 #include "io/samples.h"
 #include "registry/registry.h"
-#include "sdf/sdf_fast.h"
-#include "sdf/sdf_params.h"
+#include "sdf/sdf_poisson.h"
+#include "sdf/sdf_rays.h"
 
 using namespace cgview;
 
 namespace {
 
 // Our whole sdf: face graph, rays, post-processing (as the algorithm runs it).
-std::vector<double> our_sdf(const Mesh& mesh, const sdf::SdfParamFields& p, bool smooth) {
+std::vector<double> our_sdf(const Mesh& mesh, const sdf::SdfParams& p, bool smooth) {
   Context ctx;
   const Adjacency graph = face_neighbors(mesh, edge_topology(mesh));
-  std::vector<double> v = sdf::raw_sdf(mesh, p.options()).values;
-  sdf::SdfParamFields q = p;
+  std::vector<double> v = sdf::raw_sdf(mesh, p).values;
+  sdf::SdfParams q = p;
   q.smooth = smooth;
   sdf::postprocess(mesh, graph, v, q, ctx);
   return v;
 }
 
-std::vector<double> our_fast(const Mesh& mesh, const sdf::SdfParamFields& p, double fraction, sdf::Solver solver) {
+std::vector<double> our_fast(const Mesh& mesh, const sdf::SdfParams& p, double fraction, sdf::Solver solver) {
   const Adjacency graph = face_neighbors(mesh, edge_topology(mesh));
-  sdf::FastOptions f;
-  f.fraction = fraction;
-  f.solver = solver;
-  f.smooth = p.smooth;
-  return sdf::sdf_fast(mesh, graph, p.options(), f).values;
+  return sdf::poisson_sdf(mesh, graph, {.fraction = fraction, .solver = solver, .sdf = p}).values;
 }
 
 Mesh sample(const std::string& name) {
@@ -77,9 +73,7 @@ int main(int argc, char** argv) {
   std::printf(
       "sdf against CGAL 5.5 sdf_values (25 rays, 120 degrees, Vogel's spiral, uniform weights, MAD outliers)\n");
   std::printf("%-18s %9s %10s %10s %8s %9s\n", "mesh", "faces", "CGAL s", "ours s", "ratio", "Pearson");
-  sdf::SdfParamFields cgal_like;
-  cgal_like.weights = "uniform";
-  cgal_like.outliers = "mad";
+  const sdf::SdfParams cgal_like{.weights = sdf::Weights::uniform, .outliers = sdf::Outliers::mad};
   for (const Input& in : inputs) {
     const bool big = in.mesh.faces.size() > 500000;
     SurfaceMesh sm = manifold_surface_mesh(in.mesh, "sdf_bench");
@@ -98,7 +92,7 @@ int main(int argc, char** argv) {
   std::printf("\nsdf_fast against our sdf (defaults: inverse-angle weights, std-dev outliers, bilateral filter)\n");
   std::printf("%-18s %9s %9s %10s %10s %8s %10s %10s %6s\n", "mesh", "fraction", "solver", "sdf s", "fast s", "ratio",
               "mean err", "p95 err", "");
-  const sdf::SdfParamFields defaults;
+  const sdf::SdfParams defaults;
   for (const Input& in : inputs) {
     std::vector<double> full;
     const double full_s = bench::best_seconds(opt.repeat, [&] { full = our_sdf(in.mesh, defaults, true); });

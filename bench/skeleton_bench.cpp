@@ -19,7 +19,7 @@
 #include "io/mesh_io.h"
 #include "io/samples.h"
 #include "registry/registry.h"
-#include "skeleton/skeleton_metrics.h"
+#include "skeleton/skeleton_measures.h"
 #include "voxel/voxel_ops.h"
 
 using namespace cgview;
@@ -109,7 +109,7 @@ int main(int argc, char** argv) {
     const Run mcf = run("skeleton_mcf", in.mesh, big ? 1 : opt.repeat);
     const Run proj = run("skeleton_projection", in.mesh, big ? 1 : opt.repeat, proj_params);
     const BBox box = bounding_box(in.mesh);
-    const SkeletonDistance d = skeleton_distance(mcf.skeleton, proj.skeleton);
+    const SkeletonDistance d = measure_distance(mcf.skeleton, proj.skeleton);
     const auto row = [](const Metrics& m) {
       char buf[64];
       std::snprintf(buf, sizeof buf, "%5.0f %3.0f %4.0f %5.0f %5.3f", m.at("nodes"), m.at("branches"),

@@ -73,8 +73,7 @@ json to_json(const Algorithm& a) {
 namespace {
 
 OutputKind kind_from(const std::string& k) {
-  for (OutputKind o : {OutputKind::mesh, OutputKind::scalar_field, OutputKind::voxel_grid, OutputKind::skeleton,
-                       OutputKind::metrics, OutputKind::text, OutputKind::animation})
+  for (OutputKind o : kOutputKinds)
     if (k == to_string(o)) return o;
   throw InvalidInput("an algorithm's description names no kind '" + k + "'");
 }

@@ -1,5 +1,6 @@
 #include "artifacts/artifact_codec.h"
 
+#include <charconv>
 #include <nlohmann/json.hpp>
 
 #include "core/ascii.h"
@@ -19,6 +20,7 @@ const ArtifactCodec& skeleton_codec();
 const ArtifactCodec& metrics_codec();
 const ArtifactCodec& text_codec();
 const ArtifactCodec& animation_codec();
+const ArtifactCodec& vector_field_codec();
 
 namespace {
 
@@ -43,30 +45,26 @@ const ArtifactCodec& artifact_codec(OutputKind kind) {
       return text_codec();
     case OutputKind::animation:
       return animation_codec();
+    case OutputKind::vector_field:
+      return vector_field_codec();
   }
   throw InvalidInput("no codec for this artifact kind");
 }
 
 const ArtifactCodec* artifact_codec(std::string_view kind_name) {
-  for (OutputKind k : {OutputKind::mesh, OutputKind::scalar_field, OutputKind::voxel_grid, OutputKind::skeleton,
-                       OutputKind::metrics, OutputKind::text, OutputKind::animation})
+  for (OutputKind k : kOutputKinds)
     if (kind_name == to_string(k)) return &artifact_codec(k);
   return nullptr;
 }
 
 OutputKind kind_of(const ArtifactValue& value) {
-  return std::visit(
-      [](const auto& v) {
-        using T = std::decay_t<decltype(v)>;
-        if constexpr (std::is_same_v<T, Mesh>) return OutputKind::mesh;
-        else if constexpr (std::is_same_v<T, ScalarField>) return OutputKind::scalar_field;
-        else if constexpr (std::is_same_v<T, VoxelGrid>) return OutputKind::voxel_grid;
-        else if constexpr (std::is_same_v<T, Skeleton>) return OutputKind::skeleton;
-        else if constexpr (std::is_same_v<T, Metrics>) return OutputKind::metrics;
-        else if constexpr (std::is_same_v<T, Text>) return OutputKind::text;
-        else return OutputKind::animation;
-      },
-      value);
+  return std::visit([](const auto& v) { return detail::ArtifactKind<std::decay_t<decltype(v)>>::value; }, value);
+}
+
+void append_shortest(std::string& s, double v) {
+  char buf[32];
+  const auto [p, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  s.append(buf, std::size_t(p - buf));
 }
 
 std::string ArtifactCodec::noun() const {
@@ -135,8 +133,7 @@ ExportedArtifact ArtifactCodec::exported(const fs::path& dir, const json& entry,
     out.bytes = read_file_bytes(dir / file, kAnySize);
     return out;
   }
-  const bool needs_mesh = kind() == OutputKind::scalar_field && f.name == "ply";
-  out.bytes = encode(load(dir, entry), name, needs_mesh ? input_mesh() : Mesh{}, f);
+  out.bytes = encode(load(dir, entry), name, needs_mesh(f) ? input_mesh() : Mesh{}, f);
   return out;
 }
 

@@ -12,6 +12,7 @@
 //   metrics       NAME.json       json
 //   text          NAME.txt        txt bin (the bytes as they are)
 //   animation     NAME.frames     frames (core/animation.h)
+//   vector_field  NAME.vec.f32    json f32 (served only), csv ply (points with the vectors as normals) vtk
 //
 // cgview-worker stores its results with store(), `cgview run` writes its -o
 // files with write(), and the server serves `?format=` with exported() and
@@ -60,6 +61,9 @@ class ArtifactCodec {
   // UnsupportedFormat for another format.
   virtual std::string encode(const ArtifactValue& value, const std::string& name, const Mesh& input,
                              const ArtifactFormat& format) const = 0;
+  // Whether `format` is written over the mesh the artifact was computed on
+  // (a field as PLY), which exported() then reads.
+  virtual bool needs_mesh(const ArtifactFormat&) const { return false; }
   // The stored form's bytes read back.  Throws ParseError for bytes that
   // are not one.
   virtual ArtifactValue decode(std::string_view stored, const std::string& name, const nlohmann::json& entry) const = 0;
@@ -88,6 +92,10 @@ class ArtifactCodec {
   // The served formats as a user reads them: "f32, json, txt, csv or ply".
   std::string format_list(bool served_only) const;
 };
+
+// Appends a number in the fewest digits that read back as the same double
+// (the text formats of fields).
+void append_shortest(std::string& s, double v);
 
 // The codec of a kind, and of a kind's name ("scalar_field"; nullptr for an unknown one).
 const ArtifactCodec& artifact_codec(OutputKind kind);

@@ -4,7 +4,6 @@
 // colour hint, range and count.  Exported as f32, json, txt (one value a
 // line, in vertex or face order), csv (index,value) or ply (the input mesh
 // with the values as a float property, for MeshLab and ParaView).
-#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
@@ -20,12 +19,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-void append_number(std::string& s, double v) {
-  char buf[32];
-  const auto [p, ec] = std::to_chars(buf, buf + sizeof buf, v);
-  s.append(buf, std::size_t(p - buf));
-}
 
 ColorHint hint_named(const std::string& hint) {
   return hint == "symmetric"     ? ColorHint::symmetric
@@ -51,6 +44,7 @@ class ScalarFieldCodec final : public ArtifactCodec {
   std::string served_default() const override { return "json"; }
   // `cgview run` writes a field for people and spreadsheets.
   std::string default_extension() const override { return ".txt"; }
+  bool needs_mesh(const ArtifactFormat& f) const override { return f.name == "ply"; }
 
   std::string encode(const ArtifactValue& value, const std::string&, const Mesh& input,
                      const ArtifactFormat& format) const override {
@@ -74,7 +68,7 @@ class ScalarFieldCodec final : public ArtifactCodec {
     if (csv) out = std::string(to_string(f.location)) + "," + f.name + "\n";
     for (std::size_t i = 0; i < f.values.size(); ++i) {
       if (csv) out += std::to_string(i) + ",";
-      append_number(out, f.values[i]);
+      append_shortest(out, f.values[i]);
       out += '\n';
     }
     return out;

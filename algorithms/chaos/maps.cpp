@@ -50,12 +50,6 @@ const char* to_string(MapKind k) {
   return "?";
 }
 
-MapKind map_kind_from_string(const std::string& s) {
-  for (MapKind k : {MapKind::ikeda, MapKind::cat, MapKind::logistic, MapKind::henon, MapKind::composite})
-    if (s == to_string(k)) return k;
-  throw InvalidInput("parameter 'map': '" + s + "' is not one of ikeda, cat, logistic, henon, composite");
-}
-
 Vec3 Normalization::to_normalized(Vec3 p) const {
   Vec3 q = (p - center) / half;  // [-1, 1] on the longest side
   if (unit) q = (q + Vec3{1, 1, 1}) * 0.5;
@@ -100,7 +94,7 @@ void map_one_step(std::vector<Vec3>& pts, const MapParams& p, std::vector<std::u
   for (std::size_t i = 0; i < pts.size(); ++i) {
     if (escaped[i]) continue;
     Vec3 q = pts[i];
-    switch (p.map) {
+    switch (p.kind) {
       case MapKind::ikeda: {
         const Point2 r = ikeda_step({q.x, q.y}, p.u);
         q.x = r.x, q.y = r.y;
@@ -131,12 +125,12 @@ void map_one_step(std::vector<Vec3>& pts, const MapParams& p, std::vector<std::u
 MapResult apply_map(const std::vector<Vec3>& positions, const MapParams& p, int steps,
                     const std::function<void(int)>& after_step) {
   if (steps < 0) throw InvalidInput("parameter 'steps': must be 0 or more, got " + std::to_string(steps));
-  if (p.map == MapKind::cat && p.grid < 2)
+  if (p.kind == MapKind::cat && p.grid < 2)
     throw InvalidInput("parameter 'grid': must be 2 or more, got " + std::to_string(p.grid));
-  const Normalization n = normalization_for(positions, p.map);
+  const Normalization n = normalization_for(positions, p.kind);
   std::vector<Vec3> q(positions.size());
   for (std::size_t i = 0; i < q.size(); ++i) q[i] = n.to_normalized(positions[i]);
-  if (p.map == MapKind::cat)
+  if (p.kind == MapKind::cat)
     for (Vec3& v : q) v.x = (cell(v.x, p.grid) + 0.5) / p.grid, v.y = (cell(v.y, p.grid) + 0.5) / p.grid;
   std::vector<std::uint8_t> escaped;
   for (int s = 0; s < steps; ++s) {

@@ -43,16 +43,17 @@ Vec3 composite_step(Vec3 p, double u);
 
 // ---- maps on meshes --------------------------------------------------------
 enum class MapKind { ikeda, cat, logistic, henon, composite };
-// "ikeda", "cat", ... ; map_kind_from_string throws InvalidInput naming 'map'.
+// "ikeda", "cat", ...
 const char* to_string(MapKind k);
-MapKind map_kind_from_string(const std::string& s);
 
+// The defaults are the algorithms' (chaos_map, chaos_animate: their labels
+// and ranges are in chaos/chaos_params.h).
 struct MapParams {
-  MapKind map = MapKind::ikeda;
-  double u = 0.9;             // Ikeda, composite
-  double r = 3.99;            // logistic
-  double a = 1.4, b = 0.3;    // Henon
-  std::uint32_t grid = 1024;  // cat: N
+  MapKind kind = MapKind::ikeda;
+  double u = 0.9;           // Ikeda, composite
+  double r = 3.99;          // logistic
+  double a = 1.4, b = 0.3;  // Henon
+  int grid = 1024;          // cat: N (2 or more)
 };
 
 // Normalized coordinates of a point set and back (see the header comment).

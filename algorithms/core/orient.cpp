@@ -12,7 +12,7 @@ void flip_faces(Mesh& mesh) {
   for (Vec3f& n : mesh.normals) n = {-n.x, -n.y, -n.z};
 }
 
-bool orient_outward(Mesh& mesh) {
+bool orient_outward_in_place(Mesh& mesh) {
   if (!mesh_report(mesh).faces_inward) return false;
   flip_faces(mesh);
   return true;

@@ -16,6 +16,6 @@ void flip_faces(Mesh& mesh);
 // when it did.  A mesh with no inside (open, non-manifold, inconsistently
 // oriented) is left as it is: false.  Shells inside others keep facing
 // into their hollow, since the volume counted is the whole mesh's.
-bool orient_outward(Mesh& mesh);
+bool orient_outward_in_place(Mesh& mesh);
 
 }  // namespace cgview

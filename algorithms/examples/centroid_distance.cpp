@@ -1,26 +1,13 @@
-// centroid_distance: the distance of each vertex from the mesh's centroid.
-// The template to copy for a new algorithm: one file, registered below,
-// and it appears in `cgview list`, GET /api/v1/algorithms and the viewer.
+#include "examples/centroid_distance.h"
+
 #include <algorithm>
 #include <cmath>
 
-#include "registry/registry.h"
-
 namespace cgview {
-namespace {
 
-struct Params {
-  bool normalize = false;  // defaults live here, once
-  double exponent = 1.0;
-  template <class V>
-  void describe(V& v) {
-    v.boolean("normalize", normalize, {.label = "Normalize", .help = "divide by the largest distance, giving 0..1"});
-    v.number("exponent", exponent,
-             {.label = "Exponent", .min = 0.1, .max = 4, .help = "raise each distance to this power"});
-  }
-};
-
-AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
+CentroidDistanceResult centroid_distance(const Mesh& mesh, const CentroidDistanceParams& p, Context* context) {
+  check_params(p);  // the ranges of describe, as a job's values are checked
+  const Context& ctx = context_or_none(context);
   if (mesh.num_vertices() == 0) throw InvalidInput("the mesh has no vertices");
   Vec3 c{};
   for (const Vec3& v : mesh.positions) c += v;
@@ -42,14 +29,12 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
       for (float& v : field.values) v /= largest;
   }
   ctx.progress(1.0, "done");
-  return {{{"distance", field}}, {}};
+  return {.distance = std::move(field), .warnings = {}};
 }
 
-CGVIEW_REGISTER_ALGORITHM(centroid_distance, Params, run,
-                          {.title = "Distance from the centroid",
-                           .description = "Per-vertex distance from the mesh's centroid: the template algorithm.",
-                           .area = "examples",
-                           .outputs = {{"distance", OutputKind::scalar_field}}})
+CGVIEW_REGISTER_FUNCTION(centroid_distance, centroid_distance,
+                         {.title = "Distance from the centroid",
+                          .description = "Per-vertex distance from the mesh's centroid: the template algorithm.",
+                          .area = "examples"})
 
-}  // namespace
 }  // namespace cgview

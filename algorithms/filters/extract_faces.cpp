@@ -1,24 +1,7 @@
-// extract_faces: the selected faces of a mesh as a mesh of their own (or,
-// with invert, the mesh without them): MeshLab's "Move selected faces to
-// another layer" / "Delete selected faces".  It is the example of an
-// algorithm that takes the viewer's selection as an input (a faces
-// parameter, see registry.h).
-#include <vector>
-
-#include "registry/registry.h"
+#include "filters/extract_faces.h"
 
 namespace cgview {
 namespace {
-
-struct Params {
-  Ids faces;
-  bool invert = false;
-  template <class V>
-  void describe(V& v) {
-    v.faces("faces", faces, {.label = "Faces", .help = "the ids of the faces to extract (the viewer's selection)"});
-    v.boolean("invert", invert, {.label = "Delete instead", .help = "keep the other faces: delete the selected ones"});
-  }
-};
 
 // The faces kept, in their original order, with the vertices they use
 // (renumbered in order of first use by the kept faces' original order: the
@@ -53,29 +36,36 @@ Mesh keep_faces(const Mesh& mesh, const std::vector<bool>& keep) {
   return out;
 }
 
-AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
+}  // namespace
+
+ExtractFacesResult extract_faces(const Mesh& mesh, const ExtractFacesParams& p, Context* context) {
+  check_params(p);
+  const Context& ctx = context_or_none(context);
   mesh.validate();
   if (p.faces.empty()) throw InvalidInput("parameter 'faces': select at least one face");
+  // A job's ids were checked against its mesh already; a direct call's are
+  // checked here, by the same rule and message, before they index `keep`.
+  ExtractFacesParams described = p;
+  detail::SpecCollector specs;
+  described.describe(specs);
+  check_selections(specs.specs, {{"faces", p.faces}}, mesh.num_vertices(), mesh.num_faces());
   ctx.progress(0.0, "extracting");
   std::vector<bool> keep(mesh.num_faces(), p.invert);
-  for (const Index f : p.faces) keep[f] = !p.invert;  // in range: the registry checked them
-  Mesh out = keep_faces(mesh, keep);
-  AlgorithmResult result;
+  for (const Index f : p.faces) keep[f] = !p.invert;
+  ExtractFacesResult result;
+  result.mesh = keep_faces(mesh, keep);
   double area = 0;
-  for (const double a : face_areas(out)) area += a;
-  Metrics m{{"faces", double(out.num_faces())}, {"vertices", double(out.num_vertices())}, {"area", area}};
-  result.artifacts.push_back({"mesh", std::move(out)});
-  result.artifacts.push_back({"metrics", std::move(m)});
+  for (const double a : face_areas(result.mesh)) area += a;
+  result.metrics = Metrics{
+      {"faces", double(result.mesh.num_faces())}, {"vertices", double(result.mesh.num_vertices())}, {"area", area}};
   ctx.progress(1.0, "done");
   return result;
 }
 
-CGVIEW_REGISTER_ALGORITHM(extract_faces, Params, run,
-                          {.title = "Extract selected faces",
-                           .description = "The selected faces as a new mesh with only the vertices they use (or, with "
-                                          "'delete instead', the mesh without them). Face order is kept.",
-                           .area = "filters",
-                           .outputs = {{"mesh", OutputKind::mesh}, {"metrics", OutputKind::metrics}}})
+CGVIEW_REGISTER_FUNCTION(extract_faces, extract_faces,
+                         {.title = "Extract selected faces",
+                          .description = "The selected faces as a new mesh with only the vertices they use (or, with "
+                                         "'delete instead', the mesh without them). Face order is kept.",
+                          .area = "filters"})
 
-}  // namespace
 }  // namespace cgview

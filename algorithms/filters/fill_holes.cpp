@@ -1,7 +1,7 @@
-// fill_holes: closes holes (border cycles) with CGAL's hole filling (Liepa
-// 2003): a minimal-weight triangulation, optionally refined to match the
-// surrounding density and faired to blend with it.  CGAL_EIGEN3_ENABLED is set
-// for this file by CMake: fairing solves a sparse system with Eigen.
+// CGAL_EIGEN3_ENABLED is set for this file by CMake: fairing solves a sparse
+// system with Eigen.
+#include "filters/fill_holes.h"
+
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 
@@ -11,40 +11,17 @@
 
 #include "core/surface_mesh.h"
 #include "filters/repair_mesh.h"
-#include "registry/registry.h"
 
 namespace cgview {
-namespace {
 
 namespace PMP = CGAL::Polygon_mesh_processing;
 
-struct Params {
-  bool repair = false;
-  int max_hole_edges = 1000;
-  std::string mode = "refine_and_fair";
-  template <class V>
-  void describe(V& v) {
-    v.integer("max_hole_edges", max_hole_edges,
-              {.label = "Largest hole (edges)",
-               .min = 3,
-               .max = 1e6,
-               .help = "holes bounded by more edges than this are left open"});
-    v.choice("mode", mode,
-             {.label = "Mode",
-              .help = "triangulate: fewest new faces; refine: also add vertices to match the surrounding "
-                      "density; refine_and_fair: also move them to blend smoothly with the surface",
-              .choices = {"triangulate", "refine", "refine_and_fair"}});
-    v.boolean(
-        "repair", repair,
-        {.label = "Repair first",
-         .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
-  }
-};
-
-AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
+FillHolesResult fill_holes(const Mesh& mesh, const FillHolesParams& p, Context* context) {
+  check_params(p);
+  const Context& ctx = context_or_none(context);
   if (mesh.num_faces() == 0) throw InvalidInput("fill_holes needs a mesh with faces");
   ctx.progress(0, "converting");
-  AlgorithmResult result;
+  FillHolesResult result;
   SurfaceMesh sm = halfedge_mesh_for(mesh, "fill_holes", p.repair, result.warnings);
   using Halfedge = SurfaceMesh::Halfedge_index;
   std::vector<Halfedge> cycles;
@@ -60,9 +37,9 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
     }
     std::vector<SurfaceMesh::Face_index> new_faces;
     std::vector<SurfaceMesh::Vertex_index> new_vertices;
-    if (p.mode == "triangulate") {
+    if (p.mode == FillHolesMode::triangulate) {
       PMP::triangulate_hole(sm, h, std::back_inserter(new_faces));
-    } else if (p.mode == "refine") {
+    } else if (p.mode == FillHolesMode::refine) {
       PMP::triangulate_and_refine_hole(sm, h, std::back_inserter(new_faces), std::back_inserter(new_vertices));
     } else {
       const bool faired = std::get<0>(PMP::triangulate_refine_and_fair_hole(sm, h, std::back_inserter(new_faces),
@@ -80,19 +57,16 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   if (filled + too_large < cycles.size())
     result.warnings.push_back(std::to_string(cycles.size() - filled - too_large) + " holes could not be triangulated");
   sm.collect_garbage();
-  result.artifacts.push_back({"mesh", from_surface_mesh(sm)});
-  result.artifacts.push_back(
-      {"metrics", Metrics{{"holes_found", double(cycles.size())}, {"holes_filled", double(filled)}}});
+  result.mesh = from_surface_mesh(sm);
+  result.metrics = Metrics{{"holes_found", double(cycles.size())}, {"holes_filled", double(filled)}};
   ctx.progress(1.0, "done");
   return result;
 }
 
-CGVIEW_REGISTER_ALGORITHM(fill_holes, Params, run,
-                          {.title = "Fill holes",
-                           .description = "Closes each hole of a manifold triangle mesh up to a size: triangulated, "
-                                          "optionally refined and faired.",
-                           .area = "filters",
-                           .outputs = {{"mesh", OutputKind::mesh}, {"metrics", OutputKind::metrics}}})
+CGVIEW_REGISTER_FUNCTION(fill_holes, fill_holes,
+                         {.title = "Fill holes",
+                          .description = "Closes each hole of a manifold triangle mesh up to a size: triangulated, "
+                                         "optionally refined and faired.",
+                          .area = "filters"})
 
-}  // namespace
 }  // namespace cgview

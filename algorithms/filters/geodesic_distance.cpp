@@ -1,7 +1,7 @@
-// geodesic_distance: approximate geodesic distance from source vertices by the
-// heat method (Crane, Weischedel and Wardetzky 2013), CGAL's Heat_method_3 with
-// intrinsic Delaunay refinement.  CGAL_EIGEN3_ENABLED is set for this file by
-// CMake: the method solves two sparse systems with Eigen.
+// CGAL_EIGEN3_ENABLED is set for this file by CMake: the heat method solves
+// two sparse systems with Eigen.
+#include "filters/geodesic_distance.h"
+
 #include <CGAL/Heat_method_3/Surface_mesh_geodesic_distances_3.h>
 
 #include <charconv>
@@ -10,19 +10,9 @@
 #include <vector>
 
 #include "core/surface_mesh.h"
-#include "registry/registry.h"
 
 namespace cgview {
 namespace {
-
-struct Params {
-  std::string sources = "0";
-  template <class V>
-  void describe(V& v) {
-    v.text("sources", sources,
-           {.label = "Source vertices", .help = "comma-separated vertex indices the distance is measured from"});
-  }
-};
 
 std::vector<std::size_t> parse_sources(const std::string& text, std::size_t num_vertices) {
   std::vector<std::size_t> out;
@@ -47,7 +37,11 @@ std::vector<std::size_t> parse_sources(const std::string& text, std::size_t num_
   return out;
 }
 
-AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
+}  // namespace
+
+GeodesicDistanceResult geodesic_distance(const Mesh& mesh, const GeodesicDistanceParams& p, Context* context) {
+  check_params(p);
+  const Context& ctx = context_or_none(context);
   if (mesh.num_faces() == 0) throw InvalidInput("geodesic_distance needs a mesh with faces");
   const std::vector<std::size_t> sources = parse_sources(p.sources, mesh.num_vertices());
   ctx.progress(0, "converting");
@@ -63,23 +57,20 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   for (std::size_t s : sources) hm.add_source(Vertex(SurfaceMesh::size_type(s)));
   ctx.progress(0.6, "solving");
   hm.estimate_geodesic_distances(dist);
-  ScalarField f{"distance", Location::vertex, ColorHint::magnitude, {}};
-  f.values.resize(mesh.num_vertices(), 0.0f);
+  GeodesicDistanceResult result;
+  result.distance = ScalarField{"distance", Location::vertex, ColorHint::magnitude, {}};
+  result.distance.values.resize(mesh.num_vertices(), 0.0f);
   for (Vertex v : sm.vertices())
-    if (!sm.is_isolated(v)) f.values[std::size_t(v)] = float(dist[v]);
-  AlgorithmResult result;
-  result.artifacts.push_back({"distance", std::move(f)});
+    if (!sm.is_isolated(v)) result.distance.values[std::size_t(v)] = float(dist[v]);
   ctx.progress(1.0, "done");
   return result;
 }
 
-CGVIEW_REGISTER_ALGORITHM(geodesic_distance, Params, run,
-                          {.title = "Geodesic distance (heat method)",
-                           .description = "Approximate geodesic distance on a manifold triangle mesh from one or "
-                                          "more source vertices, by the heat method on an intrinsic Delaunay "
-                                          "triangulation.",
-                           .area = "filters",
-                           .outputs = {{"distance", OutputKind::scalar_field}}})
+CGVIEW_REGISTER_FUNCTION(geodesic_distance, geodesic_distance,
+                         {.title = "Geodesic distance (heat method)",
+                          .description = "Approximate geodesic distance on a manifold triangle mesh from one or "
+                                         "more source vertices, by the heat method on an intrinsic Delaunay "
+                                         "triangulation.",
+                          .area = "filters"})
 
-}  // namespace
 }  // namespace cgview

@@ -1,12 +1,5 @@
-// hausdorff: the distance between two meshes, with a per-vertex error field.
-//
-// The symmetric Hausdorff distance max(h(A,B), h(B,A)), h(A,B) = max over
-// points a of A of min over points b of B of |a - b|, by CGAL's
-// bounded_error_Hausdorff_distance (Krayer and Müller 2021): exact within
-// `error_bound` times the bounding-box diagonal, over the whole surfaces, not
-// only at vertices.  The field is the distance from each vertex of "mesh" to
-// the surface of "reference" (closest point on an AABB tree of its
-// triangles), for the colour map; its maximum is a lower bound of h(A,B).
+#include "filters/hausdorff.h"
+
 // The kernel first: distance.h calls CGAL::midpoint without including it.
 #include "core/surface_mesh.h"
 
@@ -20,31 +13,18 @@
 #include <string>
 #include <vector>
 
-#include "registry/registry.h"
-
 namespace cgview {
 namespace {
-
-struct Params {
-  double error_bound = 1e-4;
-  template <class V>
-  void describe(V& v) {
-    v.number("error_bound", error_bound,
-             {.label = "Error bound",
-              .min = 1e-7,
-              .max = 0.1,
-              .help = "how far from the exact Hausdorff distance the answer may be, as a fraction of the "
-                      "bounding-box diagonal of both meshes"});
-  }
-};
 
 using Triangle = Kernel::Triangle_3;
 using Tree = CGAL::AABB_tree<
     CGAL::AABB_traits<Kernel, CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle>::const_iterator>>>;
 
-AlgorithmResult run(const Inputs& in, const Params& p, Context& ctx) {
-  const Mesh& a = in.mesh("mesh");
-  const Mesh& b = in.mesh("reference");
+}  // namespace
+
+HausdorffResult hausdorff(const Mesh& a, const Mesh& b, const HausdorffParams& p, Context* context) {
+  check_params(p);
+  const Context& ctx = context_or_none(context);
   if (a.num_faces() == 0) throw InvalidInput("input 'mesh' has no faces");
   if (b.num_faces() == 0) throw InvalidInput("input 'reference' has no faces");
   ctx.progress(0, "converting");
@@ -66,7 +46,9 @@ AlgorithmResult run(const Inputs& in, const Params& p, Context& ctx) {
     triangles.emplace_back(point(b.positions[f[0]]), point(b.positions[f[1]]), point(b.positions[f[2]]));
   Tree tree(triangles.begin(), triangles.end());
   tree.accelerate_distance_queries();
-  ScalarField field{"distance", Location::vertex, ColorHint::magnitude, {}};
+  HausdorffResult result;
+  ScalarField& field = result.distance;
+  field = ScalarField{"distance", Location::vertex, ColorHint::magnitude, {}};
   field.values.resize(a.num_vertices());
   double sum = 0, sum2 = 0, vmax = 0;
   for (std::size_t i = 0; i < a.num_vertices(); ++i) {
@@ -91,7 +73,7 @@ AlgorithmResult run(const Inputs& in, const Params& p, Context& ctx) {
   const double ba = PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(sb, sa, bound);
 
   const double n = double(std::max<std::size_t>(a.num_vertices(), 1));
-  Metrics m;
+  Metrics& m = result.metrics;
   m["hausdorff"] = std::max(ab, ba);
   m["mesh_to_reference"] = ab;
   m["reference_to_mesh"] = ba;
@@ -101,23 +83,25 @@ AlgorithmResult run(const Inputs& in, const Params& p, Context& ctx) {
   m["vertex_distance_max"] = vmax;
   m["vertex_distance_mean"] = sum / n;
   m["vertex_distance_rms"] = std::sqrt(sum2 / n);
-  AlgorithmResult result;
-  result.artifacts.push_back({"distance", std::move(field)});
-  result.artifacts.push_back({"metrics", std::move(m)});
   ctx.progress(1.0, "done");
   return result;
 }
 
-CGVIEW_REGISTER_ALGORITHM(
-    hausdorff, Params, run,
+// The inputs by name, "mesh" first (as its own statement: the order in which
+// a call's arguments are evaluated is unspecified) so that a job missing both
+// is told of "mesh".
+CGVIEW_REGISTER_FUNCTION(
+    hausdorff,
+    [](const Inputs& in, const HausdorffParams& p, Context* c) {
+      const Mesh& mesh = in.mesh("mesh");
+      return hausdorff(mesh, in.mesh("reference"), p, c);
+    },
     {.title = "Hausdorff distance",
      .description = "The symmetric Hausdorff distance between two meshes (exact within a "
                     "bound, over the whole surfaces), and each vertex's distance to the "
                     "reference as a colour map.",
      .area = "filters",
-     .outputs = {{"distance", OutputKind::scalar_field}, {"metrics", OutputKind::metrics}},
      .inputs = {{.name = "mesh", .kind = OutputKind::mesh, .help = "the mesh measured (it carries the colour map)"},
                 {.name = "reference", .kind = OutputKind::mesh, .help = "the mesh it is compared with"}}})
 
-}  // namespace
 }  // namespace cgview

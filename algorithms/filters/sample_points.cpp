@@ -1,36 +1,20 @@
-// sample_points: points drawn uniformly at random over the surface's area,
-// reproducible by seed.
-//
 // Not CGAL's sample_triangle_mesh: in CGAL 5.5 its random_seed only picks the
 // triangles, and the point inside each one comes from the global
 // get_default_random() (Generic_random_point_generator), so the same seed
 // gives different points and concurrent jobs share one generator.  Sampling
 // by area is a prefix sum and two uniforms (Turk 1990), with std::mt19937_64.
+#include "filters/sample_points.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
-#include <string>
-#include <vector>
-
-#include "registry/registry.h"
 
 namespace cgview {
-namespace {
 
-struct Params {
-  int count = 10000;
-  int seed = 0;
-  template <class V>
-  void describe(V& v) {
-    v.integer("count", count, {.label = "Points", .min = 1, .max = 1e7, .help = "how many points to draw"});
-    v.integer(
-        "seed", seed,
-        {.label = "Seed", .min = 0, .max = 2147483647, .help = "the random seed: the same seed, the same points"});
-  }
-};
-
-AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
+SamplePointsResult sample_points(const Mesh& mesh, const SamplePointsParams& p, Context* context) {
+  check_params(p);
+  const Context& ctx = context_or_none(context);
   if (mesh.num_faces() == 0) throw InvalidInput("sample_points needs a triangle mesh: the mesh has no faces");
   mesh.validate();
   ctx.progress(0.0, "areas");
@@ -59,18 +43,16 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
     const Vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]], c = mesh.positions[tri[2]];
     out.positions.push_back(a * (1 - s) + b * (s * (1 - t)) + c * (s * t));
   }
-  AlgorithmResult result;
-  result.artifacts.push_back({"points", std::move(out)});
+  SamplePointsResult result;
+  result.points = std::move(out);
   ctx.progress(1.0, "done");
   return result;
 }
 
-CGVIEW_REGISTER_ALGORITHM(sample_points, Params, run,
-                          {.title = "Sample points",
-                           .description = "Points drawn uniformly by area over the surface, reproducible by seed: a "
-                                          "point cloud, a mesh with no faces (written as .ply).",
-                           .area = "filters",
-                           .outputs = {{"points", OutputKind::mesh}}})
+CGVIEW_REGISTER_FUNCTION(sample_points, sample_points,
+                         {.title = "Sample points",
+                          .description = "Points drawn uniformly by area over the surface, reproducible by seed: a "
+                                         "point cloud, a mesh with no faces (written as .ply).",
+                          .area = "filters"})
 
-}  // namespace
 }  // namespace cgview

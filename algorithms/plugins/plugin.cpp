@@ -184,13 +184,13 @@ std::vector<std::string> load_plugin(const fs::path& library) {
   }
   if (!clashes.empty())
     throw InvalidInput("the plugin's algorithm '" + clashes.front() +
-                       "' has the name of an algorithm CGView has: rename it in CGVIEW_REGISTER_ALGORITHM");
+                       "' has the name of an algorithm CGView has: rename it in CGVIEW_REGISTER_FUNCTION");
   std::vector<std::string> added;
   for (const auto& [name, a] : algorithms())
     if (!before.count(name)) added.push_back(name);
   if (added.empty())
     throw InvalidInput("the plugin " + library.filename().string() +
-                       " registers no algorithm: end it with CGVIEW_REGISTER_ALGORITHM(name, Params, run, {...})");
+                       " registers no algorithm: end it with CGVIEW_REGISTER_FUNCTION(name, function, {...})");
   return added;
 }
 

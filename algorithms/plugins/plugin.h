@@ -1,6 +1,6 @@
 // Plugins: an algorithm file written against the public header (the
-// registry and the core types, registry/registry.h, as the template
-// examples/centroid_distance.cpp is) compiled into a shared library and
+// registry and the core types, registry/registry.h, as the code panel's
+// template docs/examples/height.cpp is) compiled into a shared library and
 // loaded into a running program, with no rebuild of CGView.
 //
 //   PluginBuild b = build_plugin("height.cpp", "height.so");   // g++, diagnostics as data
@@ -8,7 +8,10 @@
 //
 // The programs that load plugins (cgview, cgview-worker) export their
 // symbols (CMake's ENABLE_EXPORTS), so a plugin links against the registry
-// and core types already in them and carries none of its own.
+// and core types already in them and carries none of its own.  The
+// program's symbols come first: a plugin keeps its own functions in an
+// anonymous namespace, or a call to one named as one of CGView's may run
+// CGView's.
 #pragma once
 
 #include <filesystem>

@@ -151,6 +151,8 @@ const char* to_string(OutputKind k) {
       return "text";
     case OutputKind::animation:
       return "animation";
+    case OutputKind::vector_field:
+      return "vector_field";
   }
   return "?";
 }

@@ -2,19 +2,37 @@
 // parameters with their types, defaults, ranges and help, outputs), so that
 // the REST API, `cgview run` and the viewer's forms are generated from it.
 //
-// An algorithm is one .cpp file (see algorithms/examples/centroid_distance.cpp):
+// An algorithm is a function that a program calls directly, declared in its
+// header and registered at the end of its .cpp (the template:
+// algorithms/examples/centroid_distance.{h,cpp}; a choice as an enum:
+// algorithms/filters/smooth.h):
 //
-//   struct Params {
-//     double scale = 1.0;                                // the default, once
+//   struct ScaleParams {
+//     double factor = 1.0;                               // the default, once
 //     template <class V> void describe(V& v) {
-//       v.number("scale", scale, {.label = "Scale", .min = 0, .max = 10, .help = "..."});
+//       v.number("factor", factor, {.label = "Factor", .min = 0, .max = 10, .help = "..."});
 //     }
 //   };
-//   AlgorithmResult run(const Mesh&, const Params&, Context&);
-//   CGVIEW_REGISTER_ALGORITHM(my_algorithm, Params, run, {.title = "...", ...});
+//   struct ScaleResult {
+//     Mesh mesh;                                         // one member per output
+//     std::vector<std::string> warnings;
+//     template <class V> void outputs(V& v) { v("mesh", mesh); }
+//   };
+//   ScaleResult scale(const Mesh& mesh, const ScaleParams& p = {}, Context* ctx = nullptr);
 //
-// An algorithm of several inputs (hausdorff: "mesh" and "reference") lists
-// them in `.inputs` and takes `const Inputs&` instead of the mesh.
+//   // scale.cpp: the function starts with check_params(p) and reports
+//   // through context_or_none(ctx); then
+//   CGVIEW_REGISTER_FUNCTION(scale, scale, {.title = "...", .description = "...", .area = "..."})
+//
+// Its parameters come from describe, its outputs from outputs().  An
+// algorithm of several inputs (hausdorff: "mesh" and "reference") lists them
+// in `.inputs`, takes them as arguments, and registers a lambda of
+// (const Inputs&, const ScaleParams&, Context*) that picks them by name.
+//
+// CGVIEW_REGISTER_ALGORITHM(name, Params, run, {...}), around an
+// AlgorithmResult run(const Mesh&, const Params&, Context&) that lists its
+// outputs itself (and in `.outputs`), remains for plugins written with it
+// and for hand-written adapters (server/plugin_build_algorithm.cpp).
 //
 // The visitor pattern keeps each parameter's label, range and help beside
 // its field and its default in the field's initializer, and nowhere else.
@@ -34,6 +52,7 @@
 #include "core/mesh.h"
 #include "core/scalar_field.h"
 #include "core/skeleton.h"
+#include "core/vector_field.h"
 #include "core/voxel_grid.h"
 
 namespace cgview {
@@ -88,7 +107,7 @@ struct Text {
 };
 struct Artifact {
   std::string name;
-  std::variant<Mesh, ScalarField, VoxelGrid, Skeleton, Metrics, Text, Animation> value;
+  std::variant<Mesh, ScalarField, VoxelGrid, Skeleton, Metrics, Text, Animation, VectorField> value;
 };
 
 struct AlgorithmResult {
@@ -119,7 +138,11 @@ class Context {
 };
 
 // The kinds of output an algorithm declares.
-enum class OutputKind { mesh, scalar_field, voxel_grid, skeleton, metrics, text, animation };
+enum class OutputKind { mesh, scalar_field, voxel_grid, skeleton, metrics, text, animation, vector_field };
+// Every kind, in the order lists show them.
+inline constexpr OutputKind kOutputKinds[] = {
+    OutputKind::mesh,     OutputKind::scalar_field, OutputKind::vector_field, OutputKind::voxel_grid,
+    OutputKind::skeleton, OutputKind::metrics,      OutputKind::text,         OutputKind::animation};
 
 // An algorithm's named input ("mesh", "reference", "grid"), of one kind.
 struct InputSpec {  // initializers as in ParamInfo
@@ -243,10 +266,8 @@ struct SpecCollector {
   void boolean(const char* n, bool& v, ParamInfo i = {}) { add(n, ParamType::boolean, v, i); }
   void choice(const char* n, std::string& v, ParamInfo i) { add(n, ParamType::choice, v, i); }
   template <class E>
-    requires std::is_enum_v<E>
-  void choice(const char* n, E& v, ParamInfo i) {
-    add(n, ParamType::choice, enum_name(n, v, i), i);
-  }
+  requires std::is_enum_v<E>
+  void choice(const char* n, E& v, ParamInfo i) { add(n, ParamType::choice, enum_name(n, v, i), i); }
   void text(const char* n, std::string& v, ParamInfo i = {}) { add(n, ParamType::text, v, i); }
   void faces(const char* n, Ids& v, ParamInfo i = {}) { add(n, ParamType::faces, v, i); }
   void vertices(const char* n, Ids& v, ParamInfo i = {}) { add(n, ParamType::vertices, v, i); }
@@ -275,7 +296,7 @@ struct ValueAssigner {
   void boolean(const char* n, bool& v, const ParamInfo& = {}) { set(n, v); }
   void choice(const char* n, std::string& v, const ParamInfo&) { set(n, v); }
   template <class E>
-    requires std::is_enum_v<E>
+  requires std::is_enum_v<E>
   void choice(const char* n, E& v, const ParamInfo& i) {
     std::string name;
     set(n, name);
@@ -299,10 +320,8 @@ struct ValueChecker {
   void boolean(const char*, bool&, const ParamInfo& = {}) {}
   void choice(const char* n, std::string& v, const ParamInfo& i) { check(n, ParamType::choice, v, i); }
   template <class E>
-    requires std::is_enum_v<E>
-  void choice(const char* n, E& v, const ParamInfo& i) {
-    enum_name(n, v, i);
-  }
+  requires std::is_enum_v<E>
+  void choice(const char* n, E& v, const ParamInfo& i) { enum_name(n, v, i); }
   void text(const char* n, std::string& v, const ParamInfo& i = {}) { check(n, ParamType::text, v, i); }
   void faces(const char* n, Ids& v, const ParamInfo& i = {}) { check(n, ParamType::faces, v, i); }
   void vertices(const char* n, Ids& v, const ParamInfo& i = {}) { check(n, ParamType::vertices, v, i); }
@@ -398,6 +417,8 @@ template <>
 struct ArtifactKind<Text> : std::integral_constant<OutputKind, OutputKind::text> {};
 template <>
 struct ArtifactKind<Animation> : std::integral_constant<OutputKind, OutputKind::animation> {};
+template <>
+struct ArtifactKind<VectorField> : std::integral_constant<OutputKind, OutputKind::vector_field> {};
 template <class T>
 struct ArtifactKind<std::optional<T>> : ArtifactKind<T> {};
 
@@ -478,9 +499,9 @@ inline const Context& context_or_none(const Context* ctx) {
 // Registers a function-algorithm (make_function_algorithm): NAME, the
 // function (a function of the mesh, or of the Inputs for several), and the
 // AlgorithmInfo; its outputs come from the result struct.
-#define CGVIEW_REGISTER_FUNCTION(NAME, FN, ...)                                                           \
-  namespace {                                                                                             \
-  const ::cgview::detail::Registrar cgview_registrar_##NAME{                                              \
+#define CGVIEW_REGISTER_FUNCTION(NAME, FN, ...)                                                   \
+  namespace {                                                                                     \
+  const ::cgview::detail::Registrar cgview_registrar_##NAME{                                      \
       ::cgview::detail::make_function_algorithm(#NAME, ::cgview::AlgorithmInfo __VA_ARGS__, FN)}; \
   }
 

@@ -1,88 +1,41 @@
-// The Shape Diameter Function (Shapira, Shamir and Cohen-Or 2008, "Consistent
-// mesh partitioning and skeletonisation using the shape diameter function").
+// sdf: the Shape Diameter Function on every face (Shapira, Shamir and
+// Cohen-Or 2008; the rays are sdf/sdf_rays.h's), with CGAL's
+// post-processing: holes filled, then a bilateral filter.
 //
-// At the centroid c of face f, with inward normal -n, a cone of `rays` rays of
-// opening `cone_angle` is cast into the shape.  Ray i leaves along
-//   d_i = cos(a/2) (-n) + sin(a/2) R_i (cos Q_i u + sin Q_i v),
-// with (R_i, Q_i) Vogel's spiral on the unit disk (R_i = i / rays, the
-// sampling CGAL's sdf_values uses) and (u, v) a basis of f's plane.  A ray
-// counts when the first face it meets is seen from behind (the ray leaves
-// the shape there: dot(d_i, n_hit) > 0); its length is t_i.  Rays whose t_i
-// is further than one standard deviation from the median are outliers
-// (Shapira et al.; CGAL instead drops those beyond 1.5 median absolute
-// deviations), and
-//   SDF(f) = sum_i w_i t_i / sum_i w_i,   w_i = 1 / max(angle(d_i, -n), angle_1)
-// (the inverse of the ray's angle to the cone's axis; the axis ray gets the
-// weight of the next one, so that no weight is infinite).
-//
-// Ray casting uses Embree (Intel's ray tracing kernels, Debian's libembree):
-// a BVH built for the whole mesh once, rays traced on every core.
+//   Mesh m = read_mesh("elephant.off");
+//   sdf::SdfResult r = sdf::sdf(m, {.cone_angle = 90});
+//   std::printf("%zu faces, thickest %g\n", r.sdf.values.size(), r.metrics.at("max"));
 #pragma once
 
-#include <cstdint>
-#include <optional>
-#include <span>
 #include <string>
 #include <vector>
 
 #include "core/mesh.h"
+#include "registry/registry.h"
+#include "sdf/sdf_params.h"
 
-namespace cgview {
+namespace cgview::sdf {
 
-class Context;
+// SdfParams (sdf/sdf_params.h): the rays, the cone, and the smoothing.
 
-namespace sdf {
-
-enum class Weights { inverse_angle, uniform };
-enum class Outliers { std_dev, mad, none };
-
-inline constexpr int kMaxRays = 1024;
-
-struct SdfOptions {
-  int rays = 25;              // 1 .. kMaxRays
-  double cone_angle = 120.0;  // degrees, in (0, 180)
-  Weights weights = Weights::inverse_angle;
-  Outliers outliers = Outliers::std_dev;
-  int threads = 0;  // 0: one per core
+struct SdfResult {
+  ScalarField sdf;             // per face, in the mesh's units
+  ScalarField sdf_normalized;  // the same, linear to [0, 1]
+  ScalarField sdf_vertex;      // per vertex: the mean of its faces'
+  Metrics metrics;
+  std::vector<std::string> warnings;
+  template <class V>
+  void outputs(V& v) {
+    v("sdf", sdf);
+    v("sdf_normalized", sdf_normalized);
+    v("sdf_vertex", sdf_vertex);
+    v("metrics", metrics);
+  }
 };
 
-// The raw SDF of the faces listed (all faces when `faces` is empty): one value
-// per listed face, in the mesh's units, NaN where no ray found the inside (a
-// degenerate face, or every ray escaped through a hole of an open mesh).
-// `ctx` (may be null) gets progress over [progress_from, progress_to] and is
-// checked for cancellation.  Throws InvalidInput for a mesh with no faces or
-// options out of range.
-struct RawSdf {
-  std::vector<double> values;
-  std::size_t rays_cast = 0, rays_accepted = 0, missing = 0;
-};
-RawSdf raw_sdf(const Mesh& mesh, const SdfOptions& options, std::span<const std::uint32_t> faces = {},
-               const Context* ctx = nullptr, double progress_from = 0, double progress_to = 1);
+// Throws InvalidInput for a mesh without faces.  Rays that escape through a
+// hole of an open mesh are dropped, and a warning counts the faces left
+// without any.
+SdfResult sdf(const Mesh& mesh, const SdfParams& p = {}, Context* ctx = nullptr);
 
-// Checks the options (the rule broken is named); raw_sdf calls it.
-void check_options(const SdfOptions& options);
-
-// CGAL's post-processing of SDF values (Surface_mesh_segmentation's
-// Postprocess_sdf_values), with the same rules:
-// - fill_missing: a NaN face takes the mean of its edge neighbours' values,
-//   else the smallest value of the mesh;
-// - bilateral_smooth: each face becomes the average of the faces within
-//   `window` edge-rings (window = floor(sqrt(faces / 2000)) + 1 by default),
-//   weighted by exp(-ring^2 / (2 (window/2)^2)) exp(-dv^2 / (2 (1.5 s)^2)),
-//   s the RMS deviation of the window's values from the face's;
-// - normalize: linear to [0, 1] over min..max (all 0.5 when constant).
-void fill_missing(const Mesh& mesh, const Adjacency& face_graph, std::vector<double>& values);
-//   Only the faces listed in `only` when it is not empty; NaN values are
-//   neither smoothed nor averaged (the accelerated SDF smooths its samples).
-void bilateral_smooth(const Adjacency& face_graph, std::vector<double>& values, int window = 0,
-                      const Context* ctx = nullptr, std::span<const std::uint32_t> only = {});
-int default_window(std::size_t faces);
-std::vector<double> normalize_linear(const std::vector<double>& values);
-
-// Pearson's correlation of two equally long series (how far two SDFs agree:
-// the tests and the benchmark compare ours with CGAL's by it); 0 when either
-// is constant or empty.
-double pearson(std::span<const double> a, std::span<const double> b);
-
-}  // namespace sdf
-}  // namespace cgview
+}  // namespace cgview::sdf

@@ -1,183 +1,68 @@
 #include "sdf/sdf_fast.h"
 
-#include <Eigen/IterativeLinearSolvers>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
-#include <limits>
-#include <numeric>
 
-#include "filters/curvature.h"
-#include "registry/registry.h"
+#include "sdf/sdf_poisson.h"
 
 namespace cgview::sdf {
 namespace {
 
-std::uint64_t spread_bits(std::uint64_t x) {  // 21 bits to every third of 63
-  x &= 0x1fffff;
-  x = (x | x << 32) & 0x1f00000000ffffULL;
-  x = (x | x << 16) & 0x1f0000ff0000ffULL;
-  x = (x | x << 8) & 0x100f00f00f00f00fULL;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
-  x = (x | x << 2) & 0x1249249249249249ULL;
-  return x;
-}
-
-Vec3 centroid(const Mesh& m, std::size_t f) {
-  const Tri& t = m.faces[f];
-  return (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) / 3.0;
-}
-
-// Connected part of each face in the dual graph.
-std::vector<std::uint32_t> face_components(const Adjacency& g, std::uint32_t& count) {
-  constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> part(g.size(), none), stack;
-  count = 0;
-  for (std::size_t s = 0; s < g.size(); ++s) {
-    if (part[s] != none) continue;
-    part[s] = count;
-    stack.assign(1, std::uint32_t(s));
-    while (!stack.empty()) {
-      const std::uint32_t f = stack.back();
-      stack.pop_back();
-      for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h)
-        if (part[*h] == none) part[*h] = count, stack.push_back(*h);
-    }
-    ++count;
-  }
-  return part;
-}
-
-// Each face's nearest known face's value (breadth-first from all of them):
-// the conjugate gradients' start.
-std::vector<double> nearest_known(const Adjacency& g, const std::vector<double>& values) {
-  std::vector<double> out = values;
-  std::vector<std::uint32_t> queue;
-  for (std::size_t f = 0; f < values.size(); ++f)
-    if (!std::isnan(values[f])) queue.push_back(std::uint32_t(f));
-  for (std::size_t k = 0; k < queue.size(); ++k)
-    for (const std::uint32_t* h = g.begin(queue[k]); h != g.end(queue[k]); ++h)
-      if (std::isnan(out[*h])) out[*h] = out[queue[k]], queue.push_back(*h);
-  return out;
-}
-
-// kappa(p) * lambda: the mean of the face's vertices' mean curvature, times
-// curvature_weight * l^2.
-std::vector<double> guidance(const Mesh& mesh, const Adjacency& g, double weight) {
-  std::vector<double> out(mesh.faces.size(), 0.0);
-  if (weight == 0) return out;
-  const CurvatureResult k = vertex_curvatures(mesh);
-  double length = 0;
-  std::size_t arcs = 0;
-  for (std::size_t f = 0; f < g.size(); ++f)
-    for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h, ++arcs)
-      length += norm(centroid(mesh, f) - centroid(mesh, *h));
-  const double l = arcs ? length / double(arcs) : 0.0;
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const Tri& t = mesh.faces[f];
-    out[f] = weight * l * l * (k.mean[t[0]] + k.mean[t[1]] + k.mean[t[2]]) / 3.0;
-  }
-  return out;
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
 }  // namespace
 
-std::vector<std::uint32_t> spread_samples(const Mesh& mesh, const Adjacency& g, std::size_t count) {
-  const std::size_t n = mesh.faces.size();
-  count = std::clamp<std::size_t>(count, 1, n);
-  BBox box;
-  for (const Vec3& p : mesh.positions) box.add(p);
-  const Vec3 size = box.size();
-  const double extent = std::max({size.x, size.y, size.z, 1e-300});
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> order(n);
-  for (std::size_t f = 0; f < n; ++f) {
-    const Vec3 q = (centroid(mesh, f) - box.min) / extent * double((1 << 21) - 1);
-    order[f] = {
-        spread_bits(std::uint64_t(q.x)) | spread_bits(std::uint64_t(q.y)) << 1 | spread_bits(std::uint64_t(q.z)) << 2,
-        std::uint32_t(f)};
+SdfFastResult sdf_fast(const Mesh& mesh, const SdfFastParams& p, Context* context) {
+  check_params(p);
+  const Context& ctx = context_or_none(context);
+  const auto t0 = std::chrono::steady_clock::now();
+  const Adjacency graph = face_neighbors(mesh, edge_topology(mesh));
+  FastSdf approx = poisson_sdf(mesh, graph, p, &ctx);
+  SdfFastResult result;
+  warn_missing(approx.raw, result.warnings);
+  const double fast_seconds = seconds_since(t0);
+  Metrics& m = result.metrics;
+  m = {{"faces", double(mesh.faces.size())},
+       {"samples", double(approx.samples.size())},
+       {"unknowns", double(approx.unknowns)},
+       {"iterations", double(approx.iterations)},
+       {"seconds", fast_seconds}};
+  result.sdf_fast =
+      ScalarField{"sdf_fast", Location::face, ColorHint::standard, {approx.values.begin(), approx.values.end()}};
+  if (p.compare) {
+    const auto t1 = std::chrono::steady_clock::now();
+    RawSdf full = raw_sdf(mesh, p.sdf, {}, &ctx, 0.0, 0.9);
+    postprocess(mesh, graph, full.values, p.sdf, ctx);
+    m["full_seconds"] = seconds_since(t1);
+    m["speedup"] = m["full_seconds"] / std::max(fast_seconds, 1e-9);
+    const auto [lo, hi] = std::minmax_element(full.values.begin(), full.values.end());
+    const double range = std::max(*hi - *lo, 1e-300);
+    std::vector<float> error(full.values.size());
+    for (std::size_t f = 0; f < error.size(); ++f) error[f] = float(std::abs(approx.values[f] - full.values[f]));
+    std::vector<float> sorted = error;
+    std::sort(sorted.begin(), sorted.end());
+    double mean = 0;
+    for (float e : error) mean += e;
+    mean /= double(error.size());
+    m["mean_error"] = mean / range;  // fractions of the full SDF's range
+    m["p95_error"] = sorted[std::min(sorted.size() - 1, std::size_t(0.95 * double(sorted.size())))] / range;
+    m["max_error"] = sorted.back() / range;
+    result.sdf = ScalarField{"sdf", Location::face, ColorHint::standard, {full.values.begin(), full.values.end()}};
+    result.error = ScalarField{"error", Location::face, ColorHint::magnitude, std::move(error)};
   }
-  std::sort(order.begin(), order.end());
-  std::vector<std::uint32_t> samples;
-  samples.reserve(count);
-  for (std::size_t j = 0; j < count; ++j)
-    samples.push_back(order[std::size_t((double(j) + 0.5) * double(n) / double(count))].second);
-  std::uint32_t parts = 0;
-  const std::vector<std::uint32_t> part = face_components(g, parts);
-  std::vector<char> covered(parts, 0);
-  for (std::uint32_t f : samples) covered[part[f]] = 1;
-  for (std::size_t f = 0; f < n; ++f)
-    if (!covered[part[f]]) covered[part[f]] = 1, samples.push_back(std::uint32_t(f));
-  std::sort(samples.begin(), samples.end());
-  samples.erase(std::unique(samples.begin(), samples.end()), samples.end());
-  return samples;
+  ctx.progress(1.0, "done");
+  return result;
 }
 
-FastSdf sdf_fast(const Mesh& mesh, const Adjacency& g, const SdfOptions& options, const FastOptions& fast,
-                 const Context* ctx) {
-  if (!(fast.fraction > 0 && fast.fraction <= 1))
-    throw InvalidInput("parameter 'fraction': " + std::to_string(fast.fraction) + " is outside (0, 1]");
-  check_options(options);
-  if (mesh.faces.empty()) throw InvalidInput("the mesh has no faces: the SDF is measured on faces");
-  const std::size_t n = mesh.faces.size();
-  FastSdf out;
-  out.samples = spread_samples(mesh, g, std::size_t(std::ceil(fast.fraction * double(n))));
-  out.raw = raw_sdf(mesh, options, out.samples, ctx, 0.0, 0.8);
-  out.values.assign(n, std::numeric_limits<double>::quiet_NaN());
-  for (std::size_t i = 0; i < out.samples.size(); ++i) out.values[out.samples[i]] = out.raw.values[i];
-  if (fast.smooth) bilateral_smooth(g, out.values, fast.window, nullptr, out.samples);
-  if (ctx) ctx->progress(0.8, "solving the Poisson equation");
-
-  // Unknowns: faces without a value in parts that have some known face.
-  std::uint32_t parts = 0;
-  const std::vector<std::uint32_t> part = face_components(g, parts);
-  std::vector<char> anchored(parts, 0);
-  for (std::size_t f = 0; f < n; ++f)
-    if (!std::isnan(out.values[f])) anchored[part[f]] = 1;
-  std::vector<std::int64_t> row(n, -1);
-  std::vector<std::uint32_t> unknown;
-  for (std::size_t f = 0; f < n; ++f)
-    if (std::isnan(out.values[f]) && anchored[part[f]])
-      row[f] = std::int64_t(unknown.size()), unknown.push_back(std::uint32_t(f));
-  out.unknowns = unknown.size();
-  if (unknown.empty()) {
-    fill_missing(mesh, g, out.values);
-    return out;
-  }
-
-  const std::vector<double> rhs_guide = guidance(mesh, g, fast.curvature_weight);
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(g.items.size() + unknown.size());
-  Eigen::VectorXd b(Eigen::Index(unknown.size()));
-  for (std::size_t r = 0; r < unknown.size(); ++r) {
-    const std::uint32_t f = unknown[r];
-    double known = 0;
-    for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) {
-      if (row[*h] >= 0) t.emplace_back(Eigen::Index(r), Eigen::Index(row[*h]), -1.0);
-      else known += out.values[*h];  // a Dirichlet value (anchored parts have no NaN neighbour left unknown)
-    }
-    t.emplace_back(Eigen::Index(r), Eigen::Index(r), double(g.degree(f)));
-    b[Eigen::Index(r)] = known - rhs_guide[f];
-  }
-  Eigen::SparseMatrix<double> A(Eigen::Index(unknown.size()), Eigen::Index(unknown.size()));
-  A.setFromTriplets(t.begin(), t.end());
-  Eigen::VectorXd x;
-  if (fast.solver == Solver::cholesky) {
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
-    if (ldlt.info() != Eigen::Success) throw Error("the Poisson system could not be factorized");
-    x = ldlt.solve(b);
-  } else {
-    const std::vector<double> start = nearest_known(g, out.values);
-    Eigen::VectorXd x0(Eigen::Index(unknown.size()));
-    for (std::size_t r = 0; r < unknown.size(); ++r) x0[Eigen::Index(r)] = start[unknown[r]];
-    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg(A);
-    cg.setTolerance(1e-6);  // relative residual: far below the SDF's own noise
-    x = cg.solveWithGuess(b, x0);
-    out.iterations = int(cg.iterations());
-  }
-  for (std::size_t r = 0; r < unknown.size(); ++r) out.values[unknown[r]] = x[Eigen::Index(r)];
-  fill_missing(mesh, g, out.values);  // parts where no ray found the inside
-  return out;
-}
+CGVIEW_REGISTER_FUNCTION(sdf_fast, sdf_fast,
+                         {.title = "Accelerated SDF (Poisson)",
+                          .description = "The SDF cast on a fraction of the faces, spread over the surface, and "
+                                         "propagated to the others by a Poisson equation on the dual graph (the "
+                                         "CGView paper, 3.2); with compare, the full SDF and the error map beside it.",
+                          .area = "sdf",
+                          .inputs = {kSdfInput}})
 
 }  // namespace cgview::sdf

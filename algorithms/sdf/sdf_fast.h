@@ -1,59 +1,80 @@
-// The accelerated SDF (CGView paper, section 3.2): the SDF computed by rays on
-// a well-spread fraction of the faces only, and propagated to the others by a
-// Poisson equation on the dual graph (faces as nodes, shared edges as arcs):
+// sdf_fast: the accelerated SDF (the CGView paper, section 3.2).  The SDF
+// (sdf/sdf.h) is cast by rays on a well-spread fraction of the faces only,
+// and propagated to the others by a Poisson equation on the dual graph,
+// optionally guided by the mean curvature (sdf/sdf_poisson.h gives the
+// equation and its solvers).  With `compare`, also the full SDF and the
+// error map of the paper's Figure 9.
 //
-//   for each face p without rays,
-//     sum_{q ~ p} (f(p) - f(q)) = -lambda kappa(p),
-//
-// the sampled faces' values being Dirichlet conditions (their terms move to
-// the right-hand side).  kappa(p) is the face's curvature, the mean of its
-// vertices' mean curvature (filters/curvature.h), as the paper's guidance
-// field; lambda = curvature_weight * l^2, with l the mean distance between
-// adjacent face centroids, keeps the equation's two sides in the same units
-// (a length) whatever the mesh's scale and density.
-//
-// The matrix (the graph Laplacian restricted to the unknown faces) is
-// symmetric positive definite when every connected part of the mesh has a
-// sampled face, which the sampling guarantees.  Solved with Eigen: a sparse
-// Cholesky factorization (SimplicialLDLT), or conjugate gradients (Jacobi
-// preconditioner) started from each face's nearest sample's value.
+//   Mesh m = read_mesh("armadillo.off");
+//   sdf::SdfFastResult r = sdf::sdf_fast(m, {.fraction = 0.05, .compare = true});
+//   std::printf("mean error %g of the range\n", r.metrics.at("mean_error"));
 #pragma once
 
-#include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
-#include "sdf/sdf.h"
+#include "core/mesh.h"
+#include "registry/registry.h"
+#include "sdf/sdf_params.h"
 
 namespace cgview::sdf {
 
-enum class Solver { cholesky, conjugate_gradient };
+enum class Solver { conjugate_gradient, cholesky };
 
-struct FastOptions {
-  double fraction = 0.1;  // of the faces that get rays, in (0, 1]
-  Solver solver = Solver::cholesky;
+struct SdfFastParams {
+  double fraction = 0.1;  // of the faces that get rays
+  Solver solver = Solver::conjugate_gradient;
   double curvature_weight = 0.0;  // lambda / l^2
-  // The bilateral filter of the full SDF (sdf.h), applied to the samples
-  // before the solve: the solution is as smooth as its boundary values, and
-  // filtering 1 face in 10 costs a tenth.
-  bool smooth = true;
-  int window = 0;
+  bool compare = false;
+  // The rays, and the bilateral filter of the full SDF, applied to the
+  // samples before the solve: the solution is as smooth as its boundary
+  // values, and filtering 1 face in 10 costs a tenth.
+  SdfParams sdf{};
+  template <class V>
+  void describe(V& v) {
+    v.number("fraction", fraction,
+             {.label = "Fraction of faces",
+              .min = 1e-6,
+              .max = 1,
+              .help = "the share of faces whose SDF is cast by rays, in (0, 1]"});
+    v.choice("solver", solver,
+             {.label = "Solver",
+              .help = "conjugate_gradient (from each face's nearest sample) or cholesky (sparse LDLT), both Eigen's",
+              .choices = {"conjugate_gradient", "cholesky"},
+              .advanced = true});
+    v.number(
+        "curvature_weight", curvature_weight,
+        {.label = "Curvature guidance",
+         .min = -100,
+         .max = 100,
+         .help = "weight of the faces' negative mean curvature in the Poisson equation (0: harmonic interpolation)",
+         .advanced = true});
+    v.boolean("compare", compare,
+              {.label = "Compare with the full SDF", .help = "also compute the SDF on every face, and the error map"});
+    sdf.describe(v);
+  }
 };
 
-struct FastSdf {
-  std::vector<double> values;          // one per face (holes filled as fill_missing does)
-  std::vector<std::uint32_t> samples;  // the faces that got rays
-  RawSdf raw;                          // their raw values, in the order of `samples`
-  std::size_t unknowns = 0;            // faces solved for
-  int iterations = 0;                  // conjugate gradients' (0 for Cholesky)
+struct SdfFastResult {
+  ScalarField sdf_fast;              // per face, in the mesh's units
+  std::optional<ScalarField> sdf;    // with compare: the full SDF
+  std::optional<ScalarField> error;  // with compare: |sdf_fast - sdf| per face
+  // faces, samples, unknowns, iterations, seconds; with compare also
+  // full_seconds, speedup, and the mean, 95th-percentile and largest error
+  // as fractions of the full SDF's range.
+  Metrics metrics;
+  std::vector<std::string> warnings;
+  template <class V>
+  void outputs(V& v) {
+    v("sdf_fast", sdf_fast);
+    v("sdf", sdf);
+    v("error", error);
+    v("metrics", metrics);
+  }
 };
 
-// `count` faces spread evenly over the surface: every (F / count)-th face
-// along the Morton (Z-order) curve through the face centroids, plus one face
-// of each connected part (of `face_graph`) that got none.  Sorted.
-std::vector<std::uint32_t> spread_samples(const Mesh& mesh, const Adjacency& face_graph, std::size_t count);
-
-// Throws InvalidInput for a fraction outside (0, 1] and what raw_sdf throws.
-FastSdf sdf_fast(const Mesh& mesh, const Adjacency& face_graph, const SdfOptions& options, const FastOptions& fast,
-                 const Context* ctx = nullptr);
+// Throws InvalidInput for a mesh without faces.
+SdfFastResult sdf_fast(const Mesh& mesh, const SdfFastParams& p = {}, Context* ctx = nullptr);
 
 }  // namespace cgview::sdf

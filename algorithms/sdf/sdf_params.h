@@ -1,25 +1,36 @@
-// The SDF parameters shared by sdf, sdf_fast and sdf_segmentation (labels,
-// ranges and help live here once), and the steps they share after the rays:
-// post-processing and the artifacts they return.
+// The parameters of the Shape Diameter Function, described once: SdfParams
+// is the sdf algorithm's (sdf/sdf.h), and sdf_fast and sdf_segmentation hold
+// one as their `.sdf`, so that the rays, the cone, the weights, the outlier
+// rule and the smoothing have one label, range and default everywhere.
+// raw_sdf (sdf/sdf_rays.h) takes them too.
+//
+//   sdf::sdf(mesh, {.cone_angle = 90, .outliers = sdf::Outliers::mad});
+//   sdf::sdf_fast(mesh, {.fraction = 0.2, .sdf = {.rays = 50}});
 #pragma once
 
-#include <string>
-#include <vector>
-
 #include "registry/registry.h"
-#include "sdf/sdf.h"
 
 namespace cgview::sdf {
 
-struct SdfParamFields {
+// inverse_angle: each length weighted by the inverse of its angle to the
+// cone's axis (Shapira et al.); uniform: all alike (CGAL's sdf_values).
+enum class Weights { inverse_angle, uniform };
+// std_dev: lengths further than one standard deviation from the median are
+// dropped (Shapira et al.); mad: further than 1.5 median absolute deviations
+// (CGAL); none: all kept.
+enum class Outliers { std_dev, mad, none };
+
+inline constexpr int kMaxRays = 1024;
+
+struct SdfParams {
   int rays = 25;
-  double cone_angle = 120.0;
-  std::string weights = "inverse_angle";
-  std::string outliers = "std_dev";
+  double cone_angle = 120.0;  // degrees
+  Weights weights = Weights::inverse_angle;
+  Outliers outliers = Outliers::std_dev;
   bool smooth = true;
   int window = 0;
   template <class V>
-  void describe_sdf(V& v) {
+  void describe(V& v) {
     v.integer("rays", rays, {.label = "Rays", .min = 1, .max = kMaxRays, .help = "rays in each face's cone"});
     v.number("cone_angle", cone_angle,
              {.label = "Cone angle (degrees)",
@@ -51,27 +62,7 @@ struct SdfParamFields {
                .advanced = true,
                .when = {"smooth", {"true"}}});
   }
-  SdfOptions options() const {
-    SdfOptions o;
-    o.rays = rays;
-    o.cone_angle = cone_angle;
-    o.weights = weights == "uniform" ? Weights::uniform : Weights::inverse_angle;
-    o.outliers = outliers == "mad" ? Outliers::mad : outliers == "none" ? Outliers::none : Outliers::std_dev;
-    return o;
-  }
 };
-
-// Holes filled (always: a face with no value would break every later step),
-// then the bilateral filter when `smooth`.
-void postprocess(const Mesh& mesh, const Adjacency& face_graph, std::vector<double>& values, const SdfParamFields& p,
-                 Context& ctx);
-
-// The per-face field `name` (values in the mesh's units), its normalized copy
-// `name`_normalized and its per-vertex average `name`_vertex.
-std::vector<Artifact> sdf_fields(const Mesh& mesh, const std::string& name, const std::vector<double>& values);
-
-// Warnings for rays that found no inside (open meshes).
-void warn_missing(const RawSdf& raw, std::vector<std::string>& warnings);
 
 // The input of every SDF algorithm: it casts along the inward normal, so a
 // closed mesh facing inward is turned outward first (InputSpec::outward).

@@ -1,8 +1,5 @@
-// skeleton_mcf: CGAL's mean curvature flow skeletonization (Tagliasacchi,
-// Alhashim, Olson and Zhang 2012, "Mean Curvature Skeletons"), the
-// mesh-contraction family's reference, as a registered algorithm.  The
-// contraction loop is CGAL's contract_until_convergence(), written out so
-// that each iteration reports progress and can be cancelled.
+#include "skeleton/skeleton_mcf.h"
+
 #include <CGAL/Mean_curvature_flow_skeletonization.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -11,62 +8,17 @@
 #include <numbers>
 
 #include "core/surface_mesh.h"
-#include "registry/registry.h"
-#include "skeleton/skeleton_metrics.h"
+#include "skeleton/skeleton_measures.h"
 
 namespace cgview {
+
 namespace {
-
 using Skeletonization = CGAL::Mean_curvature_flow_skeletonization<SurfaceMesh>;
+}  // namespace
 
-struct Params {
-  double max_triangle_angle = 110;
-  double min_edge_length = 0.002;
-  double quality_speed_tradeoff = 0.1;
-  bool medially_centered = true;
-  double medially_centered_speed_tradeoff = 0.2;
-  double area_variation_factor = 0.0001;
-  int max_iterations = 500;
-  template <class V>
-  void describe(V& v) {
-    v.number("max_triangle_angle", max_triangle_angle,
-             {.label = "Max triangle angle (degrees)",
-              .min = 90,
-              .max = 179,
-              .help = "edges opposite larger angles are split while contracting",
-              .advanced = true});
-    v.number("min_edge_length", min_edge_length,
-             {.label = "Min edge length",
-              .min = 1e-6,
-              .max = 0.5,
-              .help = "shorter edges collapse; a fraction of the bounding box's diagonal (CGAL: 0.002)",
-              .advanced = true});
-    v.number("quality_speed_tradeoff", quality_speed_tradeoff,
-             {.label = "Quality/speed",
-              .min = 1e-4,
-              .max = 100,
-              .help = "larger: faster contraction, a less smooth skeleton (w_H)",
-              .advanced = true});
-    v.boolean("medially_centered", medially_centered,
-              {.label = "Medially centred", .help = "pull towards the medial axis (Voronoi poles)"});
-    v.number("medially_centered_speed_tradeoff", medially_centered_speed_tradeoff,
-             {.label = "Centring/speed",
-              .min = 1e-4,
-              .max = 100,
-              .help = "weight of the medial pull (w_M)",
-              .when = {"medially_centered", {"true"}}});
-    v.number("area_variation_factor", area_variation_factor,
-             {.label = "Convergence",
-              .min = 1e-8,
-              .max = 0.1,
-              .help = "stop when the area changes by less than this fraction of the original in one iteration",
-              .advanced = true});
-    v.integer("max_iterations", max_iterations,
-              {.label = "Max iterations", .min = 1, .max = 10000, .help = "contraction iterations at most"});
-  }
-};
-
-AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
+SkeletonMcfResult skeleton_mcf(const Mesh& mesh, const SkeletonMcfParams& p, Context* context) {
+  check_params(p);
+  const Context& ctx = context_or_none(context);
   const char* remedy = "run repair and fill_holes on it first";
   SurfaceMesh sm = manifold_surface_mesh(mesh, "skeleton_mcf", remedy);
   if (!CGAL::is_closed(sm))
@@ -102,7 +54,8 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
   Skeletonization::Skeleton graph;
   mcs.convert_to_skeleton(graph);
 
-  Skeleton s;
+  SkeletonMcfResult result;
+  Skeleton& s = result.skeleton;
   s.vertex_to_node.assign(mesh.positions.size(), 0);
   for (auto v : CGAL::make_range(vertices(graph))) {
     const auto& pt = graph[v].point;
@@ -110,19 +63,17 @@ AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
     for (auto mv : graph[v].vertices) s.vertex_to_node[std::size_t(mv)] = Index(v);
   }
   for (auto e : CGAL::make_range(edges(graph))) s.edges.push_back({Index(source(e, graph)), Index(target(e, graph))});
-  Metrics m = metrics_table(skeleton_metrics(s, mesh));
-  m["iterations"] = iterations;
+  result.metrics = metrics_table(measure_skeleton(s, mesh));
+  result.metrics["iterations"] = iterations;
   ctx.progress(1.0, "done");
-  return {{{"skeleton", std::move(s)}, {"metrics", std::move(m)}}, {}};
+  return result;
 }
 
-}  // namespace
-}  // namespace cgview
+CGVIEW_REGISTER_FUNCTION(skeleton_mcf, skeleton_mcf,
+                         {.title = "Skeleton by mean curvature flow (CGAL)",
+                          .description = "CGAL's Mean_curvature_flow_skeletonization: the surface contracted by mean "
+                                         "curvature flow to a curve, pulled towards the medial axis. Needs a closed "
+                                         "manifold mesh.",
+                          .area = "skeleton"})
 
-CGVIEW_REGISTER_ALGORITHM(
-    skeleton_mcf, cgview::Params, cgview::run,
-    {.title = "Skeleton by mean curvature flow (CGAL)",
-     .description = "CGAL's Mean_curvature_flow_skeletonization: the surface contracted by mean "
-                    "curvature flow to a curve, pulled towards the medial axis. Needs a closed manifold mesh.",
-     .area = "skeleton",
-     .outputs = {{"skeleton", cgview::OutputKind::skeleton}, {"metrics", cgview::OutputKind::metrics}}});
+}  // namespace cgview

@@ -1,4 +1,4 @@
-// A curve skeleton from the 2D medial axes of a shape's projections (the
+// skeleton_projection: a curve skeleton from the 2D medial axes of a shape's projections (the
 // CGView paper, section 3.1), each stage a function of its own:
 //
 // (a) `views` orthographic directions in antipodal pairs (d and -d, d on a
@@ -43,31 +43,31 @@
 //     nodes that are too close merged), then endpoint-preserving Laplacian
 //     smoothing of the nodes inside branches, which frees them from voxel
 //     centres.
+//
+// Each stage has a header of its own under skeleton/projection/:
+// medial_axis.h (b), vote.h (c), thin.h (d), simplify_skeleton.h (e).
+// Works on any triangle soup (silhouettes need no manifold); open meshes
+// give votes only where both depth buffers see the inside.
+//
+//   SkeletonProjectionResult r = skeleton_projection(mesh, {.views = 96, .grid = 192});
+//   write_skeleton(r.skeleton, "skeleton.cg");
 #pragma once
 
-#include <cstdint>
-#include <functional>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "core/mesh.h"
 #include "core/skeleton.h"
 #include "core/voxel_grid.h"
+#include "registry/registry.h"
 
 namespace cgview {
 
-class Context;
-
-namespace render {
-class Renderer;
-struct ViewCapture;
-}  // namespace render
-
-namespace skeleton {
-
-struct ProjectionParams {
-  int views = 48;                // an even number in [2, 1000]: views / 2 antipodal pairs, one drawing each
-  int image = 256;               // pixels on a side, [32, 2048]
-  int grid = 128;                // voxels along the bounding box's longest side, [16, 512]
+struct SkeletonProjectionParams {
+  int views = 48;                // an even number: views / 2 antipodal pairs, one drawing each
+  int image = 256;               // pixels on a side
+  int grid = 128;                // voxels along the bounding box's longest side
   int min_radius = 2;            // medial pixels nearer the border are dropped
   double threshold = 0.25;       // voxels with fewer votes than this x the most are out
   double min_branch = 0.05;      // shortest branch kept, x the bounding box's diagonal
@@ -75,65 +75,81 @@ struct ProjectionParams {
   double merge_distance = 0.03;  // internal arcs shorter than this x the diagonal are collapsed
   int smoothing = 20;            // Laplacian iterations (lambda 0.5)
   int contexts = 2;              // rendering contexts at once (render/views.h)
-  int render_faces =
-      200000;  // a mesh with more faces is drawn decimated to at most these (vertex clustering); 0: never
-  // Throws InvalidInput naming the parameter out of range.
-  void check() const;
+  int render_faces = 200000;     // a mesh with more faces is drawn decimated to at most these; 0: never
+  bool intermediate = false;     // also the vote grid and the first view
+  template <class V>
+  void describe(V& v) {
+    v.integer("views", views,
+              {.label = "Views", .min = 2, .max = 1000, .help = "silhouettes, in antipodal pairs (even)"});
+    v.integer("image", image,
+              {.label = "Image size", .min = 32, .max = 2048, .help = "pixels on a side of each silhouette"});
+    v.integer(
+        "grid", grid,
+        {.label = "Vote grid", .min = 16, .max = 512, .help = "voxels along the longest side of the bounding box"});
+    v.integer("min_radius", min_radius,
+              {.label = "Medial axis: min radius",
+               .min = 0,
+               .max = 100,
+               .help = "medial pixels nearer the outline (pixels) are dropped",
+               .advanced = true});
+    v.number("threshold", threshold,
+             {.label = "Vote threshold",
+              .min = 0.001,
+              .max = 0.999,
+              .help = "voxels with fewer votes than this x the most are out"});
+    v.number("min_branch", min_branch,
+             {.label = "Shortest branch", .min = 0, .max = 0.99, .help = "x the bounding box's diagonal"});
+    v.number("branch_votes", branch_votes,
+             {.label = "Branch votes",
+              .min = 0,
+              .max = 1,
+              .help = "branches whose mean votes are below this x the main path's are pruned",
+              .advanced = true});
+    v.number("merge_distance", merge_distance,
+             {.label = "Merge distance",
+              .min = 0,
+              .max = 0.99,
+              .help = "internal arcs shorter than this x the diagonal are collapsed",
+              .advanced = true});
+    v.integer("smoothing", smoothing,
+              {.label = "Smoothing", .min = 0, .max = 1000, .help = "Laplacian iterations; ends and junctions stay"});
+    v.integer(
+        "contexts", contexts,
+        {.label = "Render contexts", .min = 1, .max = 64, .help = "EGL contexts drawing at once", .advanced = true});
+    v.integer("render_faces", render_faces,
+              {.label = "Faces drawn",
+               .min = 0,
+               .max = 1 << 30,
+               .help = "bigger meshes are drawn decimated (vertex clustering); 0: never",
+               .advanced = true});
+    v.boolean("intermediate", intermediate,
+              {.label = "Keep intermediate results",
+               .help = "also the vote grid and the first view's silhouette with its medial axis",
+               .advanced = true});
+  }
 };
 
-// (b) The (3,4) chamfer distance of each inside pixel to the outside (3 per
-// pixel step, 4 per diagonal step; 0 outside; the image border is outside).
-std::vector<std::uint16_t> chamfer_34(const std::vector<std::uint8_t>& mask, int width, int height);
-// The centres of maximal discs with dt >= 3 * min_radius: 1 on the axis.
-std::vector<std::uint8_t> medial_axis(const std::vector<std::uint16_t>& dt, int width, int height, int min_radius);
-
-// (c) Votes (a float grid over the mesh's bounding box, `grid` voxels along
-// its longest side, one voxel of margin) from views captured with their back
-// depth (render::CaptureOptions; InvalidInput without), and for each voxel
-// the mean radius (world units) of the medial discs that voted for it.
-struct Votes {
-  VoxelGrid grid;
-  std::vector<float> radius;
-};
-Votes vote(const std::vector<render::ViewCapture>& views, const BBox& box, const ProjectionParams& p,
-           const Context* ctx = nullptr);
-
-// (d) The skeleton of the vote grid, nodes at voxel centres; `radius` (from
-// vote) sets how far a branch covers the voxels around it (1.5 x the radius
-// + 2 voxels, as TEASAR), how far apart along the skeleton the nodes where
-// two meeting paths join must be (tunnels), and how far an end looks to
-// close a loop (other meshes).
-// With `inside` (the solid) and `max_loops` >= 0 (its genus), loops are
-// tunnels: where the shortest-path trees meet themselves (neighbouring
-// voxels whose paths join the skeleton further apart along it than their
-// covering radii), the meetings that touch one another form a cut through
-// a tunnel; each cut closes one loop, through its best voted meeting whose
-// loop goes around a hole (the triangles from its centre to its edges cross
-// the outside; a cut whose 8 best voted meetings go around none closes
-// none), the best voted cuts first, at most max_loops.  Otherwise an
-// end next to a far part of the skeleton through voted voxels closes one.
-Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const ProjectionParams& p, int max_loops = -1,
-              const std::function<bool(const Vec3&)>& inside = {});
-
-// (e) Collapses internal arcs shorter than `merge_length` and smooths; a
-// smoothing step that would take a node where `allowed` says no (outside the
-// mesh) leaves it where it was.
-void simplify(Skeleton& s, double merge_length, int smoothing_iterations,
-              const std::function<bool(const Vec3&)>& allowed = {});
-
-// All stages.  `votes`, when not null, receives the vote grid; `axis`, when
-// not null, the first view's silhouette (1) with its medial axis (2).
-struct ProjectionResult {
+struct SkeletonProjectionResult {
   Skeleton skeleton;
-  VoxelGrid votes;
-  std::vector<std::uint8_t> first_view;  // 0 outside, 1 inside, 2 medial axis; image x image, rows from the top
-  double render_seconds = 0, vote_seconds = 0, thin_seconds = 0;              // vote: medial axes and votes
-  double render_cpu_seconds = 0, vote_cpu_seconds = 0, thin_cpu_seconds = 0;  // the process's CPU time (all threads)
-  int genus = -1;               // the mesh's, which bounds the loops; -1: not a closed, oriented mesh
-  std::size_t faces_drawn = 0;  // the mesh's, or its decimated copy's (render_faces)
+  // skeleton_metrics' measures, the faces drawn, and each stage's wall and
+  // process CPU seconds (render, vote: medial axes and votes, thin).
+  Metrics metrics;
+  std::optional<VoxelGrid> votes;       // with `intermediate`
+  std::optional<VoxelGrid> first_view;  // with `intermediate`: 0 outside, 1 inside, 2 medial axis
+  int genus = -1;                       // the mesh's, which bounds the loops; -1: not a closed, oriented mesh
+  std::vector<std::string> warnings;
+  template <class V>
+  void outputs(V& v) {
+    v("skeleton", skeleton);
+    v("metrics", metrics);
+    v("votes", votes);
+    v("first_view", first_view);
+  }
 };
-ProjectionResult skeleton_from_projections(render::Renderer& renderer, const Mesh& mesh, const ProjectionParams& p,
-                                           const Context* ctx = nullptr);
 
-}  // namespace skeleton
+// Draws with a context of the process's EGL pool (Mesa's llvmpipe without a
+// GPU).  Throws InvalidInput for a mesh without faces or an odd `views`.
+SkeletonProjectionResult skeleton_projection(const Mesh& mesh, const SkeletonProjectionParams& p = {},
+                                             Context* ctx = nullptr);
+
 }  // namespace cgview

@@ -1,32 +1,25 @@
-// skeleton_segmentation (the paper's octopus figure): each face takes the
-// branch of the skeleton nearest to its centroid among those it can see, the
-// segment from the centroid to the branch's nearest point crossing no other
-// face (so that a finger lying against a palm keeps its own branch). Where
-// no branch is visible, the nearest one.  A categorical per-face field.
+#include "skeleton/skeleton_segmentation.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
 #include "rays/ray_caster.h"
-#include "registry/registry.h"
 
 namespace cgview {
-namespace {
 
-struct NoParams {
-  template <class V>
-  void describe(V&) {}
-};
-
-AlgorithmResult run(const Inputs& in, const NoParams&, Context& ctx) {
-  const Mesh& mesh = in.mesh("mesh");
-  const Skeleton& s = in.skeleton("skeleton");
+SkeletonSegmentationResult skeleton_segmentation(const Mesh& mesh, const Skeleton& s,
+                                                 const SkeletonSegmentationParams& p, Context* context) {
+  check_params(p);
+  const Context& ctx = context_or_none(context);
   s.validate();
   if (mesh.faces.empty()) throw InvalidInput("the mesh has no faces");
   const std::vector<std::vector<Index>> branches = skeleton_branches(s);
   if (branches.empty()) throw InvalidInput("the skeleton has no edge: there is no branch to assign faces to");
   const RayCaster caster(mesh);
-  ScalarField field{"branch", Location::face, ColorHint::categorical, std::vector<float>(mesh.faces.size())};
+  SkeletonSegmentationResult result;
+  ScalarField& field = result.branch;
+  field = ScalarField{"branch", Location::face, ColorHint::categorical, std::vector<float>(mesh.faces.size())};
   std::vector<std::pair<double, Vec3>> best(branches.size());
   std::vector<std::size_t> order(branches.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
@@ -57,17 +50,19 @@ AlgorithmResult run(const Inputs& in, const NoParams&, Context& ctx) {
     field.values[f] = float(chosen);
   }
   ctx.progress(1.0, "done");
-  return {{{"branch", std::move(field)}, {"metrics", Metrics{{"branches", double(branches.size())}}}}, {}};
+  result.metrics = Metrics{{"branches", double(branches.size())}};
+  return result;
 }
 
-CGVIEW_REGISTER_ALGORITHM(
-    skeleton_segmentation, NoParams, run,
+CGVIEW_REGISTER_FUNCTION(
+    skeleton_segmentation,
+    [](const Inputs& in, const SkeletonSegmentationParams& p, Context* c) {
+      return skeleton_segmentation(in.mesh("mesh"), in.skeleton("skeleton"), p, c);
+    },
     {.title = "Segmentation by skeleton branches",
      .description = "Each face coloured by the nearest skeleton branch it can see (the paper's octopus).",
      .area = "skeleton",
-     .outputs = {{"branch", OutputKind::scalar_field}, {"metrics", OutputKind::metrics}},
      .inputs = {{.name = "mesh", .kind = OutputKind::mesh, .help = "the mesh to segment"},
-                {.name = "skeleton", .kind = OutputKind::skeleton, .help = "its skeleton"}}});
+                {.name = "skeleton", .kind = OutputKind::skeleton, .help = "its skeleton"}}})
 
-}  // namespace
 }  // namespace cgview

@@ -29,11 +29,15 @@
 // voxel_size = longest extent / resolution unless voxel_size > 0 is given.
 // Storage: VoxelType::bit, one byte per voxel (core/voxel_grid.h).
 //
-// Throws InvalidInput for an empty or invalid mesh, a resolution below 1, a
-// negative padding, and a grid whose memory (one byte per voxel) would pass
-// max_memory_mb: the message says how much it would take.
+// The grid is an artifact ("grid") that can be saved as .binvox, .raw (with
+// a .json sidecar), .nrrd, .vti, .vox, .vdb or .vtk.
+//
+//   Mesh m = read_mesh("elephant.off");
+//   VoxelizeResult r = voxelize(m, {.resolution = 64, .mode = VoxelizeMode::surface});
+//   write_voxel_grid(r.grid, "elephant.nrrd");
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -41,10 +45,9 @@
 
 #include "core/mesh.h"
 #include "core/voxel_grid.h"
+#include "registry/registry.h"
 
 namespace cgview {
-
-class Context;
 
 enum class VoxelizeMode { surface, solid };
 
@@ -54,38 +57,79 @@ struct VoxelizeParams {
   VoxelizeMode mode = VoxelizeMode::solid;
   int padding = 1;              // empty voxels added on every side
   double max_memory_mb = 2048;  // refuse grids that would need more
-  int threads = 0;              // 0: std::thread::hardware_concurrency()
+  // Not parameters of a job (describe leaves them out): what a caller in
+  // C++ may set besides.
+  int threads = 0;  // 0: std::thread::hardware_concurrency()
   // The box the grid covers (with the padding around it), when it must match
   // another grid's; it must hold the faces.  Default: the faces' own box.
-  std::optional<BBox> box;
+  std::optional<BBox> box{};
+  template <class V>
+  void describe(V& v) {
+    v.integer(
+        "resolution", resolution,
+        {.label = "Resolution", .min = 1, .max = 8192, .help = "voxels along the longest side of the bounding box"});
+    v.number("voxel_size", voxel_size,
+             {.label = "Voxel size", .min = 0, .help = "edge of a voxel in mesh units; 0: from the resolution"});
+    v.choice("mode", mode,
+             {.label = "Mode",
+              .help = "surface: the voxels the surface touches (exact triangle-box test); solid: those plus the "
+                      "interior (flood fill of the outside from the grid's border)",
+              .choices = {"surface", "solid"}});
+    v.integer("padding", padding, {.label = "Padding", .min = 0, .max = 64, .help = "empty voxels added on each side"});
+    v.number("max_memory_mb", max_memory_mb,
+             {.label = "Memory limit (MB)",
+              .min = 1,
+              .max = 1e6,
+              .help = "refuse a grid that needs more memory (1 byte per voxel)",
+              .advanced = true});
+  }
 };
 
 struct VoxelizeResult {
-  VoxelGrid grid;                  // bit grid, 1 = occupied
+  VoxelGrid grid;  // bit grid, 1 = occupied
+  // dim_x, dim_y, dim_z, voxel_size, surface_voxels, occupied_voxels,
+  // occupied_volume, memory_mb; boundary_loops in solid mode
+  Metrics metrics;
   std::size_t surface_voxels = 0;  // voxels the surface touches
   std::size_t solid_voxels = 0;    // surface + interior (solid mode; = surface_voxels otherwise)
   std::size_t boundary_loops = 0;  // of the mesh (0 for a closed mesh)
   std::size_t boundary_edges = 0;
   std::vector<std::string> warnings;
+  template <class V>
+  void outputs(V& v) {
+    v("grid", grid);
+    v("metrics", metrics);
+  }
 };
 
-// "surface" or "solid"; throws InvalidInput naming the parameter otherwise.
-VoxelizeMode parse_voxelize_mode(const std::string& mode);
+// Throws InvalidInput for a parameter outside its range (check_params), an
+// empty or invalid mesh, a given box that does not hold the faces, and a grid
+// whose memory (one byte per voxel) would pass max_memory_mb: the message
+// says how much it would take.  ctx (optional): progress and cancellation
+// (throws Cancelled); a const one, so that a thread of another job
+// (skeleton_projection's solid) may pass its own.
+VoxelizeResult voxelize(const Mesh& mesh, const VoxelizeParams& p = {}, Context* ctx = nullptr);
+
+// voxelize without check_params and without the metrics
+// (voxel/voxelization.cpp), for an algorithm that voxelizes on its way with
+// parameters it derives: voxel_distance's memory limit is 1/13 of its own,
+// under voxelize's minimum of 1 MB.  The caller keeps the other values in
+// their ranges.
+VoxelizeResult voxelize_unchecked(const Mesh& mesh, const VoxelizeParams& p, const Context* ctx = nullptr);
+
 // Memory (bytes) a grid of these dimensions needs while voxelizing.
 double voxelize_memory_bytes(std::array<int, 3> dims);
 
 // The grid voxelize would make for a bounding box: its dimensions, voxel size
-// and memory (bytes).  Throws InvalidInput as voxelize does for bad
-// parameters and a grid over max_memory_mb (without allocating anything).
+// and memory (bytes).  Throws InvalidInput as voxelize does for a grid over
+// max_memory_mb (without allocating anything); the parameters are checked
+// by the caller.
 struct VoxelizeGeometry {
   std::array<int, 3> dims;
   double voxel_size;
   double memory_bytes;
 };
 VoxelizeGeometry voxelize_geometry(const BBox& box, const VoxelizeParams& params);
-
-// ctx (optional): progress and cancellation (throws Cancelled).
-VoxelizeResult voxelize(const Mesh& mesh, const VoxelizeParams& params = {}, const Context* ctx = nullptr);
 
 // The surface voxels of one triangle (a, b, c given in grid coordinates,
 // where voxel (i, j, k) is the unit cube [i, i+1) x [j, j+1) x [k, k+1)),

@@ -1,17 +1,20 @@
 // height: each vertex's height along an axis, measured from the lowest vertex.
 // Your own algorithm, in one file: "Build" compiles it on the server (its
 // errors show at their lines), "Run" runs it on the mesh shown. Rename
-// "height" in CGVIEW_REGISTER_ALGORITHM below to name it.
+// "height" in CGVIEW_REGISTER_FUNCTION below to name it.
 #include <algorithm>
 #include <string>
+#include <vector>
 
 #include "registry/registry.h"
 
 namespace cgview {
-namespace {
+namespace {  // names of this file alone: none meets one of CGView's
 
-struct Params {
-  std::string axis = "z";  // the default, written once
+enum class HeightAxis { x, y, z };  // the choices of "axis", in order
+
+struct HeightParams {
+  HeightAxis axis = HeightAxis::z;  // the default, written once
   bool normalize = false;
   template <class V>
   void describe(V& v) {
@@ -20,30 +23,40 @@ struct Params {
   }
 };
 
-AlgorithmResult run(const Mesh& mesh, const Params& p, Context& ctx) {
+struct HeightResult {
+  ScalarField height{"height", Location::vertex, ColorHint::standard, {}};  // one value per vertex
+  std::vector<std::string> warnings;
+  template <class V>
+  void outputs(V& v) {
+    v("height", height);
+  }
+};
+
+HeightResult height(const Mesh& mesh, const HeightParams& p = {}, Context* context = nullptr) {
+  check_params(p);  // the ranges and choices of describe, for a direct call
+  const Context& ctx = context_or_none(context);
   if (mesh.num_vertices() == 0) throw InvalidInput("the mesh has no vertices");
-  const int k = p.axis == "x" ? 0 : p.axis == "y" ? 1 : 2;
+  const int k = int(p.axis);  // x, y, z: 0, 1, 2
   double lo = mesh.positions[0][k], hi = lo;
   for (const Vec3& v : mesh.positions) lo = std::min(lo, v[k]), hi = std::max(hi, v[k]);
-  ScalarField field{"height", Location::vertex, ColorHint::standard, {}};
-  field.values.resize(mesh.num_vertices());
+  HeightResult r;
+  r.height.values.resize(mesh.num_vertices());
   for (std::size_t i = 0; i < mesh.num_vertices(); ++i) {
     if (i % 65536 == 0) {
       ctx.check_cancelled();  // lets a job be cancelled
       ctx.progress(double(i) / double(mesh.num_vertices()), "heights");
     }
     const double h = mesh.positions[i][k] - lo;
-    field.values[i] = float(p.normalize && hi > lo ? h / (hi - lo) : h);
+    r.height.values[i] = float(p.normalize && hi > lo ? h / (hi - lo) : h);
   }
   ctx.progress(1.0, "done");
-  return {{{"height", field}}, {}};
+  return r;
 }
 
-CGVIEW_REGISTER_ALGORITHM(height, Params, run,
-                          {.title = "Height along an axis",
-                           .description = "Per-vertex height above the lowest vertex, along x, y or z.",
-                           .area = "playground",
-                           .outputs = {{"height", OutputKind::scalar_field}}})
+CGVIEW_REGISTER_FUNCTION(height, height,
+                         {.title = "Height along an axis",
+                          .description = "Per-vertex height above the lowest vertex, along x, y or z.",
+                          .area = "playground"})
 
 }  // namespace
 }  // namespace cgview

@@ -19,6 +19,7 @@
 #include <string>
 #include <thread>
 
+#include "centroid_distance_plugin.h"
 #include "io/mesh_io.h"
 #include "server_harness.h"
 #include "test_support.h"
@@ -32,14 +33,9 @@ using namespace std::chrono_literals;
 
 std::string source_file(const std::string& name) { return read_bytes(fs::path(CGVIEW_SOURCE_DIR) / name); }
 
-// The template with another registered name: a plugin that must give what
-// the built-in centroid_distance gives.
-std::string template_as(const std::string& name) {
-  std::string s = source_file("algorithms/examples/centroid_distance.cpp");
-  const std::string from = "CGVIEW_REGISTER_ALGORITHM(centroid_distance,";
-  s.replace(s.find(from), from.size(), "CGVIEW_REGISTER_ALGORITHM(" + name + ",");
-  return s;
-}
+// The built-in centroid_distance as a plugin file registering `name`: a
+// plugin that must give what the built-in gives.
+std::string template_as(const std::string& name) { return centroid_distance_plugin(CGVIEW_SOURCE_DIR, name); }
 
 class Plugins : public ServerFixture {
  protected:
@@ -178,7 +174,7 @@ TEST_F(Plugins, CompileErrorsComeBackAsDataAtTheirLines) {
   EXPECT_NE(d["message"].get<std::string>().find("flot"), std::string::npos);
   EXPECT_NE(p["build"]["error"].get<std::string>().find("broken.cpp:" + std::to_string(line)), std::string::npos);
   // A name taken by a built-in algorithm is refused as an error of the file.
-  const json clash = build(alice_, "clash", source_file("algorithms/examples/centroid_distance.cpp"));
+  const json clash = build(alice_, "clash", template_as("centroid_distance"));
   EXPECT_EQ(clash["build"]["state"], "failed");
   EXPECT_NE(clash["build"]["error"].get<std::string>().find("centroid_distance"), std::string::npos);
 }

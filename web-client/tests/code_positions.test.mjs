@@ -91,7 +91,7 @@ test("the compiler's severities as the editor's, and which files are the edited 
 
 test('the template registers the algorithm its name says, and its float( line is where the e2e test expects', () => {
   assert.equal(TEMPLATE_NAME, 'height');
-  assert.match(TEMPLATE, /CGVIEW_REGISTER_ALGORITHM\(height, Params, run,/);
+  assert.match(TEMPLATE, /CGVIEW_REGISTER_FUNCTION\(height, height,/);
   assert.equal(TEMPLATE.split('\n').filter((l) => l.includes('float(')).length, 1, 'one float( line');
   assert.ok(
     TEMPLATE.split('\n').every((l) => l.length <= 120),

@@ -21,13 +21,21 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-const OutputKind kKinds[] = {OutputKind::mesh,     OutputKind::scalar_field, OutputKind::voxel_grid,
-                             OutputKind::skeleton, OutputKind::metrics,      OutputKind::text,
-                             OutputKind::animation};
+const OutputKind kKinds[] = {OutputKind::mesh,      OutputKind::scalar_field, OutputKind::voxel_grid,
+                             OutputKind::skeleton,  OutputKind::metrics,      OutputKind::text,
+                             OutputKind::animation, OutputKind::vector_field};
 
 ScalarField sphere_field(const Mesh& m) {
   ScalarField f{"height", Location::vertex, ColorHint::symmetric, {}};
   for (const Vec3& p : m.positions) f.values.push_back(float(p.z));
+  return f;
+}
+
+// The outward normal of a unit sphere at each vertex, face by face turned
+// into a per-vertex field: its own position.
+VectorField sphere_normals(const Mesh& m) {
+  VectorField f{"outward normal", Location::vertex, VectorHint::arrow, {}};
+  for (const Vec3& p : m.positions) f.values.push_back({float(p.x), float(p.y), float(p.z)});
   return f;
 }
 
@@ -61,7 +69,8 @@ std::vector<Artifact> one_of_each(const Mesh& sphere) {
           {"skeleton", y_skeleton()},
           {"metrics", Metrics{{"area", 12.5}, {"genus", 0}}},
           {"message", Text{std::string("bytes \x00\xff as they are", 21)}},
-          {"animation", anim}};
+          {"animation", anim},
+          {"normals", sphere_normals(sphere)}};
 }
 
 TEST(ArtifactCodec, EveryKindHasOneCodecFoundByItsKindAndItsName) {
@@ -76,7 +85,8 @@ TEST(ArtifactCodec, EveryKindHasOneCodecFoundByItsKindAndItsName) {
       EXPECT_FALSE(f.content_type.empty()) << f.name;
     }
   }
-  EXPECT_EQ(artifact_codec("vector_field"), nullptr);
+  EXPECT_EQ(artifact_codec("tensor_field"), nullptr);
+  EXPECT_EQ(std::size(kKinds), std::size(kOutputKinds)) << "every kind is checked here";
   // kind_of names each value's kind, in the order one_of_each makes them.
   std::size_t i = 0;
   for (const Artifact& a : one_of_each(test::uv_sphere())) EXPECT_EQ(kind_of(a.value), kKinds[i++]) << a.name;
@@ -116,6 +126,14 @@ TEST(ArtifactCodec, TheStoredFormReadsBackAsStoredWithItsSizeInTheEntry) {
       EXPECT_EQ(*k, std::get<Metrics>(a.value));
     } else if (const auto* t = std::get_if<Text>(&back)) {
       EXPECT_EQ(t->bytes, std::get<Text>(a.value).bytes);
+    } else if (const auto* v = std::get_if<VectorField>(&back)) {
+      const VectorField& in = std::get<VectorField>(a.value);
+      EXPECT_EQ(v->values, in.values);
+      EXPECT_EQ(v->name, in.name);
+      EXPECT_EQ(v->location, in.location);
+      EXPECT_EQ(v->hint, in.hint);
+      EXPECT_EQ(entry["count"], in.values.size());
+      EXPECT_FLOAT_EQ(entry["max_length"].get<float>(), 1.0f);
     } else if (const auto* an = std::get_if<Animation>(&back)) {
       EXPECT_EQ(an->frame_count(), 2u);
       EXPECT_EQ(an->base.num_faces(), sphere.num_faces());
@@ -143,7 +161,7 @@ TEST(ArtifactCodec, EveryServedFormatIsReadBackByItsOwnReader) {
       EXPECT_EQ(e.content_type, f.content_type);
       EXPECT_EQ(e.file_name, a.name + f.extension);
       if (&f == &c.formats().front()) EXPECT_EQ(e.bytes, stored) << "the stored file, as it is";
-      EXPECT_EQ(asked_for_mesh, c.kind() == OutputKind::scalar_field && f.name == "ply" ? 1 : 0);
+      EXPECT_EQ(asked_for_mesh, c.needs_mesh(f) ? 1 : 0);
       switch (c.kind()) {
         case OutputKind::mesh:
           EXPECT_EQ(read_mesh_bytes(e.bytes, format_from_name(f.name), e.file_name).mesh.num_faces(),
@@ -183,11 +201,37 @@ TEST(ArtifactCodec, EveryServedFormatIsReadBackByItsOwnReader) {
         case OutputKind::animation:
           EXPECT_EQ(decode_frames(e.bytes).frame_count(), 2u);
           break;
+        case OutputKind::vector_field: {
+          const std::size_t n = sphere.num_vertices();
+          if (f.name == "f32") EXPECT_EQ(e.bytes.size(), n * 12);
+          if (f.name == "json") {
+            const json j = json::parse(e.bytes);
+            EXPECT_EQ(j["values"].size(), n);
+            EXPECT_EQ(j["hint"], "arrow");
+            EXPECT_EQ(j["values"][3][2].get<float>(), float(sphere.positions[3].z));
+          }
+          if (f.name == "csv") EXPECT_EQ(std::count(e.bytes.begin(), e.bytes.end(), '\n'), long(n + 1));
+          if (f.name == "ply") {
+            // A point cloud at the vertices, the vectors its normals.
+            const Mesh cloud = read_mesh_bytes(e.bytes, MeshFormat::ply, "v.ply").mesh;
+            ASSERT_EQ(cloud.num_vertices(), n);
+            EXPECT_EQ(cloud.num_faces(), 0u);
+            ASSERT_EQ(cloud.normals.size(), n);
+            EXPECT_NEAR(cloud.normals[5].z, sphere.positions[5].z, 1e-6);
+            EXPECT_NEAR(cloud.positions[5].x, sphere.positions[5].x, 1e-6);
+          }
+          if (f.name == "vtk") {
+            EXPECT_EQ(e.bytes.rfind("# vtk DataFile Version 3.0\n", 0), 0u);
+            EXPECT_NE(e.bytes.find("POINT_DATA " + std::to_string(n) + "\nVECTORS outward_normal float\n"),
+                      std::string::npos);
+          }
+          break;
+        }
       }
       ++checked;
     }
   }
-  EXPECT_EQ(checked, 6 + 5 + 6 + 4 + 1 + 2 + 1);
+  EXPECT_EQ(checked, 6 + 5 + 6 + 4 + 1 + 2 + 1 + 5);
 }
 
 TEST(ArtifactCodec, AnUnknownFormatIsRefusedNamingTheKnownOnes) {
@@ -215,6 +259,17 @@ TEST(ArtifactCodec, AStoredFieldWhoseSizeIsNotWholeFloatsIsAParseError) {
   write_file_bytes(dir / "d.f32", "1234567");
   const json entry = {{"name", "d"}, {"kind", "scalar_field"}, {"file", "d.f32"}};
   EXPECT_THROW(artifact_codec(OutputKind::scalar_field).load(dir, entry), ParseError);
+  write_file_bytes(dir / "v.vec.f32", "12345678");  // two floats, not a triple
+  EXPECT_THROW(artifact_codec(OutputKind::vector_field)
+                   .load(dir, {{"name", "v"}, {"kind", "vector_field"}, {"file", "v.vec.f32"}}),
+               ParseError);
+}
+
+TEST(ArtifactCodec, AVectorFieldOnAnotherMeshIsNotWrittenOverIt) {
+  const Mesh sphere = test::uv_sphere(1.0, 8, 16);
+  const Artifact a{"normals", sphere_normals(sphere)};
+  const ArtifactCodec& c = artifact_codec(OutputKind::vector_field);
+  EXPECT_THROW(c.encode(a.value, a.name, test::box(), c.format_named("ply")), InvalidInput);
 }
 
 }  // namespace

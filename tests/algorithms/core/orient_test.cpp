@@ -39,7 +39,7 @@ TEST(Orient, AnInwardSphereIsReportedAndTurnedAsCgalTurnsIt) {
   EXPECT_FALSE(mesh_report(out).faces_inward);
 
   Mesh turned = in;
-  EXPECT_TRUE(orient_outward(turned));
+  EXPECT_TRUE(orient_outward_in_place(turned));
   // CGAL's answer on the same inward mesh.
   SurfaceMesh reference = to_surface_mesh(in).mesh;
   PMP::orient_to_bound_a_volume(reference);
@@ -59,18 +59,18 @@ TEST(Orient, AHollowShellOpenMeshAndOutwardMeshAreLeftAsTheyAre) {
   const Mesh hollow = merged(uv_sphere(2.0), flipped(uv_sphere(1.0)));
   EXPECT_FALSE(mesh_report(hollow).faces_inward);
   Mesh h = hollow;
-  EXPECT_FALSE(orient_outward(h));
+  EXPECT_FALSE(orient_outward_in_place(h));
   EXPECT_EQ(h.faces, hollow.faces);
   // Inward as a whole, it is turned as a whole: the cavity faces in again.
   Mesh inverted = flipped(hollow);
-  EXPECT_TRUE(orient_outward(inverted));
+  EXPECT_TRUE(orient_outward_in_place(inverted));
   EXPECT_EQ(inverted.faces, hollow.faces);
 
   Mesh open = flipped(uv_sphere(1.0));
   open.faces.pop_back();
   EXPECT_FALSE(mesh_report(open).faces_inward);  // no inside to face
   const auto before = open.faces;
-  EXPECT_FALSE(orient_outward(open));
+  EXPECT_FALSE(orient_outward_in_place(open));
   EXPECT_EQ(open.faces, before);
 }
 

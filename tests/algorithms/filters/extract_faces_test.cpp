@@ -1,5 +1,8 @@
 // The selection as an algorithm input (a faces parameter) and extract_faces,
-// the algorithm that uses it.
+// the algorithm that uses it.  The SelectionParam tests go through the
+// registry on purpose: the schema, the JSON and the job's range check.
+#include "filters/extract_faces.h"
+
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -16,7 +19,6 @@
 namespace cgview {
 namespace {
 
-using test::artifact;
 using test::run_algorithm;
 
 const ParamSpec& faces_spec() {
@@ -78,8 +80,8 @@ TEST(SelectionParam, IdsOutOfRangeAreRefusedNamingTheId) {
 TEST(ExtractFaces, KeepsExactlyTheSelectedFacesInOrder) {
   const Mesh g = test::grid(4);  // 32 triangles, 25 vertices
   const Ids sel{0, 1, 9, 31};
-  const AlgorithmResult r = run_algorithm("extract_faces", g, {{"faces", sel}});
-  const Mesh& out = artifact<Mesh>(r, "mesh");
+  const ExtractFacesResult r = extract_faces(g, {.faces = sel});
+  const Mesh& out = r.mesh;
   ASSERT_EQ(out.num_faces(), sel.size());
   for (std::size_t k = 0; k < sel.size(); ++k)
     for (int c = 0; c < 3; ++c) EXPECT_EQ(out.positions[out.faces[k][c]], g.positions[g.faces[sel[k]][c]]);
@@ -90,18 +92,37 @@ TEST(ExtractFaces, KeepsExactlyTheSelectedFacesInOrder) {
   EXPECT_TRUE(std::all_of(used.begin(), used.end(), [](bool b) { return b; }));
   double area = 0;
   for (const Index f : sel) area += face_areas(g)[f];
-  EXPECT_NEAR(artifact<Metrics>(r, "metrics").at("area"), area, 1e-12);
-  EXPECT_EQ(artifact<Metrics>(r, "metrics").at("faces"), 4.0);
+  EXPECT_NEAR(r.metrics.at("area"), area, 1e-12);
+  EXPECT_EQ(r.metrics.at("faces"), 4.0);
 }
 
 TEST(ExtractFaces, InvertDeletesTheSelection) {
   const Mesh cube = test::box();
-  const AlgorithmResult r = run_algorithm("extract_faces", cube, {{"faces", Ids{0, 1}}, {"invert", true}});
-  const Mesh& out = artifact<Mesh>(r, "mesh");
+  const Mesh out = extract_faces(cube, {.faces = {0, 1}, .invert = true}).mesh;
   EXPECT_EQ(out.num_faces(), 10u);
   for (std::size_t k = 0; k < out.num_faces(); ++k)
     for (int c = 0; c < 3; ++c) EXPECT_EQ(out.positions[out.faces[k][c]], cube.positions[cube.faces[k + 2][c]]);
 }
+
+// A direct call has no job to check its ids against the mesh: the function
+// does, with the job's message.
+TEST(ExtractFaces, DirectCallsRefuseIdsOutOfRangeAndNoSelection) {
+  const Mesh cube = test::box();
+  EXPECT_EQ(invalid_input_message([&] {
+              extract_faces(cube, {.faces = {0, 12}});
+            }),
+            "parameter 'faces': face id 12 is out of range (the mesh has 12 faces)");
+  EXPECT_EQ(invalid_input_message([&] { extract_faces(cube); }), "parameter 'faces': select at least one face");
+}
+
+TEST(ExtractFaces, ProgressIsReported) {
+  double last = -1;
+  Context ctx([&](double f, std::string_view) { last = f; }, [] { return false; });
+  extract_faces(test::box(), {.faces = {0}}, &ctx);
+  EXPECT_EQ(last, 1.0);
+}
+
+TEST(ExtractFaces, RegisteredInTheFiltersArea) { EXPECT_EQ(find_algorithm("extract_faces").info.area, "filters"); }
 
 }  // namespace
 }  // namespace cgview

@@ -45,6 +45,16 @@ inline Mesh non_manifold() {
   return m;
 }
 
+// A sphere with one more face on one of its edges: three faces on an edge,
+// which the halfedge filters refuse unless asked to repair it first.
+inline Mesh sphere_with_a_fin() {
+  Mesh m = uv_sphere(1.0, 16, 32);
+  const Tri f = m.faces[40];
+  m.positions.push_back({3, 3, 3});
+  m.faces.push_back({f[0], f[1], Index(m.positions.size() - 1)});
+  return m;
+}
+
 // Every edge has exactly two faces.
 inline bool closed(const Mesh& m) {
   const EdgeTopology t = edge_topology(m);

@@ -9,6 +9,7 @@
 #include "core/mesh_report.h"
 #include "filter_shapes.h"
 #include "invalid_input.h"
+#include "repair_first.h"
 
 namespace cgview {
 namespace {
@@ -32,9 +33,15 @@ TEST(SmoothTest, NonManifoldInputIsRefused) {
             std::string::npos);
 }
 
+TEST(SmoothTest, NonManifoldInputIsRepairedFirstWhenAsked) {
+  test::expect_refused_or_repaired_first(
+      "smooth", [](bool repair) { return smooth(test::sphere_with_a_fin(), {.repair = repair}); });
+}
+
 TEST(SmoothTest, RangesComeFromTheDescription) {
-  EXPECT_NE(test::invalid_input_message([] { smooth(test::uv_sphere(), {.iterations = 0}); })
-                .find("parameter 'iterations': 0 is under the minimum 1"),
+  EXPECT_NE(test::invalid_input_message([] {
+              smooth(test::uv_sphere(), {.iterations = 0});
+            }).find("parameter 'iterations': 0 is under the minimum 1"),
             std::string::npos);
 }
 

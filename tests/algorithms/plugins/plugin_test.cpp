@@ -1,6 +1,7 @@
-// Plugins (plugins/plugin.h): a copy of the template, built by the real
-// compiler and loaded into this test, gives what the built-in algorithm it
-// copies gives; a file with an error gives the compiler's message at its
+// Plugins (plugins/plugin.h): a copy of the built-in centroid_distance as
+// one file, built by the real compiler and loaded into this test, gives what
+// the built-in gives; the code panel's template (docs/examples/height.cpp)
+// builds without a warning; a file with an error gives the compiler's message at its
 // line and column; a name CGView has is refused; and `cgview run --plugin`
 // writes the same field as `cgview run` of the built-in.
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 #include <fstream>
 #include <string>
 
+#include "centroid_distance_plugin.h"
 #include "core/errors.h"
 #include "io/mesh_io.h"
 #include "plugins/plugin.h"
@@ -22,10 +24,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The built-in centroid_distance as a plugin file registering `name`.
 std::string template_as(const std::string& name, const std::string& from = "", const std::string& to = "") {
-  std::string s = read_file_bytes(fs::path(CGVIEW_SOURCE_DIR) / "algorithms/examples/centroid_distance.cpp", 1 << 20);
-  const std::string reg = "CGVIEW_REGISTER_ALGORITHM(centroid_distance,";
-  s.replace(s.find(reg), reg.size(), "CGVIEW_REGISTER_ALGORITHM(" + name + ",");
+  std::string s = centroid_distance_plugin(CGVIEW_SOURCE_DIR, name);
   if (!from.empty()) s.replace(s.find(from), from.size(), to);
   return s;
 }

@@ -1,0 +1,55 @@
+// The accelerated SDF (CGView paper, section 3.2): the SDF computed by rays on
+// a well-spread fraction of the faces only, and propagated to the others by a
+// Poisson equation on the dual graph (faces as nodes, shared edges as arcs):
+//
+//   for each face p without rays,
+//     sum_{q ~ p} (f(p) - f(q)) = -lambda kappa(p),
+//
+// the sampled faces' values being Dirichlet conditions (their terms move to
+// the right-hand side).  kappa(p) is the face's curvature, the mean of its
+// vertices' mean curvature (filters/vertex_curvatures.h), as the paper's guidance
+// field; lambda = curvature_weight * l^2, with l the mean distance between
+// adjacent face centroids, keeps the equation's two sides in the same units
+// (a length) whatever the mesh's scale and density.
+//
+// The matrix (the graph Laplacian restricted to the unknown faces) is
+// symmetric positive definite when every connected part of the mesh has a
+// sampled face, which the sampling guarantees.  Solved with Eigen: a sparse
+// Cholesky factorization (SimplicialLDLT), or conjugate gradients (Jacobi
+// preconditioner) started from each face's nearest sample's value.
+//
+// What sdf_fast (sdf/sdf_fast.h) runs, without its metrics and comparison:
+// for the benchmark and the tests.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/mesh.h"
+#include "sdf/sdf_fast.h"
+#include "sdf/sdf_rays.h"
+
+namespace cgview::sdf {
+
+struct FastSdf {
+  std::vector<double> values;          // one per face (holes filled as fill_missing does)
+  std::vector<std::uint32_t> samples;  // the faces that got rays
+  RawSdf raw;                          // their raw values, in the order of `samples`
+  std::size_t unknowns = 0;            // faces solved for
+  int iterations = 0;                  // conjugate gradients' (0 for Cholesky)
+};
+
+// `count` faces spread evenly over the surface: every (F / count)-th face
+// along the Morton (Z-order) curve through the face centroids, plus one face
+// of each connected part (of `face_graph`) that got none.  Sorted.
+std::vector<std::uint32_t> spread_samples(const Mesh& mesh, const Adjacency& face_graph, std::size_t count);
+
+// The accelerated SDF of every face: `p.fraction` of them cast (with
+// `p.sdf`'s rays, their values smoothed among themselves when
+// `p.sdf.smooth`), the others solved for with `p.solver`; `p.compare` is
+// not looked at.  Throws InvalidInput for parameters outside their ranges
+// and what raw_sdf throws.
+FastSdf poisson_sdf(const Mesh& mesh, const Adjacency& face_graph, const SdfFastParams& p,
+                    const Context* ctx = nullptr);
+
+}  // namespace cgview::sdf

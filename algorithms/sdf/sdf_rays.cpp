@@ -1,0 +1,277 @@
+#include "sdf/sdf_rays.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <thread>
+
+#include "core/threads.h"
+#include "rays/ray_caster.h"
+#include "registry/registry.h"
+
+namespace cgview::sdf {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+int thread_count() { return std::max(1, int(std::thread::hardware_concurrency())); }
+
+// Runs fn(begin, end) over [0, n) in blocks on `threads` threads.  Only the
+// calling thread touches ctx (progress, cancellation: a Context need not be
+// thread-safe); the others stop at the next block once it is cancelled.
+template <class Fn>
+void parallel_blocks(std::size_t n, std::size_t block, int threads, const Context* ctx, double from, double to,
+                     const char* stage, Fn&& fn) {
+  std::atomic<std::size_t> next{0}, done{0};
+  std::atomic<bool> stop{false};
+  auto work = [&](bool main) {
+    for (;;) {
+      if (stop.load(std::memory_order_relaxed)) return;
+      if (main && ctx) {
+        if (ctx->cancelled()) {
+          stop = true;
+          return;
+        }
+        ctx->progress(from + (to - from) * double(done.load()) / double(std::max<std::size_t>(n, 1)), stage);
+      }
+      const std::size_t b = next.fetch_add(block);
+      if (b >= n) return;
+      const std::size_t e = std::min(n, b + block);
+      fn(b, e);
+      done += e - b;
+    }
+  };
+  on_threads(threads, [&](int t) { work(t == 0); });
+  if (ctx) ctx->check_cancelled();
+}
+
+// A ray of the cone in the face's frame: t along the axis (-n), (du, dv) in
+// the plane, and its weight.
+struct ConeRay {
+  double axis, du, dv, weight;
+};
+
+std::vector<ConeRay> cone_rays(const SdfParams& o) {
+  const double half = o.cone_angle * std::numbers::pi / 360.0;
+  const double golden = 3.0 - std::sqrt(5.0);  // Vogel's spiral, as CGAL's Vogel_disk_sampling
+  std::vector<ConeRay> rays;
+  const auto angle = [&](int i) { return std::atan2(std::sin(half) * double(i) / o.rays, std::cos(half)); };
+  const double angle1 = o.rays > 1 ? angle(1) : 1.0;
+  for (int i = 0; i < o.rays; ++i) {
+    const double r = double(i) / o.rays, q = i * golden * std::numbers::pi;
+    const double w = o.weights == Weights::uniform ? 1.0 : 1.0 / std::max(angle(i), angle1);
+    rays.push_back({std::cos(half), std::sin(half) * r * std::cos(q), std::sin(half) * r * std::sin(q), w});
+  }
+  return rays;
+}
+
+double median_of(std::vector<double>& v) {  // as CGAL: the mean of the two middle values when even
+  const std::size_t half = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + half, v.end());
+  double m = v[half];
+  if (v.size() % 2 == 0) m = (m + *std::max_element(v.begin(), v.begin() + half)) / 2.0;
+  return m;
+}
+
+// The weighted mean of the (length, weight) pairs that are not outliers.
+double combine(std::vector<std::pair<double, double>>& hits, Outliers rule, std::vector<double>& scratch) {
+  double lo = -HUGE_VAL, hi = HUGE_VAL;
+  if (rule != Outliers::none && hits.size() > 1) {
+    scratch.clear();
+    for (auto& h : hits) scratch.push_back(h.first);
+    const double median = median_of(scratch);
+    double spread;
+    if (rule == Outliers::std_dev) {
+      double mean = 0, var = 0;
+      for (auto& h : hits) mean += h.first;
+      mean /= double(hits.size());
+      for (auto& h : hits) var += (h.first - mean) * (h.first - mean);
+      spread = std::sqrt(var / double(hits.size()));
+    } else {
+      for (double& d : scratch) d = std::abs(d - median);
+      spread = 1.5 * median_of(scratch);
+    }
+    lo = median - spread;
+    hi = median + spread;
+  }
+  double sum = 0, weights = 0;
+  for (auto& h : hits)
+    if (h.first >= lo && h.first <= hi) {
+      sum += h.first * h.second;
+      weights += h.second;
+    }
+  return weights > 0 ? sum / weights : hits[hits.size() / 2].first;
+}
+
+}  // namespace
+
+RawSdf raw_sdf(const Mesh& mesh, const SdfParams& o, std::span<const std::uint32_t> faces, const Context* ctx,
+               double from, double to) {
+  check_params(o);
+  if (mesh.faces.empty()) throw InvalidInput("the mesh has no faces: the SDF is measured on faces");
+  for (std::uint32_t f : faces)
+    if (f >= mesh.faces.size()) throw InvalidInput("face " + std::to_string(f) + " is not in the mesh");
+  const std::size_t n = faces.empty() ? mesh.faces.size() : faces.size();
+  const auto face_at = [&](std::size_t i) { return faces.empty() ? std::uint32_t(i) : faces[i]; };
+
+  const RayCaster caster(mesh);
+  if (ctx) ctx->check_cancelled();
+  const std::vector<Vec3>& normals = caster.normals();
+  const std::vector<ConeRay> cone = cone_rays(o);
+
+  RawSdf out;
+  out.values.assign(n, kNaN);
+  std::atomic<std::size_t> accepted{0};
+  parallel_blocks(n, 512, thread_count(), ctx, from, to, "casting rays", [&](std::size_t b, std::size_t e) {
+    std::vector<std::pair<double, double>> hits;
+    std::vector<double> scratch;
+    std::size_t local_accepted = 0;
+    for (std::size_t i = b; i < e; ++i) {
+      const std::uint32_t f = face_at(i);
+      const Vec3 n = normals[f];
+      if (dot(n, n) == 0) continue;  // degenerate face: no direction to look in
+      const Tri& t = mesh.faces[f];
+      const Vec3 c = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+      const Vec3 u = normalized(mesh.positions[t[1]] - mesh.positions[t[0]]);
+      const Vec3 v = cross(n, u);
+      hits.clear();
+      for (const ConeRay& r : cone) {
+        const Vec3 d = (-r.axis) * n + r.du * u + r.dv * v;
+        const RayCaster::Hit h = caster.first_hit(c, d, f);
+        if (!h) continue;  // escaped: an open mesh
+        // The ray must leave the shape where it first meets the surface.
+        if (dot(d, normals[h.face]) <= 0) continue;
+        hits.push_back({h.distance, r.weight});
+      }
+      local_accepted += hits.size();
+      if (!hits.empty()) out.values[i] = combine(hits, o.outliers, scratch);
+    }
+    accepted += local_accepted;
+  });
+  out.rays_cast = n * cone.size();
+  out.rays_accepted = accepted;
+  out.missing =
+      std::size_t(std::count_if(out.values.begin(), out.values.end(), [](double x) { return std::isnan(x); }));
+  return out;
+}
+
+void fill_missing(const Mesh& mesh, const Adjacency& graph, std::vector<double>& values) {
+  double smallest = HUGE_VAL;
+  for (double v : values)
+    if (!std::isnan(v)) smallest = std::min(smallest, v);
+  if (smallest == HUGE_VAL) smallest = 0;  // no face has a value
+  std::vector<std::size_t> still;
+  // As CGAL: neighbours' values as they were, then the smallest value.
+  const std::vector<double> before = values;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (!std::isnan(before[f])) continue;
+    double sum = 0;
+    int count = 0;
+    for (const std::uint32_t* g = graph.begin(f); g != graph.end(f); ++g)
+      if (!std::isnan(before[*g])) sum += before[*g], ++count;
+    if (count) values[f] = sum / count;
+    else still.push_back(f);
+  }
+  for (std::size_t f : still) values[f] = smallest;
+}
+
+int default_window(std::size_t faces) { return int(std::sqrt(double(faces) / 2000.0)) + 1; }
+
+void bilateral_smooth(const Adjacency& graph, std::vector<double>& values, int window, const Context* ctx,
+                      std::span<const std::uint32_t> only) {
+  const std::size_t n = values.size();
+  if (window <= 0) window = default_window(n);
+  const double spatial = window / 2.0;
+  std::vector<double> out = values;
+  const int threads = thread_count();
+  const std::size_t count = only.empty() ? n : only.size();
+  parallel_blocks(count, 1024, threads, ctx, 0.0, 1.0, "smoothing", [&](std::size_t b, std::size_t e) {
+    // A breadth-first walk over `window` edge-rings, with a visit stamp per face.
+    thread_local std::vector<std::uint32_t> stamp;
+    thread_local std::uint32_t epoch = 0;
+    if (stamp.size() != n) stamp.assign(n, 0), epoch = 0;
+    std::vector<std::pair<std::uint32_t, int>> ring;  // face, level
+    for (std::size_t i = b; i < e; ++i) {
+      const std::size_t f = only.empty() ? i : only[i];
+      if (std::isnan(values[f])) continue;
+      if (++epoch == 0) std::fill(stamp.begin(), stamp.end(), 0), epoch = 1;
+      ring.clear();
+      ring.push_back({std::uint32_t(f), 0});
+      stamp[f] = epoch;
+      for (std::size_t k = 0; k < ring.size(); ++k) {
+        const auto [g, level] = ring[k];
+        if (level >= window) continue;
+        for (const std::uint32_t* h = graph.begin(g); h != graph.end(g); ++h)
+          if (stamp[*h] != epoch) {
+            stamp[*h] = epoch;
+            ring.push_back({*h, level + 1});
+          }
+      }
+      // Faces without a value (those the accelerated SDF has not cast) are
+      // walked through but not averaged.
+      std::erase_if(ring, [&](const std::pair<std::uint32_t, int>& r) { return std::isnan(values[r.first]); });
+      const double c = values[f];
+      double dev = 0;
+      for (auto& [g, level] : ring) dev += (values[g] - c) * (values[g] - c);
+      dev = std::sqrt(dev / double(ring.size()));
+      if (dev == 0) {
+        out[f] = c;
+        continue;
+      }
+      const double range = 1.5 * dev;
+      double sum = 0, wsum = 0;
+      for (auto& [g, level] : ring) {
+        const double dv = values[g] - c;
+        const double w =
+            std::exp(-0.5 * (level / spatial) * (level / spatial)) * std::exp(-0.5 * (dv / range) * (dv / range));
+        sum += values[g] * w;
+        wsum += w;
+      }
+      out[f] = sum / wsum;
+    }
+  });
+  values = std::move(out);
+}
+
+std::vector<double> normalize_linear(const std::vector<double>& values) {
+  if (values.empty()) return {};
+  const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+  std::vector<double> out(values.size(), 0.5);
+  if (*hi > *lo)
+    for (std::size_t i = 0; i < values.size(); ++i) out[i] = (values[i] - *lo) / (*hi - *lo);
+  return out;
+}
+
+void postprocess(const Mesh& mesh, const Adjacency& graph, std::vector<double>& values, const SdfParams& p,
+                 const Context& ctx) {
+  fill_missing(mesh, graph, values);
+  if (p.smooth) bilateral_smooth(graph, values, p.window, &ctx);
+}
+
+void warn_missing(const RawSdf& raw, std::vector<std::string>& warnings) {
+  if (raw.missing)
+    warnings.push_back(std::to_string(raw.missing) + " of " + std::to_string(raw.values.size()) +
+                       " faces had no ray that found the inside (an open or degenerate mesh): they take their "
+                       "neighbours' mean, else the smallest value");
+}
+
+double pearson(std::span<const double> a, std::span<const double> b) {
+  const std::size_t n = std::min(a.size(), b.size());
+  if (n == 0) return 0;
+  double ma = 0, mb = 0;
+  for (std::size_t i = 0; i < n; ++i) ma += a[i], mb += b[i];
+  ma /= double(n), mb /= double(n);
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sab += (a[i] - ma) * (b[i] - mb);
+    saa += (a[i] - ma) * (a[i] - ma);
+    sbb += (b[i] - mb) * (b[i] - mb);
+  }
+  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
+}
+
+}  // namespace cgview::sdf

@@ -1,0 +1,78 @@
+// The Shape Diameter Function (Shapira, Shamir and Cohen-Or 2008, "Consistent
+// mesh partitioning and skeletonisation using the shape diameter function").
+//
+// At the centroid c of face f, with inward normal -n, a cone of `rays` rays of
+// opening `cone_angle` is cast into the shape.  Ray i leaves along
+//   d_i = cos(a/2) (-n) + sin(a/2) R_i (cos Q_i u + sin Q_i v),
+// with (R_i, Q_i) Vogel's spiral on the unit disk (R_i = i / rays, the
+// sampling CGAL's sdf_values uses) and (u, v) a basis of f's plane.  A ray
+// counts when the first face it meets is seen from behind (the ray leaves
+// the shape there: dot(d_i, n_hit) > 0); its length is t_i.  Rays whose t_i
+// is further than one standard deviation from the median are outliers
+// (Shapira et al.; CGAL instead drops those beyond 1.5 median absolute
+// deviations), and
+//   SDF(f) = sum_i w_i t_i / sum_i w_i,   w_i = 1 / max(angle(d_i, -n), angle_1)
+// (the inverse of the ray's angle to the cone's axis; the axis ray gets the
+// weight of the next one, so that no weight is infinite).
+//
+// Ray casting uses Embree (Intel's ray tracing kernels, Debian's libembree):
+// a BVH built for the whole mesh once, rays traced on every core.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/mesh.h"
+#include "sdf/sdf_params.h"
+
+namespace cgview::sdf {
+
+// The raw SDF of the faces listed (all faces when `faces` is empty): one value
+// per listed face, in the mesh's units, NaN where no ray found the inside (a
+// degenerate face, or every ray escaped through a hole of an open mesh).
+// Only the rays' parameters of `p` count (rays, cone_angle, weights,
+// outliers); the rays are cast on every core.  `ctx` (may be null) gets
+// progress over [progress_from, progress_to] and is checked for
+// cancellation.  Throws InvalidInput for a mesh with no faces, a face not in
+// it, or parameters outside SdfParams' ranges.
+struct RawSdf {
+  std::vector<double> values;
+  std::size_t rays_cast = 0, rays_accepted = 0, missing = 0;
+};
+RawSdf raw_sdf(const Mesh& mesh, const SdfParams& p, std::span<const std::uint32_t> faces = {},
+               const Context* ctx = nullptr, double progress_from = 0, double progress_to = 1);
+
+// CGAL's post-processing of SDF values (Surface_mesh_segmentation's
+// Postprocess_sdf_values), with the same rules:
+// - fill_missing: a NaN face takes the mean of its edge neighbours' values,
+//   else the smallest value of the mesh;
+// - bilateral_smooth: each face becomes the average of the faces within
+//   `window` edge-rings (window = floor(sqrt(faces / 2000)) + 1 by default),
+//   weighted by exp(-ring^2 / (2 (window/2)^2)) exp(-dv^2 / (2 (1.5 s)^2)),
+//   s the RMS deviation of the window's values from the face's;
+// - normalize: linear to [0, 1] over min..max (all 0.5 when constant).
+void fill_missing(const Mesh& mesh, const Adjacency& face_graph, std::vector<double>& values);
+//   Only the faces listed in `only` when it is not empty; NaN values are
+//   neither smoothed nor averaged (the accelerated SDF smooths its samples).
+void bilateral_smooth(const Adjacency& face_graph, std::vector<double>& values, int window = 0,
+                      const Context* ctx = nullptr, std::span<const std::uint32_t> only = {});
+int default_window(std::size_t faces);
+std::vector<double> normalize_linear(const std::vector<double>& values);
+
+// What the SDF algorithms do after the rays: holes filled (always: a face
+// with no value would break every later step), then the bilateral filter
+// when `p.smooth`, over `p.window` rings.
+void postprocess(const Mesh& mesh, const Adjacency& face_graph, std::vector<double>& values, const SdfParams& p,
+                 const Context& ctx);
+
+// A warning for the faces whose rays found no inside (open meshes).
+void warn_missing(const RawSdf& raw, std::vector<std::string>& warnings);
+
+// Pearson's correlation of two equally long series (how far two SDFs agree:
+// the tests and the benchmark compare ours with CGAL's by it); 0 when either
+// is constant or empty.
+double pearson(std::span<const double> a, std::span<const double> b);
+
+}  // namespace cgview::sdf

@@ -1,0 +1,56 @@
+// The accelerated SDF's steps (sdf/sdf_poisson.h): the samples, the solvers,
+// bad input.
+#include "sdf/sdf_poisson.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "io/mesh_io.h"
+#include "test_support.h"
+
+namespace cgview {
+namespace {
+
+TEST(SdfPoisson, SampledFacesKeepTheirRayValuesAndEveryPartGetsOne) {
+  const Mesh two = test::merged(test::uv_sphere(1, 16, 32), test::torus(4, 1));
+  const Adjacency graph = face_neighbors(two, edge_topology(two));
+  const std::vector<std::uint32_t> samples = sdf::spread_samples(two, graph, 1);
+  ASSERT_EQ(samples.size(), 2u);  // one face asked for, one more for the other part
+  // Without smoothing, else the samples are filtered among themselves.
+  const sdf::FastSdf approx =
+      sdf::poisson_sdf(two, graph, {.fraction = 0.05, .solver = sdf::Solver::cholesky, .sdf = {.smooth = false}});
+  for (std::size_t i = 0; i < approx.samples.size(); ++i)
+    EXPECT_DOUBLE_EQ(approx.values[approx.samples[i]], approx.raw.values[i]);
+  for (double v : approx.values) EXPECT_TRUE(std::isfinite(v));
+}
+
+TEST(SdfPoisson, BothSolversAgree) {
+  const Mesh mesh = read_mesh(test::sample("elephant.off"));
+  const Adjacency graph = face_neighbors(mesh, edge_topology(mesh));
+  sdf::SdfFastParams p{.curvature_weight = 1.0};
+  p.solver = sdf::Solver::cholesky;
+  const sdf::FastSdf a = sdf::poisson_sdf(mesh, graph, p);
+  p.solver = sdf::Solver::conjugate_gradient;
+  const sdf::FastSdf b = sdf::poisson_sdf(mesh, graph, p);
+  EXPECT_GT(b.iterations, 0);
+  const auto [lo, hi] = std::minmax_element(a.values.begin(), a.values.end());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) ASSERT_NEAR(a.values[f], b.values[f], 1e-3 * (*hi - *lo));
+}
+
+TEST(SdfPoisson, AFractionOfZeroIsRefused) {
+  const Mesh sphere = test::uv_sphere();
+  const Adjacency graph = face_neighbors(sphere, edge_topology(sphere));
+  try {
+    sdf::poisson_sdf(sphere, graph, {.fraction = 0});
+    FAIL() << "a fraction of 0 was taken";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("fraction"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace cgview
