@@ -53,6 +53,24 @@ export interface TestHooks {
   lastAnimation: { jobId: string; artifact: string; frame: number; frames: number; vertices: number; first: [number, number, number]; sum: number } | null;
   /** The skeletons drawn over the mesh, set after the first frame with each change: key, colour, nodes, edges. */
   skeletons: Array<{ key: string; color: string; nodes: number; edges: number }>;
+  /**
+   * The vector fields drawn over the mesh, set after the first frame with
+   * each change (a new length too): what is drawn (a LineSegments of
+   * `points` points, two a vector drawn), vectors without a value, and the
+   * segments' full length in mesh units.
+   */
+  vectors: Array<{
+    key: string;
+    color: string;
+    location: string;
+    hint: string;
+    type: string;
+    points: number;
+    drawn: number;
+    missing: number;
+    length: number;
+    scale: number;
+  }>;
   /** The selection (ids of the stored mesh), set after the frame that draws it. */
   selection?: { meshId: string | null; ready: boolean; kind: string; count: number; ids: number[]; area: number | null };
   /** The camera now: position, view direction, up, orbit centre, navigation mode. */
@@ -115,6 +133,7 @@ export function installTestHooks(orbit: TestHooks['orbit']): TestHooks {
     lastExtra: null,
     lastAnimation: null,
     skeletons: [],
+    vectors: [],
     display: null,
     lastLink: null,
     viewRestored: null,

@@ -59,6 +59,27 @@ def field_array(data):
 
 
 @dataclass
+class VectorField:
+    """values (n, 3) float32: a vector per vertex or per face of the mesh, in
+    its stored order, a row of NaN where there is none; location "vertex" or
+    "face"; hint "direction" (unit vectors whose sign means nothing) or
+    "arrow" (length and sign mean something); max_length: the longest finite
+    vector's length."""
+    values: object
+    location: str
+    hint: str
+    max_length: float = None
+
+
+def vector_array(data):
+    """A vector field's vectors (its "f32" format: x, y, z float32 triples) as
+    an (n, 3) float32 array."""
+    if len(data) % 12:
+        raise ValueError(f"{len(data)} bytes are not whole float32 x, y, z triples")
+    return numpy().frombuffer(data, dtype="<f4").reshape(-1, 3).astype("float32")
+
+
+@dataclass
 class VoxelGrid:
     """values[x, y, z] (uint8 occupancy, or float32), the grid's corner
     (`origin`, the low corner of voxel 0) and its voxel size."""

@@ -109,6 +109,17 @@ class Job(dict):
         name = self._artifact(name, "scalar_field")
         return arrays.field_array(self._client.artifact(self.id, name, "f32")[0])
 
+    def vector_field(self, name=None):
+        """A vector field artifact (the first, or the one named) as
+        arrays.VectorField: .values (n, 3) float32 in the order of the input
+        mesh's vertices or faces (NaN rows: no value), .location, .hint
+        ("direction" or "arrow") and .max_length."""
+        name = self._artifact(name, "vector_field")
+        entry = next(a for a in self["artifacts"] if a["name"] == name)
+        values = arrays.vector_array(self._client.artifact(self.id, name, "f32")[0])
+        return arrays.VectorField(values, entry.get("location", "vertex"), entry.get("hint", "arrow"),
+                                  entry.get("max_length"))
+
     def grid(self, name=None):
         """A voxel grid artifact as arrays.VoxelGrid (values[x, y, z], origin, voxel_size)."""
         name = self._artifact(name, "voxel_grid")

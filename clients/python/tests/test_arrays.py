@@ -1,4 +1,4 @@
-"""Meshes, fields, grids and skeletons as numpy arrays, uploads from arrays,
+"""Meshes, fields, vector fields, grids and skeletons as numpy arrays, uploads from arrays,
 Open3D and meshio meshes, checked parameters, the algorithms as methods and
 many jobs at once, against the real server; the references are meshio's
 reading of the sample file, numpy's own sums, and the artifacts' other formats."""
@@ -62,6 +62,27 @@ class ArraysTest(WithElephant):
         expected = (np.linalg.norm(V - V.mean(axis=0), axis=1) ** 2).astype(np.float32)
         np.testing.assert_allclose(job.field(), expected, rtol=1e-5)
         self.assertEqual(job.field("distance").shape, (len(V),))
+
+    def test_a_vector_field_is_an_n_by_3_array_with_its_location_and_hint(self):
+        job = self.client.run("principal_directions", self.mesh)
+        vf = job.vector_field()  # the first: max_direction
+        self.assertEqual(vf.values.shape, (len(self.mesh.vertices), 3))
+        self.assertEqual(vf.values.dtype, np.float32)
+        self.assertEqual((vf.location, vf.hint), ("vertex", "direction"))
+        finite = np.isfinite(vf.values).all(axis=1)
+        self.assertGreater(finite.sum(), 0.9 * len(finite))
+        # Principal directions: unit vectors where there is a value, at right angles to each other.
+        np.testing.assert_allclose(np.linalg.norm(vf.values[finite], axis=1), 1, atol=1e-4)
+        other = job.vector_field("min_direction").values
+        both = finite & np.isfinite(other).all(axis=1)
+        np.testing.assert_allclose(np.einsum("ij,ij->i", vf.values[both], other[both]), 0, atol=1e-3)
+        self.assertAlmostEqual(vf.max_length, float(np.linalg.norm(vf.values[finite], axis=1).max()), places=5)
+        # The same vectors in the json format (NaN written as null).
+        import json
+        rows = json.loads(self.client.artifact(job.id, "max_direction", "json")[0])["values"]
+        np.testing.assert_array_equal(np.array([[np.nan if x is None else x for x in r] for r in rows], np.float32), vf.values)
+        with self.assertRaisesRegex(ValueError, "is a scalar_field, not a vector_field"):
+            job.vector_field("max_curvature")
 
     def test_a_voxel_grid_a_skeleton_and_metrics(self):
         job = self.client.run("voxelize", self.mesh, resolution=24)

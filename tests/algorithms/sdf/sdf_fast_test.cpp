@@ -8,16 +8,12 @@
 #include <tuple>
 #include <utility>
 
-#include "algorithm_support.h"
-#include "core/orient.h"
 #include "io/mesh_io.h"
 #include "test_support.h"
+#include "turned_outward.h"
 
 namespace cgview {
 namespace {
-
-using test::artifact;
-using test::run_algorithm;
 
 // The paper's Figure 9: 10% of the faces cast rays, the rest is solved for.
 // The bounds are those bench/sdf_bench reports for these meshes, rounded up
@@ -45,21 +41,7 @@ TEST(SdfFast, TenPercentStaysWithinTheBenchmarksErrorBounds) {
 
 // The turn is the registry's (InputSpec::outward, kSdfInput): a job's path.
 TEST(SdfFast, AMeshFacingInwardIsTurnedOutwardForItsRunAndTheResultSaysSo) {
-  // The rays go along the inward normal: facing inward they would leave
-  // the ball, and most faces would have no value.
-  const Mesh out = test::uv_sphere(1.0, 16, 32);
-  Mesh in = out;
-  flip_faces(in);
-  const AlgorithmResult a = run_algorithm("sdf_fast", out, {{"smooth", false}});
-  const AlgorithmResult b = run_algorithm("sdf_fast", in, {{"smooth", false}});
-  const ScalarField& fa = artifact<ScalarField>(a, "sdf_fast");
-  const ScalarField& fb = artifact<ScalarField>(b, "sdf_fast");
-  ASSERT_EQ(fa.values.size(), fb.values.size());
-  for (std::size_t f = 0; f < fa.values.size(); ++f) ASSERT_FLOAT_EQ(fa.values[f], fb.values[f]) << "face " << f;
-  EXPECT_TRUE(a.warnings.empty() || a.warnings.front().find("face inward") == std::string::npos);
-  ASSERT_FALSE(b.warnings.empty());
-  EXPECT_NE(b.warnings.front().find("faces all face inward"), std::string::npos) << b.warnings.front();
-  EXPECT_NE(b.warnings.front().find("turned outward"), std::string::npos);
+  test::expect_turned_outward("sdf_fast", "sdf_fast");
 }
 
 TEST(SdfFastBadInput, ClearErrors) {

@@ -8,17 +8,13 @@
 #include <string>
 #include <string_view>
 
-#include "algorithm_support.h"
-#include "core/orient.h"
 #include "io/mesh_io.h"
 #include "sdf/sdf_rays.h"
 #include "test_support.h"
+#include "turned_outward.h"
 
 namespace cgview {
 namespace {
-
-using test::artifact;
-using test::run_algorithm;
 
 // With the defaults (inverse-angle weights, outliers dropped) every face of
 // a sphere agrees with every other: a sphere looks the same from everywhere.
@@ -35,23 +31,7 @@ TEST(Sdf, SphereWithTheDefaultConeIsTheSameOnEveryFace) {
 }
 
 // The turn is the registry's (InputSpec::outward, kSdfInput): a job's path.
-TEST(Sdf, AMeshFacingInwardIsTurnedOutwardForItsRunAndTheResultSaysSo) {
-  // The rays go along the inward normal: facing inward they would leave
-  // the ball, and most faces would have no value.
-  const Mesh out = test::uv_sphere(1.0, 16, 32);
-  Mesh in = out;
-  flip_faces(in);
-  const AlgorithmResult a = run_algorithm("sdf", out, {{"smooth", false}});
-  const AlgorithmResult b = run_algorithm("sdf", in, {{"smooth", false}});
-  const ScalarField& fa = artifact<ScalarField>(a, "sdf");
-  const ScalarField& fb = artifact<ScalarField>(b, "sdf");
-  ASSERT_EQ(fa.values.size(), fb.values.size());
-  for (std::size_t f = 0; f < fa.values.size(); ++f) ASSERT_FLOAT_EQ(fa.values[f], fb.values[f]) << "face " << f;
-  EXPECT_TRUE(a.warnings.empty() || a.warnings.front().find("face inward") == std::string::npos);
-  ASSERT_FALSE(b.warnings.empty());
-  EXPECT_NE(b.warnings.front().find("faces all face inward"), std::string::npos) << b.warnings.front();
-  EXPECT_NE(b.warnings.front().find("turned outward"), std::string::npos);
-}
+TEST(Sdf, AMeshFacingInwardIsTurnedOutwardForItsRunAndTheResultSaysSo) { test::expect_turned_outward("sdf", "sdf"); }
 
 TEST(Sdf, AlgorithmGivesRawNormalizedAndPerVertexFields) {
   const Mesh mesh = read_mesh(test::sample("elephant.off"));

@@ -142,11 +142,13 @@ export type JobState = 'queued' | 'running' | 'done' | 'failed' | 'cancelled' | 
 /** A job's artifact as the Job lists it; `location` and `range` for scalar fields, `count` where it applies. */
 export interface ArtifactInfo {
   name: string;
-  kind: 'scalar_field' | 'mesh' | 'metrics' | string;
+  kind: 'scalar_field' | 'vector_field' | 'mesh' | 'metrics' | string;
   location?: 'vertex' | 'face';
   range?: [number, number];
   count?: number;
   hint?: string;
+  /** A vector field's longest finite vector (its arrows are drawn scaled by it). */
+  max_length?: number;
   /** The formats GET /jobs/{id}/artifacts/{name}?format=F serves it in (its kind's codec); absent from older servers. */
   formats?: string[];
   /** Its stored size; absent from older servers. */

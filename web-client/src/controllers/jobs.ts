@@ -82,7 +82,7 @@ export class JobsController {
       app.kinds,
     );
     store.subscribe(
-      (s) => [s.jobs, s.meshes, s.field, s.compared, s.added, s.runTarget, s.metrics, s.texts, s.skeletons, s.me?.user, s.me?.admin],
+      (s) => [s.jobs, s.meshes, s.field, s.compared, s.added, s.runTarget, s.metrics, s.texts, s.skeletons, s.vectors, s.me?.user, s.me?.admin],
       () => {
         const s = store.get();
         panel.render({
@@ -96,6 +96,7 @@ export class JobsController {
           metrics: s.metrics,
           texts: s.texts,
           skeletons: s.skeletons,
+          vectors: s.vectors,
           mayChange: (owner) => app.account.mayChange(owner),
         });
       },
@@ -338,13 +339,13 @@ export class JobsController {
     for (const m of merged) this.settled(m);
   }
 
-  /** What a job's new state brings: a done job's artifacts to their kinds, and the field of a job submitted here shown. */
+  /** What a job's new state brings: a done job's artifacts to their kinds, and the field of a job submitted here shown (its scalar field, else its vector field). */
   private settled(job: Job): void {
     if (HIDDEN.has(job.algorithm)) return;
     if (job.state === 'done') {
       this.ctx.app.kinds.load(job);
       if (this.autoShow.delete(job.id)) {
-        const field = job.artifacts?.find((a) => a.kind === 'scalar_field');
+        const field = job.artifacts?.find((a) => a.kind === 'scalar_field') ?? job.artifacts?.find((a) => a.kind === 'vector_field');
         if (field) void this.ctx.app.kinds.show(job.id, field.name, field.kind);
       }
     } else if (job.state === 'failed' && this.autoShow.delete(job.id)) {

@@ -11,7 +11,8 @@
 // Beside `view`, the hash may hold what that format has no place for:
 // `up=z` (the shown mesh's up axis, which the camera's numbers assume),
 // `compare` once per field compared side by side, and `show` once per
-// skeleton drawn or voxel grid whose slices are open (`JOB/ARTIFACT`).
+// skeleton or vector field drawn or voxel grid whose slices are open
+// (`JOB/ARTIFACT`).
 import type { ArtifactRef, SceneEntry } from '../state/app_state.ts';
 import { artifactKey, splitKey } from '../state/app_state.ts';
 import { applyCamera, readCamera } from '../viewer/camera_state.ts';
@@ -196,7 +197,7 @@ export class ViewLinks {
       }
     }
     display.setUpAxis(up);
-    // Skeletons drawn and a grid's slices, by their kind.
+    // Skeletons and vector fields drawn and a grid's slices, by their kind.
     const unknown: string[] = [];
     for (const s of shows) {
       const kind = jobOf(this.ctx, s.jobId)?.artifacts?.find((a) => a.name === s.artifact)?.kind;

@@ -11,6 +11,7 @@ import { MetricsKind } from './metrics.ts';
 import { ScalarFieldKind } from './scalar_field.ts';
 import { SkeletonKind } from './skeleton.ts';
 import { TextKind } from './text.ts';
+import { VectorFieldKind } from './vector_field.ts';
 import { VoxelGridKind } from './voxel_grid.ts';
 
 export class Kinds {
@@ -23,7 +24,16 @@ export class Kinds {
     const skeleton = new SkeletonKind(ctx);
     const voxels = new VoxelGridKind(ctx);
     this.field = new ScalarFieldKind(ctx);
-    const modules: ArtifactKind[] = [new AnimationKind(ctx), this.field, new MeshSurfaceKind(ctx), skeleton, voxels, new MetricsKind(ctx), new TextKind(ctx)];
+    const modules: ArtifactKind[] = [
+      new AnimationKind(ctx),
+      this.field,
+      new MeshSurfaceKind(ctx),
+      skeleton,
+      voxels,
+      new MetricsKind(ctx),
+      new TextKind(ctx),
+      new VectorFieldKind(ctx),
+    ];
     this.byKind = new Map(modules.map((m) => [m.kind, m]));
   }
 
@@ -41,7 +51,7 @@ export class Kinds {
     return this.of(kind)?.show(jobId, artifact) ?? Promise.resolve();
   }
 
-  /** The skeletons drawn and the grid whose slices are open, as `${jobId}/${artifact}` keys (view links' `show=`). */
+  /** The skeletons and vector fields drawn and the grid whose slices are open, as `${jobId}/${artifact}` keys (view links' `show=`). */
   shownKeys(): string[] {
     return [...this.byKind.values()].flatMap((m) => m.shownKeys?.() ?? []);
   }

@@ -16,11 +16,11 @@ export interface JobsActions {
   cancel(id: string): void;
   /**
    * Shows an artifact by its kind (kinds/registry.ts): a scalar field on its
-   * mesh, a mesh beside its input, a skeleton over its mesh, an animation
-   * with the player, a voxel grid's slices.
+   * mesh, a mesh beside its input, a skeleton or a vector field over its
+   * mesh, an animation with the player, a voxel grid's slices.
    */
   show(jobId: string, artifact: string, kind: string): void;
-  /** Stops showing an artifact (a skeleton's second click). */
+  /** Stops showing an artifact (a skeleton's second click, a vector field's Hide). */
   hide(jobId: string, artifact: string, kind: string): void;
   /** Shows every scalar_field artifact of the job side by side, in synchronized views. */
   compare(jobId: string): void;
@@ -50,6 +50,8 @@ export interface JobsView {
   texts: ReadonlyMap<string, string | undefined>;
   /** Skeleton artifacts drawn now, by `${jobId}/${name}`: their colour. */
   skeletons: ReadonlyMap<string, string>;
+  /** Vector field artifacts drawn now, by `${jobId}/${name}`: their colour. */
+  vectors: ReadonlyMap<string, string>;
   /** Whether the user may share a job of that owner. */
   mayChange(owner: string | undefined): boolean;
 }

@@ -63,6 +63,8 @@ export interface AppState {
   added: ReadonlySet<string>;
   /** Skeleton artifacts drawn over the mesh, by `${jobId}/${name}` in the order drawn: their colour. */
   skeletons: ReadonlyMap<string, string>;
+  /** Vector field artifacts drawn over the mesh, by `${jobId}/${name}` in the order drawn: their colour. */
+  vectors: ReadonlyMap<string, string>;
   /** The scene: the selected mesh first (the viewer's shown object), then the meshes added beside it. */
   scene: readonly SceneEntry[];
   /** Whether the scene's objects are side by side, one per pane. */
@@ -90,6 +92,7 @@ export function initialState(): AppState {
     compared: [],
     added: new Set(),
     skeletons: new Map(),
+    vectors: new Map(),
     scene: [],
     scenePanes: false,
     picked: 0,

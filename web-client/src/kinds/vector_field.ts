@@ -1,0 +1,215 @@
+// `vector_field` artifacts: a 3D vector per vertex or per face (principal
+// directions, gradients), fetched as f32 with its location and hint from the
+// Job, drawn over its mesh as line segments (viewer/vector_field_renderer.ts)
+// from the mesh in the server's vertex and face order (the streamed mesh
+// mapped through its stored order: controllers/mesh_loader.ts), each field in
+// its own colour so that two drawn together (a vertex's two principal
+// directions) tell apart. Its row: Show / Hide, while drawn a slider for the
+// segments' length and a swatch, and once fetched how many vectors have no
+// value. The fields drawn are kept in view links (`show=`).
+import type * as THREE from 'three';
+import { fetchArtifactF32 } from '../api/rest.ts';
+import { jobMeshId, type ArtifactInfo, type Job } from '../api/types.ts';
+import { describe, jobOf, type AppContext } from '../controllers/context.ts';
+import { artifactRow } from '../panels/artifact_row.ts';
+import { el } from '../panels/dom.ts';
+import type { JobsActions, JobsView } from '../panels/jobs.ts';
+import { artifactKey } from '../state/app_state.ts';
+import { longest, VECTOR_COLORS, VectorGlyphs, type VectorField } from '../viewer/vector_field_renderer.ts';
+import type { ArtifactKind } from './kind.ts';
+import './vector_field.css';
+
+interface DrawnVectors {
+  glyphs: VectorGlyphs;
+  color: string;
+  field: VectorField;
+}
+
+/** The length slider's range: log2 of the scale, 1/4 to 4 times the default. */
+const SCALE_LOG2 = { min: -2, max: 2, step: 0.25 };
+
+export class VectorFieldKind implements ArtifactKind {
+  readonly kind = 'vector_field';
+  readonly storedFormat = 'f32';
+  private readonly ctx: AppContext;
+  /** The fields drawn over the mesh, by `${jobId}/${name}`, in the order shown. */
+  private readonly drawn = new Map<string, DrawnVectors>();
+  /** Vectors without a value, by `${jobId}/${name}`, once a field has been fetched (what its row says, drawn or not). */
+  private readonly missing = new Map<string, { missing: number; count: number; location: string }>();
+  /** The length chosen for a field (a multiple of the default), by `${jobId}/${name}`. */
+  private readonly scales = new Map<string, number>();
+  /** Counts disposals: a field fetched for a mesh since gone is not drawn. */
+  private token = 0;
+
+  constructor(ctx: AppContext) {
+    this.ctx = ctx;
+  }
+
+  load(): void {
+    // Fetched when shown.
+  }
+
+  /** "Show" (over its mesh, in a colour of its own), "Hide" while drawn, with the length slider and its colour; then how many vectors have no value. */
+  row(job: Job, a: ArtifactInfo, view: JobsView, actions: JobsActions): HTMLElement {
+    const key = artifactKey(job.id, a.name);
+    const color = view.vectors.get(key);
+    const toggle = el(
+      'button',
+      {
+        type: 'button',
+        class: color ? 'button small show-vectors active' : 'button small show-vectors',
+        title: color ? 'Stop drawing the vectors' : 'Draw the vectors over the mesh',
+      },
+      color ? 'Hide' : 'Show',
+    );
+    toggle.addEventListener('click', () => (color ? actions.hide(job.id, a.name, a.kind) : actions.show(job.id, a.name, a.kind)));
+    const swatch = color ? el('span', { class: 'swatch', style: `background:${color}`, title: color }) : null;
+    return artifactRow(job, a, this.storedFormat, [toggle, swatch, color ? this.lengthControl(key, a.name) : null], this.note(key));
+  }
+
+  rowState(job: Job, a: ArtifactInfo, view: JobsView): [string, number | null] {
+    const key = artifactKey(job.id, a.name);
+    return [view.vectors.get(key) ?? '', this.missing.get(key)?.missing ?? null];
+  }
+
+  /** Draws a job's vector_field artifact over its mesh (selecting that mesh first when another one is shown). */
+  async show(jobId: string, artifactName: string): Promise<void> {
+    const { app, store, viewer } = this.ctx;
+    const key = artifactKey(jobId, artifactName);
+    if (this.drawn.has(key)) return;
+    const job = jobOf(this.ctx, jobId);
+    const artifact = job?.artifacts?.find((a) => a.name === artifactName);
+    const meshId = jobMeshId(job);
+    if (!job || !artifact || !meshId) return;
+    if (!app.meshes.mesh(meshId)) return this.ctx.error(`Cannot show ${artifactName} of ${job.algorithm}: its mesh no longer exists`);
+    app.meshes.selectMeshOf(job);
+    const token = this.token;
+    try {
+      // The mesh in the stored order: made from the streamed one (no second download of it).
+      const [values, ply] = await Promise.all([fetchArtifactF32(jobId, artifactName), app.loader.ply(meshId), app.loader.showing]);
+      if (token !== this.token || store.get().selectedId !== meshId || this.drawn.has(key)) return;
+      if (values.length % 3 !== 0) throw new Error(`${values.length} numbers are not whole x, y, z triples`);
+      const location = artifact.location ?? (values.length / 3 === ply.faces && values.length / 3 !== ply.vertices ? 'face' : 'vertex');
+      const hint = artifact.hint === 'direction' ? 'direction' : 'arrow';
+      const maxLength = Number.isFinite(artifact.max_length) && artifact.max_length! > 0 ? artifact.max_length! : longest(values);
+      const field: VectorField = { name: artifactName, location, hint, values, maxLength };
+      const used = new Set([...this.drawn.values()].map((d) => d.color));
+      const color = VECTOR_COLORS.find((c) => !used.has(c)) ?? VECTOR_COLORS[this.drawn.size % VECTOR_COLORS.length]!;
+      const glyphs = new VectorGlyphs(ply, field, color, this.scales.get(key) ?? 1);
+      this.followShown(glyphs.object);
+      this.drawn.set(key, { glyphs, color, field });
+      this.missing.set(key, { missing: glyphs.stats.missing, count: values.length / 3, location });
+      viewer.addExtra(glyphs.object, () => this.report());
+      this.publish();
+    } catch (e) {
+      if (token !== this.token) return;
+      this.ctx.error(`Cannot show ${artifactName} of ${job.algorithm}: ${describe(e)}`);
+    }
+  }
+
+  shownKeys(): string[] {
+    return [...this.drawn.keys()];
+  }
+
+  hide(jobId: string, artifact: string): void {
+    const key = artifactKey(jobId, artifact);
+    const drawn = this.drawn.get(key);
+    if (!drawn) return;
+    this.ctx.viewer.removeExtra(drawn.glyphs.object); // disposes of its geometry and material
+    this.drawn.delete(key);
+    this.publish();
+    this.ctx.viewer.redraw(() => this.report());
+  }
+
+  dispose(): void {
+    ++this.token;
+    this.ctx.hooks.vectors = [];
+    if (!this.drawn.size) return;
+    for (const d of this.drawn.values()) this.ctx.viewer.removeExtra(d.glyphs.object);
+    this.drawn.clear();
+    this.publish();
+  }
+
+  /**
+   * Draws `object` where the shown mesh is: the vectors are in the mesh's own
+   * coordinates, and the mesh may be turned (its up axis) or moved (the Scene
+   * panel). Before each frame (and each measure of its box) it takes the
+   * shown object's world matrix (the extras' group is not moved).
+   */
+  private followShown(object: THREE.Object3D): void {
+    const { viewer } = this.ctx;
+    const update = object.updateMatrixWorld.bind(object);
+    object.matrixAutoUpdate = false;
+    object.updateMatrixWorld = () => {
+      const shown = viewer.object;
+      if (shown) {
+        shown.updateWorldMatrix(true, false);
+        object.matrix.copy(shown.matrixWorld);
+      }
+      update(true); // its matrix was set here, which three does not see
+    };
+  }
+
+  /** The segments' length as a multiple of the default, from 1/4 to 4 (a log scale): it changes them in place. */
+  private lengthControl(key: string, name: string): HTMLElement {
+    const scale = this.scales.get(key) ?? 1;
+    const input = el('input', {
+      type: 'range',
+      class: 'vector-length',
+      min: String(SCALE_LOG2.min),
+      max: String(SCALE_LOG2.max),
+      step: String(SCALE_LOG2.step),
+      value: String(Math.log2(scale)),
+      'aria-label': `Length of ${name}`,
+      title: 'Length of the lines drawn',
+    });
+    const value = el('output', { class: 'vector-length-value' }, times(scale));
+    input.addEventListener('input', () => {
+      const s = 2 ** Number(input.value);
+      value.textContent = times(s);
+      this.setScale(key, s);
+    });
+    return el('label', { class: 'vector-length-row' }, 'Length', input, value);
+  }
+
+  private setScale(key: string, scale: number): void {
+    this.scales.set(key, scale);
+    const drawn = this.drawn.get(key);
+    if (!drawn) return;
+    drawn.glyphs.setScale(scale);
+    this.ctx.viewer.redraw(() => this.report());
+  }
+
+  /** How many vectors have no value, once the field has been fetched. */
+  private note(key: string): HTMLElement | null {
+    const m = this.missing.get(key);
+    if (!m) return null;
+    const where = m.location === 'face' ? 'faces' : 'vertices';
+    const text = m.missing ? `${m.missing} of ${m.count} ${where} without a value (not drawn)` : `all ${m.count} ${where} have a value`;
+    return el('p', { class: m.missing ? 'vector-missing warn' : 'vector-missing' }, text);
+  }
+
+  private publish(): void {
+    this.ctx.store.update({ vectors: new Map([...this.drawn].map(([k, d]) => [k, d.color])) });
+  }
+
+  private report(): void {
+    this.ctx.hooks.vectors = [...this.drawn].map(([key, d]) => ({
+      key,
+      color: d.color,
+      location: d.field.location,
+      hint: d.field.hint,
+      type: d.glyphs.object.type,
+      points: d.glyphs.object.geometry.getAttribute('position').count,
+      drawn: d.glyphs.stats.drawn,
+      missing: d.glyphs.stats.missing,
+      length: d.glyphs.stats.length * (this.scales.get(key) ?? 1),
+      scale: this.scales.get(key) ?? 1,
+    }));
+  }
+}
+
+/** A scale as the slider writes it beside itself ("1×", "0.5×", "2.38×"). */
+function times(scale: number): string {
+  return `${Number(scale.toPrecision(3))}×`;
+}
