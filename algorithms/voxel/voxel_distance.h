@@ -14,6 +14,7 @@
 #include "core/mesh.h"
 #include "core/voxel_grid.h"
 #include "registry/registry.h"
+#include "voxel/voxelize.h"
 
 namespace cgview {
 
@@ -22,15 +23,8 @@ struct VoxelDistanceParams {
   double max_memory_mb = 2048;
   template <class V>
   void describe(V& v) {
-    v.integer(
-        "resolution", resolution,
-        {.label = "Resolution", .min = 1, .max = 4096, .help = "voxels along the longest side of the bounding box"});
-    v.number("max_memory_mb", max_memory_mb,
-             {.label = "Memory limit (MB)",
-              .min = 1,
-              .max = 1e6,
-              .help = "refuse a grid that needs more memory (1 byte per voxel, and 12 more for the distances)",
-              .advanced = true});
+    describe_resolution(v, resolution, 4096);
+    describe_memory_limit(v, max_memory_mb, "1 byte per voxel, and 12 more for the distances");
   }
 };
 

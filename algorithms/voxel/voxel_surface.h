@@ -22,20 +22,13 @@ struct VoxelSurfaceParams {
   double max_memory_mb = 2048;
   template <class V>
   void describe(V& v) {
-    v.integer(
-        "resolution", resolution,
-        {.label = "Resolution", .min = 1, .max = 8192, .help = "voxels along the longest side of the bounding box"});
+    describe_resolution(v, resolution);
     v.choice(
         "mode", mode,
         {.label = "Mode",
          .help = "solid: the outer surface of the solid voxels; surface: both sides of the shell of surface voxels",
          .choices = {"surface", "solid"}});
-    v.number("max_memory_mb", max_memory_mb,
-             {.label = "Memory limit (MB)",
-              .min = 1,
-              .max = 1e6,
-              .help = "refuse a grid that needs more memory (1 byte per voxel)",
-              .advanced = true});
+    describe_memory_limit(v, max_memory_mb);
   }
 };
 

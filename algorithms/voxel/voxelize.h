@@ -51,6 +51,26 @@ namespace cgview {
 
 enum class VoxelizeMode { surface, solid };
 
+// The grid's size and its memory limit, as every algorithm that voxelizes
+// (voxelize, voxel_surface, voxel_distance) takes them: described once.
+// `most`: the largest resolution it allows; `per_voxel`: what its help says a
+// voxel costs.
+template <class V>
+void describe_resolution(V& v, int& resolution, double most = 8192) {
+  v.integer(
+      "resolution", resolution,
+      {.label = "Resolution", .min = 1, .max = most, .help = "voxels along the longest side of the bounding box"});
+}
+template <class V>
+void describe_memory_limit(V& v, double& max_memory_mb, const char* per_voxel = "1 byte per voxel") {
+  v.number("max_memory_mb", max_memory_mb,
+           {.label = "Memory limit (MB)",
+            .min = 1,
+            .max = 1e6,
+            .help = "refuse a grid that needs more memory (" + std::string(per_voxel) + ")",
+            .advanced = true});
+}
+
 struct VoxelizeParams {
   int resolution = 128;     // voxels along the longest side of the bounding box
   double voxel_size = 0.0;  // > 0: use this size and ignore resolution
@@ -65,9 +85,7 @@ struct VoxelizeParams {
   std::optional<BBox> box{};
   template <class V>
   void describe(V& v) {
-    v.integer(
-        "resolution", resolution,
-        {.label = "Resolution", .min = 1, .max = 8192, .help = "voxels along the longest side of the bounding box"});
+    describe_resolution(v, resolution);
     v.number("voxel_size", voxel_size,
              {.label = "Voxel size", .min = 0, .help = "edge of a voxel in mesh units; 0: from the resolution"});
     v.choice("mode", mode,
@@ -76,12 +94,7 @@ struct VoxelizeParams {
                       "interior (flood fill of the outside from the grid's border)",
               .choices = {"surface", "solid"}});
     v.integer("padding", padding, {.label = "Padding", .min = 0, .max = 64, .help = "empty voxels added on each side"});
-    v.number("max_memory_mb", max_memory_mb,
-             {.label = "Memory limit (MB)",
-              .min = 1,
-              .max = 1e6,
-              .help = "refuse a grid that needs more memory (1 byte per voxel)",
-              .advanced = true});
+    describe_memory_limit(v, max_memory_mb);
   }
 };
 
