@@ -39,16 +39,13 @@ Mesh keep_faces(const Mesh& mesh, const std::vector<bool>& keep) {
 }  // namespace
 
 ExtractFacesResult extract_faces(const Mesh& mesh, const ExtractFacesParams& p, Context* context) {
-  check_params(p);
   const Context& ctx = context_or_none(context);
   mesh.validate();
   if (p.faces.empty()) throw InvalidInput("parameter 'faces': select at least one face");
   // A job's ids were checked against its mesh already; a direct call's are
-  // checked here, by the same rule and message, before they index `keep`.
-  ExtractFacesParams described = p;
-  detail::SpecCollector specs;
-  described.describe(specs);
-  check_selections(specs.specs, {{"faces", p.faces}}, mesh.num_vertices(), mesh.num_faces());
+  // checked here (with the parameters' ranges), by the same rule and message,
+  // before they index `keep`.
+  check_params(p, mesh);
   ctx.progress(0.0, "extracting");
   std::vector<bool> keep(mesh.num_faces(), p.invert);
   for (const Index f : p.faces) keep[f] = !p.invert;

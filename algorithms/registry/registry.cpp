@@ -232,6 +232,15 @@ ParamValue check_param(const ParamSpec& spec, const ParamValue& value) {
   return value;
 }
 
+void detail::check_described(const std::vector<ParamSpec>& specs, const Mesh* mesh) {
+  std::map<std::string, ParamValue> selections;
+  for (const ParamSpec& s : specs) {
+    check_param(s, s.default_value);
+    if (is_selection(s.type)) selections[s.name] = s.default_value;
+  }
+  if (mesh) check_selections(specs, selections, mesh->num_vertices(), mesh->num_faces());
+}
+
 std::size_t detail::enum_index(const ParamInfo& i, const std::string& choice) {
   const auto it = std::find(i.choices.begin(), i.choices.end(), choice);
   if (it == i.choices.end()) throw InvalidInput("'" + choice + "' is not a choice");  // check_param said so first

@@ -307,26 +307,6 @@ struct ValueAssigner {
   void vertices(const char* n, Ids& v, const ParamInfo& = {}) { set(n, v); }
 };
 
-// Checks each field of a Params struct against its own description (type,
-// range, choices): the ranges live in `describe` and nowhere else.
-struct ValueChecker {
-  template <class T>
-  void check(const char* n, ParamType t, const T& v, const ParamInfo& i) {
-    check_param(ParamSpec{n, t, ParamValue{v}, i}, ParamValue{v});
-  }
-  void integer(const char* n, long long& v, const ParamInfo& i = {}) { check(n, ParamType::integer, v, i); }
-  void integer(const char* n, int& v, const ParamInfo& i = {}) { check(n, ParamType::integer, (long long)v, i); }
-  void number(const char* n, double& v, const ParamInfo& i = {}) { check(n, ParamType::number, v, i); }
-  void boolean(const char*, bool&, const ParamInfo& = {}) {}
-  void choice(const char* n, std::string& v, const ParamInfo& i) { check(n, ParamType::choice, v, i); }
-  template <class E>
-  requires std::is_enum_v<E>
-  void choice(const char* n, E& v, const ParamInfo& i) { enum_name(n, v, i); }
-  void text(const char* n, std::string& v, const ParamInfo& i = {}) { check(n, ParamType::text, v, i); }
-  void faces(const char* n, Ids& v, const ParamInfo& i = {}) { check(n, ParamType::faces, v, i); }
-  void vertices(const char* n, Ids& v, const ParamInfo& i = {}) { check(n, ParamType::vertices, v, i); }
-};
-
 // While a plugin loads (plugins/plugin.h): an algorithm whose name is taken
 // is not registered and its name goes to `sink`, instead of a throw that
 // could not leave the library's initialisation.  nullptr: throw again.
@@ -470,14 +450,32 @@ Algorithm make_function_algorithm(std::string name, AlgorithmInfo info, Fn fn) {
 
 }  // namespace detail
 
+namespace detail {
+// Checks each spec's default (here: the values of a Params struct, collected
+// by SpecCollector) as check_param checks a job's value; with a mesh, its
+// selections against the mesh too (check_selections).
+void check_described(const std::vector<ParamSpec>& specs, const Mesh* mesh);
+template <class P>
+std::vector<ParamSpec> described(const P& p) {
+  P copy = p;  // describe takes its fields by reference
+  SpecCollector c;
+  copy.describe(c);
+  return std::move(c.specs);
+}
+}  // namespace detail
+
 // Throws InvalidInput naming the first parameter outside its description's
 // range or choices: what a function-algorithm checks first, so that a direct
 // call is held to the same rules as a job.
 template <class P>
 void check_params(const P& p) {
-  P copy = p;
-  detail::ValueChecker c;
-  copy.describe(c);
+  detail::check_described(detail::described(p), nullptr);
+}
+// The same, and each selection (a faces or vertices parameter) against the
+// mesh the ids index, as a job's are.
+template <class P>
+void check_params(const P& p, const Mesh& mesh) {
+  detail::check_described(detail::described(p), &mesh);
 }
 
 // The context of a direct call made without one: no progress, never cancelled.
