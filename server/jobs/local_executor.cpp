@@ -17,6 +17,16 @@ namespace cgview::server {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
+namespace {
+
+// Whether the child has exited, leaving it unreaped.
+bool exited(pid_t pid) {
+  siginfo_t info{};
+  return ::waitid(P_PID, id_t(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid;
+}
+
+}  // namespace
+
 LocalExecutor::LocalExecutor(fs::path worker, int max_workers, std::shared_ptr<const Sandbox> sandbox)
     : worker_(std::move(worker)),
       max_workers_(max_workers > 0 ? max_workers : int(std::max(1u, std::thread::hardware_concurrency()))),
@@ -90,7 +100,13 @@ void LocalExecutor::check(std::vector<ExecutorEvent>& events) {
     if (cancels.count(it->first) && !r.terminating) {
       r.terminating = true;
       r.term_sent = now;
-      kill_child(r.pid, SIGTERM);
+      // A sandboxed worker never sees a SIGTERM: bubblewrap does not pass it
+      // on, and the sandbox's first process, the init of its own process
+      // namespace, ignores it.  That process, still in bubblewrap's group
+      // while it sets the sandbox up, outlived a bubblewrap ended by SIGTERM
+      // when the server died before the SIGKILL a second later.  So the
+      // whole group is killed at once.
+      kill_child(r.pid, sandboxed() ? SIGKILL : SIGTERM);
     }
     if (!r.terminating && !r.timed_out && r.timeout_s > 0 &&
         now - r.launched > std::chrono::duration<double>(r.timeout_s)) {
@@ -99,8 +115,13 @@ void LocalExecutor::check(std::vector<ExecutorEvent>& events) {
     }
     if (r.terminating && now - r.term_sent > std::chrono::seconds(1)) kill_child(r.pid, SIGKILL);
     int status = 0;
-    // Reaped once its stdout closed (it exited, or closed it and goes on).
-    if (r.out_fd < 0 && ::waitpid(r.pid, &status, WNOHANG) == r.pid) {
+    // Reaped once its stdout closed (it exited, or closed it and goes on),
+    // and what it left in its process group is killed first: nothing of a
+    // job outlives it.  (Before the reaping, so that the group's number is
+    // still the job's.)
+    if (r.out_fd < 0 && exited(r.pid)) {
+      kill_child(r.pid, SIGKILL);
+      ::waitpid(r.pid, &status, 0);
       ExecutorEvent e;
       e.job_id = it->first;
       e.kind = ExecutorEvent::Kind::ended;
@@ -108,7 +129,7 @@ void LocalExecutor::check(std::vector<ExecutorEvent>& events) {
       else if (r.timed_out) e.end.how = WorkerEnd::How::timed_out;
       else if (WIFSIGNALED(status)) e.end.how = WorkerEnd::How::signaled, e.end.signal = WTERMSIG(status);
       // bubblewrap exits with 128 + the signal that ended the worker inside.
-      else if (sandbox_ && sandbox_->enabled() && WEXITSTATUS(status) > 128)
+      else if (sandboxed() && WEXITSTATUS(status) > 128)
         e.end.how = WorkerEnd::How::signaled, e.end.signal = WEXITSTATUS(status) - 128;
       else e.end.how = WorkerEnd::How::exited, e.end.code = WEXITSTATUS(status);
       events.push_back(std::move(e));

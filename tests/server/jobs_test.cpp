@@ -617,6 +617,28 @@ TEST_F(JobsTest, CancelARunningJobWithinTwoSeconds) {
   http_call(server_.port(), Method::delete_, "/api/v1/jobs/" + b["id"].get<std::string>());
 }
 
+// A job cancelled while its sandbox is being set up, on a server that dies
+// just after: nothing of the job may stay behind (bubblewrap's first process
+// in the sandbox waits forever for a parent that is gone).
+TEST_F(JobsTest, ACancelledJobLeavesNoProcessEvenWhenTheServerDiesAtOnce) {
+  std::vector<std::string> ids;
+  // At a few moments after the launch, one of which falls in the set-up.
+  for (int k = 0; k < 12; ++k) {
+    ids.push_back(submit("test_sleep", {{"seconds", 60}})["id"]);
+    std::this_thread::sleep_for(std::chrono::milliseconds(3 * k));
+    http_call(server_.port(), Method::delete_, "/api/v1/jobs/" + ids.back());
+  }
+  server_.kill_now();
+  const auto t0 = Clock::now();
+  auto left = [&] {
+    int n = 0;
+    for (const std::string& id : ids) n += worker_processes(id);
+    return n;
+  };
+  while (left() > 0 && Clock::now() - t0 < 5s) std::this_thread::sleep_for(20ms);
+  EXPECT_EQ(left(), 0);
+}
+
 TEST_F(JobsTest, WebSocketEvents) {
   WsClient ws;
   ASSERT_FALSE(ws.connect(server_.port()));
