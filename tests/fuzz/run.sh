@@ -6,6 +6,9 @@
 #                                               (what ctest runs: a parser regression fails it)
 #   tests/fuzz/run.sh --campaign S [TARGET...]  each target S seconds on CGVIEW_JOBS cores (default: all),
 #                                               growing BUILD/fuzz/corpus/TARGET from the seeds
+#   tests/fuzz/run.sh --campaign-cpu M [TARGET...]
+#                                               each target until it has had M CPU-minutes, in runs
+#                                               that go on from the corpus the last one grew
 #
 # A finding (crash, leak, sanitizer report, timeout over 10 s, more than
 # 2 GB) is written to BUILD/fuzz/findings/TARGET/ and fails the run.  Keep it
@@ -19,7 +22,8 @@ MODE=${1:-}
 case "$MODE" in
   --ci) SECONDS_EACH=${CGVIEW_FUZZ_SECONDS:-20}; shift ;;
   --campaign) SECONDS_EACH=${2:?--campaign needs seconds}; shift 2 ;;
-  *) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
+  --campaign-cpu) CPU_MINUTES=${2:?--campaign-cpu needs minutes}; MODE=--campaign; shift 2 ;;
+  *) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac
 command -v clang++ >/dev/null || { echo "run.sh: clang++ is missing (Debian: clang, libfuzzer-14-dev)" >&2; exit 1; }
 mkdir -p "$BUILD"
@@ -29,22 +33,45 @@ fi
 cmake --build "$BUILD" -j "${CGVIEW_JOBS:-$(nproc)}"
 TARGETS=("$@")
 [ ${#TARGETS[@]} -gt 0 ] || TARGETS=(off obj ply stl gltf glb drc mtl skeleton voxel zip frame json params config ws)
+JOBS=${CGVIEW_JOBS:-$(nproc)}
 failed=()
-for t in "${TARGETS[@]}"; do
-  work="$BUILD/corpus/$t"
+# One run of target $1 for $2 seconds; adds its CPU seconds and runs to spent and runs.
+run_once() {
+  local t=$1 work="$BUILD/corpus/$1"
   mkdir -p "$work" "$BUILD/findings/$t"
   # The committed seeds stay as they are; what the fuzzer finds goes to work.
-  args=(-max_total_time="$SECONDS_EACH" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 -max_len=65536
-        -artifact_prefix="$BUILD/findings/$t/" -print_final_stats=1)
+  local args=(-max_total_time="$2" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 -max_len=65536
+              -artifact_prefix="$BUILD/findings/$t/" -print_final_stats=1)
   [ -f "dict/$t.dict" ] && args+=(-dict="dict/$t.dict")
   # Fork mode counts out-of-memory inputs and timeouts without stopping; they are findings too.
-  if [ "$MODE" = --campaign ]; then args+=(-fork="${CGVIEW_JOBS:-$(nproc)}" -ignore_crashes=0 -ignore_ooms=0 -ignore_timeouts=0); fi
+  if [ "$MODE" = --campaign ]; then args+=(-fork="$JOBS" -ignore_crashes=0 -ignore_ooms=0 -ignore_timeouts=0); fi
   log="$BUILD/findings/$t.log"
   # /usr/bin/time counts the CPU of fork mode's children too: a campaign's
   # size is its CPU time, which the wall clock overstates on a busy machine.
-  cpu="$BUILD/findings/$t.cpu"
-  if /usr/bin/time -f '%U %S' -o "$cpu" "$BUILD/fuzz_$t" "${args[@]}" "$work" "corpus/$t" >"$log" 2>&1; then
-    echo "fuzz_$t: $(grep -E '^#[0-9]+' "$log" | tail -1 | sed 's/^#/runs /'); $(awk '{printf "%.1f CPU-min", ($1+$2)/60}' "$cpu")"
+  local cpu="$BUILD/findings/$t.cpu" rc=0
+  /usr/bin/time -f '%U %S' -o "$cpu" "$BUILD/fuzz_$t" "${args[@]}" "$work" "corpus/$t" >"$log" 2>&1 || rc=$?
+  # (After a failing run, time's file starts with a line of words, which add 0.)
+  spent=$(awk -v s="$spent" '{s += $1 + $2} END {printf "%.0f", s}' "$cpu" 2>/dev/null || echo "$spent")
+  runs=$((runs + $(grep -E '^#[0-9]+' "$log" | tail -1 | sed -E 's/^#([0-9]+).*/\1/' || echo 0)))
+  last=$(grep -E '^#[0-9]+' "$log" | tail -1 | sed -E 's/^#[0-9]+:?[[:space:]]*(DONE[[:space:]]*)?//')
+  return $rc
+}
+for t in "${TARGETS[@]}"; do
+  spent=0 runs=0 chunks=0 found=0
+  if [ -n "${CPU_MINUTES:-}" ]; then
+    # A wall-clock time that gives what is left on an idle machine, and more
+    # runs while other work took a share of the cores.
+    while awk -v s="$spent" -v m="$CPU_MINUTES" 'BEGIN{exit !(s < m * 60)}'; do
+      secs=$(awk -v s="$spent" -v m="$CPU_MINUTES" -v j="$JOBS" 'BEGIN{w = (m * 60 - s) / j * 1.05; printf "%d", w < 10 ? 10 : w}')
+      chunks=$((chunks + 1))
+      run_once "$t" "$secs" || { found=1; break; }
+    done
+  else
+    chunks=1
+    run_once "$t" "$SECONDS_EACH" || found=1
+  fi
+  if [ $found = 0 ]; then
+    echo "fuzz_$t: $runs inputs in $chunks run(s), $(awk -v s="$spent" 'BEGIN{printf "%.1f", s/60}') CPU-min; at the end: $last"
   else
     echo "fuzz_$t: FINDING (log: $log)"; grep -E 'ERROR|SUMMARY|Test unit written' "$log" | head -5
     failed+=("$t")
