@@ -52,8 +52,12 @@ run_once() {
   /usr/bin/time -f '%U %S' -o "$cpu" "$BUILD/fuzz_$t" "${args[@]}" "$work" "corpus/$t" >"$log" 2>&1 || rc=$?
   # (After a failing run, time's file starts with a line of words, which add 0.)
   spent=$(awk -v s="$spent" '{s += $1 + $2} END {printf "%.0f", s}' "$cpu" 2>/dev/null || echo "$spent")
-  runs=$((runs + $(grep -E '^#[0-9]+' "$log" | tail -1 | sed -E 's/^#([0-9]+).*/\1/' || echo 0)))
-  last=$(grep -E '^#[0-9]+' "$log" | tail -1 | sed -E 's/^#[0-9]+:?[[:space:]]*(DONE[[:space:]]*)?//')
+  # (-a: a log may hold bytes of an input.)
+  local status n
+  status=$(grep -aE '^#[0-9]+' "$log" | tail -1 || true)
+  n=$(sed -nE 's/^#([0-9]+).*/\1/p' <<<"$status")
+  runs=$((runs + ${n:-0}))
+  last=$(sed -E 's/^#[0-9]+:?[[:space:]]*(DONE[[:space:]]*)?//' <<<"$status")
   return $rc
 }
 for t in "${TARGETS[@]}"; do
