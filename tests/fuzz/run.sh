@@ -35,7 +35,8 @@ TARGETS=("$@")
 [ ${#TARGETS[@]} -gt 0 ] || TARGETS=(off obj ply stl gltf glb drc mtl skeleton voxel zip frame json params config ws)
 JOBS=${CGVIEW_JOBS:-$(nproc)}
 failed=()
-# One run of target $1 for $2 seconds; adds its CPU seconds and runs to spent and runs.
+# One run of target $1 for $2 seconds: adds its CPU seconds to spent and its
+# inputs to runs, and sets last (its final status line) and log; fails as the target did.
 run_once() {
   local t=$1 work="$BUILD/corpus/$1"
   mkdir -p "$work" "$BUILD/findings/$t"
