@@ -77,6 +77,8 @@ std::vector<ViewCapture> capture_views(Renderer& renderer, const Mesh& mesh, con
   return capture_cameras(renderer, mesh, cameras, params.contexts, {.face_ids = params.face_ids});
 }
 
+int automatic_contexts(const Renderer& renderer) { return renderer.info().software ? 2 : 1; }
+
 std::vector<ViewCapture> capture_cameras(Renderer& renderer, const Mesh& mesh,
                                          const std::vector<CameraMatrices>& cameras, int contexts,
                                          const CaptureOptions& options) {

@@ -40,6 +40,12 @@ struct ViewsParams {
 // bounding sphere fills each image (render/camera.h, orthographic_view).
 // Throws InvalidInput for a bad size, view count or contexts < 1.
 std::vector<ViewCapture> capture_views(Renderer& renderer, const Mesh& mesh, const ViewsParams& params = {});
+// How many contexts to draw with when the caller leaves it to us: 2 on a
+// software renderer (llvmpipe's per-context vertex work then runs on two
+// cores), 1 on a GPU, where each extra context only adds a copy of the mesh
+// and a switch between contexts (docs/BENCHMARKS.md: on an H200, 48 views
+// of 256² took 12 ms with one context and 60 ms with two).
+int automatic_contexts(const Renderer& renderer);
 // The same from cameras of the caller's choosing (all of one size), drawn by
 // `contexts` contexts at once, with what `options` asks (Renderer::capture).
 std::vector<ViewCapture> capture_cameras(Renderer& renderer, const Mesh& mesh,

@@ -49,6 +49,7 @@ struct Pipeline {
   double render_cpu_seconds = 0, vote_cpu_seconds = 0, thin_cpu_seconds = 0;  // the process's CPU time (all threads)
   int genus = -1;
   std::size_t faces_drawn = 0;  // the mesh's, or its decimated copy's (render_faces)
+  int contexts = 1;             // render contexts the views were drawn with (the parameter, or automatic)
 };
 
 // All stages, (a) to (e).
@@ -94,8 +95,9 @@ Pipeline run_stages(render::Renderer& renderer, const Mesh& mesh, const Skeleton
     }
     return solid;
   });
+  out.contexts = p.contexts > 0 ? p.contexts : render::automatic_contexts(renderer);
   const std::vector<render::ViewCapture> views =
-      render::capture_cameras(renderer, drawn, cameras, p.contexts, {.back_depth = true});
+      render::capture_cameras(renderer, drawn, cameras, out.contexts, {.back_depth = true});
   watch.stop(out.render_seconds, out.render_cpu_seconds);
   if (ctx) {
     ctx->check_cancelled();
@@ -181,6 +183,7 @@ SkeletonProjectionResult skeleton_projection(const Mesh& mesh, const SkeletonPro
   SkeletonProjectionResult out;
   out.metrics = metrics_table(measure_skeleton(r.skeleton, mesh));
   out.metrics["faces_drawn"] = double(r.faces_drawn);
+  out.metrics["render_contexts"] = double(r.contexts);
   out.metrics["render_seconds"] = r.render_seconds;
   out.metrics["vote_seconds"] = r.vote_seconds;
   out.metrics["thin_seconds"] = r.thin_seconds;

@@ -74,7 +74,7 @@ struct SkeletonProjectionParams {
   double branch_votes = 0.2;     // branches whose mean votes are below this x the main path's are pruned
   double merge_distance = 0.03;  // internal arcs shorter than this x the diagonal are collapsed
   int smoothing = 20;            // Laplacian iterations (lambda 0.5)
-  int contexts = 2;              // rendering contexts at once (render/views.h)
+  int contexts = 0;              // rendering contexts at once; 0: render::automatic_contexts
   int render_faces = 200000;     // a mesh with more faces is drawn decimated to at most these; 0: never
   bool intermediate = false;     // also the vote grid and the first view
   template <class V>
@@ -113,9 +113,12 @@ struct SkeletonProjectionParams {
               .advanced = true});
     v.integer("smoothing", smoothing,
               {.label = "Smoothing", .min = 0, .max = 1000, .help = "Laplacian iterations; ends and junctions stay"});
-    v.integer(
-        "contexts", contexts,
-        {.label = "Render contexts", .min = 1, .max = 64, .help = "EGL contexts drawing at once", .advanced = true});
+    v.integer("contexts", contexts,
+              {.label = "Render contexts",
+               .min = 0,
+               .max = 64,
+               .help = "EGL contexts drawing at once; 0: 1 on a GPU, 2 on a software renderer",
+               .advanced = true});
     v.integer("render_faces", render_faces,
               {.label = "Faces drawn",
                .min = 0,

@@ -11,6 +11,7 @@
 #include "core/errors.h"
 #include "core/mesh_report.h"
 #include "io/mesh_io.h"
+#include "render/renderer.h"
 #include "skeleton/skeleton_measures.h"
 #include "skeleton/projection/medial_axis.h"
 #include "skeleton/projection/thin.h"
@@ -265,6 +266,19 @@ TEST(SkeletonProjection, PartsJoinedOnlyByWeakVotesStayJoined) {
   for (const Vec3& n : s.nodes) lo = std::min(lo, n.x), hi = std::max(hi, n.x);
   EXPECT_LT(lo, 10);
   EXPECT_GT(hi, 50);
+}
+
+// Contexts left to the algorithm (0) are 1 on a GPU, where more only add
+// copies of the mesh, and 2 on llvmpipe; how many draw changes no view.
+TEST(SkeletonProjection, RenderContextsChangeTheTimeAlone) {
+  const Mesh mesh = capsule(0.5, 4);
+  const SkeletonProjectionResult automatic = skeleton_projection(mesh);
+  const SkeletonProjectionResult three = skeleton_projection(mesh, {.contexts = 3});
+  const render::Renderer renderer;
+  EXPECT_EQ(automatic.metrics.at("render_contexts"), renderer.info().software ? 2.0 : 1.0);
+  EXPECT_EQ(three.metrics.at("render_contexts"), 3.0);
+  ASSERT_EQ(automatic.skeleton.nodes.size(), three.skeleton.nodes.size());
+  EXPECT_LT(measure_distance(automatic.skeleton, three.skeleton).hausdorff, 1e-9);  // summation order only
 }
 
 TEST(SkeletonProjection, BadViewCounts) {
