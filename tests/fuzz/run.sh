@@ -30,10 +30,10 @@ mkdir -p "$BUILD"
 if [ ! -f "$BUILD/build.ninja" ]; then
   CXX=clang++ cmake -S "$HERE" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_COMPILER_LAUNCHER=ccache >/dev/null
 fi
-cmake --build "$BUILD" -j "${CGVIEW_JOBS:-$(nproc)}"
+JOBS=${CGVIEW_JOBS:-$(nproc)}
+cmake --build "$BUILD" -j "$JOBS"
 TARGETS=("$@")
 [ ${#TARGETS[@]} -gt 0 ] || TARGETS=(off obj ply stl gltf glb drc mtl skeleton voxel zip frame json params config ws)
-JOBS=${CGVIEW_JOBS:-$(nproc)}
 failed=()
 # One run of target $1 for $2 seconds: adds its CPU seconds to spent and its
 # inputs to runs, and sets last (its final status line) and log; fails as the target did.
