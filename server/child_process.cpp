@@ -50,6 +50,47 @@ void end_with_server() {
   }).detach();
 }
 
+const std::vector<std::string>& job_environment_names() {
+  // A trailing '_' names a prefix.
+  static const std::vector<std::string> names = {"PATH",
+                                                 "LANG",
+                                                 "LC_ALL",
+                                                 "LC_CTYPE",
+                                                 "TZ",
+                                                 "LD_LIBRARY_PATH",
+                                                 "CGVIEW_GL_PLATFORM",
+                                                 "CGVIEW_PLUGIN_",
+                                                 "__EGL_",
+                                                 "__GLX_",
+                                                 "EGL_",
+                                                 "MESA_",
+                                                 "LIBGL_",
+                                                 "GALLIUM_",
+                                                 "LP_",
+                                                 "OMP_",
+                                                 "TBB_",
+                                                 "CUDA_",
+                                                 "NVIDIA_",
+                                                 "CCACHE_"};
+  return names;
+}
+
+std::vector<std::string> job_environment() {
+  std::vector<std::string> env;
+  for (char** e = environ; *e; ++e) {
+    const std::string_view var(*e);
+    const std::string_view name = var.substr(0, var.find('='));
+    for (const std::string& n : job_environment_names())
+      if (n.back() == '_' ? name.starts_with(n) : name == n) {
+        env.emplace_back(var);
+        break;
+      }
+  }
+  env.push_back("HOME=/tmp");
+  env.push_back("TMPDIR=/tmp");
+  return env;
+}
+
 pid_t spawn_child(const std::vector<std::string>& args, const ChildOptions& options) {
   std::vector<std::string> copy = args;
   std::vector<char*> argv;
@@ -59,8 +100,12 @@ pid_t spawn_child(const std::vector<std::string>& args, const ChildOptions& opti
   const int life = options.end_with_server ? server_life_fd() : -1;
   std::string life_var = "CGVIEW_SERVER_FD=" + std::to_string(kServerFd);
   std::vector<char*> envp;
-  for (char** e = environ; *e; ++e)
-    if (!std::string_view(*e).starts_with("CGVIEW_SERVER_FD=")) envp.push_back(*e);
+  std::vector<std::string> clean = options.clean_env ? job_environment() : std::vector<std::string>{};
+  if (options.clean_env)
+    for (std::string& e : clean) envp.push_back(e.data());
+  else
+    for (char** e = environ; *e; ++e)
+      if (!std::string_view(*e).starts_with("CGVIEW_SERVER_FD=")) envp.push_back(*e);
   if (life >= 0) envp.push_back(life_var.data());
   envp.push_back(nullptr);
   const std::string err = options.stderr_file.string();

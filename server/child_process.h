@@ -33,7 +33,18 @@ struct ChildOptions {
   // sandbox's first process waiting forever for a parent that is gone;
   // left alone, bubblewrap finishes, starts the child, and the child ends.
   bool end_with_server = false;
+  // The child's environment is a short list the server writes (clean_env),
+  // not the server's own: PATH, the locale, HOME and TMPDIR as /tmp, and
+  // the variables that choose a GPU, the renderer and the plugins'
+  // compiler (job_environment() lists them).  A job never reads the
+  // server's secrets, its configuration or its command line from there.
+  bool clean_env = false;
 };
+
+// The variables a clean child gets: the server's values of the names and
+// prefixes in job_environment_names(), then HOME and TMPDIR.
+std::vector<std::string> job_environment();
+const std::vector<std::string>& job_environment_names();
 
 // The child's side of ChildOptions::end_with_server: where CGVIEW_SERVER_FD
 // names such a pipe, a thread waits on it and, when it reads anything but

@@ -83,6 +83,8 @@ const std::map<std::string, Setter>& server_keys() {
                                ServerConfig& c) { c.ws_idle_timeout_s = double(integer(v, k, 2, 86400)); }},
       {"max_connections_per_ip", [](const json& v, const std::string& k,
                                     ServerConfig& c) { c.max_connections_per_ip = int(integer(v, k, 0, 1 << 20)); }},
+      {"ws_auth_timeout_s", [](const json& v, const std::string& k,
+                               ServerConfig& c) { c.ws_auth_timeout_s = double(integer(v, k, 1, 3600)); }},
       // {"rate": R, "burst": B} (requests per second per token; rate 0: no limit).
       {"rate_limit",
        [](const json& v, const std::string& k, ServerConfig& c) {

@@ -12,6 +12,7 @@
 #include "io/mesh_io.h"
 #include "io/parse_json.h"
 #include "io/skeleton_io.h"
+#include "jobs/artifact_files.h"
 #include "voxel/voxel_io.h"
 
 namespace cgview::server {
@@ -198,7 +199,9 @@ DataRead read_data_in_child(const UploadReader& reader, const DataRequest& req, 
   run_reader_child(reader, "--read-data", n, dir);
   // What the child wrote is as untrusted as the upload: its shape is checked,
   // and only plain files of its output directory are taken.
-  const json r = parse_json_or_discarded(read_file_bytes(dir.path() / "result.json", std::size_t(64) << 20));
+  std::string why;
+  const auto result = JobDir(dir.path()).read("result.json", std::size_t(64) << 20, &why);
+  const json r = parse_json_or_discarded(result.value_or(""));
   DataRead out;
   try {
     if (!r.is_object()) throw std::runtime_error("not an object");
@@ -208,13 +211,14 @@ DataRead read_data_in_child(const UploadReader& reader, const DataRequest& req, 
   } catch (const std::exception& e) {
     throw InvalidInput(n + ": the upload's reader gave an unreadable result (" + e.what() + ")");
   }
+  // Only the regular files the entry names are taken (copied through no
+  // link, capped by the sizes its entry states); the rest stays behind.
   fs::create_directories(out_dir);
-  for (const auto& f : fs::directory_iterator(dir.path() / "out")) {
-    if (!f.is_regular_file() || f.is_symlink()) continue;
-    std::error_code ec;
-    fs::rename(f.path(), out_dir / f.path().filename(), ec);
-    if (ec) fs::copy_file(f.path(), out_dir / f.path().filename(), fs::copy_options::overwrite_existing);
-  }
+  const JobDir child_out(dir.path() / "out");
+  if (const std::string broken = incomplete_artifact(child_out, json::array({out.entry})); !broken.empty())
+    throw InvalidInput(n + ": " + broken);
+  if (const std::string refused = take_artifacts(child_out, json::array({out.entry}), out_dir); !refused.empty())
+    throw InvalidInput(n + ": " + refused);
   return out;
 }
 

@@ -46,7 +46,8 @@ const char* kHelp =
     "  --min-body-rate-kb N   then its body at N KB/s on average (default 64)\n"
     "  --idle-timeout-s N   a keep-alive connection with no request for N s is closed (default 60)\n"
     "  --ws-idle-timeout-s N  a silent WebSocket is pinged at N/2 s, closed at N s without a pong (default 60)\n"
-    "  --max-connections-per-ip N  open connections of one address (default 0: no cap)\n"
+    "  --ws-auth-timeout-s N  a WebSocket off loopback that has not authenticated in N s is closed (default 5)\n"
+    "  --max-connections-per-ip N  open connections of one address (0: no cap; default 256 off loopback)\n"
     "  --rate-limit R[/B]   requests per second per token, or per address without one (not the\n"
     "                       loopback local user), in bursts of B (default 50/200; 0: none)\n"
     "  --tls-cert FILE      serve https:// and wss:// with this PEM certificate chain ...\n"
@@ -187,6 +188,7 @@ int main(int argc, char** argv) {
       else if (a == "--min-body-rate-kb") config.min_body_rate = double(number(1, 1 << 20)) * 1024;
       else if (a == "--idle-timeout-s") config.idle_timeout_s = double(number(1, 86400));
       else if (a == "--ws-idle-timeout-s") config.ws_idle_timeout_s = double(number(2, 86400));
+      else if (a == "--ws-auth-timeout-s") config.ws_auth_timeout_s = double(number(1, 3600));
       else if (a == "--max-connections-per-ip") config.max_connections_per_ip = int(number(0, 1 << 20));
       else if (a == "--rate-limit") {
         const std::string v = value();
@@ -234,6 +236,13 @@ int main(int argc, char** argv) {
     }
     if (config.tls_cert.empty() != config.tls_key.empty())
       throw std::invalid_argument("--tls-cert and --tls-key go together");
+    // Absolute from here on: a sandbox binds and hides paths as they are
+    // written, and a job starts elsewhere than the server.
+    config.data_dir = std::filesystem::absolute(config.data_dir);
+    // Hidden from every sandbox whatever the admin lists: the TLS key and
+    // certificate and the config file (the data directory already is).
+    for (const std::filesystem::path& secret : {config.tls_key, config.tls_cert, config_file})
+      if (!secret.empty()) config.sandbox.hidden.push_back(std::filesystem::absolute(secret));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "cgview-server: %s (see --help)\n", e.what());
     return 2;

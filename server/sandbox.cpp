@@ -160,6 +160,11 @@ Sandbox::Command Sandbox::wrap(const std::vector<std::string>& argv, const Sandb
   return c;
 }
 
+std::optional<long> Sandbox::job_user(int slot) const {
+  if (!enabled_ || ::geteuid() != 0) return std::nullopt;
+  return config_.uid_base + slot;
+}
+
 Sandbox::Slot& Sandbox::Slot::operator=(Slot&& o) noexcept {
   if (this != &o) {
     give_back();

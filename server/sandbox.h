@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -44,6 +45,7 @@ struct SandboxConfig {
 // (Under /run, an empty tmpfs in the sandbox: the system's sockets there,
 // munge's among them, are not the job's.)
 inline constexpr const char* kSandboxJob = "/run/cgview/job";
+inline constexpr const char* kSandboxSpec = "/run/cgview/job.json";  // its job.json, read-only
 inline constexpr const char* kSandboxInputs = "/run/cgview/in";
 inline constexpr const char* kSandboxPlugin = "/run/cgview/plugin";
 inline constexpr const char* kSandboxPrograms = "/run/cgview/bin";
@@ -78,6 +80,10 @@ class Sandbox {
   };
   Command wrap(const std::vector<std::string>& argv, const SandboxMounts& mounts, int slot,
                ChildOptions options = {}) const;
+
+  // The user a root server's run in `slot` runs as; nullopt where runs keep
+  // the server's user (a server that is not root, or no sandbox).
+  std::optional<long> job_user(int slot) const;
 
   // A slot no other run (a job's worker, an upload's reader) holds while
   // this one lives: the lowest free, given back when it is destroyed.

@@ -41,8 +41,14 @@ struct ServerConfig {
   // A WebSocket that sends nothing is pinged after half this time and
   // closed when the pong does not come by the end of it.
   double ws_idle_timeout_s = 60;
-  double write_timeout_s = 120;    // a response that the client does not read
-  int max_connections_per_ip = 0;  // open connections of one address (0: no cap); over: 503
+  double write_timeout_s = 120;  // a response that the client does not read
+  // Open connections of one address (0: no cap); over: 503.  -1, the
+  // default: kDefaultConnectionsPerIp for each address but loopback's.
+  int max_connections_per_ip = -1;
+  static constexpr int kDefaultConnectionsPerIp = 256;
+  // A WebSocket off loopback that has not authenticated within this many
+  // seconds (a token in its upgrade, or its first "auth" message) is closed.
+  double ws_auth_timeout_s = 5;
   // Requests (REST under /api/ and WebSocket messages) per token, or per
   // address for requests without one (not counted from loopback without a
   // token: the local user): a token bucket of rate_burst, refilled at

@@ -142,13 +142,16 @@ void Shared::remove_session(EventSink* key) {
   sessions_.erase(key);
 }
 
-bool Shared::admit_connection(const std::string& address) {
-  const int cap = config.max_connections_per_ip;
+bool Shared::admit_connection(const std::string& address, bool loopback, bool* counted) {
+  *counted = false;
+  const int cap = config.max_connections_per_ip < 0 ? (loopback ? 0 : ServerConfig::kDefaultConnectionsPerIp)
+                                                    : config.max_connections_per_ip;
   if (cap <= 0) return true;
   std::lock_guard lock(connections_mutex_);
   int& n = connections_[address];
   if (n < cap) {
     ++n;
+    *counted = true;
     return true;
   }
   if (n == 0) connections_.erase(address);
@@ -156,7 +159,6 @@ bool Shared::admit_connection(const std::string& address) {
 }
 
 void Shared::release_connection(const std::string& address) {
-  if (config.max_connections_per_ip <= 0) return;
   std::lock_guard lock(connections_mutex_);
   if (--connections_[address] <= 0) connections_.erase(address);
 }
@@ -168,18 +170,21 @@ Peer::Peer(std::shared_ptr<Shared> s, const boost::asio::ip::tcp::socket& socket
     address = ep.address().to_string();
     loopback = ep.address().is_loopback();
   }
-  admitted = shared->admit_connection(address);
+  admitted = shared->admit_connection(address, loopback, &counted);
 }
 
 Peer::~Peer() {
-  if (admitted) shared->release_connection(address);
+  if (counted) shared->release_connection(address);
 }
 
 std::optional<HttpResponse> over_cap(const Peer& peer) {
   if (peer.admitted) return std::nullopt;
-  return error_response(503, "too_many_connections",
-                        "this address has " + std::to_string(peer.shared->config.max_connections_per_ip) +
-                            " connections open, the most allowed; close one and retry");
+  return error_response(
+      503, "too_many_connections",
+      "this address has " +
+          std::to_string(peer.shared->config.max_connections_per_ip < 0 ? ServerConfig::kDefaultConnectionsPerIp
+                                                                        : peer.shared->config.max_connections_per_ip) +
+          " connections open, the most allowed; close one and retry");
 }
 
 }  // namespace cgview::server

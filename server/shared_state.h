@@ -60,7 +60,9 @@ struct Shared {
   void add_session(EventSink* key, std::weak_ptr<EventSink> session);
   void remove_session(EventSink* key);
   // A new connection's place under the per-address cap: false when over it.
-  bool admit_connection(const std::string& address);
+  // Counts a connection against its address's cap; false when over it.
+  // *counted says whether it was counted (release it then).
+  bool admit_connection(const std::string& address, bool loopback, bool* counted);
   void release_connection(const std::string& address);
 
  private:
@@ -79,6 +81,7 @@ struct Peer {
   std::string address;
   bool loopback = false;
   bool admitted = true;  // false: over max_connections_per_ip, answered 503
+  bool counted = false;  // counted against its address's cap
 };
 
 // The refusal of a client over its address's connection cap, or nullopt.

@@ -1,5 +1,7 @@
 #include "upload_read.h"
 
+#include "jobs/job_files.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -272,6 +274,16 @@ ReadDir::~ReadDir() {
 
 namespace {
 
+// A file the reader child wrote, read as a job's files are (job_files.h):
+// beneath its directory, through no link, a regular file, at most `cap`
+// bytes; throws std::runtime_error saying what was wrong with it.
+std::string child_file(const ReadDir& dir, const std::string& name, std::uint64_t cap) {
+  std::string why;
+  const auto bytes = JobDir(dir.path()).read(name, cap, &why);
+  if (!bytes) throw std::runtime_error(why.empty() ? name + " is missing" : why);
+  return *bytes;
+}
+
 // What a reader's exit says: nothing when it read the file, else what it
 // refused it for, as the read would have thrown.
 void reader_status(const UploadReader& reader, const std::string& name, const ReadDir& dir, std::optional<int> status) {
@@ -290,7 +302,7 @@ void reader_status(const UploadReader& reader, const std::string& name, const Re
     // A refusal whose error.json is missing still refuses the file (400), not the server (500).
     std::string text;
     try {
-      text = read_file_bytes(dir.path() / "error.json", 1 << 20);
+      text = child_file(dir, "error.json", 1 << 20);
     } catch (const std::exception&) {
     }
     const nlohmann::json e = parse_json_or_discarded(text);
@@ -322,6 +334,7 @@ void run_reader_child(const UploadReader& reader, const char* mode, const std::s
   options.memory_mb = reader.memory_mb;
   options.stderr_file = dir.path() / "stderr.txt";
   options.end_with_server = true;
+  options.clean_env = true;
   Sandbox::Slot slot;  // held until the reader is gone
   if (reader.sandbox && reader.sandbox->enabled()) {
     slot = reader.sandbox->take_slot();
@@ -384,9 +397,9 @@ UploadRead read_upload_in_child(const UploadReader& reader, const std::string& n
   run_reader_child(reader, "--read-upload", n, dir);
   // What the child wrote is as untrusted as the upload: sizes capped, shape checked.
   const std::size_t cap = std::max<std::size_t>(bytes.size(), max_unpacked_bytes) + (std::size_t(1) << 20);
-  const nlohmann::json r = parse_json_or_discarded(read_file_bytes(dir.path() / "result.json", std::size_t(64) << 20));
   UploadRead out;
   try {
+    const nlohmann::json r = parse_json_or_discarded(child_file(dir, "result.json", std::size_t(64) << 20));
     if (!r.is_object()) throw std::runtime_error("not an object");
     out.name = clean_upload_name(r.at("name").get<std::string>());
     out.format = r.at("format").get<std::string>();
@@ -396,8 +409,8 @@ UploadRead read_upload_in_child(const UploadReader& reader, const std::string& n
     const std::size_t textures = r.at("textures").get<std::size_t>();
     if (textures > 1000) throw std::runtime_error("too many textures");
     for (std::size_t k = 0; k < textures; ++k)
-      out.textures.push_back(read_file_bytes(dir.path() / ("texture-" + std::to_string(k)), cap));
-    if (r.at("unpacked").get<bool>()) out.unpacked_mesh = read_file_bytes(dir.path() / "mesh", cap);
+      out.textures.push_back(child_file(dir, "texture-" + std::to_string(k), cap));
+    if (r.at("unpacked").get<bool>()) out.unpacked_mesh = child_file(dir, "mesh", cap);
   } catch (const std::exception& e) {
     throw InvalidInput(n + ": the upload's reader gave an unreadable result (" + e.what() + ")");
   }

@@ -70,6 +70,17 @@ class WebSocketSession : public EventSink, public std::enable_shared_from_this<W
   void on_accept(beast::error_code ec) {
     if (ec) return;
     shared_->add_session(static_cast<EventSink*>(this), this->weak_from_this());
+    // Off loopback a connection that never says who it is would hold a
+    // descriptor for as long as it pings back: it has a few seconds.
+    if (!conn_.loopback && !conn_.caller) {
+      auth_timer_.expires_after(std::chrono::milliseconds(long(shared_->config.ws_auth_timeout_s * 1000)));
+      auth_timer_.async_wait([self = this->shared_from_this()](beast::error_code e) {
+        if (e || self->conn_.caller || self->closing_) return;
+        self->closing_ = true;
+        self->ws_.async_close(websocket::close_reason(websocket::close_code::policy_error, "not authenticated in time"),
+                              [self](beast::error_code) {});
+      });
+    }
     do_read();
   }
 
@@ -136,6 +147,7 @@ class WebSocketSession : public EventSink, public std::enable_shared_from_this<W
   std::deque<WsOut> queue_;
   std::size_t queued_bytes_ = 0;
   bool closing_ = false;
+  net::steady_timer auth_timer_{ws_.get_executor()};
 };
 
 }  // namespace

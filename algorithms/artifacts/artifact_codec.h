@@ -72,6 +72,10 @@ class ArtifactCodec {
   // returns its entry in the job's artifact list: {"name", "kind", "file",
   // "bytes" (the file's size as written)} and the kind's own fields.
   virtual nlohmann::json store(const Artifact& a, const Mesh& input, const std::filesystem::path& dir) const;
+  // The files store() writes beside the entry's "file" that load() reads
+  // when they are there (a field's own name in NAME.field.json): the
+  // server takes them out of a job's directory with the file.
+  virtual std::vector<std::string> side_files(const nlohmann::json&) const { return {}; }
   // Reads a stored artifact back, as its `entry` describes it.
   virtual ArtifactValue load(const std::filesystem::path& dir, const nlohmann::json& entry) const;
   // Writes the artifact to `path` in the format its extension names.

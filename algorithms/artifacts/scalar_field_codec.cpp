@@ -104,6 +104,10 @@ class ScalarFieldCodec final : public ArtifactCodec {
     return entry;
   }
 
+  std::vector<std::string> side_files(const json& entry) const override {
+    return {entry.value("name", "") + ".field.json"};
+  }
+
   ArtifactValue load(const fs::path& dir, const json& entry) const override {
     ArtifactValue v = ArtifactCodec::load(dir, entry);
     // The field's own name, where it differs from the artifact's.

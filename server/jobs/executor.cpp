@@ -18,9 +18,10 @@ Sandbox::Command sandboxed_worker(const Sandbox& sandbox, const LaunchSpec& job,
   const std::string program = std::string(kSandboxPrograms) + "/" + worker.filename().string();
   auto readable = job.read_only;
   readable.push_back({worker, program});
+  readable.push_back({job.dir / "job.json", kSandboxSpec});
   return sandbox.wrap(
-      {program, std::string(kSandboxJob) + "/job.json"},
-      {.writable = job.dir, .readable = readable, .hidden = {job.data_dir}, .visible = {worker.parent_path()}}, slot,
+      {program, kSandboxSpec},
+      {.writable = job.work, .readable = readable, .hidden = {job.data_dir}, .visible = {worker.parent_path()}}, slot,
       std::move(options));
 }
 

@@ -23,8 +23,15 @@ namespace cgview::server {
 
 struct LaunchSpec {
   std::string job_id;
-  std::string name;           // what the job is called where it runs ("cgview-ID")
-  std::filesystem::path dir;  // the job's directory: job.json in, results, stdout and stderr out
+  std::string name;  // what the job is called where it runs ("cgview-ID")
+  // The run's directory, the server's side of one run: job.json, the batch
+  // script, the worker's stdout and stderr and its exit status.  The job
+  // never sees it (a plugin cannot plant a link there for the server, or
+  // for a batch script, to follow).
+  std::filesystem::path dir;
+  // The job's own directory inside it (dir/work), the one place the job
+  // writes: its results, error.txt, its /tmp.  Made fresh for every run.
+  std::filesystem::path work;
   double timeout_s = 0;       // 0: none
   std::size_t memory_mb = 0;  // 0: none
   int cpus = 1;
@@ -42,7 +49,7 @@ struct LaunchSpec {
 };
 
 // How a worker ended, as its executor saw it; the scheduler reads the
-// worker's own report (result.json, error.txt) beside it.
+// worker's own report (result.json, error.txt) in its work directory.
 struct WorkerEnd {
   enum class How {
     exited,         // with `code`

@@ -34,7 +34,7 @@ json JobScheduler::import_data(const std::string& file_name, const json& inputs,
       throw InvalidInput(file_name + ": the reader named its artifact '" + name.substr(0, 64) + "'");
     const json artifacts = json::array({entry});
     // The same check as a worker's results get: a plain file of its size, whole.
-    if (const std::string broken = incomplete_artifact(dir, artifacts); !broken.empty())
+    if (const std::string broken = incomplete_artifact(JobDir(dir), artifacts); !broken.empty())
       throw InvalidInput(file_name + ": " + broken);
     j->artifacts = artifacts;
     for (const std::string& w : warnings) j->warnings.push_back(w);

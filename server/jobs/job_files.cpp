@@ -1,25 +1,207 @@
 #include "jobs/job_files.h"
 
-#include <fstream>
-#include <sstream>
+#include <dirent.h>
+#include <fcntl.h>
+#include <linux/openat2.h>
+#include <sys/sendfile.h>
+#include <sys/stat.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 namespace cgview::server {
 
 namespace fs = std::filesystem;
 
-std::string read_job_file(const fs::path& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
+namespace {
+
+struct Fd {
+  int fd = -1;
+  explicit Fd(int f) : fd(f) {}
+  ~Fd() {
+    if (fd >= 0) ::close(fd);
+  }
+  Fd(const Fd&) = delete;
+  Fd& operator=(const Fd&) = delete;
+};
+
+// Opens `name` beneath `dir` through no link at all.  openat2 says so to
+// the kernel for every component; where it is missing (before Linux 5.6)
+// only a plain name is taken, opened with O_NOFOLLOW.
+int open_beneath(int dir, const std::string& name, int flags) {
+  open_how how{};
+  how.flags = std::uint64_t(flags | O_NOFOLLOW | O_CLOEXEC | O_NOCTTY);
+  how.resolve = RESOLVE_BENEATH | RESOLVE_NO_SYMLINKS | RESOLVE_NO_MAGICLINKS | RESOLVE_NO_XDEV;
+  const long fd = ::syscall(SYS_openat2, dir, name.c_str(), &how, sizeof how);
+  if (fd >= 0 || errno != ENOSYS) return int(fd);
+  if (name.empty() || name.find('/') != std::string::npos || name == "." || name == "..") {
+    errno = EXDEV;
+    return -1;
+  }
+  return ::openat(dir, name.c_str(), flags | O_NOFOLLOW | O_CLOEXEC | O_NOCTTY);
 }
 
-std::uint64_t dir_bytes(const fs::path& dir) {
-  std::uint64_t n = 0;
-  std::error_code ec;
-  for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
-    if (it->is_regular_file(ec)) n += it->file_size(ec);
-  return n;
+std::string kind_of(mode_t m) {
+  if (S_ISDIR(m)) return "a directory";
+  if (S_ISFIFO(m)) return "a FIFO";
+  if (S_ISCHR(m) || S_ISBLK(m)) return "a device";
+  if (S_ISSOCK(m)) return "a socket";
+  if (S_ISLNK(m)) return "a link";
+  return "not a regular file";
 }
+
+bool read_all(int fd, std::string& out, std::uint64_t want) {
+  out.resize(std::size_t(want));
+  std::size_t got = 0;
+  while (got < out.size()) {
+    const ssize_t n = ::read(fd, out.data() + got, out.size() - got);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return false;
+    if (n == 0) break;
+    got += std::size_t(n);
+  }
+  out.resize(got);
+  return true;
+}
+
+void walk(int dir, JobDir::Usage& u, std::uint64_t max_names, int depth) {
+  const int fd = ::openat(dir, ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  DIR* d = ::fdopendir(fd);
+  if (!d) {
+    ::close(fd);
+    return;
+  }
+  while (const dirent* e = ::readdir(d)) {
+    if (std::strcmp(e->d_name, ".") == 0 || std::strcmp(e->d_name, "..") == 0) continue;
+    if (++u.names > max_names) break;
+    struct stat st {};
+    if (::fstatat(::dirfd(d), e->d_name, &st, AT_SYMLINK_NOFOLLOW) != 0) continue;
+    if (S_ISREG(st.st_mode)) u.bytes += std::uint64_t(st.st_size);
+    else if (S_ISDIR(st.st_mode) && depth < 64) {
+      const int sub = ::openat(::dirfd(d), e->d_name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+      if (sub >= 0) {
+        walk(sub, u, max_names, depth + 1);
+        ::close(sub);
+      }
+    }
+    if (u.names > max_names) break;
+  }
+  ::closedir(d);
+}
+
+}  // namespace
+
+JobDir::JobDir(const fs::path& dir) : path_(dir) {
+  fd_ = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+}
+
+JobDir::~JobDir() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+int JobDir::open_regular(const std::string& name, std::string* why, std::uint64_t* size) const {
+  why->clear();
+  if (fd_ < 0) return -1;
+  // O_NONBLOCK: a FIFO opens at once (and is refused below) instead of
+  // waiting for a writer while the server waits on it.
+  const int fd = open_beneath(fd_, name, O_RDONLY | O_NONBLOCK);
+  if (fd < 0) {
+    if (errno == ENOENT) return -1;
+    if (errno == ELOOP || errno == EXDEV) *why = name + " is a link (a job's links are never followed)";
+    else *why = name + " cannot be opened: " + std::strerror(errno);
+    return -1;
+  }
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    *why = name + " is " + kind_of(st.st_mode) + ", not a regular file";
+    ::close(fd);
+    return -1;
+  }
+  ::fcntl(fd, F_SETFL, 0);
+  *size = std::uint64_t(st.st_size);
+  return fd;
+}
+
+std::optional<std::string> JobDir::read(const std::string& name, std::uint64_t cap, std::string* why, bool cut) const {
+  std::uint64_t size = 0;
+  const Fd fd(open_regular(name, why, &size));
+  if (fd.fd < 0) return std::nullopt;
+  if (size > cap && !cut) {
+    *why = name + " has " + std::to_string(size) + " bytes, over the limit of " + std::to_string(cap);
+    return std::nullopt;
+  }
+  std::string out;
+  if (!read_all(fd.fd, out, std::min(size, cap))) {
+    *why = name + " cannot be read: " + std::strerror(errno);
+    return std::nullopt;
+  }
+  return out;
+}
+
+std::optional<std::uint64_t> JobDir::size_of(const std::string& name, std::string* why) const {
+  std::uint64_t size = 0;
+  const Fd fd(open_regular(name, why, &size));
+  if (fd.fd < 0) return std::nullopt;
+  return size;
+}
+
+std::optional<std::string> JobDir::read_from(const std::string& name, std::uint64_t offset, std::uint64_t cap,
+                                             std::uint64_t* size) const {
+  std::string why;
+  const Fd fd(open_regular(name, &why, size));
+  if (fd.fd < 0) return std::nullopt;
+  if (*size <= offset) return std::string();
+  if (::lseek(fd.fd, off_t(offset), SEEK_SET) < 0) return std::nullopt;
+  std::string out;
+  if (!read_all(fd.fd, out, std::min(*size - offset, cap))) return std::nullopt;
+  return out;
+}
+
+std::optional<std::uint64_t> JobDir::copy(const std::string& name, const fs::path& to, std::uint64_t cap,
+                                          std::string* why) const {
+  std::uint64_t size = 0;
+  const Fd in(open_regular(name, why, &size));
+  if (in.fd < 0) return std::nullopt;
+  if (size > cap) {
+    *why = name + " has " + std::to_string(size) + " bytes, over the limit of " + std::to_string(cap);
+    return std::nullopt;
+  }
+  const Fd out(::open(to.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644));
+  if (out.fd < 0) {
+    *why = "cannot write " + to.string() + ": " + std::strerror(errno);
+    return std::nullopt;
+  }
+  // The file may still change size (a straggler on a shared directory):
+  // exactly `size` bytes are taken, no more.
+  std::uint64_t done = 0;
+  while (done < size) {
+    ssize_t n = ::copy_file_range(in.fd, nullptr, out.fd, nullptr, std::size_t(size - done), 0);
+    if (n < 0 && (errno == EXDEV || errno == ENOSYS || errno == EINVAL || errno == EOPNOTSUPP))
+      n = ::sendfile(out.fd, in.fd, nullptr, std::size_t(std::min<std::uint64_t>(size - done, 1 << 30)));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = errno;
+      *why = n == 0          ? name + " shrank while it was copied"
+             : err == ENOSPC ? std::string("the server's storage is full")
+                             : "cannot copy " + name + ": " + std::strerror(err);
+      ::unlink(to.c_str());
+      errno = err;
+      return std::nullopt;
+    }
+    done += std::uint64_t(n);
+  }
+  return size;
+}
+
+JobDir::Usage JobDir::usage(std::uint64_t max_names) const {
+  Usage u;
+  if (fd_ >= 0) walk(fd_, u, max_names, 0);
+  return u;
+}
+
+std::uint64_t dir_bytes(const fs::path& dir) { return JobDir(dir).usage().bytes; }
 
 }  // namespace cgview::server

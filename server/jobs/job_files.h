@@ -1,17 +1,71 @@
-// Reading a job's directory: the files a worker leaves there (its report,
-// its output) may be missing or cut short, and the size of the whole
-// directory counts against its owner's quota.
+// Reading what a job leaves behind.  A job's directory is hostile input:
+// the worker, a user's plugin or a broken node may have put anything there
+// (a link to the server's database, a FIFO, /dev/zero, a file of
+// terabytes, a million names).  So the server opens a file there only
+// beneath the directory, through no link (openat2 with RESOLVE_BENEATH and
+// RESOLVE_NO_SYMLINKS where the kernel has it, else one name with
+// O_NOFOLLOW), without blocking (O_NONBLOCK: a FIFO opens at once and is
+// then refused), takes it only when it is a regular file, and reads it up
+// to a cap.  The caps are stated in docs/DEPLOYMENT.md ("What a job can
+// see").
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 namespace cgview::server {
 
-// The file's bytes; empty when it is missing or unreadable.
-std::string read_job_file(const std::filesystem::path& path);
-// The bytes of the files under a directory (0 when there is none).
+// The caps on what the server reads of a job's files.
+inline constexpr std::uint64_t kMaxReportBytes = 64 << 10;     // error.txt, stderr.txt, worker.exit: the first 64 KiB
+inline constexpr std::uint64_t kMaxResultJsonBytes = 4 << 20;  // result.json: 4 MiB, else the job fails
+inline constexpr std::size_t kMaxArtifacts = 256;              // entries of result.json's list
+inline constexpr std::uint64_t kMaxSideFileBytes = 1 << 20;    // an artifact's side file (a field's .field.json)
+
+// A directory a job could write, opened once (no link followed on the way
+// down from its last component).
+class JobDir {
+ public:
+  explicit JobDir(const std::filesystem::path& dir);
+  ~JobDir();
+  JobDir(const JobDir&) = delete;
+  JobDir& operator=(const JobDir&) = delete;
+  // Whether the directory itself could be opened (a real directory, not a link).
+  bool is_open() const { return fd_ >= 0; }
+  const std::filesystem::path& path() const { return path_; }
+
+  // A file's bytes, read to at most `cap` (the rest cut off when `cut`,
+  // else an error).  nullopt with *why set when it cannot be taken ("is a
+  // link", "is not a regular file", "has N bytes, over the limit of M");
+  // *why left empty when the file is simply missing.
+  std::optional<std::string> read(const std::string& name, std::uint64_t cap, std::string* why, bool cut = false) const;
+  // The size of the regular file `name`; nullopt as read says.
+  std::optional<std::uint64_t> size_of(const std::string& name, std::string* why) const;
+  // Like read, from byte `offset` on (a growing output file).
+  std::optional<std::string> read_from(const std::string& name, std::uint64_t offset, std::uint64_t cap,
+                                       std::uint64_t* size) const;
+  // Copies the file to `to` (a new file in a directory only the server
+  // writes), at most `cap` bytes; its size, or nullopt with *why set as read does.
+  std::optional<std::uint64_t> copy(const std::string& name, const std::filesystem::path& to, std::uint64_t cap,
+                                    std::string* why) const;
+
+  // The bytes and the names under the directory, links and all counted as
+  // names and none followed; the walk stops past `max_names`.
+  struct Usage {
+    std::uint64_t bytes = 0, names = 0;
+  };
+  Usage usage(std::uint64_t max_names = ~std::uint64_t(0)) const;
+
+ private:
+  // An open descriptor of the regular file `name` beneath the directory,
+  // or -1 with *why set (empty when missing).
+  int open_regular(const std::string& name, std::string* why, std::uint64_t* size) const;
+  std::filesystem::path path_;
+  int fd_ = -1;
+};
+
+// The bytes of the files under a directory, no link followed (0 when there is none).
 std::uint64_t dir_bytes(const std::filesystem::path& dir);
 
 }  // namespace cgview::server

@@ -126,6 +126,17 @@ void JobStore::put(const Job& j) {
   if (rc != SQLITE_DONE) throw IoError(std::string("jobs: ") + sqlite3_errmsg(db_));
 }
 
+void JobStore::remove(const std::string& id) {
+  sqlite3_stmt* s = nullptr;
+  if (sqlite3_prepare_v2(db_, "DELETE FROM jobs WHERE id = ?1", -1, &s, nullptr) != SQLITE_OK)
+    throw IoError(std::string("jobs: ") + sqlite3_errmsg(db_));
+  sqlite3_bind_text(s, 1, id.data(), int(id.size()), SQLITE_TRANSIENT);
+  const int rc = sqlite3_step(s);
+  sqlite3_finalize(s);
+  if (rc == SQLITE_FULL) throw DiskFull(std::string("jobs: ") + sqlite3_errmsg(db_));
+  if (rc != SQLITE_DONE) throw IoError(std::string("jobs: ") + sqlite3_errmsg(db_));
+}
+
 void JobStore::put_all(const std::vector<std::shared_ptr<Job>>& jobs) {
   exec_sql(db_, "BEGIN", "jobs");
   try {

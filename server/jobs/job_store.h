@@ -26,6 +26,8 @@ class JobStore {
   void put(const Job& job);
   // Several puts in one transaction (all or none).
   void put_all(const std::vector<std::shared_ptr<Job>>& jobs);
+  // Forgets a job (throws IoError, DiskFull).
+  void remove(const std::string& id);
 
  private:
   sqlite3* db_ = nullptr;

@@ -40,7 +40,8 @@ std::string LocalExecutor::launch(const LaunchSpec& job) {
   ChildOptions child;
   child.memory_mb = job.memory_mb;
   child.stdout_fd = fds[1];
-  child.stderr_file = job.dir / "stderr.txt";
+  child.stderr_file = job.dir / "stderr.txt";  // in the run's directory, out of the job's reach
+  child.clean_env = true;
   child.end_with_server = true;
   const std::vector<std::string> argv = {worker_.string(), (job.dir / "job.json").string()};
   pid_t pid = -1;

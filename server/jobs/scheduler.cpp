@@ -12,6 +12,7 @@
 #include "jobs/local_executor.h"
 #include "jobs/slurm_executor.h"
 #include "jobs/worker_result.h"
+#include "jobs/artifact_files.h"
 
 namespace cgview::server {
 
@@ -37,6 +38,8 @@ JobScheduler::JobScheduler(MeshService& meshes, JobConfig config)
       executor_(make_executor(config_)) {
   std::error_code ec;
   fs::create_directories(meshes_.store().data_dir() / "jobs", ec);
+  fs::create_directories(meshes_.store().data_dir() / "runs", ec);
+  fs::permissions(meshes_.store().data_dir() / "runs", fs::perms::owner_all, ec);
   load();
 }
 
@@ -56,6 +59,8 @@ JobScheduler::~JobScheduler() {
 
 fs::path JobScheduler::job_dir(const std::string& id) const { return meshes_.store().data_dir() / "jobs" / id; }
 
+fs::path JobScheduler::run_dir(const std::string& id) const { return meshes_.store().data_dir() / "runs" / id; }
+
 WorkerLimits JobScheduler::limits_of_workers() const {
   WorkerLimits l{config_.timeout_s, config_.memory_mb};
   if (executor_->sandboxed()) {
@@ -70,7 +75,8 @@ LaunchSpec JobScheduler::spec(const Job& j) const {
   LaunchSpec s;
   s.job_id = j.id;
   s.name = "cgview-" + j.id;
-  s.dir = job_dir(j.id);
+  s.dir = run_dir(j.id);
+  s.work = s.dir / "work";
   s.timeout_s = config_.timeout_s;
   s.memory_mb = config_.memory_mb;
   s.cpus = std::max(1, config_.cpus);
@@ -125,6 +131,9 @@ void JobScheduler::load() {
   std::vector<fs::path> orphans;
   for (const auto& e : fs::directory_iterator(meshes_.store().data_dir() / "jobs", ec))
     if (!jobs_.count(e.path().filename().string())) orphans.push_back(e.path());
+  // A run no job follows any more: what it left is not read.
+  for (const auto& e : fs::directory_iterator(meshes_.store().data_dir() / "runs", ec))
+    if (!in_flight_.count(e.path().filename().string())) orphans.push_back(e.path());
   for (const fs::path& p : orphans) fs::remove_all(p, ec);
 }
 
@@ -211,6 +220,39 @@ std::optional<json> JobScheduler::cancel(const std::string& id, const Caller& ca
   return out;
 }
 
+bool JobScheduler::remove(const std::string& id, const Caller& caller) {
+  std::string files;
+  {
+    std::lock_guard lock(mutex_);
+    const auto it = jobs_.find(id);
+    if (it == jobs_.end() || !readable(*it->second, caller)) return false;
+    const Job& j = *it->second;
+    if (!Access{j.owner}.owned_by(caller))
+      throw Forbidden("job " + id + " is " + j.owner + "'s: only its owner deletes it");
+    if (active(j.state) || j.in_flight)
+      throw InvalidInput("job " + id + " is " + to_string(j.state) + ": cancel it first");
+    store_.remove(id);
+    files = j.files.empty() ? id : j.files;
+    const std::string key = j.cache_key;
+    jobs_.erase(it);
+    order_.erase(std::find(order_.begin(), order_.end(), id));
+    // Another job answering from the same files keeps them, and the cache with them.
+    std::string heir;
+    for (const auto& [other, o] : jobs_)
+      if (o->files == files) heir = other;
+    if (const auto c = cache_.find(key); c != cache_.end() && c->second == id) {
+      if (heir.empty()) cache_.erase(c);
+      else c->second = heir;
+    }
+    if (!heir.empty()) files.clear();
+  }
+  if (!files.empty()) {
+    std::error_code ec;
+    fs::remove_all(job_dir(files), ec);
+  }
+  return true;
+}
+
 std::optional<json> JobScheduler::input_files(const Job& j, std::string* error) const {
   json files = json::object();
   for (const auto& [name, in] : j.inputs.items()) {
@@ -234,14 +276,17 @@ std::optional<json> JobScheduler::input_files(const Job& j, std::string* error) 
 }
 
 std::optional<LaunchSpec> JobScheduler::prepare(Job& j) {
-  const fs::path dir = job_dir(j.id);
+  // A fresh run directory: nothing an earlier run left (a link as its
+  // tmp/, a FIFO) is ever bound or read.
+  LaunchSpec s = spec(j);
   std::error_code ec;
-  fs::remove_all(dir, ec);
-  fs::create_directories(dir, ec);
+  fs::remove_all(s.dir, ec);
+  fs::create_directories(s.work, ec);
+  fs::permissions(s.dir, fs::perms::owner_all, ec);
+  const fs::path dir = s.dir;
   const auto files = input_files(j, &j.error);
   if (!files) return std::nullopt;
-  LaunchSpec s = spec(j);
-  json inputs = *files, out = dir.string();
+  json inputs = *files, out = s.work.string();
   if (remote_data()) {
     // The worker's own directory on its node: inputs under in/NAME/, results in out/.
     for (const auto& [name, path] : files->items()) {
@@ -293,18 +338,83 @@ std::optional<LaunchSpec> JobScheduler::prepare(Job& j) {
   return s;
 }
 
-void JobScheduler::end(Job& j, const WorkerEnd* how, std::vector<json>& events) {
+bool JobScheduler::requeued_when_lost(const WorkerEnd& how) const {
+  return how.how == WorkerEnd::How::lost && config_.slurm.requeue_lost && config_.executor == "slurm";
+}
+
+std::map<std::string, JobScheduler::Collected> JobScheduler::collect(const std::vector<ExecutorEvent>& happened,
+                                                                     std::vector<std::string>* ended) {
+  std::map<std::string, Collected> out;
+  for (const ExecutorEvent& e : happened) {
+    if (e.kind != ExecutorEvent::Kind::ended) continue;
+    Caller owner;
+    {
+      std::lock_guard lock(mutex_);
+      const auto it = jobs_.find(e.job_id);
+      if (it == jobs_.end() || !in_flight_.count(e.job_id)) continue;
+      ended->push_back(e.job_id);
+      if (it->second->cancelled || requeued_when_lost(e.end)) continue;
+      owner.user = it->second->owner;
+    }
+    // What its results may take: the room left under its owner's quota.
+    WorkerLimits limits = limits_of_workers();
+    if (owner.user == "local") owner = Caller::local();
+    else if (const auto u = meshes_.store().get_user(owner.user)) owner.admin = u->admin;
+    if (const UserLimits quota = this->limits(owner); quota.storage_bytes) {
+      const std::uint64_t used = usage(owner.user).storage_bytes;
+      limits.result_bytes = used < *quota.storage_bytes ? *quota.storage_bytes - used : 0;
+    }
+    const fs::path run = run_dir(e.job_id);
+    const JobDir work_dir(run / "work"), run_files(run);
+    Collected c{read_worker_outcome(work_dir, run_files, e.end, limits)};
+    if (c.outcome.done) {
+      const fs::path results = job_dir(e.job_id);
+      std::string why = take_artifacts(work_dir, c.outcome.artifacts, results);
+      if (why.empty()) {
+        try {
+          write_file_bytes(results / "result.json",
+                           json{{"artifacts", c.outcome.artifacts}, {"warnings", c.outcome.warnings}}.dump());
+        } catch (const std::exception& x) {
+          why = x.what();
+        }
+      }
+      // What is kept, side files and list included, is what counts.
+      if (const std::uint64_t kept = dir_bytes(results); why.empty() && kept > limits.result_bytes)
+        why = "its results take " + std::to_string(kept) + " bytes, more than the " +
+              std::to_string(limits.result_bytes) + " bytes its owner has left under their storage quota";
+      if (!why.empty()) {
+        std::error_code ec;
+        fs::remove_all(results, ec);
+        c.outcome.done = false;
+        c.outcome.error = "the job's results could not be kept: " + why;
+      }
+    }
+    // The start of its stderr (what a plugin printed) is kept beside its results.
+    std::string why;
+    if (const auto err = run_files.read("stderr.txt", kMaxReportBytes, &why, true); err && !err->empty()) {
+      std::error_code ec;
+      fs::create_directories(job_dir(e.job_id), ec);
+      try {
+        write_file_bytes(job_dir(e.job_id) / "stderr.txt", *err);
+      } catch (const std::exception&) {
+      }
+    }
+    out.emplace(e.job_id, std::move(c));
+  }
+  return out;
+}
+
+void JobScheduler::end(Job& j, const WorkerEnd* how, std::vector<json>& events, const Collected* collected) {
   in_flight_.erase(j.id);
   j.in_flight = false;
   j.worker_token_sha.clear();  // the worker's token dies with its job
-  std::error_code tmp_ec;
-  fs::remove_all(job_dir(j.id) / "tmp", tmp_ec);  // a sandboxed job's /tmp (sandbox.h)
+  finished_runs_.push_back(j.id);
   j.bytes = dir_bytes(job_dir(j.id));
   if (j.cancelled) {  // already cancelled (state, event): only its size is new
     save(j);
     return;
   }
-  if (how && how->how == WorkerEnd::How::lost && config_.slurm.requeue_lost && config_.executor == "slurm") {
+  if (how && requeued_when_lost(*how)) {
     // Its executor lost it (Slurm purged it, or it went with its node): run it again, by setting.
     j.state = JobState::queued;
     j.progress = 0;
@@ -318,7 +428,9 @@ void JobScheduler::end(Job& j, const WorkerEnd* how, std::vector<json>& events) 
     return;
   }
   if (how) {
-    const WorkerOutcome r = read_worker_outcome(job_dir(j.id), *how, limits_of_workers());
+    WorkerOutcome r;
+    if (collected) r = collected->outcome;
+    else r.error = "its run's results were not read";
     if (r.done) {
       j.state = JobState::done;
       j.artifacts = r.artifacts;
@@ -340,7 +452,7 @@ void JobScheduler::end(Job& j, const WorkerEnd* how, std::vector<json>& events) 
   events.push_back({{"type", j.state == JobState::done ? "job_done" : "job_failed"}, {"job", job_json(j)}});
 }
 
-void JobScheduler::apply(const ExecutorEvent& e, std::vector<json>& events) {
+void JobScheduler::apply(const ExecutorEvent& e, std::vector<json>& events, const Collected* collected) {
   const auto it = jobs_.find(e.job_id);
   if (it == jobs_.end() || !in_flight_.count(e.job_id)) return;
   Job& j = *it->second;
@@ -378,7 +490,7 @@ void JobScheduler::apply(const ExecutorEvent& e, std::vector<json>& events) {
       }
       return;
     case ExecutorEvent::Kind::ended:
-      end(j, &e.end, events);
+      end(j, &e.end, events, collected);
       return;
   }
 }
@@ -438,8 +550,28 @@ void JobScheduler::loop() {
       if (on_event) on_event(e, job_access(e["job"].value("id", "")));
     events.clear();
     const auto happened = executor_->poll(std::chrono::milliseconds(100));
-    std::lock_guard lock(mutex_);
-    for (const auto& e : happened) apply(e, events);
+    // A run's files are read (and its artifacts copied) outside the lock:
+    // a slow or hostile file never holds up another request.
+    std::vector<std::string> finished;
+    const auto collected = collect(happened, &finished);
+    // Gone before the job says it ended: a job seen done has no run left.
+    for (const std::string& id : finished) {
+      std::error_code ec;
+      fs::remove_all(run_dir(id), ec);
+    }
+    finished.clear();
+    {
+      std::lock_guard lock(mutex_);
+      for (const auto& e : happened) {
+        const auto c = collected.find(e.job_id);
+        apply(e, events, c == collected.end() ? nullptr : &c->second);
+      }
+      finished.swap(finished_runs_);
+    }
+    for (const std::string& id : finished) {
+      std::error_code ec;
+      fs::remove_all(run_dir(id), ec);
+    }
   }
 }
 

@@ -114,6 +114,11 @@ class JobScheduler : private JobLookup {
   // Cancels a queued or running job (its owner or an admin, else Forbidden);
   // the job (unchanged when it had ended).
   std::optional<nlohmann::json> cancel(const std::string& id, const Caller& caller = Caller::local());
+  // Removes an ended job and its results (its owner or an admin, else
+  // Forbidden): false when the caller sees no such job.  Results that
+  // other jobs answer from (identical jobs, cached) stay until the last of
+  // them goes.  Throws InvalidInput for a job still queued or running.
+  bool remove(const std::string& id, const Caller& caller = Caller::local());
   // An artifact of a done job in a format; throws std::out_of_range (no such
   // job or artifact), InvalidInput (job not done), UnsupportedFormat.
   ExportedArtifact artifact(const std::string& id, const std::string& name, const std::string& format,
@@ -171,11 +176,26 @@ class JobScheduler : private JobLookup {
   bool remote_data() const { return config_.executor == "slurm" && !config_.slurm.shared_data; }
   // The in-flight job whose token this is (under mutex_); throws WorkerTokenRefused.
   const Job& worker_job_locked(const std::string& id, std::string_view token) const;
+  // What an ended run left, read outside mutex_ (the run's files are the
+  // job's, hostile input: job_files.h): its outcome, with its artifacts
+  // already taken into the job's results directory when it is done.
+  struct Collected {
+    WorkerOutcome outcome;
+  };
+  // Also adds to *ended the jobs whose run ended (its directory can go).
+  std::map<std::string, Collected> collect(const std::vector<ExecutorEvent>& happened, std::vector<std::string>* ended);
   // Applies what the executor said (under mutex_); events to send.
-  void apply(const ExecutorEvent& e, std::vector<nlohmann::json>& events);
-  // The job ended (its worker gone, or its launch failed) (under mutex_).
-  void end(Job& job, const WorkerEnd* how, std::vector<nlohmann::json>& events);
+  void apply(const ExecutorEvent& e, std::vector<nlohmann::json>& events, const Collected* collected);
+  // The job ended (its worker gone, or its launch failed) (under mutex_);
+  // `collected` is what collect() read of its run (nullptr: nothing to read).
+  void end(Job& job, const WorkerEnd* how, std::vector<nlohmann::json>& events, const Collected* collected = nullptr);
+  // Whether an ended run of the job goes back to the queue (Slurm lost it) (under mutex_).
+  bool requeued_when_lost(const WorkerEnd& how) const;
+  // A job's results, served from here: only the server writes there.
   std::filesystem::path job_dir(const std::string& id) const;
+  // A run of a job: the server's files of the run, and work/, the job's own
+  // (executor.h's LaunchSpec); made fresh for each run, removed at its end.
+  std::filesystem::path run_dir(const std::string& id) const;
   // Whether the caller reads the job: theirs, shared with them, or admin.
   bool readable(const Job& job, const Caller& caller) const;
   // The job if the caller may see it (under mutex_); throws std::out_of_range.
@@ -206,6 +226,8 @@ class JobScheduler : private JobLookup {
   bool stopping_ = false;
   std::int64_t seq_ = 0;
   std::atomic<std::uint64_t> workers_started_{0};
+  // Runs that ended, whose directories go outside mutex_.
+  std::vector<std::string> finished_runs_;
   // Jobs whose last change could not be written (a full disk): written again
   // at each turn of the loop until it fits; their state in memory is right.
   std::set<std::string> unsaved_;

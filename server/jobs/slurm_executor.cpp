@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <cmath>
-#include <fstream>
 
 #include "child_process.h"
 #include "core/errors.h"
@@ -55,6 +54,23 @@ std::string first_line(std::string s) {
   return s;
 }
 
+// The newest run's file `stem`.N in a run's directory ("" when none): a
+// job Slurm requeued runs again as run N+1 (SLURM_RESTART_COUNT), and an
+// earlier run still going on a failed node writes only its own.
+std::string newest_run_file(const fs::path& dir, const std::string& stem) {
+  std::string best;
+  long best_n = -1;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (!name.starts_with(stem + ".")) continue;
+    const std::string n = name.substr(stem.size() + 1);
+    if (n.empty() || n.size() > 6 || n.find_first_not_of("0123456789") != std::string::npos) continue;
+    if (std::stol(n) > best_n) best_n = std::stol(n), best = name;
+  }
+  return best;
+}
+
 }  // namespace
 
 SlurmExecutor::SlurmExecutor(SlurmConfig config, fs::path worker, std::shared_ptr<const Sandbox> sandbox)
@@ -83,9 +99,17 @@ int SlurmExecutor::capacity() const {
 
 std::vector<std::string> SlurmExecutor::sbatch_command(const LaunchSpec& job) const {
   std::vector<std::string> a = {sbatch_.string(), "--parsable", "--job-name=" + job.name};
+  // The batch script's environment is the short list a local worker gets
+  // (child_process.h), not the server's.
+  std::string exported;
+  for (const std::string& v : job_environment()) {
+    const std::string name = v.substr(0, v.find('='));
+    if (name != "HOME" && name != "TMPDIR") exported += (exported.empty() ? "" : ",") + name;
+  }
+  a.push_back("--export=" + (exported.empty() ? std::string("NONE") : exported));
   if (job.token.empty()) {
     a.push_back("--chdir=" + job.dir.string());
-    a.push_back("--output=" + (job.dir / "stdout.txt").string());
+    a.push_back("--output=" + (job.dir / "batch-output.txt").string());  // the script's; the worker's is stdout.N
     a.push_back("--error=" + (job.dir / "stderr.txt").string());
   } else {
     // The node sees nothing of the server's: the script keeps its own files
@@ -113,16 +137,32 @@ std::string SlurmExecutor::batch_script(const LaunchSpec& job, int slot) const {
     // runs), and its exit status kept beside its results: 128+N for a signal.
     // In the sandbox, the same bubblewrap command a local worker starts
     // with, under its process and file-size limits (prlimit: util-linux).
+    // Outside the sandbox the script writes only in the run's directory,
+    // which the job never sees: its stdout and exit status there, under the
+    // run's number.  Each run (a requeued job's too) gets a fresh work/: an
+    // earlier run's, links and all, is moved aside and removed, never
+    // bound; an earlier run still going writes into the one it has.
     std::string command = quoted(worker_.string()) + " " + quoted((job.dir / "job.json").string());
+    std::string give;
     if (sandboxed()) {
       const Sandbox::Command c = sandboxed_worker(*sandbox_, job, worker_, slot);
       command = "prlimit --nproc=" + std::to_string(c.options.processes) +
                 " --fsize=" + std::to_string(std::uint64_t(c.options.file_mb) << 20) + " --";
       for (const std::string& a : c.argv) command += " " + quoted(a);
+      if (const auto uid = sandbox_->job_user(slot))
+        give = "chown " + std::to_string(*uid) + ":" + std::to_string(*uid) + " work work/tmp || exit 97\n";
     }
-    return "#!/bin/sh\n# CGView job " + job.job_id + "\ncd " + quoted(job.dir.string()) +
-           " || exit 97\nrm -f worker.exit\n(" + limit + "exec " + command +
-           ")\nrc=$?\necho $rc > worker.exit.tmp && mv worker.exit.tmp worker.exit\nexit $rc\n";
+    return "#!/bin/sh\n# CGView job " + job.job_id + "\nexport PATH=/usr/local/bin:/usr/bin:/bin:$PATH\ncd " +
+           quoted(job.dir.string()) +
+           " || exit 97\n"
+           "R=${SLURM_RESTART_COUNT:-0}\n"
+           "case $R in *[!0-9]*|'') exit 97 ;; esac\n"
+           "if [ -e work ] || [ -L work ]; then mv work \"old-work.$R.$$\" || exit 97; rm -rf \"old-work.$R.$$\"; fi\n"
+           "mkdir -m 0700 work && mkdir work/tmp || exit 97\n" +
+           give + "(" + limit + "exec " + command +
+           ") > \"stdout.$R\"\nrc=$?\necho $rc > \"worker.exit.tmp.$R\" && mv \"worker.exit.tmp.$R\" "
+           "\"worker.exit.$R\"\n"
+           "exit $rc\n";
   }
   // No shared directory: curl fetches job.json and the inputs with the job's
   // own token, a loop sends the last progress line each second, and the
@@ -130,10 +170,16 @@ std::string SlurmExecutor::batch_script(const LaunchSpec& job, int slot) const {
   // (result.json last of the results).
   std::string s = "#!/bin/sh\n# CGView job " + job.job_id +
                   "\nU=" + quoted(job.server_url + "/api/v1/worker/jobs/" + job.job_id) +
-                  "\nH=" + quoted("Authorization: Bearer " + job.token) +
                   "\nW=$(mktemp -d \"${TMPDIR:-/tmp}/cgview-job.XXXXXX\") || exit 98\n"
                   "trap 'rm -rf \"$W\"' EXIT\n"
                   "cd \"$W\" || exit 98\n"
+                  // The token reaches curl in a file only this user reads
+                  // (printf is the shell's own: no command line holds it).
+                  "umask 077\n"
+                  "printf '%s\\n' " +
+                  quoted("Authorization: Bearer " + job.token) +
+                  " > \"$W/.auth\" || exit 98\n"
+                  "H=\"@$W/.auth\"\n"
                   "get() { curl -fsS --retry 3 -H \"$H\" -o \"$2\" \"$U/$1\"; }\n"
                   "put() { curl -fsS --retry 3 -H \"$H\" -X PUT --data-binary \"@$1\" \"$U/files/$2\" >/dev/null; }\n"
                   "mkdir out || exit 98\n"
@@ -212,19 +258,15 @@ void SlurmExecutor::cancel(const std::string& job_id) {
 void SlurmExecutor::wake() { wake_.wake(); }
 
 void SlurmExecutor::read_progress(Tracked& t, std::vector<ExecutorEvent>& events) {
-  const fs::path out = t.spec.dir / "stdout.txt";
-  std::error_code ec;
-  const std::uintmax_t size = fs::file_size(out, ec);
-  if (ec) return;
-  if (size < t.output_read) t.output_read = 0, t.output.clear();  // requeued: its output begins again
-  if (size == t.output_read) return;
-  std::ifstream f(out, std::ios::binary);
-  f.seekg(std::streamoff(t.output_read));
-  std::string more(std::size_t(std::min<std::uintmax_t>(size - t.output_read, 1 << 20)), '\0');
-  f.read(more.data(), std::streamsize(more.size()));
-  more.resize(std::size_t(f.gcount()));
-  t.output_read += more.size();
-  t.output += more;
+  const std::string name = newest_run_file(t.spec.dir, "stdout");
+  if (name.empty()) return;
+  // Requeued: the new run's output begins again.
+  if (name != t.output_file) t.output_file = name, t.output_read = 0, t.output.clear();
+  std::uint64_t size = 0;
+  const auto more = JobDir(t.spec.dir).read_from(name, t.output_read, 1 << 20, &size);
+  if (!more || more->empty()) return;
+  t.output_read += more->size();
+  t.output += *more;
   ExecutorEvent e;
   e.job_id = t.spec.job_id;
   e.kind = ExecutorEvent::Kind::progress;
@@ -254,14 +296,18 @@ WorkerEnd SlurmExecutor::ended(const Tracked& t, const std::string& state, const
     return end;
   }
   // slurmstepd says so in the job's stderr when it kills for memory (OverMemoryKill, or cgroups' oom).
-  const std::string err = read_job_file(t.spec.dir / "stderr.txt");
+  const JobDir run(t.spec.dir);
+  std::string why;
+  const std::string err = run.read("stderr.txt", kMaxReportBytes, &why, true).value_or("");
   if (state == "OUT_OF_MEMORY" || err.find("exceeded memory limit") != std::string::npos ||
       err.find("oom_kill event") != std::string::npos || err.find("oom-kill event") != std::string::npos) {
     end.how = WorkerEnd::How::out_of_memory;
     return end;
   }
   // The worker's own exit status, as its batch script saw it.
-  const std::string code = first_line(read_job_file(t.spec.dir / "worker.exit"));
+  const std::string exit_file = newest_run_file(t.spec.dir, "worker.exit");
+  const std::string code =
+      exit_file.empty() ? "" : first_line(run.read(exit_file, kMaxReportBytes, &why, true).value_or(""));
   if (!code.empty() && code.find_first_not_of("0123456789") == std::string::npos && code.size() < 5) {
     const int c = std::stoi(code);
     if (c > 128 && c < 128 + 65) end.how = WorkerEnd::How::signaled, end.signal = c - 128;

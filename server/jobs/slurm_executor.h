@@ -57,7 +57,8 @@ class SlurmExecutor : public Executor {
     bool timed_out = false;   // our watchdog cancelled it over its time limit
     std::string reason;       // the pending reason last reported
     std::chrono::steady_clock::time_point started;
-    std::uintmax_t output_read = 0;  // bytes of its output file read for progress
+    std::string output_file;         // the run's output file being read (the newest run's: stdout.N)
+    std::uintmax_t output_read = 0;  // bytes of it read for progress
     std::string output;              // a partial line
     std::string garbage;             // why it was cancelled: its output was not progress lines
     int unseen = 0;                  // polls in a row that squeue did not list it

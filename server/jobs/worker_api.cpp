@@ -24,7 +24,7 @@ std::string JobScheduler::worker_spec(const std::string& id, std::string_view to
   fs::path file;
   {
     std::lock_guard lock(mutex_);
-    file = job_dir(worker_job_locked(id, token).id) / "job.json";
+    file = run_dir(worker_job_locked(id, token).id) / "job.json";
   }
   return read_file_bytes(file, 1 << 20);
 }
@@ -44,14 +44,19 @@ void JobScheduler::worker_put(const std::string& id, std::string_view token, con
   fs::path dir;
   {
     std::lock_guard lock(mutex_);
-    dir = job_dir(worker_job_locked(id, token).id);  // the token first: nothing is said to another caller
+    dir = run_dir(worker_job_locked(id, token).id);  // the token first: nothing is said to another caller
   }
   const bool plain =
       !file.empty() && file.size() <= 128 && file[0] != '.' &&
       file.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789._-") == std::string::npos;
   if (!plain || file == "job.json" || file == "slurm-job.sh")
     throw InvalidInput("'" + file + "' is not a result file name: letters, digits, '.', '_', '-'");
-  write_file_bytes(dir / file, bytes);
+  // Its exit status and stderr are the run's (where a shared directory's
+  // batch script and Slurm leave them); its results are the job's own.
+  // (Named as a shared directory's run 0 names them: slurm_executor.cpp.)
+  if (file == "worker.exit") write_file_bytes(dir / "worker.exit.0", bytes);
+  else if (file == "stderr.txt") write_file_bytes(dir / file, bytes);
+  else write_file_bytes(dir / "work" / file, bytes);
 }
 
 void JobScheduler::worker_progress(const std::string& id, std::string_view token, const std::string& line) {
@@ -60,7 +65,7 @@ void JobScheduler::worker_progress(const std::string& id, std::string_view token
   if (line.size() > 4096 || line.rfind("progress ", 0) != 0 || line.find('\n') != std::string::npos)
     throw InvalidInput("a progress line is \"progress FRACTION STAGE\" (one line)");
   // Appended to its output, where the executor reads progress as it does a shared directory's.
-  std::ofstream f(job_dir(j.id) / "stdout.txt", std::ios::binary | std::ios::app);
+  std::ofstream f(run_dir(j.id) / "stdout.0", std::ios::binary | std::ios::app);
   f << line << '\n';
 }
 

@@ -14,55 +14,46 @@ using nlohmann::json;
 
 namespace {
 
-std::string trimmed_file(const fs::path& p) {
-  std::string s = read_job_file(p);
+std::string trimmed(std::string s) {
   while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
   return s;
 }
 
-}  // namespace
-
-std::string incomplete_artifact(const fs::path& dir, const json& artifacts) {
-  if (!artifacts.is_array()) return "no artifact list";
-  for (const auto& a : artifacts) {
-    const std::string name = a.is_object() ? a.value("name", "") : "";
-    const std::string file = a.is_object() ? a.value("file", "") : "";
-    if (name.empty() || file.empty() || file.find('/') != std::string::npos || file == "." || file == "..")
-      return "an artifact without a name or a file";
-    std::error_code ec;
-    const std::uintmax_t size = fs::file_size(dir / file, ec);
-    if (ec) return "artifact '" + name + "': its file is missing";
-    if (a.value("kind", "") == "scalar_field") {
-      const json count = a.value("count", json());
-      if (!count.is_number_unsigned() || size != count.get<std::uintmax_t>() * sizeof(float))
-        return "artifact '" + name + "': " + std::to_string(size) + " bytes for " + count.dump() + " values";
-    } else if (size == 0 && a.value("kind", "") != "text") {  // an extracted message may be empty
-      return "artifact '" + name + "': its file is empty";
-    }
-    const json bytes = a.value("bytes", json());
-    if (!bytes.is_number_unsigned()) return "artifact '" + name + "': its size is not said";
-    if (size != bytes.get<std::uintmax_t>())
-      return "artifact '" + name + "': " + std::to_string(size) + " bytes of the " + bytes.dump() + " written";
-  }
-  return "";
+// A report's text, its first kMaxReportBytes; a report that cannot be
+// taken (a link, a FIFO) is said in *refused.
+std::string report(const JobDir& dir, const std::string& name, std::string* refused) {
+  std::string why;
+  const auto text = dir.read(name, kMaxReportBytes, &why, true);
+  if (!text && !why.empty() && refused->empty()) *refused = why;
+  return text ? trimmed(*text) : "";
 }
 
-WorkerOutcome read_worker_outcome(const fs::path& dir, const WorkerEnd& end, const WorkerLimits& limits) {
+}  // namespace
+
+WorkerOutcome read_worker_outcome(const JobDir& work, const JobDir& run, const WorkerEnd& end,
+                                  const WorkerLimits& limits) {
   using How = WorkerEnd::How;
   WorkerOutcome out;
-  std::string text = trimmed_file(dir / "error.txt");
-  if (text.empty()) text = trimmed_file(dir / "stderr.txt");
+  std::string refused;
+  std::string text = report(work, "error.txt", &refused);
+  if (text.empty()) text = report(run, "stderr.txt", &refused);
   const bool exited_ok = end.how == How::exited && end.code == 0;
   const bool oom_report = (end.how == How::exited && end.code == 3) || text.find("bad_alloc") != std::string::npos;
   char seconds[32];
   std::snprintf(seconds, sizeof seconds, "%g", limits.timeout_s);
+  std::string result_why;
+  const auto result_text =
+      exited_ok ? work.read("result.json", kMaxResultJsonBytes, &result_why) : std::optional<std::string>();
   if (end.how == How::garbled) {
     out.error = end.detail;
   } else if (end.how == How::timed_out) {
     out.error = std::string("exceeded its time limit of ") + seconds + " s";
-  } else if (exited_ok && fs::exists(dir / "result.json")) {
-    const json result = parse_json_or_discarded(trimmed_file(dir / "result.json"));
-    const std::string broken = result.is_object() ? incomplete_artifact(dir, result.value("artifacts", json())) : "";
+  } else if (exited_ok && !result_why.empty()) {
+    out.error = "the worker's result was refused: " + result_why;
+  } else if (exited_ok && result_text) {
+    const json result = parse_json_or_discarded(*result_text);
+    const std::string broken =
+        result.is_object() ? incomplete_artifact(work, result.value("artifacts", json()), limits.result_bytes) : "";
     if (!result.is_object()) {
       out.error = "the worker wrote an unreadable result";
     } else if (!broken.empty()) {
@@ -90,6 +81,7 @@ WorkerOutcome read_worker_outcome(const fs::path& dir, const WorkerEnd& end, con
   } else {
     out.error = text.empty() ? "the worker exited with status " + std::to_string(end.code) : text;
   }
+  if (!out.done && !refused.empty()) out.error += " (" + refused + ")";
   // What the system answered inside the sandbox, said as the rule it met.
   if (!out.done && limits.sandboxed) {
     const std::pair<const char*, std::string> hints[] = {

@@ -10,6 +10,8 @@
 #include <string>
 
 #include "jobs/executor.h"
+#include "jobs/artifact_files.h"
+#include "jobs/job_files.h"
 
 namespace cgview::server {
 
@@ -29,14 +31,16 @@ struct WorkerLimits {
   bool sandboxed = false;
   int processes = 0;
   std::size_t file_mb = 0;
+  // The most its artifacts may take together (the owner's room left under
+  // their storage quota, where they have one).
+  std::uint64_t result_bytes = ~std::uint64_t(0);
 };
 
-WorkerOutcome read_worker_outcome(const std::filesystem::path& dir, const WorkerEnd& end, const WorkerLimits& limits);
-
-// Why a worker's artifact list does not match its files ("" when it does):
-// each entry names a plain file of the job's directory that is there, a
-// scalar field's file holds its count of floats, only text may be empty, and
-// each file has the size its worker wrote it with ("bytes").
-std::string incomplete_artifact(const std::filesystem::path& dir, const nlohmann::json& artifacts);
+// What the worker left: its report and results in `work` (the directory
+// the job wrote), what its executor kept of its stderr in `run` (a
+// directory the job never sees).  Both are read as hostile (job_files.h):
+// a link, a FIFO or a file over its cap fails the job with a message.
+WorkerOutcome read_worker_outcome(const JobDir& work, const JobDir& run, const WorkerEnd& end,
+                                  const WorkerLimits& limits);
 
 }  // namespace cgview::server

@@ -103,10 +103,10 @@ TEST_F(CrashRestart, AServerKilledWhileAWorkerWritesItsArtifactsNeverShowsThemHa
   const fs::path script = dir_ / "half-writing-worker";
   fs::create_directories(dir_);
   const std::string worker = bin("cgview-worker-test");
-  write_text(script,
-             "#!/bin/sh\n[ \"$1\" = --list ] && exec " + worker + " --list\n" + worker +
-                 " \"$@\"\nd=$(dirname \"$1\")\nfor f in \"$d\"/*.f32; do truncate -s \"$(( $(stat -c %s \"$f\") / "
-                 "2 ))\" \"$f\"; done\ntouch \"$d/half-written\"\nexec sleep 30\n");
+  write_text(script, "#!/bin/sh\n[ \"$1\" = --list ] && exec " + worker + " --list\n" + worker +
+                         " \"$@\"\nd=" + std::string(kWorkerOutSh) +
+                         "\nfor f in \"$d\"/*.f32; do truncate -s \"$(( $(stat -c %s \"$f\") / "
+                         "2 ))\" \"$f\"; done\ntouch \"$d/half-written\"\nexec sleep 30\n");
   ::chmod(script.c_str(), 0755);
   ASSERT_TRUE(server_.start(data_, {"--worker", script.string()}, dir_));
   const HttpResult up =
@@ -118,8 +118,10 @@ TEST_F(CrashRestart, AServerKilledWhileAWorkerWritesItsArtifactsNeverShowsThemHa
   const HttpResult s = http_call(port(), Method::post, "/api/v1/jobs", body.dump());
   ASSERT_EQ(s.status, 201) << s.body;
   const std::string id = s.body_json()["id"];
-  for (int i = 0; i < 400 && !fs::exists(data_ / "jobs" / id / "half-written"); ++i) std::this_thread::sleep_for(25ms);
-  ASSERT_TRUE(fs::exists(data_ / "jobs" / id / "half-written"));
+  // The worker writes in its run's own directory (runs/ID/work), never where results are served from.
+  const fs::path half = data_ / "runs" / id / "work" / "half-written";
+  for (int i = 0; i < 400 && !fs::exists(half); ++i) std::this_thread::sleep_for(25ms);
+  ASSERT_TRUE(fs::exists(half));
   EXPECT_EQ(job(id)["state"], "running");
   EXPECT_EQ(server_.stop(SIGKILL), 128 + SIGKILL);
 
@@ -131,7 +133,8 @@ TEST_F(CrashRestart, AServerKilledWhileAWorkerWritesItsArtifactsNeverShowsThemHa
   EXPECT_EQ(j["artifacts"][0]["count"], vertices);
   const HttpResult f32 = http_get(port(), "/api/v1/jobs/" + id + "/artifacts/distance?format=f32");
   EXPECT_EQ(f32.body.size(), vertices * sizeof(float));
-  EXPECT_FALSE(fs::exists(data_ / "jobs" / id / "half-written")) << "the killed run's files were cleared";
+  EXPECT_FALSE(fs::exists(half)) << "the killed run's files were cleared";
+  EXPECT_FALSE(fs::exists(data_ / "jobs" / id / "half-written"));
   EXPECT_EQ(integrity_check(data_ / "cgview.db"), "ok");
 }
 

@@ -489,7 +489,8 @@ TEST_F(JobsTest, TruncatedArtifactsFailTheJobNamingThem) {
   const fs::path script = dir_ / "truncating-worker";
   test::write_text(script, "#!/bin/sh\n" + test::bin("cgview-worker-test") +
                                " \"$@\"; rc=$?\n[ \"$1\" = --list ] && exit $rc\n"
-                               "for f in \"$(dirname \"$1\")\"/*.f32; do truncate -s 7 \"$f\"; done\nexit $rc\n");
+                               "for f in \"" +
+                               std::string(test::kWorkerOutSh) + "\"/*.f32; do truncate -s 7 \"$f\"; done\nexit $rc\n");
   ::chmod(script.c_str(), 0755);
   ASSERT_TRUE(start({"--worker", script.string()}));
   const json j = wait_end(submit("centroid_distance", {{"exponent", 2}})["id"]);
@@ -553,11 +554,12 @@ TEST_F(JobsTest, AnAlgorithmPrintingToStdoutStillSucceeds) {
 TEST_F(JobsTest, ATruncatedMeshArtifactFailsTheJobWithItsSizes) {
   server_.kill_now();
   const fs::path script = dir_ / "halving-worker";
-  test::write_text(
-      script, "#!/bin/sh\n" + test::bin("cgview-worker-test") +
-                  " \"$@\"; rc=$?\n[ \"$1\" = --list ] && exit $rc\n"
-                  "for f in \"$(dirname \"$1\")\"/*.ply; do truncate -s \"$(( $(stat -c %s \"$f\") / 2 ))\" \"$f\"; "
-                  "done\nexit $rc\n");
+  test::write_text(script, "#!/bin/sh\n" + test::bin("cgview-worker-test") +
+                               " \"$@\"; rc=$?\n[ \"$1\" = --list ] && exit $rc\n"
+                               "for f in \"" +
+                               std::string(test::kWorkerOutSh) +
+                               "\"/*.ply; do truncate -s \"$(( $(stat -c %s \"$f\") / 2 ))\" \"$f\"; "
+                               "done\nexit $rc\n");
   ::chmod(script.c_str(), 0755);
   ASSERT_TRUE(start({"--worker", script.string()}));
   const json j = wait_end(submit("test_translate", json::object())["id"]);
@@ -749,6 +751,31 @@ TEST_F(JobsTest, AFinishedJobsResultSizeIsStoredWithItAndCountedAfterARestart) {
   EXPECT_EQ(server_.stop(SIGTERM), 0);
   EXPECT_EQ(test::sqlite_query(db, size_column), std::to_string(size + extra.size()));
   EXPECT_EQ(test::integrity_check(db), "ok");
+}
+
+// DELETE on an ended job removes it and its results: its owner's storage
+// is free again.  An identical job answered from the same files (cached)
+// keeps them, and is still served.
+TEST_F(JobsTest, DeletingAnEndedJobRemovesItsResultsAndFreesItsStorage) {
+  auto used = [&] {
+    return http_get(server_.port(), "/api/v1/me").body_json()["storage_bytes_used"].get<std::uint64_t>();
+  };
+  const std::uint64_t meshes = used();
+  const json job = submit("centroid_distance", {{"exponent", 0.75}});
+  ASSERT_EQ(wait_end(job["id"])["state"], "done");
+  const std::string id = job["id"];
+  const json twin = submit("centroid_distance", {{"exponent", 0.75}});
+  ASSERT_TRUE(twin.value("cached", false)) << twin.dump();
+  const std::string field = artifact(id, "distance", "f32");
+  ASSERT_EQ(field.size(), 4 * 162u);
+  EXPECT_GT(used(), meshes);
+  EXPECT_EQ(http_call(server_.port(), Method::delete_, "/api/v1/jobs/" + id).status, 204);
+  EXPECT_EQ(http_get(server_.port(), "/api/v1/jobs/" + id).status, 404);
+  EXPECT_EQ(artifact(twin["id"], "distance", "f32"), field) << "the cached twin lost its results";
+  EXPECT_EQ(http_call(server_.port(), Method::delete_, "/api/v1/jobs/" + twin["id"].get<std::string>()).status, 204);
+  EXPECT_FALSE(fs::exists(data_ / "jobs" / id)) << "the results outlived every job that names them";
+  EXPECT_EQ(used(), meshes);
+  EXPECT_EQ(http_call(server_.port(), Method::delete_, "/api/v1/jobs/" + id).status, 404);
 }
 
 }  // namespace

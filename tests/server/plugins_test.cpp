@@ -8,7 +8,13 @@
 // limit it hit in its message, while another user's job goes on; the lab's
 // plugin directory is picked up, and a changed file rebuilt, without a
 // restart; a server killed with SIGKILL leaves no sandbox running; a server
-// that cannot sandbox says so and refuses users' plugins.
+// that cannot sandbox says so and refuses users' plugins.  The server's own
+// side of the boundary: nothing a job leaves in its directory (a link as
+// its error, its stderr or an artifact, a FIFO, /dev/zero, a huge
+// result.json, thousands of files, a link as its /tmp for the next run) is
+// followed, read without a cap or trusted, and a job's environment is not
+// the server's.  The data lies under /var/tmp: a job sees its own /tmp, so
+// data under /tmp would be out of its sight whether or not it is hidden.
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -22,6 +28,7 @@
 #include "centroid_distance_plugin.h"
 #include "io/mesh_io.h"
 #include "server_harness.h"
+#include "sqlite_query.h"
 #include "test_support.h"
 
 namespace cgview::test {
@@ -39,7 +46,7 @@ std::string template_as(const std::string& name) { return centroid_distance_plug
 
 class Plugins : public ServerFixture {
  protected:
-  Plugins() : ServerFixture("plugins-") {}
+  Plugins() : ServerFixture("plugins-", true) {}
   void SetUp() override {
     ServerFixture::SetUp();
     alice_ = server_command(data_, "user add alice");
@@ -47,12 +54,18 @@ class Plugins : public ServerFixture {
     ASSERT_FALSE(alice_.empty());
     std::ofstream(dir_ / "config.json") << json{{"sandbox", {{"processes", 64}, {"file_mb", 64}}}}.dump();
     fs::create_directories(dir_ / "lab");
-    ASSERT_TRUE(server_.start(data_,
-                              {"--auth", "required", "--config", (dir_ / "config.json").string(), "--job-timeout-s",
-                               "15", "--job-memory-mb", "2048", "--plugin-dir", (dir_ / "lab").string()},
-                              dir_));
+    // A secret of the server's environment, which no job may read.
+    ::setenv("CGVIEW_TEST_SECRET", "hunter2", 1);
+    ASSERT_TRUE(start(data_));
+    ::unsetenv("CGVIEW_TEST_SECRET");
     alice_mesh_ = upload(alice_, "sphere.off");
     bob_mesh_ = upload(bob_, "sphere.off");
+  }
+  bool start(const fs::path& data) {
+    return server_.start(data,
+                         {"--auth", "required", "--config", (dir_ / "config.json").string(), "--job-timeout-s", "15",
+                          "--job-memory-mb", "2048", "--plugin-dir", (dir_ / "lab").string()},
+                         dir_);
   }
   HttpResult as(const std::string& token, const std::string& method, const std::string& target,
                 const json& body = nullptr) {
@@ -270,6 +283,104 @@ TEST_F(Plugins, TheLabsPluginDirectoryIsPickedUpAndAChangedFileRebuiltWithoutARe
   }
   EXPECT_EQ(second["build"]["algorithms"], json({"lab_distance_two"})) << second.dump();
   EXPECT_EQ(run(bob_, first["id"], "lab_distance_two", bob_mesh_, json::object()).value("state", ""), "done");
+}
+
+TEST_F(Plugins, NothingAJobLeavesInItsDirectoryIsFollowedOrReadWithoutABound) {
+  const json p = build(alice_, "escape", source_file("tests/server/plugins/escape.cpp"));
+  ASSERT_EQ(p["build"]["state"], "ok") << p.dump();
+  const std::string id = p["id"];
+  // Bob's finished job, whose result must stay his and stay served.
+  const HttpResult r =
+      as(bob_, "POST", "/api/v1/jobs", {{"algorithm", "centroid_distance"}, {"inputs", {{"mesh", bob_mesh_}}}});
+  const json bobs = wait_job(bob_, r.body_json().value("id", ""));
+  ASSERT_EQ(bobs.value("state", ""), "done");
+  const std::string bob_field =
+      as(bob_, "GET", "/api/v1/jobs/" + bobs["id"].get<std::string>() + "/artifacts/distance?format=txt").body;
+  // What a link would reach: a file of the server's user outside the data
+  // directory, the store itself, and Bob's result.
+  const fs::path secret = dir_ / "secret.txt";
+  { std::ofstream(secret) << "top secret: the server's own file\n"; }
+  const fs::path db = data_ / "cgview.db";
+  const fs::path bob_file = data_ / "jobs" / bobs["id"].get<std::string>() / "distance.f32";
+  ASSERT_TRUE(fs::exists(bob_file));
+  auto sized = [](const fs::path& f) { return f.string() + " " + std::to_string(fs::file_size(f)); };
+  struct Attempt {
+    std::string attempt, target, expect;
+  };
+  const std::vector<Attempt> attempts = {
+      {"link_error", secret.string(), "error.txt is a link"},
+      {"link_error", db.string(), "error.txt is a link"},
+      {"zero_error", "", "error.txt is a link"},
+      {"fifo_error", "", "error.txt is a FIFO, not a regular file"},
+      {"link_artifact", sized(secret), "stolen.txt is a link"},
+      {"link_artifact", sized(bob_file), "stolen.txt is a link"},
+      {"link_artifact", sized(db), "stolen.txt is a link"},
+      {"huge_result", "", "result.json has"},
+      {"many_artifacts", "", "1000 artifacts, over the limit of 256"},
+      {"many_files", "20000", "made 20000 files"},
+      {"read_env", "CGVIEW_TEST_SECRET", "no variable names CGVIEW_TEST_SECRET"},
+  };
+  for (const Attempt& a : attempts) {
+    const json j = run(alice_, id, "escape", alice_mesh_, {{"attempt", a.attempt}, {"target", a.target}});
+    const std::string error = j.value("error", json("")).get<std::string>();
+    EXPECT_EQ(j.value("state", ""), "failed") << a.attempt << " " << a.target << ": " << j.dump();
+    EXPECT_NE(error.find(a.expect), std::string::npos) << a.attempt << ": " << error;
+    EXPECT_EQ(error.find("top secret"), std::string::npos) << error;
+    EXPECT_EQ(error.find("SQLite"), std::string::npos) << error;
+    EXPECT_FALSE(fs::exists(data_ / "runs" / j.value("id", ""))) << "the run's directory outlived it";
+    EXPECT_EQ(as(bob_, "GET", "/api/v1/health").status, 200u);
+  }
+  // Nothing of theirs counts against Alice: her mesh and the failed jobs' logs alone.
+  const json me = as(alice_, "GET", "/api/v1/me").body_json();
+  EXPECT_LT(me.value("storage_bytes_used", std::uint64_t(0)), std::uint64_t(1) << 20) << me.dump();
+  // The server, the store and Bob's result are as they were.
+  EXPECT_EQ(integrity_check(db), "ok");
+  EXPECT_EQ(as(bob_, "GET", "/api/v1/jobs/" + bobs["id"].get<std::string>() + "/artifacts/distance?format=txt").body,
+            bob_field);
+}
+
+TEST_F(Plugins, ARunNeverGetsALinkAnEarlierRunLeftAsItsTmp) {
+  const json p = build(alice_, "escape", source_file("tests/server/plugins/escape.cpp"));
+  ASSERT_EQ(p["build"]["state"], "ok") << p.dump();
+  const HttpResult r = as(alice_, "POST", "/api/v1/jobs",
+                          {{"algorithm", "escape"},
+                           {"plugin", p["id"]},
+                           {"inputs", {{"mesh", alice_mesh_}}},
+                           {"params", {{"attempt", "link_tmp"}}}});
+  ASSERT_EQ(r.status, 201u) << r.body;
+  const std::string job = r.body_json().value("id", "");
+  const fs::path tmp = data_ / "runs" / job / "work" / "tmp";
+  auto linked = [&] {
+    for (int i = 0; i < 400 && !fs::is_symlink(tmp); ++i) std::this_thread::sleep_for(25ms);
+    return fs::is_symlink(tmp);
+  };
+  ASSERT_TRUE(linked()) << as(alice_, "GET", "/api/v1/jobs/" + job).body;
+  // The server dies with the link in place; at its next start the job runs again.
+  EXPECT_EQ(server_.stop(SIGKILL), 128 + SIGKILL);
+  ASSERT_TRUE(start(data_));
+  // The second run got a fresh directory: it found no data as its /tmp, and planted its own link.
+  ASSERT_TRUE(linked()) << as(alice_, "GET", "/api/v1/jobs/" + job).body;
+  EXPECT_EQ(as(alice_, "GET", "/api/v1/jobs/" + job).body_json().value("state", ""), "running");
+  EXPECT_EQ(as(alice_, "DELETE", "/api/v1/jobs/" + job).status, 200u);
+  EXPECT_EQ(wait_job(alice_, job).value("state", ""), "cancelled");
+}
+
+TEST_F(Plugins, ARelativeDataDirectoryIsMadeAbsoluteAndStaysHidden) {
+  EXPECT_EQ(server_.stop(SIGTERM), 0);
+  const fs::path cwd = fs::current_path();
+  fs::current_path(dir_);
+  const bool started = start("data");
+  fs::current_path(cwd);
+  ASSERT_TRUE(started);
+  const std::string mesh = upload(alice_, "sphere.off");
+  ASSERT_FALSE(mesh.empty());
+  const HttpResult r =
+      as(alice_, "POST", "/api/v1/jobs", {{"algorithm", "centroid_distance"}, {"inputs", {{"mesh", mesh}}}});
+  EXPECT_EQ(wait_job(alice_, r.body_json().value("id", "")).value("state", ""), "done");
+  const json p = build(alice_, "escape", source_file("tests/server/plugins/escape.cpp"));
+  const json j =
+      run(alice_, p["id"], "escape", mesh, {{"attempt", "read_file"}, {"target", (data_ / "cgview.db").string()}});
+  EXPECT_NE(j.value("error", json("")).get<std::string>().find("not visible"), std::string::npos) << j.dump();
 }
 
 class NoSandbox : public ServerFixture {

@@ -217,30 +217,46 @@ TEST_F(QuotaTest, AnUploadOverTheStorageQuotaIs413NamingTheLimitAndTheUse) {
   EXPECT_EQ(upload(alice_, "sphere.off", "again.off").status, 201);
 }
 
-TEST_F(QuotaTest, JobArtifactsCountAndAFullQuotaRefusesJobs) {
-  start({{"limits", {{"storage_mb", 8.0 / 1024}}}});
+TEST_F(QuotaTest, JobArtifactsCountAreHeldToTheQuotaAndAFullQuotaRefusesJobs) {
+  // Bob's quota is one sphere exactly (7816 bytes).
+  start({{"limits", {{"storage_mb", 8.5 / 1024}}}, {"users", {{"bob", {{"storage_mb", 7816.0 / (1 << 20)}}}}}});
   const HttpResponse up = upload(alice_, "sphere.off");
   ASSERT_EQ(up.status, 201);
   const std::string mesh = json::parse(up.body)["id"];
   const std::uint64_t mesh_bytes = me(alice_)["storage_bytes_used"];
-  // The job's result (a scalar field per face of the sphere) takes her over.
+  // The job's result (a scalar field per vertex of the sphere, 648 bytes,
+  // and its list) does not fit in the 888 bytes left: the job fails saying
+  // so, and keeps nothing.
   const HttpResponse job = sleep_job(alice_, mesh, 0.01);
   ASSERT_EQ(job.status, 201) << job.body;
-  EXPECT_EQ(wait_job(alice_, json::parse(job.body)["id"])["state"], "done");
+  const json failed = wait_job(alice_, json::parse(job.body)["id"]);
+  EXPECT_EQ(failed["state"], "failed");
+  EXPECT_NE(
+      failed.value("error", json("")).get<std::string>().find("bytes its owner has left under their storage quota"),
+      std::string::npos)
+      << failed.dump();
+  EXPECT_EQ(me(alice_)["storage_bytes_used"], mesh_bytes);
+  // On a smaller mesh the result fits, and counts.
+  const std::string cube = json::parse(upload(alice_, "cube.off").body)["id"];
+  const std::uint64_t meshes = me(alice_)["storage_bytes_used"];
+  const HttpResponse fits = sleep_job(alice_, cube, 0.01);
+  ASSERT_EQ(fits.status, 201) << fits.body;
+  EXPECT_EQ(wait_job(alice_, json::parse(fits.body)["id"])["state"], "done");
   const std::uint64_t used = me(alice_)["storage_bytes_used"];
-  EXPECT_GT(used, mesh_bytes);
-  EXPECT_GE(used, 8192u);
-  // No room for more results: 413 at submit, naming the limit and the use.
-  const HttpResponse refused = sleep_job(alice_, mesh, 0.02);
+  EXPECT_GT(used, meshes);
+  EXPECT_LE(used, 8704u);
+  // No room at all for results: 413 at submit, naming the limit and the use.
+  const HttpResponse bobs = upload(bob_, "sphere.off");
+  ASSERT_EQ(bobs.status, 201) << bobs.body;
+  const HttpResponse refused = sleep_job(bob_, json::parse(bobs.body)["id"], 0.02);
   EXPECT_EQ(refused.status, 413) << refused.body;
   const json e = json::parse(refused.body);
   EXPECT_EQ(e["error"], "storage_quota");
-  EXPECT_NE(e["detail"].get<std::string>().find("storage quota of 8.0 KB exceeded: "), std::string::npos) << e;
+  EXPECT_NE(e["detail"].get<std::string>().find("storage quota of 7.6 KB exceeded: "), std::string::npos) << e;
   EXPECT_NE(e["detail"].get<std::string>().find("no room is left for a job's results"), std::string::npos) << e;
-  EXPECT_EQ(e["used"], used);
-  // Bob is not affected.
-  const std::string bob_mesh = json::parse(upload(bob_, "cube.off").body)["id"];
-  EXPECT_EQ(sleep_job(bob_, bob_mesh, 0.01).status, 201);
+  EXPECT_EQ(e["used"], 7816);
+  // Alice is not affected.
+  EXPECT_EQ(sleep_job(alice_, cube, 0.02).status, 201);
 }
 
 TEST_F(QuotaTest, OverTheJobCapIs429WithRetryAfter) {

@@ -420,7 +420,14 @@ void WsClient::abort() {
 // ---------------------------------------------------------------- fixture
 
 void ServerFixture::SetUp() {
-  dir_ = temp_dir(tag_ + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  const std::string name = tag_ + ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  if (outside_tmp_) {
+    dir_ = fs::path("/var/tmp") / ("cgview-test-" + std::to_string(::getpid())) / name;
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  } else {
+    dir_ = temp_dir(name);
+  }
   data_ = dir_ / "data";
 }
 
@@ -428,7 +435,8 @@ void ServerFixture::TearDown() {
   if (HasFailure() && server_.pid() > 0) std::cerr << "server stderr:\n" << server_.stderr_text();
   server_.kill_now();
   std::error_code ec;
-  if (!HasFailure()) fs::remove_all(dir_, ec);  // kept for a look after a failure
+  if (!HasFailure()) fs::remove_all(dir_, ec);           // kept for a look after a failure
+  if (outside_tmp_) fs::remove(dir_.parent_path(), ec);  // when it is empty
 }
 
 void ServerFixture::expect_healthy() {

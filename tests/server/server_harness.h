@@ -173,9 +173,16 @@ class WsClient {
 // The fixture of the suites that start the real server: dir_ (a fresh temp
 // directory named TAG + the test's name), data_ (dir_/data, not created) and
 // server_.  After a failure the server's stderr is printed and dir_ kept.
+// A shell expression, in a wrapper script given as --worker, for the
+// directory its worker writes in: job.json's "out" ($1 is job.json).
+inline constexpr const char* kWorkerOutSh = "$(sed 's/.*\"out\":\"\\([^\"]*\\)\".*/\\1/' \"$1\")";
+
 class ServerFixture : public ::testing::Test {
  protected:
-  explicit ServerFixture(std::string tag) : tag_(std::move(tag)) {}
+  // `outside_tmp`: dir_ under /var/tmp, not /tmp.  Every job sees a /tmp
+  // of its own, so a sandbox test whose data lay under /tmp would pass
+  // whether or not the sandbox hid the data directory.
+  explicit ServerFixture(std::string tag, bool outside_tmp = false) : tag_(std::move(tag)), outside_tmp_(outside_tmp) {}
   void SetUp() override;
   void TearDown() override;
   unsigned short port() const { return server_.port(); }
@@ -190,6 +197,7 @@ class ServerFixture : public ::testing::Test {
 
  private:
   std::string tag_;
+  bool outside_tmp_ = false;
 };
 
 }  // namespace cgview::test

@@ -216,9 +216,8 @@ TEST_F(SlurmJobs, APluginIsBuiltAndRunOnTheNodesInTheSandbox) {
   const json net = attempt("connect_local", std::to_string(port()));
   EXPECT_NE(net.value("error", json("")).get<std::string>().find("a job has no network"), std::string::npos)
       << net.dump();
-  // Its batch script is the bubblewrap command.
-  EXPECT_NE(read_bytes(data_ / "jobs" / read["id"].get<std::string>() / "slurm-job.sh").find("bwrap"),
-            std::string::npos);
+  // It failed as a sandboxed job does: the sandbox's rule is named.
+  EXPECT_NE(read.value("error", json("")).get<std::string>().find("(the sandbox: "), std::string::npos) << read.dump();
 }
 
 TEST_F(SlurmJobs, CancelStopsTheSlurmJobWithinSeconds) {
@@ -363,7 +362,7 @@ TEST_F(SlurmJobs, AJobSlurmForgotFailsSayingSo) {
   // may have written on the way down (a sandboxed worker's bwrap ends in
   // time for it to) is gone too.
   std::error_code ec;
-  fs::remove(data_ / "jobs" / job["id"].get<std::string>() / "worker.exit", ec);
+  fs::remove(data_ / "runs" / job["id"].get<std::string>() / "worker.exit.0", ec);
   ASSERT_TRUE(start());
   const json j = wait_end(job["id"], 20s);
   EXPECT_EQ(j.value("state", ""), "failed");

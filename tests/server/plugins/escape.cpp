@@ -1,10 +1,15 @@
-// A hostile plugin for the sandbox's test (tests/server/sandbox_test.cpp):
-// each `attempt` tries one way out of a job.  One that works returns the
-// metric "escaped" = 1; one the sandbox stops throws what the system said.
+// A hostile plugin for the sandbox's tests (tests/server/plugins_test.cpp,
+// tests/server/job_boundary_test.cpp, tests/slurm): each `attempt` tries
+// one way out of a job.  One that works returns the metric "escaped" = 1;
+// one the sandbox stops throws what the system said.  The attempts on the
+// server's side of the boundary leave something in the job's directory for
+// the server to follow (a link, a FIFO, a huge result) and end the worker
+// at once, as a plugin may, before the worker writes its own report.
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -13,6 +18,8 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+extern char** environ;
 
 #include "registry/registry.h"
 
@@ -27,7 +34,8 @@ struct Params {
     v.choice("attempt", attempt,
              {.label = "Attempt",
               .choices = {"read_file", "write_file", "connect_local", "connect_outside", "fork_bomb", "allocate",
-                          "loop", "big_file", "segfault"}});
+                          "loop", "big_file", "segfault", "link_error", "link_artifact", "fifo_error", "zero_error",
+                          "huge_result", "many_artifacts", "many_files", "link_tmp", "read_env"}});
     v.text("target", target, {.label = "Target"});
   }
 };
@@ -36,7 +44,67 @@ struct Params {
 
 AlgorithmResult escaped() { return {{{"escaped", Metrics{{"escaped", 1}}}}, {}}; }
 
+// A result.json listing `count` text artifacts, each the file `file` of `bytes` bytes.
+void write_result(std::size_t count, const std::string& file, long bytes) {
+  std::ofstream r("result.json");
+  r << "{\"artifacts\":[";
+  for (std::size_t k = 0; k < count; ++k)
+    r << (k ? "," : "") << "{\"name\":\"a" << k << "\",\"kind\":\"text\",\"file\":\"" << file
+      << "\",\"bytes\":" << bytes << "}";
+  r << "],\"warnings\":[]}";
+}
+
 AlgorithmResult run(const Mesh&, const Params& p, Context& ctx) {
+  // The server's side: what it reads of the job's directory once the worker is gone.
+  if (p.attempt == "link_error" || p.attempt == "zero_error") {
+    if (::symlink(p.attempt == "zero_error" ? "/dev/zero" : p.target.c_str(), "error.txt") != 0) fail("symlink");
+    ::_exit(1);
+  }
+  if (p.attempt == "fifo_error") {
+    if (::mkfifo("error.txt", 0644) != 0) fail("mkfifo");
+    ::_exit(1);
+  }
+  if (p.attempt == "link_artifact") {
+    // target: "PATH SIZE", the size the file outside has, so that the list matches it.
+    const auto space = p.target.rfind(' ');
+    if (::symlink(p.target.substr(0, space).c_str(), "stolen.txt") != 0) fail("symlink");
+    write_result(1, "stolen.txt", std::stol(p.target.substr(space + 1)));
+    ::_exit(0);
+  }
+  if (p.attempt == "huge_result") {
+    std::ofstream("one.txt") << "x";
+    write_result(200000, "one.txt", 1);  // about 12 MB of JSON
+    ::_exit(0);
+  }
+  if (p.attempt == "many_artifacts") {
+    std::ofstream("one.txt") << "x";
+    write_result(1000, "one.txt", 1);
+    ::_exit(0);
+  }
+  if (p.attempt == "many_files") {
+    const int n = p.target.empty() ? 20000 : std::stoi(p.target);
+    for (int k = 0; k < n; ++k) {
+      const int fd = ::open(("f" + std::to_string(k)).c_str(), O_WRONLY | O_CREAT, 0644);
+      if (fd < 0) fail("cannot create file " + std::to_string(k));
+      ::close(fd);
+    }
+    throw std::runtime_error("made " + std::to_string(n) + " files");
+  }
+  if (p.attempt == "link_tmp") {
+    // A run that sees the server's data as its /tmp has escaped; any other
+    // puts a link where its /tmp's directory was, for a later run to be
+    // given as its /tmp, and waits to be stopped.
+    if (::access("/tmp/cgview.db", F_OK) == 0 || ::access("/tmp/runs", F_OK) == 0 || ::access("/tmp/jobs", F_OK) == 0)
+      return escaped();
+    if (::rename("tmp", "tmp.old") != 0 && ::rmdir("tmp") != 0) fail("cannot move tmp");
+    if (::symlink("../..", "tmp") != 0) fail("symlink");
+    for (;;) ::pause();
+  }
+  if (p.attempt == "read_env") {
+    for (char** e = ::environ; *e; ++e)
+      if (std::string(*e).find(p.target) != std::string::npos) return escaped();
+    throw std::runtime_error("no variable names " + p.target);
+  }
   if (p.attempt == "read_file") {
     const int fd = ::open(p.target.c_str(), O_RDONLY);
     if (fd < 0) fail("cannot open " + p.target);
