@@ -19,6 +19,8 @@ using Clock = std::chrono::steady_clock;
 namespace {
 
 constexpr std::chrono::seconds kToolLimit{30};
+// How long a job whose newest run ended may stay held before it is settled from that run.
+constexpr std::chrono::seconds kHeldWithAResult{10};
 
 // Slurm's states after which a job runs no more.
 bool final_state(const std::string& s) {
@@ -57,6 +59,19 @@ std::string first_line(std::string s) {
 // The newest run's file `stem`.N in a run's directory ("" when none): a
 // job Slurm requeued runs again as run N+1 (SLURM_RESTART_COUNT), and an
 // earlier run still going on a failed node writes only its own.
+std::string newest_run_file(const fs::path& dir, const std::string& stem);
+
+// The exit status file of the newest run that started (its started.N),
+// "" while it has none; where no run says it started (a node without the
+// data directory sends worker.exit back), the newest there is.
+std::string newest_exit_file(const fs::path& dir) {
+  const std::string started = newest_run_file(dir, "started");
+  if (started.empty()) return newest_run_file(dir, "worker.exit");
+  const std::string exit = "worker.exit" + started.substr(std::string("started").size());
+  std::error_code ec;
+  return fs::is_regular_file(dir / exit, ec) ? exit : "";
+}
+
 std::string newest_run_file(const fs::path& dir, const std::string& stem) {
   std::string best;
   long best_n = -1;
@@ -158,7 +173,8 @@ std::string SlurmExecutor::batch_script(const LaunchSpec& job, int slot) const {
            "R=${SLURM_RESTART_COUNT:-0}\n"
            "case $R in *[!0-9]*|'') exit 97 ;; esac\n"
            "if [ -e work ] || [ -L work ]; then mv work \"old-work.$R.$$\" || exit 97; rm -rf \"old-work.$R.$$\"; fi\n"
-           "mkdir -m 0700 work && mkdir work/tmp || exit 97\n" +
+           "mkdir -m 0700 work && mkdir work/tmp || exit 97\n"
+           ": > \"started.$R\"\n" +
            give + "(" + limit + "exec " + command +
            ") > \"stdout.$R\"\nrc=$?\necho $rc > \"worker.exit.tmp.$R\" && mv \"worker.exit.tmp.$R\" "
            "\"worker.exit.$R\"\n"
@@ -305,7 +321,7 @@ WorkerEnd SlurmExecutor::ended(const Tracked& t, const std::string& state, const
     return end;
   }
   // The worker's own exit status, as its batch script saw it.
-  const std::string exit_file = newest_run_file(t.spec.dir, "worker.exit");
+  const std::string exit_file = newest_exit_file(t.spec.dir);
   const std::string code =
       exit_file.empty() ? "" : first_line(run.read(exit_file, kMaxReportBytes, &why, true).value_or(""));
   if (!code.empty() && code.find_first_not_of("0123456789") == std::string::npos && code.size() < 5) {
@@ -325,6 +341,15 @@ WorkerEnd SlurmExecutor::ended(const Tracked& t, const std::string& state, const
   else if (state.empty()) end.detail = "Slurm no longer knows job " + t.slurm_id + " (purged, or lost with its node)";
   else end.detail = "the worker did not run to its end (" + said + ")";
   return end;
+}
+
+bool SlurmExecutor::held_with_a_result(Tracked& t, Clock::time_point now) const {
+  if (newest_exit_file(t.spec.dir).empty()) {
+    t.held_since.reset();
+    return false;
+  }
+  if (!t.held_since) t.held_since = now;
+  return now - *t.held_since > kHeldWithAResult;
 }
 
 void SlurmExecutor::refresh(std::vector<ExecutorEvent>& events) {
@@ -382,6 +407,17 @@ void SlurmExecutor::refresh(std::vector<ExecutorEvent>& events) {
         t.timed_out = t.cancelling = true;
         run_tool({scancel_.string(), t.slurm_id}, kToolLimit);
       }
+    } else if (!t.cancelling && held_with_a_result(t, now)) {
+      // Its newest run ended with its result on disk, yet the cluster holds
+      // the job (a launch it thought failed while munged was away, a
+      // requeue after the end): settled from that result, not left waiting.
+      run_tool({scancel_.string(), t.slurm_id}, kToolLimit);
+      read_progress(t, events);
+      e.kind = ExecutorEvent::Kind::ended;
+      e.end = ended(t, state, reason);
+      events.push_back(std::move(e));
+      it = jobs_.erase(it);
+      continue;
     } else if (!t.cancelling) {  // PENDING, REQUEUED, SUSPENDED, ...: waiting, and why
       const std::string why =
           state == "PENDING" ? (reason == "None" ? "" : reason) : state + (reason == "None" ? "" : ": " + reason);

@@ -15,6 +15,7 @@
 
 #include <chrono>
 #include <map>
+#include <optional>
 #include <mutex>
 #include <set>
 
@@ -62,12 +63,17 @@ class SlurmExecutor : public Executor {
     std::string output;              // a partial line
     std::string garbage;             // why it was cancelled: its output was not progress lines
     int unseen = 0;                  // polls in a row that squeue did not list it
+    // Since when the cluster holds it (pending) while its newest run has ended.
+    std::optional<std::chrono::steady_clock::time_point> held_since;
   };
   // One squeue for every job; events for what changed.
   void refresh(std::vector<ExecutorEvent>& events);
   // How a job that left the cluster ended (Slurm's final state, or none).
   WorkerEnd ended(const Tracked& t, const std::string& state, const std::string& reason) const;
   void read_progress(Tracked& t, std::vector<ExecutorEvent>& events);
+  // Whether the cluster has held the job (pending) for long with its newest
+  // run ended and its result on disk.
+  bool held_with_a_result(Tracked& t, std::chrono::steady_clock::time_point now) const;
 
   SlurmConfig config_;
   std::shared_ptr<const Sandbox> sandbox_;

@@ -5,6 +5,8 @@
 // started again, and a job Slurm forgot each end as a person expects; a
 // user's plugin is built and run on the nodes in the sandbox.
 #include <gtest/gtest.h>
+
+#include <sys/stat.h>
 #include <sched.h>
 #include <signal.h>
 #include <stdlib.h>
@@ -34,7 +36,8 @@ using Clock = std::chrono::steady_clock;
 
 class SlurmJobs : public ServerFixture {
  protected:
-  SlurmJobs() : ServerFixture("slurm-jobs-") {}
+  // Its data outside /tmp, where a job could see it were it not hidden.
+  SlurmJobs() : ServerFixture("slurm-jobs-", true) {}
 
   void SetUp() override {
     ServerFixture::SetUp();
@@ -216,8 +219,58 @@ TEST_F(SlurmJobs, APluginIsBuiltAndRunOnTheNodesInTheSandbox) {
   const json net = attempt("connect_local", std::to_string(port()));
   EXPECT_NE(net.value("error", json("")).get<std::string>().find("a job has no network"), std::string::npos)
       << net.dump();
+  // Links left where a batch script once wrote the exit status, as the
+  // server's user after the sandbox, reach nothing: the script writes
+  // outside the job's directory.
+  const fs::path precious = dir_ / "precious.txt";
+  write_text(precious, "the server's own file\n");
+  const json exit_links = attempt("link_exit", precious.string());
+  EXPECT_EQ(exit_links.value("state", ""), "failed") << exit_links.dump();
+  EXPECT_EQ(read_bytes(precious), "the server's own file\n");
   // It failed as a sandboxed job does: the sandbox's rule is named.
   EXPECT_NE(read.value("error", json("")).get<std::string>().find("(the sandbox: "), std::string::npos) << read.dump();
+}
+
+// A job that leaves a link as its tmp/ and is requeued by the cluster
+// (scontrol requeue, as after a node failure or preemption) runs again in
+// a fresh directory its batch script makes: the link is never bound as the
+// new run's /tmp.
+TEST_F(SlurmJobs, ARequeuedRunGetsAFreshDirectoryNotTheLinkAnEarlierRunLeft) {
+  ASSERT_TRUE(start());
+  const std::string mesh = upload("sphere.off");
+  const std::string source = read_bytes(fs::path(CGVIEW_SOURCE_DIR) / "tests/server/plugins/escape.cpp");
+  const auto made =
+      http_call(port(), Method::post, "/api/v1/plugins", json{{"name", "escape"}, {"source", source}}.dump());
+  ASSERT_EQ(made.status, 201u) << made.body;
+  const std::string plugin = made.body_json().value("id", "");
+  const auto build = http_call(port(), Method::post, "/api/v1/plugins/" + plugin + "/build", "");
+  ASSERT_EQ(wait_end(build.body_json().value("id", ""), 120s).value("state", ""), "done");
+  const auto r = http_call(port(), Method::post, "/api/v1/jobs",
+                           json{{"algorithm", "escape"},
+                                {"plugin", plugin},
+                                {"inputs", {{"mesh", mesh}}},
+                                {"params", {{"attempt", "link_tmp"}}}}
+                               .dump());
+  ASSERT_EQ(r.status, 201u) << r.body;
+  const std::string id = r.body_json().value("id", "");
+  const fs::path run = data_ / "runs" / id;
+  // Run N's link: its batch script makes a fresh work/ before it marks the run started (started.N).
+  auto linked_by_run = [&](int n, std::chrono::seconds limit) {
+    for (const auto until = Clock::now() + limit; Clock::now() < until; std::this_thread::sleep_for(50ms)) {
+      if (fs::exists(run / ("started." + std::to_string(n + 1)))) return false;
+      if (fs::exists(run / ("started." + std::to_string(n))) && fs::is_symlink(run / "work" / "tmp")) return true;
+      if (get(id).value("state", "") == "done") break;  // escaped
+    }
+    return false;
+  };
+  ASSERT_TRUE(linked_by_run(0, 60s)) << get(id).dump();
+  const std::string sid = slurm_id(id);
+  cluster_.run("scontrol requeue " + sid);
+  EXPECT_TRUE(linked_by_run(1, 60s)) << "no second run planted its own link: " << get(id).dump() << cluster_.log_tail();
+  EXPECT_NE(get(id).value("state", ""), "done") << "a run saw the server's data as its /tmp";
+  EXPECT_EQ(slurm_id(id), sid) << "requeued by Slurm, not submitted again";
+  EXPECT_EQ(http_call(port(), Method::delete_, "/api/v1/jobs/" + id).status, 200u);
+  EXPECT_EQ(wait_end(id).value("state", ""), "cancelled");
 }
 
 TEST_F(SlurmJobs, CancelStopsTheSlurmJobWithinSeconds) {

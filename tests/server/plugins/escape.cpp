@@ -35,7 +35,7 @@ struct Params {
              {.label = "Attempt",
               .choices = {"read_file", "write_file", "connect_local", "connect_outside", "fork_bomb", "allocate",
                           "loop", "big_file", "segfault", "link_error", "link_artifact", "fifo_error", "zero_error",
-                          "huge_result", "many_artifacts", "many_files", "link_tmp", "read_env"}});
+                          "huge_result", "many_artifacts", "many_files", "link_tmp", "read_env", "link_exit"}});
     v.text("target", target, {.label = "Target"});
   }
 };
@@ -59,6 +59,14 @@ AlgorithmResult run(const Mesh&, const Params& p, Context& ctx) {
   if (p.attempt == "link_error" || p.attempt == "zero_error") {
     if (::symlink(p.attempt == "zero_error" ? "/dev/zero" : p.target.c_str(), "error.txt") != 0) fail("symlink");
     ::_exit(1);
+  }
+  if (p.attempt == "link_exit") {
+    // Where a batch script once wrote the worker's exit status and output,
+    // as the server's user, after the sandbox: links to the target.
+    for (const char* name : {"worker.exit", "worker.exit.tmp", "worker.exit.0", "worker.exit.tmp.0", "stdout.0",
+                             "stdout.txt", "stderr.txt"})
+      if (::symlink(p.target.c_str(), name) != 0) fail(std::string("symlink ") + name);
+    ::_exit(0);
   }
   if (p.attempt == "fifo_error") {
     if (::mkfifo("error.txt", 0644) != 0) fail("mkfifo");
@@ -94,10 +102,10 @@ AlgorithmResult run(const Mesh&, const Params& p, Context& ctx) {
     // A run that sees the server's data as its /tmp has escaped; any other
     // puts a link where its /tmp's directory was, for a later run to be
     // given as its /tmp, and waits to be stopped.
-    if (::access("/tmp/cgview.db", F_OK) == 0 || ::access("/tmp/runs", F_OK) == 0 || ::access("/tmp/jobs", F_OK) == 0)
-      return escaped();
+    for (const char* server_side : {"/tmp/cgview.db", "/tmp/jobs", "/tmp/runs", "/tmp/job.json", "/tmp/work"})
+      if (::access(server_side, F_OK) == 0) return escaped();
     if (::rename("tmp", "tmp.old") != 0 && ::rmdir("tmp") != 0) fail("cannot move tmp");
-    if (::symlink("../..", "tmp") != 0) fail("symlink");
+    if (::symlink(p.target.empty() ? "../../.." : p.target.c_str(), "tmp") != 0) fail("symlink");
     for (;;) ::pause();
   }
   if (p.attempt == "read_env") {
