@@ -46,7 +46,7 @@ const char* kHelp =
     "  --min-body-rate-kb N   then its body at N KB/s on average (default 64)\n"
     "  --idle-timeout-s N   a keep-alive connection with no request for N s is closed (default 60)\n"
     "  --ws-idle-timeout-s N  a silent WebSocket is pinged at N/2 s, closed at N s without a pong (default 60)\n"
-    "  --ws-auth-timeout-s N  a WebSocket off loopback that has not authenticated in N s is closed (default 5)\n"
+    "  --ws-auth-timeout-s N  a WebSocket not authenticated in N s is closed where tokens are needed (default 5)\n"
     "  --max-connections-per-ip N  open connections of one address (0: no cap; default 256 off loopback)\n"
     "  --rate-limit R[/B]   requests per second per token, or per address without one (not the\n"
     "                       loopback local user), in bursts of B (default 50/200; 0: none)\n"

@@ -46,8 +46,9 @@ struct ServerConfig {
   // default: kDefaultConnectionsPerIp for each address but loopback's.
   int max_connections_per_ip = -1;
   static constexpr int kDefaultConnectionsPerIp = 256;
-  // A WebSocket off loopback that has not authenticated within this many
-  // seconds (a token in its upgrade, or its first "auth" message) is closed.
+  // A WebSocket that has not authenticated within this many seconds (a
+  // token in its upgrade, or an "auth" message) is closed, where a token is
+  // needed (off loopback, or --auth required).
   double ws_auth_timeout_s = 5;
   // Requests (REST under /api/ and WebSocket messages) per token, or per
   // address for requests without one (not counted from loopback without a

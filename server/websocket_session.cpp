@@ -70,9 +70,10 @@ class WebSocketSession : public EventSink, public std::enable_shared_from_this<W
   void on_accept(beast::error_code ec) {
     if (ec) return;
     shared_->add_session(static_cast<EventSink*>(this), this->weak_from_this());
-    // Off loopback a connection that never says who it is would hold a
-    // descriptor for as long as it pings back: it has a few seconds.
-    if (!conn_.loopback && !conn_.caller) {
+    // Where a token is needed (off loopback, or --auth required), a
+    // connection that never says who it is would hold a descriptor for as
+    // long as it answers pings: it has a few seconds.
+    if (!conn_.caller) {
       auth_timer_.expires_after(std::chrono::milliseconds(long(shared_->config.ws_auth_timeout_s * 1000)));
       auth_timer_.async_wait([self = this->shared_from_this()](beast::error_code e) {
         if (e || self->conn_.caller || self->closing_) return;

@@ -338,6 +338,45 @@ std::optional<LaunchSpec> JobScheduler::prepare(Job& j) {
   return s;
 }
 
+std::uint64_t JobScheduler::room_of(const std::string& user) const {
+  Caller owner{user, false};
+  if (user == "local") owner = Caller::local();
+  else if (const auto u = meshes_.store().get_user(user)) owner.admin = u->admin;
+  const UserLimits quota = limits(owner);
+  if (!quota.storage_bytes) return ~std::uint64_t(0);
+  const std::uint64_t used = usage(user).storage_bytes;
+  return used < *quota.storage_bytes ? *quota.storage_bytes - used : 0;
+}
+
+void JobScheduler::check_disk() {
+  constexpr auto kEvery = std::chrono::seconds(2);
+  if (remote_data() || Clock::now() - last_disk_check_ < kEvery) return;
+  last_disk_check_ = Clock::now();
+  std::vector<std::pair<std::string, std::string>> running;  // id, owner
+  {
+    std::lock_guard lock(mutex_);
+    for (const std::string& id : in_flight_)
+      if (const auto it = jobs_.find(id); it != jobs_.end() && !it->second->cancelled && !over_disk_.count(id))
+        running.emplace_back(id, it->second->owner);
+  }
+  for (const auto& [id, owner] : running) {
+    const JobDir::Usage u = JobDir(run_dir(id) / "work").usage(kMaxJobNames + 1);
+    std::string why;
+    if (u.names > kMaxJobNames)
+      why = "wrote more than " + std::to_string(kMaxJobNames) + " files, the most a job may have";
+    else if (const std::uint64_t room = room_of(owner); u.bytes > room)
+      why = "wrote " + std::to_string(u.bytes) + " bytes, more than the " + std::to_string(room) +
+            " bytes its owner has left under their storage quota";
+    if (why.empty()) continue;
+    {
+      std::lock_guard lock(mutex_);
+      if (!in_flight_.count(id)) continue;
+      over_disk_[id] = why;
+    }
+    executor_->cancel(id);
+  }
+}
+
 bool JobScheduler::requeued_when_lost(const WorkerEnd& how) const {
   return how.how == WorkerEnd::How::lost && config_.slurm.requeue_lost && config_.executor == "slurm";
 }
@@ -358,15 +397,18 @@ std::map<std::string, JobScheduler::Collected> JobScheduler::collect(const std::
     }
     // What its results may take: the room left under its owner's quota.
     WorkerLimits limits = limits_of_workers();
-    if (owner.user == "local") owner = Caller::local();
-    else if (const auto u = meshes_.store().get_user(owner.user)) owner.admin = u->admin;
-    if (const UserLimits quota = this->limits(owner); quota.storage_bytes) {
-      const std::uint64_t used = usage(owner.user).storage_bytes;
-      limits.result_bytes = used < *quota.storage_bytes ? *quota.storage_bytes - used : 0;
-    }
+    limits.result_bytes = room_of(owner.user);
     const fs::path run = run_dir(e.job_id);
     const JobDir work_dir(run / "work"), run_files(run);
     Collected c{read_worker_outcome(work_dir, run_files, e.end, limits)};
+    {
+      std::lock_guard lock(mutex_);
+      if (const auto over = over_disk_.find(e.job_id); over != over_disk_.end()) {
+        c.outcome = WorkerOutcome{};
+        c.outcome.error = over->second;
+        over_disk_.erase(over);
+      }
+    }
     if (c.outcome.done) {
       const fs::path results = job_dir(e.job_id);
       std::string why = take_artifacts(work_dir, c.outcome.artifacts, results);
@@ -550,6 +592,7 @@ void JobScheduler::loop() {
       if (on_event) on_event(e, job_access(e["job"].value("id", "")));
     events.clear();
     const auto happened = executor_->poll(std::chrono::milliseconds(100));
+    check_disk();
     // A run's files are read (and its artifacts copied) outside the lock:
     // a slow or hostile file never holds up another request.
     std::vector<std::string> finished;

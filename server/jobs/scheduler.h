@@ -228,6 +228,14 @@ class JobScheduler : private JobLookup {
   std::atomic<std::uint64_t> workers_started_{0};
   // Runs that ended, whose directories go outside mutex_.
   std::vector<std::string> finished_runs_;
+  // A running job's directory, walked every few seconds outside mutex_:
+  // one over its owner's room (their storage quota) or over kMaxJobNames
+  // names is stopped, and fails with why (by job id, under mutex_).
+  void check_disk();
+  std::map<std::string, std::string> over_disk_;
+  std::chrono::steady_clock::time_point last_disk_check_{};
+  // The room its owner has left under their storage quota (the most a job's files may take).
+  std::uint64_t room_of(const std::string& owner) const;
   // Jobs whose last change could not be written (a full disk): written again
   // at each turn of the loop until it fits; their state in memory is right.
   std::set<std::string> unsaved_;

@@ -107,6 +107,16 @@ void add_job_routes(Routes& routes, const RouteContext& ctx) {
                       return r;
                     },
                     false});
+  routes.push_back({"POST",
+                    "/api/v1/jobs/{id}/cancel",
+                    "Cancel a queued or running job (an ended one is left as it is); answers the job",
+                    {},
+                    [&ctx](const Params& p, const HttpRequest&, const Caller& caller) {
+                      const auto job = ctx.jobs().cancel(p.at("id"), caller);
+                      if (!job) return error_response(404, "not_found", "no job with id '" + p.at("id") + "'");
+                      return json_response(200, *job);
+                    },
+                    false});
   routes.push_back({"GET",
                     "/api/v1/jobs/{id}/artifacts/{name}",
                     "An artifact of a done job in a format",

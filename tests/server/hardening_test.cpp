@@ -248,6 +248,25 @@ TEST_F(Hardening, IdleConnectionsAreClosed) {
   expect_healthy();
 }
 
+// Where tokens are needed, a WebSocket that never authenticates is closed
+// after --ws-auth-timeout-s, while one that did stays open.
+TEST_F(Hardening, AWebSocketThatNeverAuthenticatesIsClosed) {
+  fs::create_directories(data_);
+  const std::string token = test::server_command(data_, "user add alice");
+  ASSERT_TRUE(start({"--auth", "required", "--ws-auth-timeout-s", "1"}));
+  test::WsClient silent, signed_in;
+  ASSERT_FALSE(silent.connect(port()));
+  ASSERT_FALSE(signed_in.connect(port()));
+  ASSERT_FALSE(signed_in.send({{"type", "auth"}, {"token", token}, {"request_id", 1}}));
+  EXPECT_EQ(signed_in.reply().value("type", ""), "authenticated");
+  const auto t0 = Clock::now();
+  EXPECT_FALSE(silent.read(5s).has_value()) << "the unauthenticated WebSocket stayed open";
+  EXPECT_GE(since(t0), 0.5);
+  EXPECT_LT(since(t0), 3.0);
+  EXPECT_TRUE(signed_in.ping(2)) << "the authenticated one was closed too";
+  EXPECT_EQ(call_as(port(), token, "GET", "/api/v1/health").status, 200u);
+}
+
 // ---------------------------------------------------------------- sizes
 
 TEST_F(Hardening, OversizedHeadersBodiesAndWebSocketMessagesEndOnlyTheirConnection) {

@@ -52,7 +52,11 @@ class Plugins : public ServerFixture {
     alice_ = server_command(data_, "user add alice");
     bob_ = server_command(data_, "user add bob");
     ASSERT_FALSE(alice_.empty());
-    std::ofstream(dir_ / "config.json") << json{{"sandbox", {{"processes", 64}, {"file_mb", 64}}}}.dump();
+    // Alice has 100 MB: a job of hers that writes more is stopped as it writes.
+    std::ofstream(dir_ / "config.json") << json{
+        {"sandbox", {{"processes", 64}, {"file_mb", 64}}},
+        {"users",
+         {{"alice", {{"storage_mb", 100}}}}}}.dump();
     fs::create_directories(dir_ / "lab");
     // A secret of the server's environment, which no job may read.
     ::setenv("CGVIEW_TEST_SECRET", "hunter2", 1);
@@ -209,6 +213,9 @@ TEST_F(Plugins, EveryWayOutOfTheSandboxFailsItsJobAloneWithTheLimitItHit) {
   const std::vector<Attempt> attempts = {
       {"read_file", (data_ / "cgview.db").string(), "the server's data and other jobs are not visible"},
       {"read_file", bob_result.string(), "the server's data and other jobs are not visible"},
+      // The config file lies outside the data directory, readable by all:
+      // hidden all the same (behind a /dev/null the job may not open).
+      {"read_file", (dir_ / "config.json").string(), "a job reads only its inputs"},
       {"write_file", "/usr/cgview-escaped.txt", "a job writes only in its own directory"},
       {"write_file", (data_ / "escaped.txt").string(), "(the sandbox: "},
       {"connect_local", std::to_string(port()), "a job has no network"},
@@ -317,7 +324,8 @@ TEST_F(Plugins, NothingAJobLeavesInItsDirectoryIsFollowedOrReadWithoutABound) {
       {"link_artifact", sized(db), "stolen.txt is a link"},
       {"huge_result", "", "result.json has"},
       {"many_artifacts", "", "1000 artifacts, over the limit of 256"},
-      {"many_files", "20000", "made 20000 files"},
+      {"many_files", "120000", "wrote more than 100000 files, the most a job may have"},
+      {"fill_disk", "", "bytes its owner has left under their storage quota"},
       {"read_env", "CGVIEW_TEST_SECRET", "no variable names CGVIEW_TEST_SECRET"},
   };
   for (const Attempt& a : attempts) {

@@ -201,7 +201,11 @@ class Client:
         return Job(self, self.send_json("POST", "/jobs", body))
 
     def cancel(self, job_id):
-        return json.loads(self.request("DELETE", f"/jobs/{quote(job_id)}")[0])
+        return json.loads(self.request("POST", f"/jobs/{quote(job_id)}/cancel", b"")[0])
+
+    def delete_job(self, job_id):
+        """Deletes an ended job and its results (a queued or running one is cancelled)."""
+        self.request("DELETE", f"/jobs/{quote(job_id)}")
 
     def wait(self, job_id, on_progress=None, timeout=None, use_websocket=True):
         """Waits for a job to end and returns its last state, whatever it is.

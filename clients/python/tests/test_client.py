@@ -125,6 +125,12 @@ class ClientTest(unittest.TestCase):
         job = self.client.submit("voxelize", self.mesh["id"], {"resolution": 1000})
         self.assertEqual(self.client.cancel(job["id"])["state"], "cancelled")
         self.assertEqual(self.client.wait(job["id"], timeout=60)["state"], "cancelled")
+        # Cancelling again leaves it as it is; deleting it removes it.
+        self.assertEqual(self.client.cancel(job["id"])["state"], "cancelled")
+        self.client.delete_job(job["id"])
+        with self.assertRaises(CGViewError) as e:
+            self.client.job(job["id"])
+        self.assertEqual(e.exception.status, 404)
 
     def test_run_raises_when_the_job_does_not_end_done(self):
         done = self.client.run("curvature", self.mesh["id"])

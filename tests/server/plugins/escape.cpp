@@ -33,9 +33,10 @@ struct Params {
   void describe(V& v) {
     v.choice("attempt", attempt,
              {.label = "Attempt",
-              .choices = {"read_file", "write_file", "connect_local", "connect_outside", "fork_bomb", "allocate",
-                          "loop", "big_file", "segfault", "link_error", "link_artifact", "fifo_error", "zero_error",
-                          "huge_result", "many_artifacts", "many_files", "link_tmp", "read_env", "link_exit"}});
+              .choices = {"read_file",     "write_file", "connect_local", "connect_outside", "fork_bomb",
+                          "allocate",      "loop",       "big_file",      "segfault",        "link_error",
+                          "link_artifact", "fifo_error", "zero_error",    "huge_result",     "many_artifacts",
+                          "many_files",    "link_tmp",   "read_env",      "link_exit",       "fill_disk"}});
     v.text("target", target, {.label = "Target"});
   }
 };
@@ -96,7 +97,19 @@ AlgorithmResult run(const Mesh&, const Params& p, Context& ctx) {
       if (fd < 0) fail("cannot create file " + std::to_string(k));
       ::close(fd);
     }
+    // Past the server's bound it waits to be stopped, for the bound to be met while it runs.
+    if (n > 100000)
+      for (;;) ::pause();
     throw std::runtime_error("made " + std::to_string(n) + " files");
+  }
+  if (p.attempt == "fill_disk") {
+    // Files of 1 MB, each under the file-size limit, more of them than any quota: then wait to be stopped.
+    const std::vector<char> block(1 << 20, 'x');
+    for (int k = 0; k < 400; ++k) {
+      std::ofstream f("fill" + std::to_string(k), std::ios::binary);
+      if (!f.write(block.data(), std::streamsize(block.size()))) fail("cannot write fill" + std::to_string(k));
+    }
+    for (;;) ::pause();
   }
   if (p.attempt == "link_tmp") {
     // A run that sees the server's data as its /tmp has escaped; any other
@@ -117,7 +130,10 @@ AlgorithmResult run(const Mesh&, const Params& p, Context& ctx) {
     const int fd = ::open(p.target.c_str(), O_RDONLY);
     if (fd < 0) fail("cannot open " + p.target);
     char c;
-    if (::read(fd, &c, 1) < 0) fail("cannot read " + p.target);
+    const ssize_t n = ::read(fd, &c, 1);
+    if (n < 0) fail("cannot read " + p.target);
+    // A file the sandbox hides behind /dev/null opens, and holds nothing.
+    if (n == 0) throw std::runtime_error("read nothing from " + p.target);
     return escaped();
   }
   if (p.attempt == "write_file") {

@@ -128,7 +128,7 @@ export function getJob(id: string): Promise<Job> {
 
 /** Cancels a queued or running job; answers the Job, state `cancelled`. */
 export function cancelJob(id: string): Promise<Job> {
-  return request<Job>(`/jobs/${encodeURIComponent(id)}`, { method: 'DELETE' });
+  return request<Job>(`/jobs/${encodeURIComponent(id)}/cancel`, { method: 'POST' });
 }
 
 /**
