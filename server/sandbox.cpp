@@ -52,6 +52,7 @@ Sandbox::Sandbox(SandboxConfig config, fs::path bwrap) : config_(std::move(confi
     return;
   }
   const bool root = ::geteuid() == 0;
+  if (!root) prlimit_ = find_program("prlimit");
   if (root && (setpriv_ = find_program("setpriv")).empty()) {
     why_not_ = "setpriv (util-linux) is not installed";
     return;
@@ -155,6 +156,9 @@ Sandbox::Command Sandbox::wrap(const std::vector<std::string>& argv, const Sandb
   if (root) {
     const auto d = drop_to(setpriv_, uid);
     c.argv.insert(c.argv.end(), d.begin(), d.end());
+  } else if (!prlimit_.empty() && c.options.processes > 0) {
+    c.argv.insert(c.argv.end(), {prlimit_.string(), "--nproc=" + std::to_string(c.options.processes), "--"});
+    c.options.processes = 0;  // not before bubblewrap: see prlimit_
   }
   c.argv.insert(c.argv.end(), argv.begin(), argv.end());
   return c;

@@ -110,6 +110,11 @@ class Sandbox {
  private:
   SandboxConfig config_;
   std::filesystem::path bwrap_, setpriv_;
+  // A server that is not root limits a job's processes from inside its
+  // user namespace (prlimit, util-linux), where the kernel counts that
+  // job's processes alone: a limit set before bubblewrap counts every
+  // process of the server's user, so one job's could starve another's.
+  std::filesystem::path prlimit_;
   bool enabled_ = false;
   std::string why_not_;
   std::shared_ptr<Slot::Held> slots_ = std::make_shared<Slot::Held>();

@@ -161,7 +161,9 @@ std::string SlurmExecutor::batch_script(const LaunchSpec& job, int slot) const {
     std::string give;
     if (sandboxed()) {
       const Sandbox::Command c = sandboxed_worker(*sandbox_, job, worker_, slot);
-      command = "prlimit --nproc=" + std::to_string(c.options.processes) +
+      // (Its process limit is set inside the sandbox where the server is not root: sandbox.h.)
+      command = "prlimit" +
+                (c.options.processes > 0 ? " --nproc=" + std::to_string(c.options.processes) : std::string()) +
                 " --fsize=" + std::to_string(std::uint64_t(c.options.file_mb) << 20) + " --";
       for (const std::string& a : c.argv) command += " " + quoted(a);
       if (const auto uid = sandbox_->job_user(slot))
@@ -386,7 +388,16 @@ void SlurmExecutor::refresh(std::vector<ExecutorEvent>& events) {
         continue;
       }
     }
-    if (state.empty() || final_state(state)) {
+    const bool active_state = state == "RUNNING" || state == "COMPLETING";
+    // Its newest run ended with its result on disk, yet the cluster holds
+    // the job (a launch it thought failed while munged was away: "launch
+    // failed requeued held"): settled from that result, not left waiting.
+    // A job merely requeued (its node failed) runs again as the cluster wants.
+    const bool held = state == "REQUEUE_HOLD" || state == "SPECIAL_EXIT" || reason.starts_with("JobHeld") ||
+                      reason.find("held") != std::string::npos;
+    const bool held_done = held && !t.cancelling && held_with_a_result(t, now);
+    if (held_done) run_tool({scancel_.string(), t.slurm_id}, kToolLimit);
+    if (state.empty() || final_state(state) || held_done) {
       read_progress(t, events);
       e.kind = ExecutorEvent::Kind::ended;
       e.end = ended(t, state, reason);
@@ -394,7 +405,7 @@ void SlurmExecutor::refresh(std::vector<ExecutorEvent>& events) {
       it = jobs_.erase(it);
       continue;
     }
-    if (state == "RUNNING" || state == "COMPLETING") {
+    if (active_state) {
       if (!t.running) {
         t.running = true;
         t.started = now;
@@ -407,17 +418,6 @@ void SlurmExecutor::refresh(std::vector<ExecutorEvent>& events) {
         t.timed_out = t.cancelling = true;
         run_tool({scancel_.string(), t.slurm_id}, kToolLimit);
       }
-    } else if (!t.cancelling && held_with_a_result(t, now)) {
-      // Its newest run ended with its result on disk, yet the cluster holds
-      // the job (a launch it thought failed while munged was away, a
-      // requeue after the end): settled from that result, not left waiting.
-      run_tool({scancel_.string(), t.slurm_id}, kToolLimit);
-      read_progress(t, events);
-      e.kind = ExecutorEvent::Kind::ended;
-      e.end = ended(t, state, reason);
-      events.push_back(std::move(e));
-      it = jobs_.erase(it);
-      continue;
     } else if (!t.cancelling) {  // PENDING, REQUEUED, SUSPENDED, ...: waiting, and why
       const std::string why =
           state == "PENDING" ? (reason == "None" ? "" : reason) : state + (reason == "None" ? "" : ": " + reason);

@@ -101,13 +101,32 @@ class Plugins : public ServerFixture {
     EXPECT_EQ(job.value("state", ""), "done") << job.dump();
     return as(token, "GET", "/api/v1/plugins/" + id).body_json();
   }
-  json run(const std::string& token, const std::string& plugin, const std::string& algorithm, const std::string& mesh,
-           const json& params) {
+  // A job of a plugin's algorithm, submitted (201 expected).
+  HttpResult submit(const std::string& token, const std::string& plugin, const std::string& algorithm,
+                    const std::string& mesh, const json& params) {
     const HttpResult r =
         as(token, "POST", "/api/v1/jobs",
            {{"algorithm", algorithm}, {"plugin", plugin}, {"inputs", {{"mesh", mesh}}}, {"params", params}});
     EXPECT_EQ(r.status, 201u) << r.body;
-    return wait_job(token, r.body_json().value("id", ""));
+    return r;
+  }
+  json run(const std::string& token, const std::string& plugin, const std::string& algorithm, const std::string& mesh,
+           const json& params) {
+    return wait_job(token, submit(token, plugin, algorithm, mesh, params).body_json().value("id", ""));
+  }
+  // Alice's build of the hostile plugin (tests/server/plugins/escape.cpp): its id.
+  std::string build_escape() {
+    const json p = build(alice_, "escape", source_file("tests/server/plugins/escape.cpp"));
+    EXPECT_EQ(p["build"]["state"], "ok") << p.dump();
+    return p.value("id", "");
+  }
+  // A done job of Bob's, whose results Alice's plugin reaches for.
+  json bobs_done_job() {
+    const HttpResult r =
+        as(bob_, "POST", "/api/v1/jobs", {{"algorithm", "centroid_distance"}, {"inputs", {{"mesh", bob_mesh_}}}});
+    const json bobs = wait_job(bob_, r.body_json().value("id", ""));
+    EXPECT_EQ(bobs.value("state", ""), "done");
+    return bobs;
   }
   std::string alice_, bob_, alice_mesh_, bob_mesh_;
 };
@@ -197,13 +216,10 @@ TEST_F(Plugins, CompileErrorsComeBackAsDataAtTheirLines) {
 }
 
 TEST_F(Plugins, EveryWayOutOfTheSandboxFailsItsJobAloneWithTheLimitItHit) {
-  const json p = build(alice_, "escape", source_file("tests/server/plugins/escape.cpp"));
-  ASSERT_EQ(p["build"]["state"], "ok") << p.dump();
-  const std::string id = p["id"];
+  const std::string id = build_escape();
+  ASSERT_FALSE(id.empty());
   // Bob's job, and one of his results that Alice's plugin will look for.
-  const HttpResult r =
-      as(bob_, "POST", "/api/v1/jobs", {{"algorithm", "centroid_distance"}, {"inputs", {{"mesh", bob_mesh_}}}});
-  const json bobs = wait_job(bob_, r.body_json().value("id", ""));
+  const json bobs = bobs_done_job();
   ASSERT_EQ(bobs.value("state", ""), "done");
   const fs::path bob_result = data_ / "jobs" / bobs["id"].get<std::string>() / "result.json";
   ASSERT_TRUE(fs::exists(bob_result));
@@ -246,13 +262,9 @@ TEST_F(Plugins, EveryWayOutOfTheSandboxFailsItsJobAloneWithTheLimitItHit) {
 }
 
 TEST_F(Plugins, AKilledServerLeavesNoSandboxRunning) {
-  const json p = build(alice_, "escape", source_file("tests/server/plugins/escape.cpp"));
-  ASSERT_EQ(p["build"]["state"], "ok") << p.dump();
-  const HttpResult r = as(alice_, "POST", "/api/v1/jobs",
-                          {{"algorithm", "escape"},
-                           {"plugin", p["id"]},
-                           {"inputs", {{"mesh", alice_mesh_}}},
-                           {"params", {{"attempt", "loop"}}}});
+  const std::string plugin = build_escape();
+  ASSERT_FALSE(plugin.empty());
+  const HttpResult r = submit(alice_, plugin, "escape", alice_mesh_, {{"attempt", "loop"}});
   ASSERT_EQ(r.status, 201u) << r.body;
   for (int i = 0; i < 200 && processes_naming(data_).empty(); ++i) std::this_thread::sleep_for(25ms);
   ASSERT_FALSE(processes_naming(data_).empty()) << "the looping job's sandbox never started";
@@ -293,13 +305,10 @@ TEST_F(Plugins, TheLabsPluginDirectoryIsPickedUpAndAChangedFileRebuiltWithoutARe
 }
 
 TEST_F(Plugins, NothingAJobLeavesInItsDirectoryIsFollowedOrReadWithoutABound) {
-  const json p = build(alice_, "escape", source_file("tests/server/plugins/escape.cpp"));
-  ASSERT_EQ(p["build"]["state"], "ok") << p.dump();
-  const std::string id = p["id"];
+  const std::string id = build_escape();
+  ASSERT_FALSE(id.empty());
   // Bob's finished job, whose result must stay his and stay served.
-  const HttpResult r =
-      as(bob_, "POST", "/api/v1/jobs", {{"algorithm", "centroid_distance"}, {"inputs", {{"mesh", bob_mesh_}}}});
-  const json bobs = wait_job(bob_, r.body_json().value("id", ""));
+  const json bobs = bobs_done_job();
   ASSERT_EQ(bobs.value("state", ""), "done");
   const std::string bob_field =
       as(bob_, "GET", "/api/v1/jobs/" + bobs["id"].get<std::string>() + "/artifacts/distance?format=txt").body;
@@ -348,13 +357,9 @@ TEST_F(Plugins, NothingAJobLeavesInItsDirectoryIsFollowedOrReadWithoutABound) {
 }
 
 TEST_F(Plugins, ARunNeverGetsALinkAnEarlierRunLeftAsItsTmp) {
-  const json p = build(alice_, "escape", source_file("tests/server/plugins/escape.cpp"));
-  ASSERT_EQ(p["build"]["state"], "ok") << p.dump();
-  const HttpResult r = as(alice_, "POST", "/api/v1/jobs",
-                          {{"algorithm", "escape"},
-                           {"plugin", p["id"]},
-                           {"inputs", {{"mesh", alice_mesh_}}},
-                           {"params", {{"attempt", "link_tmp"}}}});
+  const std::string plugin = build_escape();
+  ASSERT_FALSE(plugin.empty());
+  const HttpResult r = submit(alice_, plugin, "escape", alice_mesh_, {{"attempt", "link_tmp"}});
   ASSERT_EQ(r.status, 201u) << r.body;
   const std::string job = r.body_json().value("id", "");
   const fs::path tmp = data_ / "runs" / job / "work" / "tmp";
@@ -385,9 +390,8 @@ TEST_F(Plugins, ARelativeDataDirectoryIsMadeAbsoluteAndStaysHidden) {
   const HttpResult r =
       as(alice_, "POST", "/api/v1/jobs", {{"algorithm", "centroid_distance"}, {"inputs", {{"mesh", mesh}}}});
   EXPECT_EQ(wait_job(alice_, r.body_json().value("id", "")).value("state", ""), "done");
-  const json p = build(alice_, "escape", source_file("tests/server/plugins/escape.cpp"));
-  const json j =
-      run(alice_, p["id"], "escape", mesh, {{"attempt", "read_file"}, {"target", (data_ / "cgview.db").string()}});
+  const json j = run(alice_, build_escape(), "escape", mesh,
+                     {{"attempt", "read_file"}, {"target", (data_ / "cgview.db").string()}});
   EXPECT_NE(j.value("error", json("")).get<std::string>().find("not visible"), std::string::npos) << j.dump();
 }
 

@@ -107,6 +107,20 @@ class SlurmJobs : public ServerFixture {
     ADD_FAILURE() << "job " << id << " never ran: " << j.dump();
     return j;
   }
+  // The hostile plugin (tests/server/plugins/escape.cpp) saved and built
+  // on the cluster: its build job as it ended, the plugin's id as "plugin".
+  json build_escape() {
+    const std::string source = read_bytes(fs::path(CGVIEW_SOURCE_DIR) / "tests/server/plugins/escape.cpp");
+    const auto made =
+        http_call(port(), Method::post, "/api/v1/plugins", json{{"name", "escape"}, {"source", source}}.dump());
+    EXPECT_EQ(made.status, 201u) << made.body;
+    const std::string plugin = made.body_json().value("id", "");
+    const auto build = http_call(port(), Method::post, "/api/v1/plugins/" + plugin + "/build", "");
+    EXPECT_EQ(build.status, 202u) << build.body;
+    json built = wait_end(build.body_json().value("id", ""), 120s);
+    built["plugin"] = plugin;
+    return built;
+  }
   // The Slurm job of a CGView job, by its name (cgview-ID): its id, or "".
   std::string slurm_id(const std::string& job) {
     std::string out = cluster_.run("squeue --noheader --states=all --name=cgview-" + job + " --format=%i");
@@ -156,16 +170,18 @@ TEST_F(SlurmJobs, JobsLandOnEveryNodeAndResultsEqualTheLocalExecutorsByteForByte
   const json sdf = submit(mesh, "sdf");
   const json vox = submit(mesh, "voxelize");
   std::set<std::string> nodes;
+  std::map<std::string, std::string> slurm_ids;  // asked while each runs: the controller forgets ended jobs in 2 s
   for (const auto& id : sleepers) {
     const auto deadline = Clock::now() + 30s;
     while (Clock::now() < deadline && get(id).value("node", "").empty() && get(id).value("state", "") != "done")
       std::this_thread::sleep_for(20ms);
     nodes.insert(get(id).value("node", ""));
+    slurm_ids[id] = slurm_id(id);
   }
   for (const auto& id : sleepers) EXPECT_EQ(wait_end(id).value("state", ""), "done");
   EXPECT_EQ(nodes, (std::set<std::string>{"n1", "n2", "n3"}));
   // Slurm ran each as its own batch job, named after it.
-  for (const auto& id : sleepers) EXPECT_FALSE(slurm_id(id).empty()) << id;
+  for (const auto& id : sleepers) EXPECT_FALSE(slurm_ids[id].empty()) << id;
   ASSERT_EQ(wait_end(sdf["id"]).value("state", ""), "done") << get(sdf["id"]).dump();
   ASSERT_EQ(wait_end(vox["id"]).value("state", ""), "done") << get(vox["id"]).dump();
   const std::string sdf_slurm = artifact(sdf["id"], "sdf", "f32");
@@ -191,14 +207,8 @@ TEST_F(SlurmJobs, JobsLandOnEveryNodeAndResultsEqualTheLocalExecutorsByteForByte
 TEST_F(SlurmJobs, APluginIsBuiltAndRunOnTheNodesInTheSandbox) {
   ASSERT_TRUE(start());
   const std::string mesh = upload("sphere.off");
-  const std::string source = read_bytes(fs::path(CGVIEW_SOURCE_DIR) / "tests/server/plugins/escape.cpp");
-  const auto made =
-      http_call(port(), Method::post, "/api/v1/plugins", json{{"name", "escape"}, {"source", source}}.dump());
-  ASSERT_EQ(made.status, 201u) << made.body;
-  const std::string plugin = made.body_json().value("id", "");
-  const auto build = http_call(port(), Method::post, "/api/v1/plugins/" + plugin + "/build", "");
-  ASSERT_EQ(build.status, 202u) << build.body;
-  const json built = wait_end(build.body_json().value("id", ""), 120s);
+  const json built = build_escape();
+  const std::string plugin = built.value("plugin", "");
   ASSERT_EQ(built.value("state", ""), "done") << built.dump();
   EXPECT_FALSE(slurm_id(built["id"]).empty()) << "the build ran on the cluster";
   auto attempt = [&](const std::string& what, const std::string& target) {
@@ -238,13 +248,8 @@ TEST_F(SlurmJobs, APluginIsBuiltAndRunOnTheNodesInTheSandbox) {
 TEST_F(SlurmJobs, ARequeuedRunGetsAFreshDirectoryNotTheLinkAnEarlierRunLeft) {
   ASSERT_TRUE(start());
   const std::string mesh = upload("sphere.off");
-  const std::string source = read_bytes(fs::path(CGVIEW_SOURCE_DIR) / "tests/server/plugins/escape.cpp");
-  const auto made =
-      http_call(port(), Method::post, "/api/v1/plugins", json{{"name", "escape"}, {"source", source}}.dump());
-  ASSERT_EQ(made.status, 201u) << made.body;
-  const std::string plugin = made.body_json().value("id", "");
-  const auto build = http_call(port(), Method::post, "/api/v1/plugins/" + plugin + "/build", "");
-  ASSERT_EQ(wait_end(build.body_json().value("id", ""), 120s).value("state", ""), "done");
+  const std::string plugin = build_escape().value("plugin", "");
+  ASSERT_FALSE(plugin.empty());
   const auto r = http_call(port(), Method::post, "/api/v1/jobs",
                            json{{"algorithm", "escape"},
                                 {"plugin", plugin},

@@ -1,5 +1,6 @@
 // End-to-end test of a long job in the viewer: progress arriving over the
-// WebSocket, and the Cancel button (DELETE /api/v1/jobs/{id}). It needs a slow
+// WebSocket, the Cancel button (POST /api/v1/jobs/{id}/cancel), and the
+// ended job's Delete button (DELETE /api/v1/jobs/{id}). It needs a slow
 // algorithm, so it runs the server with the test worker (cgview-worker-test
 // beside the server binary, whose test_sleep runs for a given time; the
 // server keeps test algorithms out of GET /api/v1/algorithms, so the test
@@ -102,5 +103,10 @@ test('a long job shows its progress live and the Cancel button cancels it', asyn
   assert.equal(body.state, 'cancelled');
   assert.equal(await page.evaluate(() => window.__cgview.lastField), null, 'no field drawn');
   assert.ok(await page.locator('#legend').isHidden(), 'no legend');
+
+  // An ended job is deleted with its Delete button: gone from the list and from the server.
+  await page.locator(`#jobs li.job[data-job-id="${id}"] button.delete`).click();
+  await page.locator(`#jobs li.job[data-job-id="${id}"]`).waitFor({ state: 'detached', timeout: 15000 });
+  assert.equal((await fetch(`${server.url}/api/v1/jobs/${id}`)).status, 404, 'the server forgot it');
   assert.deepEqual(pageProblems, [], pageProblems.join('\n'));
 });

@@ -131,6 +131,11 @@ export function cancelJob(id: string): Promise<Job> {
   return request<Job>(`/jobs/${encodeURIComponent(id)}/cancel`, { method: 'POST' });
 }
 
+/** Deletes an ended job and its results (the server answers 204; a queued or running one it cancels). */
+export function deleteJob(id: string): Promise<void> {
+  return request<void>(`/jobs/${encodeURIComponent(id)}`, { method: 'DELETE' });
+}
+
 /**
  * Uploads a file another tool made (a voxel grid, a skeleton, a scalar field)
  * as the raw request body (POST /data): it comes back as a done `import` Job

@@ -7,7 +7,7 @@
 // from ("elephant · simplify 1000"), and a mesh run on is stored by the server
 // under that name.
 import { needsMesh, type DataKind } from '../api/data_files.ts';
-import { ApiError, cancelJob, getJob, listAlgorithms, listJobs, submitJob, uploadData } from '../api/rest.ts';
+import { ApiError, cancelJob, deleteJob, getJob, listAlgorithms, listJobs, submitJob, uploadData } from '../api/rest.ts';
 import type { Algorithm, Job, JobInput, JobProgress, ParamSchema } from '../api/types.ts';
 import { AlgorithmsPanel } from '../panels/algorithms.ts';
 import { orderedParams } from '../panels/param_control.ts';
@@ -77,6 +77,7 @@ export class JobsController {
         compare: (jobId) => app.compare.compareJob(jobId),
         addToComparison: (jobId, artifact) => app.compare.addToComparison(jobId, artifact),
         runOn: (jobId, artifact) => this.setRunTarget(jobId, artifact),
+        remove: (jobId) => void this.remove(jobId),
         share: (jobId) => openShareForm('jobs', jobId, `job ${jobOf(ctx, jobId)?.algorithm ?? ''} ${jobId.slice(0, 8)}`),
       },
       app.kinds,
@@ -315,6 +316,25 @@ export class JobsController {
         () => {},
       );
     }
+  }
+
+  /** Deletes an ended job: what of it is shown is hidden first, then it leaves the list. */
+  async remove(id: string): Promise<void> {
+    const { app, store } = this.ctx;
+    const job = store.get().jobs.get(id);
+    try {
+      await deleteJob(id);
+    } catch (e) {
+      this.ctx.error(`Cannot delete the job: ${describe(e)}`);
+      return;
+    }
+    for (const a of job?.artifacts ?? []) {
+      if (a.kind === 'mesh') app.scene.removeResult(id, a.name);
+      else app.kinds.hide(id, a.name, a.kind);
+    }
+    const next = new Map(store.get().jobs);
+    next.delete(id);
+    store.update({ jobs: next });
   }
 
   /** Merges a Job in; a finished job never goes back to queued or running (events and answers may cross). */

@@ -30,6 +30,8 @@ export interface JobsActions {
   runOn(jobId: string, artifact: string): void;
   /** Opens the share form on a job (its state and artifacts, read-only for those it is shared with). */
   share(jobId: string): void;
+  /** Deletes an ended job and its results (what of it is shown goes too). */
+  remove(jobId: string): void;
 }
 
 export interface JobsView {
@@ -165,7 +167,16 @@ export class JobsPanel {
     if (view.mayChange(job.owner)) {
       const share = el('button', { type: 'button', class: 'button small share', title: 'Share this job and its results' }, 'Share…');
       share.addEventListener('click', () => this.actions.share(job.id));
-      li.append(el('div', { class: 'job-actions' }, share));
+      const actions = el('div', { class: 'job-actions' }, share);
+      if (!ACTIVE.has(job.state)) {
+        const remove = el('button', { type: 'button', class: 'button small delete', title: 'Delete this job and its results' }, 'Delete');
+        remove.addEventListener('click', () => {
+          remove.disabled = true;
+          this.actions.remove(job.id);
+        });
+        actions.append(remove);
+      }
+      li.append(actions);
     }
     if (job.error) li.append(el('p', { class: 'job-error' }, job.error));
     if (job.state === 'done') {
