@@ -392,7 +392,7 @@ std::map<std::string, JobScheduler::Collected> JobScheduler::collect(const std::
       const auto it = jobs_.find(e.job_id);
       if (it == jobs_.end() || !in_flight_.count(e.job_id)) continue;
       ended->push_back(e.job_id);
-      if (it->second->cancelled || requeued_when_lost(e.end)) continue;
+      if (it->second->cancelled || (requeued_when_lost(e.end) && !over_disk_.count(e.job_id))) continue;
       owner.user = it->second->owner;
     }
     // What its results may take: the room left under its owner's quota.
@@ -406,6 +406,7 @@ std::map<std::string, JobScheduler::Collected> JobScheduler::collect(const std::
       if (const auto over = over_disk_.find(e.job_id); over != over_disk_.end()) {
         c.outcome = WorkerOutcome{};
         c.outcome.error = over->second;
+        c.stopped = true;
         over_disk_.erase(over);
       }
     }
@@ -456,7 +457,7 @@ void JobScheduler::end(Job& j, const WorkerEnd* how, std::vector<json>& events, 
     save(j);
     return;
   }
-  if (how && requeued_when_lost(*how)) {
+  if (how && requeued_when_lost(*how) && !(collected && collected->stopped)) {
     // Its executor lost it (Slurm purged it, or it went with its node): run it again, by setting.
     j.state = JobState::queued;
     j.progress = 0;

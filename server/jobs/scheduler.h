@@ -181,6 +181,7 @@ class JobScheduler : private JobLookup {
   // already taken into the job's results directory when it is done.
   struct Collected {
     WorkerOutcome outcome;
+    bool stopped = false;  // the server stopped it (check_disk): it fails, never queued again
   };
   // Also adds to *ended the jobs whose run ended (its directory can go).
   std::map<std::string, Collected> collect(const std::vector<ExecutorEvent>& happened, std::vector<std::string>* ended);
