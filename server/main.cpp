@@ -47,7 +47,7 @@ const char* kHelp =
     "  --idle-timeout-s N   a keep-alive connection with no request for N s is closed (default 60)\n"
     "  --ws-idle-timeout-s N  a silent WebSocket is pinged at N/2 s, closed at N s without a pong (default 60)\n"
     "  --ws-auth-timeout-s N  a WebSocket not authenticated in N s is closed where tokens are needed (default 5)\n"
-    "  --max-connections-per-ip N  open connections of one address (0: no cap; default 256 off loopback)\n"
+    "  --max-connections-per-ip N  open connections of one address (0: no cap; default 1024 off loopback)\n"
     "  --rate-limit R[/B]   requests per second per token, or per address without one (not the\n"
     "                       loopback local user), in bursts of B (default 50/200; 0: none)\n"
     "  --tls-cert FILE      serve https:// and wss:// with this PEM certificate chain ...\n"

@@ -45,7 +45,7 @@ struct ServerConfig {
   // Open connections of one address (0: no cap); over: 503.  -1, the
   // default: kDefaultConnectionsPerIp for each address but loopback's.
   int max_connections_per_ip = -1;
-  static constexpr int kDefaultConnectionsPerIp = 256;
+  static constexpr int kDefaultConnectionsPerIp = 1024;
   // A WebSocket that has not authenticated within this many seconds (a
   // token in its upgrade, or an "auth" message) is closed, where a token is
   // needed (off loopback, or --auth required).

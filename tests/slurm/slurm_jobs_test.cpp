@@ -492,6 +492,10 @@ TEST_F(SlurmJobs, WithoutASharedDirectoryWorkersFetchInputsAndSendResultsWithThe
   const std::string sid = slurm_id(slow["id"]);
   const std::string token = token_of(sid);
   ASSERT_EQ(token.size(), 64u) << cluster_.run("scontrol write batch_script " + sid + " -");
+  // No command line holds it, which any local user reads in /proc: its
+  // batch script hands it to curl in a file (curl runs each second meanwhile).
+  for (const auto until = Clock::now() + 1500ms; Clock::now() < until; std::this_thread::sleep_for(5ms))
+    for (const auto& [pid, cmdline] : processes_naming(token)) ADD_FAILURE() << "on a command line: " << cmdline;
   const std::string base = "/api/v1/worker/jobs/" + slow["id"].get<std::string>();
   // The token reads its own job's inputs, and nothing else.
   EXPECT_EQ(call_as(port(), token, "GET", base + "/inputs/mesh").body, read_bytes(data_ / "blobs" / (mesh + ".off")));
