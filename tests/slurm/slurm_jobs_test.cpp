@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <sys/mount.h>
 
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -402,6 +403,40 @@ TEST_F(SlurmJobs, AServerKilledAndStartedAgainEndsEachJobExactlyOnce) {
     EXPECT_EQ(slurm_id(ids[k]), sids[k]);
   }
   EXPECT_EQ(artifact(ids[0], "index", "json").empty(), false);
+}
+
+// A job whose run ended with its result on disk, but which the cluster
+// then holds (as after munged was away when the run ended: "launch failed
+// requeued held"), is settled from that result, not left waiting for good.
+// The worker here (unsandboxed, so that it reaches the controller) writes
+// its run's exit status itself, as the batch script would after it, and
+// has its job requeued and held before the script ends.
+TEST_F(SlurmJobs, AJobTheClusterHoldsAfterItsRunEndedIsSettledFromItsResult) {
+  const fs::path worker = dir_ / "holding-worker";
+  write_text(worker, "#!/bin/sh\n[ \"$1\" = --list ] && exec " + bin("cgview-worker-test") + " --list\n" +
+                         bin("cgview-worker-test") + " \"$@\"; rc=$?\necho $rc > worker.exit.0\nSLURM_CONF=" +
+                         cluster_.conf().string() + " scontrol requeuehold \"$SLURM_JOB_ID\"\nsleep 60\nexit $rc\n");
+  ::chmod(worker.c_str(), 0755);
+  ASSERT_TRUE(start({"--worker", worker.string()}, {}, {{"sandbox", false}}));
+  const std::string mesh = upload("sphere.off");
+  const json job = submit(mesh, "test_sleep", {{"seconds", 0.5}});
+  const std::string id = job["id"];
+  // Held in the cluster: the job waits again, saying why.
+  auto lower = [](std::string t) {
+    for (char& c : t) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return t;
+  };
+  json j;
+  for (const auto until = Clock::now() + 30s; Clock::now() < until; std::this_thread::sleep_for(20ms)) {
+    j = get(id);
+    if (lower(j.value("stage", "")).find("held") != std::string::npos || j.value("state", "") == "done") break;
+  }
+  EXPECT_NE(lower(j.value("stage", "")).find("held"), std::string::npos) << j.dump() << cluster_.log_tail();
+  const json end = wait_end(id, 40s);
+  EXPECT_EQ(end.value("state", ""), "done") << end.dump();
+  EXPECT_EQ(artifact(id, "index", "f32").size(), 4 * 162u) << "its result, one value per vertex";
+  EXPECT_EQ(cluster_.run("squeue --noheader --states=PENDING,RUNNING --name=cgview-" + id), "")
+      << "the held Slurm job was left in the cluster";
 }
 
 TEST_F(SlurmJobs, AJobSlurmForgotFailsSayingSo) {
