@@ -410,12 +410,15 @@ TEST_F(SlurmJobs, AServerKilledAndStartedAgainEndsEachJobExactlyOnce) {
 // requeued held"), is settled from that result, not left waiting for good.
 // The worker here (unsandboxed, so that it reaches the controller) writes
 // its run's exit status itself, as the batch script would after it, and
-// has its job requeued and held before the script ends.
+// has its job requeued and held before the script ends (deaf to the
+// SIGTERM that comes then: killed by the SIGKILL after it, with the script,
+// which so never writes a status of its own over the run's).
 TEST_F(SlurmJobs, AJobTheClusterHoldsAfterItsRunEndedIsSettledFromItsResult) {
   const fs::path worker = dir_ / "holding-worker";
   write_text(worker, "#!/bin/sh\n[ \"$1\" = --list ] && exec " + bin("cgview-worker-test") + " --list\n" +
-                         bin("cgview-worker-test") + " \"$@\"; rc=$?\necho $rc > worker.exit.0\nSLURM_CONF=" +
-                         cluster_.conf().string() + " scontrol requeuehold \"$SLURM_JOB_ID\"\nsleep 60\nexit $rc\n");
+                         bin("cgview-worker-test") +
+                         " \"$@\"; rc=$?\necho $rc > worker.exit.0\nSLURM_CONF=" + cluster_.conf().string() +
+                         " scontrol requeuehold \"$SLURM_JOB_ID\"\ntrap '' TERM\nsleep 60\nexit $rc\n");
   ::chmod(worker.c_str(), 0755);
   ASSERT_TRUE(start({"--worker", worker.string()}, {}, {{"sandbox", false}}));
   const std::string mesh = upload("sphere.off");
