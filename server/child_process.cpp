@@ -31,26 +31,7 @@ int server_life_fd() {
   return fd;
 }
 
-}  // namespace
-
-void end_with_server() {
-  const char* v = std::getenv("CGVIEW_SERVER_FD");
-  if (!v) return;
-  const int fd = std::atoi(v);
-  ::unsetenv("CGVIEW_SERVER_FD");
-  ::fcntl(fd, F_SETFD, FD_CLOEXEC);  // not the compiler's, nor a plugin's children's
-  std::thread([fd] {
-    char c;
-    ssize_t n;
-    do n = ::read(fd, &c, 1);
-    while (n < 0 && errno == EINTR);
-    if (n > 0) return;  // the server never writes to it
-    ::kill(0, SIGKILL);
-    ::_exit(137);
-  }).detach();
-}
-
-const std::vector<std::string>& job_environment_names() {
+const std::vector<std::string>& passed_names() {
   // A trailing '_' names a prefix.
   static const std::vector<std::string> names = {"PATH",
                                                  "LANG",
@@ -75,19 +56,36 @@ const std::vector<std::string>& job_environment_names() {
   return names;
 }
 
+}  // namespace
+
+void end_with_server() {
+  const char* v = std::getenv("CGVIEW_SERVER_FD");
+  if (!v) return;
+  const int fd = std::atoi(v);
+  ::unsetenv("CGVIEW_SERVER_FD");
+  ::fcntl(fd, F_SETFD, FD_CLOEXEC);  // not the compiler's, nor a plugin's children's
+  std::thread([fd] {
+    char c;
+    ssize_t n;
+    do n = ::read(fd, &c, 1);
+    while (n < 0 && errno == EINTR);
+    if (n > 0) return;  // the server never writes to it
+    ::kill(0, SIGKILL);
+    ::_exit(137);
+  }).detach();
+}
+
 std::vector<std::string> job_environment() {
   std::vector<std::string> env;
   for (char** e = environ; *e; ++e) {
     const std::string_view var(*e);
     const std::string_view name = var.substr(0, var.find('='));
-    for (const std::string& n : job_environment_names())
+    for (const std::string& n : passed_names())
       if (n.back() == '_' ? name.starts_with(n) : name == n) {
         env.emplace_back(var);
         break;
       }
   }
-  env.push_back("HOME=/tmp");
-  env.push_back("TMPDIR=/tmp");
   return env;
 }
 
@@ -100,12 +98,16 @@ pid_t spawn_child(const std::vector<std::string>& args, const ChildOptions& opti
   const int life = options.end_with_server ? server_life_fd() : -1;
   std::string life_var = "CGVIEW_SERVER_FD=" + std::to_string(kServerFd);
   std::vector<char*> envp;
-  std::vector<std::string> clean = options.clean_env ? job_environment() : std::vector<std::string>{};
-  if (options.clean_env)
+  std::vector<std::string> clean;
+  if (options.clean_env) {
+    clean = job_environment();
+    clean.push_back("HOME=/tmp");
+    clean.push_back("TMPDIR=/tmp");
     for (std::string& e : clean) envp.push_back(e.data());
-  else
+  } else {
     for (char** e = environ; *e; ++e)
       if (!std::string_view(*e).starts_with("CGVIEW_SERVER_FD=")) envp.push_back(*e);
+  }
   if (life >= 0) envp.push_back(life_var.data());
   envp.push_back(nullptr);
   const std::string err = options.stderr_file.string();

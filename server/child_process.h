@@ -41,10 +41,10 @@ struct ChildOptions {
   bool clean_env = false;
 };
 
-// The variables a clean child gets: the server's values of the names and
-// prefixes in job_environment_names(), then HOME and TMPDIR.
+// The server's variables a job gets ("NAME=value"): the locale, PATH and
+// those that choose a GPU, the renderer and the plugins' compiler.  A clean
+// child gets them, and HOME and TMPDIR as /tmp.
 std::vector<std::string> job_environment();
-const std::vector<std::string>& job_environment_names();
 
 // The child's side of ChildOptions::end_with_server: where CGVIEW_SERVER_FD
 // names such a pipe, a thread waits on it and, when it reads anything but

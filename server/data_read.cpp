@@ -199,11 +199,9 @@ DataRead read_data_in_child(const UploadReader& reader, const DataRequest& req, 
   run_reader_child(reader, "--read-data", n, dir);
   // What the child wrote is as untrusted as the upload: its shape is checked,
   // and only plain files of its output directory are taken.
-  std::string why;
-  const auto result = JobDir(dir.path()).read("result.json", std::size_t(64) << 20, &why);
-  const json r = parse_json_or_discarded(result.value_or(""));
   DataRead out;
   try {
+    const json r = parse_json_or_discarded(child_file(dir, "result.json", std::size_t(64) << 20));
     if (!r.is_object()) throw std::runtime_error("not an object");
     out.entry = r.at("entry");
     if (!out.entry.is_object() || out.entry.value("kind", "") != kind) throw std::runtime_error("not its kind");

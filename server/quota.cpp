@@ -38,8 +38,13 @@ void check_storage(const UserLimits& l, const Usage& u, std::uint64_t adding, co
                       *l.storage_bytes, u.storage_bytes);
 }
 
+std::uint64_t room_left(const UserLimits& l, const Usage& u) {
+  if (!l.storage_bytes) return ~std::uint64_t(0);
+  return u.storage_bytes < *l.storage_bytes ? *l.storage_bytes - u.storage_bytes : 0;
+}
+
 void check_room_for_results(const UserLimits& l, const Usage& u) {
-  if (!l.storage_bytes || u.storage_bytes < *l.storage_bytes) return;
+  if (room_left(l, u) > 0) return;
   throw QuotaExceeded(413, "storage_quota", storage_text(l, u) + ", no room is left for a job's results",
                       *l.storage_bytes, u.storage_bytes);
 }

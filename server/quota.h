@@ -58,6 +58,9 @@ struct QuotaExceeded : std::runtime_error {
 // Throws QuotaExceeded (413) when `adding` more bytes take the caller over
 // their storage limit; `what` names them ("this upload").
 void check_storage(const UserLimits& limits, const Usage& usage, std::uint64_t adding, const std::string& what);
+// The bytes left under the storage limit (none when at or over it; the
+// most there is where there is no limit).
+std::uint64_t room_left(const UserLimits& limits, const Usage& usage);
 // Throws QuotaExceeded (413) when the caller has no room left for a job's
 // results (at or over their storage limit).
 void check_room_for_results(const UserLimits& limits, const Usage& usage);

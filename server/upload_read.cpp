@@ -274,16 +274,6 @@ ReadDir::~ReadDir() {
 
 namespace {
 
-// A file the reader child wrote, read as a job's files are (job_files.h):
-// beneath its directory, through no link, a regular file, at most `cap`
-// bytes; throws std::runtime_error saying what was wrong with it.
-std::string child_file(const ReadDir& dir, const std::string& name, std::uint64_t cap) {
-  std::string why;
-  const auto bytes = JobDir(dir.path()).read(name, cap, &why);
-  if (!bytes) throw std::runtime_error(why.empty() ? name + " is missing" : why);
-  return *bytes;
-}
-
 // What a reader's exit says: nothing when it read the file, else what it
 // refused it for, as the read would have thrown.
 void reader_status(const UploadReader& reader, const std::string& name, const ReadDir& dir, std::optional<int> status) {
@@ -327,6 +317,13 @@ void reader_status(const UploadReader& reader, const std::string& name, const Re
 }
 
 }  // namespace
+
+std::string child_file(const ReadDir& dir, const std::string& name, std::uint64_t cap) {
+  std::string why;
+  const auto bytes = JobDir(dir.path()).read(name, cap, &why);
+  if (!bytes) throw std::runtime_error(why.empty() ? name + " is missing" : why);
+  return *bytes;
+}
 
 void run_reader_child(const UploadReader& reader, const char* mode, const std::string& name, const ReadDir& dir) {
   std::vector<std::string> argv = {reader.program.string(), mode, dir.path().string()};

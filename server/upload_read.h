@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -77,6 +78,11 @@ class ReadDir {
  private:
   std::filesystem::path path_;
 };
+
+// A file the reader child wrote into `dir`, read as a job's files are
+// (jobs/job_files.h): beneath it, through no link, a regular file, at most
+// `cap` bytes; throws std::runtime_error saying what was wrong with it.
+std::string child_file(const ReadDir& dir, const std::string& name, std::uint64_t cap);
 
 // Runs `reader.program MODE DIR` (cgview-read) on what the caller put in DIR
 // (the upload, request.json) under the reader's limits, and returns when it

@@ -56,7 +56,6 @@ std::string take_artifacts(const JobDir& work, const json& artifacts, const fs::
   if (ec) return "cannot make " + to.string() + ": " + ec.message();
   std::string why;
   for (const auto& a : artifacts) {
-    const std::string name = a.value("name", "");
     const std::string file = a.value("file", "");
     if (!work.copy(file, to / file, a.value("bytes", std::uint64_t(0)), &why)) break;
     const ArtifactCodec* codec = artifact_codec(a.value("kind", ""));

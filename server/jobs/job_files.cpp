@@ -94,9 +94,7 @@ void walk(int dir, JobDir::Usage& u, std::uint64_t max_names, int depth) {
 
 }  // namespace
 
-JobDir::JobDir(const fs::path& dir) : path_(dir) {
-  fd_ = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
-}
+JobDir::JobDir(const fs::path& dir) : fd_(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC)) {}
 
 JobDir::~JobDir() {
   if (fd_ >= 0) ::close(fd_);

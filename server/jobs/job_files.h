@@ -32,10 +32,6 @@ class JobDir {
   ~JobDir();
   JobDir(const JobDir&) = delete;
   JobDir& operator=(const JobDir&) = delete;
-  // Whether the directory itself could be opened (a real directory, not a link).
-  bool is_open() const { return fd_ >= 0; }
-  const std::filesystem::path& path() const { return path_; }
-
   // A file's bytes, read to at most `cap` (the rest cut off when `cut`,
   // else an error).  nullopt with *why set when it cannot be taken ("is a
   // link", "is not a regular file", "has N bytes, over the limit of M");
@@ -62,7 +58,6 @@ class JobDir {
   // An open descriptor of the regular file `name` beneath the directory,
   // or -1 with *why set (empty when missing).
   int open_regular(const std::string& name, std::string* why, std::uint64_t* size) const;
-  std::filesystem::path path_;
   int fd_ = -1;
 };
 

@@ -220,37 +220,41 @@ std::optional<json> JobScheduler::cancel(const std::string& id, const Caller& ca
   return out;
 }
 
-bool JobScheduler::remove(const std::string& id, const Caller& caller) {
-  std::string files;
+JobScheduler::Removal JobScheduler::remove(const std::string& id, const Caller& caller) {
+  bool ended = false;
+  std::string files;  // the results directory that goes with it ("": none, or another job's still)
   {
     std::lock_guard lock(mutex_);
     const auto it = jobs_.find(id);
-    if (it == jobs_.end() || !readable(*it->second, caller)) return false;
+    if (it == jobs_.end() || !readable(*it->second, caller)) return {};
     const Job& j = *it->second;
     if (!Access{j.owner}.owned_by(caller))
       throw Forbidden("job " + id + " is " + j.owner + "'s: only its owner deletes it");
-    if (active(j.state) || j.in_flight)
-      throw InvalidInput("job " + id + " is " + to_string(j.state) + ": cancel it first");
-    store_.remove(id);
-    files = j.files.empty() ? id : j.files;
-    const std::string key = j.cache_key;
-    jobs_.erase(it);
-    if (const auto at = std::find(order_.begin(), order_.end(), id); at != order_.end()) order_.erase(at);
-    // Another job answering from the same files keeps them, and the cache with them.
-    std::string heir;
-    for (const auto& [other, o] : jobs_)
-      if (o->files == files) heir = other;
-    if (const auto c = cache_.find(key); c != cache_.end() && c->second == id) {
-      if (heir.empty()) cache_.erase(c);
-      else c->second = heir;
-    }
-    if (!heir.empty()) files.clear();
+    ended = !active(j.state) && !j.in_flight;
+    if (ended) files = forget_locked(id);
   }
-  if (!files.empty()) {
-    std::error_code ec;
-    fs::remove_all(job_dir(files), ec);
+  if (!ended) return {true, cancel(id, caller)};
+  std::error_code ec;
+  if (!files.empty()) fs::remove_all(job_dir(files), ec);
+  return {true, std::nullopt};
+}
+
+std::string JobScheduler::forget_locked(const std::string& id) {
+  const auto it = jobs_.find(id);
+  store_.remove(id);
+  std::string files = it->second->files.empty() ? id : it->second->files;
+  const std::string key = it->second->cache_key;
+  jobs_.erase(it);
+  if (const auto at = std::find(order_.begin(), order_.end(), id); at != order_.end()) order_.erase(at);
+  // Another job answering from the same files keeps them, and the cache with them.
+  std::string heir;
+  for (const auto& [other, o] : jobs_)
+    if (o->files == files) heir = other;
+  if (const auto c = cache_.find(key); c != cache_.end() && c->second == id) {
+    if (heir.empty()) cache_.erase(c);
+    else c->second = heir;
   }
-  return true;
+  return heir.empty() ? files : "";
 }
 
 std::optional<json> JobScheduler::input_files(const Job& j, std::string* error) const {
@@ -281,8 +285,7 @@ std::optional<LaunchSpec> JobScheduler::prepare(Job& j) {
   LaunchSpec s = spec(j);
   std::error_code ec;
   fs::remove_all(s.dir, ec);
-  fs::create_directories(s.work, ec);
-  fs::permissions(s.dir, fs::perms::owner_all, ec);
+  fs::create_directories(s.work, ec);  // under runs/, which only the server's user enters
   const fs::path dir = s.dir;
   const auto files = input_files(j, &j.error);
   if (!files) return std::nullopt;
@@ -346,8 +349,8 @@ void JobScheduler::end(Job& j, const WorkerEnd* how, std::vector<json>& events, 
   in_flight_.erase(j.id);
   j.in_flight = false;
   j.worker_token_sha.clear();  // the worker's token dies with its job
-  finished_runs_.push_back(j.id);
-  j.bytes = dir_bytes(job_dir(j.id));
+  if (!how) finished_runs_.push_back(j.id);
+  j.bytes = collected ? collected->bytes : dir_bytes(job_dir(j.id));
   if (j.cancelled) {  // already cancelled (state, event): only its size is new
     save(j);
     return;
@@ -491,14 +494,8 @@ void JobScheduler::loop() {
     check_disk();
     // A run's files are read (and its artifacts copied) outside the lock:
     // a slow or hostile file never holds up another request.
+    const auto collected = collect(happened);
     std::vector<std::string> finished;
-    const auto collected = collect(happened, &finished);
-    // Gone before the job says it ended: a job seen done has no run left.
-    for (const std::string& id : finished) {
-      std::error_code ec;
-      fs::remove_all(run_dir(id), ec);
-    }
-    finished.clear();
     {
       std::lock_guard lock(mutex_);
       for (const auto& e : happened) {

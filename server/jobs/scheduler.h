@@ -114,11 +114,16 @@ class JobScheduler : private JobLookup {
   // Cancels a queued or running job (its owner or an admin, else Forbidden);
   // the job (unchanged when it had ended).
   std::optional<nlohmann::json> cancel(const std::string& id, const Caller& caller = Caller::local());
-  // Removes an ended job and its results (its owner or an admin, else
-  // Forbidden): false when the caller sees no such job.  Results that
-  // other jobs answer from (identical jobs, cached) stay until the last of
-  // them goes.  Throws InvalidInput for a job still queued or running.
-  bool remove(const std::string& id, const Caller& caller = Caller::local());
+  // DELETE of a job (its owner or an admin, else Forbidden): an ended job
+  // is deleted with its results (results that other jobs answer from,
+  // identical cached ones, stay until the last of them goes); one still
+  // queued or running, or not yet back from its executor, is cancelled
+  // instead, and `cancelled` is the job as cancel() answers it.
+  struct Removal {
+    bool found = false;  // false: the caller sees no such job
+    std::optional<nlohmann::json> cancelled;
+  };
+  Removal remove(const std::string& id, const Caller& caller = Caller::local());
   // An artifact of a done job in a format; throws std::out_of_range (no such
   // job or artifact), InvalidInput (job not done), UnsupportedFormat.
   ExportedArtifact artifact(const std::string& id, const std::string& name, const std::string& format,
@@ -179,12 +184,14 @@ class JobScheduler : private JobLookup {
   // What an ended run left, read outside mutex_ (the run's files are the
   // job's, hostile input: job_files.h): its outcome, with its artifacts
   // already taken into the job's results directory when it is done.
+  // Each ended run's directory is removed once read.
   struct Collected {
     WorkerOutcome outcome;
-    bool stopped = false;  // the server stopped it (check_disk): it fails, never queued again
+    bool stopped = false;     // the server stopped it (check_disk): it fails, never queued again
+    std::uint64_t bytes = 0;  // what the job keeps (its results directory)
   };
-  // Also adds to *ended the jobs whose run ended (its directory can go).
-  std::map<std::string, Collected> collect(const std::vector<ExecutorEvent>& happened, std::vector<std::string>* ended);
+  std::map<std::string, Collected> collect(const std::vector<ExecutorEvent>& happened);
+  Collected collect_run(const ExecutorEvent& ended, const std::string& owner);
   // Applies what the executor said (under mutex_); events to send.
   void apply(const ExecutorEvent& e, std::vector<nlohmann::json>& events, const Collected* collected);
   // The job ended (its worker gone, or its launch failed) (under mutex_);
@@ -210,6 +217,9 @@ class JobScheduler : private JobLookup {
                                                                    const Caller& caller) const;
   std::filesystem::path artifact_file_locked(const std::string& job, const std::string& name, const std::string& kind,
                                              const Caller& caller = Caller::local()) const;
+  // Forgets an ended job (under mutex_): the results directory to remove
+  // with it, "" when another job (a cached twin) still answers from it.
+  std::string forget_locked(const std::string& id);
   // The jobs the owner has queued or running (under mutex_).
   int active_locked(const std::string& owner) const;
 
@@ -227,7 +237,8 @@ class JobScheduler : private JobLookup {
   bool stopping_ = false;
   std::int64_t seq_ = 0;
   std::atomic<std::uint64_t> workers_started_{0};
-  // Runs that ended, whose directories go outside mutex_.
+  // Runs that never started (their preparation or launch failed), whose
+  // directories go outside mutex_; a run that ended goes in collect().
   std::vector<std::string> finished_runs_;
   // A running job's directory, walked every few seconds outside mutex_:
   // one over its owner's room (their storage quota) or over kMaxJobNames

@@ -59,19 +59,6 @@ std::string first_line(std::string s) {
 // The newest run's file `stem`.N in a run's directory ("" when none): a
 // job Slurm requeued runs again as run N+1 (SLURM_RESTART_COUNT), and an
 // earlier run still going on a failed node writes only its own.
-std::string newest_run_file(const fs::path& dir, const std::string& stem);
-
-// The exit status file of the newest run that started (its started.N),
-// "" while it has none; where no run says it started (a node without the
-// data directory sends worker.exit back), the newest there is.
-std::string newest_exit_file(const fs::path& dir) {
-  const std::string started = newest_run_file(dir, "started");
-  if (started.empty()) return newest_run_file(dir, "worker.exit");
-  const std::string exit = "worker.exit" + started.substr(std::string("started").size());
-  std::error_code ec;
-  return fs::is_regular_file(dir / exit, ec) ? exit : "";
-}
-
 std::string newest_run_file(const fs::path& dir, const std::string& stem) {
   std::string best;
   long best_n = -1;
@@ -84,6 +71,17 @@ std::string newest_run_file(const fs::path& dir, const std::string& stem) {
     if (std::stol(n) > best_n) best_n = std::stol(n), best = name;
   }
   return best;
+}
+
+// The exit status file of the newest run that started (its started.N),
+// "" while it has none; where no run says it started (a node without the
+// data directory sends worker.exit back), the newest there is.
+std::string newest_exit_file(const fs::path& dir) {
+  const std::string started = newest_run_file(dir, "started");
+  if (started.empty()) return newest_run_file(dir, "worker.exit");
+  const std::string exit = "worker.exit" + started.substr(std::string("started").size());
+  std::error_code ec;
+  return fs::is_regular_file(dir / exit, ec) ? exit : "";
 }
 
 }  // namespace
@@ -117,10 +115,7 @@ std::vector<std::string> SlurmExecutor::sbatch_command(const LaunchSpec& job) co
   // The batch script's environment is the short list a local worker gets
   // (child_process.h), not the server's.
   std::string exported;
-  for (const std::string& v : job_environment()) {
-    const std::string name = v.substr(0, v.find('='));
-    if (name != "HOME" && name != "TMPDIR") exported += (exported.empty() ? "" : ",") + name;
-  }
+  for (const std::string& v : job_environment()) exported += (exported.empty() ? "" : ",") + v.substr(0, v.find('='));
   a.push_back("--export=" + (exported.empty() ? std::string("NONE") : exported));
   if (job.token.empty()) {
     a.push_back("--chdir=" + job.dir.string());

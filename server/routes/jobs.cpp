@@ -85,22 +85,10 @@ void add_job_routes(Routes& routes, const RouteContext& ctx) {
                     "(204)",
                     {},
                     [&ctx](const Params& p, const HttpRequest&, const Caller& caller) {
-                      const auto job = ctx.jobs().get(p.at("id"), caller);
-                      if (!job) return error_response(404, "not_found", "no job with id '" + p.at("id") + "'");
-                      const std::string state = job->value("state", "");
-                      if (state == "queued" || state == "running") {
-                        const auto cancelled = ctx.jobs().cancel(p.at("id"), caller);
-                        if (cancelled) return json_response(200, *cancelled);
-                      }
-                      try {
-                        if (!ctx.jobs().remove(p.at("id"), caller))
-                          return error_response(404, "not_found", "no job with id '" + p.at("id") + "'");
-                      } catch (const InvalidInput&) {
-                        // It ended meanwhile or is still being handed over: cancelled, as asked.
-                        const auto again = ctx.jobs().cancel(p.at("id"), caller);
-                        if (again) return json_response(200, *again);
-                        throw;
-                      }
+                      const auto removal = ctx.jobs().remove(p.at("id"), caller);
+                      if (!removal.found)
+                        return error_response(404, "not_found", "no job with id '" + p.at("id") + "'");
+                      if (removal.cancelled) return json_response(200, *removal.cancelled);
                       HttpResponse r;
                       r.status = 204;
                       r.content_type.clear();

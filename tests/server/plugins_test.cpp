@@ -347,6 +347,29 @@ TEST_F(Plugins, NothingAJobLeavesInItsDirectoryIsFollowedOrReadWithoutABound) {
     EXPECT_FALSE(fs::exists(data_ / "runs" / j.value("id", ""))) << "the run's directory outlived it";
     EXPECT_EQ(as(bob_, "GET", "/api/v1/health").status, 200u);
   }
+  // Two jobs of 60 MB each, each under Alice's 100 MB, share her room while
+  // they run: one of them is stopped.
+  const std::string a = submit(alice_, id, "escape", alice_mesh_, {{"attempt", "fill_disk"}, {"target", "60"}})
+                            .body_json()
+                            .value("id", "");
+  const std::string b = submit(alice_, id, "escape", alice_mesh_, {{"attempt", "fill_disk"}, {"target", "60"}})
+                            .body_json()
+                            .value("id", "");
+  std::string stopped;
+  for (const auto until = std::chrono::steady_clock::now() + 30s;
+       stopped.empty() && std::chrono::steady_clock::now() < until; std::this_thread::sleep_for(50ms))
+    for (const std::string& job : {a, b})
+      if (as(alice_, "GET", "/api/v1/jobs/" + job).body_json().value("state", "") == "failed") stopped = job;
+  ASSERT_FALSE(stopped.empty()) << "two jobs together wrote past her quota";
+  EXPECT_NE(as(alice_, "GET", "/api/v1/jobs/" + stopped)
+                .body_json()
+                .value("error", json(""))
+                .get<std::string>()
+                .find("bytes its owner has left under their storage quota"),
+            std::string::npos);
+  const std::string other = stopped == a ? b : a;
+  EXPECT_EQ(as(alice_, "DELETE", "/api/v1/jobs/" + other).status, 200u);
+  EXPECT_EQ(wait_job(alice_, other).value("state", ""), "cancelled");
   // Nothing of theirs counts against Alice: her mesh and the failed jobs' logs alone.
   const json me = as(alice_, "GET", "/api/v1/me").body_json();
   EXPECT_LT(me.value("storage_bytes_used", std::uint64_t(0)), std::uint64_t(1) << 20) << me.dump();

@@ -103,9 +103,11 @@ AlgorithmResult run(const Mesh&, const Params& p, Context& ctx) {
     throw std::runtime_error("made " + std::to_string(n) + " files");
   }
   if (p.attempt == "fill_disk") {
-    // Files of 1 MB, each under the file-size limit, more of them than any quota: then wait to be stopped.
+    // Files of 1 MB, each under the file-size limit, `target` MB of them
+    // (400, more than any quota, by default): then wait to be stopped.
     const std::vector<char> block(1 << 20, 'x');
-    for (int k = 0; k < 400; ++k) {
+    const int megabytes = p.target.empty() ? 400 : std::stoi(p.target);
+    for (int k = 0; k < megabytes; ++k) {
       std::ofstream f("fill" + std::to_string(k), std::ios::binary);
       if (!f.write(block.data(), std::streamsize(block.size()))) fail("cannot write fill" + std::to_string(k));
     }
