@@ -2,8 +2,10 @@
 # Builds the fuzz targets (clang, libFuzzer, ASan, UBSan) into BUILD/fuzz and
 # runs them.
 #
+#   tests/fuzz/run.sh --build                   builds the targets only (ctest's fuzz_build)
 #   tests/fuzz/run.sh --ci [TARGET...]          each target 20 s on the committed corpus
-#                                               (what ctest runs: a parser regression fails it)
+#                                               (what ctest runs, fuzz.TARGET one a target, side by
+#                                               side: a parser regression fails it)
 #   tests/fuzz/run.sh --campaign S [TARGET...]  each target S seconds on CGVIEW_JOBS cores (default: all),
 #                                               growing BUILD/fuzz/corpus/TARGET from the seeds
 #   tests/fuzz/run.sh --campaign-cpu M [TARGET...]
@@ -20,6 +22,7 @@ HERE=$(pwd)
 BUILD=${CGVIEW_BUILD_DIR:-$HERE/../../build}/fuzz
 MODE=${1:-}
 case "$MODE" in
+  --build) ;;
   --ci) SECONDS_EACH=${CGVIEW_FUZZ_SECONDS:-20}; shift ;;
   --campaign) SECONDS_EACH=${2:?--campaign needs seconds}; shift 2 ;;
   --campaign-cpu) CPU_MINUTES=${2:?--campaign-cpu needs minutes}; MODE=--campaign; shift 2 ;;
@@ -31,7 +34,10 @@ if [ ! -f "$BUILD/build.ninja" ]; then
   CXX=clang++ cmake -S "$HERE" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_COMPILER_LAUNCHER=ccache >/dev/null
 fi
 JOBS=${CGVIEW_JOBS:-$(nproc)}
-cmake --build "$BUILD" -j "$JOBS"
+# ctest's fuzz.TARGET tests run side by side after fuzz_build, which built
+# them once: CGVIEW_FUZZ_BUILT=1 keeps them from running ninja at the same time.
+[ "${CGVIEW_FUZZ_BUILT:-0}" = 1 ] || cmake --build "$BUILD" -j "$JOBS"
+[ "$MODE" != --build ] || exit 0
 TARGETS=("$@")
 [ ${#TARGETS[@]} -gt 0 ] || TARGETS=(off obj ply stl gltf glb drc mtl skeleton voxel zip frame json params config ws)
 failed=()
