@@ -17,7 +17,8 @@ using protocol::to_string;
 
 struct Job : protocol::JobRecord {
   bool cancelled = false;  // asked to stop: its state is already cancelled, its worker may still run
-  bool in_flight = false;  // a worker may still write into its directory
+  bool in_flight = false;  // handed to its executor: a worker may still write into its directory
+  bool deleted = false;    // deleted while its cancelled worker still ran: gone for everyone, forgotten when it ends
   std::chrono::steady_clock::time_point last_event;
 };
 

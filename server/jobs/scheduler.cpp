@@ -138,6 +138,7 @@ void JobScheduler::load() {
 }
 
 void JobScheduler::save(const Job& j) {
+  if (j.deleted) return;  // its row is gone already
   try {
     store_.put(j);
     unsaved_.erase(j.id);
@@ -203,7 +204,7 @@ std::optional<json> JobScheduler::cancel(const std::string& id, const Caller& ca
       // Queued here: out of the queue.  With the executor (or being handed
       // to it): its worker is stopped, and only its size is new when it ends.
       queue_.remove(j.owner, id);
-      stop_worker = j.in_flight;
+      stop_worker = in_flight_.count(id) > 0;
       j.cancelled = true;
       j.state = JobState::cancelled;
       j.finished = now_iso8601();
@@ -231,7 +232,14 @@ JobScheduler::Removal JobScheduler::remove(const std::string& id, const Caller& 
     if (!Access{j.owner}.owned_by(caller))
       throw Forbidden("job " + id + " is " + j.owner + "'s: only its owner deletes it");
     ended = !active(j.state) && !j.in_flight;
-    if (ended) files = forget_locked(id);
+    if (ended) {
+      files = forget_locked(id);
+    } else if (!active(j.state)) {
+      // Cancelled, its worker not yet gone: gone for everyone now, forgotten when the worker ends.
+      it->second->deleted = true;
+      store_.remove(id);
+      return {true, std::nullopt};
+    }
   }
   if (!ended) return {true, cancel(id, caller)};
   std::error_code ec;
@@ -349,7 +357,11 @@ void JobScheduler::end(Job& j, const WorkerEnd* how, std::vector<json>& events, 
   in_flight_.erase(j.id);
   j.in_flight = false;
   j.worker_token_sha.clear();  // the worker's token dies with its job
-  if (!how) finished_runs_.push_back(j.id);
+  if (!how) leftovers_.push_back(run_dir(j.id));
+  if (j.deleted) {
+    if (const std::string files = forget_locked(j.id); !files.empty()) leftovers_.push_back(job_dir(files));
+    return;
+  }
   j.bytes = collected ? collected->bytes : dir_bytes(job_dir(j.id));
   if (j.cancelled) {  // already cancelled (state, event): only its size is new
     save(j);
@@ -453,8 +465,12 @@ void JobScheduler::loop() {
         const auto id = queue_.pop();
         if (!id) break;
         Job& j = *jobs_.at(*id);
-        if (auto s = prepare(j)) launching.push_back(std::move(*s));
-        else end(j, nullptr, events);
+        if (auto s = prepare(j)) {
+          j.in_flight = true;  // being handed over: a delete now only cancels it
+          launching.push_back(std::move(*s));
+        } else {
+          end(j, nullptr, events);
+        }
       }
     }
     // Outside the lock: sbatch may take a while.
@@ -475,7 +491,7 @@ void JobScheduler::loop() {
         Job& j = *jobs_.at(launched[k].first);
         if (!ok[k]) {
           j.error = launched[k].second;
-          if (!j.cancelled) end(j, nullptr, events);
+          end(j, nullptr, events);  // cancelled meanwhile: only its size is new
           continue;
         }
         ++workers_started_;
@@ -495,18 +511,18 @@ void JobScheduler::loop() {
     // A run's files are read (and its artifacts copied) outside the lock:
     // a slow or hostile file never holds up another request.
     const auto collected = collect(happened);
-    std::vector<std::string> finished;
+    std::vector<fs::path> leftovers;
     {
       std::lock_guard lock(mutex_);
       for (const auto& e : happened) {
         const auto c = collected.find(e.job_id);
         apply(e, events, c == collected.end() ? nullptr : &c->second);
       }
-      finished.swap(finished_runs_);
+      leftovers.swap(leftovers_);
     }
-    for (const std::string& id : finished) {
+    for (const fs::path& dir : leftovers) {
       std::error_code ec;
-      fs::remove_all(run_dir(id), ec);
+      fs::remove_all(dir, ec);
     }
   }
 }

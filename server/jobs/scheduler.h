@@ -239,7 +239,7 @@ class JobScheduler : private JobLookup {
   std::atomic<std::uint64_t> workers_started_{0};
   // Runs that never started (their preparation or launch failed), whose
   // directories go outside mutex_; a run that ended goes in collect().
-  std::vector<std::string> finished_runs_;
+  std::vector<std::filesystem::path> leftovers_;  // run and results directories to remove outside the lock
   // A running job's directory, walked every few seconds outside mutex_:
   // one over its owner's room (their storage quota) or over kMaxJobNames
   // names is stopped, and fails with why (by job id, under mutex_).

@@ -52,6 +52,7 @@ void JobScheduler::check_job_count(const Caller& caller) const {
 
 bool JobScheduler::readable(const Job& j, const Caller& caller) const {
   // Another user's job: the store knows whether it was shared.
+  if (j.deleted) return false;
   return Access{j.owner}.allows(caller) || meshes_.store().access("job", j.id, j.owner).allows(caller);
 }
 

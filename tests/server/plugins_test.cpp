@@ -397,8 +397,15 @@ TEST_F(Plugins, ARunNeverGetsALinkAnEarlierRunLeftAsItsTmp) {
   // The second run got a fresh directory: it found no data as its /tmp, and planted its own link.
   ASSERT_TRUE(linked()) << as(alice_, "GET", "/api/v1/jobs/" + job).body;
   EXPECT_EQ(as(alice_, "GET", "/api/v1/jobs/" + job).body_json().value("state", ""), "running");
-  EXPECT_EQ(as(alice_, "DELETE", "/api/v1/jobs/" + job).status, 200u);
-  EXPECT_EQ(wait_job(alice_, job).value("state", ""), "cancelled");
+  EXPECT_EQ(as(alice_, "DELETE", "/api/v1/jobs/" + job).status, 200u);  // running: cancelled
+  // Deleted at once, while its worker may still be stopping: gone for her
+  // now, its directories once the worker has ended.
+  EXPECT_EQ(as(alice_, "DELETE", "/api/v1/jobs/" + job).status, 204u);
+  EXPECT_EQ(as(alice_, "GET", "/api/v1/jobs/" + job).status, 404u);
+  EXPECT_EQ(as(alice_, "GET", "/api/v1/jobs").body.find(job), std::string::npos);
+  auto gone = [&] { return !fs::exists(data_ / "runs" / job) && !fs::exists(data_ / "jobs" / job); };
+  for (int i = 0; i < 400 && !gone(); ++i) std::this_thread::sleep_for(25ms);
+  EXPECT_TRUE(gone());
 }
 
 TEST_F(Plugins, ARelativeDataDirectoryIsMadeAbsoluteAndStaysHidden) {
