@@ -3,7 +3,7 @@
 # what is missing (Debian and npm packages), builds in Release into build/,
 # then does its job.
 #
-#   ./setup.sh start   install, build, and serve the viewer with the sample meshes
+#   ./setup.sh start   install, build the programs alone, and serve the viewer with the sample meshes
 #                      (http://127.0.0.1:8080/; CGVIEW_PORT, CGVIEW_DATA change port and data dir)
 #   ./setup.sh test    install, build, and run every test
 #   ./setup.sh build   install and build only
@@ -127,18 +127,27 @@ install_npm_packages() {
 }
 
 build_web_client() {
+  # Built again only when a source of it is newer than the last build (a second start serves at once).
+  local stamp="$ROOT/web-client/dist/.built"
+  if [ -f "$stamp" ] && [ -z "$(find "$ROOT/web-client" \( -path "$ROOT/web-client/node_modules" -o -path "$ROOT/web-client/dist" -o -path "$ROOT/web-client/tests" \) -prune -o -type f -newer "$stamp" -print -quit)" ]; then
+    say "The web client in web-client/dist: up to date"
+    return
+  fi
   say "Building the web client (TypeScript, Vite) into web-client/dist"
   (cd "$ROOT/web-client" && npm run --silent build) || die "the web client's build failed"
+  touch "$stamp"
 }
 
+# build [TARGET]: configure, then build TARGET (all when none is given).
 build() {
-  say "Building (Release) into $BUILD_DIR with $JOBS jobs"
+  local target=${1:-all}
+  say "Building (Release) $target into $BUILD_DIR with $JOBS jobs"
   # Said each time: a build directory configured with CGVIEW_TESTS=0 gets its tests back.
   local tests=ON
   [ "$TESTS" != 0 ] || tests=OFF
   cmake -S "$ROOT" -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCGVIEW_BUILD_TESTS=$tests -DCGVIEW_BUILD_BENCH=$tests \
     || die "cmake configure failed"
-  cmake --build "$BUILD_DIR" -j "$JOBS" || die "the build failed"
+  cmake --build "$BUILD_DIR" -j "$JOBS" --target "$target" || die "the build failed"
 }
 
 install_packages() {
@@ -148,10 +157,11 @@ install_packages() {
   install_npm_packages
 }
 
+# setup [TARGET]: install, then build the web client and TARGET (all when none is given).
 setup() {
   install_packages
   build_web_client
-  build
+  build "$@"
 }
 
 start() {
@@ -164,7 +174,8 @@ start() {
 run_tests() {
   say "Running every test (ctest)"
   local out="$BUILD_DIR/ctest-output.txt" rc=0
-  ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS" | tee "$out" || rc=$?
+  # --timeout: what a test without a limit of its own may take before it fails.
+  ctest --test-dir "$BUILD_DIR" --output-on-failure --timeout 300 -j "$JOBS" | tee "$out" || rc=$?
   # Where the suite's time goes, passed or not: the 15 slowest tests of this run.
   say "The 15 slowest tests (seconds)"
   grep -E 'Test +#[0-9]+: ' "$out" | sed -E 's/.*Test +#[0-9]+: ([^ ]+) .* ([0-9.]+) sec$/\2 \1/' |
@@ -173,7 +184,7 @@ run_tests() {
 }
 
 case "${1:-}" in
-  start) setup; start ;;
+  start) setup cgview_programs; start ;;
   test) setup; run_tests ;;
   build) setup ;;
   install) install_packages ;;

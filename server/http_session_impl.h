@@ -1,3 +1,9 @@
+// The http session's template, compiled once per stream: http_session_plain.cpp
+// and http_session_tls.cpp each instantiate it for one, so that the two heavy halves
+// (Beast's templates over a TCP and over a TLS stream) build side by side.
+// Included by those two files alone.
+#pragma once
+
 #include "http_session.h"
 
 #include <utility>  // Boost 1.74's asio/awaitable.hpp uses std::exchange without it
@@ -258,10 +264,5 @@ void run_http_session(Stream&& stream, beast::flat_buffer buffer, std::shared_pt
                                         std::move(refusal))
       ->run();
 }
-
-template void run_http_session<PlainStream>(PlainStream&&, beast::flat_buffer, std::shared_ptr<Shared>,
-                                            std::shared_ptr<const Peer>, std::optional<HttpResponse>);
-template void run_http_session<TlsStream>(TlsStream&&, beast::flat_buffer, std::shared_ptr<Shared>,
-                                          std::shared_ptr<const Peer>, std::optional<HttpResponse>);
 
 }  // namespace cgview::server

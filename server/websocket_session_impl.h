@@ -1,3 +1,9 @@
+// The websocket session's template, compiled once per stream: websocket_session_plain.cpp
+// and websocket_session_tls.cpp each instantiate it for one, so that the two heavy halves
+// (Beast's templates over a TCP and over a TLS stream) build side by side.
+// Included by those two files alone.
+#pragma once
+
 #include "websocket_session.h"
 
 #include <utility>  // Boost 1.74's asio/awaitable.hpp uses std::exchange without it
@@ -159,10 +165,5 @@ void run_websocket_session(Stream&& stream, http::request<http::string_body> upg
   std::make_shared<WebSocketSession<Stream>>(std::move(stream), std::move(shared), std::move(peer))
       ->run(std::move(upgrade), std::move(authorization));
 }
-
-template void run_websocket_session<PlainStream>(PlainStream&&, http::request<http::string_body>, std::string,
-                                                 std::shared_ptr<Shared>, std::shared_ptr<const Peer>);
-template void run_websocket_session<TlsStream>(TlsStream&&, http::request<http::string_body>, std::string,
-                                               std::shared_ptr<Shared>, std::shared_ptr<const Peer>);
 
 }  // namespace cgview::server
