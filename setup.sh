@@ -174,8 +174,11 @@ start() {
 run_tests() {
   say "Running every test (ctest)"
   local out="$BUILD_DIR/ctest-output.txt" rc=0
-  # --timeout: what a test without a limit of its own may take before it fails.
-  ctest --test-dir "$BUILD_DIR" --output-on-failure --timeout 300 -j "$JOBS" | tee "$out" || rc=$?
+  # Twice as many tests as cores: most tests wait (on a server, a cluster, a
+  # browser) more than they compute; the few that keep a core busy (chromium,
+  # the fuzzers) count as two (their PROCESSORS).  --timeout: what a test
+  # without a limit of its own may take before it fails.
+  ctest --test-dir "$BUILD_DIR" --output-on-failure --timeout 300 -j "$((JOBS * 2))" | tee "$out" || rc=$?
   # Where the suite's time goes, passed or not: the 15 slowest tests of this run.
   say "The 15 slowest tests (seconds)"
   grep -E 'Test +#[0-9]+: ' "$out" | sed -E 's/.*Test +#[0-9]+: ([^ ]+) .* ([0-9.]+) sec$/\2 \1/' |

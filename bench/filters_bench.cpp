@@ -7,29 +7,6 @@
 // Markdown table with the ratio.
 //
 //   build/bin/filters_bench [--repeat N] [--quick]
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-// The kernel first: distance.h calls CGAL::midpoint without including it.
-#include "core/surface_mesh.h"
-
-#include <CGAL/Heat_method_3/Surface_mesh_geodesic_distances_3.h>
-#include <CGAL/Polygon_mesh_processing/distance.h>
-#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
-#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
-#include <CGAL/Polygon_mesh_processing/stitch_borders.h>
-#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_ratio_stop_predicate.h>
-#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/GarlandHeckbert_policies.h>
-#include <CGAL/Surface_mesh_simplification/edge_collapse.h>
-#pragma GCC diagnostic pop
-#include <CGAL/Polygon_mesh_processing/border.h>
-#include <CGAL/Polygon_mesh_processing/compute_normal.h>
-#include <CGAL/Polygon_mesh_processing/connected_components.h>
-#include <CGAL/Polygon_mesh_processing/remesh.h>
-#include <CGAL/Polygon_mesh_processing/smooth_shape.h>
-#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
-#include <CGAL/subdivision_method_3.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -39,26 +16,18 @@
 #include <string>
 #include <vector>
 
-#include "core/surface_mesh.h"
-#include "io/mesh_io.h"
 #include "bench_util.h"
+#include "core/surface_mesh.h"
+#include "filters_direct.h"
+#include "io/mesh_io.h"
 #include "io/samples.h"
 #include "registry/registry.h"
 
 using namespace cgview;
-namespace PMP = CGAL::Polygon_mesh_processing;
-namespace SMS = CGAL::Surface_mesh_simplification;
-
 using bench::best_seconds;
+using bench::mean_edge_length;
 
 namespace {
-
-double mean_edge_length(const SurfaceMesh& sm) {
-  double sum = 0;
-  for (auto e : sm.edges())
-    sum += std::sqrt(CGAL::squared_distance(sm.point(sm.source(sm.halfedge(e))), sm.point(sm.target(sm.halfedge(e)))));
-  return sum / double(sm.number_of_edges());
-}
 
 std::size_t result_faces(const AlgorithmResult& r) {
   for (const Artifact& a : r.artifacts)
@@ -104,97 +73,32 @@ int main(int argc, char** argv) {
   // algorithms/filters/, with the same settings (the filters' defaults where
   // the table does not name one).
   std::vector<Filter> filters;
-  filters.push_back({"simplify",
-                     "ratio 0.25",
-                     {{"ratio", 0.25}},
-                     [](SurfaceMesh& sm) {
-                       // On a closed triangle mesh an edge ratio of 0.25 is a face ratio of 0.25.
-                       SMS::GarlandHeckbert_plane_policies<SurfaceMesh, Kernel> gh(sm);
-                       SMS::edge_collapse(sm, SMS::Count_ratio_stop_predicate<SurfaceMesh>(0.25),
-                                          CGAL::parameters::get_cost(gh.get_cost()).get_placement(gh.get_placement()));
-                       sm.collect_garbage();
-                     },
-                     false,
-                     false});
-  filters.push_back({"remesh",
-                     "1 iteration, mean edge length",
-                     {{"iterations", 1LL}},
-                     [](SurfaceMesh& sm) {
-                       PMP::isotropic_remeshing(faces(sm), mean_edge_length(sm), sm,
-                                                CGAL::parameters::number_of_iterations(1));
-                       sm.collect_garbage();
-                     },
-                     false,
-                     false});
+  filters.push_back({"simplify", "ratio 0.25", {{"ratio", 0.25}}, bench::direct_simplify, false, false});
+  filters.push_back(
+      {"remesh", "1 iteration, mean edge length", {{"iterations", 1LL}}, bench::direct_remesh, false, false});
   filters.push_back({"smooth",
                      "mean_curvature_flow, 1 iteration",
                      {{"method", std::string("mean_curvature_flow")}, {"iterations", 1LL}},
-                     [](SurfaceMesh& sm) {
-                       PMP::smooth_shape(sm, 1e-4, CGAL::parameters::number_of_iterations(1));
-                       sm.collect_garbage();
-                     },
+                     bench::direct_smooth,
                      false,
                      true});
   filters.push_back({"subdivide",
                      "loop, 1 iteration",
                      {{"method", std::string("loop")}, {"iterations", 1LL}},
-                     [](SurfaceMesh& sm) {
-                       CGAL::Subdivision_method_3::Loop_subdivision(sm, CGAL::parameters::number_of_iterations(1));
-                     },
+                     bench::direct_subdivide,
                      false,
                      false});
-  filters.push_back({"normals",
-                     "",
+  filters.push_back({"normals", "", {}, bench::direct_normals, false, false});
+  filters.push_back({"geodesic_distance",
+                     "heat method, intrinsic Delaunay, source vertex 0",
                      {},
-                     [](SurfaceMesh& sm) {
-                       auto n =
-                           sm.add_property_map<SurfaceMesh::Vertex_index, Kernel::Vector_3>("v:bench_normal").first;
-                       PMP::compute_vertex_normals(sm, n);
-                     },
+                     bench::direct_geodesic_distance,
                      false,
                      false});
   filters.push_back(
-      {"geodesic_distance",
-       "heat method, intrinsic Delaunay, source vertex 0",
-       {},
-       [](SurfaceMesh& sm) {
-         auto d = sm.add_property_map<SurfaceMesh::Vertex_index, double>("v:bench_distance", 0.0).first;
-         CGAL::Heat_method_3::Surface_mesh_geodesic_distances_3<SurfaceMesh, CGAL::Heat_method_3::Intrinsic_Delaunay>
-             hm(sm);
-         hm.add_source(SurfaceMesh::Vertex_index(0));
-         hm.estimate_geodesic_distances(d);
-       },
-       false,
-       false});
-  filters.push_back({"components",
-                     "keep_largest",
-                     {{"mode", std::string("keep_largest")}},
-                     [](SurfaceMesh& sm) {
-                       auto c = sm.add_property_map<SurfaceMesh::Face_index, std::size_t>("f:bench_component").first;
-                       PMP::connected_components(sm, c);
-                       PMP::keep_largest_connected_components(sm, 1);
-                       sm.collect_garbage();
-                     },
-                     false,
-                     false});
-  filters.push_back({"fill_holes",
-                     "refine_and_fair, holes up to 1000 edges",
-                     {},
-                     [](SurfaceMesh& sm) {
-                       using Halfedge = SurfaceMesh::Halfedge_index;
-                       std::vector<Halfedge> cycles;
-                       PMP::extract_boundary_cycles(sm, std::back_inserter(cycles));
-                       for (Halfedge h : cycles) {
-                         if (CGAL::halfedges_around_face(h, sm).size() > 1000) continue;
-                         std::vector<SurfaceMesh::Face_index> new_faces;
-                         std::vector<SurfaceMesh::Vertex_index> new_vertices;
-                         PMP::triangulate_refine_and_fair_hole(sm, h, std::back_inserter(new_faces),
-                                                               std::back_inserter(new_vertices));
-                       }
-                       sm.collect_garbage();
-                     },
-                     true,
-                     false});
+      {"components", "keep_largest", {{"mode", std::string("keep_largest")}}, bench::direct_components, false, false});
+  filters.push_back(
+      {"fill_holes", "refine_and_fair, holes up to 1000 edges", {}, bench::direct_fill_holes, true, false});
 
   // The conversions every filter pays, Mesh -> Surface_mesh (CGAL's add_face,
   // face by face) and back: most of the overhead of the light filters.
@@ -277,11 +181,7 @@ int main(int argc, char** argv) {
       const double bound = 1e-4 * box.diagonal();
       double direct_value = 0;
       const double direct = best_seconds(
-          repeat, [] {},
-          [&] {
-            direct_value = std::max(PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(a, b, bound),
-                                    PMP::bounded_error_Hausdorff_distance<CGAL::Sequential_tag>(b, a, bound));
-          });
+          repeat, [] {}, [&] { direct_value = bench::direct_hausdorff(a, b, bound); });
       if (std::abs(reg_value - direct_value) > 2 * bound)
         std::fprintf(stderr, "note: hausdorff on %s: registry %.6g, direct %.6g\n", in.name.c_str(), reg_value,
                      direct_value);
@@ -313,17 +213,7 @@ int main(int argc, char** argv) {
             for (const Vec3& v : in.mesh.positions) points.emplace_back(v.x, v.y, v.z);
             for (const Tri& f : in.mesh.faces) polygons.push_back({f[0], f[1], f[2]});
           },
-          [&] {
-            PMP::merge_duplicate_points_in_polygon_soup(points, polygons);
-            std::erase_if(polygons, [&](const std::vector<std::size_t>& f) {
-              return CGAL::collinear(points[f[0]], points[f[1]], points[f[2]]);
-            });
-            PMP::repair_polygon_soup(points, polygons);
-            PMP::orient_polygon_soup(points, polygons);
-            PMP::polygon_soup_to_polygon_mesh(points, polygons, sm);
-            PMP::stitch_borders(sm);
-            sm.collect_garbage();
-          });
+          [&] { bench::direct_repair(points, polygons, sm); });
       std::printf("| repair | soup repair, orient, stitch | %s | %zu | %.3f | %.3f | %.2fx |\n", in.name.c_str(),
                   in.mesh.num_faces(), reg, direct, reg / direct);
       std::fflush(stdout);

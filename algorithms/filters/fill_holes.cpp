@@ -1,4 +1,4 @@
-// CGAL_EIGEN3_ENABLED is set for this file by CMake: fairing solves a sparse
+// CGAL_EIGEN3_ENABLED is set by CMake (algorithms/CMakeLists.txt): fairing solves a sparse
 // system with Eigen.
 #include "filters/fill_holes.h"
 

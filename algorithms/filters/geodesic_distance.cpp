@@ -1,4 +1,4 @@
-// CGAL_EIGEN3_ENABLED is set for this file by CMake: the heat method solves
+// CGAL_EIGEN3_ENABLED is set by CMake (algorithms/CMakeLists.txt): the heat method solves
 // two sparse systems with Eigen.
 #include "filters/geodesic_distance.h"
 

@@ -1,4 +1,4 @@
-// CGAL_EIGEN3_ENABLED is set for this file by CMake: the jet fitting solves
+// CGAL_EIGEN3_ENABLED is set by CMake (algorithms/CMakeLists.txt): the jet fitting solves
 // its least squares with Eigen's SVD.
 #include "filters/principal_directions.h"
 

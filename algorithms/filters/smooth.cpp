@@ -1,4 +1,4 @@
-// CGAL_EIGEN3_ENABLED is set for this file by CMake: smooth_shape solves a
+// CGAL_EIGEN3_ENABLED is set by CMake (algorithms/CMakeLists.txt): smooth_shape solves a
 // sparse system with Eigen.
 #include "filters/smooth.h"
 

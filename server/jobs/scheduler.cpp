@@ -247,7 +247,7 @@ JobScheduler::Removal JobScheduler::remove(const std::string& id, const Caller& 
   return {true, std::nullopt};
 }
 
-std::string JobScheduler::forget_locked(const std::string& id) {
+std::string JobScheduler::forget_locked(std::string id) {
   const auto it = jobs_.find(id);
   store_.remove(id);
   std::string files = it->second->files.empty() ? id : it->second->files;

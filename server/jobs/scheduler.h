@@ -219,7 +219,7 @@ class JobScheduler : private JobLookup {
                                              const Caller& caller = Caller::local()) const;
   // Forgets an ended job (under mutex_): the results directory to remove
   // with it, "" when another job (a cached twin) still answers from it.
-  std::string forget_locked(const std::string& id);
+  std::string forget_locked(std::string id);  // by value: a caller may pass the id of the Job it erases
   // The jobs the owner has queued or running (under mutex_).
   int active_locked(const std::string& owner) const;
 

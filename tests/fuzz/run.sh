@@ -2,7 +2,7 @@
 # Builds the fuzz targets (clang, libFuzzer, ASan, UBSan) into BUILD/fuzz and
 # runs them.
 #
-#   tests/fuzz/run.sh --build                   builds the targets only (ctest's fuzz_build)
+#   tests/fuzz/run.sh --build                   builds the targets only (the build's cgview_fuzz_targets)
 #   tests/fuzz/run.sh --ci [TARGET...]          each target 20 s on the committed corpus
 #                                               (what ctest runs, fuzz.TARGET one a target, side by
 #                                               side: a parser regression fails it)
@@ -34,7 +34,7 @@ if [ ! -f "$BUILD/build.ninja" ]; then
   CXX=clang++ cmake -S "$HERE" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_COMPILER_LAUNCHER=ccache >/dev/null
 fi
 JOBS=${CGVIEW_JOBS:-$(nproc)}
-# ctest's fuzz.TARGET tests run side by side after fuzz_build, which built
+# ctest's fuzz.TARGET tests run side by side after the build (cgview_fuzz_targets), which built
 # them once: CGVIEW_FUZZ_BUILT=1 keeps them from running ninja at the same time.
 [ "${CGVIEW_FUZZ_BUILT:-0}" = 1 ] || cmake --build "$BUILD" -j "$JOBS"
 [ "$MODE" != --build ] || exit 0

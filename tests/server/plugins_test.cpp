@@ -406,6 +406,10 @@ TEST_F(Plugins, ARunNeverGetsALinkAnEarlierRunLeftAsItsTmp) {
   auto gone = [&] { return !fs::exists(data_ / "runs" / job) && !fs::exists(data_ / "jobs" / job); };
   for (int i = 0; i < 400 && !gone(); ++i) std::this_thread::sleep_for(25ms);
   EXPECT_TRUE(gone());
+  // Forgotten whole: her list answers, without it.
+  const HttpResult list = as(alice_, "GET", "/api/v1/jobs");
+  EXPECT_EQ(list.status, 200u) << list.body;
+  EXPECT_EQ(list.body.find(job), std::string::npos);
 }
 
 TEST_F(Plugins, ARelativeDataDirectoryIsMadeAbsoluteAndStaysHidden) {

@@ -32,11 +32,10 @@
 //
 // Environment: CGVIEW_SERVER, CGVIEW_SAMPLES (default build/samples),
 // CHROMIUM, CGVIEW_UPDATE_REFERENCES.
-import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { artifactsDir, hueStats, orbitDrag, pngPixels, repo, settle, useViewer, webClient } from './harness.mjs';
+import { artifactsDir, hueStats, orbitDrag, pngPixels, repo, settle, test, useViewer, webClient } from './harness.mjs';
 
 const samples = process.env.CGVIEW_SAMPLES ?? path.join(repo, 'build', 'samples');
 const referenceDir = path.join(webClient, 'tests', 'reference');

@@ -9,8 +9,25 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { after, before } from 'node:test';
+import { after, before, test as nodeTest } from 'node:test';
 import { chromium } from 'playwright-core';
+
+/**
+ * node:test's test(), for a file whose tests ctest runs in several parts
+ * (tests/web/CMakeLists.txt, PARTS): with CGVIEW_TEST_PART=K/N, the file's
+ * tests in order are dealt out to N parts and this process runs part K's,
+ * skipping the others.  Every test is in one part, whatever it is called.
+ */
+let declaredTests = 0;
+export function test(name, ...rest) {
+  const index = declaredTests++;
+  const part = process.env.CGVIEW_TEST_PART;
+  if (part) {
+    const [k, n] = part.split('/').map(Number);
+    if (index % n !== k - 1) return nodeTest(name, { skip: `in part ${(index % n) + 1} of ${n}` }, () => {});
+  }
+  return nodeTest(name, ...rest);
+}
 
 export const webClient = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..');
 export const repo = path.resolve(webClient, '..');

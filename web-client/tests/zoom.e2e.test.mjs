@@ -11,11 +11,10 @@
 // notches in (the near plane stays where it was) or a few out.
 //
 // Environment: CGVIEW_SERVER (default build/bin/cgview-server), CHROMIUM.
-import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { artifactsDir, pngPixels, settle, useViewer } from './harness.mjs';
+import { artifactsDir, pngPixels, settle, test, useViewer } from './harness.mjs';
 
 const v = useViewer({ tmpPrefix: 'cgview-zoom-' });
 
@@ -109,23 +108,35 @@ async function zoom(label, notches, { panes, lo, hi }) {
   }
 }
 
-for (const size of [1, 10000]) {
-  test(`a ${size}-unit mesh zoomed into and out of, alone and side by side, is never cut`, async () => {
-    const { page } = v;
-    const flat = grid(size, false);
-    const wave = grid(size, true);
-    const flatName = `square-${size}.off`;
-    const waveName = `wave-${size}.off`;
-    const flatId = await upload(flatName, flat.text);
-    const waveId = await upload(waveName, wave.text);
-    await page.locator('#mesh-list li.mesh', { hasText: flatName }).click();
-    await page.waitForFunction((id) => window.__cgview.lastLoaded?.id === id, flatId, { timeout: 30000 });
-    await settle(page);
+/** Uploads a flat square and a wavy one `size` across, named after `label`, and shows the square alone. */
+async function showSquare(size, label) {
+  const { page } = v;
+  const flat = grid(size, false);
+  const wave = grid(size, true);
+  const flatName = `square-${size}-${label}.off`;
+  const waveName = `wave-${size}-${label}.off`;
+  const flatId = await upload(flatName, flat.text);
+  const waveId = await upload(waveName, wave.text);
+  await page.locator('#mesh-list li.mesh', { hasText: flatName }).click();
+  await page.waitForFunction((id) => window.__cgview.lastLoaded?.id === id, flatId, { timeout: 30000 });
+  await settle(page);
+  return { flat, wave, flatName, waveName, waveId };
+}
 
-    // Alone: in to the orbit centre (on the square), then out.
+// Each size alone and side by side, four tests, so that a ctest of one or
+// two of them stays well under a minute (tests/web/CMakeLists.txt).
+for (const size of [1, 10000]) {
+  test(`a ${size}-unit mesh zoomed into and out of alone is never cut`, async () => {
+    const { flat, flatName } = await showSquare(size, 'alone');
+    // In to the orbit centre (on the square), then out.
     await zoom(`${flatName} alone`, 90, { panes: 1, lo: flat.lo, hi: flat.hi });
     await zoom(`${flatName} alone`, -135, { panes: 1, lo: flat.lo, hi: flat.hi });
+    assert.deepEqual(v.problems, [], v.describeProblems());
+  });
 
+  test(`a ${size}-unit mesh zoomed into and out of side by side is never cut`, async () => {
+    const { page } = v;
+    const { flat, wave, flatName, waveName, waveId } = await showSquare(size, 'pair');
     // Side by side with the wave: both panes, through the one camera.
     await page.getByRole('button', { name: `Add ${waveName} to the scene`, exact: true }).click();
     await page.waitForFunction((id) => window.__cgview.scene.objects[1]?.mesh === id && window.__cgview.scene.objects[1].loaded, waveId, { timeout: 30000 });
