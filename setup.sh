@@ -10,7 +10,8 @@
 #   ./setup.sh install install only (Debian and npm packages)
 #
 # CGVIEW_TESTS=0 leaves out the test tools, the tests and the benchmarks: the
-# programs alone (the container image's build, docker/Dockerfile).
+# programs alone (the container image's build, docker/Dockerfile); `start`
+# leaves them out unless CGVIEW_TESTS=1.
 # Run as root, or as a user who may sudo (for apt-get).
 set -euo pipefail
 
@@ -18,7 +19,8 @@ cd "$(dirname "$0")"
 ROOT=$(pwd)
 BUILD_DIR=${CGVIEW_BUILD_DIR:-$ROOT/build}
 JOBS=${CGVIEW_JOBS:-$(nproc)}
-TESTS=${CGVIEW_TESTS:-1}
+# `start` serves: it installs and configures no test tools (a later `test` adds them).
+if [ "${1:-}" = start ]; then TESTS=${CGVIEW_TESTS:-0}; else TESTS=${CGVIEW_TESTS:-1}; fi
 
 say() { if [ -t 1 ]; then printf '\033[1m==> %s\033[0m\n' "$*"; else printf '==> %s\n' "$*"; fi; }
 die() { printf 'setup.sh: error: %s\n' "$*" >&2; exit 1; }
@@ -191,6 +193,6 @@ case "${1:-}" in
   test) setup; run_tests ;;
   build) setup ;;
   install) install_packages ;;
-  -h|--help|"") sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; [ -n "${1:-}" ] ;;
+  -h|--help|"") sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; [ -n "${1:-}" ] ;;
   *) die "unknown command '$1' (start, test, build or install)" ;;
 esac
