@@ -68,7 +68,9 @@ std::optional<Caller> Auth::token_caller(const std::string& token_id, const std:
   if (!row || (user && row->first != *user)) return std::nullopt;
   const auto record = store_.get_user(row->first);
   if (!record) return std::nullopt;
-  return Caller{record->name, record->admin};
+  Caller c{record->name, record->admin, record->teacher};
+  if (groups_) c.groups = groups_(c.user);
+  return c;
 }
 
 std::optional<std::string> Auth::issue_ticket(std::string_view authorization, std::chrono::seconds life) const {
@@ -89,11 +91,22 @@ std::optional<Tickets::Session> Auth::redeem_ticket(std::string_view ticket) con
   return session;
 }
 
-std::string Auth::add_user(const std::string& name, bool admin) {
+std::optional<Role> role_from(std::string_view name) {
+  if (name == "user") return Role::user;
+  if (name == "teacher") return Role::teacher;
+  if (name == "admin") return Role::admin;
+  return std::nullopt;
+}
+
+std::string Auth::add_user(const std::string& name, Role role) {
   if (!valid_user_name(name))
     throw InvalidInput("'" + name +
                        "' is not a user name: 1 to 64 letters, digits, '_', '.' or '-' (not local or system)");
-  store_.add_user(name, admin);
+  store_.add_user(name, role == Role::admin, role == Role::teacher);
+  return new_token(name);
+}
+
+std::string Auth::new_token(const std::string& name) const {
   const std::string id = random_hex(8), secret = random_hex(32);
   store_.add_token(id, name, sha256_hex(secret));
   return std::string(kPrefix) + id + "_" + secret;

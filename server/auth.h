@@ -16,6 +16,11 @@
 
 namespace cgview::server {
 
+// What a user may do beyond their own data: create courses (teacher), or see and change everyone's (admin).
+enum class Role { user, teacher, admin };
+// "user", "teacher" or "admin"; nullopt for anything else.
+std::optional<Role> role_from(std::string_view name);
+
 class Auth {
  public:
   // required: every request needs a token; else one without a token is
@@ -28,8 +33,16 @@ class Auth {
   // wrong or revoked token (even where none is required).
   std::optional<Caller> authenticate(std::string_view authorization) const;
 
-  // Creates the user if needed (or changes admin) and returns a new token.
-  std::string add_user(const std::string& name, bool admin);
+  // Creates the user if needed (or changes their role) and returns a new token.
+  std::string add_user(const std::string& name, Role role);
+  std::string add_user(const std::string& name, bool admin) { return add_user(name, admin ? Role::admin : Role::user); }
+  // A new token of an existing user (a course's sign-in link redeemed).
+  std::string new_token(const std::string& user) const;
+  // The groups of a user (Caller::groups), asked at each authentication;
+  // set before the server serves.
+  void set_groups(std::function<std::vector<std::string>(const std::string& user)> groups) {
+    groups_ = std::move(groups);
+  }
 
   // Sign-in tickets (tickets.h).  A ticket for the token of `authorization`
   // ("Bearer TOKEN", already authenticated), redeemable once within `life`;
@@ -49,6 +62,7 @@ class Auth {
   std::optional<Caller> token_caller(const std::string& token_id, const std::string* user = nullptr) const;
   Store& store_;
   bool required_;
+  std::function<std::vector<std::string>(const std::string&)> groups_;
   // Tickets and sessions change while Auth is used read-only (by the router, the WebSockets).
   std::unique_ptr<Tickets> tickets_;
 };

@@ -17,17 +17,19 @@ namespace {
 
 const char* kHelp =
     "usage: cgview-server [--host 127.0.0.1] [--port 8080] [--data-dir DIR] [options]\n"
-    "       cgview-server [--data-dir DIR] user add NAME [--admin] | user list | user revoke NAME\n"
+    "       cgview-server [--data-dir DIR] user add NAME [--role user|teacher|admin] | user list | user revoke NAME\n"
     "\n"
     "Serves the CGView viewer at / and the API under /api/v1 (REST and WebSocket).\n"
     "On a loopback address a single local user needs no token; on any other address, or\n"
     "with --auth required, every request carries \"Authorization: Bearer TOKEN\".\n"
     "\n"
     "  user add NAME        create a user, or give one another token, and print the new token;\n"
-    "                       the user is an admin exactly when --admin is given\n"
-    "  user list            the users, whether admin, and how many live tokens each has\n"
+    "                       the user's role is exactly what --role says (default user)\n"
+    "  user list            the users, their roles, and how many live tokens each has\n"
     "  user revoke NAME     revoke every token of a user, at once, also on a running server\n"
-    "  --admin              (user add) the user sees and changes everyone's data\n"
+    "  --role ROLE          (user add) user; teacher: also creates courses and enrols students\n"
+    "                       (docs/TEACHING.md); admin: sees and changes everyone's data\n"
+    "  --admin              (user add) the same as --role admin\n"
     "  --auth MODE          auto (default: tokens unless the address is loopback) or required\n"
     "  --config FILE        settings and per-user quotas, JSON (default: DATA-DIR/config.json if\n"
     "                       there); flags given here win over the file (docs/DEPLOYMENT.md, Quotas)\n"
@@ -86,22 +88,27 @@ const std::vector<std::string> kDefaultSamples = {"elephant.off",
 
 // cgview-server user add|list|revoke: on the data directory's store, with or
 // without a server running on it.
-int user_command(const std::vector<std::string>& args, const std::filesystem::path& data_dir, bool admin) {
+int user_command(const std::vector<std::string>& args, const std::filesystem::path& data_dir,
+                 cgview::server::Role role) {
   using namespace cgview::server;
   const std::string what = args.size() > 1 ? args[1] : "";
   if (!((what == "add" || what == "revoke") && args.size() == 3) && !(what == "list" && args.size() == 2)) {
-    std::fprintf(stderr, "cgview-server: user add NAME [--admin], user list or user revoke NAME (see --help)\n");
+    std::fprintf(
+        stderr,
+        "cgview-server: user add NAME [--role user|teacher|admin], user list or user revoke NAME (see --help)\n");
     return 2;
   }
   Store store(data_dir);
   if (what == "add") {
-    const std::string token = Auth(store, true).add_user(args[2], admin);
+    const std::string token = Auth(store, true).add_user(args[2], role);
     std::printf("%s\n", token.c_str());
     std::fprintf(stderr, "cgview-server: a new token for %s%s; it is shown only once\n", args[2].c_str(),
-                 admin ? " (admin)" : "");
+                 role == Role::admin     ? " (admin)"
+                 : role == Role::teacher ? " (teacher)"
+                                         : "");
   } else if (what == "list") {
     for (const UserRecord& u : store.list_users())
-      std::printf("%-24s %-6s %d token%s  since %s\n", u.name.c_str(), u.admin ? "admin" : "user", u.tokens,
+      std::printf("%-24s %-7s %d token%s  since %s\n", u.name.c_str(), u.role().c_str(), u.tokens,
                   u.tokens == 1 ? "" : "s", u.created.c_str());
   } else {
     if (!store.get_user(args[2])) {
@@ -138,7 +145,7 @@ int main(int argc, char** argv) {
 #endif
   std::string samples = "default";
   std::vector<std::string> command;  // user add NAME ...
-  bool admin = false;
+  server::Role role = server::Role::user;
   try {
     // The config file first, so that the flags win over it (user commands need none).
     std::filesystem::path config_file;
@@ -230,8 +237,12 @@ int main(int argc, char** argv) {
         const std::string v = value();
         if (v != "auto" && v != "required") throw std::invalid_argument("--auth is auto or required");
         config.auth_required = v == "required";
-      } else if (a == "--admin") admin = true;
-      else if (!a.starts_with("-") && (a == "user" || !command.empty())) command.push_back(a);
+      } else if (a == "--admin") role = server::Role::admin;
+      else if (a == "--role") {
+        const auto r = server::role_from(value());
+        if (!r) throw std::invalid_argument("--role is user, teacher or admin");
+        role = *r;
+      } else if (!a.starts_with("-") && (a == "user" || !command.empty())) command.push_back(a);
       else throw std::invalid_argument("unknown option " + a);
     }
     if (config.tls_cert.empty() != config.tls_key.empty())
@@ -249,7 +260,7 @@ int main(int argc, char** argv) {
   }
   if (!command.empty()) {
     try {
-      return user_command(command, config.data_dir, admin);
+      return user_command(command, config.data_dir, role);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "cgview-server: error: %s\n", e.what());
       return 1;

@@ -12,6 +12,7 @@
 #include "jobs/scheduler.h"
 #include "metrics.h"
 #include "render_service.h"
+#include "teaching/courses.h"
 #include "zip_bundle.h"
 
 namespace cgview::server {
@@ -64,6 +65,7 @@ Router::Router(MeshService& meshes, RouterConfig config)
                  if (on_event) on_event(event, readers);
                }} {
   context_.auth = &auth_;
+  if (config_.courses) auth_.set_groups([c = config_.courses](const std::string& user) { return c->groups_of(user); });
   add_account_routes(routes_, context_);
   add_ticket_routes(routes_, context_);
   add_mesh_routes(routes_, context_);
@@ -72,6 +74,8 @@ Router::Router(MeshService& meshes, RouterConfig config)
   add_data_routes(routes_, context_);
   add_worker_routes(routes_, context_);
   add_plugin_routes(routes_, context_);
+  add_course_routes(routes_, context_);
+  add_assignment_routes(routes_, context_);
   routes_.push_back({"GET",
                      "/api/v1/openapi.json",
                      "This API's OpenAPI 3 document",
@@ -140,6 +144,8 @@ HttpResponse Router::dispatch(const HttpRequest& req, std::string& route) const 
       return res;
     } catch (const Forbidden& e) {
       return error_response(403, "forbidden", e.what());
+    } catch (const BadParameter& e) {
+      return bad_parameter(e);
     } catch (const UnsupportedFormat& e) {
       return error_response(400, "unsupported_format", e.what());
     } catch (const TooLarge& e) {

@@ -20,6 +20,8 @@
 
 namespace cgview::server {
 
+class Courses;
+class Grading;
 class PluginService;
 
 class JobScheduler;
@@ -35,6 +37,8 @@ struct RouterConfig {
   bool auth_required = false;        // every /api/ request needs a bearer token (else: Caller::local() without one)
   Metrics* metrics = nullptr;        // counts every request; GET /metrics serves it (404 without one)
   PluginService* plugins = nullptr;  // users' plugins; the plugin routes answer 500 without one
+  Courses* courses = nullptr;        // courses and members (teaching/courses.h); none: no groups, 500
+  Grading* grading = nullptr;        // assignments and submissions (teaching/grading.h)
 };
 
 class Router {

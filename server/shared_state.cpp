@@ -88,9 +88,11 @@ Shared::Shared(const ServerConfig& c)
       sandbox(make_sandbox(c)),
       jobs(std::make_unique<JobScheduler>(meshes, with_sandbox(c.jobs, sandbox))),
       plugins(std::make_unique<PluginService>(store, *jobs, plugin_config(c, *sandbox))),
-      router(meshes,
-             {c.static_dir, "0.1.0", jobs.get(), c.gl_platform, std::max(1, c.workers),
-              c.auth_required || !boost::asio::ip::make_address(c.host).is_loopback(), &metrics, plugins.get()}),
+      courses(std::make_unique<Courses>(store)),
+      grading(std::make_unique<Grading>(meshes, *courses, *jobs, *plugins)),
+      router(meshes, {c.static_dir, "0.1.0", jobs.get(), c.gl_platform, std::max(1, c.workers),
+                      c.auth_required || !boost::asio::ip::make_address(c.host).is_loopback(), &metrics, plugins.get(),
+                      courses.get(), grading.get()}),
       rate(c.rate_per_s, c.rate_burst),
       ws(meshes,
          {[j = jobs.get()](const std::string& job, const std::string& name, const std::string& format,
@@ -107,18 +109,22 @@ Shared::Shared(const ServerConfig& c)
   rate.on_refused = [m = &metrics] { m->rate_limited(); };
   jobs->set_plugin_resolver([p = plugins.get()](const std::string& id, const std::string& algorithm,
                                                 const Caller& caller) { return p->resolve(id, algorithm, caller); });
-  jobs->on_event = [r = &router, m = &metrics, p = plugins.get()](const json& e, const Access& readers) {
+  jobs->on_event = [r = &router, m = &metrics, p = plugins.get(), g = grading.get()](const json& e,
+                                                                                     const Access& readers) {
     m->job_event(e);
     p->on_job_event(e);
+    g->on_job_event(e);
     if (r->on_event) r->on_event(e, readers);
   };
 }
 
-// The plugins' scanner submits jobs: it stops first.  The scheduler's thread
+// The grading thread and the plugins' scanner submit jobs: they stop first.  The scheduler's thread
 // sends events through the router and the plugins: it stops before them.
 Shared::~Shared() {
+  grading->stop();
   plugins->stop();
   jobs.reset();
+  grading.reset();
   plugins.reset();
 }
 

@@ -25,6 +25,8 @@
 #include "router.h"
 #include "server.h"
 #include "store.h"
+#include "teaching/courses.h"
+#include "teaching/grading.h"
 #include "ws_handler.h"
 
 namespace cgview::server {
@@ -50,6 +52,8 @@ struct Shared {
   std::shared_ptr<const Sandbox> sandbox;  // where workers start (sandbox.h)
   std::unique_ptr<JobScheduler> jobs;
   std::unique_ptr<PluginService> plugins;  // users' algorithms (plugin_service.h)
+  std::unique_ptr<Courses> courses;        // classes and their members (teaching/courses.h)
+  std::unique_ptr<Grading> grading;        // assignments graded on hidden meshes (teaching/grading.h)
   Router router;
   RateLimiter rate;
   WsHandler ws;

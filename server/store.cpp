@@ -9,11 +9,13 @@
 #include <ctime>
 #include <fstream>
 #include <iterator>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <set>
 
 #include "core/errors.h"
 #include "io/mesh_io.h"
+#include "sqlite_stmt.h"
 
 namespace cgview::server {
 
@@ -21,45 +23,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A prepared statement, finalized on scope exit.
-class Stmt {
- public:
-  Stmt(sqlite3* db, const char* sql) : db_(db) {
-    if (sqlite3_prepare_v2(db, sql, -1, &s_, nullptr) != SQLITE_OK)
-      throw IoError(std::string("store: cannot prepare a query: ") + sqlite3_errmsg(db));
-  }
-  ~Stmt() { sqlite3_finalize(s_); }
-  Stmt& bind(int i, const std::string& v) {
-    sqlite3_bind_text(s_, i, v.data(), int(v.size()), SQLITE_TRANSIENT);
-    return *this;
-  }
-  Stmt& bind(int i, std::int64_t v) {
-    sqlite3_bind_int64(s_, i, v);
-    return *this;
-  }
-  bool step() {
-    const int rc = sqlite3_step(s_);
-    if (rc == SQLITE_ROW) return true;
-    if (rc == SQLITE_DONE) return false;
-    if (rc == SQLITE_FULL) throw DiskFull(std::string("store: ") + sqlite3_errmsg(db_));
-    throw IoError(std::string("store: ") + sqlite3_errmsg(db_));
-  }
-  std::string text(int col) const {
-    const auto* p = sqlite3_column_text(s_, col);
-    return p ? std::string(reinterpret_cast<const char*>(p), std::size_t(sqlite3_column_bytes(s_, col)))
-             : std::string();
-  }
-  std::int64_t integer(int col) const { return sqlite3_column_int64(s_, col); }
-
- private:
-  sqlite3* db_;
-  sqlite3_stmt* s_ = nullptr;
-};
-
 constexpr const char* kColumns = "id, name, format, bytes, sha256, created, report, warnings, owner, material";
-// The meshes caller ?1 (admin: ?2) may read.
+// The meshes caller ?1 (admin: ?2, groups: the JSON array ?9) may read.
 constexpr const char* kReadable =
-    "(?2 OR owner = ?1 OR id IN (SELECT item FROM shares WHERE kind = 'mesh' AND (user = ?1 OR user = '*')))";
+    "(?2 OR owner = ?1 OR id IN (SELECT item FROM shares WHERE kind = 'mesh' AND (user = ?1 OR user = '*'"
+    " OR user IN (SELECT value FROM json_each(?9)))))";
+
+// A caller's groups as the JSON array that kReadable's json_each reads.
+std::string groups_json(const Caller& c) { return nlohmann::json(c.groups).dump(); }
 
 MeshRecord row(const Stmt& s) {
   return {s.text(0), s.text(1), s.text(2), std::uint64_t(s.integer(3)), s.text(4), s.text(5), s.text(6),
@@ -134,9 +105,15 @@ void add_missing_column(sqlite3* db, const char* table, const char* column, cons
     exec_sql(db, (std::string("ALTER TABLE ") + table + " ADD COLUMN " + column + " " + decl + ";").c_str(), who);
 }
 
+bool Caller::in(const std::string& group) const {
+  return std::find(groups.begin(), groups.end(), group) != groups.end();
+}
+
 bool Access::allows(const Caller& c) const {
   if (owned_by(c) || everyone) return true;
-  return std::find(readers.begin(), readers.end(), c.user) != readers.end();
+  for (const std::string& r : readers)
+    if (r == c.user || c.in(r)) return true;
+  return false;
 }
 
 std::string sha256_hex(std::string_view bytes) {
@@ -178,6 +155,7 @@ Store::Store(const fs::path& data_dir) : dir_(data_dir) {
   // Meshes stored before users belong to the local user.
   add_missing_column(db_, "meshes", "owner", "TEXT NOT NULL DEFAULT 'local'", "store");
   add_missing_column(db_, "meshes", "material", "TEXT NOT NULL DEFAULT '{}'", "store");
+  add_missing_column(db_, "users", "teacher", "INTEGER NOT NULL DEFAULT 0", "store");
   {
     Stmt s(db_, "SELECT COUNT(*) FROM meshes");
     s.step();
@@ -264,7 +242,7 @@ MeshRecord Store::add_mesh(MeshRecord r, std::string_view bytes, const std::vect
 std::vector<MeshRecord> Store::list_meshes(const Caller& caller) const {
   std::lock_guard lock(mutex_);
   Stmt s(db_, mesh_query(" ORDER BY seq").c_str());
-  s.bind(1, caller.user).bind(2, std::int64_t(caller.admin));
+  s.bind(1, caller.user).bind(2, std::int64_t(caller.admin)).bind(9, groups_json(caller));
   std::vector<MeshRecord> out;
   while (s.step()) out.push_back(row(s));
   return out;
@@ -274,7 +252,7 @@ std::size_t Store::count(const Caller& caller) const {
   if (caller.admin) return count_;
   std::lock_guard lock(mutex_);
   Stmt s(db_, (std::string("SELECT COUNT(*) FROM meshes WHERE ") + kReadable).c_str());
-  s.bind(1, caller.user).bind(2, std::int64_t(caller.admin));
+  s.bind(1, caller.user).bind(2, std::int64_t(caller.admin)).bind(9, groups_json(caller));
   return s.step() ? std::size_t(s.integer(0)) : 0;
 }
 
@@ -301,7 +279,7 @@ std::uint64_t Store::total_bytes() const {
 std::optional<MeshRecord> Store::get_mesh(const std::string& id, const Caller& caller) const {
   std::lock_guard lock(mutex_);
   Stmt s(db_, mesh_query(" AND id = ?3").c_str());
-  s.bind(1, caller.user).bind(2, std::int64_t(caller.admin)).bind(3, id);
+  s.bind(1, caller.user).bind(2, std::int64_t(caller.admin)).bind(3, id).bind(9, groups_json(caller));
   if (!s.step()) return std::nullopt;
   return row(s);
 }
@@ -382,19 +360,29 @@ std::optional<Access> Store::mesh_access(const std::string& id) const {
   return access("mesh", id, rec->owner);
 }
 
-void Store::add_user(const std::string& name, bool admin) {
+void Store::add_user(const std::string& name, bool admin, bool teacher) {
   std::lock_guard lock(mutex_);
   Stmt s(db_,
-         "INSERT INTO users (name, admin, created) VALUES (?1, ?2, ?3)"
-         " ON CONFLICT(name) DO UPDATE SET admin = excluded.admin");
-  s.bind(1, name).bind(2, std::int64_t(admin)).bind(3, now_iso8601());
+         "INSERT INTO users (name, admin, created, teacher) VALUES (?1, ?2, ?3, ?4)"
+         " ON CONFLICT(name) DO UPDATE SET admin = excluded.admin, teacher = excluded.teacher");
+  s.bind(1, name).bind(2, std::int64_t(admin)).bind(3, now_iso8601()).bind(4, std::int64_t(teacher));
   s.step();
+}
+
+bool Store::ensure_user(const std::string& name) {
+  std::lock_guard lock(mutex_);
+  Stmt s(db_, "INSERT OR IGNORE INTO users (name, admin, created) VALUES (?1, 0, ?2)");
+  s.bind(1, name).bind(2, now_iso8601());
+  s.step();
+  return sqlite3_changes(db_) > 0;
 }
 
 namespace {
 constexpr const char* kUserQuery =
-    "SELECT name, admin, created, (SELECT COUNT(*) FROM tokens WHERE tokens.user = users.name) FROM users";
-UserRecord user_row(const Stmt& s) { return {s.text(0), s.integer(1) != 0, s.text(2), int(s.integer(3))}; }
+    "SELECT name, admin, created, (SELECT COUNT(*) FROM tokens WHERE tokens.user = users.name), teacher FROM users";
+UserRecord user_row(const Stmt& s) {
+  return {s.text(0), s.integer(1) != 0, s.text(2), int(s.integer(3)), s.integer(4) != 0};
+}
 }  // namespace
 
 std::optional<UserRecord> Store::get_user(const std::string& name) const {

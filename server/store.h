@@ -28,10 +28,19 @@ namespace cgview::server {
 
 // Who asks: a user and whether they may see everything.
 struct Caller {
+  Caller() = default;
+  Caller(std::string user_, bool admin_ = false, bool teacher_ = false)
+      : user(std::move(user_)), admin(admin_), teacher(teacher_) {}
   std::string user = "local";
   bool admin = false;
+  bool teacher = false;  // may create courses (server/teaching/courses.h)
+  // The groups the user is in, read at each request: "course:ID" for a
+  // course's members, "staff:ID" for its teachers and assistants.  An item
+  // shared with a group is read by its members.
+  std::vector<std::string> groups;
   // The single user of a server that needs no token: it sees everything.
-  static Caller local() { return {"local", true}; }
+  static Caller local() { return {"local", true, true}; }
+  bool in(const std::string& group) const;
 };
 
 // Who may read a mesh or a job: its owner, the users it was shared with, or
@@ -61,7 +70,9 @@ struct UserRecord {
   std::string name;
   bool admin = false;
   std::string created;
-  int tokens = 0;  // live tokens
+  int tokens = 0;        // live tokens
+  bool teacher = false;  // may create courses
+  std::string role() const { return admin ? "admin" : teacher ? "teacher" : "user"; }
 };
 
 // A stored mesh's record: its shape is the protocol's (protocol/mesh_json.h).
@@ -117,8 +128,11 @@ class Store {
   // A mesh's owner and readers; nullopt when there is no such mesh.
   std::optional<Access> mesh_access(const std::string& id) const;
 
-  // Users and their tokens.  add_user creates the user or changes admin.
-  void add_user(const std::string& name, bool admin);
+  // Users and their tokens.  add_user creates the user or changes their role
+  // (admin, teacher); ensure_user creates one that is missing, with no role,
+  // and says whether it did.
+  void add_user(const std::string& name, bool admin, bool teacher = false);
+  bool ensure_user(const std::string& name);
   std::optional<UserRecord> get_user(const std::string& name) const;
   std::vector<UserRecord> list_users() const;
   // token_id: the public part of a token; hash: the SHA-256 of its secret.

@@ -82,6 +82,10 @@ JobScheduler::Collected JobScheduler::collect_run(const ExecutorEvent& e, const 
   // What its results may take: the room left under its owner's quota.
   WorkerLimits limits = limits_of_workers();
   limits.result_bytes = room_of(owner);
+  {
+    std::lock_guard lock(mutex_);
+    if (const auto it = jobs_.find(e.job_id); it != jobs_.end()) limits.timeout_s = effective_timeout(*it->second);
+  }
   const fs::path run = run_dir(e.job_id), results = job_dir(e.job_id);
   const JobDir work_dir(run / "work"), run_files(run);
   Collected c{read_worker_outcome(work_dir, run_files, e.end, limits)};

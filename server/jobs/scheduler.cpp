@@ -71,13 +71,18 @@ WorkerLimits JobScheduler::limits_of_workers() const {
   return l;
 }
 
+double JobScheduler::effective_timeout(const Job& j) const {
+  if (j.timeout_s <= 0) return config_.timeout_s;
+  return config_.timeout_s > 0 ? std::min(j.timeout_s, config_.timeout_s) : j.timeout_s;
+}
+
 LaunchSpec JobScheduler::spec(const Job& j) const {
   LaunchSpec s;
   s.job_id = j.id;
   s.name = "cgview-" + j.id;
   s.dir = run_dir(j.id);
   s.work = s.dir / "work";
-  s.timeout_s = config_.timeout_s;
+  s.timeout_s = effective_timeout(j);
   s.memory_mb = config_.memory_mb;
   s.cpus = std::max(1, config_.cpus);
   s.data_dir = meshes_.store().data_dir();
@@ -152,6 +157,8 @@ json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std
   const std::string& owner = caller.user;
   j->id = new_id();
   j->created = now_iso8601();
+  if (system && req.value("timeout_s", json()).is_number())
+    j->timeout_s = std::max(1.0, req["timeout_s"].get<double>());
   const UserLimits quota = limits(caller);
   const Usage use = quota.storage_bytes ? usage(owner) : Usage{};
   json out;

@@ -100,7 +100,8 @@ class JobScheduler : private JobLookup {
   using DataReader = std::function<std::pair<nlohmann::json, std::vector<std::string>>(const std::filesystem::path&)>;
   nlohmann::json import_data(const std::string& file_name, const nlohmann::json& inputs, const DataReader& read,
                              const Caller& caller);
-  // `system`: the server's own job (a plugin build), which may run a hidden system algorithm.
+  // `system`: the server's own job (a plugin build, a graded run), which may
+  // run a hidden system algorithm and set "timeout_s", a shorter time limit.
   nlohmann::json submit(const nlohmann::json& request, const Caller& caller = Caller::local(),
                         std::vector<std::string>* new_meshes = nullptr, bool system = false);
   // The jobs the caller may see (their own and those shared with them; an
@@ -173,6 +174,8 @@ class JobScheduler : private JobLookup {
   // it, or nullopt with job.error set (under mutex_).
   std::optional<LaunchSpec> prepare(Job& job);
   LaunchSpec spec(const Job& job) const;
+  // The job's time limit: its own where the server set a shorter one, else the server's.
+  double effective_timeout(const Job& job) const;
   // The limits its workers run under, for the messages of their failures.
   WorkerLimits limits_of_workers() const;
   // Every input of the job by name -> its file on this machine; "" with

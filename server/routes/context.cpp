@@ -8,6 +8,7 @@
 #include "router.h"
 #include "routes/routes.h"
 #include "store.h"
+#include "teaching/courses.h"
 
 namespace cgview::server {
 
@@ -32,10 +33,21 @@ MeshRecord RouteContext::owned_mesh(const std::string& id, const Caller& caller)
   return rec;
 }
 
+Courses& RouteContext::courses() const {
+  if (!config.courses) throw std::runtime_error("this server has no courses");
+  return *config.courses;
+}
+
+Grading& RouteContext::grading() const {
+  if (!config.grading) throw std::runtime_error("this server grades no assignments (it runs no jobs)");
+  return *config.grading;
+}
+
 HttpResponse RouteContext::share(const std::string& kind, const std::string& id, const std::string& owner,
-                                 const HttpRequest& req, bool add) const {
+                                 const HttpRequest& req, bool add, const Caller& caller) const {
   const json body = parse_json_or_discarded(req.body);
-  const char* shape = "the body is {\"users\": [NAME, ...]} and/or {\"everyone\": true}";
+  const char* shape =
+      "the body is {\"users\": [NAME, ...]}, {\"courses\": [COURSE_ID, ...]} and/or {\"everyone\": true}";
   if (!body.is_object()) return error_response(400, "bad_request", shape);
   std::vector<std::string> users;
   const json names = body.value("users", json::array());
@@ -45,6 +57,15 @@ HttpResponse RouteContext::share(const std::string& kind, const std::string& id,
     if (!meshes.store().get_user(n))
       return error_response(400, "bad_request", "no user '" + n.get<std::string>() + "'");
     users.push_back(n);
+  }
+  // A course's group: its members read the item (teaching/courses.h); only a member shares with it.
+  const json courses = body.value("courses", json::array());
+  if (!courses.is_array()) return error_response(400, "bad_request", shape);
+  for (const auto& c : courses) {
+    if (!c.is_string()) return error_response(400, "bad_request", shape);
+    if (!config.courses || !config.courses->role(c, caller))
+      return error_response(404, "not_found", "no course with id '" + c.get<std::string>() + "'");
+    users.push_back(Courses::group(c));
   }
   const json everyone = body.value("everyone", json(false));
   if (!everyone.is_boolean()) return error_response(400, "bad_request", shape);

@@ -131,7 +131,7 @@ void add_job_routes(Routes& routes, const RouteContext& ctx) {
                     "Share a job and its artifacts (its owner or an admin): the same body as a mesh's share",
                     {},
                     [&ctx](const Params& p, const HttpRequest& req, const Caller& caller) {
-                      return ctx.share("job", p.at("id"), job_owner(ctx, p.at("id"), caller), req, true);
+                      return ctx.share("job", p.at("id"), job_owner(ctx, p.at("id"), caller), req, true, caller);
                     },
                     false});
   routes.push_back({"POST",
@@ -139,7 +139,7 @@ void add_job_routes(Routes& routes, const RouteContext& ctx) {
                     "Stop sharing a job",
                     {},
                     [&ctx](const Params& p, const HttpRequest& req, const Caller& caller) {
-                      return ctx.share("job", p.at("id"), job_owner(ctx, p.at("id"), caller), req, false);
+                      return ctx.share("job", p.at("id"), job_owner(ctx, p.at("id"), caller), req, false, caller);
                     },
                     false});
 }

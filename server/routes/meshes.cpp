@@ -118,7 +118,7 @@ void add_mesh_routes(Routes& routes, const RouteContext& ctx) {
        "Share a mesh (its owner or an admin): {\"users\":[NAME,...]} and/or {\"everyone\":true}; answers who reads it",
        {},
        [&ctx](const Params& p, const HttpRequest& req, const Caller& caller) {
-         return ctx.share("mesh", p.at("id"), ctx.owned_mesh(p.at("id"), caller).owner, req, true);
+         return ctx.share("mesh", p.at("id"), ctx.owned_mesh(p.at("id"), caller).owner, req, true, caller);
        },
        false});
   routes.push_back({"POST",
@@ -126,7 +126,8 @@ void add_mesh_routes(Routes& routes, const RouteContext& ctx) {
                     "Stop sharing a mesh: the same body as share",
                     {},
                     [&ctx](const Params& p, const HttpRequest& req, const Caller& caller) {
-                      return ctx.share("mesh", p.at("id"), ctx.owned_mesh(p.at("id"), caller).owner, req, false);
+                      return ctx.share("mesh", p.at("id"), ctx.owned_mesh(p.at("id"), caller).owner, req, false,
+                                       caller);
                     },
                     false});
 }

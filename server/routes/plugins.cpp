@@ -27,7 +27,7 @@ json body_of(const HttpRequest& req) {
 
 std::string owner_of(const RouteContext& ctx, const std::string& id, const Caller& caller) {
   const Access a = plugins(ctx).access(id, caller);
-  if (!a.owned_by(caller) || a.everyone && a.owner == "lab")
+  if (!a.owned_by(caller) || (a.everyone && a.owner == "lab"))
     throw Forbidden("plugin " + id + " is " + a.owner + "'s: only its owner shares it");
   return a.owner;
 }
@@ -94,7 +94,7 @@ void add_plugin_routes(Routes& routes, const RouteContext& ctx) {
                     "Share a plugin (its owner): {\"users\": [NAME, ...]} and/or {\"everyone\": true}",
                     {},
                     [&ctx](const Params& p, const HttpRequest& req, const Caller& caller) {
-                      return ctx.share("plugin", p.at("id"), owner_of(ctx, p.at("id"), caller), req, true);
+                      return ctx.share("plugin", p.at("id"), owner_of(ctx, p.at("id"), caller), req, true, caller);
                     },
                     false});
   routes.push_back({"POST",
@@ -102,7 +102,7 @@ void add_plugin_routes(Routes& routes, const RouteContext& ctx) {
                     "Stop sharing a plugin: the same body as share",
                     {},
                     [&ctx](const Params& p, const HttpRequest& req, const Caller& caller) {
-                      return ctx.share("plugin", p.at("id"), owner_of(ctx, p.at("id"), caller), req, false);
+                      return ctx.share("plugin", p.at("id"), owner_of(ctx, p.at("id"), caller), req, false, caller);
                     },
                     false});
 }

@@ -17,6 +17,8 @@
 
 namespace cgview::server {
 
+class Courses;
+class Grading;
 class JobScheduler;
 class MeshService;
 class RenderService;
@@ -51,15 +53,19 @@ struct RouteContext {
 
   // The job scheduler; throws where the server runs no jobs (a 500 naming it).
   JobScheduler& jobs() const;
+  // Courses and their assignments (server/teaching/); the same where there are none.
+  Courses& courses() const;
+  Grading& grading() const;
   // The mesh `id` if the caller may read it; another user's answers as an
   // unknown id (std::out_of_range: 404).
   MeshRecord mesh(const std::string& id, const Caller& caller) const;
   // The same for a change (delete, share): the owner's or an admin's (Forbidden: 403).
   MeshRecord owned_mesh(const std::string& id, const Caller& caller) const;
-  // POST .../share and .../unshare of a mesh or job (kind "mesh" or "job"),
-  // once the caller is known to own it.
+  // POST .../share and .../unshare of a mesh, job or plugin (kind "mesh",
+  // "job" or "plugin"), once the caller is known to own it: with users, with
+  // everyone, or with courses the caller is in (their members read it).
   HttpResponse share(const std::string& kind, const std::string& id, const std::string& owner, const HttpRequest& req,
-                     bool add) const;
+                     bool add, const Caller& caller) const;
 };
 
 // /api/v1/meshes...: list, upload, one, delete, download, textures, share.
@@ -76,6 +82,10 @@ void add_worker_routes(Routes& routes, const RouteContext& ctx);
 void add_plugin_routes(Routes& routes, const RouteContext& ctx);
 // /api/v1/health, /api/v1/me and /metrics.
 void add_account_routes(Routes& routes, const RouteContext& ctx);
+// /api/v1/courses...: courses, their members and sign-in links (teaching/courses.h).
+void add_course_routes(Routes& routes, const RouteContext& ctx);
+// /api/v1/courses/{id}/assignments, /api/v1/assignments..., /api/v1/submissions...: graded exercises (teaching/grading.h).
+void add_assignment_routes(Routes& routes, const RouteContext& ctx);
 // /api/v1/tickets: sign-in tickets for a page that must not hold a token in its URL (tickets.h).
 void add_ticket_routes(Routes& routes, const RouteContext& ctx);
 

@@ -4,6 +4,8 @@
 #include "routes/routes.h"
 
 #include "io/parse_json.h"
+#include "router.h"
+#include "teaching/courses.h"
 
 namespace cgview::server {
 
@@ -59,6 +61,13 @@ void add_ticket_routes(Routes& routes, const RouteContext& ctx) {
          const json body = parse_json_or_discarded(req.body);
          const json* ticket = body.is_object() && body.contains("ticket") ? &body["ticket"] : nullptr;
          if (!ticket || !ticket->is_string()) return unauthorized("no ticket: the body is {\"ticket\": \"cgt_…\"}");
+         // A course's sign-in link (teaching/courses.h) gives its student a token of their own, kept by the page.
+         if (ticket->get<std::string>().starts_with("cgl_")) {
+           const auto user =
+               ctx.config.courses ? ctx.config.courses->redeem_link(ticket->get<std::string>()) : std::nullopt;
+           if (!user) return unauthorized("the sign-in link is wrong, used or expired: ask your teacher for another");
+           return json_response(200, {{"token", ctx.auth->new_token(*user)}, {"user", *user}, {"kind", "token"}});
+         }
          const auto session = ctx.auth->redeem_ticket(ticket->get<std::string>());
          if (!session) return unauthorized("the ticket is wrong, used or expired: ask for another");
          return json_response(

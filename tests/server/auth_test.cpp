@@ -96,10 +96,17 @@ TEST_F(AuthTest, AUserSeesNothingOfAnothersOverEveryRoute) {
   const std::string b_field =
       run_job(bob_, {{"algorithm", "test_sleep"}, {"inputs", {{"mesh", b_mesh}}}, {"params", {{"seconds", 0.0}}}});
   const std::string a_mesh = upload(alice_);
+  // B teaches a course (with A's id of a member in it, a route's {user}).
+  store_->add_user("bob", false, true);
+  const HttpResponse course = call(bob_, "POST", "/api/v1/courses", json{{"title", "B's"}}.dump());
+  ASSERT_EQ(course.status, 201) << course.body;
+  const std::string b_course = json::parse(course.body).value("id", "");
   const std::map<std::string, std::pair<std::string, std::string>> values = {
       // placeholder: B's value, a value that does not exist
       {"name", {"mesh", "mesh"}},
-      {"n", {"0", "0"}}};
+      {"n", {"0", "0"}},
+      {"user", {"bob", "nobody"}},
+      {"which", {"result.png", "result.png"}}};
   const std::string fake_mesh = "00000000deadbeef", fake_job = "00000000feedface";
   // POST bodies that try to reach B's data: by id, as a job input, by sharing.
   auto body_for = [](const std::string& pattern, const std::string& mesh) {
@@ -115,7 +122,12 @@ TEST_F(AuthTest, AUserSeesNothingOfAnothersOverEveryRoute) {
     for (std::smatch m; std::regex_search(b_target, m, std::regex(R"(\{([a-z_]+)\})"));) {
       const std::string placeholder = m[0], name = m[1];
       std::string b, fake;
-      if (name == "id") {
+      if (name == "id" && r.pattern.starts_with("/api/v1/courses/")) {
+        b = b_course, fake = fake_mesh;
+      } else if (name == "id" &&
+                 (r.pattern.starts_with("/api/v1/assignments/") || r.pattern.starts_with("/api/v1/submissions/"))) {
+        b = fake = fake_job;  // B's would need a built plugin: an unknown one answers for it
+      } else if (name == "id") {
         b = jobs ? b_job : b_mesh;
         fake = jobs ? fake_job : fake_mesh;
       } else if (values.count(name)) {
@@ -137,7 +149,9 @@ TEST_F(AuthTest, AUserSeesNothingOfAnothersOverEveryRoute) {
       const HttpResponse unknown = call(alice_, r.method, fake_target, body_for(r.pattern, fake_mesh));
       EXPECT_EQ(as_a.status, r.pattern.starts_with("/api/v1/worker/") ? 401 : 404) << as_a.body;
       EXPECT_EQ(unknown.status, as_a.status);
-      EXPECT_EQ(replace_all(replace_all(as_a.body, b_mesh, fake_mesh), b_job, fake_job), unknown.body);
+      EXPECT_EQ(
+          replace_all(replace_all(replace_all(as_a.body, b_mesh, fake_mesh), b_job, fake_job), b_course, fake_mesh),
+          unknown.body);
       ++checked;
     }
   }

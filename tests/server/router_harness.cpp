@@ -32,6 +32,13 @@ void RouterFixture::open(const std::filesystem::path& store_dir, std::optional<s
     rc.jobs = jobs_.get();
     rc.plugins = plugins_.get();
   }
+  // Courses, and assignments where there are jobs, as the server has them.
+  courses_ = std::make_unique<server::Courses>(*store_);
+  rc.courses = courses_.get();
+  if (jobs_) {
+    grading_ = std::make_unique<server::Grading>(*meshes_, *courses_, *jobs_, *plugins_);
+    rc.grading = grading_.get();
+  }
   router_ = std::make_unique<server::Router>(*meshes_, std::move(rc));
 }
 
@@ -46,8 +53,11 @@ void RouterFixture::open_with_users(const std::filesystem::path& dir, server::Jo
 
 void RouterFixture::TearDown() {
   router_.reset();
+  if (grading_) grading_->stop();
   if (plugins_) plugins_->stop();
   jobs_.reset();
+  grading_.reset();
+  courses_.reset();
   plugins_.reset();
   meshes_.reset();
   store_.reset();

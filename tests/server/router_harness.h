@@ -17,6 +17,8 @@
 #include "router.h"
 #include "server_harness.h"  // read_bytes
 #include "store.h"
+#include "teaching/courses.h"
+#include "teaching/grading.h"
 
 namespace cgview::test {
 
@@ -44,6 +46,8 @@ class RouterFixture : public ::testing::Test {
   std::unique_ptr<server::MeshService> meshes_;
   std::unique_ptr<server::JobScheduler> jobs_;
   std::unique_ptr<server::PluginService> plugins_;
+  std::unique_ptr<server::Courses> courses_;
+  std::unique_ptr<server::Grading> grading_;
   std::unique_ptr<server::Router> router_;
   std::string alice_, bob_;
 };
