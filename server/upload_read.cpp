@@ -295,6 +295,10 @@ void reader_status(const UploadReader& reader, const std::string& name, const Re
       text = child_file(dir, "error.json", 1 << 20);
     } catch (const std::exception&) {
     }
+    // A reader that could not even write why it refused: a full disk, most likely.
+    std::error_code ec;
+    if (text.empty() && fs::space(dir.path(), ec).available < (1u << 20) && !ec)
+      throw DiskFull(name + ": the server's storage is full");
     const nlohmann::json e = parse_json_or_discarded(text);
     const std::string kind = e.is_object() ? e.value("error", "") : "";
     const std::string detail = e.is_object() ? e.value("detail", "") : "";

@@ -42,17 +42,20 @@ WsOut WsHandler::too_big() const {
                     "messages to the server are limited to " + std::to_string(config_.max_message_bytes) + " bytes"));
 }
 
-bool WsHandler::still_authorized(WsConnection& conn, const WsEmit& emit) const {
-  if (conn.close) return false;
-  if (conn.authorization.empty()) return true;  // the local user
-  if (auth_.authenticate(conn.authorization)) return true;
+std::optional<Caller> WsHandler::still_authorized(WsConnection& conn, const WsEmit& emit) const {
+  if (conn.close || !conn.caller) return std::nullopt;
+  if (conn.authorization.empty()) return conn.caller;  // the local user
+  // Read again at each use: a revoked token ends the session, and a member
+  // removed from a course reads what it shares no more.
+  if (auto fresh = auth_.authenticate(conn.authorization)) return fresh;
   emit(WsOut::text(error_message(nullptr, "unauthorized", "the token was revoked")));
   conn.close = true;
-  return false;
+  return std::nullopt;
 }
 
 bool WsHandler::admits_event(WsConnection& conn, const Access& readers, const WsEmit& emit) const {
-  return conn.caller && still_authorized(conn, emit) && readers.allows(*conn.caller);
+  const auto caller = still_authorized(conn, emit);
+  return caller && readers.allows(*caller);
 }
 
 WsHandler::Work WsHandler::receive(std::string_view text, bool binary, WsConnection& conn, const WsEmit& emit) const {
@@ -100,7 +103,8 @@ WsHandler::Work WsHandler::receive(std::string_view text, bool binary, WsConnect
     return {};
   }
   if (!conn.caller) return refuse(id, "this server needs a token: send {\"type\":\"auth\",\"token\":TOKEN} first");
-  if (!still_authorized(conn, emit)) return {};
+  const auto caller = still_authorized(conn, emit);
+  if (!caller) return {};
   if (*type == "ping") {
     emit(WsOut::text({{"type", "pong"}, {"request_id", id}}));
     return {};
@@ -111,7 +115,7 @@ WsHandler::Work WsHandler::receive(std::string_view text, bool binary, WsConnect
   else if (*type == "get_slice") part = &WsHandler::get_slice;
   else if (*type == "get_animation") part = &WsHandler::get_animation;
   else if (*type != "list_meshes") return error(id, "bad_request", "unknown message type '" + *type + "'");
-  return [this, part, msg = std::move(msg), id, caller = *conn.caller](const WsEmit& out) {
+  return [this, part, msg = std::move(msg), id, caller = *caller](const WsEmit& out) {
     try {
       if (part) return (this->*part)(msg, id, caller, out);
       json list = json::array();

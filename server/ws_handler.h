@@ -87,7 +87,7 @@ class WsHandler {
   bool admits_event(WsConnection& conn, const Access& readers, const WsEmit& emit) const;
 
  private:
-  bool still_authorized(WsConnection& conn, const WsEmit& emit) const;
+  std::optional<Caller> still_authorized(WsConnection& conn, const WsEmit& emit) const;
   void get_mesh(const nlohmann::json& msg, const nlohmann::json& id, const Caller& caller, const WsEmit& emit) const;
   void get_slice(const nlohmann::json& msg, const nlohmann::json& id, const Caller& caller, const WsEmit& emit) const;
   void get_animation(const nlohmann::json& msg, const nlohmann::json& id, const Caller& caller,

@@ -84,7 +84,8 @@ void add_plugin_routes(Routes& routes, const RouteContext& ctx);
 void add_account_routes(Routes& routes, const RouteContext& ctx);
 // /api/v1/courses...: courses, their members and sign-in links (teaching/courses.h).
 void add_course_routes(Routes& routes, const RouteContext& ctx);
-// /api/v1/courses/{id}/assignments, /api/v1/assignments..., /api/v1/submissions...: graded exercises (teaching/grading.h).
+// /api/v1/courses/{id}/assignments, /api/v1/assignments..., /api/v1/submissions...: graded exercises
+// (teaching/grading.h).
 void add_assignment_routes(Routes& routes, const RouteContext& ctx);
 // /api/v1/tickets: sign-in tickets for a page that must not hold a token in its URL (tickets.h).
 void add_ticket_routes(Routes& routes, const RouteContext& ctx);

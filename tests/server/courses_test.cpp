@@ -190,9 +190,21 @@ TEST_F(Course, WhatIsSharedWithACourseItsMembersReadUntilTheyAreRemoved) {
   // Only a member shares with a course.
   const std::string eves = upload(eve_, "cube.off");
   EXPECT_EQ(as(eve_, "POST", "/api/v1/meshes/" + eves + "/share", {{"courses", {course()}}}).status, 404u);
+  // Over a WebSocket opened before his removal too.
+  WsClient ws;
+  ASSERT_FALSE(ws.connect(port()));
+  ASSERT_FALSE(ws.send({{"type", "auth"}, {"token", bob_}, {"request_id", 1}}));
+  ASSERT_EQ(ws.reply().value("type", ""), "authenticated");
+  ASSERT_FALSE(ws.send({{"type", "get_mesh"}, {"mesh_id", mesh}, {"request_id", 2}}));
+  EXPECT_EQ(ws.reply().value("type", ""), "mesh_begin");
+  for (auto m = ws.read(); m && (m->binary || m->data.find("\"mesh_end\"") == std::string::npos); m = ws.read()) {
+  }
   // Removed, bob reads it no more, at once.
   ASSERT_EQ(as(teacher_, "DELETE", "/api/v1/courses/" + course() + "/members/bob").status, 204u);
   EXPECT_EQ(as(bob_, "GET", "/api/v1/meshes/" + mesh).status, 404u);
+  ASSERT_FALSE(ws.send({{"type", "get_mesh"}, {"mesh_id", mesh}, {"request_id", 3}}));
+  const json after = ws.reply();
+  EXPECT_EQ(after.value("error", ""), "not_found") << after.dump();
   EXPECT_EQ(as(bob_, "GET", "/api/v1/courses/" + course()).status, 404u);
 }
 

@@ -13,6 +13,7 @@ from .errors import CGViewError, JobFailed
 from . import params as parameters
 from .algorithms import Algorithms
 from .objects import Job, Mesh
+from .teaching import Teaching
 
 DEFAULT_URL = "http://127.0.0.1:8080"
 TERMINAL_STATES = ("done", "failed", "cancelled", "interrupted")
@@ -38,6 +39,8 @@ class Client:
         self.ssl_context = ssl.create_default_context(cafile=self.ca_file) if self.ca_file else None
         # client.algorithms() lists them; client.algorithms.sdf(mesh, rays=25) runs one.
         self.algorithms = Algorithms(self)
+        # client.courses() lists them; client.courses.submit(assignment, source=...) (teaching.py).
+        self.courses = Teaching(self)
 
     # --- HTTP -----------------------------------------------------------
     def request(self, method, path, body=None, query=None, content_type=None):
