@@ -65,12 +65,13 @@ long ServerProcess::peak_rss_kb() const {
 }
 
 std::pair<int, std::string> call(unsigned short port, const std::string& method, const std::string& target,
-                                 const std::string& body) {
+                                 const std::string& body, const std::string& token) {
   net::io_context ioc;
   beast::tcp_stream s(ioc);
   s.connect(tcp::endpoint(net::ip::make_address("127.0.0.1"), port));
   http::request<http::string_body> req(http::string_to_verb(method), target, 11);
   req.set(http::field::host, "127.0.0.1");
+  if (!token.empty()) req.set(http::field::authorization, "Bearer " + token);
   req.body() = body;
   req.prepare_payload();
   http::write(s, req);
@@ -81,8 +82,8 @@ std::pair<int, std::string> call(unsigned short port, const std::string& method,
   return {p.get().result_int(), p.get().body()};
 }
 
-std::string upload(unsigned short port, const std::string& name, const std::string& bytes) {
-  const auto [status, body] = call(port, "POST", "/api/v1/meshes?name=" + name, bytes);
+std::string upload(unsigned short port, const std::string& name, const std::string& bytes, const std::string& token) {
+  const auto [status, body] = call(port, "POST", "/api/v1/meshes?name=" + name, bytes, token);
   if (status != 201) throw std::runtime_error("upload failed: " + body);
   return json::parse(body)["id"];
 }

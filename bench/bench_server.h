@@ -25,11 +25,13 @@ struct ServerProcess {
   long peak_rss_kb() const;
 };
 
-// One request on its own connection: the status and the body.
+// One request on its own connection (with "Authorization: Bearer TOKEN"
+// when a token is given): the status and the body.
 std::pair<int, std::string> call(unsigned short port, const std::string& method, const std::string& target,
-                                 const std::string& body = "");
+                                 const std::string& body = "", const std::string& token = "");
 // POST /api/v1/meshes?name=NAME on its own connection; the new mesh's id.
 // Throws "upload failed: BODY" unless the answer is 201.
-std::string upload(unsigned short port, const std::string& name, const std::string& bytes);
+std::string upload(unsigned short port, const std::string& name, const std::string& bytes,
+                   const std::string& token = "");
 
 }  // namespace cgview::bench
