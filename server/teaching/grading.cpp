@@ -194,6 +194,7 @@ void Grading::save(const Submission& s) {
   json runs = json::array();
   for (const Run& r : s.runs)
     runs.push_back({{"job", r.job},
+                    {"compare_job", r.compare_job},
                     {"state", r.state},
                     {"points", r.points},
                     {"reason", r.reason},
@@ -256,8 +257,9 @@ void Grading::load() {
     sub.kind = r.value("kind", "");
     sub.seq = r.value("seq", std::int64_t(0));
     for (const json& run : r.value("runs", json::array()))
-      sub.runs.push_back({run.value("job", ""), run.value("state", "queued"), run.value("points", 0.0),
-                          run.value("reason", ""), run.value("detail", ""), run.value("measures", json::object())});
+      sub.runs.push_back({run.value("job", ""), run.value("compare_job", ""), run.value("state", "queued"),
+                          run.value("points", 0.0), run.value("reason", ""), run.value("detail", ""),
+                          run.value("measures", json::object())});
     seq_ = std::max(seq_, sub.seq);
     if (sub.state == "building" || sub.state == "running") pending_.insert(sub.id);
     submissions_[sub.id] = std::move(sub);
@@ -606,28 +608,79 @@ void Grading::advance(const std::string& id) {
         all_ended = false;
         continue;
       }
-      changed = true;
-      r.state = "done";
       if (ref_state != "done") {
+        changed = true;
+        r.state = "done";
         r.points = 0;
         r.reason = "not graded: the reference has no output on this mesh (your teacher is told)";
         r.detail = "reference job " + ref_id + ": " + (ref ? ref->value("error", "") : "gone");
         continue;
       }
       const OutputKind kind = kind_named(a.spec["kind"]);
+      const std::string output = a.spec["output"];
+      const double points = a.spec.value("points_per_mesh", 1.0);
+      if (kind == OutputKind::mesh || kind == OutputKind::skeleton) {
+        // What a mesh or a skeleton costs to compare depends on its shape,
+        // which the student's code made: measured in the sandbox, as a job.
+        if (r.compare_job.empty()) {
+          changed = true;
+          try {
+            const json c =
+                jobs_.submit({{"algorithm", kind == OutputKind::mesh ? "compare_meshes" : "compare_skeletons"},
+                              {"inputs",
+                               {{"result", {{"job", r.job}, {"artifact", output}}},
+                                {"reference", {{"job", ref_id}, {"artifact", output}}}}},
+                              {"params", {{"spec", a.spec["compare"].dump()}}},
+                              {"timeout_s", a.spec["time_limit_s"]}},
+                             g, nullptr, true);
+            r.compare_job = c["id"];
+            meshes_.store().set_shared("job", r.compare_job, {Courses::staff(a.course)}, true);
+          } catch (const std::exception& e) {
+            r.state = "done";
+            r.points = 0;
+            r.reason = "no output '" + output + "' of kind " + to_string(kind);
+            r.detail = e.what();
+            continue;
+          }
+        }
+        const auto c = jobs_.get(r.compare_job, g);
+        const std::string compared = c ? c->value("state", "") : "gone";
+        if (compared == "queued" || compared == "running") {
+          all_ended = false;
+          continue;
+        }
+        changed = true;
+        r.state = "done";
+        r.points = 0;
+        try {
+          if (compared != "done") throw std::runtime_error(c ? c->value("error", "") : "the comparison is gone");
+          const json v = parse_json_or_discarded(
+              std::get<Text>(jobs_.artifact_value(r.compare_job, "verdict", OutputKind::text, server_caller())).bytes);
+          if (!v.is_object()) throw std::runtime_error("the comparison's verdict is not JSON");
+          r.points = v.value("pass", false) ? points : 0;
+          r.reason = v.value("reason", "");
+          r.measures = v.value("measures", json::object());
+        } catch (const std::exception& e) {
+          r.reason = "not graded: its output could not be compared with the reference's within the limits";
+          r.detail = e.what();
+        }
+        continue;
+      }
+      changed = true;
+      r.state = "done";
       try {
         const CompareSpec cmp = compare_spec_from_json(a.spec["compare"], kind);
-        const ArtifactValue reference = jobs_.artifact_value(ref_id, a.spec["output"], kind, server_caller());
+        const ArtifactValue reference = jobs_.artifact_value(ref_id, output, kind, server_caller());
         ArtifactValue result;
         try {
-          result = jobs_.artifact_value(r.job, a.spec["output"], kind, server_caller());
+          result = jobs_.artifact_value(r.job, output, kind, server_caller());
         } catch (const std::exception&) {
           r.points = 0;
-          r.reason = "no output '" + a.spec["output"].get<std::string>() + "' of kind " + to_string(kind);
+          r.reason = "no output '" + output + "' of kind " + to_string(kind);
           continue;
         }
         const Verdict v = compare_output(result, reference, cmp);
-        r.points = v.pass ? a.spec.value("points_per_mesh", 1.0) : 0;
+        r.points = v.pass ? points : 0;
         r.reason = v.reason;
         r.measures = v.measures;
       } catch (const std::exception& e) {

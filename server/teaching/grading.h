@@ -101,6 +101,7 @@ class Grading {
   };
   struct Run {
     std::string job;               // "" until submitted
+    std::string compare_job;       // a mesh's or skeleton's comparison, run as a job of its own
     std::string state = "queued";  // queued, running, done, failed
     double points = 0;
     std::string reason, detail;  // reason: the student's; detail: the staff's (the run's own error)

@@ -36,6 +36,45 @@ std::string variant(const std::string& from, const std::string& to) {
   if (at != std::string::npos) s.replace(at, from.size(), to);
   return s;
 }
+// A mesh-output algorithm: the input lifted along y by FRACTION of its height.
+std::string lift_source(const std::string& fraction) {
+  return R"(#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "registry/registry.h"
+
+namespace cgview {
+namespace {
+struct LiftParams {
+  bool again = false;
+  template <class V>
+  void describe(V& v) {
+    v.boolean("again", again, {.label = "Again", .help = "unused"});
+  }
+};
+struct LiftResult {
+  Mesh lifted;
+  std::vector<std::string> warnings;
+  template <class V>
+  void outputs(V& v) {
+    v("lifted", lifted);
+  }
+};
+LiftResult lift(const Mesh& mesh, const LiftParams& = {}, Context* = nullptr) {
+  double lo = mesh.positions[0][1], hi = lo;
+  for (const Vec3& v : mesh.positions) lo = std::min(lo, v[1]), hi = std::max(hi, v[1]);
+  LiftResult r{mesh, {}};
+  for (Vec3& v : r.lifted.positions) v[1] += )" +
+         fraction + R"( * (hi - lo);
+  return r;
+}
+CGVIEW_REGISTER_FUNCTION(lift, lift, {.title = "Lift", .description = "Lifts the mesh.", .area = "playground"})
+}  // namespace
+}  // namespace cgview
+)";
+}
+
 const std::string kDistance = "field.values[i] = float(std::pow(norm(mesh.positions[i] - c), p.exponent));";
 
 class Course : public ServerFixture {
@@ -283,6 +322,28 @@ TEST_F(Course, SubmissionsAreScoredOnTheHiddenMeshesWithTheirReasonsAndPictures)
   EXPECT_EQ(again["results"], right["results"]);
   const json wrong_again = wait_for(alice_, "/api/v1/submissions/" + wrong.value("id", ""), "state", {"graded"});
   EXPECT_EQ(wrong_again["results"], wrong["results"]);
+}
+
+// A mesh output is compared in the sandbox, as a job of its own: its cost is
+// its shape's, which the student's code made.
+TEST_F(Course, AMeshOutputIsScoredByItsHausdorffDistanceToTheReferences) {
+  reference_ = build(teacher_, lift_source("0.0"));
+  hidden_ = {upload(teacher_, "blobby.off")};
+  public_ = upload(teacher_, "sphere.off");
+  const json a = post_assignment({{"compare", {{"method", "hausdorff"}, {"tolerance", 0.01}}}});
+  ASSERT_EQ(a.value("output", ""), "lifted") << a.dump();
+  const std::string id = a.value("id", "");
+  const json wrong = submit_and_wait(alice_, id, lift_source("0.05"));
+  ASSERT_EQ(wrong.value("state", ""), "graded") << wrong.dump();
+  EXPECT_EQ(wrong.value("score", -1.0), 0.0);
+  EXPECT_NE(wrong["results"][0].value("reason", "").find("Hausdorff distance"), std::string::npos) << wrong.dump();
+  const json right = submit_and_wait(alice_, id, lift_source("0.0"));
+  EXPECT_EQ(right.value("score", -1.0), 5.0) << right.dump();
+  // The staff see the measure: a lift of 5% of the height, over the diagonal.
+  const json staff = as(teacher_, "GET", "/api/v1/submissions/" + wrong.value("id", "")).body_json();
+  const double h = staff["results"][0]["measures"].value("hausdorff", 0.0);
+  EXPECT_GT(h, 0.01);
+  EXPECT_LT(h, 0.05);
 }
 
 TEST_F(Course, NoRouteGivesAStudentAHiddenMeshOrTheReferencesOutput) {
