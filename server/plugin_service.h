@@ -98,6 +98,8 @@ class PluginService {
   const Plugin& readable(const std::string& id, const Caller& caller) const;  // under mutex_
   Plugin& owned(const std::string& id, const Caller& caller);                 // under mutex_
   Access access_locked(const Plugin& p) const;
+  // Whether the caller's lists (plugins, algorithms) show it (under mutex_).
+  bool listed(const Plugin& p, const Caller& caller) const;
   void save(const Plugin& p);
   // Reads an ended build job's results into its plugin (under mutex_).
   void settle_builds_locked();
