@@ -124,8 +124,8 @@ void add_assignment_routes(Routes& routes, const RouteContext& ctx) {
   routes.push_back(
       {"GET",
        "/api/v1/submissions/{id}/pictures/{n}/{which}",
-       "A picture of a submission's field on hidden mesh n (which: result.png, reference.png or difference.png); "
-       "students see them where the assignment shows pictures",
+       "A picture of a submission's result on hidden mesh n (which: result.png, reference.png or, for a field, "
+       "difference.png); students see them where the assignment shows pictures",
        {{"width", "pixels, 1..2048 (default 480)"}, {"height", "pixels, 1..2048 (default 360)"}},
        [&ctx](const Params& p, const HttpRequest& req, const Caller& caller) {
          std::string which = p.at("which");
@@ -155,7 +155,7 @@ void add_assignment_routes(Routes& routes, const RouteContext& ctx) {
          params.height = size("height", 360);
          HttpResponse r;
          try {
-           r.body = ctx.renders->png(*pic.mesh, &pic.field, params);
+           r.body = ctx.renders->png(*pic.mesh, pic.field ? &*pic.field : nullptr, params);
          } catch (const InvalidInput&) {
            throw;
          } catch (const Error& e) {

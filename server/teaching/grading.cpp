@@ -142,12 +142,13 @@ json Grading::submission_json(const Submission& s, bool staff) const {
     r["mesh"] = "hidden " + std::to_string(i + 1);
     r["max_points"] = per;
     if (staff) r["mesh_id"] = a.spec["hidden_meshes"][i];
-    if (a.spec.value("show_pictures", false) || staff)
-      if (s.runs[i].state == "done" && s.kind == "scalar_field")
-        r["pictures"] = {
-            {"result", "/api/v1/submissions/" + s.id + "/pictures/" + std::to_string(i) + "/result.png"},
-            {"reference", "/api/v1/submissions/" + s.id + "/pictures/" + std::to_string(i) + "/reference.png"},
-            {"difference", "/api/v1/submissions/" + s.id + "/pictures/" + std::to_string(i) + "/difference.png"}};
+    // A field is drawn on the hidden mesh (and their difference); a mesh is drawn as it is.
+    const bool field = s.kind == "scalar_field";
+    if ((a.spec.value("show_pictures", false) || staff) && s.runs[i].state == "done" && (field || s.kind == "mesh")) {
+      const std::string at = "/api/v1/submissions/" + s.id + "/pictures/" + std::to_string(i) + "/";
+      r["pictures"] = {{"result", at + "result.png"}, {"reference", at + "reference.png"}};
+      if (field) r["pictures"]["difference"] = at + "difference.png";
+    }
     runs.push_back(std::move(r));
   }
   json out = {{"id", s.id},
@@ -782,7 +783,7 @@ std::string Grading::grades_csv(const std::string& assignment, bool late, const 
 
 Grading::Picture Grading::picture(const std::string& id, std::size_t n, const std::string& which,
                                   const Caller& caller) const {
-  std::string job, ref_job, output, mesh_id;
+  std::string job, ref_job, output, mesh_id, kind;
   {
     std::lock_guard lock(mutex_);
     const auto it = submissions_.find(id);
@@ -795,31 +796,40 @@ Grading::Picture Grading::picture(const std::string& id, std::size_t n, const st
     if (!staff && !a.spec.value("show_pictures", false))
       throw Forbidden("this assignment shows no pictures of results on its hidden meshes");
     if (n >= s.runs.size()) throw std::out_of_range("submission " + id + " has no result " + std::to_string(n));
-    if (s.runs[n].state != "done" || s.runs[n].job.empty() || a.spec.value("kind", "") != "scalar_field")
-      throw InvalidInput("result " + std::to_string(n) + " has no scalar field to show");
+    kind = a.spec.value("kind", "");
+    if (s.runs[n].state != "done" || s.runs[n].job.empty() || (kind != "scalar_field" && kind != "mesh"))
+      throw InvalidInput("result " + std::to_string(n) + " has no field or mesh to show");
     job = s.runs[n].job;
     ref_job = a.reference_jobs.at(n);
     output = a.spec["output"];
     mesh_id = a.spec["hidden_meshes"][n];
   }
+  if (kind == "mesh") {
+    if (which != "result" && which != "reference")
+      throw std::out_of_range("no picture '" + which + "' of a mesh: result or reference");
+    const ArtifactValue v =
+        jobs_.artifact_value(which == "result" ? job : ref_job, output, OutputKind::mesh, server_caller());
+    return {std::make_shared<const Mesh>(std::get<Mesh>(v)), std::nullopt};
+  }
   const auto rec = meshes_.store().get_mesh(mesh_id, server_caller());
   if (!rec) throw std::out_of_range("the hidden mesh is gone");
-  Picture p{meshes_.mesh(*rec), {}};
+  Picture p{meshes_.mesh(*rec), ScalarField{}};
   auto field = [&](const std::string& j) {
     return std::get<ScalarField>(jobs_.artifact_value(j, output, OutputKind::scalar_field, server_caller()));
   };
   if (which == "result") p.field = field(job);
   else if (which == "reference") p.field = field(ref_job);
   else if (which == "difference") {
-    p.field = field(job);
+    ScalarField d = field(job);
     const ScalarField ref = field(ref_job);
-    if (ref.values.size() != p.field.values.size()) throw InvalidInput("the result and the reference differ in size");
-    for (std::size_t i = 0; i < ref.values.size(); ++i) p.field.values[i] = std::abs(p.field.values[i] - ref.values[i]);
-    p.field.name = "difference";
+    if (ref.values.size() != d.values.size()) throw InvalidInput("the result and the reference differ in size");
+    for (std::size_t i = 0; i < ref.values.size(); ++i) d.values[i] = std::abs(d.values[i] - ref.values[i]);
+    d.name = "difference";
+    p.field = std::move(d);
   } else {
     throw std::out_of_range("no picture '" + which + "': result, reference or difference");
   }
-  p.field.check_matches(*p.mesh);
+  p.field->check_matches(*p.mesh);
   return p;
 }
 

@@ -79,12 +79,13 @@ class Grading {
   nlohmann::json regrade(const std::string& assignment, const Caller& caller);
 
   // What a picture of a submission's result on hidden mesh `n` shows:
-  // which: "result", "reference" or "difference".  Throws
+  // which: "result", "reference" or "difference" (a field's: on the hidden
+  // mesh); a mesh output's result or reference, drawn as it is.  Throws
   // std::out_of_range, Forbidden (pictures are off for students), InvalidInput
   // (the output is not a scalar field, or the run has none).
   struct Picture {
     std::shared_ptr<const Mesh> mesh;
-    ScalarField field;
+    std::optional<ScalarField> field;  // none: the mesh as it is
   };
   Picture picture(const std::string& submission, std::size_t n, const std::string& which, const Caller& caller) const;
 

@@ -339,6 +339,11 @@ TEST_F(Course, AMeshOutputIsScoredByItsHausdorffDistanceToTheReferences) {
   EXPECT_NE(wrong["results"][0].value("reason", "").find("Hausdorff distance"), std::string::npos) << wrong.dump();
   const json right = submit_and_wait(alice_, id, lift_source("0.0"));
   EXPECT_EQ(right.value("score", -1.0), 5.0) << right.dump();
+  // Its pictures: the student's mesh and the reference's, drawn as they are.
+  const HttpResult png = as(alice_, "GET", right["results"][0]["pictures"].value("result", ""));
+  ASSERT_EQ(png.status, 200u) << png.body;
+  EXPECT_EQ(png.body.substr(1, 3), "PNG");
+  EXPECT_FALSE(right["results"][0]["pictures"].contains("difference"));
   // The staff see the measure: a lift of 5% of the height, over the diagonal.
   const json staff = as(teacher_, "GET", "/api/v1/submissions/" + wrong.value("id", "")).body_json();
   const double h = staff["results"][0]["measures"].value("hausdorff", 0.0);
