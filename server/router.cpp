@@ -13,6 +13,7 @@
 #include "metrics.h"
 #include "render_service.h"
 #include "teaching/courses.h"
+#include "teaching/rooms.h"
 #include "zip_bundle.h"
 
 namespace cgview::server {
@@ -65,7 +66,14 @@ Router::Router(MeshService& meshes, RouterConfig config)
                  if (on_event) on_event(event, readers);
                }} {
   context_.auth = &auth_;
-  if (config_.courses) auth_.set_groups([c = config_.courses](const std::string& user) { return c->groups_of(user); });
+  // A caller's groups: their courses' and the live rooms they present or follow.
+  if (config_.courses)
+    auth_.set_groups([c = config_.courses, r = config_.rooms](const std::string& user) {
+      auto groups = c->groups_of(user);
+      if (r)
+        for (auto& g : r->groups_of(user)) groups.push_back(std::move(g));
+      return groups;
+    });
   add_account_routes(routes_, context_);
   add_ticket_routes(routes_, context_);
   add_mesh_routes(routes_, context_);
@@ -76,6 +84,7 @@ Router::Router(MeshService& meshes, RouterConfig config)
   add_plugin_routes(routes_, context_);
   add_course_routes(routes_, context_);
   add_assignment_routes(routes_, context_);
+  add_room_routes(routes_, context_);
   routes_.push_back({"GET",
                      "/api/v1/openapi.json",
                      "This API's OpenAPI 3 document",

@@ -22,6 +22,7 @@ namespace cgview::server {
 
 class Courses;
 class Grading;
+class Rooms;
 class PluginService;
 
 class JobScheduler;
@@ -39,6 +40,7 @@ struct RouterConfig {
   PluginService* plugins = nullptr;  // users' plugins; the plugin routes answer 500 without one
   Courses* courses = nullptr;        // courses and members (teaching/courses.h); none: no groups, 500
   Grading* grading = nullptr;        // assignments and submissions (teaching/grading.h)
+  Rooms* rooms = nullptr;            // live lectures and their recordings (teaching/rooms.h)
 };
 
 class Router {

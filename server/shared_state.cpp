@@ -90,9 +90,22 @@ Shared::Shared(const ServerConfig& c)
       plugins(std::make_unique<PluginService>(store, *jobs, plugin_config(c, *sandbox))),
       courses(std::make_unique<Courses>(store)),
       grading(std::make_unique<Grading>(meshes, *courses, *jobs, *plugins)),
+      rooms(std::make_unique<Rooms>(
+          store, *courses, [this](const json& e, const Access& readers) { broadcast(e, readers); },
+          [this](const std::string& kind, const std::string& id, const Caller& caller) {
+            try {
+              if (kind == "mesh") {
+                const auto rec = store.get_mesh(id, caller);
+                return rec && Access{rec->owner}.owned_by(caller);
+              }
+              return jobs->access(id, caller).owned_by(caller);
+            } catch (const std::exception&) {
+              return false;
+            }
+          })),
       router(meshes, {c.static_dir, "0.1.0", jobs.get(), c.gl_platform, std::max(1, c.workers),
                       c.auth_required || !boost::asio::ip::make_address(c.host).is_loopback(), &metrics, plugins.get(),
-                      courses.get(), grading.get()}),
+                      courses.get(), grading.get(), rooms.get()}),
       rate(c.rate_per_s, c.rate_burst),
       ws(meshes,
          {[j = jobs.get()](const std::string& job, const std::string& name, const std::string& format,
@@ -101,6 +114,7 @@ Shared::Shared(const ServerConfig& c)
          router.auth(), &rate, {c.chunk_bytes, c.max_ws_message_bytes}),
       workers(std::size_t(std::max(1, c.workers))),
       tls(tls_context(c)) {
+  ws.set_rooms(rooms.get());
   meshes.set_max_upload_bytes(c.max_upload_bytes);  // what a zip upload may unpack to
   if (!c.reader.empty())
     meshes.set_reader({c.reader, c.data_dir / "tmp", c.jobs.memory_mb,
@@ -121,6 +135,7 @@ Shared::Shared(const ServerConfig& c)
 // The grading thread and the plugins' scanner submit jobs: they stop first.  The scheduler's thread
 // sends events through the router and the plugins: it stops before them.
 Shared::~Shared() {
+  rooms.reset();  // its flusher sends through the sessions, which go before it
   grading->stop();
   plugins->stop();
   jobs.reset();

@@ -27,6 +27,7 @@
 #include "store.h"
 #include "teaching/courses.h"
 #include "teaching/grading.h"
+#include "teaching/rooms.h"
 #include "ws_handler.h"
 
 namespace cgview::server {
@@ -54,6 +55,7 @@ struct Shared {
   std::unique_ptr<PluginService> plugins;  // users' algorithms (plugin_service.h)
   std::unique_ptr<Courses> courses;        // classes and their members (teaching/courses.h)
   std::unique_ptr<Grading> grading;        // assignments graded on hidden meshes (teaching/grading.h)
+  std::unique_ptr<Rooms> rooms;            // live lectures (teaching/rooms.h)
   Router router;
   RateLimiter rate;
   WsHandler ws;

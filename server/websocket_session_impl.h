@@ -36,6 +36,7 @@ class WebSocketSession : public EventSink, public std::enable_shared_from_this<W
     conn_.loopback = peer_->loopback;
   }
   ~WebSocketSession() {
+    shared_->ws.closed(conn_);  // a presenter's room ends, a follower leaves
     shared_->metrics.websocket_closed();
     shared_->remove_session(static_cast<EventSink*>(this));
   }
@@ -98,7 +99,10 @@ class WebSocketSession : public EventSink, public std::enable_shared_from_this<W
   void on_read(beast::error_code ec, std::size_t) {
     if (ec == websocket::error::message_too_big)
       return enqueue(shared_->ws.too_big());  // Beast closes the stream after it
-    if (ec) return;                           // closed, timed out or broken: the session ends
+    if (ec) {                                 // closed, timed out or broken: the session ends
+      auth_timer_.cancel();                   // which holds it: its end is now, not when the timer would fire
+      return;
+    }
     const std::string text = beast::buffers_to_string(buffer_.data());
     buffer_.consume(buffer_.size());
     if (auto work = shared_->ws.receive(text, ws_.got_binary(), conn_, on_strand()))

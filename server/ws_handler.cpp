@@ -1,12 +1,15 @@
 #include "ws_handler.h"
 
 #include <climits>
+#include <set>
 
 #include "animation_frames.h"
 #include "core/errors.h"
 #include "io/parse_json.h"
 #include "mesh_service.h"
 #include "rate_limit.h"
+#include "teaching/rooms.h"
+#include "zip_bundle.h"  // TooLarge
 #include "voxel/voxel_io.h"
 #include "voxel_slice.h"
 
@@ -84,7 +87,11 @@ WsHandler::Work WsHandler::receive(std::string_view text, bool binary, WsConnect
     return error(nullptr, "bad_request", "request_id must be a non-negative integer");
   const auto type = string_field(msg, "type");
   if (!type) return error(id, "bad_request", "the message has no \"type\"");
-  if (rate_) {
+  // A presenter's stream is not held back by the per-token rate limit: a
+  // camera dragged sends 30 changes a second (the room coalesces them).
+  const bool presenting = *type == "room_set" && rooms_ && conn.caller && msg.value("room", json()).is_string() &&
+                          rooms_->presents(msg["room"], conn.caller->user);
+  if (rate_ && !presenting) {
     if (const auto over = check_rate(*rate_, conn.authorization, conn.address, conn.loopback)) {
       json refusal = error_message(id, "rate_limited", over->detail);
       refusal["retry_after_s"] = over->retry_after_s;
@@ -109,6 +116,7 @@ WsHandler::Work WsHandler::receive(std::string_view text, bool binary, WsConnect
     emit(WsOut::text({{"type", "pong"}, {"request_id", id}}));
     return {};
   }
+  if (room_message(*type, msg, id, conn, *caller, emit)) return {};
   using Part = void (WsHandler::*)(const json&, const json&, const Caller&, const WsEmit&) const;
   Part part = nullptr;
   if (*type == "get_mesh") part = &WsHandler::get_mesh;
@@ -127,6 +135,56 @@ WsHandler::Work WsHandler::receive(std::string_view text, bool binary, WsConnect
       out(WsOut::text(error_message(id, "internal", e.what())));
     }
   };
+}
+
+bool WsHandler::room_message(const std::string& type, const json& msg, const json& id, WsConnection& conn,
+                             const Caller& caller, const WsEmit& emit) const {
+  static const std::set<std::string> kinds = {"present", "follow", "room_set", "raise_hand", "show_hand", "room_end"};
+  if (!kinds.count(type)) return false;
+  try {
+    if (!rooms_) throw std::runtime_error("this server holds no live rooms");
+    if (conn.id.empty()) conn.id = new_id();
+    const auto room = string_field(msg, "room");
+    auto need_room = [&] {
+      if (!room) throw InvalidInput("the message has no \"room\"");
+      return *room;
+    };
+    json reply;
+    if (type == "present") reply = rooms_->present(msg, caller, conn.id);
+    else if (type == "follow") reply = rooms_->follow(msg, caller, conn.id);
+    else if (type == "room_set") {
+      const auto part = string_field(msg, "part");
+      if (!part || !msg.contains("value")) throw InvalidInput("room_set is {\"room\", \"part\", \"value\"}");
+      rooms_->set(need_room(), *part, msg["value"], caller);
+    } else if (type == "raise_hand") {
+      rooms_->hand(need_room(), msg.value("point", json()), caller);
+    } else if (type == "show_hand") {
+      const auto user = string_field(msg, "user");
+      if (!user) throw InvalidInput("show_hand is {\"room\", \"user\"}");
+      rooms_->show_hand(need_room(), *user, caller);
+    } else {
+      rooms_->end(need_room(), caller);
+    }
+    if (!reply.is_null()) {
+      reply["request_id"] = id;
+      emit(WsOut::text(reply));
+    }
+  } catch (const Forbidden& e) {
+    emit(WsOut::text(error_message(id, "forbidden", e.what())));
+  } catch (const TooLarge& e) {
+    emit(WsOut::text(error_message(id, "payload_too_large", e.what())));
+  } catch (const InvalidInput& e) {
+    emit(WsOut::text(error_message(id, "bad_request", e.what())));
+  } catch (const std::out_of_range& e) {
+    emit(WsOut::text(error_message(id, "not_found", e.what())));
+  } catch (const std::exception& e) {
+    emit(WsOut::text(error_message(id, "internal", e.what())));
+  }
+  return true;
+}
+
+void WsHandler::closed(const WsConnection& conn) const {
+  if (rooms_ && !conn.id.empty()) rooms_->disconnected(conn.id);
 }
 
 std::vector<WsOut> WsHandler::handle(std::string_view text, WsConnection& conn, bool binary) const {

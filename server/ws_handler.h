@@ -24,6 +24,7 @@ namespace cgview::server {
 
 class MeshService;
 class RateLimiter;
+class Rooms;
 
 // A message to a client: JSON text, or a binary frame (its header, then a
 // view into a payload that `keep` holds: the cached Draco bytes are never copied).
@@ -47,6 +48,7 @@ struct WsConnection {
   std::string authorization;
   std::optional<Caller> caller;  // set once authenticated
   bool close = false;            // refused: the session closes once the replies are sent
+  std::string id;                // this connection's, once it presents or follows a live room
 };
 
 struct WsHandlerConfig {
@@ -82,12 +84,20 @@ class WsHandler {
   std::vector<WsOut> handle(std::string_view text, WsConnection& conn, bool binary = false) const;
   // The reply to a message over max_message_bytes (the session then closes).
   WsOut too_big() const;
+  // Live rooms (teaching/rooms.h): their messages are present, follow,
+  // room_set, raise_hand, show_hand and room_end.  Set before serving.
+  void set_rooms(Rooms* rooms) { rooms_ = rooms; }
+  // The connection closed: its rooms hear of it.
+  void closed(const WsConnection& conn) const;
   // Whether an event for `readers` goes to this connection; a revoked token
   // gets its refusal through `emit` instead (and conn.close).
   bool admits_event(WsConnection& conn, const Access& readers, const WsEmit& emit) const;
 
  private:
   std::optional<Caller> still_authorized(WsConnection& conn, const WsEmit& emit) const;
+  // A room's message, answered on the strand (light work); false: not one.
+  bool room_message(const std::string& type, const nlohmann::json& msg, const nlohmann::json& id, WsConnection& conn,
+                    const Caller& caller, const WsEmit& emit) const;
   void get_mesh(const nlohmann::json& msg, const nlohmann::json& id, const Caller& caller, const WsEmit& emit) const;
   void get_slice(const nlohmann::json& msg, const nlohmann::json& id, const Caller& caller, const WsEmit& emit) const;
   void get_animation(const nlohmann::json& msg, const nlohmann::json& id, const Caller& caller,
@@ -109,6 +119,7 @@ class WsHandler {
   const Auth& auth_;
   RateLimiter* rate_;
   WsHandlerConfig config_;
+  Rooms* rooms_ = nullptr;
 };
 
 }  // namespace cgview::server

@@ -87,6 +87,8 @@ void add_course_routes(Routes& routes, const RouteContext& ctx);
 // /api/v1/courses/{id}/assignments, /api/v1/assignments..., /api/v1/submissions...: graded exercises
 // (teaching/grading.h).
 void add_assignment_routes(Routes& routes, const RouteContext& ctx);
+// /api/v1/courses/{id}/rooms and /api/v1/rooms/{id}/recording: live lectures and their recordings (teaching/rooms.h).
+void add_room_routes(Routes& routes, const RouteContext& ctx);
 // /api/v1/tickets: sign-in tickets for a page that must not hold a token in its URL (tickets.h).
 void add_ticket_routes(Routes& routes, const RouteContext& ctx);
 

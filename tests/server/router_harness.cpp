@@ -35,6 +35,10 @@ void RouterFixture::open(const std::filesystem::path& store_dir, std::optional<s
   // Courses, and assignments where there are jobs, as the server has them.
   courses_ = std::make_unique<server::Courses>(*store_);
   rc.courses = courses_.get();
+  rooms_ = std::make_unique<server::Rooms>(
+      *store_, *courses_, [](const nlohmann::json&, const server::Access&) {},
+      [](const std::string&, const std::string&, const server::Caller&) { return false; });
+  rc.rooms = rooms_.get();
   if (jobs_) {
     grading_ = std::make_unique<server::Grading>(*meshes_, *courses_, *jobs_, *plugins_);
     rc.grading = grading_.get();
@@ -57,6 +61,7 @@ void RouterFixture::TearDown() {
   if (plugins_) plugins_->stop();
   jobs_.reset();
   grading_.reset();
+  rooms_.reset();
   courses_.reset();
   plugins_.reset();
   meshes_.reset();

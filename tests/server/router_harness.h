@@ -19,6 +19,7 @@
 #include "store.h"
 #include "teaching/courses.h"
 #include "teaching/grading.h"
+#include "teaching/rooms.h"
 
 namespace cgview::test {
 
@@ -48,6 +49,7 @@ class RouterFixture : public ::testing::Test {
   std::unique_ptr<server::PluginService> plugins_;
   std::unique_ptr<server::Courses> courses_;
   std::unique_ptr<server::Grading> grading_;
+  std::unique_ptr<server::Rooms> rooms_;
   std::unique_ptr<server::Router> router_;
   std::string alice_, bob_;
 };
