@@ -56,6 +56,7 @@ void add_account_routes(Routes& routes, const RouteContext& ctx) {
                       auto or_null = [](const auto& v) { return v ? json(*v) : json(nullptr); };
                       return json_response(200, {{"user", caller.user},
                                                  {"admin", caller.admin},
+                                                 {"teacher", caller.teacher || caller.admin},
                                                  {"storage_bytes_used", use.storage_bytes},
                                                  {"storage_bytes_limit", or_null(lim.storage_bytes)},
                                                  {"jobs_active", use.jobs_active},

@@ -153,17 +153,7 @@ void add_assignment_routes(Routes& routes, const RouteContext& ctx) {
          };
          params.width = size("width", 480);
          params.height = size("height", 360);
-         HttpResponse r;
-         try {
-           r.body = ctx.renders->png(*pic.mesh, pic.field ? &*pic.field : nullptr, params);
-         } catch (const InvalidInput&) {
-           throw;
-         } catch (const Error& e) {
-           return error_response(503, "render_unavailable", e.what());
-         }
-         r.content_type = "image/png";
-         r.headers.push_back({"Cache-Control", "private, max-age=60"});
-         return r;
+         return png_response(ctx, *pic.mesh, pic.field ? &*pic.field : nullptr, params);
        }});
 }
 

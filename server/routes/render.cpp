@@ -97,9 +97,16 @@ HttpResponse render_png(const RouteContext& ctx, const MeshRecord& rec, const Ht
       return bad_parameter(BadParameter("field", std::string("parameter 'field': ") + e.what()));
     }
   }
+  return png_response(ctx, *mesh, field ? &*field : nullptr, params);
+}
+
+}  // namespace
+
+HttpResponse png_response(const RouteContext& ctx, const Mesh& mesh, const ScalarField* field,
+                          const render::RenderParams& params) {
   HttpResponse r;
   try {
-    r.body = ctx.renders->png(*mesh, field ? &*field : nullptr, params);
+    r.body = ctx.renders->png(mesh, field, params);
   } catch (const InvalidInput&) {
     throw;
   } catch (const Error& e) {
@@ -109,8 +116,6 @@ HttpResponse render_png(const RouteContext& ctx, const MeshRecord& rec, const Ht
   r.headers.push_back({"Cache-Control", "private, max-age=60"});
   return r;
 }
-
-}  // namespace
 
 void add_render_route(Routes& routes, const RouteContext& ctx) {
   routes.push_back(

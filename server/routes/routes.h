@@ -15,6 +15,14 @@
 #include "auth.h"
 #include "routes/http.h"
 
+namespace cgview {
+struct Mesh;
+struct ScalarField;
+namespace render {
+struct RenderParams;
+}
+}  // namespace cgview
+
 namespace cgview::server {
 
 class Courses;
@@ -72,6 +80,9 @@ struct RouteContext {
 void add_mesh_routes(Routes& routes, const RouteContext& ctx);
 // GET /api/v1/meshes/{id}/render.png (the offscreen renderer).
 void add_render_route(Routes& routes, const RouteContext& ctx);
+// A PNG of the mesh (coloured by the field, if any) from the renderer; 503 where it cannot start.
+HttpResponse png_response(const RouteContext& ctx, const Mesh& mesh, const ScalarField* field,
+                          const render::RenderParams& params);
 // /api/v1/algorithms and /api/v1/jobs...: submit, list, one, cancel, artifacts, share.
 void add_job_routes(Routes& routes, const RouteContext& ctx);
 // POST /api/v1/data: a voxel grid, skeleton or scalar field another tool made.

@@ -287,16 +287,22 @@ json Grading::create(const std::string& course, const json& body, const Caller& 
   for (const auto& id : pub) {
     const auto rec = store.get_mesh(id, caller);
     if (!rec) throw std::out_of_range("no mesh with id '" + id + "'");
+    // Posting shares it with the course: only its owner shares a mesh.
+    if (!Access{rec->owner}.owned_by(caller) && !store.access("mesh", id, rec->owner).everyone)
+      throw Forbidden("public mesh " + id + " is " + rec->owner + "'s: only its owner shares it with a course");
   }
   for (const auto& id : hidden) {
     const auto rec = store.get_mesh(id, caller);
     if (!rec) throw std::out_of_range("no mesh with id '" + id + "'");
     if (!Access{rec->owner}.owned_by(caller))
       throw InvalidInput("hidden mesh " + id + " is " + rec->owner + "'s: a hidden mesh is one of your own");
+    // Shared with nobody but courses' staff (an earlier assignment's, or this one's).
     const Access a = store.access("mesh", id, rec->owner);
-    if (a.everyone || !a.readers.empty())
-      throw InvalidInput("hidden mesh " + id + " is shared (with " + (a.everyone ? "everyone" : a.readers.front()) +
-                         "): unshare it first, or it is not hidden");
+    for (const std::string& r : a.readers)
+      if (!r.starts_with("staff:"))
+        throw InvalidInput("hidden mesh " + id + " is shared (with " + r + "): unshare it first, or it is not hidden");
+    if (a.everyone)
+      throw InvalidInput("hidden mesh " + id + " is shared (with everyone): unshare it first, or it is not hidden");
     if (std::find(pub.begin(), pub.end(), id) != pub.end())
       throw InvalidInput("mesh " + id + " is both public and hidden");
   }
@@ -361,8 +367,9 @@ json Grading::create(const std::string& course, const json& body, const Caller& 
     a.reference_jobs.push_back(job["id"]);
     store.set_shared("job", job["id"], {Courses::staff(course)}, true);
   }
-  // The public meshes are the course's to read.
+  // The public meshes are the course's to read; the hidden ones its staff's (they open the runs on them).
   for (const auto& id : pub) store.set_shared("mesh", id, {Courses::group(course)}, true);
+  for (const auto& id : hidden) store.set_shared("mesh", id, {Courses::staff(course)}, true);
   std::lock_guard lock(mutex_);
   save(a);
   assignments_[a.id] = a;

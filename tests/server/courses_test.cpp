@@ -386,6 +386,21 @@ TEST_F(Course, NoRouteGivesAStudentAHiddenMeshOrTheReferencesOutput) {
   ASSERT_FALSE(ws.send({{"type", "get_mesh"}, {"mesh_id", hidden_[0]}, {"request_id", 2}}));
   const json r = ws.reply();
   EXPECT_EQ(r.value("type", ""), "error") << r.dump();
+  // An assistant reads the hidden meshes (to open the runs on them); a student never.
+  ASSERT_EQ(as(teacher_, "POST", "/api/v1/courses/" + course() + "/members",
+               json::array({{{"login", "eve"}, {"role", "assistant"}}}))
+                .status,
+            200u);
+  EXPECT_EQ(as(eve_, "GET", "/api/v1/meshes/" + hidden_[0]).status, 200u);
+  EXPECT_EQ(as(eve_, "GET", "/api/v1/jobs/" + run).status, 200u);
+  // A public mesh is shared with the course by posting: it must be the teacher's to share.
+  const std::string bobs = upload(bob_, "cube.off");
+  ASSERT_EQ(as(bob_, "POST", "/api/v1/meshes/" + bobs + "/share", {{"users", {"tina"}}}).status, 200u);
+  const HttpResult not_theirs =
+      as(teacher_, "POST", "/api/v1/courses/" + course() + "/assignments",
+         {{"title", "x"}, {"public_meshes", {bobs}}, {"hidden_meshes", hidden_}, {"reference_plugin", reference_}});
+  EXPECT_EQ(not_theirs.status, 403u) << not_theirs.body;
+  EXPECT_EQ(as(alice_, "GET", "/api/v1/meshes/" + bobs).status, 404u);
   // A hidden mesh must be the teacher's own and shared with nobody.
   const std::string shared = upload(teacher_, "cube.off");
   ASSERT_EQ(as(teacher_, "POST", "/api/v1/meshes/" + shared + "/share", {{"everyone", true}}).status, 200u);
