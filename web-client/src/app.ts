@@ -1,12 +1,13 @@
 // The viewer's orchestrator: makes the state (state/app_state.ts), the
 // viewer and the panels that several parts draw in, the controllers (meshes,
-// jobs, scene, comparison, view links, account) and the artifact kinds
+// jobs, scene, comparison, view links, account, course) and the artifact kinds
 // (kinds/registry.ts), and joins them to the server's events. Panels render
 // from the state; the controllers and kinds are the only ones that change it.
 import type { ServerEvent } from './api/types.ts';
 import { CgviewSocket } from './api/ws.ts';
 import { AccountController } from './controllers/account.ts';
 import { CompareController } from './controllers/compare.ts';
+import { CourseController } from './controllers/course.ts';
 import type { AppContext, Controllers } from './controllers/context.ts';
 import { JobsController } from './controllers/jobs.ts';
 import { MeshLoader } from './controllers/mesh_loader.ts';
@@ -36,6 +37,12 @@ import { Viewer } from './viewer/viewer.ts';
 
 export type { TestHooks };
 
+/** How the page was opened: with a course's sign-in link (the Course panel opens), or with one refused. */
+export interface AppOptions {
+  openCourse?: boolean;
+  refusedLink?: boolean;
+}
+
 export class App {
   private readonly store = new Store<AppState>(initialState());
   private readonly socket = new CgviewSocket();
@@ -43,8 +50,10 @@ export class App {
   private readonly app = {} as Controllers;
   private readonly links: ViewLinks;
   private readonly error: (text: string) => void;
+  private readonly options: AppOptions;
 
-  constructor() {
+  constructor(options: AppOptions = {}) {
+    this.options = options;
     const { store, app } = this;
     const hooks = (this.hooks = installTestHooks((frames) => orbitFrameTimes(viewer, frames)));
     const viewer = new Viewer(byId('viewport'), {
@@ -141,7 +150,7 @@ export class App {
       display.screenshot(`cgview-${name}.png`, (blob) => (hooks.lastScreenshot = blob ? { bytes: blob.size } : null));
     });
     byId('copy-link').addEventListener('click', () => this.links.copy());
-    installPlayground(ctx);
+    app.course = new CourseController(ctx, byId('course'), byId<HTMLButtonElement>('course-toggle'), installPlayground(ctx));
   }
 
   async start(): Promise<void> {
@@ -158,7 +167,8 @@ export class App {
       if (connected) connectedBefore = true;
     });
     socket.connect().catch(() => this.error('Cannot open the WebSocket to the server; retrying.'));
-    await Promise.all([app.meshes.refresh(), app.jobs.loadAlgorithms(), app.account.refresh()]);
+    if (this.options.refusedLink) this.error('This sign-in link is used or expired: ask your teacher for another.');
+    await Promise.all([app.meshes.refresh(), app.jobs.loadAlgorithms(), app.account.refresh(), app.course.start(this.options.openCourse ?? false)]);
     this.hooks.ready = true;
     await this.links.restore();
   }

@@ -45,8 +45,8 @@ async function failure(response: Response): Promise<ApiError> {
   return new ApiError(response.status, response.statusText || 'error', text.slice(0, 300));
 }
 
-/** A JSON request to the API (BASE + path) with the caller's token; rejects with an ApiError. */
-export async function request<T>(path: string, init?: RequestInit): Promise<T> {
+/** A request to the API (BASE + path) with the caller's token: its answer, ok; rejects with an ApiError. */
+export async function requestOk(path: string, init?: RequestInit): Promise<Response> {
   let response: Response;
   try {
     response = await authFetch(BASE + path, init);
@@ -54,6 +54,12 @@ export async function request<T>(path: string, init?: RequestInit): Promise<T> {
     throw new ApiError(0, 'network', `cannot reach the server: ${(e as Error).message}`);
   }
   if (!response.ok) throw await failure(response);
+  return response;
+}
+
+/** A JSON request to the API (BASE + path) with the caller's token; rejects with an ApiError. */
+export async function request<T>(path: string, init?: RequestInit): Promise<T> {
+  const response = await requestOk(path, init);
   if (response.status === 204) return undefined as T;
   return (await response.json()) as T;
 }

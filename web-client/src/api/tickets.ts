@@ -8,6 +8,11 @@
 // it expires: api/auth.ts sends it as it sends a token. In a frame, the page
 // then tells the page around it whether it can show the view, so that the
 // output shows the viewer or, failing that, keeps its picture.
+//
+// A course's one-time sign-in link (`#ticket=cgl_…`, mailed to a student by
+// their teacher) is redeemed the same way, but for a token of the student's
+// own (`"kind":"token"`): the page keeps it as it keeps a token typed in
+// (api/auth.ts, localStorage), not as a session of this tab.
 
 const SESSION_KEY = 'cgview.session';
 
@@ -40,36 +45,51 @@ export function clearSession(): void {
   }
 }
 
-/** What the page's ticket came to: none given, a session, or refused (used, expired, forged). */
-export type TicketOutcome = 'none' | 'signed-in' | 'refused';
+/**
+ * What the page's ticket came to: none given, a session, a token of the
+ * user's own (a course's sign-in link), or refused (used, expired, forged;
+ * `refused-link`: a course's sign-in link).
+ */
+export type TicketOutcome = 'none' | 'signed-in' | 'token' | 'refused' | 'refused-link';
+
+/** A course's sign-in link, as opposed to a notebook's ticket. */
+export const COURSE_LINK_PREFIX = 'cgl_';
 
 /**
  * Redeems the ticket of the page's hash, if it has one, after taking it out
  * of the address (a reload or a copied link must not carry it). A refused
  * ticket leaves an earlier session of this tab in place: the same output
- * cell's frame, drawn again, finds it.
+ * cell's frame, drawn again, finds it. A course's link gives a token, handed
+ * to `keepToken`.
  */
-export async function redeemTicket(): Promise<TicketOutcome> {
+export async function redeemTicket(keepToken: (token: string) => void): Promise<TicketOutcome> {
   const params = new URLSearchParams(location.hash.slice(1));
   const ticket = params.get('ticket');
   if (ticket === null) return 'none';
   params.delete('ticket');
   const rest = params.toString();
   history.replaceState(history.state, '', `${location.pathname}${location.search}${rest ? `#${rest}` : ''}`);
+  const link = ticket.startsWith(COURSE_LINK_PREFIX);
+  const refused: TicketOutcome = link ? 'refused-link' : 'refused';
   try {
     const r = await fetch('/api/v1/tickets/redeem', {
       method: 'POST',
       headers: { 'Content-Type': 'application/json' },
       body: JSON.stringify({ ticket }),
     });
-    if (!r.ok) return 'refused';
-    const s = (await r.json()) as { token?: unknown; expires_s?: unknown };
-    if (typeof s.token !== 'string' || typeof s.expires_s !== 'number') return 'refused';
+    if (!r.ok) return refused;
+    const s = (await r.json()) as { token?: unknown; expires_s?: unknown; kind?: unknown };
+    if (link || s.kind === 'token') {
+      if (typeof s.token !== 'string') return refused;
+      keepToken(s.token);
+      return 'token';
+    }
+    if (typeof s.token !== 'string' || typeof s.expires_s !== 'number') return refused;
     const stored: StoredSession = { token: s.token, expires: Date.now() + s.expires_s * 1000 };
     sessionStorage.setItem(SESSION_KEY, JSON.stringify(stored));
     return 'signed-in';
   } catch {
-    return 'refused';
+    return refused;
   }
 }
 

@@ -55,6 +55,8 @@ export interface MeshTexture {
 export interface Me {
   user: string;
   admin: boolean;
+  /** May create courses (the role teacher, or an admin). */
+  teacher: boolean;
   storage_bytes_used: number;
   storage_bytes_limit: number | null;
   jobs_active: number;

@@ -35,6 +35,12 @@ export class AccountController {
     }, 300);
   }
 
+  /** An item's owner when it is another user (a student's work shared with their teacher), to name beside it; null for the user's own and the samples. */
+  otherOwner(owner: string | undefined): string | null {
+    const me = this.store.get().me;
+    return me && owner && owner !== me.user && owner !== 'system' ? owner : null;
+  }
+
   /** Whether the user may share or delete an item of that owner (the server decides in the end). */
   mayChange(owner: string | undefined): boolean {
     const me = this.store.get().me;

@@ -15,6 +15,7 @@ import type { SelectionTool } from '../viewer/selection_tool.ts';
 import type { Kinds } from '../kinds/registry.ts';
 import type { AccountController } from './account.ts';
 import type { CompareController } from './compare.ts';
+import type { CourseController } from './course.ts';
 import type { JobsController } from './jobs.ts';
 import type { MeshLoader } from './mesh_loader.ts';
 import type { MeshesController } from './meshes.ts';
@@ -29,6 +30,7 @@ export interface Controllers {
   compare: CompareController;
   jobs: JobsController;
   kinds: Kinds;
+  course: CourseController;
 }
 
 export interface AppContext {

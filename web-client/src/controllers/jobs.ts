@@ -99,6 +99,7 @@ export class JobsController {
           skeletons: s.skeletons,
           vectors: s.vectors,
           mayChange: (owner) => app.account.mayChange(owner),
+          ownerName: (owner) => app.account.otherOwner(owner),
         });
       },
       { now: true },
@@ -304,6 +305,30 @@ export class JobsController {
   /** The name of the job's first input ("mesh" for most algorithms, "grid" for grid_surface). */
   private firstInput(job: Job): string {
     return this.algorithmOf(job)?.inputs?.[0]?.name ?? ('mesh' in (job.inputs ?? {}) ? 'mesh' : (Object.keys(job.inputs ?? {})[0] ?? 'mesh'));
+  }
+
+  /**
+   * Opens a job's result as its row in the job list would (the job asked for
+   * first when the page does not know it ended: one shared with the caller,
+   * a graded run the staff open from the Course panel): the artifact named,
+   * else the job's first. Rejects, saying why, when it has none to show.
+   */
+  async openResult(jobId: string, artifact?: string): Promise<void> {
+    const { app } = this.ctx;
+    let job = jobOf(this.ctx, jobId);
+    if (!job || !FINAL.has(job.state)) {
+      job = await getJob(jobId);
+      this.upsert(job);
+    }
+    if (job.state !== 'done') throw new Error(`its job is ${job.state}${job.error ? `: ${job.error}` : ''}`);
+    const a = job.artifacts?.find((x) => x.name === artifact) ?? job.artifacts?.[0];
+    if (!a) throw new Error('its job made nothing to show');
+    if (a.kind === 'mesh') {
+      app.meshes.selectMeshOf(job);
+      await app.scene.addResult(job.id, a.name);
+    } else {
+      await app.kinds.show(job.id, a.name, a.kind);
+    }
   }
 
   async cancel(id: string): Promise<void> {

@@ -60,6 +60,7 @@ export class MeshesController {
       remove: (id) => this.remove(id),
       share: (id) => openShareForm('meshes', id, this.mesh(id)?.name ?? id),
       mayChange: (owner) => ctx.app.account.mayChange(owner),
+      ownerName: (owner) => ctx.app.account.otherOwner(owner),
     });
     const report = new ReportPanel(byId('report'));
     report.render(null);

@@ -4,7 +4,9 @@
 // WebSocket, its end read back from the plugin, whose build says "ok" with
 // the algorithms it registers or "failed" with the compiler's messages), and
 // run on the mesh shown through the jobs controller, so that what it makes
-// appears as any algorithm's does. Loaded with the code panel only.
+// appears as any algorithm's does. While a course's assignment is open the
+// file is submitted to it (controllers/course.ts), and the staff read a
+// student's submission here, read-only. Loaded with the code panel only.
 import { buildPlugin, createPlugin, getPlugin, listPlugins, updatePlugin, type Plugin } from '../api/plugins.ts';
 import { getJob, listAlgorithms } from '../api/rest.ts';
 import type { Algorithm, Job } from '../api/types.ts';
@@ -12,6 +14,7 @@ import { CodeEditor } from '../panels/code_editor.ts';
 import { PlaygroundPanel, type PluginGroup } from '../panels/playground.ts';
 import { TEMPLATE, TEMPLATE_NAME } from '../panels/playground_template.ts';
 import { openShareForm } from '../panels/share.ts';
+import { submittable } from '../state/app_state.ts';
 import { describe, type AppContext } from './context.ts';
 
 const FINAL = new Set(['done', 'failed', 'cancelled', 'interrupted']);
@@ -30,6 +33,8 @@ export class PluginsController {
   private algorithm: Algorithm | null = null;
   private busy = false;
   private listsAsked = 0;
+  /** A text shown read-only that is no plugin of the caller's (a student's submission, to the staff): its name. */
+  private viewing: string | null = null;
 
   constructor(ctx: AppContext, root: HTMLElement) {
     this.ctx = ctx;
@@ -41,6 +46,7 @@ export class PluginsController {
       share: () => this.share(),
       build: () => void this.task(async () => void (await this.build())),
       run: () => void this.task(() => this.run()),
+      submit: () => void ctx.app.course.submit(),
       goTo: (d) => this.editor.goTo(d.line, d.column),
       selection: (kind) => ctx.app.jobs.selectionFor(kind),
     });
@@ -54,7 +60,63 @@ export class PluginsController {
       (name) => this.panel.setTarget(name),
       { now: true },
     );
+    ctx.store.subscribe(
+      (s) => submittable(s)?.title ?? null,
+      (title) => this.panel.setAssignment(title),
+      { now: true },
+    );
     void this.refreshList();
+  }
+
+  /** Opens a plugin (the student's copy of a starter), as "Open" does; what went wrong is said in the status line. */
+  openPlugin(id: string): Promise<void> {
+    return this.task(() => this.open(id));
+  }
+
+  /** Shows a text read-only, named `name`, with a note in the status line (a student's submission, to the staff). */
+  showSource(name: string, text: string, note: string): Promise<void> {
+    return this.task(async () => {
+      await this.keepEdits();
+      this.plugin = null;
+      this.algorithm = null;
+      this.viewing = name;
+      this.saved = text;
+      this.editor.setText(text, true);
+      this.panel.nameInput.value = name;
+      this.panel.setEditable(this.editable());
+      this.panel.setDiagnostics([]);
+      this.panel.setAlgorithm(null);
+      this.panel.status(note);
+      void this.refreshList();
+    });
+  }
+
+  /**
+   * The file to submit, saved first (created the first time): its plugin's
+   * id. Throws, saying why, when there is none of the caller's to submit.
+   */
+  async fileToSubmit(): Promise<string> {
+    if (this.busy) throw new Error('The code panel is busy: submit once it is done.');
+    if (this.viewing !== null) throw new Error("The code panel shows a student's submission, read-only: open your own file to submit it.");
+    if (!this.plugin && !this.dirty()) throw new Error('Open the starter first, or write your code in the code panel.');
+    let failure: unknown = null;
+    let id = '';
+    await this.task(async () => {
+      try {
+        if (this.editable().change) await this.save();
+        id = this.plugin!.id;
+      } catch (e) {
+        failure = e;
+        throw e;
+      }
+    });
+    if (failure) throw failure;
+    return id;
+  }
+
+  /** Says something in the status line (how a submission went). */
+  note(text: string, level: 'info' | 'ok' | 'error' = 'info'): void {
+    this.panel.status(text, level);
   }
 
   /** The panel was shown again: the list may have changed meanwhile (another tab, a share). */
@@ -63,6 +125,7 @@ export class PluginsController {
   }
 
   private editable(): { change: boolean; share: boolean } {
+    if (this.viewing !== null) return { change: false, share: false };
     const p = this.plugin;
     const mine = !p || (p.origin !== 'lab' && this.ctx.app.account.mayChange(p.owner));
     return { change: mine, share: !!p && mine };
@@ -115,6 +178,7 @@ export class PluginsController {
 
   /** Shows a plugin as the server answered it (with its source): text, name, messages, form. */
   private async show(plugin: Plugin, text = plugin.source ?? ''): Promise<void> {
+    this.viewing = null;
     this.plugin = plugin;
     this.saved = text;
     if (this.editor.text !== text) this.editor.setText(text, !this.editable().change);
@@ -171,6 +235,7 @@ export class PluginsController {
 
   private async create(): Promise<void> {
     await this.keepEdits();
+    this.viewing = null;
     this.plugin = null;
     this.algorithm = null;
     this.saved = TEMPLATE;

@@ -56,6 +56,8 @@ export interface JobsView {
   vectors: ReadonlyMap<string, string>;
   /** Whether the user may share a job of that owner. */
   mayChange(owner: string | undefined): boolean;
+  /** The owner to name beside a job: another user's (a student's run, shared with the staff), else null. */
+  ownerName?(owner: string | undefined): string | null;
 }
 
 /** The artifact kinds' modules by the server's kind string (kinds/registry.ts). */
@@ -122,7 +124,7 @@ export class JobsPanel {
     const meshId = jobMeshId(job);
     const mesh = meshId ? view.meshName(meshId) : null;
     const artifacts = (job.artifacts ?? []).map((a) => [a.name, a.kind, a.formats ?? null, a.bytes ?? null, this.kinds.of(a.kind)?.rowState(job, a, view) ?? null]);
-    return JSON.stringify([job.state, job.cached, job.error, job.warnings ?? [], mesh, view.mayChange(job.owner), artifacts]);
+    return JSON.stringify([job.state, job.cached, job.error, job.warnings ?? [], mesh, view.mayChange(job.owner), view.ownerName?.(job.owner) ?? null, artifacts]);
   }
 
   /** The parts that progress events change. */
@@ -148,9 +150,11 @@ export class JobsPanel {
       el('span', { class: 'job-title', title: `${job.algorithm} ${JSON.stringify(job.params ?? {})}` }, job.algorithm),
       el('span', { class: `job-state state-${job.state}` }, job.cached ? `${job.state} (cached)` : job.state),
     );
+    const owner = view.ownerName?.(job.owner) ?? null;
     const status = el(
       'div',
       { class: 'job-status' },
+      owner ? el('span', { class: 'job-owner', title: `${owner}'s job` }, owner) : null,
       el('span', { class: 'job-mesh' }, mesh),
       el('span', { class: 'job-stage' }, job.stage || ''),
       el('span', { class: 'job-percent' }, `${Math.floor(fraction * 100)}%`),

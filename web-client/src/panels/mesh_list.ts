@@ -3,7 +3,8 @@
 // ctrl-click) adds it to
 // the scene beside the meshes shown, the delete button removes it from the
 // server, the share button (⇪) opens the share form (on what the user may
-// change: their own meshes, or any for an admin).
+// change: their own meshes, or any for an admin); another user's mesh (a
+// student's, shared with their teacher) says whose it is.
 import { setImageSource } from '../api/auth.ts';
 import { renderUrl } from '../api/rest.ts';
 import type { Mesh } from '../api/types.ts';
@@ -41,6 +42,8 @@ export interface MeshListActions {
   share(id: string): void;
   /** Whether the user may share (and delete) a mesh of that owner. */
   mayChange(owner: string | undefined): boolean;
+  /** The owner to name beside a mesh: another user's (not the samples' system), else null. */
+  ownerName?(owner: string | undefined): string | null;
 }
 
 export class MeshListPanel {
@@ -62,6 +65,7 @@ export class MeshListPanel {
     }
     const items = meshes.map((mesh) => {
       const counts = `${mesh.report.vertices} V · ${mesh.report.faces} F`;
+      const owner = this.actions.ownerName?.(mesh.owner) ?? null;
       const remove = el('button', { class: 'delete', type: 'button', title: `Delete ${mesh.name}`, 'aria-label': `Delete ${mesh.name}` }, '✕');
       const thumb = this.thumbnail(mesh.id);
       const add = el('button', { class: 'add-to-scene', type: 'button', title: `Add ${mesh.name} to the scene`, 'aria-label': `Add ${mesh.name} to the scene` }, '+');
@@ -95,7 +99,7 @@ export class MeshListPanel {
         ...(thumb ? [thumb] : []),
         // The name is cut with an ellipsis in a narrow sidebar: its own tooltip gives it whole.
         el('span', { class: 'mesh-name', title: mesh.name }, mesh.name),
-        el('span', { class: 'mesh-counts' }, counts),
+        el('span', { class: 'mesh-counts' }, counts, owner ? el('span', { class: 'mesh-owner', title: `${owner}'s` }, ` · ${owner}`) : null),
         add,
         share,
         remove,

@@ -1,8 +1,9 @@
 // The code panel's DOM: the plugin chooser ("Open"), "New", the name with
 // "Rename", "Save" and "Share…", the editor, "Build" and "Run" with the mesh
-// they run on, the build's or run's progress, the compiler's messages (a
-// click puts the cursor on one) and the form of the plugin algorithm's
-// parameters (the algorithm panel's controls). It draws what the controller
+// they run on, "Submit" while a course's assignment is open, the build's or
+// run's progress, the compiler's messages (a click puts the cursor on one)
+// and the form of the plugin algorithm's parameters (the algorithm panel's
+// controls). It draws what the controller
 // (controllers/plugins.ts) tells it and hands it the clicks.
 import type { Plugin, PluginDiagnostic } from '../api/plugins.ts';
 import type { Algorithm } from '../api/types.ts';
@@ -17,6 +18,8 @@ export interface PlaygroundActions {
   share(): void;
   build(): void;
   run(): void;
+  /** Saves the file and submits it to the assignment open in the Course panel. */
+  submit(): void;
   /** A compiler's message was clicked: the editor shows its place. */
   goTo(d: PluginDiagnostic): void;
   /** The ids of the current selection of that kind for a selection parameter (empty: none). */
@@ -38,7 +41,8 @@ export class PlaygroundPanel {
   readonly editorHost: HTMLElement;
   readonly nameInput: HTMLInputElement;
   private readonly chooser: HTMLSelectElement;
-  private readonly buttons: Record<'create' | 'rename' | 'save' | 'share' | 'build' | 'run', HTMLButtonElement>;
+  private readonly buttons: Record<'create' | 'rename' | 'save' | 'share' | 'build' | 'run' | 'submit', HTMLButtonElement>;
+  private readonly assignment: HTMLElement;
   private readonly target: HTMLElement;
   private readonly statusText: HTMLElement;
   private readonly bar: HTMLProgressElement;
@@ -76,7 +80,9 @@ export class PlaygroundPanel {
       share: button('Share…', 'Let other users run and read it', () => actions.share()),
       build: button('Build', 'Save, then compile it on the server', () => actions.build(), 'playground-build'),
       run: button('Run', 'Run its algorithm on the mesh shown (built first when changed)', () => actions.run(), 'run'),
+      submit: button('Submit', 'Save this file and submit it to the assignment', () => actions.submit(), 'playground-submit'),
     };
+    this.assignment = el('div', { class: 'playground-row playground-assignment', hidden: '' }, el('span', { class: 'playground-assignment-title' }), this.buttons.submit);
     this.nameInput.addEventListener('keydown', (ev) => {
       if (ev.key === 'Enter') actions.rename(this.nameInput.value.trim());
     });
@@ -95,6 +101,7 @@ export class PlaygroundPanel {
       el('div', { class: 'playground-row' }, this.nameInput, this.buttons.rename, this.buttons.save, this.buttons.share),
       this.editorHost,
       el('div', { class: 'playground-row' }, this.buttons.build, this.buttons.run, this.target),
+      this.assignment,
       el('div', { class: 'playground-status', role: 'status' }, this.statusText, this.bar),
       this.messages,
       this.form,
@@ -117,6 +124,12 @@ export class PlaygroundPanel {
     }
     this.chooser.replaceChildren(...options);
     this.chooser.value = '';
+  }
+
+  /** The assignment open in the Course panel, which "Submit" submits this file to (null: none, no button). */
+  setAssignment(title: string | null): void {
+    this.assignment.hidden = title === null;
+    this.assignment.querySelector('.playground-assignment-title')!.textContent = title === null ? '' : `Assignment: ${title}`;
   }
 
   /** What may be done to the file open: a read-only one (the lab's, another user's) is run, not changed. */

@@ -3,6 +3,7 @@
 // at its left edge), loading it (the editor and the plugin controller: a
 // chunk of their own) the first time it is shown.
 import type { AppContext } from '../controllers/context.ts';
+import type { PluginsController } from '../controllers/plugins.ts';
 import { byId, el } from './dom.ts';
 import './playground.css';
 
@@ -10,10 +11,18 @@ const MIN_WIDTH = 320;
 /** The view keeps at least this much of the window beside the panel. */
 const VIEW_MIN = 240;
 
-export function installPlayground(ctx: AppContext): void {
+/** The code panel, for those who open a file in it (the Course panel: a starter, a submission). */
+export interface CodePanel {
+  /** Shows the panel (loading it the first time): its controller, or null when it cannot be loaded. */
+  open(): Promise<PluginsController | null>;
+  /** Its controller, if it was ever shown; null otherwise. */
+  loaded(): Promise<PluginsController | null> | null;
+}
+
+export function installPlayground(ctx: AppContext): CodePanel {
   const button = byId<HTMLButtonElement>('playground-toggle');
   const section = byId('playground');
-  let loaded: Promise<{ shown(): void } | null> | null = null;
+  let loaded: Promise<PluginsController | null> | null = null;
 
   const handle = el('div', { class: 'playground-resize', role: 'separator', 'aria-orientation': 'vertical', 'aria-label': 'Resize the code panel', title: 'Drag to resize' });
   section.append(handle);
@@ -58,4 +67,11 @@ export function installPlayground(ctx: AppContext): void {
     }
   };
   button.addEventListener('click', () => show(section.hidden));
+  return {
+    open: () => {
+      if (section.hidden) show(true);
+      return loaded ?? Promise.resolve(null);
+    },
+    loaded: () => loaded,
+  };
 }

@@ -2,6 +2,7 @@
 // a Store (state/store.ts). Controllers update it; panels subscribe to the
 // parts they show. Three.js objects, tokens and caches stay in the
 // controllers and kinds that own them.
+import type { Assignment, Course, CourseDetail, Grades, SignInLink, Submission } from '../api/courses.ts';
 import type { Job, Me, Mesh } from '../api/types.ts';
 import type { SceneObjectState } from '../viewer/scene_state.ts';
 import type * as THREE from 'three';
@@ -38,6 +39,36 @@ export interface Message {
   timeoutMs?: number;
 }
 
+/** What the Course panel shows: the assignments (and one open), the grades table, the members, a new assignment's form. */
+export type CourseTab = 'assignments' | 'grades' | 'members' | 'new';
+
+/** The caller's courses, the one chosen and what of it the Course panel shows (controllers/course.ts). */
+export interface CourseState {
+  /** Whether the server answered GET /courses (null until asked; false: a server without courses). */
+  available: boolean | null;
+  /** Whether the caller may create courses (GET /me's teacher). */
+  teacher: boolean;
+  /** Whether the panel is shown. */
+  shown: boolean;
+  courses: readonly Course[];
+  /** The course chosen, as GET /courses/{id} answered (its staff: with the members). */
+  current: CourseDetail | null;
+  assignments: readonly Assignment[];
+  /** The assignment open, by id (null: the list). */
+  open: string | null;
+  /** The open assignment's submissions, oldest first: the student's own; the staff's: everyone's. */
+  submissions: readonly Submission[];
+  /** The submission the staff chose (from the grades table or the list), marked in the list. */
+  picked: string | null;
+  /** The grades of the course's assignments (its staff), by assignment id. */
+  grades: ReadonlyMap<string, Grades>;
+  /** The sign-in links of the accounts the last roster made (or a new link asked for). */
+  links: readonly SignInLink[];
+  tab: CourseTab;
+  /** How the panel's last action went, or what is under way. */
+  status: { level: 'info' | 'ok' | 'error'; text: string } | null;
+}
+
 export interface AppState {
   meshes: readonly Mesh[];
   selectedId: string | null;
@@ -72,6 +103,7 @@ export interface AppState {
   /** The scene object chosen in the Scene panel: the Display panel's overlays are drawn over it. */
   picked: number;
   message: Message | null;
+  course: CourseState;
 }
 
 export type AppStore = Store<AppState>;
@@ -97,7 +129,34 @@ export function initialState(): AppState {
     scenePanes: false,
     picked: 0,
     message: null,
+    course: {
+      available: null,
+      teacher: false,
+      shown: false,
+      courses: [],
+      current: null,
+      assignments: [],
+      open: null,
+      submissions: [],
+      picked: null,
+      grades: new Map(),
+      links: [],
+      tab: 'assignments',
+      status: null,
+    },
   };
+}
+
+/** Whether the caller is the course's staff (teacher or assistant): they see everyone's work. */
+export function isStaff(course: Pick<Course, 'role'> | null | undefined): boolean {
+  return course?.role === 'teacher' || course?.role === 'assistant';
+}
+
+/** The assignment open in the Course panel, when the caller submits to it (a student): the code panel offers "Submit". */
+export function submittable(state: Readonly<AppState>): Assignment | null {
+  const c = state.course;
+  if (!c.open || !c.current || c.current.role !== 'student') return null;
+  return c.assignments.find((a) => a.id === c.open) ?? null;
 }
 
 export function selectedMesh(state: Readonly<AppState>): Mesh | null {
