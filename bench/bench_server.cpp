@@ -6,7 +6,9 @@
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 
+#include <algorithm>
 #include <csignal>
+#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -86,6 +88,31 @@ std::string upload(unsigned short port, const std::string& name, const std::stri
   const auto [status, body] = call(port, "POST", "/api/v1/meshes?name=" + name, bytes, token);
   if (status != 201) throw std::runtime_error("upload failed: " + body);
   return json::parse(body)["id"];
+}
+
+json request(unsigned short port, const std::string& method, const std::string& target, const json& body,
+             const std::string& token) {
+  const auto [status, text] = call(port, method, target, body.is_null() ? "" : body.dump(), token);
+  if (status >= 300) throw std::runtime_error(method + " " + target + ": " + std::to_string(status) + " " + text);
+  return json::parse(text);
+}
+
+std::string add_teacher(const std::string& exe, const std::filesystem::path& data) {
+  const std::string cmd = exe + " --data-dir " + data.string() + " user add tina --role teacher 2>/dev/null";
+  FILE* p = popen(cmd.c_str(), "r");
+  char buf[256] = {};
+  const bool read = p && std::fgets(buf, sizeof buf, p);
+  if (p) pclose(p);
+  std::string t = read ? buf : "";
+  while (!t.empty() && (t.back() == '\n' || t.back() == '\r')) t.pop_back();
+  if (t.empty()) throw std::runtime_error("cannot add the teacher");
+  return t;
+}
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, std::size_t(q * double(v.size() - 1) + 0.5))];
 }
 
 }  // namespace cgview::bench

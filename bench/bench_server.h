@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,5 +34,15 @@ std::pair<int, std::string> call(unsigned short port, const std::string& method,
 // Throws "upload failed: BODY" unless the answer is 201.
 std::string upload(unsigned short port, const std::string& name, const std::string& bytes,
                    const std::string& token = "");
+
+// A JSON request with a token (null body: none); its JSON answer.  Throws
+// "METHOD TARGET: STATUS BODY" for an answer of 300 or more.
+nlohmann::json request(unsigned short port, const std::string& method, const std::string& target,
+                       const nlohmann::json& body, const std::string& token);
+// `cgview-server --data-dir DATA user add tina --role teacher`, before the
+// server starts: the teacher's token.
+std::string add_teacher(const std::string& exe, const std::filesystem::path& data);
+// The q-quantile of v (0..1, nearest rank); 0 for none.
+double percentile(std::vector<double> v, double q);
 
 }  // namespace cgview::bench

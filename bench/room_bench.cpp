@@ -48,7 +48,10 @@ using tcp = net::ip::tcp;
 using nlohmann::json;
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
+using cgview::bench::add_teacher;
 using cgview::bench::call;
+using cgview::bench::percentile;
+using cgview::bench::request;
 
 namespace {
 
@@ -56,32 +59,6 @@ std::int64_t now_ns() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
 }
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-
-json request(unsigned short port, const std::string& method, const std::string& target, const json& body,
-             const std::string& token) {
-  const auto [status, text] = call(port, method, target, body.is_null() ? "" : body.dump(), token);
-  if (status >= 300) throw std::runtime_error(method + " " + target + ": " + std::to_string(status) + " " + text);
-  return json::parse(text);
-}
-
-// `cgview-server user add NAME --role teacher` on the data directory: the token.
-std::string add_teacher(const std::string& server, const fs::path& data) {
-  const std::string cmd = server + " --data-dir " + data.string() + " user add tina --role teacher 2>/dev/null";
-  FILE* p = popen(cmd.c_str(), "r");
-  char buf[256] = {};
-  const bool read = p && std::fgets(buf, sizeof buf, p);
-  if (p) pclose(p);
-  std::string t = read ? buf : "";
-  while (!t.empty() && (t.back() == '\n' || t.back() == '\r')) t.pop_back();
-  if (t.empty()) throw std::runtime_error("cannot add the teacher");
-  return t;
-}
-
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, std::size_t(q * double(v.size() - 1) + 0.5))];
-}
 
 // The server's CPU time so far (utime + stime of all its threads), seconds.
 double cpu_seconds(pid_t pid) {
