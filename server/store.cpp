@@ -361,6 +361,7 @@ std::optional<Access> Store::mesh_access(const std::string& id) const {
 }
 
 void Store::add_user(const std::string& name, bool admin, bool teacher) {
+  ++own_changes_;
   std::lock_guard lock(mutex_);
   Stmt s(db_,
          "INSERT INTO users (name, admin, created, teacher) VALUES (?1, ?2, ?3, ?4)"
@@ -416,7 +417,15 @@ std::optional<std::pair<std::string, std::string>> Store::find_token(const std::
   return std::pair{s.text(0), s.text(1)};
 }
 
+std::int64_t Store::version() const {
+  std::lock_guard lock(mutex_);
+  Stmt s(db_, "PRAGMA data_version");
+  const std::int64_t v = s.step() ? s.integer(0) : 0;
+  return (v << 24) + own_changes_.load();
+}
+
 int Store::revoke_tokens(const std::string& user) {
+  ++own_changes_;
   std::lock_guard lock(mutex_);
   Stmt s(db_, "DELETE FROM tokens WHERE user = ?1");
   s.bind(1, user);

@@ -141,6 +141,11 @@ class Store {
   std::optional<std::pair<std::string, std::string>> find_token(const std::string& token_id) const;
   // Deletes every token of a user; how many there were.
   int revoke_tokens(const std::string& user);
+  // A number that changes whenever the database may have changed under a
+  // caller's authentication: a commit by another connection (SQLite's
+  // data_version: the CLI's `user revoke`, the courses' members) or a
+  // change of users or tokens through this one.  Cheap: no query of a table.
+  std::int64_t version() const;
   const std::filesystem::path& data_dir() const { return dir_; }
 
  private:
@@ -151,7 +156,8 @@ class Store {
   std::filesystem::path dir_;
   sqlite3* db_ = nullptr;
   mutable std::mutex mutex_;
-  std::atomic<std::size_t> count_{0};  // rows, kept by add and remove (health asks it often)
+  std::atomic<std::size_t> count_{0};         // rows, kept by add and remove (health asks it often)
+  std::atomic<std::int64_t> own_changes_{0};  // users and tokens changed through this connection
 };
 
 // Lowercase hex SHA-256 of bytes.

@@ -57,8 +57,15 @@ std::optional<Caller> WsHandler::still_authorized(WsConnection& conn, const WsEm
 }
 
 bool WsHandler::admits_event(WsConnection& conn, const Access& readers, const WsEmit& emit) const {
-  const auto caller = still_authorized(conn, emit);
-  return caller && readers.allows(*caller);
+  if (conn.close || !conn.caller) return false;
+  const std::int64_t version = meshes_.store().version();
+  const auto now = std::chrono::steady_clock::now();
+  if (!conn.checked || conn.checked_version != version || now - conn.checked_at >= std::chrono::seconds(1)) {
+    conn.checked = still_authorized(conn, emit);
+    conn.checked_version = version;
+    conn.checked_at = now;
+  }
+  return conn.checked && readers.allows(*conn.checked);
 }
 
 WsHandler::Work WsHandler::receive(std::string_view text, bool binary, WsConnection& conn, const WsEmit& emit) const {

@@ -4,6 +4,7 @@
 // thread; tests and the fuzz target call handle(), which does both at once.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <functional>
 #include <list>
@@ -49,6 +50,12 @@ struct WsConnection {
   std::optional<Caller> caller;  // set once authenticated
   bool close = false;            // refused: the session closes once the replies are sent
   std::string id;                // this connection's, once it presents or follows a live room
+  // The caller as last checked for an event, and the store's version then
+  // (Store::version): an event checks the token again only when that changed
+  // or a second passed, not thousands of times a second to a lecture's followers.
+  std::optional<Caller> checked;
+  std::int64_t checked_version = -1;
+  std::chrono::steady_clock::time_point checked_at{};
 };
 
 struct WsHandlerConfig {

@@ -92,14 +92,30 @@ static Access room_readers(const std::string& presenter, const std::map<std::str
 
 void Rooms::record_locked(Room& r, const std::string& part, const json& value) {
   const auto t = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - r.started);
+  // Written a second at a time (write_records_locked): a commit per camera
+  // change would change the database's version thirty times a second, and
+  // with it make every WebSocket check its token again at every event.
+  records_.push_back({r.id, ++r.seq, std::int64_t(t.count()), part, value.dump()});
+  wake_.notify_all();
+}
+
+void Rooms::write_records_locked() {
+  if (records_.empty()) return;
   try {
-    Stmt s(db_, "INSERT INTO room_events (room, seq, t_ms, part, value) VALUES (?1, ?2, ?3, ?4, ?5)");
-    s.bind(1, r.id).bind(2, ++r.seq).bind(3, std::int64_t(t.count())).bind(4, part).bind(5, value.dump());
-    s.step();
+    exec_sql(db_, "BEGIN", "rooms");
+    for (const Record& e : records_) {
+      Stmt s(db_, "INSERT INTO room_events (room, seq, t_ms, part, value) VALUES (?1, ?2, ?3, ?4, ?5)");
+      s.bind(1, e.room).bind(2, e.seq).bind(3, e.t_ms).bind(4, e.part).bind(5, e.value);
+      s.step();
+    }
+    exec_sql(db_, "COMMIT", "rooms");
   } catch (const std::exception& e) {
-    // A full disk loses the recording's step, never the lecture.
-    std::fprintf(stderr, "cgview-server: room %s: not recorded: %s\n", r.id.c_str(), e.what());
+    // A full disk loses the recording's steps, never the lecture.
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    std::fprintf(stderr, "cgview-server: %zu room changes not recorded: %s\n", records_.size(), e.what());
   }
+  records_.clear();
+  last_write_ = std::chrono::steady_clock::now();
 }
 
 void Rooms::emit_locked(Room& r, const std::string& part, const json& value, Events& out) {
@@ -230,6 +246,7 @@ void Rooms::end_locked(Room& r, Events& out) {
   if (r.pending_camera) emit_locked(r, "camera", *r.pending_camera, out);
   out.emplace_back(json{{"type", "room_ended"}, {"room", r.id}}, room_readers(r.presenter, r.followers));
   for (const auto& [kind, id] : r.shown) store_.set_shared(kind, id, {group(r.id)}, false);
+  write_records_locked();
   try {
     Stmt s(db_, "UPDATE rooms SET ended = ?2 WHERE id = ?1");
     s.bind(1, r.id).bind(2, now_iso8601());
@@ -286,9 +303,12 @@ void Rooms::flush_loop() {
       lock.lock();
       continue;
     }
+    if (!records_.empty() && std::chrono::steady_clock::now() - last_write_ >= kRecordInterval) write_records_locked();
     if (waiting) wake_.wait_for(lock, std::chrono::milliseconds(5));
+    else if (!records_.empty()) wake_.wait_until(lock, last_write_ + kRecordInterval);
     else wake_.wait(lock);
   }
+  write_records_locked();
 }
 
 json Rooms::list(const std::string& course, const Caller& caller) const {
@@ -310,6 +330,7 @@ json Rooms::list(const std::string& course, const Caller& caller) const {
 
 json Rooms::recording(const std::string& room, const Caller& caller) const {
   std::lock_guard lock(mutex_);
+  const_cast<Rooms*>(this)->write_records_locked();  // what waits to be written is part of it
   Stmt r(db_, "SELECT course, presenter, started, ended FROM rooms WHERE id = ?1");
   r.bind(1, room);
   if (!r.step()) throw std::out_of_range("no room '" + room + "'");

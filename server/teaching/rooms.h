@@ -40,6 +40,7 @@ class Rooms {
  public:
   static constexpr std::chrono::milliseconds kCameraInterval{33};  // 30 a second
   static constexpr std::size_t kMaxPartBytes = 256 * 1024;         // one part's value, as JSON
+  static constexpr std::chrono::seconds kRecordInterval{1};        // how often the recording is written
   // Sends an event to the readers' WebSockets (the server's broadcast).
   using Send = std::function<void(const nlohmann::json& event, const Access& readers)>;
 
@@ -97,6 +98,7 @@ class Rooms {
   };
   Room& live_locked(const std::string& room);
   void record_locked(Room& r, const std::string& part, const nlohmann::json& value);
+  void write_records_locked();
   void emit_locked(Room& r, const std::string& part, const nlohmann::json& value,
                    std::vector<std::pair<nlohmann::json, Access>>& out);
   void share_shown_locked(Room& r, const std::string& part, const nlohmann::json& value, const Caller& caller);
@@ -111,6 +113,13 @@ class Rooms {
   sqlite3* db_ = nullptr;
   mutable std::mutex mutex_;
   std::map<std::string, Room> rooms_;  // live ones
+  struct Record {
+    std::string room;
+    std::int64_t seq, t_ms;
+    std::string part, value;
+  };
+  std::vector<Record> records_;  // changes not yet written
+  std::chrono::steady_clock::time_point last_write_{};
   std::condition_variable wake_;
   bool stopping_ = false;
   std::thread flusher_;

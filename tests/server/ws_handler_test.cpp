@@ -183,6 +183,17 @@ TEST_F(WsHandlerTest, ATokenIsNeededChecksEachMessageAndARevokedOneClosesTheConn
   EXPECT_TRUE(by_header.close);
   expect_one_error(ws.handle(R"({"type":"ping","request_id":4})", alice), "unauthorized");
   EXPECT_TRUE(alice.close);
+
+  // Revoked by another process (the CLI's `user revoke`: another connection to
+  // the database), after events were admitted from the checked caller: the
+  // next event sees it.
+  WsConnection bobs_socket = connect("Bearer " + bob_);
+  ASSERT_TRUE(bobs_socket.caller);
+  for (int i = 0; i < 3; ++i) EXPECT_TRUE(ws.admits_event(bobs_socket, Access{"bob"}, emit));
+  Store(dir_ / "data").revoke_tokens("bob");
+  sent.clear();
+  EXPECT_FALSE(ws.admits_event(bobs_socket, Access{"bob"}, emit));
+  expect_one_error(sent, "unauthorized");
 }
 
 TEST_F(WsHandlerTest, OverTheRateLimitAMessageIsRefusedWithRetryAfter) {
