@@ -497,7 +497,7 @@ class SlurmJobsNodeDeath : public SlurmJobs {
 TEST_F(SlurmJobsNodeDeath, AJobOnAKilledNodeIsRequeuedByTheClusterAndRunsElsewhere) {
   ASSERT_TRUE(start());
   const std::string mesh = upload("sphere.off");
-  const json job = submit(mesh, "test_sleep", {{"seconds", 8}});
+  const json job = submit(mesh, "test_sleep", {{"seconds", 4}});
   const std::string id = job["id"];
   const json running = wait_running(id);
   const std::string node = running.value("node", "");
