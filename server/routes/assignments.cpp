@@ -21,14 +21,8 @@ json body_json(const HttpRequest& req) {
   return body;
 }
 
-std::string query_value(const HttpRequest& req, const std::string& name, const std::string& otherwise) {
-  const auto q = split_target(req.target).second;
-  const auto it = q.find(name);
-  return it == q.end() ? otherwise : it->second;
-}
-
 bool late_counts(const HttpRequest& req) {
-  const std::string v = query_value(req, "late", "exclude");
+  const std::string v = text_param(split_target(req.target).second, "late", "exclude");
   if (v != "include" && v != "exclude") throw BadParameter("late", "parameter 'late': include or exclude");
   return v == "include";
 }
@@ -94,7 +88,7 @@ void add_assignment_routes(Routes& routes, const RouteContext& ctx) {
        {{"format", "json (default) or csv"},
         {"late", "exclude (default: the latest submission before the deadline counts) or include (the latest)"}},
        [&ctx](const Params& p, const HttpRequest& req, const Caller& caller) {
-         const std::string format = query_value(req, "format", "json");
+         const std::string format = text_param(split_target(req.target).second, "format", "json");
          const bool late = late_counts(req);
          if (format == "json") return json_response(200, ctx.grading().grades(p.at("id"), late, caller));
          if (format != "csv") throw BadParameter("format", "parameter 'format': json or csv");
@@ -139,17 +133,11 @@ void add_assignment_routes(Routes& routes, const RouteContext& ctx) {
          }
          const Grading::Picture pic = ctx.grading().picture(p.at("id"), n, which, caller);
          render::RenderParams params;
+         const Query q = split_target(req.target).second;
          auto size = [&](const char* name, int otherwise) {
-           const std::string v = query_value(req, name, "");
-           if (v.empty()) return otherwise;
-           int out = 0;
-           try {
-             out = std::stoi(v);
-           } catch (const std::exception&) {
-             out = 0;
-           }
-           if (out < 1 || out > 2048) throw BadParameter(name, std::string("parameter '") + name + "': 1..2048");
-           return out;
+           const int v = int_param(q, name, otherwise);
+           if (v < 1 || v > 2048) throw BadParameter(name, std::string("parameter '") + name + "': 1..2048");
+           return v;
          };
          params.width = size("width", 480);
          params.height = size("height", 360);

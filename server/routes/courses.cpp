@@ -18,22 +18,16 @@ json object_body(const HttpRequest& req) {
   return body;
 }
 
-// A link's lifetime from a query's or body's "link_expires_s" (default three days).
-std::chrono::seconds link_life(const std::string& text) {
-  if (text.empty()) return Courses::kDefaultLinkLife;
-  try {
-    std::size_t used = 0;
-    const long long v = std::stoll(text, &used);
-    if (used == text.size()) return std::chrono::seconds(v);
-  } catch (const std::exception&) {
+// A link's lifetime: the body's "link_expires_s" (when it is a JSON object
+// with one), else the query's, else three days; throws BadParameter.
+std::chrono::seconds link_life(const HttpRequest& req, const json& body) {
+  if (body.is_object() && body.contains("link_expires_s")) {
+    if (!body["link_expires_s"].is_number_integer())
+      throw BadParameter("link_expires_s", "link_expires_s is a number of seconds (60 to a week)");
+    return std::chrono::seconds(body["link_expires_s"].get<long long>());
   }
-  throw BadParameter("link_expires_s", "link_expires_s is a number of seconds (60 to a week)");
-}
-
-std::string query_value(const HttpRequest& req, const std::string& name) {
-  const auto q = split_target(req.target).second;
-  const auto it = q.find(name);
-  return it == q.end() ? "" : it->second;
+  return std::chrono::seconds(
+      int_param(split_target(req.target).second, "link_expires_s", int(Courses::kDefaultLinkLife.count())));
 }
 
 // A roster is CSV unless it begins as JSON does.
@@ -81,12 +75,8 @@ void add_course_routes(Routes& routes, const RouteContext& ctx) {
        {{"link_expires_s", "how long the sign-in links live, 60 s to a week (default three days)"}},
        [&ctx](const Params& p, const HttpRequest& req, const Caller& caller) {
          const bool csv = is_csv(req.body);
-         std::string life = query_value(req, "link_expires_s");
-         if (!csv) {
-           const json body = parse_json_or_discarded(req.body);
-           if (body.is_object() && body.contains("link_expires_s")) life = body["link_expires_s"].dump();
-         }
-         return json_response(200, ctx.courses().add_members(p.at("id"), req.body, csv, link_life(life), caller));
+         const json body = csv ? json() : parse_json_or_discarded(req.body);
+         return json_response(200, ctx.courses().add_members(p.at("id"), req.body, csv, link_life(req, body), caller));
        }});
   routes.push_back({"DELETE",
                     "/api/v1/courses/{id}/members/{user}",
@@ -104,10 +94,8 @@ void add_course_routes(Routes& routes, const RouteContext& ctx) {
                     "A new one-time sign-in link for a member (a teacher): body {\"link_expires_s\"}",
                     {},
                     [&ctx](const Params& p, const HttpRequest& req, const Caller& caller) {
-                      const json body = object_body(req);
-                      const std::string life = body.contains("link_expires_s") ? body["link_expires_s"].dump() : "";
-                      return json_response(200,
-                                           ctx.courses().new_link(p.at("id"), p.at("user"), link_life(life), caller));
+                      return json_response(200, ctx.courses().new_link(p.at("id"), p.at("user"),
+                                                                       link_life(req, object_body(req)), caller));
                     },
                     false});
   routes.push_back({"POST",

@@ -109,4 +109,9 @@ int int_param(const Query& q, const std::string& name, int fallback) {
   return int(v);
 }
 
+std::string text_param(const Query& q, const std::string& name, const std::string& fallback) {
+  const auto it = q.find(name);
+  return it == q.end() ? fallback : it->second;
+}
+
 }  // namespace cgview::server

@@ -49,5 +49,7 @@ using Query = std::map<std::string, std::string>;
 double number_param(const Query& q, const std::string& name, double fallback);
 // An integer, or `fallback` when absent; throws BadParameter.
 int int_param(const Query& q, const std::string& name, int fallback);
+// A text, or `fallback` when absent.
+std::string text_param(const Query& q, const std::string& name, const std::string& fallback = "");
 
 }  // namespace cgview::server

@@ -6,6 +6,7 @@
 #include <cctype>
 
 #include "auth.h"
+#include "core/ascii.h"
 #include "core/errors.h"
 #include "io/parse_json.h"
 #include "sqlite_stmt.h"
@@ -46,11 +47,6 @@ std::vector<std::string> csv_fields(std::string_view line) {
   return out;
 }
 
-std::string lower(std::string s) {
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 struct RosterEntry {
   std::string login, name, role;
 };
@@ -76,9 +72,9 @@ std::vector<RosterEntry> parse_roster(std::string_view body, bool csv) {
       ++line_no;
       if (line.empty()) continue;
       const auto f = csv_fields(line);
-      const std::string first = lower(f[0]);
+      const std::string first = ascii_lower(f[0]);
       if (line_no == 1 && (first == "login" || first == "username" || first == "user" || first == "email")) continue;
-      check({f[0], f.size() > 1 ? f[1] : "", f.size() > 2 ? lower(f[2]) : ""}, "line " + std::to_string(line_no));
+      check({f[0], f.size() > 1 ? f[1] : "", f.size() > 2 ? ascii_lower(f[2]) : ""}, "line " + std::to_string(line_no));
     }
   } else {
     const json j = parse_json_or_discarded(body);
@@ -99,6 +95,11 @@ std::vector<RosterEntry> parse_roster(std::string_view body, bool csv) {
     throw InvalidInput("a roster of " + std::to_string(out.size()) + " members: at most " +
                        std::to_string(Courses::kMaxRoster) + " a request");
   return out;
+}
+
+void check_link_life(std::chrono::seconds life) {
+  if (life.count() < 60 || life > Courses::kMaxLinkLife)
+    throw InvalidInput("a sign-in link lives 60 s to a week (" + std::to_string(Courses::kMaxLinkLife.count()) + " s)");
 }
 
 }  // namespace
@@ -219,8 +220,7 @@ std::string Courses::add_link(const std::string& course, const std::string& user
 json Courses::add_members(const std::string& course, std::string_view body, bool csv, std::chrono::seconds link_life,
                           const Caller& caller) {
   require_staff(course, caller, true);
-  if (link_life.count() < 60 || link_life > kMaxLinkLife)
-    throw InvalidInput("a sign-in link lives 60 s to a week (" + std::to_string(kMaxLinkLife.count()) + " s)");
+  check_link_life(link_life);
   const auto roster = parse_roster(body, csv);
   // The accounts first, through the store's own connection (it would wait
   // on this one's transaction); the roster was checked whole before.
@@ -255,8 +255,7 @@ json Courses::add_members(const std::string& course, std::string_view body, bool
 json Courses::new_link(const std::string& course, const std::string& user, std::chrono::seconds link_life,
                        const Caller& caller) {
   require_staff(course, caller, true);
-  if (link_life.count() < 60 || link_life > kMaxLinkLife)
-    throw InvalidInput("a sign-in link lives 60 s to a week (" + std::to_string(kMaxLinkLife.count()) + " s)");
+  check_link_life(link_life);
   std::lock_guard lock(mutex_);
   Stmt s(db_, "SELECT 1 FROM course_members WHERE course = ?1 AND user = ?2");
   s.bind(1, course).bind(2, user);

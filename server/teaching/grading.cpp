@@ -24,11 +24,6 @@ namespace {
 constexpr std::size_t kMaxStatement = 64 * 1024, kMaxStarter = 256 * 1024, kMaxHidden = 20, kMaxPublic = 50;
 constexpr double kDefaultTimeLimit = 60;
 
-const Caller& server_caller() {
-  static const Caller c{"local", true, true};
-  return c;
-}
-
 OutputKind kind_named(const std::string& name) {
   for (OutputKind k : kOutputKinds)
     if (name == to_string(k)) return k;
@@ -499,11 +494,7 @@ json Grading::regrade(const std::string& assignment, const Caller& caller) {
     pending_.insert(id);
     ++n;
   }
-  {
-    std::lock_guard wake_lock(wake_mutex_);
-    woken_ = true;
-  }
-  wake_.notify_all();
+  wake();
   return {{"assignment", assignment}, {"regrading", n}};
 }
 
@@ -610,7 +601,7 @@ void Grading::advance(const std::string& id) {
         continue;
       }
       const std::string& ref_id = a.reference_jobs.at(i);
-      const auto ref = jobs_.get(ref_id, server_caller());
+      const auto ref = jobs_.get(ref_id, Caller::local());
       const std::string ref_state = ref ? ref->value("state", "") : "gone";
       if (ref_state == "queued" || ref_state == "running") {
         all_ended = false;
@@ -663,7 +654,7 @@ void Grading::advance(const std::string& id) {
         try {
           if (compared != "done") throw std::runtime_error(c ? c->value("error", "") : "the comparison is gone");
           const json v = parse_json_or_discarded(
-              std::get<Text>(jobs_.artifact_value(r.compare_job, "verdict", OutputKind::text, server_caller())).bytes);
+              std::get<Text>(jobs_.artifact_value(r.compare_job, "verdict", OutputKind::text, Caller::local())).bytes);
           if (!v.is_object()) throw std::runtime_error("the comparison's verdict is not JSON");
           r.points = v.value("pass", false) ? points : 0;
           r.reason = v.value("reason", "");
@@ -678,10 +669,10 @@ void Grading::advance(const std::string& id) {
       r.state = "done";
       try {
         const CompareSpec cmp = compare_spec_from_json(a.spec["compare"], kind);
-        const ArtifactValue reference = jobs_.artifact_value(ref_id, output, kind, server_caller());
+        const ArtifactValue reference = jobs_.artifact_value(ref_id, output, kind, Caller::local());
         ArtifactValue result;
         try {
-          result = jobs_.artifact_value(r.job, output, kind, server_caller());
+          result = jobs_.artifact_value(r.job, output, kind, Caller::local());
         } catch (const std::exception&) {
           r.points = 0;
           r.reason = "no output '" + output + "' of kind " + to_string(kind);
@@ -815,14 +806,14 @@ Grading::Picture Grading::picture(const std::string& id, std::size_t n, const st
     if (which != "result" && which != "reference")
       throw std::out_of_range("no picture '" + which + "' of a mesh: result or reference");
     const ArtifactValue v =
-        jobs_.artifact_value(which == "result" ? job : ref_job, output, OutputKind::mesh, server_caller());
+        jobs_.artifact_value(which == "result" ? job : ref_job, output, OutputKind::mesh, Caller::local());
     return {std::make_shared<const Mesh>(std::get<Mesh>(v)), std::nullopt};
   }
-  const auto rec = meshes_.store().get_mesh(mesh_id, server_caller());
+  const auto rec = meshes_.store().get_mesh(mesh_id, Caller::local());
   if (!rec) throw std::out_of_range("the hidden mesh is gone");
   Picture p{meshes_.mesh(*rec), ScalarField{}};
   auto field = [&](const std::string& j) {
-    return std::get<ScalarField>(jobs_.artifact_value(j, output, OutputKind::scalar_field, server_caller()));
+    return std::get<ScalarField>(jobs_.artifact_value(j, output, OutputKind::scalar_field, Caller::local()));
   };
   if (which == "result") p.field = field(job);
   else if (which == "reference") p.field = field(ref_job);

@@ -328,9 +328,9 @@ json Rooms::list(const std::string& course, const Caller& caller) const {
   return out;
 }
 
-json Rooms::recording(const std::string& room, const Caller& caller) const {
+json Rooms::recording(const std::string& room, const Caller& caller) {
   std::lock_guard lock(mutex_);
-  const_cast<Rooms*>(this)->write_records_locked();  // what waits to be written is part of it
+  write_records_locked();  // what waits to be written is part of it
   Stmt r(db_, "SELECT course, presenter, started, ended FROM rooms WHERE id = ?1");
   r.bind(1, room);
   if (!r.step()) throw std::out_of_range("no room '" + room + "'");

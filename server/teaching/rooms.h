@@ -78,7 +78,7 @@ class Rooms {
   nlohmann::json list(const std::string& course, const Caller& caller) const;
   // GET /api/v1/rooms/{id}/recording: {"room", "started", "ended", "events":
   // [{"t_ms", "part", "value"}]} for the course's members (a code room's: its presenter).
-  nlohmann::json recording(const std::string& room, const Caller& caller) const;
+  nlohmann::json recording(const std::string& room, const Caller& caller);
   // "room:ID" for each room the user presents or follows (Caller::groups).
   std::vector<std::string> groups_of(const std::string& user) const;
   static std::string group(const std::string& room) { return "room:" + room; }
