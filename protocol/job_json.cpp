@@ -47,6 +47,7 @@ json job_json(const JobRecord& j) {
               {"artifacts", artifacts},
               {"warnings", j.warnings.is_array() ? j.warnings : json::array()}};
   if (!j.where.empty()) out["node"] = j.where;
+  if (j.run_s > 0) out["run_s"] = j.run_s;
   // Which plugin it ran (never where its library lies on the server).
   if (j.plugin.is_object()) out["plugin"] = j.plugin.value("id", "");
   return out;

@@ -30,6 +30,10 @@ struct JobRecord {
   std::string cache_key;
   JobState state = JobState::queued;
   std::string stage, error, created, started, finished;
+  // How long its run took, from its worker's start to its end, in seconds (0:
+  // not known, as for a job that ran before a restart): the timestamps above
+  // are whole seconds, and a grader sets time limits from a reference's run.
+  double run_s = 0;
   double progress = 0;
   bool cached = false;
   nlohmann::json artifacts = nlohmann::json::array();  // the worker's list: name, kind, file, ...

@@ -293,6 +293,98 @@ ParamValue parse_param(const ParamSpec& spec, const std::string& text) {
 
 namespace detail {
 
+void SpecCollector::add(const char* n, ParamType t, ParamValue v, ParamInfo i) {
+  if (i.label.empty()) i.label = n;
+  specs.push_back({n, t, std::move(v), std::move(i)});
+}
+
+namespace {
+// The checked value of n, when the job gives one.
+std::optional<ParamValue> checked(const ValueAssigner& a, const char* n) {
+  const auto it = a.values.find(n);
+  if (it == a.values.end()) return std::nullopt;
+  return check_param(a.spec(n), it->second);
+}
+}  // namespace
+
+void ValueAssigner::set(const char* n, long long& f) {
+  if (auto v = checked(*this, n)) f = std::get<long long>(*v);
+}
+void ValueAssigner::set(const char* n, int& f) {
+  if (auto v = checked(*this, n)) f = int(std::get<long long>(*v));
+}
+void ValueAssigner::set(const char* n, double& f) {
+  if (auto v = checked(*this, n)) f = std::get<double>(*v);
+}
+void ValueAssigner::set(const char* n, bool& f) {
+  if (auto v = checked(*this, n)) f = std::get<bool>(*v);
+}
+void ValueAssigner::set(const char* n, std::string& f) {
+  if (auto v = checked(*this, n)) f = std::move(std::get<std::string>(*v));
+}
+void ValueAssigner::set(const char* n, Ids& f) {
+  if (auto v = checked(*this, n)) f = std::move(std::get<Ids>(*v));
+}
+
+Algorithm assemble(const char* name, AlgorithmInfo info, const TypedAlgorithm& typed) {
+  info.name = name;
+  if (info.outputs.empty() && typed.outputs) typed.outputs(info.outputs);
+  SpecCollector collect;
+  typed.collect(collect);
+  Algorithm a;
+  a.info = std::move(info);
+  a.params = collect.specs;
+  a.run = [run = typed.run, specs = std::move(collect.specs), algo = a.info.name](
+              const Inputs& in, const std::map<std::string, ParamValue>& values, Context& ctx) {
+    check_names(algo, values, specs);
+    if (in.has("mesh")) check_selections(specs, values, in.mesh().num_vertices(), in.mesh().num_faces());
+    ValueAssigner assign{values, specs};
+    return run(in, assign, ctx);
+  };
+  return a;
+}
+
+Registrar::Registrar(Algorithm a) { register_algorithm(std::move(a)); }
+Registrar::Registrar(const char* name, const AlgorithmInfo& info, const TypedAlgorithm& typed) {
+  register_algorithm(assemble(name, info, typed));
+}
+
+void set_typed_precheck(const char* name, void (*collect)(SpecCollector&),
+                        void (*check)(const InputSummaries&, ValueAssigner&)) {
+  SpecCollector c;
+  collect(c);
+  set_precheck(name, [check, specs = std::move(c.specs)](const InputSummaries& in,
+                                                         const std::map<std::string, ParamValue>& values) {
+    ValueAssigner assign{values, specs};
+    check(in, assign);
+  });
+}
+
+void add_output(std::vector<std::pair<std::string, OutputKind>>& outputs, const char* name, OutputKind kind) {
+  outputs.emplace_back(name, kind);
+}
+void add_artifact(AlgorithmResult& out, const char* name, Mesh&& v) { out.artifacts.push_back({name, std::move(v)}); }
+void add_artifact(AlgorithmResult& out, const char* name, ScalarField&& v) {
+  out.artifacts.push_back({name, std::move(v)});
+}
+void add_artifact(AlgorithmResult& out, const char* name, VoxelGrid&& v) {
+  out.artifacts.push_back({name, std::move(v)});
+}
+void add_artifact(AlgorithmResult& out, const char* name, Skeleton&& v) {
+  out.artifacts.push_back({name, std::move(v)});
+}
+void add_artifact(AlgorithmResult& out, const char* name, Metrics&& v) {
+  out.artifacts.push_back({name, std::move(v)});
+}
+void add_artifact(AlgorithmResult& out, const char* name, Text&& v) { out.artifacts.push_back({name, std::move(v)}); }
+void add_artifact(AlgorithmResult& out, const char* name, Animation&& v) {
+  out.artifacts.push_back({name, std::move(v)});
+}
+void add_artifact(AlgorithmResult& out, const char* name, VectorField&& v) {
+  out.artifacts.push_back({name, std::move(v)});
+}
+void add_warnings(AlgorithmResult& out, std::vector<std::string>&& warnings) { out.warnings = std::move(warnings); }
+
 const ParamSpec& ValueAssigner::spec(const char* n) const {
   for (const auto& s : specs)
     if (s.name == n) return s;

@@ -20,6 +20,7 @@ struct Job : protocol::JobRecord {
   bool in_flight = false;  // handed to its executor: a worker may still write into its directory
   bool deleted = false;    // deleted while its cancelled worker still ran: gone for everyone, forgotten when it ends
   std::chrono::steady_clock::time_point last_event;
+  std::chrono::steady_clock::time_point run_from;  // its worker's start, for run_s
   // A shorter time limit than the server's, set by the server's own
   // submissions (a graded run); 0: the server's.  Not stored: a job queued
   // again after a restart runs under the server's.

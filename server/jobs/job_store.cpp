@@ -35,6 +35,8 @@ JobStore::JobStore(const std::filesystem::path& data_dir) {
   add_missing_column(db_, "jobs", "warnings", "TEXT NOT NULL DEFAULT '[]'", "jobs");
   // One from before plugins.
   add_missing_column(db_, "jobs", "plugin", "TEXT NOT NULL DEFAULT ''", "jobs");
+  // One from before runs were timed.
+  add_missing_column(db_, "jobs", "run_s", "REAL NOT NULL DEFAULT 0", "jobs");
 }
 
 JobStore::~JobStore() { sqlite3_close(db_); }
@@ -45,7 +47,7 @@ std::vector<std::shared_ptr<Job>> JobStore::load() const {
       db_,
       "SELECT id, seq, owner, algorithm, mesh_id, mesh_sha, params, cache_key, state, stage, progress,"
       " error, cached, created, started, finished, artifacts, files, inputs, bytes, executor, handle, worker_token,"
-      " warnings, plugin FROM jobs ORDER BY seq",
+      " warnings, plugin, run_s FROM jobs ORDER BY seq",
       -1, &s, nullptr);
   auto text = [&](int c) {
     const auto* p = sqlite3_column_text(s, c);
@@ -88,6 +90,7 @@ std::vector<std::shared_ptr<Job>> JobStore::load() const {
     if (!j->warnings.is_array()) j->warnings = json::array();
     j->plugin = parse_json_or_discarded(text(24));
     if (!j->plugin.is_object()) j->plugin = nullptr;
+    j->run_s = sqlite3_column_double(s, 25);
     out.push_back(std::move(j));
   }
   sqlite3_finalize(s);
@@ -100,8 +103,8 @@ void JobStore::put(const Job& j) {
           db_,
           "INSERT OR REPLACE INTO jobs (id, seq, owner, algorithm, mesh_id, mesh_sha, params, cache_key,"
           " state, stage, progress, error, cached, created, started, finished, artifacts, files, inputs,"
-          " bytes, executor, handle, worker_token, warnings, plugin)"
-          " VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20,?21,?22,?23,?24,?25)",
+          " bytes, executor, handle, worker_token, warnings, plugin, run_s)"
+          " VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20,?21,?22,?23,?24,?25,?26)",
           -1, &s, nullptr) != SQLITE_OK)
     throw IoError(std::string("jobs: ") + sqlite3_errmsg(db_));
   int i = 0;
@@ -120,6 +123,7 @@ void JobStore::put(const Job& j) {
   else sqlite3_bind_int64(s, ++i, std::int64_t(j.bytes));
   t(j.executor), t(j.handle), t(j.worker_token_sha), t(j.warnings.dump());
   t(j.plugin.is_object() ? j.plugin.dump() : std::string());
+  sqlite3_bind_double(s, ++i, j.run_s);
   const int rc = sqlite3_step(s);
   sqlite3_finalize(s);
   if (rc == SQLITE_FULL) throw DiskFull(std::string("jobs: ") + sqlite3_errmsg(db_));

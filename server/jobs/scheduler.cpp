@@ -173,6 +173,7 @@ json JobScheduler::submit(const json& req, const Caller& caller, std::vector<std
         j->progress = 1;
         j->stage = "done";
         j->started = j->finished = j->created;
+        j->run_s = o.run_s;
         j->artifacts = o.artifacts;
         j->warnings = o.warnings;
         j->files = o.files;
@@ -408,6 +409,7 @@ void JobScheduler::end(Job& j, const WorkerEnd* how, std::vector<json>& events, 
   }
   j.finished = now_iso8601();
   if (j.started.empty()) j.started = j.finished;
+  if (j.run_from != Clock::time_point{}) j.run_s = std::chrono::duration<double>(Clock::now() - j.run_from).count();
   save(j);
   events.push_back({{"type", j.state == JobState::done ? "job_done" : "job_failed"}, {"job", job_json(j)}});
 }
@@ -421,6 +423,7 @@ void JobScheduler::apply(const ExecutorEvent& e, std::vector<json>& events, cons
       if (j.cancelled) return;
       // A job followed again after a restart keeps its start.
       if (j.state != JobState::running || j.started.empty()) j.started = now_iso8601();
+      j.run_from = Clock::now();
       j.state = JobState::running;
       j.stage = "starting";
       j.progress = 0;

@@ -64,7 +64,10 @@ std::string text_field(const json& body, const char* key, std::size_t max, bool 
 // writes it while it reads a hidden mesh.
 std::string student_reason(const std::string& state, const std::string& error) {
   if (state == "cancelled") return "cancelled";
-  if (error.find("exceeded its time limit") == 0) return "time limit: it ran past the assignment's limit";
+  const std::string over = "exceeded its time limit of ";
+  if (error.starts_with(over))
+    return "time limit: it ran past " + error.substr(over.size()) +
+           ", this mesh's limit (ten times the reference's run)";
   if (error.find("exceeded its memory limit") == 0) return "memory limit: it used more than the server allows";
   if (error.find("SIGSEGV") != std::string::npos) return "crashed: segmentation fault";
   if (error.find("SIGABRT") != std::string::npos) return "crashed: aborted (an uncaught exception or assert)";
@@ -76,6 +79,17 @@ std::string student_reason(const std::string& state, const std::string& error) {
 }
 
 }  // namespace
+
+double graded_run_limit(double reference_s, double cap_s) {
+  if (!(reference_s > 0)) return cap_s;
+  return std::min(cap_s, std::max(1.0, 10 * reference_s));
+}
+
+double Grading::run_limit(const Assignment& a, std::size_t mesh) const {
+  const double cap = a.spec.value("time_limit_s", kDefaultTimeLimit);
+  const auto ref = jobs_.get(a.reference_jobs.at(mesh), Caller::local());
+  return graded_run_limit(ref && ref->value("state", "") == "done" ? ref->value("run_s", 0.0) : 0.0, cap);
+}
 
 Grading::Grading(MeshService& meshes, Courses& courses, JobScheduler& jobs, PluginService& plugins)
     : meshes_(meshes), courses_(courses), jobs_(jobs), plugins_(plugins) {
@@ -574,7 +588,7 @@ void Grading::advance(const std::string& id) {
                                          {"plugin", s.plugin},
                                          {"inputs", {{"mesh", a.spec["hidden_meshes"][i]}}},
                                          {"params", a.spec["params"]},
-                                         {"timeout_s", a.spec["time_limit_s"]}},
+                                         {"timeout_s", run_limit(a, i)}},
                                         g, nullptr, true);
           r.job = job["id"];
           meshes_.store().set_shared("job", r.job, {Courses::staff(a.course)}, true);

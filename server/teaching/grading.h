@@ -46,6 +46,13 @@ class JobScheduler;
 class MeshService;
 class PluginService;
 
+// A graded run's time limit: ten times the reference's own run on that mesh
+// (REFERENCE_S, 0 when not known), at least 1 s, and never over the
+// teacher's limit CAP_S, which alone holds while the reference's time is not
+// known.  So a looping submission costs a few seconds of a worker, not the
+// teacher's minute, and a right one slower than the reference still passes.
+double graded_run_limit(double reference_s, double cap_s);
+
 class Grading {
  public:
   Grading(MeshService& meshes, Courses& courses, JobScheduler& jobs, PluginService& plugins);
@@ -123,6 +130,8 @@ class Grading {
   };
   static std::string grader(const std::string& student) { return "grading:" + student; }
   static nlohmann::json run_json(const Run& r, bool staff);
+  // A run's time limit on hidden mesh MESH (graded_run_limit).
+  double run_limit(const Assignment& a, std::size_t mesh) const;
   void wake();
   nlohmann::json assignment_json(const Assignment& a, bool staff) const;
   nlohmann::json submission_json(const Submission& s, bool staff) const;

@@ -10,6 +10,9 @@
 // own process); the data lies under /var/tmp, since a job sees its own /tmp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
+
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
@@ -299,20 +302,37 @@ TEST_F(Course, SubmissionsAreScoredOnTheHiddenMeshesWithTheirReasonsAndPictures)
   const json broken = submit_and_wait(alice_, id, variant(kDistance, "this is not C++"));
   EXPECT_EQ(broken.value("state", ""), "failed") << broken.dump();
   EXPECT_FALSE(broken["build"]["diagnostics"].empty());
+  // Looping: stopped at ten times the reference's own run on each mesh (at
+  // least 1 s), not at the assignment's 10 s.
+  const json loop = submit_and_wait(alice_, id, variant(kDistance, "for (volatile int k = 0;; ++k) {}"));
+  ASSERT_EQ(loop.value("state", ""), "graded") << loop.dump();
+  const json refs = a["reference_jobs"];
+  ASSERT_EQ(refs.size(), loop["results"].size());
+  for (std::size_t i = 0; i < refs.size(); ++i) {
+    const json ref = as(teacher_, "GET", "/api/v1/jobs/" + refs[i].get<std::string>()).body_json();
+    const double run_s = ref.value("run_s", 0.0);
+    ASSERT_GT(run_s, 0.0) << ref.dump();
+    ASSERT_LT(run_s, 0.9) << "the reference is too slow here for its limit to differ from the teacher's";
+    char limit[32];  // as API.md says: 10 times the reference's run, at least 1 s, at most time_limit_s
+    std::snprintf(limit, sizeof limit, "%g", std::max(1.0, 10 * run_s));
+    EXPECT_EQ(loop["results"][i].value("reason", ""),
+              std::string("time limit: it ran past ") + limit + " s, this mesh's limit (ten times the reference's run)")
+        << loop.dump();
+  }
 
-  // The teacher sees all four, with the runs; the grades count the latest (the crash).
+  // The teacher sees all five, with the runs; the grades count the latest (the loop).
   const json all = as(teacher_, "GET", "/api/v1/assignments/" + id + "/submissions").body_json();
-  ASSERT_EQ(all.size(), 4u);
+  ASSERT_EQ(all.size(), 5u);
   EXPECT_FALSE(all[0]["results"][0].value("job", "").empty());
   const HttpResult csv = as(teacher_, "GET", "/api/v1/assignments/" + id + "/grades?format=csv");
   ASSERT_EQ(csv.status, 200u) << csv.body;
   EXPECT_EQ(csv.body.substr(0, csv.body.find('\n')),
             "Student,ID,SIS User ID,SIS Login ID,Section,Distance from the centroid (10 points),Submissions,Submitted,"
             "Late");
-  EXPECT_NE(csv.body.find("\nalice,,alice,alice,,0,4,"), std::string::npos) << csv.body;
+  EXPECT_NE(csv.body.find("\nalice,,alice,alice,,0,5,"), std::string::npos) << csv.body;
   EXPECT_EQ(as(alice_, "GET", "/api/v1/assignments/" + id + "/grades").status, 403u);
   // Another student sees none of them.
-  EXPECT_EQ(as(alice_, "GET", "/api/v1/assignments/" + id + "/submissions").body_json().size(), 4u);
+  EXPECT_EQ(as(alice_, "GET", "/api/v1/assignments/" + id + "/submissions").body_json().size(), 5u);
   EXPECT_EQ(as(bob_, "GET", "/api/v1/submissions/" + right.value("id", "")).status, 404u);
 
   // Graded again, every submission gets the same scores.

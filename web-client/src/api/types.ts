@@ -176,6 +176,8 @@ export interface Job {
   created: string | null;
   started: string | null;
   finished: string | null;
+  /** How long its run took, its worker's start to its end, in seconds; absent when not known. */
+  run_s?: number;
   artifacts: ArtifactInfo[];
   /** What the algorithm (or an import) says the user must know: faces left without a value, parts of a file not used, values missing; absent from older servers. */
   warnings?: string[];
