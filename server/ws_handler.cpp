@@ -146,7 +146,8 @@ WsHandler::Work WsHandler::receive(std::string_view text, bool binary, WsConnect
 
 bool WsHandler::room_message(const std::string& type, const json& msg, const json& id, WsConnection& conn,
                              const Caller& caller, const WsEmit& emit) const {
-  static const std::set<std::string> kinds = {"present", "follow", "room_set", "raise_hand", "show_hand", "room_end"};
+  static const std::set<std::string> kinds = {"present",    "follow",    "leave",   "room_set",
+                                              "raise_hand", "show_hand", "room_end"};
   if (!kinds.count(type)) return false;
   try {
     if (!rooms_) throw std::runtime_error("this server holds no live rooms");
@@ -159,6 +160,7 @@ bool WsHandler::room_message(const std::string& type, const json& msg, const jso
     json reply;
     if (type == "present") reply = rooms_->present(msg, caller, conn.id);
     else if (type == "follow") reply = rooms_->follow(msg, caller, conn.id);
+    else if (type == "leave") rooms_->leave(need_room(), caller, conn.id);
     else if (type == "room_set") {
       const auto part = string_field(msg, "part");
       if (!part || !msg.contains("value")) throw InvalidInput("room_set is {\"room\", \"part\", \"value\"}");

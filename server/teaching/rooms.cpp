@@ -267,6 +267,20 @@ void Rooms::end(const std::string& room, const Caller& caller) {
   for (const auto& [e, readers] : events) send_(e, readers);
 }
 
+void Rooms::leave(const std::string& room, const Caller& caller, const std::string& connection) {
+  Events events;
+  {
+    std::lock_guard lock(mutex_);
+    Room& r = live_locked(room);
+    if (!r.followers.erase(connection)) throw std::out_of_range("this connection does not follow room " + room);
+    const bool still =
+        std::any_of(r.followers.begin(), r.followers.end(), [&](const auto& f) { return f.second == caller.user; });
+    if (!still) r.hands.erase(caller.user);
+    events.emplace_back(presence_locked(r), Access{r.presenter});
+  }
+  for (const auto& [e, readers] : events) send_(e, readers);
+}
+
 void Rooms::disconnected(const std::string& connection) {
   if (connection.empty()) return;
   Events events;

@@ -71,6 +71,9 @@ class Rooms {
   void end(const std::string& room, const Caller& caller);
   // Whether `user` presents the live room (their stream skips the rate limit).
   bool presents(const std::string& room, const std::string& user) const;
+  // A follower stops following (its WebSocket stays open): it is no longer
+  // counted, gets no more updates, and its hand is lowered.
+  void leave(const std::string& room, const Caller& caller, const std::string& connection);
   // A WebSocket closed: its follows end, and a presenter's room with it.
   void disconnected(const std::string& connection);
 

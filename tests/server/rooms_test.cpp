@@ -131,6 +131,16 @@ TEST_F(Rooms, FollowersMirrorThePresenterAndTheLectureReplays) {
   EXPECT_EQ(shown.value("part", ""), "hand");
   EXPECT_EQ(shown["value"]["point"], point);
 
+  // Alice leaves: no longer counted, her hand lowered; she cannot leave twice.
+  ASSERT_FALSE(alice->send({{"type", "leave"}, {"room", id}}));
+  do presence = next(*teacher, "room_presence");
+  while (presence.value("followers", 0) != 1);
+  EXPECT_TRUE(presence["hands"].empty()) << presence.dump();
+  ASSERT_FALSE(alice->send({{"type", "leave"}, {"room", id}, {"request_id", 4}}));
+  EXPECT_EQ(next(*alice, "error").value("error", ""), "not_found");
+  ASSERT_FALSE(alice->send({{"type", "follow"}, {"room", id}, {"request_id", 5}}));
+  EXPECT_EQ(next(*alice, "room_state").value("room", ""), id);
+
   // The end: followers are told, and the mesh is the teacher's alone again.
   ASSERT_FALSE(teacher->send({{"type", "room_end"}, {"room", id}}));
   EXPECT_EQ(next(*alice, "room_ended").value("room", ""), id);

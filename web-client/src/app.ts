@@ -1,6 +1,6 @@
 // The viewer's orchestrator: makes the state (state/app_state.ts), the
 // viewer and the panels that several parts draw in, the controllers (meshes,
-// jobs, scene, comparison, view links, account, course) and the artifact kinds
+// jobs, scene, comparison, view links, account, course, lecture) and the artifact kinds
 // (kinds/registry.ts), and joins them to the server's events. Panels render
 // from the state; the controllers and kinds are the only ones that change it.
 import type { ServerEvent } from './api/types.ts';
@@ -10,6 +10,7 @@ import { CompareController } from './controllers/compare.ts';
 import { CourseController } from './controllers/course.ts';
 import type { AppContext, Controllers } from './controllers/context.ts';
 import { JobsController } from './controllers/jobs.ts';
+import { LectureController } from './controllers/lecture.ts';
 import { MeshLoader } from './controllers/mesh_loader.ts';
 import { MeshesController } from './controllers/meshes.ts';
 import { SceneController } from './controllers/scene.ts';
@@ -61,6 +62,7 @@ export class App {
         ++hooks.frames;
         hooks.scene = app.scene.report();
         this.links.changed();
+        app.lecture?.frame();
       },
     });
     // Before the Display panel's listener: the overlays measure the object where the scene puts it.
@@ -144,13 +146,15 @@ export class App {
     app.kinds = new Kinds(ctx);
     app.compare = new CompareController(ctx);
     app.jobs = new JobsController(ctx);
-    this.links = new ViewLinks(ctx);
+    this.links = app.links = new ViewLinks(ctx);
     byId('screenshot').addEventListener('click', () => {
       const name = (app.meshes.selected()?.name ?? 'view').replace(/\.[^.]*$/, '');
       display.screenshot(`cgview-${name}.png`, (blob) => (hooks.lastScreenshot = blob ? { bytes: blob.size } : null));
     });
     byId('copy-link').addEventListener('click', () => this.links.copy());
-    app.course = new CourseController(ctx, byId('course'), byId<HTMLButtonElement>('course-toggle'), installPlayground(ctx));
+    const code = installPlayground(ctx);
+    app.course = new CourseController(ctx, byId('course'), byId<HTMLButtonElement>('course-toggle'), code);
+    app.lecture = new LectureController(ctx, byId('course'), code);
   }
 
   async start(): Promise<void> {

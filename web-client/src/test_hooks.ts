@@ -7,6 +7,7 @@ import type { ViewState } from './viewer/view_state.ts';
 import type { OrbitTimes } from './viewer/frame_timer.ts';
 import type { LoadTimings } from './viewer/timings.ts';
 import type { TextureState } from './viewer/textures.ts';
+import type { LectureRole, ReplayClock } from './state/app_state.ts';
 
 /** What tests read (window.__cgview). */
 export interface TestHooks {
@@ -95,6 +96,27 @@ export interface TestHooks {
    * the full mesh that replaced it (null until then).
    */
   lastPreview: { id: string; vertices: number; faces: number; camera: ViewState['camera']; fullCamera: ViewState['camera'] | null } | null;
+  /**
+   * The live lecture this page takes part in (controllers/lecture.ts): its
+   * role, room and join code, whether the view follows, who follows and
+   * raised a hand (the presenter's), the hand shown to all, the presenter's
+   * code, a replay's clock, and whether a follower's view is still being
+   * shown (meshes loading, the camera gliding).
+   */
+  lecture?: () => {
+    role: LectureRole;
+    room: string | null;
+    code: string | null;
+    attached: boolean;
+    followers: number;
+    hands: string[];
+    shownHand: string | null;
+    presenterCode: string | null;
+    replay: ReplayClock | null;
+    busy: boolean;
+  };
+  /** Sends a room_set over this page's WebSocket (a follower's attempt to write): the refusal's code, or null when taken. */
+  lectureWrite?: (part: string, value: unknown) => Promise<string | null>;
   /** Renders `frames` frames orbiting the shown object and times them (viewer/frame_timer.ts; for bench/frame_bench.mjs). */
   orbit: (frames: number) => OrbitTimes;
   /**

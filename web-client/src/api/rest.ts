@@ -223,7 +223,7 @@ export function getMe(): Promise<Me> {
 }
 
 /** Shares a mesh, a job or a plugin with users and/or everyone, or takes that back (add false). */
-export function setSharing(kind: 'meshes' | 'jobs' | 'plugins', id: string, who: { users?: string[]; everyone?: boolean }, add: boolean): Promise<Sharing> {
+export function setSharing(kind: 'meshes' | 'jobs' | 'plugins', id: string, who: { users?: string[]; everyone?: boolean; courses?: string[] }, add: boolean): Promise<Sharing> {
   return request<Sharing>(`/${kind}/${encodeURIComponent(id)}/${add ? 'share' : 'unshare'}`, {
     method: 'POST',
     headers: { 'Content-Type': 'application/json' },

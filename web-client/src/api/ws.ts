@@ -1,7 +1,9 @@
 // The WebSocket half of protocol/API.md (`/api/v1/ws`): JSON requests with a
 // client-chosen request_id, get_mesh answered by mesh_begin, K binary chunk
 // frames and mesh_end, and the server's events: mesh_added / mesh_deleted and
-// job_progress / job_done / job_failed / job_cancelled.
+// job_progress / job_done / job_failed / job_cancelled, and others a module
+// asks for by type (a live lecture's: api/rooms.ts). Messages the server
+// answers only when it refuses them (a lecture's changes) are told.
 // Reconnects by itself; requests in flight when the connection drops fail.
 import { ChunkAssembler, FrameError, FrameKind, decodeFrame } from './frames.ts';
 import { receiveTransferFrame, receiveTransferText, type GetMeshOptions, type MeshTransfer, type Pending, type SliceBegin } from './transfers.ts';
@@ -26,6 +28,9 @@ export class ServerError extends Error {
 }
 
 type EventHandler = (event: ServerEvent) => void;
+type MessageHandler = (message: Record<string, unknown>) => void;
+/** How many told messages are remembered for the refusal that may follow (the newest). */
+const TOLD_KEPT = 512;
 type StatusHandler = (connected: boolean) => void;
 
 export function defaultSocketUrl(): string {
@@ -41,6 +46,10 @@ export class CgviewSocket {
   private readonly pending = new Map<number, Pending>();
   private readonly eventHandlers = new Set<EventHandler>();
   private readonly statusHandlers = new Set<StatusHandler>();
+  /** Handlers of other events (no request_id), by the types they take. */
+  private readonly messageHandlers = new Set<{ types: ReadonlySet<string>; handler: MessageHandler }>();
+  /** Told messages by request id: who hears their refusal. */
+  private readonly told = new Map<number, (error: ServerError) => void>();
   private retryMs = 500;
   private closedByUser = false;
 
@@ -52,6 +61,13 @@ export class CgviewSocket {
   onEvent(handler: EventHandler): () => void {
     this.eventHandlers.add(handler);
     return () => this.eventHandlers.delete(handler);
+  }
+
+  /** Events of other `types` than mesh_* and job_* (a lecture's). Returns a function that unsubscribes. */
+  onMessages(types: ReadonlySet<string>, handler: MessageHandler): () => void {
+    const entry = { types, handler };
+    this.messageHandlers.add(entry);
+    return () => this.messageHandlers.delete(entry);
   }
 
   /** Connection state changes (true on every (re)connect). */
@@ -115,6 +131,23 @@ export class CgviewSocket {
 
   ping(): Promise<void> {
     return this.call({ type: 'ping' }, 'pong').then(() => undefined);
+  }
+
+  /** A request answered by a message of type `expect` (or an error, which rejects with a ServerError). */
+  request(body: Record<string, unknown>, expect: string): Promise<Record<string, unknown>> {
+    return this.call(body, expect);
+  }
+
+  /**
+   * Sends a message the server answers only when it refuses it: `onError`
+   * hears the refusal. Not connected, it is dropped (the caller is told so).
+   */
+  tell(body: Record<string, unknown>, onError: (error: ServerError) => void): void {
+    if (!this.connected) return onError(new ServerError('not_connected', 'not connected to the server'));
+    const id = this.takeId();
+    this.told.set(id, onError);
+    if (this.told.size > TOLD_KEPT) this.told.delete(this.told.keys().next().value!);
+    this.socket!.send(JSON.stringify({ ...body, request_id: id }));
   }
 
   /** Streams a mesh as Draco: resolves with mesh_begin's fields and the joined payload. */
@@ -232,7 +265,16 @@ export class CgviewSocket {
       for (const h of this.eventHandlers) h(msg as unknown as ServerEvent);
       return;
     }
+    if (typeof type === 'string' && id === null) {
+      for (const h of this.messageHandlers) if (h.types.has(type)) h.handler(msg);
+    }
     if (type === 'error' && msg.error === 'unauthorized') reportUnauthorized();
+    if (type === 'error' && id !== null && this.told.has(id)) {
+      const onError = this.told.get(id)!;
+      this.told.delete(id);
+      onError(new ServerError(String(msg.error ?? 'error'), String(msg.detail ?? '')));
+      return;
+    }
     if (id === null) {
       if (type === 'error') console.warn('cgview: server error without a request', msg);
       return;

@@ -17,10 +17,12 @@ import type { AccountController } from './account.ts';
 import type { CompareController } from './compare.ts';
 import type { CourseController } from './course.ts';
 import type { JobsController } from './jobs.ts';
+import type { LectureController } from './lecture.ts';
 import type { MeshLoader } from './mesh_loader.ts';
 import type { MeshesController } from './meshes.ts';
 import type { SceneController } from './scene.ts';
 import type { UndoOffers } from './undo.ts';
+import type { ViewLinks } from './view_links.ts';
 
 export interface Controllers {
   account: AccountController;
@@ -31,6 +33,9 @@ export interface Controllers {
   jobs: JobsController;
   kinds: Kinds;
   course: CourseController;
+  /** The view as links hold it: read and shown again (a lecture's too). */
+  links: ViewLinks;
+  lecture: LectureController;
 }
 
 export interface AppContext {

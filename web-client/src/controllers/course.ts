@@ -140,8 +140,9 @@ export class CourseController {
 
   private render(): void {
     const s = this.state;
-    // A member of a course, or a teacher who may create one; a notebook's view (a ticket's session) shows none.
-    this.toggle.hidden = !s.available || (s.courses.length === 0 && !(s.teacher && getToken() && !sessionToken()));
+    // A member of a course, or one with a token of their own (a teacher may create a course; anyone may join one,
+    // or a lecture, with its code); a notebook's view (a ticket's session) shows none.
+    this.toggle.hidden = !s.available || (s.courses.length === 0 && !(getToken() && !sessionToken()));
     const { meshes } = this.ctx.store.get();
     this.panel.render({
       courses: s.courses,

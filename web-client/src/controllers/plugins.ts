@@ -35,6 +35,8 @@ export class PluginsController {
   private listsAsked = 0;
   /** A text shown read-only that is no plugin of the caller's (a student's submission, to the staff): its name. */
   private viewing: string | null = null;
+  /** Who hears of each change of the text (a lecture's presenter's code). */
+  private readonly textListeners: Array<(text: string) => void> = [];
 
   constructor(ctx: AppContext, root: HTMLElement) {
     this.ctx = ctx;
@@ -82,6 +84,7 @@ export class PluginsController {
       this.viewing = name;
       this.saved = text;
       this.editor.setText(text, true);
+      this.textChanged();
       this.panel.nameInput.value = name;
       this.panel.setEditable(this.editable());
       this.panel.setDiagnostics([]);
@@ -114,6 +117,20 @@ export class PluginsController {
     return id;
   }
 
+  /** The text in the editor. */
+  get text(): string {
+    return this.editor.text;
+  }
+
+  /** Calls `listener` with the text at each change, typed or another file's. */
+  onText(listener: (text: string) => void): void {
+    this.textListeners.push(listener);
+  }
+
+  private textChanged(): void {
+    for (const listener of this.textListeners) listener(this.editor.text);
+  }
+
   /** Says something in the status line (how a submission went). */
   note(text: string, level: 'info' | 'ok' | 'error' = 'info'): void {
     this.panel.status(text, level);
@@ -136,6 +153,7 @@ export class PluginsController {
   }
 
   private edited(): void {
+    this.textChanged();
     if (this.plugin?.build.state === 'ok' || this.plugin?.build.state === 'failed') {
       this.panel.status(this.dirty() ? 'Changed since the build.' : 'As built.');
     }
@@ -181,8 +199,10 @@ export class PluginsController {
     this.viewing = null;
     this.plugin = plugin;
     this.saved = text;
-    if (this.editor.text !== text) this.editor.setText(text, !this.editable().change);
-    else this.editor.setReadOnly(!this.editable().change);
+    if (this.editor.text !== text) {
+      this.editor.setText(text, !this.editable().change);
+      this.textChanged();
+    } else this.editor.setReadOnly(!this.editable().change);
     this.panel.nameInput.value = plugin.name;
     this.panel.setEditable(this.editable());
     this.showBuild(plugin);
@@ -240,6 +260,7 @@ export class PluginsController {
     this.algorithm = null;
     this.saved = TEMPLATE;
     this.editor.setText(TEMPLATE, false);
+    this.textChanged();
     this.panel.nameInput.value = TEMPLATE_NAME;
     this.panel.setEditable(this.editable());
     this.panel.setDiagnostics([]);

@@ -12,12 +12,14 @@
 // `up=z` (the shown mesh's up axis, which the camera's numbers assume),
 // `compare` once per field compared side by side, and `show` once per
 // skeleton or vector field drawn or voxel grid whose slices are open
-// (`JOB/ARTIFACT`).
+// (`JOB/ARTIFACT`). A live lecture carries the same whole view, read with
+// current() and shown with show() (controllers/lecture_broadcast.ts and
+// lecture_mirror.ts).
 import type { ArtifactRef, SceneEntry } from '../state/app_state.ts';
 import { artifactKey, splitKey } from '../state/app_state.ts';
 import { applyCamera, readCamera } from '../viewer/camera_state.ts';
 import { isIdentity, sanitizeScene, type SceneObjectState } from '../viewer/scene_state.ts';
-import { decodeViewHash, encodeViewHash, type ViewState } from '../viewer/view_state.ts';
+import { decodeViewHash, encodeViewHash, type FullView, type ViewState } from '../viewer/view_state.ts';
 import { describe, jobOf, type AppContext } from './context.ts';
 
 /** How long the view stays still before the address follows it (a camera's glide ends well within). */
@@ -86,6 +88,21 @@ export class ViewLinks {
 
   /** The view shown, as the hash holds it; null with no mesh shown. */
   private view(): WrittenView | null {
+    const view = this.current();
+    if (!view) return null;
+    const { store } = this.ctx;
+    const { scene: entries, scenePanes, compared } = store.get();
+    // Never the token: it stays in this browser's storage (api/auth.ts).
+    const params = new URLSearchParams(encodeViewHash(view.state).slice(1));
+    if (view.up === 'z') params.set('up', 'z');
+    for (const key of view.compare) params.append('compare', key);
+    for (const key of view.show) params.append('show', key);
+    const entry = JSON.stringify([view.state.mesh, meshesOf(entries), scenePanes, compared.map((c) => artifactKey(c.jobId, c.artifact))]);
+    return { hash: `#${params}`, entry };
+  }
+
+  /** The whole view shown (what a link holds, what a lecture's presenter sends); null with no mesh shown. */
+  current(): FullView | null {
     const { store, display, viewer, app } = this.ctx;
     const { selectedId: meshId, scene: entries, scenePanes, compared } = store.get();
     if (!meshId) return null;
@@ -97,14 +114,10 @@ export class ViewLinks {
     if (scenePanes) state.panes = true;
     const f = app.kinds.field.drawn();
     if (f && f.meshId === meshId) state.field = { job: f.jobId, artifact: f.artifact, map: f.map, range: f.range };
-    // Never the token: it stays in this browser's storage (api/auth.ts).
-    const params = new URLSearchParams(encodeViewHash(state).slice(1));
-    if (display.upAxis() === 'z') params.set('up', 'z');
     // Skeletons side by side are built by their kind from more than a list: only fields come back from a link.
-    if (compared.every((c) => this.isField(c))) for (const c of compared) params.append('compare', artifactKey(c.jobId, c.artifact));
-    if (!compared.length) for (const key of app.kinds.shownKeys()) params.append('show', key);
-    const entry = JSON.stringify([meshId, meshesOf(entries), scenePanes, compared.map((c) => artifactKey(c.jobId, c.artifact))]);
-    return { hash: `#${params}`, entry };
+    const compare = compared.every((c) => this.isField(c)) ? compared.map((c) => artifactKey(c.jobId, c.artifact)) : [];
+    const show = compared.length ? [] : app.kinds.shownKeys();
+    return { state, up: display.upAxis() === 'z' ? 'z' : 'y', compare, show };
   }
 
   private isField(c: ArtifactRef): boolean {
@@ -125,42 +138,62 @@ export class ViewLinks {
    * comparison, then its camera. Then the address holds the view shown.
    */
   async restore(): Promise<void> {
+    let view: FullView | null;
+    try {
+      view = this.hashView();
+    } catch (e) {
+      this.ctx.hooks.viewRestored = { error: describe(e) };
+      return this.ctx.error(`Cannot open the view link: ${describe(e)}`);
+    }
+    if (!view) return;
+    if (!(await this.show(view, 'view link'))) return;
+    const written = this.view();
+    if (!written) return;
+    history.replaceState(history.state, '', this.url(written.hash));
+    this.entry = written.entry;
+  }
+
+  /**
+   * Shows a whole view (a link's, a lecture's: `source` names it in the
+   * messages) as a link is opened. Resolves false when a later one overtook it.
+   */
+  async show(view: FullView, source: string): Promise<boolean> {
     const token = ++this.restoring;
     ++this.opening;
     try {
-      await this.open(() => token === this.restoring);
+      await this.open(view, source, () => token === this.restoring);
     } finally {
       --this.opening;
     }
-    if (token !== this.restoring) return;
-    const view = this.view();
-    if (!view) return;
-    history.replaceState(history.state, '', this.url(view.hash));
-    this.entry = view.entry;
+    return token === this.restoring;
   }
 
-  private async open(current: () => boolean): Promise<void> {
+  /** The view of the page's hash; null when it holds none. Throws what is wrong with one that does not check. */
+  private hashView(): FullView | null {
+    const state = decodeViewHash(location.hash);
+    if (!state) return null;
+    const params = new URLSearchParams(location.hash.slice(1));
+    return { state, up: params.get('up') === 'z' ? 'z' : 'y', compare: params.getAll('compare'), show: params.getAll('show') };
+  }
+
+  private async open(view: FullView, source: string, current: () => boolean): Promise<void> {
     const { store, display, viewer, hooks, app } = this.ctx;
-    let state: ViewState | null;
+    const { state } = view;
     let scene: SceneObjectState[] = [];
     try {
-      state = decodeViewHash(location.hash);
-      if (state?.scene) scene = sanitizeScene(state.scene);
+      if (state.scene) scene = sanitizeScene(state.scene);
     } catch (e) {
       hooks.viewRestored = { error: describe(e) };
-      return this.ctx.error(`Cannot open the view link: ${describe(e)}`);
+      return this.ctx.error(`Cannot open the ${source}: ${describe(e)}`);
     }
-    if (!state) return;
     hooks.viewRestored = null;
     if (!app.meshes.mesh(state.mesh)) {
-      const error = `the mesh ${state.mesh} of the view link no longer exists`;
+      const error = `the mesh ${state.mesh} of the ${source} no longer exists`;
       hooks.viewRestored = { error };
-      return this.ctx.error(`Cannot open the view link: ${error}`);
+      return this.ctx.error(`Cannot open the ${source}: ${error}`);
     }
-    const params = new URLSearchParams(location.hash.slice(1));
-    const up = params.get('up') === 'z' ? 'z' : 'y';
-    const compare = params.getAll('compare').map(splitKey);
-    const shows = params.getAll('show').map(splitKey);
+    const compare = view.compare.map(splitKey);
+    const shows = view.show.map(splitKey);
     const now = store.get();
     const drawn = app.kinds.field.drawn();
     // The same mesh and scene with the same field (Back out of a comparison, say): no need to load them again.
@@ -171,7 +204,10 @@ export class ViewLinks {
     if (same) {
       if ((!state.panes && now.scenePanes) || keysOf(compare) !== keysOf(now.compared)) app.compare.leave();
       display.restore(state.display, state.overlays);
-      if (state.field) app.kinds.field.setRange(state.field.range);
+      if (state.field) {
+        app.kinds.field.chooseMap(state.field.map);
+        app.kinds.field.setRange(state.field.range);
+      }
     } else {
       app.meshes.select(state.mesh);
       if (scene[0]) app.scene.change(0, scene[0]);
@@ -179,7 +215,7 @@ export class ViewLinks {
       if (!current()) return;
       // A job's output mesh stands in the scene as `job:<job>/<artifact>`: drawn again from its job, missing only when the job is gone.
       const missing = scene.slice(1).filter((o) => !app.scene.canAdd(o.mesh));
-      if (missing.length) this.ctx.error(`The view link's meshes ${missing.map((o) => o.mesh).join(', ')} no longer exist; the scene is shown without them.`);
+      if (missing.length) this.ctx.error(`The ${source}'s meshes ${missing.map((o) => o.mesh).join(', ')} no longer exist; the scene is shown without them.`);
       await Promise.all(
         scene
           .slice(1)
@@ -196,16 +232,26 @@ export class ViewLinks {
         field.setRange(state.field.range);
       }
     }
-    display.setUpAxis(up);
-    // Skeletons and vector fields drawn and a grid's slices, by their kind.
+    display.setUpAxis(view.up);
+    // Skeletons and vector fields drawn and a grid's slices, by their kind; those the view does not show go.
+    const kindOf = (s: ArtifactRef) => jobOf(this.ctx, s.jobId)?.artifacts?.find((a) => a.name === s.artifact)?.kind;
+    if (!compare.length) {
+      for (const s of app.kinds
+        .shownKeys()
+        .filter((k) => !view.show.includes(k))
+        .map(splitKey)) {
+        const kind = kindOf(s);
+        if (kind) app.kinds.hide(s.jobId, s.artifact, kind);
+      }
+    }
     const unknown: string[] = [];
     for (const s of shows) {
-      const kind = jobOf(this.ctx, s.jobId)?.artifacts?.find((a) => a.name === s.artifact)?.kind;
+      const kind = kindOf(s);
       if (!kind) unknown.push(artifactKey(s.jobId, s.artifact));
       else if (!app.kinds.shownKeys().includes(artifactKey(s.jobId, s.artifact))) await app.kinds.show(s.jobId, s.artifact, kind);
       if (!current()) return;
     }
-    if (unknown.length) this.ctx.error(`The view link's ${unknown.join(', ')} no longer exist; the view is shown without them.`);
+    if (unknown.length) this.ctx.error(`The ${source}'s ${unknown.join(', ')} no longer exist; the view is shown without them.`);
     if (state.panes && !store.get().scenePanes && store.get().scene.length > 1) app.scene.sideBySide();
     if (compare.length && keysOf(compare) !== keysOf(store.get().compared)) {
       await app.compare.compareFields(compare);

@@ -17,12 +17,14 @@ import { VoxelGridKind } from './voxel_grid.ts';
 export class Kinds {
   /** Scalar fields: also compared side by side, and kept in view links. */
   readonly field: ScalarFieldKind;
+  /** Voxel grids: their slice, in a lecture. */
+  readonly voxels: VoxelGridKind;
   private readonly byKind: ReadonlyMap<string, ArtifactKind>;
 
   constructor(ctx: AppContext) {
     // Made in this order because the legend goes over the view before the animation player.
     const skeleton = new SkeletonKind(ctx);
-    const voxels = new VoxelGridKind(ctx);
+    const voxels = (this.voxels = new VoxelGridKind(ctx));
     this.field = new ScalarFieldKind(ctx);
     const modules: ArtifactKind[] = [
       new AnimationKind(ctx),

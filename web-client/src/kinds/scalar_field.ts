@@ -178,9 +178,10 @@ export class ScalarFieldKind implements ArtifactKind {
     return f && { jobId: f.jobId, artifact: f.artifact, meshId: f.meshId, map: f.map, range: f.data.range };
   }
 
-  /** The colour map the next field is drawn in (a view link's). */
+  /** The colour map the next field is drawn in (a view link's), and the one drawn now, if any. */
   chooseMap(name: string): void {
-    this.mapName = name;
+    if (this.field && this.field.map !== name) this.setColorMap(name);
+    else this.mapName = name;
   }
 
   /** The legend of the field drawn, if any (back from a comparison). */

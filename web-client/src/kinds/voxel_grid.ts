@@ -8,7 +8,7 @@ import { artifactRow, runOnButton } from '../panels/artifact_row.ts';
 import { byId, el } from '../panels/dom.ts';
 import type { JobsActions, JobsView } from '../panels/jobs.ts';
 import { artifactKey } from '../state/app_state.ts';
-import { VoxelSlicePanel } from '../panels/voxel_slices.ts';
+import { VoxelSlicePanel, type SliceView } from '../panels/voxel_slices.ts';
 import { buildSlicePlane, sliceClipPlane } from '../viewer/slice_plane.ts';
 import type { ArtifactKind } from './kind.ts';
 
@@ -55,6 +55,15 @@ export class VoxelGridKind implements ArtifactKind {
 
   hide(): void {
     this.panel.close();
+  }
+
+  /** The slice shown and how (a lecture's part `slice`), or null. */
+  sliceView(): SliceView | null {
+    return this.panel.view();
+  }
+
+  setSliceView(view: SliceView | null): void {
+    this.panel.setView(view);
   }
 
   shownKeys(): string[] {

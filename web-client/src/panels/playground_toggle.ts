@@ -17,12 +17,17 @@ export interface CodePanel {
   open(): Promise<PluginsController | null>;
   /** Its controller, if it was ever shown; null otherwise. */
   loaded(): Promise<PluginsController | null> | null;
+  /** Whether it is shown now. */
+  isShown(): boolean;
+  /** Calls `listener` when it is shown or hidden. */
+  onShown(listener: (shown: boolean) => void): void;
 }
 
 export function installPlayground(ctx: AppContext): CodePanel {
   const button = byId<HTMLButtonElement>('playground-toggle');
   const section = byId('playground');
   let loaded: Promise<PluginsController | null> | null = null;
+  const listeners: Array<(shown: boolean) => void> = [];
 
   const handle = el('div', { class: 'playground-resize', role: 'separator', 'aria-orientation': 'vertical', 'aria-label': 'Resize the code panel', title: 'Drag to resize' });
   section.append(handle);
@@ -49,8 +54,7 @@ export function installPlayground(ctx: AppContext): CodePanel {
   const show = (open: boolean): void => {
     section.hidden = !open;
     button.setAttribute('aria-pressed', String(open));
-    if (!open) return;
-    if (!loaded) {
+    if (open && !loaded) {
       const body = el('div', { class: 'playground-body' });
       section.prepend(body);
       loaded = import('../controllers/plugins.ts').then(
@@ -62,9 +66,10 @@ export function installPlayground(ctx: AppContext): CodePanel {
           return null;
         },
       );
-    } else {
-      void loaded.then((c) => c?.shown());
+    } else if (open) {
+      void loaded!.then((c) => c?.shown());
     }
+    for (const listener of listeners) listener(open);
   };
   button.addEventListener('click', () => show(section.hidden));
   return {
@@ -73,5 +78,7 @@ export function installPlayground(ctx: AppContext): CodePanel {
       return loaded ?? Promise.resolve(null);
     },
     loaded: () => loaded,
+    isShown: () => !section.hidden,
+    onShown: (listener) => void listeners.push(listener),
   };
 }

@@ -29,6 +29,20 @@ export interface VoxelsShown {
 }
 
 /** The colours of the slice's drawing: an empty voxel (or one under the threshold), and the ramp from the slice's min to its max. */
+/** What the panel shows and how, as a lecture carries it (its part `slice`). */
+export interface SliceView {
+  job: string;
+  artifact: string;
+  axis: Axis;
+  index: number;
+  /** The threshold, as a share of the range (0: off). */
+  threshold: number;
+  /** The mesh cut at the slice. */
+  cut: boolean;
+  /** The voxels above the threshold in 3D. */
+  voxels: boolean;
+}
+
 const OFF_RGB: [number, number, number] = [20, 22, 28];
 const RAMP = (t: number): [number, number, number] => [80 + 175 * t, 160 + 60 * t, 230];
 const css = ([r, g, b]: [number, number, number]): string => `rgb(${Math.round(r)}, ${Math.round(g)}, ${Math.round(b)})`;
@@ -45,6 +59,8 @@ export class VoxelSlicePanel {
   private last: { begin: SliceBegin; slice: VoxelSlice } | null = null;
   private inFlight = false;
   private again = false;
+  /** The first slice fetched moves to the middle of the grid (not when a lecture said which). */
+  private toMiddle = true;
   private readonly canvas = el('canvas', { class: 'slice-canvas', width: '1', height: '1' });
   private readonly slider = el('input', { type: 'range', min: '0', max: '0', value: '0', 'aria-label': 'Slice index' });
   private readonly thresholdSlider = el('input', { type: 'range', min: '0', max: '1000', value: '0', 'aria-label': 'Threshold' });
@@ -99,8 +115,39 @@ export class VoxelSlicePanel {
     this.drawVoxels();
     this.dims = null;
     this.index = 0;
+    this.toMiddle = true;
     this.render();
     this.fetch();
+  }
+
+  /** The slice shown and how, or null when the panel is closed. */
+  view(): SliceView | null {
+    const t = this.target;
+    if (!t) return null;
+    return { job: t.jobId, artifact: t.artifact, axis: this.axis, index: this.index, threshold: this.threshold, cut: this.cut.checked, voxels: this.show3d.checked };
+  }
+
+  /** Shows a slice as a lecture's presenter shows it (null: closed). */
+  setView(v: SliceView | null): void {
+    if (!v) {
+      if (this.target) this.close();
+      return;
+    }
+    if (this.target?.jobId !== v.job || this.target.artifact !== v.artifact) {
+      this.target = { jobId: v.job, artifact: v.artifact };
+      this.dims = null;
+      this.last = null;
+    }
+    this.toMiddle = false;
+    this.axis = v.axis;
+    this.index = v.index;
+    this.threshold = Math.min(1, Math.max(0, v.threshold));
+    this.thresholdSlider.value = String(Math.round(1000 * this.threshold));
+    this.cut.checked = v.cut;
+    this.show3d.checked = v.voxels;
+    this.render();
+    this.fetch();
+    this.drawVoxels();
   }
 
   /** The grid the panel is open on, or null. */
@@ -172,7 +219,7 @@ export class VoxelSlicePanel {
         this.label.textContent = `${this.index} / ${n - 1}`;
         this.last = r;
         this.draw();
-        if (first) {
+        if (first && this.toMiddle) {
           // Start in the middle of the grid.
           this.index = Math.floor(n / 2);
           this.again = true;

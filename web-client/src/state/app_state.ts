@@ -3,6 +3,7 @@
 // parts they show. Three.js objects, tokens and caches stay in the
 // controllers and kinds that own them.
 import type { Assignment, Course, CourseDetail, Grades, SignInLink, Submission } from '../api/courses.ts';
+import type { Hand, RoomSummary } from '../api/rooms.ts';
 import type { Job, Me, Mesh } from '../api/types.ts';
 import type { SceneObjectState } from '../viewer/scene_state.ts';
 import type * as THREE from 'three';
@@ -69,6 +70,69 @@ export interface CourseState {
   status: { level: 'info' | 'ok' | 'error'; text: string } | null;
 }
 
+/** What this page does in a live lecture (controllers/lecture.ts): nothing, present, follow, or replay one. */
+export type LectureRole = 'none' | 'presenter' | 'follower' | 'replay';
+
+/** A replay's clock (controllers/replay.ts), in ms from the lecture's start. */
+export interface ReplayClock {
+  t: number;
+  duration: number;
+  playing: boolean;
+  speed: number;
+}
+
+/** A live lecture as this page takes part in it, and the course's lectures (the Lecture part of the Course panel). */
+export interface LectureState {
+  role: LectureRole;
+  /** The room presented, followed or replayed. */
+  room: string | null;
+  /** Its course's title (null: a room with a join code). */
+  courseTitle: string | null;
+  /** A code room's join code, for its presenter to hand out. */
+  code: string | null;
+  presenter: string | null;
+  /** A follower's (or a replay's) view follows the presenter's; false: detached, looking around on their own. */
+  attached: boolean;
+  /** How many follow (the presenter's). */
+  followers: number;
+  /** The hands raised (the presenter's). */
+  hands: readonly Hand[];
+  /** The hand the presenter shows to everybody. */
+  shownHand: Hand | null;
+  /** The follower's own hand is up; picking: the next click on the mesh raises it. */
+  handUp: boolean;
+  picking: boolean;
+  /** The presenter's code, while their code panel is open (read-only here). */
+  presenterCode: string | null;
+  /** The course's lectures, live and recorded. */
+  rooms: readonly RoomSummary[];
+  replay: ReplayClock | null;
+  /** A course's lecture just ended: the presenter's own meshes and jobs it showed, to share with the course for its replay. */
+  toShare: { course: string; meshes: string[]; jobs: string[] } | null;
+  status: { level: 'info' | 'ok' | 'error'; text: string } | null;
+}
+
+export function noLecture(rooms: readonly RoomSummary[] = []): LectureState {
+  return {
+    role: 'none',
+    room: null,
+    courseTitle: null,
+    code: null,
+    presenter: null,
+    attached: true,
+    followers: 0,
+    hands: [],
+    shownHand: null,
+    handUp: false,
+    picking: false,
+    presenterCode: null,
+    rooms,
+    replay: null,
+    toShare: null,
+    status: null,
+  };
+}
+
 export interface AppState {
   meshes: readonly Mesh[];
   selectedId: string | null;
@@ -104,6 +168,7 @@ export interface AppState {
   picked: number;
   message: Message | null;
   course: CourseState;
+  lecture: LectureState;
 }
 
 export type AppStore = Store<AppState>;
@@ -144,6 +209,7 @@ export function initialState(): AppState {
       tab: 'assignments',
       status: null,
     },
+    lecture: noLecture(),
   };
 }
 

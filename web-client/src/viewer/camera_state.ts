@@ -14,8 +14,15 @@ export function readCamera(viewer: Viewer): ViewState['camera'] {
   };
 }
 
-/** Puts the camera where `camera` says (the near and far of a link made before they followed the camera are not needed). */
+/** Puts the camera where `camera` says, and keeps it there (the near and far of a link made before they followed the camera are not needed). */
 export function applyCamera(viewer: Viewer, camera: ViewState['camera']): void {
+  // What is left of a drag's glide (the orbit's damping) would carry the camera on from here: one
+  // update without damping spends it first (the viewer's settleControls), then the camera is set.
+  const { controls } = viewer;
+  const damping = controls.enableDamping;
+  controls.enableDamping = false;
+  controls.update();
+  controls.enableDamping = damping;
   const c = viewer.camera;
   c.position.fromArray(camera.position);
   c.up.fromArray(camera.up).normalize();

@@ -169,6 +169,22 @@ export class SelectionTool {
     if (this.target) this.set([...ids]);
   }
 
+  /**
+   * Shows a selection of the mesh selected on (a lecture's presenter's): the
+   * mesh in the server's order is fetched first when it was not yet.
+   */
+  async restore(meshId: string, kind: SelectionKind, ids: readonly number[]): Promise<void> {
+    const source = this.source;
+    if (!source || source.meshId !== meshId) return;
+    if (this.target?.meshId !== meshId) {
+      const ply = await source.load(meshId);
+      if (this.source !== source) return;
+      if (this.target?.meshId !== meshId) this.setMesh(meshId, ply);
+    }
+    this.setKind(kind);
+    this.set([...ids]);
+  }
+
   invert(): void {
     const t = this.target;
     if (t) this.set(invert(this.ids, this.kindNow === 'faces' ? t.ply.faces : t.ply.vertices));
