@@ -35,16 +35,13 @@ import { execFileSync, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { launchBrowser, pngPixels, repo, serverBin, settle, startServer } from '../web-client/tests/harness.mjs';
+import { apiCall, launchBrowser, pictureDifference, repo, serverBin, settle, startServer } from '../web-client/tests/harness.mjs';
 import { checkPrerequisites, givenMesh, held, parseBenchArgs, runBench } from './bench_browser_util.mjs';
 
 const wsBenchBin = process.env.CGVIEW_WS_BENCH ?? path.join(repo, 'build', 'bin', 'ws_bench');
 const DEFAULT_MESH = '/tmp/cgview_bunny_1m.ply';
 const TIMEOUT_MS = 300_000;
 const GOAL_MS = 2000;
-/** Two pictures match when both hold, over the pixels that are not background in both (lecture.e2e.test.mjs). */
-const TOLERANCE = { meanAbs: 1.5, farShare: 0.01, far: 48 };
-const BACKGROUND = [0x1b, 0x1d, 0x22];
 
 function prepareMesh(file) {
   const given = givenMesh(file);
@@ -59,15 +56,10 @@ function prepareMesh(file) {
 // ---- the server's side, over REST ----
 const tokens = {};
 
-async function api(token, method, route, body, contentType = 'application/json') {
-  const r = await fetch(held.server.url + '/api/v1' + route, {
-    method,
-    body: body === undefined ? undefined : Buffer.isBuffer(body) ? body : JSON.stringify(body),
-    headers: { Authorization: `Bearer ${token}`, 'Content-Type': contentType },
-  });
-  const text = await r.text();
-  if (r.status >= 300) throw new Error(`${method} ${route}: HTTP ${r.status} ${text}`);
-  return JSON.parse(text);
+async function api(token, method, route, body, contentType) {
+  const r = await apiCall(held.server.url, token, method, route, body, contentType);
+  if (r.status >= 300) throw new Error(`${method} ${route}: HTTP ${r.status} ${r.text}`);
+  return r.json;
 }
 
 function addUser(name, ...role) {
@@ -161,28 +153,7 @@ async function readClock(page, what) {
 }
 
 // ---- pictures (lecture.e2e.test.mjs's measure) ----
-async function difference(page, pngA, pngB) {
-  const a = await pngPixels(page, pngA);
-  const b = await pngPixels(page, pngB);
-  if (a.width !== b.width || a.height !== b.height) return { sizes: [`${a.width}x${a.height}`, `${b.width}x${b.height}`] };
-  const background = (d, i) => Math.abs(d[i] - BACKGROUND[0]) <= 6 && Math.abs(d[i + 1] - BACKGROUND[1]) <= 6 && Math.abs(d[i + 2] - BACKGROUND[2]) <= 6;
-  let sum = 0;
-  let far = 0;
-  let n = 0;
-  for (let i = 0; i < a.data.length; i += 4) {
-    if (background(a.data, i) && background(b.data, i)) continue;
-    ++n;
-    let worst = 0;
-    for (let k = 0; k < 3; ++k) {
-      const d = Math.abs(a.data[i + k] - b.data[i + k]);
-      sum += d;
-      worst = Math.max(worst, d);
-    }
-    if (worst > TOLERANCE.far) ++far;
-  }
-  const d = { meanAbs: sum / (3 * Math.max(1, n)), farShare: far / Math.max(1, n), pixels: n };
-  return { ...d, same: n > 1000 && d.meanAbs < TOLERANCE.meanAbs && d.farShare < TOLERANCE.farShare };
-}
+const difference = (page, a, b) => pictureDifference(page, a, b).then((d) => ({ ...d, same: d.same && d.pixels > 1000 }));
 const canvasPng = (page) => page.locator('#viewport canvas').screenshot();
 
 // ---- the teacher ----

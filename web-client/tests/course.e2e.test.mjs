@@ -29,7 +29,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
 
-import { artifactsDir, launchBrowser, repo, serverBin, startServer } from './harness.mjs';
+import { artifactsDir, launchBrowser, repo, serverBin, startServer, apiCall } from './harness.mjs';
 
 const samples = process.env.CGVIEW_SAMPLES ?? path.join(repo, 'build', 'samples');
 /** A build and the runs on two hidden meshes, on a busy 2-core machine. */
@@ -68,21 +68,7 @@ let student = null;
 const problems = [];
 const describeProblems = () => (problems.length ? `\npage problems:\n${problems.join('\n')}` : '');
 
-async function api(token, method, route, body, contentType = 'application/json') {
-  const r = await fetch(server.url + '/api/v1' + route, {
-    method,
-    body: body === undefined ? undefined : typeof body === 'string' || Buffer.isBuffer(body) ? body : JSON.stringify(body),
-    headers: { Authorization: `Bearer ${token}`, 'Content-Type': contentType },
-  });
-  const text = await r.text();
-  let json = null;
-  try {
-    json = JSON.parse(text);
-  } catch {
-    // CSV, PNG
-  }
-  return { status: r.status, json, text };
-}
+const api = (token, method, route, body, contentType) => apiCall(server.url, token, method, route, body, contentType);
 
 /** A page of its own context, watched for errors once `name` is signed in. */
 async function newPage(name, options = {}) {

@@ -35,7 +35,7 @@
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { artifactsDir, hueStats, orbitDrag, pngPixels, repo, settle, test, useViewer, webClient } from './harness.mjs';
+import { artifactsDir, hueStats, orbitDrag, PICTURE_TOLERANCE, pictureDifference, pngPixels, repo, settle, test, useViewer, webClient } from './harness.mjs';
 
 const samples = process.env.CGVIEW_SAMPLES ?? path.join(repo, 'build', 'samples');
 const referenceDir = path.join(webClient, 'tests', 'reference');
@@ -44,8 +44,7 @@ const update = process.env.CGVIEW_UPDATE_REFERENCES === '1';
 const MODES = ['smooth', 'flat', 'wireframe', 'points', 'hidden-line', 'toon'];
 const VIEW_SIZE = { width: 400, height: 300 };
 /** A picture matches its reference when both hold (over the pixels that are not background in both). */
-const TOLERANCE = { meanAbs: 1.5, farShare: 0.01, far: 48 };
-const BACKGROUND = [0x1b, 0x1d, 0x22]; // src/viewer/viewer.ts
+const TOLERANCE = PICTURE_TOLERANCE;
 
 const v = useViewer({ tmpPrefix: 'cgview-display-', mesh: path.join(samples, 'eight.off') });
 
@@ -75,36 +74,8 @@ async function screenshot(page, name) {
   return png;
 }
 
-/**
- * How two pictures differ where either shows something (pixels that are
- * background in both are left out, so that the size of the mesh on the
- * canvas does not dilute the measure): the mean absolute difference per
- * channel (RGB, 0..255), and the share of those pixels where a channel
- * differs by more than TOLERANCE.far.
- */
-async function difference(page, pngA, pngB) {
-  const a = await pngPixels(page, pngA);
-  const b = await pngPixels(page, pngB);
-  assert.deepEqual([a.width, a.height], [b.width, b.height], 'pictures of one size');
-  const background = (d, i) => Math.abs(d[i] - BACKGROUND[0]) <= 6 && Math.abs(d[i + 1] - BACKGROUND[1]) <= 6 && Math.abs(d[i + 2] - BACKGROUND[2]) <= 6;
-  let sum = 0;
-  let far = 0;
-  let n = 0;
-  for (let i = 0; i < a.data.length; i += 4) {
-    if (background(a.data, i) && background(b.data, i)) continue;
-    ++n;
-    let worst = 0;
-    for (let k = 0; k < 3; ++k) {
-      const d = Math.abs(a.data[i + k] - b.data[i + k]);
-      sum += d;
-      if (d > worst) worst = d;
-    }
-    if (worst > TOLERANCE.far) ++far;
-  }
-  return { meanAbs: sum / (3 * Math.max(1, n)), farShare: far / Math.max(1, n), pixels: n };
-}
-
-const matches = (d) => d.meanAbs < TOLERANCE.meanAbs && d.farShare < TOLERANCE.farShare;
+const difference = (page, a, b) => pictureDifference(page, a, b).then((d) => (assert.ok(!d.sizes, 'pictures of one size'), d));
+const matches = (d) => d.same;
 
 async function setMode(page, mode) {
   await page.selectOption('#display-mode', mode);

@@ -180,6 +180,64 @@ export async function pngPixels(page, png) {
   return { width, height, data: new Uint8Array(Buffer.from(b64, 'base64')) };
 }
 
+/**
+ * A call of the server's API as the holder of `token`: { status, json (null
+ * when the body is not JSON: CSV, PNG), text }. A body that is not a string
+ * or a Buffer is sent as JSON.
+ */
+export async function apiCall(baseUrl, token, method, route, body, contentType = 'application/json') {
+  const r = await fetch(baseUrl + '/api/v1' + route, {
+    method,
+    body: body === undefined ? undefined : typeof body === 'string' || Buffer.isBuffer(body) ? body : JSON.stringify(body),
+    headers: { Authorization: `Bearer ${token}`, 'Content-Type': contentType },
+  });
+  const text = await r.text();
+  let json = null;
+  try {
+    json = JSON.parse(text);
+  } catch {
+    // CSV, PNG
+  }
+  return { status: r.status, json, text };
+}
+
+/** The viewer's background (src/viewer/viewer.ts), and when two pictures of the view count as the same. */
+export const VIEW_BACKGROUND = [0x1b, 0x1d, 0x22];
+export const PICTURE_TOLERANCE = { meanAbs: 1.5, farShare: 0.01, far: 48 };
+
+/**
+ * How two pictures (PNG buffers of one size) differ where either shows
+ * something (pixels that are background in both are left out, so that the
+ * size of the mesh on the canvas does not dilute the measure): the mean
+ * absolute difference per channel (RGB, 0..255), the share of those pixels
+ * where a channel differs by more than PICTURE_TOLERANCE.far, their count,
+ * and whether that is within PICTURE_TOLERANCE (`same`). Different sizes
+ * give { sizes } alone.
+ */
+export async function pictureDifference(page, pngA, pngB) {
+  const a = await pngPixels(page, pngA);
+  const b = await pngPixels(page, pngB);
+  if (a.width !== b.width || a.height !== b.height) return { sizes: [`${a.width}x${a.height}`, `${b.width}x${b.height}`], same: false };
+  const bg = VIEW_BACKGROUND;
+  const background = (d, i) => Math.abs(d[i] - bg[0]) <= 6 && Math.abs(d[i + 1] - bg[1]) <= 6 && Math.abs(d[i + 2] - bg[2]) <= 6;
+  let sum = 0;
+  let far = 0;
+  let n = 0;
+  for (let i = 0; i < a.data.length; i += 4) {
+    if (background(a.data, i) && background(b.data, i)) continue;
+    ++n;
+    let worst = 0;
+    for (let k = 0; k < 3; ++k) {
+      const d = Math.abs(a.data[i + k] - b.data[i + k]);
+      sum += d;
+      worst = Math.max(worst, d);
+    }
+    if (worst > PICTURE_TOLERANCE.far) ++far;
+  }
+  const d = { meanAbs: sum / (3 * Math.max(1, n)), farShare: far / Math.max(1, n), pixels: n };
+  return { ...d, same: d.meanAbs < PICTURE_TOLERANCE.meanAbs && d.farShare < PICTURE_TOLERANCE.farShare };
+}
+
 // The surface's plain colour (#e07a1f, hue 28°) under white light: an orange
 // hue, clearly saturated, not too dark; highlights whiten and do not count.
 export function isMeshOrange(r, g, b) {

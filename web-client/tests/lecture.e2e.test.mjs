@@ -26,14 +26,12 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
 
-import { artifactsDir, hueStats, launchBrowser, orbitDrag, pngPixels, repo, serverBin, settle, startServer } from './harness.mjs';
+import { artifactsDir, hueStats, launchBrowser, orbitDrag, pictureDifference, pngPixels, repo, serverBin, settle, startServer, apiCall } from './harness.mjs';
 
 const samples = process.env.CGVIEW_SAMPLES ?? path.join(repo, 'build', 'samples');
 /** Every page's view pinned to this size (the pictures compared are the canvas's own pixels). */
 const VIEW = { width: 400, height: 300 };
 /** Two pictures match when both hold, over the pixels that are not background in both (display.e2e's measure). */
-const TOLERANCE = { meanAbs: 1.5, farShare: 0.01, far: 48 };
-const BACKGROUND = [0x1b, 0x1d, 0x22]; // src/viewer/viewer.ts
 
 let server = null;
 let browser = null;
@@ -45,21 +43,7 @@ const describeProblems = () => (problems.length ? `\npage problems:\n${problems.
 /** Tina's pictures: after her first orbit (no field), with the field, and her last view. */
 const shots = {};
 
-async function api(token, method, route, body, contentType = 'application/json') {
-  const r = await fetch(server.url + '/api/v1' + route, {
-    method,
-    body: body === undefined ? undefined : typeof body === 'string' || Buffer.isBuffer(body) ? body : JSON.stringify(body),
-    headers: { Authorization: `Bearer ${token}`, 'Content-Type': contentType },
-  });
-  const text = await r.text();
-  let json = null;
-  try {
-    json = JSON.parse(text);
-  } catch {
-    // not JSON
-  }
-  return { status: r.status, json, text };
-}
+const api = (token, method, route, body, contentType) => apiCall(server.url, token, method, route, body, contentType);
 
 function addUser(name, ...role) {
   const token = execFileSync(serverBin, ['--data-dir', server.dataDir, 'user', 'add', name, ...role], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'ignore'] }).trim();
@@ -115,29 +99,8 @@ async function screenshot(page, name) {
   return fs.readFileSync(file);
 }
 
-/** How two pictures differ where either shows something: the mean absolute difference per channel, and the share of pixels far apart. */
-async function difference(page, pngA, pngB) {
-  const a = await pngPixels(page, pngA);
-  const b = await pngPixels(page, pngB);
-  assert.deepEqual([a.width, a.height], [b.width, b.height], 'pictures of one size');
-  const background = (d, i) => Math.abs(d[i] - BACKGROUND[0]) <= 6 && Math.abs(d[i + 1] - BACKGROUND[1]) <= 6 && Math.abs(d[i + 2] - BACKGROUND[2]) <= 6;
-  let sum = 0;
-  let far = 0;
-  let n = 0;
-  for (let i = 0; i < a.data.length; i += 4) {
-    if (background(a.data, i) && background(b.data, i)) continue;
-    ++n;
-    let worst = 0;
-    for (let k = 0; k < 3; ++k) {
-      const d = Math.abs(a.data[i + k] - b.data[i + k]);
-      sum += d;
-      worst = Math.max(worst, d);
-    }
-    if (worst > TOLERANCE.far) ++far;
-  }
-  return { meanAbs: sum / (3 * Math.max(1, n)), farShare: far / Math.max(1, n), pixels: n };
-}
-const matches = (d) => d.pixels > 1000 && d.meanAbs < TOLERANCE.meanAbs && d.farShare < TOLERANCE.farShare;
+const difference = (page, a, b) => pictureDifference(page, a, b).then((d) => (assert.ok(!d.sizes, `pictures of one size: ${d.sizes}`), d));
+const matches = (d) => d.pixels > 1000 && d.same;
 
 async function assertSamePicture(page, a, b, what) {
   const d = await difference(page, a, b);

@@ -13,7 +13,7 @@ import { setImageSource } from '../api/auth.ts';
 import type { Assignment, AssignmentSpec, Course, CourseDetail, Grades, Submission, SubmissionResult } from '../api/courses.ts';
 import type { CourseTab } from '../state/app_state.ts';
 import { compareMethods, deadlineToUtc, firstDiagnostic, gradeTable, maxPoints, pointsText, scoreText, stuckStudents } from './course_format.ts';
-import { el } from './dom.ts';
+import { el, localTime as when, smallButton as button } from './dom.ts';
 import './course.css';
 
 export interface CourseActions {
@@ -83,18 +83,6 @@ export interface CourseView {
 const TAB_LABELS: Record<CourseTab, string> = { assignments: 'Assignments', grades: 'Grades', members: 'Members', new: 'New assignment' };
 /** The pictures' size as the server renders them: two thirds of its default, three side by side. */
 const PICTURE = { width: 320, height: 240 };
-
-function when(iso: string | null | undefined): string {
-  if (!iso) return '';
-  const t = new Date(iso);
-  return Number.isNaN(t.getTime()) ? iso : t.toLocaleString(undefined, { dateStyle: 'medium', timeStyle: 'short' });
-}
-
-function button(label: string, cls: string, onClick: () => void, title?: string): HTMLButtonElement {
-  const b = el('button', { type: 'button', class: `button small ${cls}`, title }, label);
-  b.addEventListener('click', onClick);
-  return b;
-}
 
 export class CoursePanel {
   private readonly root: HTMLElement;

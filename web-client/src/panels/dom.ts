@@ -36,3 +36,17 @@ export function formatBytes(bytes: number): string {
   }
   return `${v.toFixed(v < 10 ? 1 : 0)} ${units[i]}`;
 }
+
+/** A small button (the course and lecture panels' rows) that calls onClick. */
+export function smallButton(label: string, cls: string, onClick: () => void, title?: string): HTMLButtonElement {
+  const b = el('button', { type: 'button', class: `button small ${cls}`, title }, label);
+  b.addEventListener('click', onClick);
+  return b;
+}
+
+/** An ISO time in the reader's own zone and words ("28 Nov 2026, 16:20"); text that is not a time as it is. */
+export function localTime(iso: string | null | undefined): string {
+  if (!iso) return '';
+  const t = new Date(iso);
+  return Number.isNaN(t.getTime()) ? iso : t.toLocaleString(undefined, { dateStyle: 'medium', timeStyle: 'short' });
+}

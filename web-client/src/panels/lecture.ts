@@ -9,7 +9,7 @@
 // controller (controllers/lecture.ts) tells it and hands it the clicks.
 import type { RoomSummary } from '../api/rooms.ts';
 import type { LectureState, ReplayClock } from '../state/app_state.ts';
-import { el } from './dom.ts';
+import { el, localTime as when, smallButton as button } from './dom.ts';
 import './lecture.css';
 
 export interface LectureActions {
@@ -45,17 +45,6 @@ export const SPEEDS = [0.5, 1, 2, 4];
 export function clockText(ms: number): string {
   const s = Math.max(0, Math.floor(ms / 1000));
   return `${Math.floor(s / 60)}:${String(s % 60).padStart(2, '0')}`;
-}
-
-function when(iso: string): string {
-  const t = new Date(iso);
-  return Number.isNaN(t.getTime()) ? iso : t.toLocaleString(undefined, { dateStyle: 'medium', timeStyle: 'short' });
-}
-
-function button(label: string, cls: string, onClick: () => void, title?: string): HTMLButtonElement {
-  const b = el('button', { type: 'button', class: `button small ${cls}`, title }, label);
-  b.addEventListener('click', onClick);
-  return b;
 }
 
 export class LecturePanel {
