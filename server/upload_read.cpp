@@ -240,7 +240,11 @@ UploadRead read_upload(const std::string& name, const std::string& format, std::
   }
   const MeshFormat f = format_from_name(format.empty() || bundle ? n : "x." + format);
   ReadResult r = read_mesh_bytes(mesh_bytes, f, n);
-  if (r.mesh.num_faces() == 0) throw InvalidInput(n + ": the mesh has no faces");
+  if (r.mesh.num_vertices() == 0) throw InvalidInput(n + " is empty: it has no vertices and no faces");
+  if (r.mesh.num_faces() == 0)
+    throw InvalidInput(n + " has " + std::to_string(r.mesh.num_vertices()) +
+                       " points and no faces: point clouds are not supported yet; mesh it first (for example "
+                       "Poisson reconstruction in MeshLab or Open3D)");
   Textures textures = find_textures(r, mesh_bytes, files, mesh_file, bundle, r.warnings);
   UploadRead out;
   out.name = n;

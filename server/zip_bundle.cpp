@@ -46,7 +46,11 @@ std::vector<BundleFile> unzip_bundle(std::string_view bytes, std::size_t max_byt
     zip_error_fini(&error);
     throw InvalidInput("cannot read the zip");
   }
-  std::unique_ptr<zip_t, ZipCloser> archive(zip_open_from_source(src, ZIP_RDONLY | ZIP_CHECKCONS, &error));
+  // No ZIP_CHECKCONS: it refuses what unzip and every desktop tool accept,
+  // as macOS's Archive Utility's zips (a local header with a data descriptor
+  // that still gives the compressed size; libzip < 1.10.1).  The central
+  // directory is what is read, and the bytes inflated are counted below.
+  std::unique_ptr<zip_t, ZipCloser> archive(zip_open_from_source(src, ZIP_RDONLY, &error));
   if (!archive) {
     zip_source_free(src);
     const std::string why = zip_error_strerror(&error);

@@ -19,11 +19,12 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-// Calls f(line) for each line, without its end of line.
+// Calls f(line) for each line, without its end of line (as TextScanner ends lines).
 template <class F>
 void for_each_line(std::string_view bytes, F&& f) {
+  const char eol = TextScanner::line_end_of(bytes);
   while (!bytes.empty()) {
-    const std::size_t end = bytes.find('\n');
+    const std::size_t end = bytes.find(eol);
     const std::string_view line = bytes.substr(0, end);
     if (!f(line)) return;
     if (end == std::string_view::npos) return;
@@ -53,6 +54,44 @@ std::size_t word_count(std::string_view line) {
   return n;
 }
 
+// A whole word as a number.
+bool parse_float(std::string_view w, float& out) {
+  const auto r = std::from_chars(w.data(), w.data() + w.size(), out);
+  return !w.empty() && r.ec == std::errc() && r.ptr == w.data() + w.size();
+}
+bool is_number(std::string_view w) {
+  float x;
+  return parse_float(w, x);
+}
+
+// The file a texture statement names after its options ("-s 1 1 1 -clamp on
+// fuze uv.jpg" -> "fuze uv.jpg"): the rest of the line, spaces included, as
+// Blender, MeshLab and three.js's MTLLoader take it.  Each option's
+// arguments are its numbers (-o, -s, -t: up to three; -mm: two) or one word
+// (-blendu on, -imfchan r, ...).
+std::string_view texture_file_name(std::string_view rest) {
+  TextScanner in(rest, kLine);
+  for (;;) {
+    in.skip_blanks();
+    const char* start = in.pos();
+    const std::string_view option = in.word();
+    if (option.size() < 2 || option[0] != '-' || is_number(option)) return trim({start, std::size_t(in.end() - start)});
+    const std::string_view o = option.substr(1);
+    const int numbers = o == "o" || o == "s" || o == "t" ? 3 : o == "mm" ? 2 : 0;
+    if (numbers == 0) {
+      in.word();
+      continue;
+    }
+    for (int k = 0; k < numbers; ++k) {
+      const char* before = in.pos();
+      if (!is_number(in.word())) {
+        in.set_pos(before);
+        break;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<Material> parse_mtl(std::string_view bytes) {
@@ -65,15 +104,10 @@ std::vector<Material> parse_mtl(std::string_view bytes) {
       const auto w = words(rest);
       std::array<float, 3> kd{};
       bool ok = w.size() >= 3;
-      for (std::size_t i = 0; ok && i < 3; ++i) {
-        const auto r = std::from_chars(w[i].data(), w[i].data() + w[i].size(), kd[i]);
-        ok = r.ec == std::errc() && r.ptr == w[i].data() + w[i].size();
-      }
+      for (std::size_t i = 0; ok && i < 3; ++i) ok = parse_float(w[i], kd[i]);
       if (ok) out.back().kd = kd;
     } else if (!out.empty() && key == "map_Kd") {
-      // Options (-s 1 1 1, -bm 0.5, ...) come first: the file is the last word.
-      const auto w = words(rest);
-      if (!w.empty()) out.back().map_kd = std::string(w.back());
+      out.back().map_kd = std::string(texture_file_name(rest));
     }
     return true;
   });
@@ -81,6 +115,8 @@ std::vector<Material> parse_mtl(std::string_view bytes) {
 }
 
 ObjMaterialUse obj_material_use(std::string_view obj_bytes) {
+  std::string joined;  // as read_obj reads it
+  obj_bytes = detail::join_continued_lines(obj_bytes, joined);
   ObjMaterialUse use;
   std::string current;
   constexpr std::uint32_t kUnknown = ~std::uint32_t(0);

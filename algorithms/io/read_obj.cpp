@@ -1,4 +1,5 @@
-// Wavefront OBJ: v (with optional r g b), vt, vn and f records; polygons are
+// Wavefront OBJ: v (with optional r g b), vt, vn and f records (a line that
+// ends with a backslash goes on with the next); polygons are
 // fan-triangulated, negative (relative) indices resolved, and every other
 // record (o, g, s, usemtl, mtllib, l, p, free-form curves and surfaces)
 // skipped, with a warning for each kind that holds geometry.
@@ -23,7 +24,8 @@ Index resolve(std::int64_t i, std::size_t count, TextScanner& in, const char* wh
 }  // namespace
 
 void read_obj(std::string_view bytes, const std::string& name, ReadResult& result) {
-  TextScanner in(bytes, name);
+  std::string joined;
+  TextScanner in(join_continued_lines(bytes, joined), name);
   Mesh& mesh = result.mesh;
   std::vector<Vec3f> colours;  // "v x y z r g b" (0..1), an extension MeshLab writes
   std::vector<Vec2f> uvs;
@@ -42,8 +44,7 @@ void read_obj(std::string_view bytes, const std::string& name, ReadResult& resul
     in.skip_blanks();
     const char* line_start = in.pos();
     if (in.at_end()) break;
-    const char c0 = *line_start;
-    if (c0 == '\n' || c0 == '#') {
+    if (in.at_eol()) {
       in.skip_line();
       continue;
     }

@@ -184,7 +184,8 @@ std::uint8_t colour_byte(double c, Type t) {
 void read_ply(std::string_view bytes, const std::string& name, ReadResult& result) {
   TextScanner in(bytes, name);
   if (bytes.empty()) in.fail("the file is empty");
-  if (!bytes.starts_with("ply\n") && !bytes.starts_with("ply\r\n"))
+  // Any line end: "\n", "\r\n", or the lone "\r" of a file from classic Mac OS.
+  if (!bytes.starts_with("ply\n") && !bytes.starts_with("ply\r"))
     in.fail("not a PLY file: it does not start with the line 'ply'");
   in.skip_line();
 

@@ -198,18 +198,21 @@ VoxelGrid decode_binvox(const std::string& bytes, const std::string& name) {
   while (!have_data) {
     const std::size_t nl = bytes.find('\n', pos);
     if (nl == std::string::npos) bad(name, "the header has no 'data' line", pos);
+    const std::size_t line_at = pos;
     std::string line = bytes.substr(pos, nl - pos);
     if (!line.empty() && line.back() == '\r') line.pop_back();
     pos = nl + 1;
     std::istringstream in(line);
     in.imbue(std::locale::classic());
     std::string key;
-    in >> key;
+    // Blank lines, comments (and "#binvox 1" itself) and unknown keywords
+    // are skipped, as binvox's own viewer skips them.
+    if (!(in >> key) || key.front() == '#') continue;
     if (key == "dim") in >> dims[0] >> dims[1] >> dims[2];
     else if (key == "translate") in >> t.x >> t.y >> t.z;
     else if (key == "scale") in >> scale;
     else if (key == "data") have_data = true;
-    if (in.fail()) bad(name, "a malformed '" + key + "' line", pos);
+    if (in.fail()) bad(name, "a malformed '" + key + "' line", line_at);
   }
   const auto d = checked_dims(dims[0], dims[1], dims[2], name);
   // Each run of two bytes holds at most 255 voxels: check the claim before allocating.

@@ -211,6 +211,22 @@ TEST_F(RouterTest, MalformedFileIs400WithTheParsersMessage) {
   expect_error(call("POST", "/api/v1/meshes?name=cut.ply", ply.substr(0, ply.size() - 10)), 400, "invalid_mesh");
   expect_error(call("POST", "/api/v1/meshes?name=empty.off", ""), 400, "invalid_mesh");
   expect_error(call("POST", "/api/v1/meshes?name=points.off", "OFF\n1 0 0\n0 0 0\n"), 400, "invalid_mesh");
+  // A point cloud is said to be one, with what to do about it.
+  const json points = expect_error(call("POST", "/api/v1/meshes?name=scan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"),
+                                   400, "invalid_mesh");
+  EXPECT_EQ(points["detail"],
+            "scan.obj has 4 points and no faces: point clouds are not supported yet; mesh it first (for example "
+            "Poisson reconstruction in MeshLab or Open3D)");
+  const json ply_points = expect_error(
+      call("POST", "/api/v1/meshes?name=scan.ply",
+           "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+           "end_header\n0 0 0\n1 2 3\n"),
+      400, "invalid_mesh");
+  EXPECT_NE(ply_points["detail"].get<std::string>().find("scan.ply has 2 points and no faces: point clouds"),
+            std::string::npos)
+      << ply_points;
+  const json nothing = expect_error(call("POST", "/api/v1/meshes?name=none.off", "OFF\n0 0 0\n"), 400, "invalid_mesh");
+  EXPECT_EQ(nothing["detail"], "none.off is empty: it has no vertices and no faces");
   EXPECT_EQ(store_->count(), 0u);
   EXPECT_TRUE(events_.empty());
 }

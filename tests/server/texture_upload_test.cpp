@@ -37,6 +37,59 @@ const std::string kQuad =
 // Written on Windows: a backslash path in other case than the file's.
 const std::string kMtl = "newmtl skin\nKd 0.5 0.25 1\nmap_Kd .\\Maps\\WOOD.JPG\n";
 
+// A zip as macOS's Archive Utility writes one: each entry followed by a data
+// descriptor, its local header giving the compressed size but no CRC or size
+// (libzip's ZIP_CHECKCONS calls that inconsistent before 1.10.1; unzip -t
+// accepts it).  Stored entries, written byte by byte.
+std::string archive_utility_zip(const std::vector<std::pair<std::string, std::string>>& files) {
+  auto u16 = [](std::string& s, std::size_t v) {
+    s += char(v & 0xff);
+    s += char((v >> 8) & 0xff);
+  };
+  auto u32 = [&](std::string& s, std::size_t v) {
+    u16(s, v & 0xffff);
+    u16(s, (v >> 16) & 0xffff);
+  };
+  auto crc32 = [](const std::string& b) {
+    std::uint32_t c = 0xffffffff;
+    for (const unsigned char x : b) {
+      c ^= x;
+      for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1)));
+    }
+    return ~c;
+  };
+  std::string out, central;
+  for (const auto& [name, bytes] : files) {
+    const std::size_t offset = out.size(), crc = crc32(bytes), size = bytes.size();
+    // Local header: version 2.0, flag 8 (data descriptor), stored, a date; CRC 0, the compressed size, size 0.
+    out += "PK\3\4";
+    for (const std::size_t v : {20, 8, 0, 0, 0x21}) u16(out, v);
+    u32(out, 0);
+    u32(out, size);
+    u32(out, 0);
+    u16(out, name.size());
+    u16(out, 0);
+    out += name + bytes;
+    out += "PK\7\x08";
+    for (const std::size_t v : {crc, size, size}) u32(out, v);
+    central += "PK\1\2";
+    for (const std::size_t v : {0x314, 20, 8, 0, 0, 0x21}) u16(central, v);
+    for (const std::size_t v : {crc, size, size}) u32(central, v);
+    for (const std::size_t v : {name.size(), std::size_t(0), std::size_t(0), std::size_t(0), std::size_t(0)})
+      u16(central, v);
+    u32(central, 0);
+    u32(central, offset);
+    central += name;
+  }
+  const std::size_t central_at = out.size();
+  out += central + "PK\5\6";
+  for (const std::size_t v : {std::size_t(0), std::size_t(0), files.size(), files.size()}) u16(out, v);
+  u32(out, central.size());
+  u32(out, central_at);
+  u16(out, 0);
+  return out;
+}
+
 class TextureUploadTest : public test::RouterFixture {
  protected:
   void SetUp() override {
@@ -267,6 +320,30 @@ TEST_F(TextureUploadTest, PlyTextureFile) {
   // A mesh without UVs says so.
   const json plain = upload("tri.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
   EXPECT_EQ(plain["has_uvs"], false);
+}
+
+TEST_F(TextureUploadTest, MacOsArchiveUtilityZipWithSpacesInNames) {
+  const std::string obj =
+      "mtllib fuze.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+      "usemtl fuze\nf 1/1 2/2 \\\n 3/3\nf 1/1 3/3 4/4\n";
+  const std::string zip =
+      archive_utility_zip({{"fuze/", ""},
+                           {"fuze/fuze.obj", obj},
+                           {"fuze/fuze.mtl", "newmtl fuze\nmap_Kd -s 1 1 1 fuze uv.jpg\n"},
+                           {"fuze/fuze uv.jpg", jpeg_},
+                           {"__MACOSX/", ""},
+                           {"__MACOSX/fuze/", ""},
+                           {"__MACOSX/fuze/._fuze.obj", std::string("\0\5\x16\7\0\2\0\0Mac OS X", 16)},
+                           {"__MACOSX/fuze/._fuze uv.jpg", std::string("\0\5\x16\7", 4)}});
+  const json mesh = upload("fuze.zip", zip);
+  EXPECT_EQ(mesh["name"], "fuze.obj");
+  EXPECT_EQ(mesh["report"]["faces"], 2) << mesh;
+  EXPECT_EQ(mesh["report"]["vertices"], 4) << mesh;
+  EXPECT_EQ(mesh["has_uvs"], true);
+  ASSERT_EQ(mesh["textures"].size(), 1u) << mesh;
+  EXPECT_EQ(mesh["textures"][0]["name"], "fuze uv.jpg");
+  EXPECT_EQ(mesh["textures"][0]["material"], "fuze");
+  EXPECT_EQ(mesh["warnings"], json::array()) << "macOS's files are no files of the user's";
 }
 
 TEST_F(TextureUploadTest, RefusedZips) {

@@ -36,6 +36,32 @@ TEST(Materials, ParsesMtl) {
   EXPECT_TRUE(parse_mtl("Kd 1 1 1\nmap_Kd a.png\n").empty()) << "statements before newmtl belong to no material";
 }
 
+TEST(Materials, TextureNamesWithSpacesAfterTheOptions) {
+  // The file is the rest of the line once the options and their arguments are read.
+  const auto m = parse_mtl(
+      "newmtl fuze\nmap_Kd fuze uv.jpg\n"
+      "newmtl opts\nmap_Kd -s 1 1 1 -o 0.5 0.5 -clamp on -bm 0.2 my  tex.png \r\n"
+      "newmtl mm\nmap_Kd -mm 0 1 -imfchan r -texres 512 -t 1 c.png\n"
+      "newmtl none\nmap_Kd -blendu off\n");
+  ASSERT_EQ(m.size(), 4u);
+  EXPECT_EQ(m[0].map_kd, "fuze uv.jpg");
+  EXPECT_EQ(m[1].map_kd, "my  tex.png");
+  EXPECT_EQ(m[2].map_kd, "c.png");
+  EXPECT_TRUE(m[3].map_kd.empty());
+}
+
+TEST(Materials, LinesAsReadObjReadsThem) {
+  // Continued lines (a backslash at the end) and classic Mac OS line ends, as read_obj joins and splits them.
+  const auto u = obj_material_use("v 0 0 0\nusemtl a\nf 1 1 \\\n 1 1\nusemtl b\nf 1 1 1\n");
+  EXPECT_EQ(u.face_material, (std::vector<std::uint32_t>{0, 0, 1}));
+  const auto mac = obj_material_use("mtllib m.mtl\rv 0 0 0\rusemtl a\rf 1 1 1\rusemtl b\rf 1 1 1 1\r");
+  EXPECT_EQ(mac.libraries, (std::vector<std::string>{"m.mtl"}));
+  EXPECT_EQ(mac.face_material, (std::vector<std::uint32_t>{0, 1, 1}));
+  const auto m = parse_mtl("newmtl a\rKd 1 0 0\rmap_Kd a b.png\r");
+  ASSERT_EQ(m.size(), 1u);
+  EXPECT_EQ(m[0].map_kd, "a b.png");
+}
+
 TEST(Materials, CountsFacesPerUsemtl) {
   const auto u = obj_material_use(
       "mtllib a.mtl b.mtl\nv 0 0 0\nf 1 1 1\nusemtl x\nf 1 1 1\nf 1 1 1\n  usemtl y \nf 1 1 1\nusemtl x\nf 1 1 1\n");

@@ -72,6 +72,25 @@ TEST(ReadOff, CommentsAndBlankLinesAnywhere) {
   EXPECT_TRUE(r.warnings.empty());
 }
 
+TEST(ReadOff, SpacesBlankLinesAndCommentsBeforeTheKeyword) {
+  for (const std::string lead : {"   ", "\t \n\n  ", " # made by hand\n\n", "\r\n  \r\n"}) {
+    SCOPED_TRACE(lead);
+    const ReadResult r = off(lead + "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+    EXPECT_EQ(r.mesh.positions, kTri);
+    EXPECT_EQ(r.mesh.faces, (std::vector<Tri>{{0, 1, 2}}));
+  }
+}
+
+TEST(ReadOff, ClassicMacLineEndings) {
+  const ReadResult r = off("OFF\r# a comment\r3 1 0\r0 0 0\r1 0 0\r0 1 0\r3 0 1 2\r");
+  EXPECT_EQ(r.mesh.positions, kTri);
+  EXPECT_EQ(r.mesh.num_faces(), 1u);
+  EXPECT_TRUE(r.warnings.empty());
+  // Errors name the line as the file's own line ends count them.
+  const ParseError e = error_of("OFF\r3 1 0\r0 0 0\r1 0 0\r0 1 0\r3 0 1 7\r", MeshFormat::off, "mac.off");
+  EXPECT_EQ(e.line(), 6u) << e.what();
+}
+
 TEST(ReadOff, CountsOnTheKeywordLine) {
   const ReadResult r = off("OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
   EXPECT_EQ(r.mesh.num_vertices(), 3u);
@@ -280,6 +299,33 @@ TEST(ReadObj, WindowsLineEndings) {
   EXPECT_EQ(r.mesh.num_faces(), 1u);
 }
 
+TEST(ReadObj, ClassicMacLineEndings) {
+  const ReadResult r = obj("# from an old Mac\r\rv 0 0 0\rv 1 0 0\rv 0 1 0\rvt 0 0\rf 1/1 2/1 3/1\r");
+  EXPECT_EQ(r.mesh.positions, kTri);
+  EXPECT_EQ(r.mesh.num_faces(), 1u);
+  EXPECT_TRUE(r.warnings.empty());
+}
+
+TEST(ReadObj, BackslashContinuesALine) {
+  const ReadResult r =
+      obj("v 0 0 \\\n0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
+          "# a comment's last backslash continues nothing: C:\\path\\\n"
+          "f 1 2 \\\n   3\n"
+          "f 2 \\  \r\n4 \\\n 3\n");
+  EXPECT_EQ(r.mesh.num_vertices(), 4u);
+  EXPECT_EQ(r.mesh.positions[0], (Vec3{0, 0, 0}));
+  EXPECT_EQ(r.mesh.positions[3], (Vec3{1, 1, 0}));
+  EXPECT_EQ(r.mesh.faces, (std::vector<Tri>{{0, 1, 2}, {1, 3, 2}}));
+  EXPECT_TRUE(r.warnings.empty());
+  // Lines after a continued one keep their numbers.
+  const ParseError e = error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 \\\n2 3\nf 1 2 9\n", MeshFormat::obj, "bad.obj");
+  EXPECT_EQ(e.line(), 6u) << e.what();
+  // A backslash on the last line, with nothing to continue with, is an error as before.
+  EXPECT_NE(std::string(error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 \\", MeshFormat::obj, "end.obj").what())
+                .find("found '\\'"),
+            std::string::npos);
+}
+
 TEST(ReadObj, Errors) {
   struct Case {
     std::string text, says;
@@ -441,6 +487,62 @@ TEST(ReadPly, MeshLabPerCornerTexcoords) {
           "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 4 0 0 1 0\n");
   EXPECT_FALSE(bad.mesh.has_uvs());
   EXPECT_TRUE(has_warning(bad, "per-corner texture coordinates dropped"));
+}
+
+TEST(ReadPly, OtherFaceListsAreSkippedInBinary) {
+  // A texcoord list after the indices and another list before them, in either byte order.
+  for (bool big : {false, true}) {
+    SCOPED_TRACE(big ? "big endian" : "little endian");
+    auto f = [&](float v) { return big ? be(v) : le(v); };
+    auto i = [&](std::int32_t v) { return big ? be(v) : le(v); };
+    std::string s = std::string("ply\nformat ") + (big ? "binary_big_endian" : "binary_little_endian") +
+                    " 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                    "element face 2\nproperty list uchar int flags\nproperty list uchar int vertex_indices\n"
+                    "property list uchar float texcoord\nproperty int texnumber\nend_header\n";
+    for (const Vec3f p : {Vec3f{0, 0, 0}, Vec3f{1, 0, 0}, Vec3f{1, 1, 0}, Vec3f{0, 1, 0}})
+      s += f(p.x) + f(p.y) + f(p.z);
+    s += char(1) + i(7) + char(3) + i(0) + i(1) + i(2) + char(6) + f(0) + f(0) + f(1) + f(0) + f(1) + f(1) + i(0);
+    s += std::string(1, '\0') + char(3) + i(0) + i(2) + i(3) + char(6) + f(0) + f(0) + f(1) + f(1) + f(0.5f) + f(1) +
+         i(0);
+    const ReadResult r = ply(s);
+    EXPECT_EQ(r.mesh.num_vertices(), 4u);
+    EXPECT_EQ(r.mesh.positions[2], (Vec3{1, 1, 0}));
+    EXPECT_EQ(r.mesh.faces, (std::vector<Tri>{{0, 1, 2}, {0, 2, 3}}));
+    ASSERT_EQ(r.mesh.uv_faces.size(), 2u);
+    EXPECT_EQ(r.mesh.uvs[r.mesh.uv_faces[1][2]], (Vec2f{0.5f, 1}));
+  }
+}
+
+TEST(ReadPly, ClassicMacAndWindowsLineEndings) {
+  const std::string head =
+      "ply\nformat ascii 1.0\ncomment old Mac\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string body = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  for (const std::string eol : {"\r", "\r\n"}) {
+    SCOPED_TRACE(eol == "\r" ? "\\r" : "\\r\\n");
+    std::string text = head + body;
+    std::string with;
+    for (char c : text) with += c == '\n' ? eol : std::string(1, c);
+    const ReadResult r = ply(with);
+    EXPECT_EQ(r.mesh.positions, kTri);
+    EXPECT_EQ(r.mesh.faces, (std::vector<Tri>{{0, 1, 2}}));
+  }
+  // A binary body after a "\r" header: its first bytes are a '\n' and a '\r', data, not line ends.
+  std::string bin =
+      "ply\rformat binary_little_endian 1.0\relement vertex 3\rproperty uchar flag\rproperty float x\r"
+      "property float y\rproperty float z\relement face 1\rproperty list uchar int vertex_indices\rend_header\r";
+  const unsigned char flags[3] = {'\n', '\r', 7};
+  for (int v = 0; v < 3; ++v)
+    bin += char(flags[v]) + le(float(kTri[v].x)) + le(float(kTri[v].y)) + le(float(kTri[v].z));
+  bin += char(3) + le(std::int32_t(0)) + le(std::int32_t(1)) + le(std::int32_t(2));
+  const ReadResult r = ply(bin);
+  EXPECT_EQ(r.mesh.positions, kTri);
+  ASSERT_EQ(r.properties.size(), 1u);
+  EXPECT_EQ(r.properties[0].values, (std::vector<float>{10, 13, 7}));
+  // Errors count "\r" lines.
+  const ParseError e = error_of("ply\rformat ascii 1.0\rwhatever\rend_header\r", MeshFormat::ply, "mac.ply");
+  EXPECT_EQ(e.line(), 3u) << e.what();
+  EXPECT_NE(std::string(e.what()).find("unknown header line 'whatever'"), std::string::npos) << e.what();
 }
 
 TEST(ReadPly, PointCloudLoadsWithoutFaces) {

@@ -211,6 +211,23 @@ TEST(VoxelFormatsTest, RawWithJsonSidecar) {
   }
 }
 
+TEST(VoxelFormatsTest, BinvoxHeaderCommentsBlankLinesAndUnknownKeywordsAreSkipped) {
+  // As binvox's own viewer reads a header: a comment, blank lines, a keyword of another tool.
+  const std::string head =
+      "#binvox 1\n# voxelised by a student's script\n\ndim 2 2 2\r\n  \ntranslate 1 2 3\nfoo bar\nscale 4\ndata\n";
+  const VoxelGrid g = decode_binvox(head + std::string("\x00\x01\x01\x07", 4));
+  EXPECT_EQ(g.dims(), (std::array<int, 3>{2, 2, 2}));
+  EXPECT_EQ(g.count_occupied(), 7u);
+  EXPECT_FALSE(g.occupied({0, 0, 0}));
+  EXPECT_TRUE(g.occupied({1, 1, 1}));
+  EXPECT_DOUBLE_EQ(g.origin().z, 3);
+  EXPECT_DOUBLE_EQ(g.voxel_size(), 2);
+  // A known keyword with bad values is still refused, at its line's first byte.
+  const std::string bad = error_of([] { decode_binvox("#binvox 1\n\ndim 2 x 2\ndata\n\x01\x08"); });
+  EXPECT_NE(bad.find("a malformed 'dim' line"), std::string::npos) << bad;
+  EXPECT_NE(bad.find("byte 11"), std::string::npos) << bad;
+}
+
 TEST(VoxelFormatsTest, BadFilesAreParseErrors) {
   EXPECT_THROW(decode_binvox("#binvox 1\ndim 1000 1000 1000\ndata\n\x01\xff"), ParseError);
   EXPECT_THROW(decode_binvox("hello"), ParseError);
