@@ -59,8 +59,9 @@ TEST_APT_PACKAGES=(
   # The Slurm executor's batch script on a node without the data directory.
   curl
   # The Python client's arrays, Open3D and meshio interop, and its package
-  # built offline in a venv (clients/python).
-  python3-numpy python3-open3d python3-meshio python3-setuptools python3-wheel python3-venv
+  # installed offline in a venv (clients/python; its build backend is the
+  # standard library, no setuptools or wheel needed).
+  python3-numpy python3-open3d python3-meshio python3-venv
   # The paper's figures as notebooks, run headless by the tests (clients/python/notebooks).
   python3-nbclient python3-ipykernel python3-matplotlib
 )

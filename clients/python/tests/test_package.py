@@ -1,6 +1,7 @@
 """The client as a package: `pip install ./clients/python` into a venv made
-with Debian's python3 (no package index: the build uses the system's
-setuptools), its command, and the standard-library path without numpy."""
+with Debian's python3 (no package index: the build backend is the standard
+library, _build/backend.py), its command, and the standard-library path
+without numpy.  Venvs of other Pythons (pyenv's): tests/pip_install.py."""
 import os
 import shutil
 import subprocess
