@@ -67,9 +67,9 @@ export class App {
     });
     // Before the Display panel's listener: the overlays measure the object where the scene puts it.
     viewer.onShownChange((object) => app.scene.shownChanged(object));
-    const error = (this.error = (text: string): void => {
+    const error = (this.error = (text: string, topic?: string): void => {
       hooks.lastError = text;
-      store.update({ message: { level: 'error', text } });
+      store.update({ message: { level: 'error', text, topic } });
     });
     const notice = (text: string): void => store.update({ message: { level: 'notice', text } });
     const warning = (text: string): void => store.update({ message: { level: 'warning', text } });
@@ -136,6 +136,7 @@ export class App {
       undo,
       app,
       error,
+      dismiss: (topic) => messages.dismiss(topic),
       notice,
       warning,
     };

@@ -3,14 +3,14 @@ import { getToken, installAuthorizedDownloads, onUnauthorized, setToken, tokenFo
 import { redeemTicket, tellParent } from './api/tickets.ts';
 import { App } from './app.ts';
 
-/** Why the token form asks: a course's sign-in link refused says so. */
-let asking = 'This server needs a token (cgview-server user add NAME prints one):';
+/** What the sign-in box says first: why a course's sign-in link was refused; nothing otherwise. */
+let note: string | null = null;
 
 // A server that needs a token (protocol/API.md "Users and tokens"): ask once,
 // keep it, and start again with it.  On loopback this never happens.
 installAuthorizedDownloads();
 onUnauthorized(() => {
-  void tokenForm(asking).then(() => location.reload());
+  void tokenForm(note).then(() => location.reload());
 });
 
 // A page opened with a sign-in ticket (a notebook's view, or a course's
@@ -19,7 +19,7 @@ onUnauthorized(() => {
 void redeemTicket(setToken).then((outcome) => {
   void tellParent(getToken());
   const refusedLink = outcome === 'refused-link';
-  if (refusedLink) asking = 'This sign-in link is used or expired: ask your teacher for another, or sign in with a token:';
+  if (refusedLink) note = 'This sign-in link is used or expired: ask your teacher for another.';
   const app = new App({ openCourse: outcome === 'token', refusedLink });
   void app.start();
 });

@@ -5,7 +5,10 @@
 // quota use (a config file gives alice a small storage quota: an upload over
 // it shows the server's message); "Sign out" forgets the token; sharing a
 // mesh shares it with another user, who sees it after a reload, and takes it
-// back; "Share…" on a job shares it with everyone.
+// back; "Share…" on a job shares it with everyone. The sign-in box is written
+// for a student (paste the link the teacher sent), with no server command in
+// it and no "Sign out" while nobody is signed in; a view link of a mesh or a
+// field the reader may not see says so, and who to ask.
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
@@ -57,6 +60,26 @@ async function signedIn(token) {
   return page;
 }
 
+test('the sign-in box speaks to a student, and nobody is signed out before signing in', async () => {
+  const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+  await page.goto(server.url + '/');
+  const box = page.getByRole('form', { name: 'Sign in to CGView' });
+  await box.waitFor({ timeout: 30000 });
+  const text = await box.innerText();
+  assert.match(text, /sign-in link your teacher sent you/, text);
+  assert.match(text, /Ask your teacher for a new one/, text);
+  assert.doesNotMatch(text, /cgview-server|user add/, "no command for the server's admin");
+  assert.ok(await box.getByLabel('Sign-in link or token').isVisible());
+  assert.ok(await box.getByRole('button', { name: 'Sign in' }).isVisible());
+  await page.waitForFunction(() => window.__cgview?.ready === true, null, { timeout: 30000 });
+  assert.equal(await page.getByRole('button', { name: 'Sign out' }).count(), 0, 'no "Sign out" with nobody signed in');
+  assert.equal(await page.locator('#account').isVisible(), false, 'no account line');
+  // The requests refused for want of a token are not errors to read: the box asks.
+  assert.equal(await page.locator('#messages').getByRole('alert').count(), 0, await page.locator('#messages').innerText());
+  assert.equal(await page.getByRole('region', { name: /Drop a mesh here/ }).isVisible(), false, 'no upload card under the box');
+  await page.close();
+});
+
 test('the viewer asks for a token once, then works with it', async () => {
   const token = execFileSync(serverBin, ['--data-dir', server.dataDir, 'user', 'add', 'alice'], {
     encoding: 'utf8',
@@ -104,7 +127,7 @@ test('the header shows the user and their quota; over it an upload shows why; si
   await page
     .locator('#file-input')
     .setInputFiles({ name: 'elephant-copy.off', mimeType: 'application/octet-stream', buffer: Buffer.concat([fs.readFileSync(elephant), Buffer.from('\n')]) });
-  const alert = page.locator('#messages .message.error').last();
+  const alert = page.locator('#messages .message.error').first();
   await alert.waitFor({ timeout: 30000 });
   assert.match(await alert.textContent(), /storage quota of 204\.8 KB exceeded: 169\.7 KB used, this upload is 169\.7 KB/);
   assert.equal((await api(token, 'GET', '/me')).json.storage_bytes_used, fs.statSync(elephant).size);
@@ -170,4 +193,38 @@ test('a mesh shared in the viewer shows for the other user after a reload, and g
   assert.equal((await api(dave, 'GET', '/jobs/' + job.json.id)).status, 200);
   await other.close();
   await owner.close();
+});
+
+test('a view link of a mesh, or a field, the reader may not see says so and who to ask', async () => {
+  const erin = addUser('erin');
+  const frank = addUser('frank');
+  const up = await api(erin, 'POST', '/meshes?name=elephant.off', fs.readFileSync(elephant));
+  assert.equal(up.status, 201);
+  const mesh = up.json.id;
+  const job = await api(erin, 'POST', '/jobs', JSON.stringify({ algorithm: 'centroid_distance', inputs: { mesh } }));
+  assert.equal(job.status, 201);
+  const camera = { position: [0, 0, 3], target: [0, 0, 0], up: [0, 1, 0], fov: 40 };
+  const link = (state) => `${server.url}/#view=${Buffer.from(JSON.stringify({ v: 1, camera, ...state })).toString('base64url')}`;
+
+  const page = await signedIn(frank);
+  await page.locator('#mesh-list li.mesh').first().waitFor({ timeout: 30000 });
+  await page.goto(link({ mesh }));
+  await page.reload(); // a new hash alone does not reload the page
+  await page.waitForFunction(() => window.__cgview?.viewRestored != null, null, { timeout: 30000 });
+  const alert = page.locator('#messages').getByRole('alert').filter({ hasText: 'Cannot open the view link' });
+  await alert.waitFor({ timeout: 10000 });
+  assert.match(await alert.innerText(), /it shows a mesh \([0-9a-f]+\) that does not exist or is not shared with you: ask its owner to share it/);
+  assert.doesNotMatch(await alert.innerText(), /no longer exists/);
+  await alert.getByRole('button', { name: 'Dismiss' }).click();
+
+  // A mesh frank sees (a sample) with erin's field on it: the mesh is shown, and the page says why the field is not.
+  const sample = await page.locator('#mesh-list li.mesh').first().getAttribute('data-mesh-id');
+  await page.goto(link({ mesh: sample, field: { job: job.json.id, artifact: 'distance', map: 'viridis', range: [0, 1] } }));
+  await page.reload();
+  await page.waitForFunction((id) => window.__cgview?.lastLoaded?.id === id, sample, { timeout: 60000 });
+  const fieldAlert = page.locator('#messages').getByRole('alert').filter({ hasText: 'shows a field of a job' });
+  await fieldAlert.waitFor({ timeout: 10000 });
+  assert.match(await fieldAlert.innerText(), /does not exist or is not shared with you: ask its owner to share it/);
+  assert.equal(await page.evaluate(() => window.__cgview.lastField), null, 'no field drawn');
+  await page.close();
 });

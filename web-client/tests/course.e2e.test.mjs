@@ -240,7 +240,10 @@ test('the student signs in with the link, reads the statement, opens a public me
   const elsewhere = await browser.newContext();
   const again = await elsewhere.newPage();
   await again.goto(link);
-  await again.locator('#token-form label', { hasText: 'This sign-in link is used or expired: ask your teacher for another' }).waitFor({ timeout: 30_000 });
+  await again
+    .getByRole('form', { name: 'Sign in to CGView' })
+    .filter({ hasText: 'This sign-in link is used or expired: ask your teacher for another' })
+    .waitFor({ timeout: 30_000 });
   assert.equal(await again.evaluate(() => localStorage.getItem('cgview.token')), null);
   await elsewhere.close();
 

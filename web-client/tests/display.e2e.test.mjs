@@ -408,7 +408,7 @@ test('a bad view link, or one whose mesh is gone, says so in the page', async ()
     await other.goto(`${server.url}/#view=${Buffer.from(JSON.stringify(gone)).toString('base64url')}`);
     await other.reload(); // a new hash alone does not reload the page
     await other.waitForFunction(() => window.__cgview?.viewRestored !== null, null, { timeout: 30000 });
-    assert.match((await other.evaluate(() => window.__cgview.viewRestored)).error, /no-such-mesh .*no longer exists/);
+    assert.match((await other.evaluate(() => window.__cgview.viewRestored)).error, /no-such-mesh .*does not exist or is not shared with you/);
     assert.deepEqual(errors, [], 'no uncaught errors');
   } finally {
     await other.close();

@@ -15,6 +15,12 @@
 // highlight is drawn over them, and the axis drawn pointing up is labelled Z.
 // The canvas is kept in build/test-artifacts/e2e-loose-ends-*.png.
 //
+// First impressions: a notice goes by itself while an error stays until
+// dismissed (its button says so); a failed run's error goes when a rerun of
+// the algorithm on the mesh succeeds; a few messages at most show, the
+// newest first. Underscores show in the plugin name. Two uploads of one name
+// are told apart in the mesh list.
+//
 // Environment: CGVIEW_SERVER, CGVIEW_SAMPLES (default build/samples), CHROMIUM.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -352,5 +358,138 @@ test('Z up: a box over the top half of the drawn mesh selects the faces of high 
   assert.ok(blue.box[1] < midY, `the Z axis reaches above the middle: ${blue.box}, the box ${drawn.box}`);
   assert.ok(green.box[1] > midY, `the Y axis stays below the middle: ${green.box}, the box ${drawn.box}`);
   await page.getByLabel('Axes').uncheck();
+  assert.deepEqual(v.problems, [], v.describeProblems());
+});
+
+const messages = () => v.page.locator('#messages');
+
+test("a notice goes by itself, an error stays until dismissed; a rerun that succeeds takes the failed run's error away", async () => {
+  const { page } = v;
+  await show(v.meshId);
+  await page.getByRole('combobox', { name: 'Algorithm', exact: true }).selectOption('geodesic_distance');
+  const form = page.locator('form.algorithm-form[data-algorithm="geodesic_distance"]');
+  await form.waitFor();
+  const sources = form.getByLabel('Source vertices', { exact: true });
+  await sources.fill('99999999');
+  await form.getByRole('button', { name: 'Run', exact: true }).click();
+  const failure = messages()
+    .getByRole('alert')
+    .filter({ hasText: /^geodesic_distance failed: .*out of range/ });
+  await failure.waitFor({ timeout: 60000 });
+
+  // A notice, after the error: it goes by itself, the error stays.
+  await page.getByRole('button', { name: 'Copy link', exact: true }).click();
+  const notice = messages()
+    .getByRole('status')
+    .filter({ hasText: /^View link/ });
+  await notice.waitFor({ timeout: 10000 });
+  assert.equal(
+    await messages()
+      .locator('.message')
+      .first()
+      .innerText()
+      .then((t) => t.startsWith('View link')),
+    true,
+    'the newest is on top',
+  );
+  await notice.waitFor({ state: 'detached', timeout: NOTICE_MS + MARGIN_MS });
+  assert.ok(await failure.isVisible(), 'the error outlasts the notice');
+  assert.ok(await failure.getByRole('button', { name: 'Dismiss' }).isVisible(), 'the error has a button to dismiss it');
+
+  // The rerun that succeeds: the failure no longer holds, and goes.
+  await sources.fill('0');
+  await form.getByRole('button', { name: 'Run', exact: true }).click();
+  await page.locator('#jobs li.job[data-algorithm="geodesic_distance"][data-state="done"]').first().waitFor({ timeout: 120000 });
+  await failure.waitFor({ state: 'detached', timeout: 10000 });
+  assert.deepEqual(v.problems, [], v.describeProblems());
+});
+
+test('a few messages at most show, the newest first, each dismissed by its button', async () => {
+  const { page } = v;
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'cgview-loose-ends-bad-'));
+  try {
+    for (let i = 1; i <= 5; ++i) {
+      const bad = path.join(dir, `bad${i}.off`);
+      fs.writeFileSync(bad, 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 9\n');
+      await page.setInputFiles('#file-input', bad);
+      await messages()
+        .getByRole('alert')
+        .filter({ hasText: `Upload of bad${i}.off failed` })
+        .waitFor({ timeout: 30000 });
+    }
+    const shown = await messages().getByRole('alert').allInnerTexts();
+    assert.equal(shown.length, 3, `three at most: ${JSON.stringify(shown)}`);
+    assert.deepEqual(
+      shown.map((t) => /bad(\d)\.off/.exec(t)?.[1]),
+      ['5', '4', '3'],
+      'the newest first',
+    );
+    // The stack never covers much of the sidebar: the mesh list's heading stays in reach below it.
+    const stack = await messages().boundingBox();
+    assert.ok(stack.height < 0.4 * page.viewportSize().height, `the messages take ${stack.height} px`);
+    while ((await messages().getByRole('alert').count()) > 0) {
+      await messages().getByRole('alert').first().getByRole('button', { name: 'Dismiss' }).click();
+    }
+  } finally {
+    fs.rmSync(dir, { recursive: true, force: true });
+  }
+  assert.deepEqual(
+    v.problems.filter((p) => !/(HTTP 400: POST|status of 400).*\/meshes\?name=bad\d\.off/.test(p)),
+    [],
+    v.describeProblems(),
+  );
+  v.problems.length = 0;
+});
+
+test('underscores show in the plugin name', async () => {
+  const { page } = v;
+  await page.getByRole('button', { name: 'Code', exact: true }).click();
+  const name = page.getByRole('textbox', { name: 'Plugin name' });
+  await name.waitFor();
+  const before = await name.inputValue();
+  // The same field with and without underscores, blurred (no caret): they must not look the same.
+  const picture = async (text) => {
+    await name.fill(text);
+    await name.blur();
+    return pngPixels(page, await name.screenshot());
+  };
+  const plain = await picture('');
+  const underscored = await picture('____');
+  let differ = 0;
+  for (let i = 0; i < plain.data.length; i += 4) if (Math.abs(plain.data[i] - underscored.data[i]) > 40) ++differ;
+  assert.ok(differ > 10, `the underscores are drawn: ${differ} pixels differ`);
+  // Their whole height: a box of the line's height holds the font's descenders.
+  const fits = await name.evaluate((e) => e.clientHeight >= parseFloat(getComputedStyle(e).fontSize) * 1.4);
+  assert.ok(fits, 'the field is tall enough for its font');
+  await name.fill(before);
+  await page.getByRole('button', { name: 'Code', exact: true }).click();
+  assert.deepEqual(v.problems, [], v.describeProblems());
+});
+
+test('two uploads of one name are told apart in the mesh list', async () => {
+  const { page } = v;
+  const first = await upload('twin.off', cutBoxOff(1, 1, 1, 1));
+  const second = await upload('twin.off', cutBoxOff(1, 2, 1, 1));
+  const row = (id) => page.locator(`#mesh-list li.mesh[data-mesh-id="${id}"]`);
+  await row(first).waitFor({ timeout: 30000 });
+  await row(second).waitFor({ timeout: 30000 });
+  const twins = page.locator('#mesh-list').getByRole('button').filter({ hasText: 'twin.off' });
+  assert.equal(await twins.count(), 2);
+  const [a, b] = [await row(first).innerText(), await row(second).innerText()];
+  assert.notEqual(a, b, 'the two rows read differently');
+  for (const [id, text] of [
+    [first, a],
+    [second, b],
+  ]) {
+    assert.match(text, /twin\.off/, 'the name is shown as it is');
+    assert.match(text, new RegExp(`\\d\\d:\\d\\d( · ${id.slice(0, 6)})?`), `its upload time (and id): ${text}`);
+  }
+  // Their buttons say which one they act on.
+  const deletes = await twins.getByRole('button', { name: /^Delete twin\.off \(.+\)$/ }).evaluateAll((bs) => bs.map((b) => b.getAttribute('aria-label')));
+  assert.equal(new Set(deletes).size, 2, `two different delete buttons: ${deletes}`);
+  // A name of its own has no tag.
+  const lonely = await upload('lonely.off', cutBoxOff(1, 1, 1, 1));
+  await row(lonely).waitFor({ timeout: 30000 });
+  assert.doesNotMatch(await row(lonely).innerText(), /\d\d:\d\d/);
   assert.deepEqual(v.problems, [], v.describeProblems());
 });

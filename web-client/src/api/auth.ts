@@ -5,7 +5,7 @@
 // as the WebSocket's first message.  Tokens never go into URLs (they would
 // be logged): thumbnails and downloads are fetched, then shown from blob URLs.
 
-import { clearSession, sessionToken } from './tickets.ts';
+import { clearSession, pastedTicket, sessionToken } from './tickets.ts';
 
 const KEY = 'cgview.token';
 
@@ -90,28 +90,43 @@ export function installAuthorizedDownloads(root: Document = document): void {
 
 let asking: Promise<void> | null = null;
 
-/** The small form that asks for a token once (however many requests were refused); resolves when one is stored. */
-export function tokenForm(message: string): Promise<void> {
+/**
+ * The sign-in box, written for a student: paste the sign-in link the teacher
+ * sent (or a token); `note` first says what went wrong (a link used already).
+ * Asks once, however many requests were refused; resolves when a token is
+ * stored, or a pasted link's ticket put in the address for the reload to
+ * redeem (api/tickets.ts).
+ */
+export function tokenForm(note: string | null = null): Promise<void> {
   asking ??= new Promise((resolve) => {
     setToken(null); // the stored one, if any, was refused
-    const form = document.createElement('form');
-    form.id = 'token-form';
-    form.className = 'token-form';
-    const label = document.createElement('label');
-    label.textContent = message;
-    const input = Object.assign(document.createElement('input'), { type: 'password', name: 'token', placeholder: 'cgv_…', autocomplete: 'off' });
-    const button = Object.assign(document.createElement('button'), { type: 'submit', textContent: 'Sign in' });
+    const make = <K extends keyof HTMLElementTagNameMap>(tag: K, props: Partial<HTMLElementTagNameMap[K]> = {}): HTMLElementTagNameMap[K] =>
+      Object.assign(document.createElement(tag), props);
+    const form = make('form', { id: 'token-form', className: 'token-form' });
+    form.setAttribute('aria-labelledby', 'token-form-title');
+    const title = make('h2', { id: 'token-form-title', textContent: 'Sign in to CGView' });
+    const intro = make('p', { textContent: 'Open the sign-in link your teacher sent you, or paste it here.' });
+    const label = make('label', { textContent: 'Sign-in link or token' });
+    const input = make('input', { type: 'password', name: 'token', autocomplete: 'off', spellcheck: false });
+    const button = make('button', { type: 'submit', className: 'button', textContent: 'Sign in' });
+    const hint = make('p', { className: 'token-form-hint', textContent: 'No link, or it no longer works? Ask your teacher for a new one: each link works once.' });
     label.append(input);
-    form.append(label, button);
+    form.append(title);
+    if (note) form.append(make('p', { className: 'token-form-note', textContent: note }));
+    form.append(intro, label, button, hint);
     form.addEventListener('submit', (ev) => {
       ev.preventDefault();
-      const token = input.value.trim();
-      if (!token) return;
-      setToken(token);
+      const text = input.value.trim();
+      if (!text) return;
+      const ticket = pastedTicket(text);
+      if (ticket) history.replaceState(history.state, '', `${location.pathname}${location.search}#ticket=${encodeURIComponent(ticket)}`);
+      else setToken(text);
       form.remove();
+      document.body.classList.remove('signing-in');
       resolve();
     });
     document.body.append(form);
+    document.body.classList.add('signing-in');
     input.focus();
   });
   return asking;

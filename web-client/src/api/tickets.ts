@@ -55,6 +55,12 @@ export type TicketOutcome = 'none' | 'signed-in' | 'token' | 'refused' | 'refuse
 /** A course's sign-in link, as opposed to a notebook's ticket. */
 export const COURSE_LINK_PREFIX = 'cgl_';
 
+/** The course sign-in ticket (`cgl_…`) in what was pasted: a whole sign-in link, or the ticket alone; null for anything else (a token). */
+export function pastedTicket(text: string): string | null {
+  const m = /(?:^|[#&?]ticket=)(cgl_[A-Za-z0-9_-]+)(?:$|&)/.exec(text.trim());
+  return m ? m[1]! : null;
+}
+
 /**
  * Redeems the ticket of the page's hash, if it has one, after taking it out
  * of the address (a reload or a copied link must not carry it). A refused

@@ -50,8 +50,10 @@ export interface AppContext {
   /** Offers "Undo" for what destroys (a delete, a cleared selection, a comparison left). */
   readonly undo: UndoOffers;
   readonly app: Controllers;
-  /** Shows an error in the page (and in the hooks' lastError). */
-  error(text: string): void;
+  /** Shows an error in the page (and in the hooks' lastError); one of `topic` replaces the last one of it. */
+  error(text: string, topic?: string): void;
+  /** Takes the messages of `topic` away (what they said no longer holds: a rerun succeeded). */
+  dismiss(topic: string): void;
   /** Shows a notice that fades. */
   notice(text: string): void;
   /** Shows a warning: it fades too, but stays longer than a notice. */
@@ -63,6 +65,11 @@ export function describe(e: unknown): string {
   if (e instanceof ApiError || e instanceof ServerError) return e.detail || e.message;
   if (e instanceof Error) return e.message;
   return String(e);
+}
+
+/** Whether the server refused the request for want of a sign-in (401): the sign-in box asks then, and the error need not be shown. */
+export function isUnauthorized(e: unknown): boolean {
+  return e instanceof ApiError && e.status === 401;
 }
 
 export function isAbort(e: unknown): boolean {

@@ -8,14 +8,14 @@
 // under that name.
 import { needsMesh, type DataKind } from '../api/data_files.ts';
 import { ApiError, cancelJob, deleteJob, getJob, listAlgorithms, listJobs, submitJob, uploadData } from '../api/rest.ts';
-import type { Algorithm, Job, JobInput, JobProgress, ParamSchema } from '../api/types.ts';
+import { jobMeshId, type Algorithm, type Job, type JobInput, type JobProgress, type ParamSchema } from '../api/types.ts';
 import { AlgorithmsPanel } from '../panels/algorithms.ts';
 import { orderedParams } from '../panels/param_control.ts';
 import { byId } from '../panels/dom.ts';
 import { JobsPanel } from '../panels/jobs.ts';
 import { openShareForm } from '../panels/share.ts';
 import { artifactKey, withEntry } from '../state/app_state.ts';
-import { describe, jobOf, type AppContext } from './context.ts';
+import { describe, isUnauthorized, jobOf, type AppContext } from './context.ts';
 import { uploadName } from './meshes.ts';
 
 const FINAL = new Set(['done', 'failed', 'cancelled', 'interrupted']);
@@ -141,6 +141,8 @@ export class JobsController {
       store.update({ algorithmsApi: false });
       if (e instanceof ApiError && e.status === 404) {
         this.algorithms.unavailable('This server has no algorithms API (GET /api/v1/algorithms: 404).');
+      } else if (isUnauthorized(e)) {
+        this.algorithms.unavailable('Sign in to see the algorithms.');
       } else {
         this.algorithms.unavailable(`Cannot list algorithms: ${describe(e)}`);
       }
@@ -153,7 +155,7 @@ export class JobsController {
     try {
       this.upsertAll(await listJobs());
     } catch (e) {
-      this.ctx.error(`Cannot list jobs: ${describe(e)}`);
+      if (!isUnauthorized(e)) this.ctx.error(`Cannot list jobs: ${describe(e)}`);
     }
   }
 
@@ -390,11 +392,13 @@ export class JobsController {
     if (job.state === 'done') {
       this.ctx.app.kinds.load(job);
       if (this.autoShow.delete(job.id)) {
+        // A run of this page that succeeds: the failure of an earlier one of the same algorithm on the same mesh no longer holds.
+        this.ctx.dismiss(failureTopic(job));
         const field = job.artifacts?.find((a) => a.kind === 'scalar_field') ?? job.artifacts?.find((a) => a.kind === 'vector_field');
         if (field) void this.ctx.app.kinds.show(job.id, field.name, field.kind);
       }
     } else if (job.state === 'failed' && this.autoShow.delete(job.id)) {
-      this.ctx.error(`${job.algorithm} failed: ${job.error ?? 'no reason given'}`);
+      this.ctx.error(`${job.algorithm} failed: ${job.error ?? 'no reason given'}`, failureTopic(job));
     } else if (FINAL.has(job.state)) {
       this.autoShow.delete(job.id);
     }
@@ -418,4 +422,9 @@ export class JobsController {
     if (FINAL.has(old.state)) return;
     this.ctx.store.update((s) => ({ jobs: withEntry(s.jobs, p.id, { ...old, state: p.state, progress: p.progress, stage: p.stage }) }));
   }
+}
+
+/** The topic of a job's failure message: its algorithm on its mesh (a later run there that succeeds takes it away). */
+function failureTopic(job: Job): string {
+  return `job-failed:${job.algorithm}:${jobMeshId(job) ?? ''}`;
 }

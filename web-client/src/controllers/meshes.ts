@@ -16,7 +16,7 @@ import { ReportPanel } from '../panels/report.ts';
 import { openShareForm } from '../panels/share.ts';
 import { uploadsOf } from '../panels/upload.ts';
 import { selectedMesh } from '../state/app_state.ts';
-import { describe, type AppContext } from './context.ts';
+import { describe, isUnauthorized, type AppContext } from './context.ts';
 
 /** The server refuses names of more than 255 bytes, or with '/', '\\' or control characters. */
 export function uploadName(name: string): string {
@@ -99,7 +99,7 @@ export class MeshesController {
       if (id && !meshes.some((m) => m.id === id)) this.forget(id);
     } catch (e) {
       this.renderList();
-      this.ctx.error(`Cannot list meshes: ${describe(e)}`);
+      if (!isUnauthorized(e)) this.ctx.error(`Cannot list meshes: ${describe(e)}`);
     } finally {
       this.listed = true;
       this.renderFirst();

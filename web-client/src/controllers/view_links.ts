@@ -25,6 +25,10 @@ import { describe, jobOf, type AppContext } from './context.ts';
 /** How long the view stays still before the address follows it (a camera's glide ends well within). */
 const FOLLOW_MS = 400;
 
+/** What a view's mesh or job missing from the lists may be: the server answers 404 alike for both (a link's reader learns nothing of others' work). */
+const NOT_SEEN = 'does not exist or is not shared with you';
+const ASK_OWNER = 'ask its owner to share it';
+
 /** Query parameters that look like credentials: never carried into a link. */
 const CREDENTIALS = /^(token|access_token|id_token|auth|authorization|api_key|apikey|password|secret)$/i;
 
@@ -187,12 +191,22 @@ export class ViewLinks {
       return this.ctx.error(`Cannot open the ${source}: ${describe(e)}`);
     }
     hooks.viewRestored = null;
+    // The server lists what the reader may see: a mesh or job missing from the lists is gone, or another user's not shared with them (the server does not tell which).
     if (!app.meshes.mesh(state.mesh)) {
-      const error = `the mesh ${state.mesh} of the ${source} no longer exists`;
+      const error = `the mesh ${state.mesh} of the ${source} ${NOT_SEEN}`;
       hooks.viewRestored = { error };
-      return this.ctx.error(`Cannot open the ${source}: ${error}`);
+      return this.ctx.error(`Cannot open the ${source}: it shows a mesh (${state.mesh}) that ${NOT_SEEN}: ${ASK_OWNER}.`);
     }
-    const compare = view.compare.map(splitKey);
+    const field = state.field && jobOf(this.ctx, state.field.job) ? state.field : undefined;
+    if (state.field && !field) {
+      this.ctx.error(`The ${source} shows a field of a job (${state.field.job}) that ${NOT_SEEN}: ${ASK_OWNER}. The view is shown without it.`);
+    }
+    const compareKeys = view.compare.filter((k) => jobOf(this.ctx, splitKey(k).jobId));
+    const unseenCompared = view.compare.filter((k) => !compareKeys.includes(k));
+    if (unseenCompared.length) {
+      this.ctx.error(`The ${source} compares fields (${unseenCompared.join(', ')}) that ${NOT_SEEN}: ${ASK_OWNER}. They are left out.`);
+    }
+    const compare = compareKeys.map(splitKey);
     const shows = view.show.map(splitKey);
     const now = store.get();
     const drawn = app.kinds.field.drawn();
@@ -200,13 +214,13 @@ export class ViewLinks {
     const same =
       now.selectedId === state.mesh &&
       meshesOf(now.scene) === (scene.length ? scene.map((o) => o.mesh) : [state.mesh]).join(' ') &&
-      (drawn ? state.field?.job === drawn.jobId && state.field.artifact === drawn.artifact : !state.field);
+      (drawn ? field?.job === drawn.jobId && field.artifact === drawn.artifact : !field);
     if (same) {
       if ((!state.panes && now.scenePanes) || keysOf(compare) !== keysOf(now.compared)) app.compare.leave();
       display.restore(state.display, state.overlays);
-      if (state.field) {
-        app.kinds.field.chooseMap(state.field.map);
-        app.kinds.field.setRange(state.field.range);
+      if (field) {
+        app.kinds.field.chooseMap(field.map);
+        app.kinds.field.setRange(field.range);
       }
     } else {
       app.meshes.select(state.mesh);
@@ -215,7 +229,9 @@ export class ViewLinks {
       if (!current()) return;
       // A job's output mesh stands in the scene as `job:<job>/<artifact>`: drawn again from its job, missing only when the job is gone.
       const missing = scene.slice(1).filter((o) => !app.scene.canAdd(o.mesh));
-      if (missing.length) this.ctx.error(`The ${source}'s meshes ${missing.map((o) => o.mesh).join(', ')} no longer exist; the scene is shown without them.`);
+      if (missing.length) {
+        this.ctx.error(`The ${source} shows meshes (${missing.map((o) => o.mesh).join(', ')}) that ${NOT_SEEN}: ${ASK_OWNER}. The scene is shown without them.`);
+      }
       await Promise.all(
         scene
           .slice(1)
@@ -224,12 +240,12 @@ export class ViewLinks {
       );
       if (!current()) return;
       display.restore(state.display, state.overlays);
-      if (state.field) {
-        const field = app.kinds.field;
-        field.chooseMap(state.field.map);
-        await field.show(state.field.job, state.field.artifact);
+      if (field) {
+        const kind = app.kinds.field;
+        kind.chooseMap(field.map);
+        await kind.show(field.job, field.artifact);
         if (!current()) return;
-        field.setRange(state.field.range);
+        kind.setRange(field.range);
       }
     }
     display.setUpAxis(view.up);
@@ -251,7 +267,7 @@ export class ViewLinks {
       else if (!app.kinds.shownKeys().includes(artifactKey(s.jobId, s.artifact))) await app.kinds.show(s.jobId, s.artifact, kind);
       if (!current()) return;
     }
-    if (unknown.length) this.ctx.error(`The ${source}'s ${unknown.join(', ')} no longer exist; the view is shown without them.`);
+    if (unknown.length) this.ctx.error(`The ${source} shows results (${unknown.join(', ')}) that ${NOT_SEEN}: ${ASK_OWNER}. The view is shown without them.`);
     if (state.panes && !store.get().scenePanes && store.get().scene.length > 1) app.scene.sideBySide();
     if (compare.length && keysOf(compare) !== keysOf(store.get().compared)) {
       await app.compare.compareFields(compare);

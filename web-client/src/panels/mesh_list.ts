@@ -4,11 +4,14 @@
 // the scene beside the meshes shown, the delete button removes it from the
 // server, the share button (⇪) opens the share form (on what the user may
 // change: their own meshes, or any for an admin); another user's mesh (a
-// student's, shared with their teacher) says whose it is.
+// student's, shared with their teacher) says whose it is. Meshes of one
+// name (two uploads of bunny.off) are told apart by a tag: the upload time,
+// with the id's start where that is the same (panels/mesh_names.ts).
 import { setImageSource } from '../api/auth.ts';
 import { renderUrl } from '../api/rest.ts';
 import type { Mesh } from '../api/types.ts';
-import { el } from './dom.ts';
+import { el, localTime } from './dom.ts';
+import { repeatedNameTags } from './mesh_names.ts';
 
 /** Thumbnails are rendered at 96 px and shown at 48 CSS px (sharp on high-DPI screens). */
 const THUMBNAIL_PX = 96;
@@ -63,19 +66,23 @@ export class MeshListPanel {
       this.root.replaceChildren(el('p', { class: 'empty' }, 'No meshes yet. Upload one, or drop a file on the page.'));
       return;
     }
+    const tags = repeatedNameTags(meshes);
     const items = meshes.map((mesh) => {
+      const tag = tags.get(mesh.id);
+      // What its buttons call it: with its tag where another mesh has its name.
+      const called = tag ? `${mesh.name} (${tag})` : mesh.name;
       const counts = `${mesh.report.vertices} V · ${mesh.report.faces} F`;
       const owner = this.actions.ownerName?.(mesh.owner) ?? null;
-      const remove = el('button', { class: 'delete', type: 'button', title: `Delete ${mesh.name}`, 'aria-label': `Delete ${mesh.name}` }, '✕');
+      const remove = el('button', { class: 'delete', type: 'button', title: `Delete ${called}`, 'aria-label': `Delete ${called}` }, '✕');
       const thumb = this.thumbnail(mesh.id);
-      const add = el('button', { class: 'add-to-scene', type: 'button', title: `Add ${mesh.name} to the scene`, 'aria-label': `Add ${mesh.name} to the scene` }, '+');
+      const add = el('button', { class: 'add-to-scene', type: 'button', title: `Add ${called} to the scene`, 'aria-label': `Add ${called} to the scene` }, '+');
       add.addEventListener('click', (ev) => {
         ev.stopPropagation();
         this.actions.addToScene(mesh.id);
       });
       let share: HTMLButtonElement | null = null;
       if (this.actions.mayChange(mesh.owner)) {
-        share = el('button', { class: 'share', type: 'button', title: `Share ${mesh.name}`, 'aria-label': `Share ${mesh.name}` }, '⇪');
+        share = el('button', { class: 'share', type: 'button', title: `Share ${called}`, 'aria-label': `Share ${called}` }, '⇪');
         share.addEventListener('click', (ev) => {
           ev.stopPropagation();
           this.actions.share(mesh.id);
@@ -94,12 +101,19 @@ export class MeshListPanel {
           'data-mesh-id': mesh.id,
           tabindex: '0',
           role: 'button',
-          title: `${mesh.name} (${mesh.format})`,
+          title: tag ? `${mesh.name} (${mesh.format}), uploaded ${localTime(mesh.created)}, id ${mesh.id}` : `${mesh.name} (${mesh.format})`,
         },
         ...(thumb ? [thumb] : []),
         // The name is cut with an ellipsis in a narrow sidebar: its own tooltip gives it whole.
         el('span', { class: 'mesh-name', title: mesh.name }, mesh.name),
-        el('span', { class: 'mesh-counts' }, counts, owner ? el('span', { class: 'mesh-owner', title: `${owner}'s` }, ` · ${owner}`) : null),
+        // Beside the counts, which two uploads of one file share: what tells them apart.
+        el(
+          'span',
+          { class: 'mesh-counts' },
+          counts,
+          tag ? el('span', { class: 'mesh-tag', title: `Uploaded ${localTime(mesh.created)}, id ${mesh.id}` }, ` · ${tag}`) : null,
+          owner ? el('span', { class: 'mesh-owner', title: `${owner}'s` }, ` · ${owner}`) : null,
+        ),
         add,
         share,
         remove,

@@ -2,12 +2,17 @@
 // to be read); errors stay until dismissed, since they ask the user to do
 // something. A message may carry an action, a button ("Undo") that runs it
 // and dismisses the message; such a message lasts as long as its offer.
+// A message may name its topic ("a job of simplify on this mesh failed"): a
+// newer one of the topic replaces it, and dismiss(topic) takes it away once
+// it no longer holds (the rerun succeeded). The newest is on top and a few
+// at most are shown, so that they never pile up over the sidebar's lists.
 // The stack sits outside the 3D view (app.ts places it), so that it never
 // hides what the user is looking at.
 import type { Message } from '../state/app_state.ts';
 import { el } from './dom.ts';
 
-const MAX_SHOWN = 5;
+/** How many messages show at once: the oldest go first. */
+export const MAX_SHOWN = 3;
 
 export type MessageLevel = Message['level'];
 
@@ -23,6 +28,7 @@ export class MessagesPanel {
 
   /** Shows a message of the state, with its action. */
   show(m: Message): void {
+    if (m.topic) this.dismiss(m.topic);
     // The same words again (a retry that fails again) replace the old message rather than stack up; an offer is its own.
     if (!m.action) {
       for (const old of this.root.querySelectorAll<HTMLElement>(`.message.${m.level}:not(:has(.message-action))`)) {
@@ -31,6 +37,7 @@ export class MessagesPanel {
     }
     const close = el('button', { type: 'button', class: 'close', 'aria-label': 'Dismiss', title: 'Dismiss' }, '✕');
     const item = el('div', { class: `message ${m.level}`, role: m.level === 'error' ? 'alert' : 'status' }, el('span', { class: 'text' }, m.text));
+    if (m.topic) item.dataset.topic = m.topic;
     const action = m.action;
     if (action) {
       const button = el('button', { type: 'button', class: 'button small message-action' }, action.label);
@@ -42,9 +49,16 @@ export class MessagesPanel {
     }
     item.append(close);
     close.addEventListener('click', () => item.remove());
-    this.root.append(item);
-    while (this.root.children.length > MAX_SHOWN) this.root.firstElementChild!.remove();
+    this.root.prepend(item);
+    while (this.root.children.length > MAX_SHOWN) this.root.lastElementChild!.remove();
     const lingerMs = m.level === 'error' ? 0 : (m.timeoutMs ?? LINGER_MS[m.level]);
     if (lingerMs > 0) setTimeout(() => item.remove(), lingerMs);
+  }
+
+  /** Takes away the messages of `topic` (what they said no longer holds). */
+  dismiss(topic: string): void {
+    for (const old of this.root.querySelectorAll<HTMLElement>('.message[data-topic]')) {
+      if (old.dataset.topic === topic) old.remove();
+    }
   }
 }

@@ -38,6 +38,8 @@ export interface Message {
   action?: { label: string; run: () => void };
   /** How long a notice stays (the default: a few seconds). */
   timeoutMs?: number;
+  /** What it is about ("job-failed:simplify:<mesh>"): a newer message of the topic replaces it, and it goes when the topic is dismissed. */
+  topic?: string;
 }
 
 /** What the Course panel shows: the assignments (and one open), the grades table, the members, a new assignment's form. */
