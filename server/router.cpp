@@ -14,7 +14,7 @@
 #include "render_service.h"
 #include "teaching/courses.h"
 #include "teaching/rooms.h"
-#include "zip_bundle.h"
+#include "io/zip_bundle.h"
 
 namespace cgview::server {
 

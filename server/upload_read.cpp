@@ -22,7 +22,7 @@
 #include "io/mesh_io.h"
 #include "io/parse_json.h"
 #include "mesh_report_json.h"
-#include "zip_bundle.h"
+#include "io/zip_bundle.h"
 
 namespace cgview::server {
 
@@ -36,23 +36,6 @@ const BundleFile* find_file(const std::vector<BundleFile>& files, const std::str
   for (const auto& f : files)
     if (ascii_lower(file_base_name(f.name)) == want) return &f;
   return nullptr;
-}
-
-// The one mesh file among a zip's files.
-const BundleFile& mesh_file_of(const std::vector<BundleFile>& files) {
-  std::vector<const BundleFile*> meshes;
-  for (const auto& f : files) {
-    try {
-      if (can_read(format_from_name(f.name))) meshes.push_back(&f);
-    } catch (const UnsupportedFormat&) {
-      // an MTL, an image, a readme
-    }
-  }
-  if (meshes.empty()) throw InvalidInput("the zip holds no mesh file (readable: " + readable_formats() + ")");
-  if (meshes.size() > 1)
-    throw InvalidInput("the zip holds several mesh files ('" + meshes[0]->name + "', '" + meshes[1]->name +
-                       "', ...): upload one mesh per zip");
-  return *meshes.front();
 }
 
 struct Textures {
@@ -234,7 +217,7 @@ UploadRead read_upload(const std::string& name, const std::string& format, std::
   const BundleFile* mesh_file = nullptr;
   if (bundle) {
     files = unzip_bundle(bytes, max_unpacked_bytes);
-    mesh_file = &mesh_file_of(files);
+    mesh_file = &bundle_mesh_file(files);
     n = clean_upload_name(file_base_name(mesh_file->name));
     mesh_bytes = mesh_file->bytes;
   }

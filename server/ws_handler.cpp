@@ -9,7 +9,7 @@
 #include "mesh_service.h"
 #include "rate_limit.h"
 #include "teaching/rooms.h"
-#include "zip_bundle.h"  // TooLarge
+#include "io/zip_bundle.h"  // TooLarge
 #include "voxel/voxel_io.h"
 #include "voxel_slice.h"
 

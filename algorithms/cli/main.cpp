@@ -1,5 +1,6 @@
 // cgview: the command line.  `cgview info`, `cgview convert`, `cgview samples`.
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -14,6 +15,7 @@
 #include "algorithm_json.h"
 #include "io/samples.h"
 #include "io/skeleton_io.h"
+#include "io/zip_bundle.h"
 #include "mesh_report_json.h"
 #include "plugin_option.h"
 #include "registry/artifact_io.h"
@@ -56,7 +58,8 @@ const char* kMainHelp =
     "  -h, --help             this help (also: cgview COMMAND --help)\n"
     "  --version              the version\n"
     "\n"
-    "MESH is a file or the name of a sample mesh.\n";
+    "MESH is a file or the name of a sample mesh; info and convert also take a zip of\n"
+    "one mesh file with its companions (an OBJ with its MTL and textures, as the server takes).\n";
 
 const char* kInfoHelp =
     "usage: cgview info MESH [--json]\n"
@@ -67,7 +70,8 @@ const char* kInfoHelp =
     "  --json     one JSON object (keys: vertices, faces, edges, bbox, components,\n"
     "             boundary_loops, genus, manifold, degenerate_faces, and details)\n"
     "\n"
-    "MESH is a file or the name of a sample mesh (see cgview samples).\n";
+    "MESH is a file, a zip of one mesh file with its companions (an OBJ with its MTL\n"
+    "and textures, as the server takes), or the name of a sample mesh (see cgview samples).\n";
 
 std::string convert_help() {
   return "usage: cgview convert IN OUT [--ascii] [--bits N] [--no-weld]\n"
@@ -75,7 +79,7 @@ std::string convert_help() {
          "Reads IN and writes OUT, each format from its extension.\n"
          "  reads:  " +
          readable_formats() +
-         "\n"
+         ", or a .zip of one mesh file with its companions (an OBJ with its MTL and textures)\n"
          "  writes: " +
          writable_formats() +
          "\n"
@@ -103,6 +107,38 @@ std::filesystem::path need_mesh(const std::string& arg) {
   return *p;
 }
 
+// A mesh as info and convert read it: a mesh file, or a zip bundle (as the
+// server takes: a mesh with its MTL and textures) unpacked into a temporary
+// directory, removed once the mesh is read, the mesh read beside its files.
+struct MeshInput {
+  ReadResult read;
+  std::string entry;  // a bundle's mesh file, as named in the zip; empty for a plain file
+};
+
+MeshInput read_mesh_input(const std::filesystem::path& file, const ReadOptions& options = {}) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext != ".zip") return {read_mesh_file(file, options), ""};
+  const BundleDir bundle(file, std::size_t(options.max_bytes));
+  // Messages name the zip's entry, not the temporary directory that is gone.
+  const std::string tmp = bundle.dir().string() + "/";
+  const std::string shown = file.string() + ":";
+  auto in_zip = [&](std::string m) {
+    for (std::size_t at; (at = m.find(tmp)) != std::string::npos;) m.replace(at, tmp.size(), shown);
+    return m;
+  };
+  ReadResult r;
+  try {
+    r = read_mesh_file(bundle.mesh_path(), options);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(in_zip(e.what()));
+  } catch (const IoError& e) {
+    throw IoError(in_zip(e.what()));
+  }
+  for (auto& w : r.warnings) w = in_zip(w);
+  return {std::move(r), bundle.mesh_entry()};
+}
+
 void print_warnings(const ReadResult& r) {
   for (const auto& w : r.warnings) std::fprintf(stderr, "cgview: warning: %s\n", w.c_str());
 }
@@ -122,19 +158,22 @@ int cmd_info(const std::vector<std::string>& args) {
   }
   if (path.empty()) throw Usage("info: which mesh?");
   const auto file = need_mesh(path);
-  const ReadResult r = read_mesh_file(file);
+  const MeshInput input = read_mesh_input(file);
+  const ReadResult& r = input.read;
   print_warnings(r);
   const MeshReport rep = mesh_report(r.mesh);
   if (json) {
     nlohmann::json j = protocol::to_json(rep);
     j["file"] = file.string();
     j["format"] = to_string(r.format);
+    if (!input.entry.empty()) j["entry"] = input.entry;
     j["warnings"] = r.warnings;
     std::cout << j.dump(2) << "\n";
     return 0;
   }
   auto yes = [](bool b) { return b ? "yes" : "no"; };
-  std::printf("file              %s (%s)\n", file.c_str(), to_string(r.format));
+  if (input.entry.empty()) std::printf("file              %s (%s)\n", file.c_str(), to_string(r.format));
+  else std::printf("file              %s: %s (%s)\n", file.c_str(), input.entry.c_str(), to_string(r.format));
   std::printf("vertices          %llu\n", (unsigned long long)rep.vertices);
   std::printf("faces             %llu\n", (unsigned long long)rep.faces);
   std::printf("edges             %llu\n", (unsigned long long)rep.edges);
@@ -190,7 +229,7 @@ int cmd_convert(const std::vector<std::string>& args) {
     throw UnsupportedFormat(std::string("cannot write ") + to_string(out_format) + " (writable: " + writable_formats() +
                             ")");
   const auto in = need_mesh(paths[0]);
-  const ReadResult r = read_mesh_file(in, ro);
+  const ReadResult r = read_mesh_input(in, ro).read;
   print_warnings(r);
   write_mesh(r.mesh, paths[1], wo);
   return 0;

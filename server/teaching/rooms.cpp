@@ -7,7 +7,7 @@
 #include "io/parse_json.h"
 #include "sqlite_stmt.h"
 #include "teaching/courses.h"
-#include "zip_bundle.h"  // TooLarge
+#include "io/zip_bundle.h"  // TooLarge
 
 namespace cgview::server {
 

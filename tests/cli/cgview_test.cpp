@@ -1,6 +1,7 @@
 // The `cgview` command line, run as a real program: help, reports (text and
 // JSON), conversion, and one-line error messages with a non-zero status.
 #include <gtest/gtest.h>
+#include <zip.h>
 
 #include <nlohmann/json.hpp>
 
@@ -221,6 +222,113 @@ TEST(CliTest, ConvertAsciiPly) {
   EXPECT_EQ(first, "ply");
   EXPECT_EQ(second.rfind("format ascii", 0), 0u) << second;
   expect_elephant(info_json(out.string()));
+}
+
+// A zip written with libzip, as a user's bundle (the server's zip uploads).
+void write_zip(const fs::path& p, const std::vector<std::pair<std::string, std::string>>& files) {
+  int err = 0;
+  zip_t* z = zip_open(p.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
+  ASSERT_NE(z, nullptr) << "libzip error " << err;
+  for (const auto& [name, bytes] : files) {
+    zip_source_t* s = zip_source_buffer(z, bytes.data(), bytes.size(), 0);
+    EXPECT_GE(zip_file_add(z, name.c_str(), s, ZIP_FL_ENC_UTF_8), 0) << zip_strerror(z);
+  }
+  ASSERT_EQ(zip_close(z), 0);
+}
+
+// A textured quad: 4 vertices, 2 triangles, its MTL beside it.
+const std::string kQuadObj =
+    "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl wood\n"
+    "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n";
+const std::string kQuadMtl = "newmtl wood\nKd 1 1 1\nmap_Kd maps/wood.png\n";
+const std::string kTetraOff = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n";
+
+// cgview with its temporary directory set, to see that a bundle's is removed.
+Result cgview_in_tmp(const fs::path& tmp, const std::string& args) {
+  Result r;
+  r.status = test::run("TMPDIR=" + quote(tmp.string()) + " " + cgview_cmd(args) + " 2>&1", &r.out);
+  return r;
+}
+
+TEST(CliTest, InfoAndConvertTakeAZipBundle) {
+  const fs::path dir = test::temp_dir("cli-zip");
+  const fs::path tmp = dir / "tmp";
+  fs::create_directories(tmp);
+  const fs::path zip = dir / "quad.zip";
+  write_zip(zip, {{"quad/quad.obj", kQuadObj},
+                  {"quad/quad.mtl", kQuadMtl},
+                  {"quad/maps/wood.png", "not really a PNG"},
+                  {"readme.txt", "not a mesh"},
+                  // What macOS's Finder adds: not a second mesh.
+                  {"__MACOSX/quad/._quad.obj", std::string("\0\5\x16\7", 4)},
+                  {"quad/._quad.obj", "x"}});
+
+  const json j = info_json(zip.string());
+  EXPECT_EQ(j.value("vertices", 0), 4);
+  EXPECT_EQ(j.value("faces", 0), 2);
+  EXPECT_EQ(j.value("format", ""), "obj");
+  EXPECT_EQ(j.value("entry", ""), "quad/quad.obj");
+  EXPECT_EQ(j.value("file", ""), zip.string());
+
+  Result r = cgview_in_tmp(tmp, "info " + quote(zip.string()));
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("quad.zip: quad/quad.obj (obj)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("vertices          4\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("faces             2\n"), std::string::npos) << r.out;
+
+  const fs::path out = dir / "quad.ply";
+  r = cgview_in_tmp(tmp, "convert " + quote(zip.string()) + " " + quote(out.string()));
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.out, "");
+  const json back = info_json(out.string());
+  EXPECT_EQ(back.value("format", ""), "ply");
+  EXPECT_EQ(back.value("vertices", 0), 4);
+  EXPECT_EQ(back.value("faces", 0), 2);
+  EXPECT_TRUE(fs::is_empty(tmp)) << "the unpacked bundle was left behind";
+
+  // An OFF alone in a zip, the extension in capitals.
+  const fs::path off_zip = dir / "TETRA.ZIP";
+  write_zip(off_zip, {{"tetra.off", kTetraOff}});
+  const json t = info_json(off_zip.string());
+  EXPECT_EQ(t.value("vertices", 0), 4);
+  EXPECT_EQ(t.value("faces", 0), 4);
+  EXPECT_EQ(t.value("genus", -1), 0);
+  const fs::path off_out = dir / "tetra.obj";
+  ASSERT_EQ(cgview("convert " + quote(off_zip.string()) + " " + quote(off_out.string())).status, 0);
+  EXPECT_EQ(info_json(off_out.string()).value("faces", 0), 4);
+}
+
+TEST(CliTest, ZipBundleErrors) {
+  const fs::path dir = test::temp_dir("cli-zip-errors");
+  const fs::path tmp = dir / "tmp";
+  fs::create_directories(tmp);
+  const fs::path none = dir / "none.zip";
+  write_zip(none, {{"readme.txt", "no mesh here"}, {"quad.mtl", kQuadMtl}});
+  expect_one_line_error("info " + quote(none.string()), "no mesh file");
+  expect_one_line_error("convert " + quote(none.string()) + " " + quote((dir / "o.ply").string()), "no mesh file");
+  EXPECT_FALSE(fs::exists(dir / "o.ply"));
+  EXPECT_EQ(cgview_in_tmp(tmp, "info " + quote(none.string())).status, 1);
+
+  const fs::path two = dir / "two.zip";
+  write_zip(two, {{"a.obj", kQuadObj}, {"b.off", kTetraOff}});
+  expect_one_line_error("info " + quote(two.string()), "several mesh files");
+
+  const fs::path not_zip = dir / "not.zip";
+  test::write_text(not_zip, kTetraOff);
+  expect_one_line_error("info " + quote(not_zip.string()), "not a readable zip");
+
+  // A zip-slip name is refused, nothing written outside.
+  const fs::path slip = dir / "slip.zip";
+  write_zip(slip, {{"../evil.off", kTetraOff}});
+  expect_one_line_error("info " + quote(slip.string()), "unsafe path");
+  EXPECT_FALSE(fs::exists(dir / "evil.off"));
+
+  // A malformed mesh in a zip is named by the zip and its entry.
+  const fs::path bad = dir / "bad.zip";
+  write_zip(bad, {{"m/bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"}});
+  expect_one_line_error("info " + quote(bad.string()), "bad.zip:m/bad.off");
+  EXPECT_EQ(cgview_in_tmp(tmp, "info " + quote(bad.string())).status, 1);
+  EXPECT_TRUE(fs::is_empty(tmp)) << "the unpacked bundle was left behind";
 }
 
 TEST(CliTest, ErrorMissingFile) {

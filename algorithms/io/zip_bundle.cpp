@@ -1,10 +1,19 @@
-#include "zip_bundle.h"
+#include "io/zip_bundle.h"
 
 #include <zip.h>
 
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
 #include <memory>
+#include <system_error>
 
-namespace cgview::server {
+#include "io/mesh_io.h"
+
+namespace cgview {
+
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -95,4 +104,82 @@ std::vector<BundleFile> unzip_bundle(std::string_view bytes, std::size_t max_byt
   return out;
 }
 
-}  // namespace cgview::server
+const BundleFile& bundle_mesh_file(const std::vector<BundleFile>& files) {
+  std::vector<const BundleFile*> meshes;
+  for (const auto& f : files) {
+    try {
+      if (can_read(format_from_name(f.name))) meshes.push_back(&f);
+    } catch (const UnsupportedFormat&) {
+      // an MTL, an image, a readme
+    }
+  }
+  if (meshes.empty()) throw InvalidInput("the zip holds no mesh file (readable: " + readable_formats() + ")");
+  if (meshes.size() > 1)
+    throw InvalidInput("the zip holds several mesh files ('" + meshes[0]->name + "', '" + meshes[1]->name +
+                       "', ...): upload one mesh per zip");
+  return *meshes.front();
+}
+
+namespace {
+
+std::string read_zip_file(const fs::path& zip, std::size_t max_bytes) {
+  std::error_code ec;
+  const auto size = fs::file_size(zip, ec);
+  if (ec) throw IoError(zip.string() + ": " + ec.message());
+  if (size > max_bytes)
+    throw InvalidInput(zip.string() + " is larger than the limit of " + std::to_string(max_bytes) + " bytes");
+  std::ifstream in(zip, std::ios::binary);
+  if (!in) throw IoError(zip.string() + ": cannot open");
+  std::string bytes(size, '\0');
+  if (!in.read(bytes.data(), std::streamsize(size))) throw IoError(zip.string() + ": cannot read");
+  return bytes;
+}
+
+}  // namespace
+
+BundleDir::BundleDir(const fs::path& zip, std::size_t max_bytes) {
+  std::vector<BundleFile> files;
+  try {
+    files = unzip_bundle(read_zip_file(zip, max_bytes), max_bytes);
+  } catch (const TooLarge& e) {
+    throw TooLarge(zip.string() + ": " + e.what());
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(zip.string() + ": " + e.what());
+  }
+  const BundleFile* mesh = nullptr;
+  try {
+    mesh = &bundle_mesh_file(files);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(zip.string() + ": " + e.what());
+  }
+  std::string templ = (fs::temp_directory_path() / "cgview-bundle-XXXXXX").string();
+  if (!mkdtemp(templ.data())) throw IoError("cannot make a temporary directory: " + std::string(std::strerror(errno)));
+  dir_ = templ;
+  try {
+    // unzip_bundle refused absolute names and "..": every path stays under dir_.
+    for (const auto& f : files) {
+      const fs::path p = dir_ / fs::path(f.name).relative_path();
+      fs::create_directories(p.parent_path());
+      std::ofstream out(p, std::ios::binary | std::ios::trunc);
+      if (!out.write(f.bytes.data(), std::streamsize(f.bytes.size())) || !out.flush())
+        throw IoError("cannot write " + p.string());
+      if (&f == mesh) mesh_path_ = p;
+    }
+  } catch (const fs::filesystem_error& e) {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+    throw IoError(zip.string() + ": cannot unpack: " + e.what());
+  } catch (...) {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+    throw;
+  }
+  mesh_entry_ = mesh->name;
+}
+
+BundleDir::~BundleDir() {
+  std::error_code ec;
+  fs::remove_all(dir_, ec);
+}
+
+}  // namespace cgview
