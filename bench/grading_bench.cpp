@@ -63,7 +63,9 @@ std::string source_of(const std::string& kind, int n) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+// The whole run; main catches what it throws, so that the server is stopped
+// (ServerProcess's destructor) rather than left running by std::terminate.
+int run(int argc, char** argv) {
   int submissions = 200, students = 60, workers = 2;
   double window_s = 300, time_limit = 60;
   std::string server = std::string(CGVIEW_BIN_DIR) + "/cgview-server";
@@ -261,4 +263,13 @@ int main(int argc, char** argv) {
   std::printf("server peak RSS %.0f MB\n", double(srv.peak_rss_kb()) / 1024);
   fs::remove_all(data);
   return lost == 0 ? 0 : 1;
+}
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "grading_bench: %s\n", e.what());
+    return 1;
+  }
 }
