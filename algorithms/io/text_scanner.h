@@ -123,9 +123,10 @@ class TextScanner {
   }
   void set_pos(const char* p) { p_ = p; }
 
-  // A space within a line whose lines end with `eol`.
+  // A space within a line whose lines end with `eol`: the other line-end
+  // character is one too, or a word() would stop on it without moving.
   static bool is_blank(char c, char eol) {
-    return c == ' ' || c == '\t' || c == '\f' || c == '\v' || (c == '\r' && eol == '\n');
+    return c == ' ' || c == '\t' || c == '\f' || c == '\v' || (c == '\r' && eol == '\n') || (c == '\n' && eol == '\r');
   }
   static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
 

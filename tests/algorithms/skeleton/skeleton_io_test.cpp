@@ -50,6 +50,16 @@ TEST(SkeletonFiles, ReadsWhatOtherToolsWrite) {
   EXPECT_EQ(o.edges.size(), 2u);
 }
 
+TEST(SkeletonFiles, AStrayLineFeedInAClassicMacFileEnds) {
+  // Lines end with '\r' here, so a '\n' is a blank: reading the rest of a
+  // "v" record once stopped on it without moving (tests/fuzz/corpus/skeleton/
+  // regression-lf-in-cr-file).
+  const Skeleton o = read_skeleton_bytes("v 0 0 1\rv 1 0 0 \n 6\rl 1 2\r", SkeletonFormat::obj, "mac.obj");
+  EXPECT_EQ(o.nodes.size(), 2u);
+  EXPECT_EQ(o.edges.size(), 1u);
+  EXPECT_THROW(read_skeleton_bytes("v 0 0 1\rv 1 0\n0\re 1 2 \n x\r", SkeletonFormat::cg, "mac.cg"), ParseError);
+}
+
 TEST(SkeletonFiles, BadFilesNameTheLine) {
   const auto line_of = [](const std::string& bytes, SkeletonFormat f) -> std::optional<std::uint64_t> {
     try {
