@@ -64,7 +64,8 @@ export class JobsController {
     this.ctx = ctx;
     const { store, app } = ctx;
     this.algorithms = new AlgorithmsPanel(byId('algorithms'), {
-      run: async (algorithm, params, inputs) => void (await this.run(algorithm, params, inputs)),
+      run: (algorithm, params, inputs) => this.run(algorithm, params, inputs),
+      cancel: (id) => void this.cancel(id),
       selection: (kind) => this.selectionFor(kind),
     });
     const panel = new JobsPanel(
@@ -102,6 +103,12 @@ export class JobsController {
           ownerName: (owner) => app.account.otherOwner(owner),
         });
       },
+      { now: true },
+    );
+    // The jobs started from the form show their progress and Cancel under Run.
+    store.subscribe(
+      (s) => s.jobs,
+      (jobs) => this.algorithms.setJobs(jobs),
       { now: true },
     );
     store.subscribe(

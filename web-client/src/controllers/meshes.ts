@@ -107,8 +107,8 @@ export class MeshesController {
   }
 
   /**
-   * Uploads files one after the other (a mesh with its MTL and images as one
-   * zip) and shows the last mesh uploaded; then the data files among them
+   * Uploads files one after the other (a mesh with its MTL and images, or a
+   * .gltf with its .bin and images, as one zip: groupUploads) and shows the last mesh uploaded; then the data files among them
    * (voxel grids, skeletons, a field's values: api/data_files.ts), each for
    * the mesh shown then, so that a mesh dropped with its data gets it.
    */
@@ -118,7 +118,9 @@ export class MeshesController {
     let uploads: Array<{ name: string; body: Blob }> = [];
     const data = files.filter((f) => dataKindOf(f.name) !== null);
     try {
-      uploads = await uploadsOf(files.filter((f) => dataKindOf(f.name) === null));
+      const { uploads: made, problems } = await uploadsOf(files.filter((f) => dataKindOf(f.name) === null));
+      uploads = made;
+      for (const p of problems) this.ctx.error(`Not uploaded: ${p}.`);
     } catch (e) {
       this.ctx.error(`Upload failed: ${describe(e)}`);
     }

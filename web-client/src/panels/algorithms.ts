@@ -9,14 +9,21 @@
 // "Advanced", and one with x-cgview-when only shown, and sent, while the
 // parameter it names has one of the values listed. Run submits a job on the
 // selected mesh; the server's validation errors (400 detail) are shown beside
-// the form. An algorithm of several inputs (hausdorff's `reference`) gets a
-// mesh chooser for each input after the first.
+// the form. While a job started here is queued or running, its stage,
+// percentage, bar and a Cancel button sit under Run (where the student
+// looks: the job list may be below the fold), updated from the same job_*
+// events as the job list, and Run reads "Running…" (aria-busy) and is
+// disabled for that same request; changed parameters, another algorithm or
+// another mesh may be run meanwhile, as a notebook queues cells (the server
+// queues jobs; an identical second click would only queue a duplicate). An
+// algorithm of several inputs (hausdorff's `reference`) gets a mesh chooser
+// for each input after the first.
 //
 // The menu is grouped by the algorithms' area, narrowed by a search box, and,
 // once a job's output is chosen with "Run on this", holds only the
 // algorithms whose first input is of that output's kind. Nothing here knows
 // any algorithm by name: a new one needs no JavaScript.
-import type { Algorithm, ParamSchema } from '../api/types.ts';
+import type { Algorithm, Job, ParamSchema } from '../api/types.ts';
 import { el } from './dom.ts';
 import { control, orderedParams } from './param_control.ts';
 import './algorithms.css';
@@ -26,7 +33,9 @@ export interface AlgorithmsActions {
    * Submits a job; `inputs` holds the mesh ids chosen for the inputs after the
    * first. Resolves when it is submitted, rejects with a sentence to show beside the form.
    */
-  run(algorithm: Algorithm, params: Record<string, unknown>, inputs: Record<string, string>): Promise<void>;
+  run(algorithm: Algorithm, params: Record<string, unknown>, inputs: Record<string, string>): Promise<Job>;
+  /** Cancels a job (the Cancel beside Run). */
+  cancel(id: string): void;
   /** The ids of the current selection of that kind ('faces', 'vertices') on the mesh jobs run on (empty: none). */
   selection?(kind: string): number[];
 }
@@ -44,6 +53,23 @@ interface Field {
   /** The value to send, or undefined to leave the parameter to the server's default. */
   read(): unknown;
   reset(): void;
+}
+
+const ACTIVE = new Set(['queued', 'running']);
+
+/** A job started from this panel, shown under Run while it is queued or running. */
+interface Started {
+  /** The request it was started for (requestKey): Run stays busy while the form asks for the same. */
+  key: string;
+  title: string;
+}
+
+/** The parts of a started job's line under Run that its progress events change. */
+interface StartedLine {
+  line: HTMLElement;
+  bar: HTMLProgressElement;
+  stage: HTMLElement;
+  percent: HTMLElement;
 }
 
 /** Areas listed after the others: examples teach, they are not tools. */
@@ -104,7 +130,19 @@ export class AlgorithmsPanel {
   private formElement: HTMLFormElement | null = null;
   /** The choosers of the chosen algorithm's extra inputs, by input name. */
   private inputSelects = new Map<string, HTMLSelectElement>();
-  private running = false;
+  /** The request being submitted now (its requestKey), or null. */
+  private submitting: string | null = null;
+  /** The request the form shows now, as a string compared with those started; null without a form. */
+  private requestKey: () => string | null = () => null;
+  /** Counts the selection's changes: a request of "use current selection" differs after one. */
+  private selectionVersion = 0;
+  /** The jobs the state holds (the job_* events and REST answers merged). */
+  private jobs: ReadonlyMap<string, Job> = new Map();
+  /** Jobs started here that have not ended, by id. */
+  private readonly started = new Map<string, Started>();
+  private readonly startedLines = new Map<string, StartedLine>();
+  /** Under Run: a line for each job started here while it is queued or running. */
+  private readonly runProgress = el('div', { class: 'run-progress', 'aria-label': 'Jobs started here', hidden: '' });
   private runButton: HTMLButtonElement | null = null;
   private target: HTMLElement | null = null;
   private errorBox: HTMLElement | null = null;
@@ -178,6 +216,68 @@ export class AlgorithmsPanel {
       const k = span.dataset.selectionKind!;
       span.textContent = `use current selection (${k === kind ? count : 0} ${k})`;
     }
+    ++this.selectionVersion;
+    this.updateRun(); // a selection parameter asks for other ids now
+  }
+
+  /** The jobs changed (a job_* event, a REST answer): the lines under Run follow those started here. */
+  setJobs(jobs: ReadonlyMap<string, Job>): void {
+    this.jobs = jobs;
+    this.showStarted();
+  }
+
+  /**
+   * The lines under Run: one per job started here until it ends (then its
+   * result or failure shows as for any job, and the line goes); the bar,
+   * stage and percentage change in place, so that Cancel stays the same
+   * element under the pointer.
+   */
+  private showStarted(): void {
+    // A job leaves the state only when deleted (or the user changes): ended too.
+    for (const id of [...this.started.keys()]) {
+      const job = this.jobs.get(id);
+      if (!job || !ACTIVE.has(job.state)) this.started.delete(id);
+    }
+    for (const [id, line] of this.startedLines) {
+      if (this.started.has(id)) continue;
+      line.line.remove();
+      this.startedLines.delete(id);
+    }
+    for (const [id, started] of this.started) {
+      let line = this.startedLines.get(id);
+      if (!line) {
+        line = this.startedLine(id, started.title);
+        this.startedLines.set(id, line);
+        this.runProgress.append(line.line);
+      }
+      const job = this.jobs.get(id)!;
+      const fraction = Math.min(1, Math.max(0, job.progress || 0));
+      line.line.dataset.state = job.state;
+      line.stage.textContent = job.state === 'running' ? job.stage || 'running' : job.state;
+      line.percent.textContent = `${Math.floor(fraction * 100)}%`;
+      line.bar.value = fraction;
+    }
+    this.runProgress.hidden = this.started.size === 0;
+    this.updateRun();
+  }
+
+  private startedLine(id: string, title: string): StartedLine {
+    const stage = el('span', { class: 'run-job-stage' });
+    const percent = el('span', { class: 'run-job-percent' });
+    const bar = el('progress', { class: 'run-job-progress', max: '1', 'aria-label': `${title}: progress` });
+    bar.value = 0;
+    const cancel = el('button', { type: 'button', class: 'button small cancel', title: 'Cancel this job' }, 'Cancel');
+    cancel.addEventListener('click', () => {
+      cancel.disabled = true;
+      this.actions.cancel(id);
+    });
+    const line = el(
+      'div',
+      { class: 'run-job', 'data-job-id': id },
+      el('div', { class: 'run-job-head' }, el('span', { class: 'run-job-title', title }, title), stage, percent, cancel),
+      bar,
+    );
+    return { line, bar, stage, percent };
   }
 
   /** The meshes an extra input may name (the server's mesh list). */
@@ -231,8 +331,25 @@ export class AlgorithmsPanel {
     if (this.meshes.some((m) => m.id === keep)) select.value = keep;
   }
 
+  /**
+   * Run is busy ("Running…", aria-busy, disabled) while the request the form
+   * shows is being submitted or its job is queued or running.
+   */
   private updateRun(): void {
-    if (this.runButton) this.runButton.disabled = this.running || this.meshName === null;
+    const button = this.runButton;
+    if (button) {
+      const key = this.requestKey();
+      const busy = key !== null && (this.submitting === key || [...this.started.values()].some((s) => s.key === key));
+      button.disabled = busy || this.meshName === null;
+      button.textContent = busy ? 'Running…' : 'Run';
+      if (busy) {
+        button.setAttribute('aria-busy', 'true');
+        button.title = 'This run is under way: Cancel it below, or change a parameter to run another';
+      } else {
+        button.removeAttribute('aria-busy');
+        button.removeAttribute('title');
+      }
+    }
     if (!this.target) return;
     const algorithm = this.algorithms.find((a) => a.name === this.chosen);
     const kind = algorithm ? firstKind(algorithm) : 'mesh';
@@ -295,7 +412,20 @@ export class AlgorithmsPanel {
     }
     this.runButton = el('button', { type: 'submit', class: 'button run' }, 'Run');
     this.target = el('span', { class: 'run-target' });
-    form.append(el('div', { class: 'run-row' }, this.runButton, this.target), this.errorBox);
+    form.append(el('div', { class: 'run-row' }, this.runButton, this.target), this.runProgress, this.errorBox);
+
+    // What the form asks for, told from its controls' values rather than by
+    // reading the parameters: a selection's ids are not gathered (nor its
+    // seams complained of) on every progress event.
+    this.requestKey = () => {
+      const values = [...form.querySelectorAll<HTMLInputElement | HTMLSelectElement>('input, select')].map((c) =>
+        c instanceof HTMLInputElement && c.type === 'checkbox' ? c.checked : c.value,
+      );
+      const selection = form.querySelector<HTMLInputElement>('input[data-selection]:checked') ? this.selectionVersion : 0;
+      return JSON.stringify([algorithm.name, this.meshName, selection, values]);
+    };
+    form.addEventListener('input', () => this.updateRun());
+    form.addEventListener('change', () => this.updateRun());
     this.updateRun();
 
     form.addEventListener('submit', (ev) => {
@@ -306,21 +436,29 @@ export class AlgorithmsPanel {
         const v = f.read();
         if (v !== undefined) params[f.name] = v;
       }
+      const inputs: Record<string, string> = {};
+      for (const [name, select] of this.inputSelects) if (select.value) inputs[name] = select.value;
+      const key = this.requestKey();
       const errorBox = this.errorBox!;
       errorBox.hidden = true;
       errorBox.textContent = '';
-      this.running = true;
+      this.submitting = key;
       this.updateRun();
-      const inputs: Record<string, string> = {};
-      for (const [name, select] of this.inputSelects) if (select.value) inputs[name] = select.value;
       this.actions
         .run(algorithm, params, inputs)
+        .then((job) => {
+          // Its state is in this.jobs already (the controller merged it in, a job_done that came first included).
+          this.started.set(job.id, { key: key ?? '', title: algorithm.title || algorithm.name });
+          this.showStarted();
+          // Run may have been at the panel's lower edge: its progress comes into view.
+          if (!this.runProgress.hidden) this.runProgress.scrollIntoView({ block: 'nearest' });
+        })
         .catch((e: unknown) => {
           errorBox.textContent = e instanceof Error ? e.message : String(e);
           errorBox.hidden = false;
         })
         .finally(() => {
-          this.running = false;
+          this.submitting = null;
           this.updateRun();
         });
     });

@@ -1,40 +1,47 @@
 // Uploading: a file picker, and files dropped anywhere on the page.  A mesh
-// chosen together with its MTL and images goes up as one zip (the server
-// unpacks it: README "Textured meshes"); data other tools made (voxel grids,
-// skeletons, a field's values: api/data_files.ts) goes up on its own.
+// chosen together with its MTL and images, or a .gltf with its .bin and
+// images, goes up as one zip (the server unpacks it: README "Textured
+// meshes"); which files go together is api/data_files.ts's groupUploads.
+// Data other tools made (voxel grids, skeletons, a field's values:
+// api/data_files.ts) goes up on its own.
 import { zipSync } from 'three/examples/jsm/libs/fflate.module.js';
-import { DATA_EXTENSIONS } from '../api/data_files.ts';
+import { COMPANION_EXTENSIONS, DATA_EXTENSIONS, groupUploads } from '../api/data_files.ts';
 
-export const ACCEPTED = ['.off', '.obj', '.ply', '.stl', '.drc', '.glb', '.gltf', '.zip', '.mtl', '.png', '.jpg', '.jpeg', ...DATA_EXTENSIONS];
-/** Files that go with a mesh rather than being one. */
-const COMPANIONS = ['.mtl', '.png', '.jpg', '.jpeg'];
-
-function extension(name: string): string {
-  const dot = name.lastIndexOf('.');
-  return dot < 0 ? '' : name.slice(dot).toLowerCase();
-}
+export const ACCEPTED = ['.off', '.obj', '.ply', '.stl', '.drc', '.glb', '.gltf', '.zip', ...COMPANION_EXTENSIONS, ...DATA_EXTENSIONS];
 
 /**
- * What to upload for the files chosen together: each mesh file (or zip)
- * alone, or, when MTLs or images come with it, a zip of the mesh and all
- * of them (named after the mesh). Throws when only companions were chosen.
+ * What to upload for the mesh files chosen together (groupUploads): each
+ * mesh file (or zip) alone, or zipped with its companions (named after the
+ * mesh); and what was chosen that no mesh takes, a sentence each.
  */
-export async function uploadsOf(files: File[]): Promise<Array<{ name: string; body: Blob }>> {
-  const companions = files.filter((f) => COMPANIONS.includes(extension(f.name)));
-  const meshes = files.filter((f) => !COMPANIONS.includes(extension(f.name)));
-  if (!companions.length) return meshes.map((f) => ({ name: f.name, body: f }));
-  if (!meshes.length) throw new Error(`${companions.map((f) => f.name).join(', ')}: choose the mesh file with its materials and images`);
-  const companionBytes = await Promise.all(companions.map(async (f) => [f.name, new Uint8Array(await f.arrayBuffer())] as const));
-  return Promise.all(
-    meshes.map(async (mesh) => {
-      if (extension(mesh.name) === '.zip') return { name: mesh.name, body: mesh as Blob };
-      const entries: Record<string, Uint8Array> = { [mesh.name]: new Uint8Array(await mesh.arrayBuffer()) };
-      for (const [name, bytes] of companionBytes) entries[name] = bytes;
+export async function uploadsOf(files: File[]): Promise<{ uploads: Array<{ name: string; body: Blob }>; problems: string[] }> {
+  const byName = new Map(files.map((f) => [f.name, f]));
+  const { groups, problems } = groupUploads(files.map((f) => f.name));
+  const bytes = new Map<string, Promise<Uint8Array>>();
+  const read = (name: string) => {
+    if (!bytes.has(name))
+      bytes.set(
+        name,
+        byName
+          .get(name)!
+          .arrayBuffer()
+          .then((b) => new Uint8Array(b)),
+      );
+    return bytes.get(name)!;
+  };
+  const uploads = await Promise.all(
+    groups.map(async ({ mesh, companions }) => {
+      const file = byName.get(mesh)!;
+      if (!companions.length) return { name: mesh, body: file as Blob };
+      const entries: Record<string, Uint8Array> = {};
+      for (const name of [mesh, ...companions]) entries[name] = await read(name);
       const zip = zipSync(entries, { level: 0 });
-      const stem = mesh.name.slice(0, mesh.name.length - extension(mesh.name).length) || mesh.name;
+      const dot = mesh.lastIndexOf('.');
+      const stem = (dot > 0 ? mesh.slice(0, dot) : '') || mesh;
       return { name: `${stem}.zip`, body: new Blob([zip], { type: 'application/zip' }) };
     }),
   );
+  return { uploads, problems };
 }
 
 export class UploadControl {
