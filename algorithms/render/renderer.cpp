@@ -789,6 +789,7 @@ std::vector<ViewCapture> Renderer::capture(const Mesh& mesh, const std::vector<C
       v.silhouette.resize(v.depth.size());
       for (std::size_t i = 0; i < v.depth.size(); ++i) v.silhouette[i] = v.depth[i] < 1.0f ? 1 : 0;
       out.push_back(std::move(v));
+      if (options.after_view) options.after_view();
     }
     im.gl.glBindVertexArray(0);
     if (range) im.end_range();

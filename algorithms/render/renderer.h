@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -84,6 +85,11 @@ struct ViewCapture {
 struct CaptureOptions {
   bool face_ids = false;
   bool back_depth = false;
+  // Called after each view is read back, on the thread that drew it
+  // (capture_cameras draws with several contexts on threads of their own,
+  // so it must be thread-safe): the caller's per-view progress.  What it
+  // throws (Cancelled) ends the capture.
+  std::function<void()> after_view{};
 };
 
 class Renderer {

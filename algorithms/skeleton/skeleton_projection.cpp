@@ -1,10 +1,13 @@
 #include "skeleton/skeleton_projection.h"
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <ctime>
 #include <future>
 #include <memory>
 #include <optional>
+#include <thread>
 
 #include "core/cluster_decimate.h"
 #include "core/mesh_report.h"
@@ -82,7 +85,8 @@ Pipeline run_stages(render::Renderer& renderer, const Mesh& mesh, const Skeleton
     std::optional<VoxelGrid> grid;
   };
   // Its context passes cancellation on, not progress: the job's progress
-  // is this thread's.
+  // is this thread's (voxelize would report its own fractions as the
+  // whole run's, and a job's progress function need not be thread-safe).
   Context solid_ctx(nullptr, [ctx] { return ctx && ctx->cancelled(); });
   std::future<Solid> solid_future = std::async(std::launch::async, [&] {
     Solid solid{mesh_report(mesh), std::make_unique<RayCaster>(mesh), std::nullopt};
@@ -96,8 +100,25 @@ Pipeline run_stages(render::Renderer& renderer, const Mesh& mesh, const Skeleton
     return solid;
   });
   out.contexts = p.contexts > 0 ? p.contexts : render::automatic_contexts(renderer);
+  // Each view drawn counts, on whichever context's thread drew it, and is a
+  // point at which a cancelled job stops; the progress is told from this
+  // thread alone (the other contexts draw at its pace), over [0, 0.4],
+  // about 50 times in all.
+  std::atomic<std::size_t> drawn_views{0};
+  const std::thread::id job_thread = std::this_thread::get_id();
+  const std::size_t every = std::max<std::size_t>(1, cameras.size() / 50);
+  std::size_t told = 0;
+  render::CaptureOptions capture{.back_depth = true};
+  if (ctx)
+    capture.after_view = [&] {
+      const std::size_t n = ++drawn_views;
+      ctx->check_cancelled();
+      if (std::this_thread::get_id() != job_thread || n < told + every) return;
+      told = n;
+      ctx->progress(0.4 * double(n) / double(cameras.size()), "rendering silhouettes");
+    };
   const std::vector<render::ViewCapture> views =
-      render::capture_cameras(renderer, drawn, cameras, out.contexts, {.back_depth = true});
+      render::capture_cameras(renderer, drawn, cameras, out.contexts, capture);
   watch.stop(out.render_seconds, out.render_cpu_seconds);
   if (ctx) {
     ctx->check_cancelled();
@@ -111,9 +132,10 @@ Pipeline run_stages(render::Renderer& renderer, const Mesh& mesh, const Skeleton
     for (std::size_t i = 0; i < axis.size(); ++i) out.first_view[i] = axis[i] ? 2 : v.silhouette[i];
   }
   watch = Stopwatch{};  // restarted: the first view's medial axis (an artifact) is not a stage
-  Votes votes = vote(views, box, p, ctx);
+  Votes votes = vote(views, box, p, ctx, 0.4, 0.75);
   out.votes = std::move(votes.grid);
   const std::vector<float>& radius = votes.radius;
+  if (ctx) ctx->progress(0.75, "keeping votes inside the solid");
   const Solid solid = solid_future.get();
   // The loops the skeleton may have: the genus of a closed, oriented mesh
   // (its tunnels), found through the solid; other meshes: as the votes say.
@@ -134,12 +156,18 @@ Pipeline run_stages(render::Renderer& renderer, const Mesh& mesh, const Skeleton
   watch.stop(out.vote_seconds, out.vote_cpu_seconds);
   if (ctx) ctx->progress(0.8, "thinning");
   const RayCaster& caster = *solid.caster;
-  out.skeleton = thin(out.votes, radius, p, out.genus, [&](const Vec3& q) { return caster.inside(q); });
+  out.skeleton = thin(
+      out.votes, radius, p, out.genus, [&](const Vec3& q) { return caster.inside(q); }, ctx, 0.8, 0.95);
   // Smoothing may not move a node out of the mesh.
+  if (ctx) {
+    ctx->check_cancelled();
+    ctx->progress(0.95, "merging and smoothing");
+  }
   simplify(out.skeleton, p.merge_distance * box.diagonal(), p.smoothing,
            [&](const Vec3& q) { return caster.inside(q); });
   // A node the votes put outside (a thin part, seen thicker than it is from
   // some views) moves towards a neighbour that is inside until it is too.
+  if (ctx) ctx->progress(0.98, "moving nodes inside");
   Skeleton& s = out.skeleton;
   const Adjacency adj = skeleton_adjacency(s);
   std::vector<std::uint8_t> in(s.nodes.size());

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <queue>
 
+#include "registry/registry.h"
 #include "skeleton/projection/thinning.h"
 
 namespace cgview::skeleton {
@@ -96,11 +97,28 @@ bool Thinning::covered(std::size_t c) const {
   });
 }
 
+void Thinning::progress(double fraction, std::string_view stage) {
+  if (!ctx) return;
+  ctx->check_cancelled();
+  if (fraction < reported + 0.01 && stage == reported_stage) return;
+  reported = fraction;
+  reported_stage = stage;
+  ctx->progress(progress_from + (progress_to - progress_from) * fraction, stage);
+}
+
 void Thinning::grow_tree(bool tunnels, double branch_votes) {
   // Components in order of their most voted voxel.
   std::vector<std::size_t> order;
   for (std::size_t c = 0; c < count; ++c)
     if (target[c]) order.push_back(c);
+  // Progress over [0.05, 0.7] of thin: the voxels settled and the targets
+  // looked at for branches, against all there are (each is settled, and
+  // looked at, once at most).
+  std::size_t work = 0;
+  const double all_work = double(count + order.size());
+  const auto worked = [&] {
+    if (++work % 4096 == 0) progress(0.05 + 0.65 * double(work) / all_work, "thinning");
+  };
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return I[vox[a]] > I[vox[b]]; });
   for (std::size_t root : order) {
     if (done[root]) continue;
@@ -120,6 +138,7 @@ void Thinning::grow_tree(bool tunnels, double branch_votes) {
       const auto [c, n] = q.pop();
       if (c > cost[n] || done[n]) continue;
       done[n] = 1;
+      worked();
       if (target[n]) members.push_back(n);
       // A settled neighbour is never improved (its cost is at most c), nor is
       // one of another component (not a neighbour): no need to ask `done`.
@@ -141,6 +160,7 @@ void Thinning::grow_tree(bool tunnels, double branch_votes) {
     node(root);
     std::vector<std::size_t> path;
     for (std::size_t far : members) {
+      worked();
       if (node_of[far] >= 0 || covered(far)) continue;
       path.clear();
       std::size_t n = far;
@@ -211,17 +231,24 @@ void Thinning::prune_after_loops() {
 }
 
 Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const SkeletonProjectionParams& p,
-              int max_loops, const std::function<bool(const Vec3&)>& inside) {
+              int max_loops, const std::function<bool(const Vec3&)>& inside, const Context* ctx, double progress_from,
+              double progress_to) {
   Thinning t(votes, radius, p.threshold, p.min_branch);
+  t.ctx = ctx;
+  t.progress_from = progress_from;
+  t.progress_to = progress_to;
+  t.progress(0.05, "thinning");
   if (!(t.top > 0)) return {};
   const bool tunnels = inside && max_loops >= 0;  // a closed mesh: its loops are its tunnels, at most its genus
   t.grow_tree(tunnels && max_loops > 0, p.branch_votes);
   if (t.s.edges.empty()) return std::move(t.s);
   // Loops.  The skeleton so far is a tree; a loop closes where the shape
   // has a tunnel.
+  t.progress(0.7, "closing loops");
   t.tree_done();
   if (tunnels && max_loops > 0) t.close_tunnels(max_loops, inside);
   else if (!tunnels) t.close_gaps();
+  t.progress(0.98, "closing loops");
   t.prune_after_loops();
   return std::move(t.s);
 }

@@ -34,7 +34,11 @@ namespace cgview::skeleton {
 // the outside; a cut whose 8 best voted meetings go around none closes
 // none), the best voted cuts first, at most max_loops.  Otherwise an
 // end next to a far part of the skeleton through voted voxels closes one.
+// Progress ("thinning", then "closing loops") goes to ctx over
+// [progress_from, progress_to] as the shortest paths settle voxels and the
+// loops are tried; ctx's cancellation throws Cancelled.
 Skeleton thin(const VoxelGrid& votes, const std::vector<float>& radius, const SkeletonProjectionParams& p,
-              int max_loops = -1, const std::function<bool(const Vec3&)>& inside = {});
+              int max_loops = -1, const std::function<bool(const Vec3&)>& inside = {}, const Context* ctx = nullptr,
+              double progress_from = 0, double progress_to = 1);
 
 }  // namespace cgview::skeleton

@@ -24,6 +24,7 @@ void Thinning::close_gaps() {
       if (degree[f] == 1 && norm(s.nodes[f] - s.nodes[x.e]) / vs <= x.reach) ends[f] = 1;
   };
   for (std::size_t e = 0; e < degree.size(); ++e) {
+    progress(0.7 + 0.15 * double(e) / double(degree.size()), "closing loops");
     if (degree[e] != 1 || taken[e]) continue;
     const double reach = 2 * cover(voxel_of[e]);
     along_skeleton(Index(e));
@@ -50,7 +51,9 @@ void Thinning::close_gaps() {
   // shortest path between its two voxels, not through the skeleton (a
   // path touching it on its way would close small loops there too).
   std::fill(cost.begin(), cost.end(), HUGE_VAL);
-  for (const Gap& x : gaps) {
+  for (std::size_t i = 0; i < gaps.size(); ++i) {
+    progress(0.85 + 0.13 * double(i) / double(gaps.size()), "closing loops");
+    const Gap& x = gaps[i];
     const std::size_t from = voxel_of[x.e], to = voxel_of[x.n];
     std::vector<std::size_t> touched{from};
     RadixHeap q;

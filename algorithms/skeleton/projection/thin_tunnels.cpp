@@ -137,8 +137,10 @@ void Thinning::close_tunnels(int max_loops, const std::function<bool(const Vec3&
   };
   std::vector<std::size_t> pu, pv;
   std::vector<std::int8_t> holeless(count, 0);  // a cut's meetings found around no hole; -1 once it closed a loop
-  for (std::size_t k : best) {
+  for (std::size_t i = 0; i < best.size(); ++i) {
+    const std::size_t k = best[i];
     if (loops >= max_loops) break;
+    progress(0.75 + 0.23 * double(i) / double(best.size()), "closing loops");
     std::int8_t& failed = holeless[cut_of[k]];
     if (failed < 0 || failed >= 8) continue;  // closed, or no hole behind its 8 best voted meetings
     // Where the meeting's paths join the skeleton now: still far apart

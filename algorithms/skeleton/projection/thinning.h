@@ -7,12 +7,17 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <string_view>
 #include <vector>
 
 #include "core/skeleton.h"
 #include "core/union_find.h"
 #include "core/voxel_grid.h"
 #include "skeleton/projection/lattice.h"
+
+namespace cgview {
+class Context;
+}  // namespace cgview
 
 namespace cgview::skeleton {
 
@@ -57,6 +62,11 @@ struct Thinning {
   void along_skeleton(Index from);
   // The tree's state once grown, which the loops start from.
   void tree_done();
+  // Progress: `fraction` of thin, mapped onto [progress_from, progress_to]
+  // of the run and passed to ctx (at most every 1% of thin, or when the
+  // stage changes), which is also asked for cancellation (throws
+  // Cancelled).  Nothing without a ctx.
+  void progress(double fraction, std::string_view stage);
 
   const VoxelGrid& votes;
   const Lattice L;
@@ -94,6 +104,11 @@ struct Thinning {
   std::vector<std::int32_t> back;    // and its way back
   Adjacency adj;
   std::size_t adj_edges = 0;  // the edges adj was made from
+
+  const Context* ctx = nullptr;
+  double progress_from = 0, progress_to = 1;
+  double reported = -1;               // the last fraction passed on
+  std::string_view reported_stage{};  // and its stage (a literal)
 };
 
 }  // namespace cgview::skeleton

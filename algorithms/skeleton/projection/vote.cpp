@@ -20,7 +20,7 @@ double vote_voxel_size(const BBox& box, int grid) {
 }
 
 Votes vote(const std::vector<render::ViewCapture>& views, const BBox& box, const SkeletonProjectionParams& p,
-           const Context* ctx) {
+           const Context* ctx, double progress_from, double progress_to) {
   for (const render::ViewCapture& v : views)
     if (v.back_depth.size() != v.depth.size()) throw InvalidInput("vote: every view needs its back depth");
   const Vec3 size = box.size();
@@ -34,11 +34,22 @@ Votes vote(const std::vector<render::ViewCapture>& views, const BBox& box, const
   // sum of their radii (a ray's samples are far apart in memory: one cache
   // line for both), added after.
   std::vector<std::vector<std::array<float, 2>>> partial(threads);
+  // The job's progress is the calling thread's: the thread on which
+  // on_threads runs t = 0 (core/threads.h).  Its share of the views is done
+  // at the pace of the others', so its count tells the whole; about 20
+  // reports.
+  const std::size_t share = (views.size() + std::size_t(threads) - 1) / std::size_t(threads);
+  const std::size_t every = std::max<std::size_t>(1, share / 20);
   auto work = [&](int t) {
     std::vector<std::array<float, 2>>& acc = partial[t];
     acc.assign(grid.size(), {0.f, 0.f});
-    for (std::size_t v = std::size_t(t); v < views.size(); v += std::size_t(threads)) {
-      if (t == 0 && ctx && ctx->cancelled()) return;
+    for (std::size_t v = std::size_t(t), k = 0; v < views.size(); v += std::size_t(threads), ++k) {
+      if (t == 0 && ctx) {
+        if (ctx->cancelled()) return;
+        if (k % every == 0 && k > 0)
+          ctx->progress(progress_from + (progress_to - progress_from) * double(v) / double(views.size()),
+                        "medial axes and votes");
+      }
       const render::ViewCapture& view = views[v];
       const int w = view.camera.width, h = view.camera.height;
       const std::vector<std::uint16_t> dt = chamfer_34(view.silhouette, w, h);

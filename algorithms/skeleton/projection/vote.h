@@ -26,12 +26,14 @@ double vote_voxel_size(const BBox& box, int grid);
 // its longest side, one voxel of margin) from views captured with their back
 // depth (render::CaptureOptions; InvalidInput without), and for each voxel
 // the mean radius (world units) of the medial discs that voted for it.
+// Progress ("medial axes and votes") goes over [progress_from, progress_to]
+// as the views are done, reported from the calling thread.
 struct Votes {
   VoxelGrid grid;
   std::vector<float> radius;
 };
 Votes vote(const std::vector<render::ViewCapture>& views, const BBox& box, const SkeletonProjectionParams& p,
-           const Context* ctx = nullptr);
+           const Context* ctx = nullptr, double progress_from = 0, double progress_to = 1);
 
 }  // namespace skeleton
 }  // namespace cgview

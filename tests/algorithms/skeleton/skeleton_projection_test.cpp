@@ -4,8 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <map>
+#include <set>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/errors.h"
@@ -279,6 +284,72 @@ TEST(SkeletonProjection, RenderContextsChangeTheTimeAlone) {
   EXPECT_EQ(three.metrics.at("render_contexts"), 3.0);
   ASSERT_EQ(automatic.skeleton.nodes.size(), three.skeleton.nodes.size());
   EXPECT_LT(measure_distance(automatic.skeleton, three.skeleton).hausdorff, 1e-9);  // summation order only
+}
+
+// A long stage reports as it goes (issue 38): at 200 views (100 drawings,
+// on two contexts on llvmpipe) the silhouettes report many increasing
+// fractions before the votes start, the votes and the thinning report
+// theirs, and every report names its stage; the fractions never go back.
+TEST(SkeletonProjection, StagesReportProgressAsTheyGo) {
+  std::vector<std::pair<double, std::string>> reports;
+  Context ctx([&](double f, std::string_view stage) { reports.emplace_back(f, std::string(stage)); }, nullptr);
+  const SkeletonProjectionResult res = skeleton_projection(test::torus(2, 0.5, 64, 24), {.views = 200}, &ctx);
+  EXPECT_EQ(res.metrics.at("loops"), 1.0);
+  ASSERT_FALSE(reports.empty());
+  EXPECT_EQ(reports.back(), (std::pair<double, std::string>{1.0, "done"}));
+  std::map<std::string, std::vector<double>> by_stage;
+  std::vector<std::string> order;  // the stages in the order they first report
+  for (std::size_t i = 0; i < reports.size(); ++i) {
+    const auto& [f, stage] = reports[i];
+    EXPECT_FALSE(stage.empty()) << "report " << i;
+    if (i > 0) EXPECT_GE(f, reports[i - 1].first) << "report " << i << " (" << stage << ") goes back";
+    if (!by_stage.count(stage)) order.push_back(stage);
+    by_stage[stage].push_back(f);
+  }
+  const std::vector<std::string> expected = {"rendering silhouettes",
+                                             "medial axes and votes",
+                                             "keeping votes inside the solid",
+                                             "thinning",
+                                             "closing loops",
+                                             "merging and smoothing",
+                                             "moving nodes inside",
+                                             "done"};
+  EXPECT_EQ(order, expected);
+  // Each stage's reports come together: no stage reports again after the next began.
+  std::size_t runs = 1;
+  for (std::size_t i = 1; i < reports.size(); ++i) runs += reports[i].second != reports[i - 1].second;
+  EXPECT_EQ(runs, expected.size());
+  auto distinct_within = [&](const std::string& stage, double lo, double hi) {
+    std::set<double> in;
+    for (double f : by_stage[stage]) {
+      EXPECT_GE(f, lo) << stage;
+      EXPECT_LE(f, hi) << stage;
+      in.insert(f);
+    }
+    return in.size();
+  };
+  EXPECT_GE(distinct_within("rendering silhouettes", 0.0, 0.4), 20u);
+  EXPECT_GE(distinct_within("medial axes and votes", 0.4, 0.75), 5u);
+  EXPECT_GE(distinct_within("thinning", 0.8, 0.95), 3u);
+  EXPECT_GE(distinct_within("closing loops", 0.8, 0.95), 2u);
+}
+
+// Cancelled while the silhouettes are drawn: the capture stops there (no
+// vote is counted), and the next run draws as before.
+TEST(SkeletonProjection, CancelledWhileDrawingStopsBeforeTheVotes) {
+  const Mesh torus = test::torus(2, 0.5, 64, 24);
+  std::atomic<bool> cancel = false;
+  std::vector<std::string> stages;
+  Context ctx(
+      [&](double f, std::string_view stage) {
+        stages.emplace_back(stage);
+        if (stage == "rendering silhouettes" && f > 0.1) cancel = true;
+      },
+      [&] { return cancel.load(); });
+  EXPECT_THROW(skeleton_projection(torus, {.views = 200}, &ctx), Cancelled);
+  EXPECT_TRUE(cancel);
+  EXPECT_EQ(std::count(stages.begin(), stages.end(), "medial axes and votes"), 0);
+  EXPECT_EQ(skeleton_projection(torus).metrics.at("loops"), 1.0);
 }
 
 TEST(SkeletonProjection, BadViewCounts) {
