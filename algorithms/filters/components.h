@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "filters/repair_param.h"
 #include "registry/registry.h"
 
 namespace cgview {
@@ -20,7 +21,7 @@ enum class ComponentsMode { keep_largest, drop_smaller_than, count };
 struct ComponentsParams {
   ComponentsMode mode = ComponentsMode::keep_largest;
   int min_faces = 100;
-  bool repair = false;
+  bool repair = true;  // describe_repair (filters/repair_param.h)
   template <class V>
   void describe(V& v) {
     v.choice("mode", mode,
@@ -34,10 +35,7 @@ struct ComponentsParams {
                .max = 1e9,
                .help = "for drop_smaller_than: the smallest size kept",
                .when = {"mode", {"drop_smaller_than"}}});
-    v.boolean(
-        "repair", repair,
-        {.label = "Repair first",
-         .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
+    describe_repair(v, repair);
   }
 };
 
@@ -53,7 +51,7 @@ struct ComponentsResult {
 };
 
 // Throws InvalidInput for a mesh without faces, or one that is not manifold
-// unless `repair`.
+// with `repair` off.
 ComponentsResult components(const Mesh& mesh, const ComponentsParams& p = {}, Context* ctx = nullptr);
 
 }  // namespace cgview

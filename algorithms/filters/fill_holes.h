@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "filters/repair_param.h"
 #include "registry/registry.h"
 
 namespace cgview {
@@ -20,7 +21,7 @@ enum class FillHolesMode { triangulate, refine, refine_and_fair };
 struct FillHolesParams {
   int max_hole_edges = 1000;
   FillHolesMode mode = FillHolesMode::refine_and_fair;
-  bool repair = false;
+  bool repair = true;  // describe_repair (filters/repair_param.h)
   template <class V>
   void describe(V& v) {
     v.integer("max_hole_edges", max_hole_edges,
@@ -33,10 +34,7 @@ struct FillHolesParams {
               .help = "triangulate: fewest new faces; refine: also add vertices to match the surrounding "
                       "density; refine_and_fair: also move them to blend smoothly with the surface",
               .choices = {"triangulate", "refine", "refine_and_fair"}});
-    v.boolean(
-        "repair", repair,
-        {.label = "Repair first",
-         .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
+    describe_repair(v, repair);
   }
 };
 
@@ -52,7 +50,7 @@ struct FillHolesResult {
 };
 
 // Throws InvalidInput for a mesh without faces, or one that is not manifold
-// unless `repair`.  Holes left open (too large, not triangulable) and
+// with `repair` off.  Holes left open (too large, not triangulable) and
 // fairings that failed are warnings.
 FillHolesResult fill_holes(const Mesh& mesh, const FillHolesParams& p = {}, Context* ctx = nullptr);
 

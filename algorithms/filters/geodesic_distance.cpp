@@ -4,12 +4,15 @@
 
 #include <CGAL/Heat_method_3/Surface_mesh_geodesic_distances_3.h>
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "core/surface_mesh.h"
+#include "filters/repair_mesh.h"
 
 namespace cgview {
 namespace {
@@ -45,32 +48,55 @@ GeodesicDistanceResult geodesic_distance(const Mesh& mesh, const GeodesicDistanc
   if (mesh.num_faces() == 0) throw InvalidInput("geodesic_distance needs a mesh with faces");
   const std::vector<std::size_t> sources = parse_sources(p.sources, mesh.num_vertices());
   ctx.progress(0, "converting");
-  SurfaceMesh sm = manifold_surface_mesh(mesh, "geodesic_distance");
+  GeodesicDistanceResult result;
+  bool repaired = false;
+  SurfaceMesh sm = halfedge_mesh_for(mesh, "geodesic_distance", p.repair, result.warnings, &repaired);
   using Vertex = SurfaceMesh::Vertex_index;
+  // Vertex i of the mesh is vertex i of sm, unless repaired: then the
+  // copy's vertices at its position (several where a non-manifold vertex
+  // was split, none where an isolated one was removed).
+  std::vector<std::vector<Vertex>> copies;
+  if (repaired) copies = vertices_after_repair(mesh, sm);
+  auto copies_of = [&](std::size_t i) {
+    std::vector<Vertex> out;
+    if (!repaired) out.push_back(Vertex(SurfaceMesh::size_type(i)));
+    else out = copies[i];
+    std::erase_if(out, [&](Vertex v) { return sm.is_isolated(v); });
+    return out;
+  };
   for (std::size_t s : sources)
-    if (sm.is_isolated(Vertex(SurfaceMesh::size_type(s))))
+    if (copies_of(s).empty())
       throw InvalidInput("parameter 'sources': vertex " + std::to_string(s) + " is used by no face");
   auto dist = sm.add_property_map<Vertex, double>("v:geodesic_distance", 0.0).first;
   ctx.progress(0.1, "factoring");
   CGAL::Heat_method_3::Surface_mesh_geodesic_distances_3<SurfaceMesh, CGAL::Heat_method_3::Intrinsic_Delaunay> hm(sm);
   ctx.check_cancelled();
-  for (std::size_t s : sources) hm.add_source(Vertex(SurfaceMesh::size_type(s)));
+  for (std::size_t s : sources)
+    for (Vertex v : copies_of(s)) hm.add_source(v);
   ctx.progress(0.6, "solving");
   hm.estimate_geodesic_distances(dist);
-  GeodesicDistanceResult result;
   result.distance = ScalarField{"distance", Location::vertex, ColorHint::magnitude, {}};
   result.distance.values.resize(mesh.num_vertices(), 0.0f);
-  for (Vertex v : sm.vertices())
-    if (!sm.is_isolated(v)) result.distance.values[std::size_t(v)] = float(dist[v]);
+  for (std::size_t i = 0; i < mesh.num_vertices(); ++i) {
+    if (!repaired) {
+      const Vertex v{SurfaceMesh::size_type(i)};
+      if (!sm.is_isolated(v)) result.distance.values[i] = float(dist[v]);
+      continue;
+    }
+    const std::vector<Vertex> at = copies_of(i);
+    double d = HUGE_VAL;
+    for (Vertex v : at) d = std::min(d, dist[v]);
+    if (!at.empty()) result.distance.values[i] = float(d);
+  }
   ctx.progress(1.0, "done");
   return result;
 }
 
 CGVIEW_REGISTER_FUNCTION(geodesic_distance, geodesic_distance,
                          {.title = "Geodesic distance (heat method)",
-                          .description = "Approximate geodesic distance on a manifold triangle mesh from one or "
-                                         "more source vertices, by the heat method on an intrinsic Delaunay "
-                                         "triangulation.",
+                          .description = "Approximate geodesic distance on a triangle mesh (a repaired copy "
+                                         "when it is not manifold) from one or more source vertices, by the "
+                                         "heat method on an intrinsic Delaunay triangulation.",
                           .area = "filters"})
 
 }  // namespace cgview

@@ -12,16 +12,19 @@
 
 #include "core/mesh.h"
 #include "core/scalar_field.h"
+#include "filters/repair_param.h"
 #include "registry/registry.h"
 
 namespace cgview {
 
 struct GeodesicDistanceParams {
   std::string sources = "0";
+  bool repair = true;  // describe_repair (filters/repair_param.h)
   template <class V>
   void describe(V& v) {
     v.text("sources", sources,
            {.label = "Source vertices", .help = "comma-separated vertex indices the distance is measured from"});
+    describe_repair(v, repair);
   }
 };
 
@@ -34,8 +37,12 @@ struct GeodesicDistanceResult {
   }
 };
 
-// Throws InvalidInput for a mesh without faces or not manifold, and for
-// sources that are not vertex indices, out of range or used by no face.
+// A mesh that is not manifold is measured as a repaired copy (`repair`, on
+// by default: a warning says what changed); the field is still one value
+// per vertex of `mesh`, a vertex the repair split taking the least of its
+// copies' distances.  Throws InvalidInput for a mesh without faces, one that
+// is not manifold with `repair` off, and for sources that are not vertex
+// indices, out of range or used by no face.
 GeodesicDistanceResult geodesic_distance(const Mesh& mesh, const GeodesicDistanceParams& p = {},
                                          Context* ctx = nullptr);
 

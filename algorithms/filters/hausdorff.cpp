@@ -2,6 +2,7 @@
 
 // The kernel first: distance.h calls CGAL::midpoint without including it.
 #include "core/surface_mesh.h"
+#include "filters/repair_mesh.h"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -32,9 +33,12 @@ HausdorffResult hausdorff(const Mesh& a, const Mesh& b, const HausdorffParams& p
   for (const Vec3& v : a.positions) box.add(v);
   for (const Vec3& v : b.positions) box.add(v);
   const double diagonal = box.diagonal();
-  // Non-manifold faces cannot enter a Surface_mesh, so the bound would leave them out: refused.
-  const SurfaceMesh sa = manifold_surface_mesh(a, "hausdorff (input 'mesh')"),
-                    sb = manifold_surface_mesh(b, "hausdorff (input 'reference')");
+  // Non-manifold faces cannot enter a Surface_mesh, so the bound would leave
+  // them out: a repaired copy holds them all (the repair moves no point and
+  // removes only degenerate and duplicate faces), else refused.
+  HausdorffResult result;
+  const SurfaceMesh sa = halfedge_mesh_for(a, "hausdorff (input 'mesh')", p.repair, result.warnings),
+                    sb = halfedge_mesh_for(b, "hausdorff (input 'reference')", p.repair, result.warnings);
   ctx.check_cancelled();
 
   // The per-vertex field: distance from each vertex of A to B's surface.
@@ -46,7 +50,6 @@ HausdorffResult hausdorff(const Mesh& a, const Mesh& b, const HausdorffParams& p
     triangles.emplace_back(point(b.positions[f[0]]), point(b.positions[f[1]]), point(b.positions[f[2]]));
   Tree tree(triangles.begin(), triangles.end());
   tree.accelerate_distance_queries();
-  HausdorffResult result;
   ScalarField& field = result.distance;
   field = ScalarField{"distance", Location::vertex, ColorHint::magnitude, {}};
   field.values.resize(a.num_vertices());

@@ -18,12 +18,14 @@
 
 #include "core/mesh.h"
 #include "core/scalar_field.h"
+#include "filters/repair_param.h"
 #include "registry/registry.h"
 
 namespace cgview {
 
 struct HausdorffParams {
   double error_bound = 1e-4;
+  bool repair = true;  // describe_repair (filters/repair_param.h): both meshes
   template <class V>
   void describe(V& v) {
     v.number("error_bound", error_bound,
@@ -32,6 +34,7 @@ struct HausdorffParams {
               .max = 0.1,
               .help = "how far from the exact Hausdorff distance the answer may be, as a fraction of the "
                       "bounding-box diagonal of both meshes"});
+    describe_repair(v, repair);
   }
 };
 
@@ -48,7 +51,11 @@ struct HausdorffResult {
   }
 };
 
-// Throws InvalidInput when either mesh has no faces or is not manifold.
+// Either mesh, when not manifold, is measured as a repaired copy (`repair`,
+// on by default: a warning names the input and says what changed; the
+// repair moves no point, and the field stays one value per vertex of
+// `mesh`).  Throws InvalidInput when either mesh has no faces, or is not
+// manifold with `repair` off.
 HausdorffResult hausdorff(const Mesh& mesh, const Mesh& reference, const HausdorffParams& p = {},
                           Context* ctx = nullptr);
 

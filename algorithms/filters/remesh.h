@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "filters/repair_param.h"
 #include "registry/registry.h"
 
 namespace cgview {
@@ -17,7 +18,7 @@ namespace cgview {
 struct RemeshParams {
   double target_edge_length = 0;
   int iterations = 3;
-  bool repair = false;
+  bool repair = true;  // describe_repair (filters/repair_param.h)
   template <class V>
   void describe(V& v) {
     v.number("target_edge_length", target_edge_length,
@@ -26,10 +27,7 @@ struct RemeshParams {
               .help = "the edge length to reach; 0 means the input's mean edge length"});
     v.integer("iterations", iterations,
               {.label = "Iterations", .min = 1, .max = 100, .help = "split/collapse/flip/relax rounds"});
-    v.boolean(
-        "repair", repair,
-        {.label = "Repair first",
-         .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
+    describe_repair(v, repair);
   }
 };
 
@@ -43,7 +41,7 @@ struct RemeshResult {
 };
 
 // Throws InvalidInput for a mesh without faces or whose edges all have zero
-// length, or one that is not manifold unless `repair`.
+// length, or one that is not manifold with `repair` off.
 RemeshResult remesh(const Mesh& mesh, const RemeshParams& p = {}, Context* ctx = nullptr);
 
 }  // namespace cgview

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "filters/repair_param.h"
 #include "registry/registry.h"
 
 namespace cgview {
@@ -17,7 +18,7 @@ namespace cgview {
 struct SimplifyParams {
   int target_faces = 0;
   double ratio = 0.5;
-  bool repair = false;
+  bool repair = true;  // describe_repair (filters/repair_param.h)
   template <class V>
   void describe(V& v) {
     v.integer(
@@ -31,10 +32,7 @@ struct SimplifyParams {
               .min = 0,
               .max = 1,
               .help = "fraction of the input's faces to keep, used when target_faces is 0"});
-    v.boolean(
-        "repair", repair,
-        {.label = "Repair first",
-         .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
+    describe_repair(v, repair);
   }
 };
 
@@ -48,7 +46,7 @@ struct SimplifyResult {
 };
 
 // Throws InvalidInput for a mesh without faces, or one that is not manifold
-// unless `repair`.  Stopping above the target (no edge left that can
+// with `repair` off.  Stopping above the target (no edge left that can
 // collapse without breaking the mesh) is a warning.
 SimplifyResult simplify(const Mesh& mesh, const SimplifyParams& p = {}, Context* ctx = nullptr);
 

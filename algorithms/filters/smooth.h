@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "filters/repair_param.h"
 #include "registry/registry.h"
 
 namespace cgview {
@@ -21,7 +22,7 @@ struct SmoothParams {
   SmoothMethod method = SmoothMethod::mean_curvature_flow;
   double time = 1e-4;
   int iterations = 5;
-  bool repair = false;
+  bool repair = true;  // describe_repair (filters/repair_param.h)
   template <class V>
   void describe(V& v) {
     v.choice("method", method,
@@ -37,10 +38,7 @@ struct SmoothParams {
               .help = "mean_curvature_flow only: the step of each iteration; larger smooths faster",
               .when = {"method", {"mean_curvature_flow"}}});
     v.integer("iterations", iterations, {.label = "Iterations", .min = 1, .max = 1000});
-    v.boolean(
-        "repair", repair,
-        {.label = "Repair first",
-         .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
+    describe_repair(v, repair);
   }
 };
 
@@ -54,7 +52,7 @@ struct SmoothResult {
 };
 
 // Throws InvalidInput for a mesh without faces, or one that is not manifold
-// unless `repair`.
+// with `repair` off.
 SmoothResult smooth(const Mesh& mesh, const SmoothParams& p = {}, Context* ctx = nullptr);
 
 }  // namespace cgview

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "filters/repair_param.h"
 #include "registry/registry.h"
 
 namespace cgview {
@@ -19,7 +20,7 @@ enum class SubdivideMethod { loop, catmull_clark, sqrt3 };
 struct SubdivideParams {
   SubdivideMethod method = SubdivideMethod::loop;
   int iterations = 1;
-  bool repair = false;
+  bool repair = true;  // describe_repair (filters/repair_param.h)
   template <class V>
   void describe(V& v) {
     v.choice("method", method,
@@ -29,10 +30,7 @@ struct SubdivideParams {
                       "scheme, each triangle into 3",
               .choices = {"loop", "catmull_clark", "sqrt3"}});
     v.integer("iterations", iterations, {.label = "Iterations", .min = 1, .max = 5, .help = "subdivision steps"});
-    v.boolean(
-        "repair", repair,
-        {.label = "Repair first",
-         .help = "when the mesh is not manifold, repair it first (as the repair filter does) instead of refusing it"});
+    describe_repair(v, repair);
   }
 };
 
@@ -46,7 +44,7 @@ struct SubdivideResult {
 };
 
 // Attributes (normals, UVs, colours) are dropped.  Throws InvalidInput for a
-// mesh without faces, one that is not manifold unless `repair`, or one whose
+// mesh without faces, one that is not manifold with `repair` off, or one whose
 // result would have more than 20 million faces.
 SubdivideResult subdivide(const Mesh& mesh, const SubdivideParams& p = {}, Context* ctx = nullptr);
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "filters/repair_param.h"
 #include "registry/registry.h"
 #include "sdf/sdf_params.h"
 
@@ -21,7 +22,8 @@ struct SdfSegmentationParams {
   int clusters = 5;
   double smoothing_lambda = 0.26;
   bool cluster_ids = false;
-  SdfParams sdf{};  // the SDF the segments are cut from
+  bool repair = true;  // describe_repair (filters/repair_param.h)
+  SdfParams sdf{};     // the SDF the segments are cut from
   template <class V>
   void describe(V& v) {
     v.integer("clusters", clusters,
@@ -37,6 +39,7 @@ struct SdfSegmentationParams {
     v.boolean(
         "cluster_ids", cluster_ids,
         {.label = "Cluster ids", .help = "give each face its cluster (SDF level) instead of its connected segment"});
+    describe_repair(v, repair);
     sdf.describe(v);
   }
 };
@@ -52,7 +55,11 @@ struct SdfSegmentationResult {
   }
 };
 
-// Throws InvalidInput for a mesh without faces, or one that is not manifold.
+// A mesh that is not manifold is cut on a repaired copy (`repair`, on by
+// default: a warning says what changed); the segments are still one per
+// face of `mesh`, a face the repair removed (degenerate) taking a
+// neighbour's.  Throws InvalidInput for a mesh without faces, or one that
+// is not manifold with `repair` off.
 SdfSegmentationResult sdf_segmentation(const Mesh& mesh, const SdfSegmentationParams& p = {}, Context* ctx = nullptr);
 
 }  // namespace cgview::sdf

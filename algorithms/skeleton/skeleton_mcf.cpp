@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "core/surface_mesh.h"
+#include "filters/repair_mesh.h"
 #include "skeleton/skeleton_measures.h"
 
 namespace cgview {
@@ -19,10 +20,12 @@ using Skeletonization = CGAL::Mean_curvature_flow_skeletonization<SurfaceMesh>;
 SkeletonMcfResult skeleton_mcf(const Mesh& mesh, const SkeletonMcfParams& p, Context* context) {
   check_params(p);
   const Context& ctx = context_or_none(context);
-  const char* remedy = "run repair and fill_holes on it first";
-  SurfaceMesh sm = manifold_surface_mesh(mesh, "skeleton_mcf", remedy);
+  std::vector<std::string> warnings;
+  bool repaired = false;
+  SurfaceMesh sm = halfedge_mesh_for(mesh, "skeleton_mcf", p.repair, warnings, &repaired);
   if (!CGAL::is_closed(sm))
-    throw InvalidInput(std::string("skeleton_mcf needs a closed mesh: this one has borders (") + remedy + ")");
+    throw InvalidInput(std::string("skeleton_mcf needs a closed mesh: this one has borders") +
+                       (repaired ? " once repaired" : "") + " (run fill_holes on it first)");
   if (!CGAL::is_triangle_mesh(sm)) throw InvalidInput("skeleton_mcf needs a triangle mesh");
   const BBox box = bounding_box(mesh);
   Skeletonization mcs(sm);
@@ -55,12 +58,23 @@ SkeletonMcfResult skeleton_mcf(const Mesh& mesh, const SkeletonMcfParams& p, Con
   mcs.convert_to_skeleton(graph);
 
   SkeletonMcfResult result;
+  result.warnings = std::move(warnings);
   Skeleton& s = result.skeleton;
-  s.vertex_to_node.assign(mesh.positions.size(), 0);
+  // Each vertex of sm's node; vertex i of the mesh is vertex i of sm, unless
+  // repaired: then the first of the copy's vertices at its position.
+  std::vector<Index> node_of(sm.number_of_vertices() + sm.number_of_removed_vertices(), 0);
   for (auto v : CGAL::make_range(vertices(graph))) {
     const auto& pt = graph[v].point;
     s.nodes.push_back({pt.x(), pt.y(), pt.z()});
-    for (auto mv : graph[v].vertices) s.vertex_to_node[std::size_t(mv)] = Index(v);
+    for (auto mv : graph[v].vertices) node_of[std::size_t(mv)] = Index(v);
+  }
+  s.vertex_to_node.assign(mesh.positions.size(), 0);
+  if (!repaired) {
+    for (std::size_t i = 0; i < s.vertex_to_node.size() && i < node_of.size(); ++i) s.vertex_to_node[i] = node_of[i];
+  } else {
+    const std::vector<std::vector<SurfaceMesh::Vertex_index>> copies = vertices_after_repair(mesh, sm);
+    for (std::size_t i = 0; i < s.vertex_to_node.size(); ++i)
+      if (!copies[i].empty()) s.vertex_to_node[i] = node_of[std::size_t(copies[i][0])];
   }
   for (auto e : CGAL::make_range(edges(graph))) s.edges.push_back({Index(source(e, graph)), Index(target(e, graph))});
   result.metrics = metrics_table(measure_skeleton(s, mesh));
@@ -73,7 +87,7 @@ CGVIEW_REGISTER_FUNCTION(skeleton_mcf, skeleton_mcf,
                          {.title = "Skeleton by mean curvature flow (CGAL)",
                           .description = "CGAL's Mean_curvature_flow_skeletonization: the surface contracted by mean "
                                          "curvature flow to a curve, pulled towards the medial axis. Needs a closed "
-                                         "manifold mesh.",
+                                         "mesh (one that is not manifold is repaired first).",
                           .area = "skeleton"})
 
 }  // namespace cgview

@@ -14,6 +14,7 @@
 
 #include "core/mesh.h"
 #include "core/skeleton.h"
+#include "filters/repair_param.h"
 #include "registry/registry.h"
 
 namespace cgview {
@@ -26,6 +27,7 @@ struct SkeletonMcfParams {
   double medially_centered_speed_tradeoff = 0.2;
   double area_variation_factor = 0.0001;
   int max_iterations = 500;
+  bool repair = true;  // describe_repair (filters/repair_param.h)
   template <class V>
   void describe(V& v) {
     v.number("max_triangle_angle", max_triangle_angle,
@@ -62,6 +64,7 @@ struct SkeletonMcfParams {
               .advanced = true});
     v.integer("max_iterations", max_iterations,
               {.label = "Max iterations", .min = 1, .max = 10000, .help = "contraction iterations at most"});
+    describe_repair(v, repair);
   }
 };
 
@@ -76,7 +79,10 @@ struct SkeletonMcfResult {
   }
 };
 
-// Throws InvalidInput for a mesh that is not a closed manifold triangle mesh.
+// A mesh that is not manifold is contracted as a repaired copy (`repair`,
+// on by default: a warning says what changed; vertex_to_node stays one
+// node per vertex of `mesh`).  Throws InvalidInput for a mesh that is not
+// closed (after the repair), or not manifold with `repair` off.
 SkeletonMcfResult skeleton_mcf(const Mesh& mesh, const SkeletonMcfParams& p = {}, Context* ctx = nullptr);
 
 }  // namespace cgview

@@ -28,6 +28,7 @@
 #include "voxel/voxel_io.h"
 #include "voxel_slice.h"
 #include "sqlite_query.h"
+#include "non_manifold_shapes.h"
 #include "test_support.h"
 
 #include <sqlite3.h>
@@ -332,6 +333,51 @@ TEST_F(JobsTest, AJobRunsOnAnEarlierJobsOutputMesh) {
   const json bad = {{"algorithm", "centroid_distance"},
                     {"inputs", {{"mesh", {{"job", "nope"}, {"artifact", "mesh"}}}}}};
   EXPECT_EQ(http_call(server_.port(), Method::post, "/api/v1/jobs", bad.dump()).status, 404);
+}
+
+// A mesh as students' scans have it (two boxes on one edge): simplify's
+// `repair` is on by default, as the listing says; the job runs on a
+// repaired copy and says so in a warning, and the stored mesh is as it was
+// uploaded; with repair off the job fails with the precondition.
+TEST_F(JobsTest, ANonManifoldMeshIsRepairedFirstWithAWarning) {
+  const json list = http_get(server_.port(), "/api/v1/algorithms").body_json();
+  for (const char* name : {"simplify", "hausdorff", "sdf_segmentation", "geodesic_distance", "skeleton_mcf"}) {
+    const auto it = std::find_if(list["algorithms"].begin(), list["algorithms"].end(),
+                                 [&](const json& a) { return a["name"] == name; });
+    ASSERT_NE(it, list["algorithms"].end()) << name;
+    EXPECT_EQ((*it)["params"]["properties"]["repair"]["default"], true) << name;
+  }
+  const Mesh boxes = test::two_boxes_sharing_an_edge();
+  const fs::path file = dir_ / "boxes.off";
+  write_mesh(boxes, file);
+  const auto up = http_call(server_.port(), Method::post, "/api/v1/meshes?name=boxes.off", read_bytes(file));
+  ASSERT_EQ(up.status, 201) << up.body;
+  const std::string id = up.body_json()["id"];
+  const json before = http_get(server_.port(), "/api/v1/meshes/" + id).body_json();
+  ASSERT_EQ(before["report"]["manifold"], false) << before.dump();
+  EXPECT_EQ(before["report"]["non_manifold_edges"], 1) << before.dump();
+
+  auto run = [&](const json& params) {
+    const json body = {{"algorithm", "simplify"}, {"inputs", {{"mesh", id}}}, {"params", params}};
+    const auto r = http_call(server_.port(), Method::post, "/api/v1/jobs", body.dump());
+    EXPECT_EQ(r.status, 201) << r.body;
+    return wait_end(r.body_json()["id"]);
+  };
+  const json done = run(json::object());
+  ASSERT_EQ(done["state"], "done") << done.dump();
+  EXPECT_EQ(done["params"]["repair"], true);
+  ASSERT_EQ(done["warnings"].size(), 1u) << done.dump();
+  const std::string w = done["warnings"][0];
+  EXPECT_EQ(w.rfind("simplify: the mesh was not manifold", 0), 0u) << w;
+  EXPECT_NE(w.find("a copy was repaired first: 2 vertices duplicated to split non-manifold edges and vertices"),
+            std::string::npos)
+      << w;
+  EXPECT_EQ(http_get(server_.port(), "/api/v1/meshes/" + id).body_json(), before);
+
+  const json refused = run({{"repair", false}});
+  ASSERT_EQ(refused["state"], "failed") << refused.dump();
+  EXPECT_NE(refused["error"].get<std::string>().find("simplify needs a manifold mesh"), std::string::npos)
+      << refused.dump();
 }
 
 TEST_F(JobsTest, AJobOfTwoInputsTakesBothAndNamesAMissingOne) {

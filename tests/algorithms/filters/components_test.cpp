@@ -34,12 +34,20 @@ TEST(Components, CountKeepLargestAndDropSmall) {
 }
 
 TEST(Components, NonManifoldIsRefused) {
-  EXPECT_NE(test::invalid_input_message([] { components(test::non_manifold()); }).find("manifold"), std::string::npos);
+  EXPECT_NE(test::invalid_input_message([] { components(test::non_manifold(), {.repair = false}); }).find("manifold"),
+            std::string::npos);
 }
 
-TEST(Components, NonManifoldInputIsRepairedFirstWhenAsked) {
-  test::expect_refused_or_repaired_first(
-      "components", [](bool repair) { return components(test::sphere_with_a_fin(), {.repair = repair}); });
+TEST(Components, NonManifoldInputIsRepairedFirstByDefault) {
+  auto run = [](const Mesh& m, const ComponentsParams& p) { return components(m, p); };
+  test::expect_repaired_by_default<ComponentsParams>("components", test::sphere_with_a_fin(), run);
+  // Two boxes on one edge are two components once the edge is split.
+  const ComponentsResult r =
+      test::expect_repaired_by_default<ComponentsParams>("components", test::two_boxes_sharing_an_edge(), run);
+  EXPECT_EQ(r.metrics.at("components"), 2.0);
+  EXPECT_EQ(r.metrics.at("kept"), 1.0);
+  EXPECT_EQ(r.mesh.num_faces(), 12u);
+  EXPECT_TRUE(mesh_report(r.mesh).closed);
 }
 
 TEST(Components, ProgressIsReportedAndCancellationHonoured) {

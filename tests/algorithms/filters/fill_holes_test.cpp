@@ -39,13 +39,26 @@ TEST(FillHolesTest, TriangulateModeAndSizeLimit) {
 }
 
 TEST(FillHolesTest, NonManifoldInputIsRefused) {
-  const std::string what = test::invalid_input_message([] { fill_holes(test::non_manifold()); });
+  const std::string what = test::invalid_input_message([] { fill_holes(test::non_manifold(), {.repair = false}); });
   EXPECT_NE(what.find("fill_holes needs a manifold mesh"), std::string::npos) << what;
 }
 
-TEST(FillHolesTest, NonManifoldInputIsRepairedFirstWhenAsked) {
-  test::expect_refused_or_repaired_first(
-      "fill_holes", [](bool repair) { return fill_holes(test::sphere_with_a_fin(), {.repair = repair}); });
+TEST(FillHolesTest, NonManifoldInputIsRepairedFirstByDefault) {
+  auto run = [](const Mesh& m, const FillHolesParams& p) { return fill_holes(m, p); };
+  test::expect_repaired_by_default<FillHolesParams>("fill_holes", test::sphere_with_a_fin(), run);
+  // Two boxes on one edge, each with a face missing away from it: both
+  // holes filled, two closed boxes.
+  Mesh broken = test::two_boxes_sharing_an_edge();
+  const std::size_t first = 0, second = 12 + 7;  // a face of each box (test::box's order) off the shared edge
+  broken.faces.erase(broken.faces.begin() + std::ptrdiff_t(second));
+  broken.faces.erase(broken.faces.begin() + std::ptrdiff_t(first));
+  ASSERT_EQ(mesh_report(broken).boundary_loops, 2u);
+  const FillHolesResult r = test::expect_repaired_by_default<FillHolesParams>("fill_holes", broken, run);
+  EXPECT_EQ(r.metrics.at("holes_found"), 2.0);
+  EXPECT_EQ(r.metrics.at("holes_filled"), 2.0);
+  const MeshReport rep = mesh_report(r.mesh);
+  EXPECT_TRUE(rep.closed);
+  EXPECT_EQ(rep.components, 2u);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "filter_shapes.h"
+#include "non_manifold_shapes.h"
 #include "test_support.h"
 
 namespace cgview {
@@ -64,12 +65,50 @@ TEST(GeodesicDistanceTest, BadSourcesAreInvalidInput) {
   }
 }
 
-TEST(GeodesicDistanceTest, NonManifoldInputIsInvalid) {
+TEST(GeodesicDistanceTest, NonManifoldInputIsInvalidWithRepairOff) {
   try {
-    geodesic_distance(test::non_manifold());
+    geodesic_distance(test::non_manifold(), {.repair = false});
     FAIL() << "no error";
   } catch (const InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find("manifold"), std::string::npos) << e.what();
+  }
+}
+
+// Two spheres touching at a pole (one vertex, a bow-tie): repaired by
+// default, the pole split in two, each copy a source; each sphere's
+// distances are its own great-circle distances from the pole.
+TEST(GeodesicDistanceTest, NonManifoldInputIsRepairedFirstByDefault) {
+  EXPECT_TRUE(GeodesicDistanceParams{}.repair);
+  const Mesh broken = test::two_spheres_touching(64, 128);
+  ASSERT_EQ(broken.positions[0], (Vec3{0, 0, 1}));  // the pole they share
+  const Mesh before = broken;
+  const GeodesicDistanceResult r = geodesic_distance(broken, {.sources = "0"});
+  test::expect_same_mesh(broken, before);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_EQ(r.warnings[0].rfind("geodesic_distance: the mesh was not manifold", 0), 0u) << r.warnings[0];
+  EXPECT_NE(r.warnings[0].find("a copy was repaired first: 1 vertex duplicated"), std::string::npos) << r.warnings[0];
+  const ScalarField& f = r.distance;
+  ASSERT_EQ(f.values.size(), broken.num_vertices());
+  EXPECT_NEAR(f.values[0], 0.0, 1e-3);
+  std::vector<double> errors[2];
+  for (std::size_t i = 0; i < broken.num_vertices(); ++i) {
+    const double z = broken.positions[i].z;
+    const bool upper = z > 1;  // the shared pole (z = 1) is the lower sphere's
+    const double exact = std::acos(std::clamp(upper ? 2 - z : z, -1.0, 1.0));
+    if (exact > 0.3) errors[upper].push_back(std::abs(double(f.values[i]) - exact) / exact);
+  }
+  for (const std::vector<double>& e : errors) {
+    ASSERT_GT(e.size(), 1000u);
+    EXPECT_LT(percentile(e, 0.5), 0.05);
+    EXPECT_LT(percentile(e, 0.95), 0.05);
+  }
+  // With repair off: refused, as before.
+  try {
+    geodesic_distance(broken, {.sources = "0", .repair = false});
+    FAIL() << "no error";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("geodesic_distance needs a manifold mesh"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("set 'repair'"), std::string::npos) << e.what();
   }
 }
 

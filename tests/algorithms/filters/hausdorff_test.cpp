@@ -7,6 +7,8 @@
 #include <string>
 
 #include "filter_shapes.h"
+#include "filters/repair.h"
+#include "non_manifold_shapes.h"
 #include "test_support.h"
 
 namespace cgview {
@@ -64,7 +66,7 @@ TEST(HausdorffTest, MissingOrBadInputsAreInvalid) {
     EXPECT_NE(std::string(e.what()).find("input 'reference' is missing"), std::string::npos) << e.what();
   }
   try {
-    hausdorff(test::non_manifold(), a);
+    hausdorff(test::non_manifold(), a, {.repair = false});
     FAIL() << "no error";
   } catch (const InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find("manifold mesh"), std::string::npos) << e.what();
@@ -80,6 +82,43 @@ TEST(HausdorffTest, MissingOrBadInputsAreInvalid) {
     FAIL() << "no error";
   } catch (const InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find("error_bound"), std::string::npos) << e.what();
+  }
+}
+
+// Two boxes on one edge, and the same moved up by 0.3: both inputs are
+// repaired by default (a warning each), the distance is the translation's,
+// as between the repair filter's meshes with repair off.
+TEST(HausdorffTest, NonManifoldInputsAreRepairedFirstByDefault) {
+  EXPECT_TRUE(HausdorffParams{}.repair);
+  const Mesh a = test::two_boxes_sharing_an_edge(), b = translated(a, {0, 0, 0.3});
+  const Mesh a_before = a, b_before = b;
+  const HausdorffResult r = hausdorff(a, b);
+  test::expect_same_mesh(a, a_before);
+  test::expect_same_mesh(b, b_before);
+  ASSERT_EQ(r.warnings.size(), 2u);
+  EXPECT_EQ(r.warnings[0].rfind("hausdorff (input 'mesh'): the mesh was not manifold", 0), 0u) << r.warnings[0];
+  EXPECT_EQ(r.warnings[1].rfind("hausdorff (input 'reference'): the mesh was not manifold", 0), 0u) << r.warnings[1];
+  for (const std::string& w : r.warnings)
+    EXPECT_NE(w.find("a copy was repaired first: 2 vertices duplicated"), std::string::npos) << w;
+  const Metrics& m = r.metrics;
+  const double bound = m.at("error_bound");
+  EXPECT_NEAR(m.at("hausdorff"), 0.3, bound + 1e-9);
+  const Metrics ref = hausdorff(repair(a).mesh, repair(b).mesh, {.repair = false}).metrics;
+  EXPECT_NEAR(m.at("mesh_to_reference"), ref.at("mesh_to_reference"), 2 * bound);
+  EXPECT_NEAR(m.at("reference_to_mesh"), ref.at("reference_to_mesh"), 2 * bound);
+  // The field stays one value per vertex of the input: 0.3 below, 0 above
+  // (on the moved boxes' sides).
+  const ScalarField& f = r.distance;
+  ASSERT_EQ(f.values.size(), a.num_vertices());
+  for (std::size_t i = 0; i < a.num_vertices(); ++i)
+    EXPECT_NEAR(f.values[i], a.positions[i].z == 0 ? 0.3 : 0.0, 1e-6) << "vertex " << i;
+  // With repair off: the reference is refused too.
+  try {
+    hausdorff(test::box(), b, {.repair = false});
+    FAIL() << "no error";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("hausdorff (input 'reference') needs a manifold mesh"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/mesh_report.h"
+#include "filters/repair.h"
 #include "filter_shapes.h"
 #include "invalid_input.h"
 #include "repair_first.h"
@@ -30,13 +31,21 @@ TEST(RemeshTest, ZeroMeansInputMeanEdgeLength) {
 }
 
 TEST(RemeshTest, NonManifoldInputIsRefused) {
-  const std::string what = test::invalid_input_message([] { remesh(test::non_manifold()); });
+  const std::string what = test::invalid_input_message([] { remesh(test::non_manifold(), {.repair = false}); });
   EXPECT_NE(what.find("remesh needs a manifold mesh"), std::string::npos) << what;
 }
 
-TEST(RemeshTest, NonManifoldInputIsRepairedFirstWhenAsked) {
-  test::expect_refused_or_repaired_first(
-      "remesh", [](bool repair) { return remesh(test::sphere_with_a_fin(), {.repair = repair}); });
+TEST(RemeshTest, NonManifoldInputIsRepairedFirstByDefault) {
+  auto run = [](const Mesh& m, const RemeshParams& p) { return remesh(m, p); };
+  test::expect_repaired_by_default<RemeshParams>("remesh", test::sphere_with_a_fin(), run);
+  // Two boxes on one edge: two closed boxes, as the repair filter's mesh
+  // remeshed with repair off.
+  const Mesh broken = test::two_boxes_sharing_an_edge();
+  const RemeshResult r = test::expect_repaired_by_default<RemeshParams>("remesh", broken, run);
+  const MeshReport rep = mesh_report(r.mesh);
+  EXPECT_TRUE(rep.closed);
+  EXPECT_EQ(rep.components, 2u);
+  test::expect_same_mesh(r.mesh, remesh(repair(broken).mesh, {.repair = false}).mesh);
 }
 
 TEST(RemeshTest, CancelledJobsThrow) {

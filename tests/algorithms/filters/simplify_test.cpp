@@ -12,6 +12,7 @@
 
 #include "core/mesh_report.h"
 #include "core/surface_mesh.h"
+#include "filters/repair.h"
 #include "filter_shapes.h"
 #include "invalid_input.h"
 #include "repair_first.h"
@@ -45,15 +46,35 @@ TEST(SimplifyTest, RatioHalvesFaces) {
 }
 
 TEST(SimplifyTest, NonManifoldInputIsRefused) {
-  const std::string what = test::invalid_input_message([] { simplify(test::non_manifold()); });
+  const std::string what = test::invalid_input_message([] { simplify(test::non_manifold(), {.repair = false}); });
   EXPECT_NE(what.find("simplify needs a manifold mesh"), std::string::npos) << what;
 }
 
-TEST(SimplifyTest, NonManifoldInputIsRepairedFirstWhenAsked) {
-  test::expect_refused_or_repaired_first(
-      "simplify", [](bool repair) { return simplify(test::sphere_with_a_fin(), {.repair = repair}); });
+TEST(SimplifyTest, NonManifoldInputIsRepairedFirstByDefault) {
+  auto run = [](const Mesh& m, const SimplifyParams& p) { return simplify(m, p); };
+  test::expect_repaired_by_default<SimplifyParams>("simplify", test::sphere_with_a_fin(), run);
+  // Two spheres touching at a pole (a bow-tie vertex): the pole is split,
+  // each sphere simplified on its own, closed, close to the input.
+  const Mesh broken = test::two_spheres_touching();
+  const SimplifyResult r = test::expect_repaired_by_default<SimplifyParams>("simplify", broken, run);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("1 vertex duplicated to split non-manifold edges and vertices"), std::string::npos)
+      << r.warnings[0];
+  const MeshReport rep = mesh_report(r.mesh);
+  EXPECT_TRUE(rep.closed);
+  EXPECT_EQ(rep.components, 2u);
+  EXPECT_LE(r.mesh.num_faces(), broken.num_faces() / 2);
+  // Against the repair filter's mesh with repair off: the same mesh, and
+  // within 2% of the repaired surface (CGAL's Hausdorff distance).
+  const Mesh repaired = repair(broken).mesh;
+  test::expect_same_mesh(r.mesh, simplify(repaired, {.repair = false}).mesh);
+  const SurfaceMesh a = to_surface_mesh(r.mesh).mesh, b = to_surface_mesh(repaired).mesh;
+  const double h = CGAL::Polygon_mesh_processing::approximate_symmetric_Hausdorff_distance<CGAL::Sequential_tag>(
+      a, b, CGAL::parameters::number_of_points_per_area_unit(4000),
+      CGAL::parameters::number_of_points_per_area_unit(4000));
+  EXPECT_LT(h, 0.02);
   // A manifold mesh is left as it is: no warning.
-  EXPECT_TRUE(simplify(test::uv_sphere(), {.repair = true}).warnings.empty());
+  EXPECT_TRUE(simplify(test::uv_sphere()).warnings.empty());
 }
 
 TEST(SimplifyTest, CancelledJobsThrow) {

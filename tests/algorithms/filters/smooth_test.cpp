@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/mesh_report.h"
+#include "filters/repair.h"
 #include "filter_shapes.h"
 #include "invalid_input.h"
 #include "repair_first.h"
@@ -29,13 +30,26 @@ TEST(SmoothTest, AngleSmoothingKeepsAClosedMesh) {
 }
 
 TEST(SmoothTest, NonManifoldInputIsRefused) {
-  EXPECT_NE(test::invalid_input_message([] { smooth(test::non_manifold()); }).find("smooth needs a manifold mesh"),
+  EXPECT_NE(test::invalid_input_message([] {
+              smooth(test::non_manifold(), {.repair = false});
+            }).find("smooth needs a manifold mesh"),
             std::string::npos);
 }
 
-TEST(SmoothTest, NonManifoldInputIsRepairedFirstWhenAsked) {
-  test::expect_refused_or_repaired_first(
-      "smooth", [](bool repair) { return smooth(test::sphere_with_a_fin(), {.repair = repair}); });
+TEST(SmoothTest, NonManifoldInputIsRepairedFirstByDefault) {
+  auto run = [](const Mesh& m, const SmoothParams& p) { return smooth(m, p); };
+  test::expect_repaired_by_default<SmoothParams>("smooth", test::sphere_with_a_fin(), run);
+  // Two noisy spheres whose poles touch (the upper one's bottom pole is the
+  // lower one's top pole): each smoothed on its own, as the repair filter's
+  // mesh is with repair off.
+  const Mesh noisy = test::noisy_sphere();
+  Mesh upper = test::shifted(noisy, noisy.positions.front() - noisy.positions.back());
+  upper.positions.back() = noisy.positions.front();
+  const Mesh broken = test::welded(test::merged(noisy, upper));
+  ASSERT_FALSE(mesh_report(broken).manifold);
+  const SmoothResult r = test::expect_repaired_by_default<SmoothParams>("smooth", broken, run);
+  EXPECT_EQ(mesh_report(r.mesh).components, 2u);
+  test::expect_same_mesh(r.mesh, smooth(repair(broken).mesh, {.repair = false}).mesh);
 }
 
 TEST(SmoothTest, RangesComeFromTheDescription) {

@@ -35,7 +35,7 @@ TEST(Subdivide, CatmullClarkAndSqrt3) {
 
 TEST(Subdivide, BadInputIsRefused) {
   EXPECT_NE(test::invalid_input_message([] {
-              subdivide(test::non_manifold());
+              subdivide(test::non_manifold(), {.repair = false});
             }).find("1 faces could not be placed in a halfedge structure"),
             std::string::npos);
   EXPECT_NE(test::invalid_input_message([] { subdivide(test::box(), {.iterations = 6}); }).find("iterations"),
@@ -44,9 +44,21 @@ TEST(Subdivide, BadInputIsRefused) {
   EXPECT_NE(test::invalid_input_message([&] { subdivide(big, {.iterations = 5}); }).find("limit"), std::string::npos);
 }
 
-TEST(Subdivide, NonManifoldInputIsRepairedFirstWhenAsked) {
-  test::expect_refused_or_repaired_first(
-      "subdivide", [](bool repair) { return subdivide(test::sphere_with_a_fin(), {.repair = repair}); });
+TEST(Subdivide, NonManifoldInputIsRepairedFirstByDefault) {
+  auto run = [](const Mesh& m, const SubdivideParams& p) { return subdivide(m, p); };
+  test::expect_repaired_by_default<SubdivideParams>("subdivide", test::sphere_with_a_fin(), run);
+  // Two boxes on one edge: Loop's four faces for one on each closed box.
+  const Mesh broken = test::two_boxes_sharing_an_edge();
+  const SubdivideResult r =
+      test::expect_repaired_by_default<SubdivideParams>("subdivide", broken, [](const Mesh& m, SubdivideParams p) {
+        p.method = SubdivideMethod::loop;
+        return subdivide(m, p);
+      });
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("2 vertices duplicated"), std::string::npos) << r.warnings[0];
+  EXPECT_EQ(r.mesh.num_faces(), 4 * broken.num_faces());
+  EXPECT_EQ(mesh_report(r.mesh).components, 2u);
+  EXPECT_TRUE(test::closed(r.mesh));
 }
 
 TEST(Subdivide, ProgressIsReportedAndCancellationHonoured) {

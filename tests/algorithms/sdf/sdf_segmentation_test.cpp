@@ -3,9 +3,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <set>
+#include <string>
 
+#include "filters/repair.h"
 #include "io/mesh_io.h"
+#include "non_manifold_shapes.h"
 #include "test_support.h"
 
 namespace cgview {
@@ -32,11 +39,75 @@ TEST(SdfSegmentationBadInput, ClearErrors) {
   Mesh no_faces;
   no_faces.positions = {{0, 0, 0}, {1, 0, 0}};
   EXPECT_THROW(sdf::sdf_segmentation(no_faces), InvalidInput);
-  // Segmentation needs a manifold mesh: three faces on one edge are refused.
+  // With repair off, segmentation needs a manifold mesh: three faces on one
+  // edge are refused.
   Mesh fin;
   fin.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
   fin.faces = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
-  EXPECT_THROW(sdf::sdf_segmentation(fin), InvalidInput);
+  try {
+    sdf::sdf_segmentation(fin, {.repair = false});
+    FAIL() << "no error";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("sdf_segmentation needs a manifold mesh"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("set 'repair'"), std::string::npos) << e.what();
+  }
+}
+
+// Two spheres on one vertex, a face given twice and a degenerate one: by
+// default the cut runs on a repaired copy, where the spheres are apart (no
+// segment spans both), with one segment per face of the input (the
+// degenerate one a neighbour's); as CGAL cuts the repair filter's mesh with
+// repair off, face for face (found by their corners).
+TEST(SdfSegmentation, NonManifoldMeshIsCutOnARepairedCopyByDefault) {
+  EXPECT_TRUE(sdf::SdfSegmentationParams{}.repair);
+  Mesh broken = test::two_spheres_touching();
+  const std::size_t half = broken.faces.size() / 2;  // the lower sphere's faces, then the upper's
+  broken.faces.push_back(broken.faces[5]);
+  const Tri f7 = broken.faces[7];
+  broken.faces.push_back({f7[0], f7[1], f7[0]});  // degenerate, on face 7's first edge
+  const Mesh before = broken;
+  const sdf::SdfSegmentationResult r = sdf::sdf_segmentation(broken);
+  test::expect_same_mesh(broken, before);
+  ASSERT_GE(r.warnings.size(), 1u);
+  EXPECT_EQ(r.warnings[0].rfind("sdf_segmentation: the mesh was not manifold", 0), 0u) << r.warnings[0];
+  EXPECT_NE(r.warnings[0].find("a copy was repaired first: 1 vertex duplicated to split non-manifold edges and "
+                               "vertices, 2 degenerate or duplicate faces removed"),
+            std::string::npos)
+      << r.warnings[0];
+  const std::vector<float>& seg = r.segments.values;
+  ASSERT_EQ(seg.size(), broken.faces.size());
+  const std::size_t twice = broken.faces.size() - 2, degenerate = twice + 1;
+  EXPECT_EQ(seg[twice], seg[5]);
+  std::set<float> lower(seg.begin(), seg.begin() + std::ptrdiff_t(half)),
+      upper(seg.begin() + std::ptrdiff_t(half), seg.begin() + std::ptrdiff_t(twice));
+  // The degenerate face's segment: that of a face on its edge.
+  std::set<float> beside;
+  for (std::size_t f = 0; f < twice; ++f) {
+    const Tri& t = broken.faces[f];
+    if (std::count(t.begin(), t.end(), f7[0]) + std::count(t.begin(), t.end(), f7[1]) == 2) beside.insert(seg[f]);
+  }
+  EXPECT_EQ(beside.count(seg[degenerate]), 1u);
+  for (float id : lower) EXPECT_EQ(upper.count(id), 0u) << "segment " << id << " spans both spheres";
+  EXPECT_EQ(r.metrics.at("segments"), double(lower.size() + upper.size()));
+
+  const Mesh repaired = repair(broken).mesh;
+  const sdf::SdfSegmentationResult ref = sdf::sdf_segmentation(repaired, {.repair = false});
+  auto corners = [](const Mesh& m, const Tri& t) {
+    std::array<std::array<double, 3>, 3> c{};
+    for (int k = 0; k < 3; ++k) c[k] = {m.positions[t[k]].x, m.positions[t[k]].y, m.positions[t[k]].z};
+    std::sort(c.begin(), c.end());
+    return c;
+  };
+  std::map<std::array<std::array<double, 3>, 3>, float> ref_of;
+  for (std::size_t f = 0; f < repaired.faces.size(); ++f)
+    ref_of[corners(repaired, repaired.faces[f])] = ref.segments.values[f];
+  ASSERT_EQ(ref_of.size(), broken.faces.size() - 2);
+  for (std::size_t f = 0; f < twice; ++f) {
+    const auto it = ref_of.find(corners(broken, broken.faces[f]));
+    ASSERT_NE(it, ref_of.end()) << "face " << f;
+    EXPECT_EQ(seg[f], it->second) << "face " << f;
+  }
+  EXPECT_EQ(r.metrics.at("segments"), ref.metrics.at("segments"));
 }
 
 }  // namespace
