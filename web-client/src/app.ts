@@ -123,6 +123,7 @@ export class App {
       others: () => app.scene.others(),
       colorOf: (object) => app.scene.entryOf(object)?.color ?? null,
       meshOf: (object) => app.scene.entryOf(object)?.mesh ?? null,
+      formatOf: (id) => store.get().meshes.find((m) => m.id === id)?.format ?? null,
     });
     const ctx: AppContext = {
       store,

@@ -29,13 +29,33 @@
 // View link: a camera moved with the mouse, a mode and overlays, "Copy
 // link", the link opened in a new page: same camera, mode, overlays, and
 // the same picture.
+// Crease angle: a box drawn Smooth looks as it does Flat (its faces
+// uniform), a coarse sphere Smooth does not (and looks as it does at 180°),
+// and the box at 180° gets its averaged, melted look back.
+// Up axis: a tall box along z written as a binary STL stands on screen (STL
+// is Z up until chosen) and lies down with Y up.
 //
 // Environment: CGVIEW_SERVER, CGVIEW_SAMPLES (default build/samples),
 // CHROMIUM, CGVIEW_UPDATE_REFERENCES.
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { artifactsDir, hueStats, orbitDrag, PICTURE_TOLERANCE, pictureDifference, pngPixels, repo, settle, test, useViewer, webClient } from './harness.mjs';
+import {
+  artifactsDir,
+  boxCorners,
+  boxOff,
+  hueStats,
+  orbitDrag,
+  PICTURE_TOLERANCE,
+  pictureDifference,
+  pngPixels,
+  repo,
+  settle,
+  test,
+  useViewer,
+  VIEW_BACKGROUND,
+  webClient,
+} from './harness.mjs';
 
 const samples = process.env.CGVIEW_SAMPLES ?? path.join(repo, 'build', 'samples');
 const referenceDir = path.join(webClient, 'tests', 'reference');
@@ -390,6 +410,149 @@ test('a field recolours over a range typed in, its 1-99% percentiles and its ful
   }, full);
   assert.deepEqual(fetches, [], 'a new range recolours without fetching the field again');
   await setMode(page, 'smooth');
+  assert.deepEqual(v.problems, [], v.describeProblems());
+});
+
+/** Uploads `body` as `name` and shows it; resolves with its id. */
+async function showUpload(name, body) {
+  const { page, server } = v;
+  const r = await fetch(`${server.url}/api/v1/meshes?name=${name}`, { method: 'POST', body });
+  assert.equal(r.status, 201, await r.clone().text());
+  const { id } = await r.json();
+  await page.locator(`#mesh-list li.mesh[data-mesh-id="${id}"]`).click();
+  await page.waitForFunction((id) => window.__cgview.lastLoaded?.id === id, id, { timeout: 60000 });
+  await page.waitForFunction(() => window.__cgview.display?.object === 'surface');
+  return id;
+}
+
+/** A UV sphere of `segments` around and `rings` from pole to pole, as OFF text (coarse: its facets show when flat-shaded). */
+function sphereOff(segments, rings) {
+  const points = [[0, 0, 1]];
+  for (let i = 1; i < rings; ++i) {
+    const t = (Math.PI * i) / rings;
+    for (let j = 0; j < segments; ++j) {
+      const p = (2 * Math.PI * j) / segments;
+      points.push([Math.sin(t) * Math.cos(p), Math.sin(t) * Math.sin(p), Math.cos(t)]);
+    }
+  }
+  points.push([0, 0, -1]);
+  const ring = (i, j) => 1 + (i - 1) * segments + (j % segments);
+  const faces = [];
+  for (let j = 0; j < segments; ++j) faces.push([0, ring(1, j), ring(1, j + 1)]);
+  for (let i = 1; i + 1 < rings; ++i) {
+    for (let j = 0; j < segments; ++j) faces.push([ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)], [ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)]);
+  }
+  for (let j = 0; j < segments; ++j) faces.push([points.length - 1, ring(rings - 1, j + 1), ring(rings - 1, j)]);
+  return `OFF\n${points.length} ${faces.length} 0\n${points.map((q) => q.map((x) => x.toFixed(6)).join(' ')).join('\n')}\n${faces.map((f) => `3 ${f.join(' ')}`).join('\n')}\n`;
+}
+
+/** The default material with no overlay, whatever the tests before left. */
+async function plainDisplay(page) {
+  await pinViewport(page);
+  await setMode(page, 'smooth');
+  await page.selectOption('#display-preset', 'default');
+  for (const id of ['bbox', 'axes', 'vertex-normals', 'face-normals', 'edges']) await page.uncheck(`#overlay-${id}`);
+  await page.waitForFunction(() => {
+    const d = window.__cgview.display;
+    return d?.preset === 'default' && Object.entries(d.overlays).every(([k, on]) => k === 'normalLength' || !on);
+  });
+}
+
+async function setCrease(page, degrees) {
+  await page.getByLabel('Crease angle').fill(String(degrees));
+  await page.waitForFunction((d) => window.__cgview.display?.creaseAngle === d, degrees);
+}
+
+test("Smooth keeps a box's edges sharp (as Flat draws it), a coarse sphere smooth; 180° averages the normals across every edge", async () => {
+  const { page } = v;
+  await plainDisplay(page);
+  assert.equal(await page.getByLabel('Crease angle').inputValue(), '60', 'the default crease angle');
+
+  await showUpload('crease-box.off', boxOff(1, 0.6, 0.8));
+  await page.click('#fit');
+  assert.equal(await page.evaluate(() => window.__cgview.display.crease), 60, 'the box is drawn with split normals');
+  const boxSmooth = await screenshot(page, 'crease-box-smooth');
+  await setMode(page, 'flat');
+  const boxFlat = await screenshot(page, 'crease-box-flat');
+  const sharp = await difference(page, boxSmooth, boxFlat);
+  assert.ok(sharp.same, `the box in Smooth looks as in Flat: ${JSON.stringify(sharp)}`);
+  await setMode(page, 'smooth');
+  await setCrease(page, 180);
+  await page.waitForFunction(() => window.__cgview.display?.crease === null);
+  const boxMelted = await screenshot(page, 'crease-box-180');
+  const melted = await difference(page, boxMelted, boxFlat);
+  assert.ok(!melted.same, `at 180° the box's normals are averaged across its edges: ${JSON.stringify(melted)}`);
+  await setCrease(page, 60);
+
+  await showUpload('crease-sphere.off', sphereOff(16, 10));
+  await page.click('#fit');
+  const sphereSmooth = await screenshot(page, 'crease-sphere-smooth');
+  await setMode(page, 'flat');
+  const sphereFlat = await screenshot(page, 'crease-sphere-flat');
+  const facets = await difference(page, sphereSmooth, sphereFlat);
+  assert.ok(!facets.same, `the sphere in Smooth shows no facets: ${JSON.stringify(facets)}`);
+  await setMode(page, 'smooth');
+  await setCrease(page, 180);
+  const sphere180 = await screenshot(page, 'crease-sphere-180');
+  const alike = await difference(page, sphereSmooth, sphere180);
+  assert.ok(alike.same, `the sphere at 60° looks as at 180°: ${JSON.stringify(alike)}`);
+  await setCrease(page, 60);
+
+  // A file's own normals are kept: the slider says it does not apply.
+  const { corners, triangles } = boxCorners();
+  const obj = [...corners.map((c) => `v ${c.join(' ')}`), 'vn 0 0 1', ...triangles.map((t) => `f ${t.map((i) => `${i + 1}//1`).join(' ')}`)].join('\n');
+  await showUpload('file-normals.obj', obj + '\n');
+  assert.equal(await page.evaluate(() => window.__cgview.display.crease), null, "the file's normals are drawn");
+  const slider = page.getByLabel('Crease angle');
+  assert.ok(await slider.isDisabled(), 'the slider is off for a mesh with its own normals');
+  assert.match(await slider.getAttribute('title'), /own normals/);
+  assert.deepEqual(v.problems, [], v.describeProblems());
+});
+
+/** A binary STL of the triangles (corner triples). */
+function binaryStl(corners, triangles) {
+  const buffer = Buffer.alloc(84 + 50 * triangles.length);
+  buffer.writeUInt32LE(triangles.length, 80);
+  triangles.forEach((t, k) => {
+    const at = 84 + 50 * k + 12; // the facet normal left zero: readers compute it
+    t.forEach((c, i) => corners[c].forEach((x, j) => buffer.writeFloatLE(x, at + 12 * i + 4 * j)));
+  });
+  return buffer;
+}
+
+/** The box [x0, y0, x1, y1] of the pixels of a PNG that are not the background. */
+async function drawnBox(page, png) {
+  const { width, height, data } = await pngPixels(page, png);
+  const box = [Infinity, Infinity, -Infinity, -Infinity];
+  for (let y = 0; y < height; ++y) {
+    for (let x = 0; x < width; ++x) {
+      const i = 4 * (y * width + x);
+      if (Math.abs(data[i] - VIEW_BACKGROUND[0]) + Math.abs(data[i + 1] - VIEW_BACKGROUND[1]) + Math.abs(data[i + 2] - VIEW_BACKGROUND[2]) <= 40) continue;
+      box[0] = Math.min(box[0], x);
+      box[1] = Math.min(box[1], y);
+      box[2] = Math.max(box[2], x);
+      box[3] = Math.max(box[3], y);
+    }
+  }
+  return box;
+}
+
+test('an STL stands Z up until Y up is chosen, which lays it down', async () => {
+  const { page } = v;
+  await plainDisplay(page);
+  const { corners, triangles } = boxCorners(0.2, 0.2, 2);
+  await showUpload('tall.stl', binaryStl(corners, triangles));
+  await page.waitForFunction(() => window.__cgview.display?.up === 'z');
+  assert.equal(await page.getByLabel('Up axis').inputValue(), 'z');
+  await page.click('#fit');
+  const [x0, y0, x1, y1] = await drawnBox(page, await screenshot(page, 'stl-z-up'));
+  assert.ok(y1 - y0 > 2 * (x1 - x0), `the box stands: ${[x0, y0, x1, y1]}`);
+
+  await page.getByLabel('Up axis').selectOption('y');
+  await page.waitForFunction(() => window.__cgview.display?.up === 'y');
+  await page.click('#fit');
+  const [a0, b0, a1, b1] = await drawnBox(page, await screenshot(page, 'stl-y-up'));
+  assert.ok(a1 - a0 > b1 - b0, `the box lies: ${[a0, b0, a1, b1]}`);
   assert.deepEqual(v.problems, [], v.describeProblems());
 });
 

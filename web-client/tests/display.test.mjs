@@ -1,7 +1,8 @@
 // Unit tests of the display's pure parts: boundary and non-manifold edges
 // (src/viewer/mesh_edges.ts), the field's percentile range
-// (src/viewer/histogram.ts) and the view link's encoding
-// (src/viewer/view_state.ts).  `npm run test:unit`.
+// (src/viewer/histogram.ts), the view link's encoding
+// (src/viewer/view_state.ts) and the check of texture coordinates that
+// chooses no checkerboard (src/viewer/uv_check.ts).  `npm run test:unit`.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { importTs } from './ts_module.mjs';
@@ -9,6 +10,7 @@ import { importTs } from './ts_module.mjs';
 const { classifyEdges } = await importTs('viewer/mesh_edges.ts');
 const { percentileRange } = await importTs('viewer/histogram.ts');
 const { decodeViewHash, encodeViewHash } = await importTs('viewer/view_state.ts');
+const { uvProblem } = await importTs('viewer/uv_check.ts');
 
 const count = (pairs) => pairs.length / 2;
 
@@ -86,4 +88,21 @@ test('a view link round-trips, and bad links say what is wrong', () => {
   const clipped = { ...state, camera: { ...state.camera, near: 0.1, far: 20 } };
   assert.deepEqual(decodeViewHash(bad(clipped)), clipped);
   assert.throws(() => decodeViewHash(bad({ ...state, camera: { ...state.camera, near: 2, far: 1 } })), /near and far/);
+});
+
+test('texture coordinates that cannot show a texture are told apart from those that can', () => {
+  const quad = [0, 1, 2, 0, 2, 3];
+  assert.equal(uvProblem([0, 0, 1, 0, 1, 1, 0, 1], quad), null, 'a unit square');
+  // One face with an area among flat ones is enough; tiny UVs too (the test is scale-free).
+  assert.equal(uvProblem([0, 0, 1e-6, 0, 1e-6, 1e-6, 0, 0], quad), null, 'a tiny square');
+  assert.match(uvProblem([0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5], quad), /all the same point/);
+  assert.match(uvProblem([0, 0, 0, 0, 0, 0, 0, 0], quad), /all the same point/);
+  assert.match(uvProblem([0, 0, 0.1, 0.2, 0.3, 0.6, 0.7, 1.4], quad), /no area/, 'all on a line');
+  assert.match(uvProblem([0.2, 0.2, 0.2, 0.2, 0.9, 0.9, 0.3, 0.3], quad), /no area/, 'corners that coincide');
+  assert.match(uvProblem([NaN, 0, 1, 0, 1, 1, NaN, 1], quad), /not numbers/);
+  // Faces with a corner not a number are left out: the other one decides.
+  assert.equal(uvProblem([0, 0, 1, 0, 1, 1, NaN, 1], quad), null);
+  // No index: the vertices three by three.
+  assert.equal(uvProblem([0, 0, 1, 0, 0, 1], null), null);
+  assert.match(uvProblem([0, 0, 1, 1, 2, 2], null), /no area/);
 });

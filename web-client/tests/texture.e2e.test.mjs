@@ -8,8 +8,9 @@
 // red texture, a green Kd, a blue texture) show their own colours, also in
 // the flat, toon and smooth display modes; assimp's spider (OBJ + MTL +
 // JPEGs, Debian's assimp-testmodels) is drawn with its four materials'
-// textures and shows its leg texture's colour; and a PLY with UVs
-// (Blender's cube_uv.ply) gets the checkerboard.  Screenshots go to
+// textures and shows its leg texture's colour; a PLY with UVs
+// (Blender's cube_uv.ply) gets the checkerboard, and an OBJ whose UVs are
+// all one point does not (the panel says why).  Screenshots go to
 // build/test-artifacts/e2e-texture-*.png.
 //
 // Environment: CGVIEW_SERVER (default build/bin/cgview-server),
@@ -35,8 +36,8 @@ function faceOnCorner(sx, sy) {
 }
 
 // A unit quad facing the camera, its u along the screen's right and v along
-// its up; with no `mtl`, it names no material at all (no mtllib, no usemtl).
-function faceOnQuadObj(mtl) {
+// its up (or all its UVs at `uv`); with no `mtl`, it names no material at all (no mtllib, no usemtl).
+function faceOnQuadObj(mtl, uv = null) {
   const corner = faceOnCorner;
   return [
     mtl ? `mtllib ${mtl}` : '',
@@ -44,10 +45,7 @@ function faceOnQuadObj(mtl) {
     `v ${corner(1, -1)}`,
     `v ${corner(1, 1)}`,
     `v ${corner(-1, 1)}`,
-    'vt 0 0',
-    'vt 1 0',
-    'vt 1 1',
-    'vt 0 1',
+    ...(uv ? Array(4).fill(`vt ${uv}`) : ['vt 0 0', 'vt 1 0', 'vt 1 1', 'vt 0 1']),
     mtl ? 'usemtl quad' : '',
     'f 1/1 2/2 3/3',
     'f 1/1 3/3 4/4',
@@ -377,4 +375,14 @@ test("a PLY with UVs (Blender's cube_uv.ply) gets the checkerboard", async () =>
   assert.equal(mesh.has_uvs, true);
   assert.deepEqual(mesh.textures, []);
   assert.equal(await v.page.locator('#texture-panel').isVisible(), true);
+});
+
+test('an OBJ whose UVs are all one point shows its plain surface, not the checkerboard, and says why', async () => {
+  const mesh = await pick([file('one-point-uv.obj', faceOnQuadObj(null, '0.5 0.5'))], 'off');
+  assert.equal(mesh.has_uvs, true);
+  assert.match(await v.page.locator('#texture-note').innerText(), /all the same point: nothing to show/);
+  assert.match(await v.page.evaluate(() => window.__cgview.texture.uvProblem), /all the same point/);
+  // The checkerboard is still there to choose.
+  await v.page.selectOption('#texture-mode', 'checkerboard');
+  await v.page.waitForFunction(() => window.__cgview.texture?.mode === 'checkerboard', null, { timeout: 10000 });
 });

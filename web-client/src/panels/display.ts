@@ -7,14 +7,27 @@
 // scene gives one (panels/scene.ts); the overlays are of the shown (first) one.
 // A comparison's panes (fields or skeletons side by side) draw their surfaces
 // in the mode too (viewer.onPanesChange). The up axis of the shown mesh is
-// chosen here too (viewer/up_axis.ts).
+// chosen here too (viewer/up_axis.ts): the one the user chose for it, else
+// the one its file's format implies.
 import * as THREE from 'three';
 import { saveBlob } from '../api/auth.ts';
 import { RoomEnvironment } from 'three/addons/environments/RoomEnvironment.js';
-import { applyDisplay, DEFAULT_DISPLAY, DISPLAY_MODES, isDefaultDisplay, isSurface, MATERIAL_PRESETS, sanitizeDisplay, type DisplaySettings } from '../viewer/display_modes.ts';
+import { creaseOf, creaseRefusal } from '../viewer/crease.ts';
+import {
+  applyCrease,
+  applyDisplay,
+  CREASED_MODES,
+  DEFAULT_DISPLAY,
+  DISPLAY_MODES,
+  isDefaultDisplay,
+  isSurface,
+  MATERIAL_PRESETS,
+  sanitizeDisplay,
+  type DisplaySettings,
+} from '../viewer/display_modes.ts';
 import { percentileRange } from '../viewer/histogram.ts';
 import { DEFAULT_OVERLAYS, formatSize, sanitizeOverlays, updateOverlays, type OverlayInfo, type OverlaySettings } from '../viewer/overlays.ts';
-import { setObjectUp, storeUpAxis, storedUpAxis, type UpAxis } from '../viewer/up_axis.ts';
+import { defaultUpAxis, setObjectUp, storeUpAxis, storedUpAxis, UP_AXIS_RULE, type UpAxis } from '../viewer/up_axis.ts';
 import type { Viewer } from '../viewer/viewer.ts';
 import { checkbox, edgeLegend, row, slider, sliderRow } from './display_controls.ts';
 import { el } from './dom.ts';
@@ -27,6 +40,8 @@ export interface DisplayReport extends DisplaySettings, OverlayInfo {
   object: string | null;
   /** The shown mesh's up axis. */
   up: UpAxis;
+  /** The crease angle the shown surface is drawn with; null: as built (180°, its file's normals, not a surface). */
+  crease: number | null;
 }
 
 export interface DisplayCallbacks {
@@ -40,6 +55,8 @@ export interface DisplayCallbacks {
   colorOf?: (object: THREE.Object3D) => string | null;
   /** The mesh an object of the scene draws (its up axis is that mesh's), or null. */
   meshOf?: (object: THREE.Object3D) => string | null;
+  /** A mesh's file format ("stl", "glb"...), which gives its up axis until one is chosen; null: not known. */
+  formatOf?: (meshId: string) => string | null;
 }
 
 const MODE_LABELS: Record<string, string> = {
@@ -50,6 +67,9 @@ const MODE_LABELS: Record<string, string> = {
   'hidden-line': 'Hidden line',
   toon: 'Toon',
 };
+
+const degreesText = (degrees: number) => `${degrees}°`;
+const CREASE_HELP = 'Faces meeting at more than this angle are shaded apart, as a part has edges; 180° is smooth across every edge';
 
 /** The normal length, a fraction of the box's diagonal, as the units of panels/format.ts write it. */
 function normalLengthText(fraction: number): string {
@@ -73,7 +93,7 @@ export class DisplayPanel {
   private readonly mode = el('select', { id: 'display-mode', 'aria-label': 'Display mode' });
   private readonly up = el(
     'select',
-    { id: 'display-up', 'aria-label': 'Up axis', title: "Which of the mesh's axes points up; remembered for this mesh" },
+    { id: 'display-up', 'aria-label': 'Up axis', title: `Which of the mesh's axes points up; remembered for this mesh. Until chosen: ${UP_AXIS_RULE}` },
     el('option', { value: 'y' }, 'Y up'),
     el('option', { value: 'z' }, 'Z up'),
   );
@@ -82,6 +102,8 @@ export class DisplayPanel {
   private readonly roughness = slider('display-roughness', 0, 1, 0.05);
   private readonly metalness = slider('display-metalness', 0, 1, 0.05);
   private readonly pointSize = slider('display-point-size', 1, 12, 1);
+  private readonly crease = slider('display-crease', 0, 180, 5);
+  private readonly creaseValue = el('output', { class: 'slider-value' });
   private readonly toonBands = el('input', { type: 'number', id: 'display-toon-bands', min: '2', max: '8', step: '1' });
   private readonly vertexColors = checkbox('display-vertex-colors', 'Vertex colours');
   private readonly checks = {
@@ -105,6 +127,7 @@ export class DisplayPanel {
   /** Rows that only one mode uses, shown with it. */
   private readonly pointSizeRow = row('Point size', this.pointSize);
   private readonly toonBandsRow = row('Toon bands', this.toonBands);
+  private readonly creaseRow = sliderRow('Crease angle', this.crease, this.creaseValue);
 
   constructor(
     root: HTMLElement,
@@ -122,9 +145,11 @@ export class DisplayPanel {
     );
     this.fieldBox.hidden = true;
     this.link.hidden = true;
+    this.crease.title = CREASE_HELP;
     root.append(
       row('Mode', this.mode),
       row('Up axis', this.up),
+      this.creaseRow,
       row('Material', this.preset),
       row('Colour', this.color),
       sliderRow('Roughness', this.roughness, this.roughnessValue),
@@ -161,6 +186,9 @@ export class DisplayPanel {
     // While the value is being dragged, before readInputs has the settings.
     this.roughness.addEventListener('input', () => (this.roughnessValue.value = formatNumber(Number(this.roughness.value))));
     this.metalness.addEventListener('input', () => (this.metalnessValue.value = formatNumber(Number(this.metalness.value))));
+    // Split normals are made again at each angle: on letting go (a big mesh takes a while), its value shown while dragged.
+    this.crease.addEventListener('input', () => (this.creaseValue.value = degreesText(Number(this.crease.value))));
+    this.crease.addEventListener('change', change);
     this.normalLength.addEventListener('input', () => (this.normalLengthValue.value = normalLengthText(Number(this.normalLength.value))));
 
     const rangeChange = () => {
@@ -199,7 +227,12 @@ export class DisplayPanel {
   /** The shown mesh's up axis. */
   upAxis(): UpAxis {
     const mesh = this.object && this.meshOf(this.object);
-    return mesh ? storedUpAxis(mesh) : 'y';
+    return mesh ? this.upOf(mesh) : 'y';
+  }
+
+  /** A mesh's up axis: the one chosen for it, else its format's. */
+  private upOf(mesh: string): UpAxis {
+    return storedUpAxis(mesh, defaultUpAxis(this.callbacks.formatOf?.(mesh) ?? null));
   }
 
   /**
@@ -213,7 +246,7 @@ export class DisplayPanel {
       this.up.value = 'y';
       return;
     }
-    storeUpAxis(mesh, axis);
+    storeUpAxis(mesh, axis, defaultUpAxis(this.callbacks.formatOf?.(mesh) ?? null));
     this.up.value = axis;
     let turned = false;
     for (const o of [...(this.object ? [this.object] : []), ...(this.callbacks.others?.() ?? []), ...this.paneObjects]) {
@@ -274,7 +307,7 @@ export class DisplayPanel {
   /** Draws `object` (one of the scene's) in the mode and material, in its own colour. */
   applyTo(object: THREE.Object3D | null): void {
     const mesh = object && this.meshOf(object);
-    if (mesh) setObjectUp(object, storedUpAxis(mesh));
+    if (mesh) setObjectUp(object, this.upOf(mesh));
     if (!isSurface(object)) return;
     const color = this.callbacks.colorOf?.(object) ?? null;
     applyDisplay(object, color ? { ...this.settings, color } : this.settings, () => this.env());
@@ -293,6 +326,7 @@ export class DisplayPanel {
       metalness: Number(this.metalness.value),
       pointSize: Number(this.pointSize.value),
       toonBands: Math.round(Math.min(8, Math.max(2, Number(this.toonBands.value) || DEFAULT_DISPLAY.toonBands))),
+      creaseAngle: Math.min(180, Math.max(0, Number(this.crease.value))),
       vertexColors: this.vertexColors.input.checked,
     };
     this.setDisplay(s);
@@ -334,6 +368,9 @@ export class DisplayPanel {
     this.vertexColors.input.checked = s.vertexColors;
     this.pointSizeRow.hidden = s.mode !== 'points';
     this.toonBandsRow.hidden = s.mode !== 'toon';
+    this.crease.value = String(s.creaseAngle);
+    this.creaseValue.value = degreesText(s.creaseAngle);
+    this.creaseRow.hidden = !CREASED_MODES.includes(s.mode);
     for (const [k, c] of Object.entries(this.checks)) c.input.checked = this.overlays[k as keyof typeof this.checks];
     this.normalLength.value = String(this.overlays.normalLength);
     this.roughnessValue.value = formatNumber(s.roughness);
@@ -346,9 +383,14 @@ export class DisplayPanel {
     this.object = object;
     const mesh = object && this.meshOf(object);
     // Before the viewer frames it: the camera frames the object as drawn, turned.
-    if (mesh) setObjectUp(object, storedUpAxis(mesh));
-    this.up.value = mesh ? storedUpAxis(mesh) : 'y';
+    if (mesh) setObjectUp(object, this.upOf(mesh));
+    this.up.value = mesh ? this.upOf(mesh) : 'y';
     if (object && (!isDefaultDisplay(this.settings) || this.callbacks.colorOf?.(object))) this.applyTo(object);
+    else if (isSurface(object)) applyCrease(object, this.settings);
+    // The slider stays for the other objects of the scene, but says when it does not apply to the shown one.
+    const refusal = isSurface(object) ? creaseRefusal(object) : null;
+    this.crease.disabled = refusal !== null;
+    this.crease.title = refusal ?? CREASE_HELP;
     this.vertexColors.row.hidden = !(isSurface(object) && object.geometry.getAttribute('color') && !object.name.startsWith('scalar:'));
     this.refreshOverlays();
   }
@@ -360,6 +402,7 @@ export class DisplayPanel {
     for (const p of panes) setObjectUp(p, axis);
     this.paneSurfaces = panes.flatMap((p) => (isSurface(p) ? [p] : p.children.filter(isSurface)));
     if (!isDefaultDisplay(this.settings)) for (const o of this.paneSurfaces) this.applyTo(o);
+    else for (const o of this.paneSurfaces) applyCrease(o, this.settings);
   }
 
   private applyAll(): void {
@@ -390,7 +433,14 @@ export class DisplayPanel {
     this.readout.dataset.boundary = this.info.boundaryEdges === null ? '' : String(this.info.boundaryEdges);
     this.readout.dataset.nonManifold = this.info.nonManifoldEdges === null ? '' : String(this.info.nonManifoldEdges);
     const object = this.object;
-    const report: DisplayReport = { ...this.settings, ...this.info, overlays: { ...this.overlays }, object: object?.name ?? null, up: this.upAxis() };
+    const report: DisplayReport = {
+      ...this.settings,
+      ...this.info,
+      overlays: { ...this.overlays },
+      object: object?.name ?? null,
+      up: this.upAxis(),
+      crease: isSurface(object) ? creaseOf(object) : null,
+    };
     this.viewer.redraw(() => {
       if (this.object === object) this.callbacks.drawn(report);
     });

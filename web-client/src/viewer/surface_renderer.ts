@@ -1,6 +1,7 @@
 // The renderer for one kind of quantity: a triangle surface, smooth-shaded.
 // Builds a three.js mesh from a decoded payload.
 import * as THREE from 'three';
+import { markFileNormals } from './crease.ts';
 import type { DecodedColors, DecodedMesh } from './decoded_mesh.ts';
 
 /** The default surface colour: an orange that tests can find in screenshots. */
@@ -34,6 +35,7 @@ export function buildSurface(decoded: DecodedMesh): THREE.Mesh {
   for (const g of decoded.groups ?? []) geometry.addGroup(g.start, g.count, g.material);
   if (decoded.normals) {
     geometry.setAttribute('normal', new THREE.BufferAttribute(decoded.normals, 3));
+    markFileNormals(geometry); // kept by the crease angle (viewer/crease.ts)
   } else {
     geometry.computeVertexNormals();
   }

@@ -1,11 +1,14 @@
 // Textures on the shown surface: the mesh's own images (each material's map_Kd, or its PLY's
 // TextureFile), none, or a checkerboard to inspect its UVs; and
-// the small panel that picks one, shown only for a mesh with UVs.
+// the small panel that picks one, shown only for a mesh with UVs. A mesh with
+// UVs and no image gets the checkerboard, unless its UVs cannot show one
+// (viewer/uv_check.ts): then the plain surface, and the panel says why.
 import * as THREE from 'three';
 import { fetchMeshTexture } from '../api/rest.ts';
 import type { Mesh } from '../api/types.ts';
 import { el } from '../panels/dom.ts';
 import { withGroupLooks, type GroupLook } from './display_modes.ts';
+import { uvProblem } from './uv_check.ts';
 
 export type TextureMode = 'texture' | 'off' | 'checkerboard';
 
@@ -72,6 +75,8 @@ export interface TextureState {
   image: string | null;
   /** How many materials the surface is drawn with (one per material of a mesh with several, in 'texture' mode). */
   materials: number;
+  /** What is wrong with the UVs (uv_check.ts), as the panel says it; null: nothing. */
+  uvProblem: string | null;
 }
 
 /**
@@ -83,6 +88,8 @@ export class MeshTextures {
   private readonly squaresInput: HTMLInputElement;
   private readonly squaresValue: HTMLOutputElement;
   private readonly squaresRow: HTMLElement;
+  private readonly note: HTMLElement;
+  private problem: string | null = null;
   private surface: THREE.Mesh | null = null;
   private mesh: Mesh | null = null;
   private baseColor = new THREE.Color();
@@ -108,7 +115,9 @@ export class MeshTextures {
     this.squaresInput.setAttribute('aria-label', 'Squares');
     this.squaresValue = el('output', { class: 'slider-value', for: 'texture-squares' }, this.squaresInput.value);
     this.squaresRow = el('label', { class: 'texture-squares' }, 'Squares ', this.squaresInput, this.squaresValue);
-    panel.replaceChildren(el('label', {}, 'Texture ', this.select), this.squaresRow);
+    this.note = el('p', { class: 'texture-note', id: 'texture-note' });
+    this.note.hidden = true;
+    panel.replaceChildren(el('label', {}, 'Texture ', this.select), this.squaresRow, this.note);
     panel.hidden = true;
     this.select.addEventListener('change', () => this.apply());
     this.squaresInput.addEventListener('input', () => {
@@ -124,7 +133,8 @@ export class MeshTextures {
     this.surface = surface;
     this.mesh = mesh;
     const material = (Array.isArray(surface.material) ? surface.material[0] : surface.material) as THREE.MeshStandardMaterial;
-    const uvs = surface.geometry.getAttribute('uv') !== undefined;
+    const uv = surface.geometry.getAttribute('uv');
+    const uvs = uv !== undefined;
     if (mesh.kd && !material.vertexColors) material.color.setRGB(mesh.kd[0], mesh.kd[1], mesh.kd[2], THREE.SRGBColorSpace);
     this.baseColor.copy(material.color);
     this.panel.hidden = !uvs;
@@ -137,7 +147,11 @@ export class MeshTextures {
     }
     const hasImage = (mesh.textures?.length ?? 0) > 0;
     (this.select.options[0] as HTMLOptionElement).disabled = !hasImage;
-    this.select.value = hasImage ? 'texture' : 'checkerboard';
+    this.problem = uvProblem(uv.array, surface.geometry.index?.array ?? null);
+    this.note.textContent = this.problem ?? '';
+    this.note.hidden = this.problem === null;
+    // The mesh's own image is shown whatever its UVs; the checkerboard only where it can show something.
+    this.select.value = hasImage ? 'texture' : this.problem ? 'off' : 'checkerboard';
     this.apply();
   }
 
@@ -215,7 +229,7 @@ export class MeshTextures {
     const materials = Array.isArray(surface.material) ? surface.material.length : 1;
     const image = mode === 'texture' ? (mesh.textures?.[0]?.name ?? null) : null;
     this.redraw(() => {
-      if (this.surface === surface && surface.userData.map === map) this.onShown({ meshId: mesh.id, mode, squares, image, materials });
+      if (this.surface === surface && surface.userData.map === map) this.onShown({ meshId: mesh.id, mode, squares, image, materials, uvProblem: this.problem });
     });
   }
 }

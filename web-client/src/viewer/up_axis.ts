@@ -1,10 +1,13 @@
-// The up axis: scans often come with +Z up, and drawn as they are they lie on
-// their back. "Z up" turns such a mesh's objects so that +Z points up on
-// screen; the choice is the mesh's, kept in this browser's storage by mesh id.
+// The up axis: scans and CAD parts often come with +Z up, and drawn as they
+// are they lie on their back. "Z up" turns such a mesh's objects so that +Z
+// points up on screen. The choice is the mesh's, kept in this browser's
+// storage by mesh id; until one is made, the mesh's file format gives it
+// (defaultUpAxis, the one place of that rule).
 // The turn goes over the object's own transform (the Scene panel's) as a
 // parent's would, so that the object's moves are in the mesh's own axes and
 // keep the turn, and what measures the object's world box (fit to view, the
-// overlays) sees it as drawn.
+// overlays) sees it as drawn. The mesh's data are never changed: picks,
+// selections and what goes back to the server stay in the file's coordinates.
 import * as THREE from 'three';
 
 /** Which of the mesh's axes points up on screen. */
@@ -12,19 +15,37 @@ export type UpAxis = 'y' | 'z';
 
 const UP_KEY = 'cgview.up-axis.';
 
-/** The mesh's up axis as this browser keeps it (Y unless chosen). */
-export function storedUpAxis(meshId: string): UpAxis {
+/**
+ * The up axis a file of `format` (the server's Mesh.format: "stl", "obj",
+ * "glb"...) is drawn with until the user chooses: Z for STL, whose writers
+ * (CAD tools, slicers: 3D printing builds along +Z) put Z up, though the
+ * format says nothing; Y for everything else: glTF by its specification, and
+ * OBJ, PLY and OFF, which say nothing either and come Y up from most tools
+ * that write them (Blender's OBJ export, the Stanford scans). A mesh a job
+ * made is stored in another format, so it starts Y up.
+ */
+export function defaultUpAxis(format: string | null): UpAxis {
+  return format?.toLowerCase() === 'stl' ? 'z' : 'y';
+}
+
+/** defaultUpAxis in words, for the control's title. */
+export const UP_AXIS_RULE = 'Z for STL files (CAD tools write them Z up), Y for the other formats (glTF by its specification)';
+
+/** The mesh's up axis as this browser keeps it, `fallback` unless chosen. */
+export function storedUpAxis(meshId: string, fallback: UpAxis = 'y'): UpAxis {
   try {
-    return localStorage.getItem(UP_KEY + meshId) === 'z' ? 'z' : 'y';
+    const kept = localStorage.getItem(UP_KEY + meshId);
+    return kept === 'z' || kept === 'y' ? kept : fallback;
   } catch {
-    return 'y'; // storage disabled
+    return fallback; // storage disabled
   }
 }
 
-export function storeUpAxis(meshId: string, axis: UpAxis): void {
+/** Keeps `axis` for the mesh (forgotten when it is `fallback`, the one the mesh has unless chosen). */
+export function storeUpAxis(meshId: string, axis: UpAxis, fallback: UpAxis = 'y'): void {
   try {
-    if (axis === 'z') localStorage.setItem(UP_KEY + meshId, 'z');
-    else localStorage.removeItem(UP_KEY + meshId);
+    if (axis === fallback) localStorage.removeItem(UP_KEY + meshId);
+    else localStorage.setItem(UP_KEY + meshId, axis);
   } catch {
     // Storage disabled: the choice lasts as long as the page.
   }
