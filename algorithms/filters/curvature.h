@@ -11,13 +11,17 @@
 
 #include "core/mesh.h"
 #include "core/scalar_field.h"
+#include "filters/repair_param.h"
 #include "registry/registry.h"
 
 namespace cgview {
 
 struct CurvatureParams {
+  bool repair = true;  // describe_repair (filters/repair_param.h)
   template <class V>
-  void describe(V&) {}
+  void describe(V& v) {
+    describe_repair(v, repair);
+  }
 };
 
 struct CurvatureResult {
@@ -31,8 +35,10 @@ struct CurvatureResult {
   }
 };
 
-// Throws InvalidInput for a mesh without faces or one with an edge shared by
-// more than two faces.
+// A mesh with an edge shared by more than two faces is measured on a
+// repaired copy (a warning says what changed; a vertex the repair split
+// takes the mean of its copies' values), or refused with `repair` off.
+// Throws InvalidInput for a mesh without faces.
 CurvatureResult curvature(const Mesh& mesh, const CurvatureParams& p = {}, Context* ctx = nullptr);
 
 }  // namespace cgview

@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "filter_shapes.h"
+#include "filters/vertex_curvatures.h"
 #include "invalid_input.h"
+#include "non_manifold_shapes.h"
 #include "test_support.h"
 
 namespace cgview {
@@ -39,8 +41,36 @@ TEST(Curvature, SphereIsOneOverRAndOneOverRSquared) {
   EXPECT_NEAR(median(k), 1 / (r * r), 0.01 / (r * r));
 }
 
-TEST(Curvature, NonManifoldAndEmptyInputAreRefused) {
-  EXPECT_NE(test::invalid_input_message([] { curvature(test::non_manifold()); }).find("manifold"), std::string::npos);
+TEST(Curvature, TwoBoxesSharingAnEdgeAreMeasuredOnARepairedCopyByDefault) {
+  // The reference: the two boxes apart (manifold), each vertex of the shared
+  // edge the mean of its two corners.
+  const Mesh apart = test::merged(test::box({0, 0, 0}, {1, 1, 1}), test::box({1, 1, 0}, {2, 2, 1}));
+  const Mesh broken = test::two_boxes_sharing_an_edge(), before = broken;
+  const VertexCurvatures ref = vertex_curvatures(apart);
+  const CurvatureResult r = curvature(broken);
+  test::expect_same_mesh(broken, before);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_EQ(r.warnings[0].rfind("curvature: the mesh was not manifold", 0), 0u) << r.warnings[0];
+  ASSERT_EQ(r.mean_curvature.values.size(), broken.num_vertices());
+  for (std::size_t i = 0; i < broken.num_vertices(); ++i) {
+    double h = 0, k = 0;
+    int n = 0;
+    for (std::size_t j = 0; j < apart.num_vertices(); ++j)
+      if (apart.positions[j] == broken.positions[i]) h += ref.mean[j], k += ref.gaussian[j], ++n;
+    ASSERT_GT(n, 0);
+    EXPECT_NEAR(r.mean_curvature.values[i], h / n, 1e-5) << i;
+    EXPECT_NEAR(r.gaussian_curvature.values[i], k / n, 1e-5) << i;
+  }
+  CurvatureParams off;
+  off.repair = false;
+  const std::string what = test::invalid_input_message([&] { curvature(broken, off); });
+  EXPECT_NE(what.find("curvature needs a manifold mesh"), std::string::npos) << what;
+  EXPECT_NE(what.find("set 'repair'"), std::string::npos) << what;
+}
+
+TEST(Curvature, NonManifoldWithoutRepairAndEmptyInputAreRefused) {
+  EXPECT_NE(test::invalid_input_message([] { curvature(test::non_manifold(), {.repair = false}); }).find("manifold"),
+            std::string::npos);
   Mesh points;
   points.positions = {{0, 0, 0}};
   EXPECT_NE(test::invalid_input_message([&] { curvature(points); }).find("no faces"), std::string::npos);
