@@ -20,9 +20,15 @@ namespace {
 constexpr std::size_t kMeshesKept = 8;
 
 // Each face's index into the stored mesh's `materials`, when its faces use
-// more than one (an OBJ's usemtl groups); empty otherwise.  It depends on the
+// more than one (an OBJ's usemtl groups, a glTF's primitives' materials);
+// empty otherwise.  It depends on the
 // mesh file's bytes only, so encodings stay keyed by the file's sha256.
 std::vector<std::uint32_t> face_materials(Store& store, const MeshRecord& rec, std::size_t faces) {
+  if (rec.format == "glb" || rec.format == "gltf") {
+    ReadResult r = read_mesh_bytes(store.read_blob(rec), format_from_name("x." + rec.format), rec.name);
+    if (r.materials.size() < 2 || r.face_material.size() != faces) return {};
+    return std::move(r.face_material);
+  }
   if (rec.format != "obj") return {};
   ObjMaterialUse use = obj_material_use(store.read_blob(rec));
   if (use.names.size() < 2 || use.face_material.size() != faces) return {};

@@ -165,11 +165,51 @@ void find_obj_textures(Textures& t, const ReadResult& r, std::string_view mesh_b
   t.material["materials"] = entries;
 }
 
+// A glTF's materials as an OBJ's (materials in the order of the ids its
+// faces carry, each with its base colour as kd and its texture), its images
+// (the reader found them, embedded or among the upload's files) as textures.
+void find_gltf_textures(Textures& t, const ReadResult& r, std::vector<std::string>& warnings) {
+  std::vector<std::size_t> faces(r.materials.size(), 0);
+  for (const std::uint32_t m : r.face_material)
+    if (m < faces.size()) ++faces[m];
+  std::vector<std::optional<std::size_t>> blob_of(r.textures.size());
+  nlohmann::json entries = nlohmann::json::array();
+  for (std::size_t i = 0; i < r.materials.size(); ++i) {
+    const MeshMaterial& m = r.materials[i];
+    nlohmann::json e = {{"name", m.name}, {"faces", faces[i]}, {"kd", nullptr}, {"texture", nullptr}};
+    if (m.kd) e["kd"] = *m.kd;
+    if (m.texture && *m.texture < r.textures.size()) {
+      const MeshTexture& tex = r.textures[*m.texture];
+      auto& blob = blob_of[*m.texture];
+      if (!r.mesh.has_uvs()) {
+        warnings.push_back("the mesh has no texture coordinates: its texture '" + tex.name + "' is not shown");
+      } else {
+        if (!blob) {
+          nlohmann::json te = {{"name", tex.name},
+                               {"mime", image_mime_type(tex.bytes)},
+                               {"bytes", tex.bytes.size()},
+                               {"material", m.name}};
+          if (m.kd) te["kd"] = *m.kd;
+          t.material["textures"].push_back(std::move(te));
+          t.blobs.push_back(tex.bytes);
+          blob = t.blobs.size() - 1;
+        }
+        e["texture"] = *blob;
+      }
+    }
+    if (!t.material.contains("kd") && m.kd) t.material["kd"] = *m.kd;
+    entries.push_back(std::move(e));
+  }
+  t.material["materials"] = std::move(entries);
+}
+
 // The textures and diffuse colours of a mesh from the files uploaded with
 // it, and a warning listing those of its files nothing used.
 Textures find_textures(const ReadResult& r, std::string_view mesh_bytes, const std::vector<BundleFile>& files,
-                       const BundleFile* mesh_file, bool bundle, std::vector<std::string>& warnings) {
+                       const BundleFile* mesh_file, bool bundle, const std::set<const BundleFile*>& read_with,
+                       std::vector<std::string>& warnings) {
   Textures t;
+  t.used = read_with;
   t.material["has_uvs"] = r.mesh.has_uvs();
   t.material["textures"] = nlohmann::json::array();
   if (r.format == MeshFormat::obj) {
@@ -189,6 +229,8 @@ Textures find_textures(const ReadResult& r, std::string_view mesh_bytes, const s
       }
     }
     if (!image.empty()) add_texture(t, r, files, bundle, image, warnings);
+  } else if (r.format == MeshFormat::glb || r.format == MeshFormat::gltf) {
+    find_gltf_textures(t, r, warnings);
   }
   std::string unused;
   for (const auto& f : files)
@@ -222,17 +264,36 @@ UploadRead read_upload(const std::string& name, const std::string& format, std::
     mesh_bytes = mesh_file->bytes;
   }
   const MeshFormat f = format_from_name(format.empty() || bundle ? n : "x." + format);
-  ReadResult r = read_mesh_bytes(mesh_bytes, f, n);
+  // A glTF's buffers and images named by relative URIs: the zip's files
+  // under the mesh file's directory, else one of the same base name.
+  std::set<const BundleFile*> read_with;
+  ReadOptions options;
+  if (mesh_file) {
+    const std::size_t slash = mesh_file->name.find_last_of('/');
+    const std::string dir = slash == std::string::npos ? "" : mesh_file->name.substr(0, slash + 1);
+    options.companion = [&](const std::string& path) -> std::optional<std::string_view> {
+      const BundleFile* found = nullptr;
+      for (const auto& file : files)
+        if (&file != mesh_file && file.name == dir + path) found = &file;
+      if (!found) found = find_file(files, path);
+      if (!found || found == mesh_file) return std::nullopt;
+      read_with.insert(found);
+      return std::string_view(found->bytes);
+    };
+  }
+  ReadResult r = read_mesh_bytes(mesh_bytes, f, n, options);
   if (r.mesh.num_vertices() == 0) throw InvalidInput(n + " is empty: it has no vertices and no faces");
   if (r.mesh.num_faces() == 0)
     throw InvalidInput(n + " has " + std::to_string(r.mesh.num_vertices()) +
                        " points and no faces: point clouds are not supported yet; mesh it first (for example "
                        "Poisson reconstruction in MeshLab or Open3D)");
-  Textures textures = find_textures(r, mesh_bytes, files, mesh_file, bundle, r.warnings);
+  Textures textures = find_textures(r, mesh_bytes, files, mesh_file, bundle, read_with, r.warnings);
   UploadRead out;
   out.name = n;
   out.format = to_string(f);
   if (mesh_file) out.unpacked_mesh = mesh_file->bytes;
+  // A glTF that needs the zip's other files is stored with them embedded: it reads alone.
+  if (!r.self_contained.empty()) out.unpacked_mesh = std::move(r.self_contained);
   const MeshReport report = mesh_report(r.mesh);
   if (report.faces_inward)
     r.warnings.push_back(n +
@@ -398,7 +459,8 @@ UploadRead read_upload_in_child(const UploadReader& reader, const std::string& n
     if (textures > 1000) throw std::runtime_error("too many textures");
     for (std::size_t k = 0; k < textures; ++k)
       out.textures.push_back(child_file(dir, "texture-" + std::to_string(k), cap));
-    if (r.at("unpacked").get<bool>()) out.unpacked_mesh = child_file(dir, "mesh", cap);
+    // A glTF stored self-contained holds its files in base64: 4 bytes for 3.
+    if (r.at("unpacked").get<bool>()) out.unpacked_mesh = child_file(dir, "mesh", cap / 3 * 4 + (std::size_t(1) << 20));
   } catch (const std::exception& e) {
     throw InvalidInput(n + ": the upload's reader gave an unreadable result (" + e.what() + ")");
   }

@@ -3,6 +3,9 @@
 #include <cctype>
 #include <cstdio>
 #include <cstring>
+#include <deque>
+#include <memory>
+#include <optional>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -115,10 +118,35 @@ struct MeshInput {
   std::string entry;  // a bundle's mesh file, as named in the zip; empty for a plain file
 };
 
-MeshInput read_mesh_input(const std::filesystem::path& file, const ReadOptions& options = {}) {
+// A glTF's buffers and images named by relative URIs (ReadOptions::companion):
+// files in the mesh file's directory or below it, a symbolic link out of it
+// refused, all of them together at most options.max_bytes.  `held` keeps
+// their bytes for the read.
+ReadOptions with_companions(ReadOptions options, const std::filesystem::path& mesh, std::deque<std::string>& held) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path root = fs::weakly_canonical(fs::absolute(mesh).parent_path(), ec);
+  if (ec) return options;
+  auto left = std::make_shared<std::uint64_t>(options.max_bytes);
+  options.companion = [root, left, &held](const std::string& relative) -> std::optional<std::string_view> {
+    std::error_code ec;
+    const fs::path p = fs::weakly_canonical(root / fs::path(relative), ec);
+    if (ec || std::mismatch(root.begin(), root.end(), p.begin(), p.end()).first != root.end() ||
+        !fs::is_regular_file(p, ec))
+      return std::nullopt;
+    held.push_back(read_file_bytes(p, *left));
+    *left -= held.back().size();
+    return std::string_view(held.back());
+  };
+  return options;
+}
+
+MeshInput read_mesh_input(const std::filesystem::path& file, const ReadOptions& plain_options = {}) {
   std::string ext = file.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (ext != ".zip") return {read_mesh_file(file, options), ""};
+  std::deque<std::string> held;
+  if (ext != ".zip") return {read_mesh_file(file, with_companions(plain_options, file, held)), ""};
+  const ReadOptions& options = plain_options;
   const BundleDir bundle(file, std::size_t(options.max_bytes));
   // Messages name the zip's entry, not the temporary directory that is gone.
   const std::string tmp = bundle.dir().string() + "/";
@@ -129,7 +157,7 @@ MeshInput read_mesh_input(const std::filesystem::path& file, const ReadOptions& 
   };
   ReadResult r;
   try {
-    r = read_mesh_file(bundle.mesh_path(), options);
+    r = read_mesh_file(bundle.mesh_path(), with_companions(options, bundle.mesh_path(), held));
   } catch (const InvalidInput& e) {
     throw InvalidInput(in_zip(e.what()));
   } catch (const IoError& e) {

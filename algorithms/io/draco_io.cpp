@@ -10,6 +10,7 @@
 #include <array>
 #include <cstring>
 #include <deque>
+#include <map>
 #include <numeric>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -18,6 +19,7 @@
 
 #include "core/errors.h"
 #include "io/draco_io.h"
+#include "io/materials.h"
 #include "io/parse_json.h"
 #include "io/readers.h"
 
@@ -349,10 +351,13 @@ void read_draco(std::string_view bytes, const std::string& name, ReadResult& res
 // indices and sizes in the JSON (a corrupted .glb crashed it) and loads any
 // file that a buffer's "uri" names (an upload could read files of the server).
 // Every index and byte range is checked against what the file holds; buffer
-// bytes come only from the GLB's BIN chunk or from data: URIs.  The default
+// bytes come only from the GLB's BIN chunk, data: URIs, or the caller's
+// companion files (ReadOptions::companion), asked for by a relative path
+// only: a URI with a scheme, an absolute path or a ".." is refused.  The default
 // scene's node tree is flattened with each node's transform; triangle, strip
 // and fan primitives are read (POSITION, NORMAL, TEXCOORD_0, COLOR_0), Draco-
 // compressed ones (KHR_draco_mesh_compression) through Draco's decoder.
+// Each primitive's material gives its faces' base colour and texture.
 namespace {
 
 using Json = nlohmann::json;
@@ -399,10 +404,78 @@ bool base64_decode(std::string_view in, std::string& out) {
   return true;
 }
 
+std::string base64_encode(std::string_view in) {
+  static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((in.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < in.size(); i += 3) {
+    const std::size_t n = std::min<std::size_t>(3, in.size() - i);
+    std::uint32_t v = 0;
+    for (std::size_t k = 0; k < 3; ++k) v = v << 8 | (k < n ? std::uint8_t(in[i + k]) : 0u);
+    for (std::size_t k = 0; k < 4; ++k) out.push_back(k <= n ? digits[(v >> (18 - 6 * k)) & 63] : '=');
+  }
+  return out;
+}
+
+constexpr const char* kUploadTogether = "upload it together with the .gltf (zipped, or chosen together in the viewer)";
+
+// A URI naming a file of the bundle as a relative path ('/'-separated,
+// percent-decoded, "." components dropped), or nullopt with why it is
+// refused: a scheme (file:, http:, a drive letter), an absolute path, a
+// ".." component, a NUL.
+std::optional<std::string> bundle_path(const std::string& uri, std::string& why) {
+  std::string decoded;
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    auto hex = [](char c) {
+      return c >= '0' && c <= '9'   ? c - '0'
+             : c >= 'a' && c <= 'f' ? c - 'a' + 10
+             : c >= 'A' && c <= 'F' ? c - 'A' + 10
+                                    : -1;
+    };
+    if (uri[i] == '%' && i + 2 < uri.size() && hex(uri[i + 1]) >= 0 && hex(uri[i + 2]) >= 0) {
+      decoded.push_back(char(hex(uri[i + 1]) * 16 + hex(uri[i + 2])));
+      i += 2;
+    } else {
+      decoded.push_back(uri[i]);
+    }
+  }
+  const std::size_t colon = decoded.find(':');
+  if (colon != std::string::npos && decoded.find_first_of("/\\") > colon) {
+    why = "it names the scheme '" + decoded.substr(0, std::min<std::size_t>(colon, 16)) +
+          ":' (only data: URIs and paths relative to the .gltf are read)";
+    return std::nullopt;
+  }
+  if (decoded.empty() || decoded.find('\0') != std::string::npos) {
+    why = "it is empty or holds a NUL";
+    return std::nullopt;
+  }
+  if (decoded[0] == '/' || decoded[0] == '\\') {
+    why = "it is an absolute path (only paths relative to the .gltf, inside its bundle, are read)";
+    return std::nullopt;
+  }
+  std::string path;
+  for (std::size_t b = 0;;) {
+    const std::size_t e = decoded.find_first_of("/\\", b);
+    const std::string part = decoded.substr(b, e == std::string::npos ? std::string::npos : e - b);
+    if (part == "..") {
+      why = "it leaves the .gltf's directory ('..'): only files beside the .gltf or below it are read";
+      return std::nullopt;
+    }
+    if (!part.empty() && part != ".") path += (path.empty() ? "" : "/") + part;
+    if (e == std::string::npos) break;
+    b = e + 1;
+  }
+  if (path.empty()) {
+    why = "it names no file";
+    return std::nullopt;
+  }
+  return path;
+}
+
 class GltfReader {
  public:
-  GltfReader(std::string_view bytes, const std::string& name, ReadResult& result)
-      : bytes_(bytes), name_(name), result_(result) {}
+  GltfReader(std::string_view bytes, const std::string& name, const ReadOptions& options, ReadResult& result)
+      : bytes_(bytes), name_(name), options_(options), result_(result) {}
 
   void read(bool binary) {
     if (bytes_.starts_with("glTF")) read_container();
@@ -410,6 +483,7 @@ class GltfReader {
     else json_ = bytes_;
     parse_json();
     read_scene();
+    if (used_companions_) write_self_contained();
   }
 
  private:
@@ -474,6 +548,7 @@ class GltfReader {
     accessors_ = &array(doc_, "accessors", "");
     meshes_ = &array(doc_, "meshes", "");
     nodes_ = &array(doc_, "nodes", "");
+    materials_ = &array(doc_, "materials", "");
     buffer_data_.assign(buffers_->size(), std::nullopt);
     parts_.resize(meshes_->size());
   }
@@ -529,22 +604,50 @@ class GltfReader {
       data = *bin_;
     } else {
       if (!uri->is_string()) fail(where + ".uri is not a string");
+      std::string why;
       const std::string& u = uri->get_ref<const std::string&>();
-      const auto comma = u.find(',');
-      if (!u.starts_with("data:") || comma == std::string::npos ||
-          u.substr(0, comma).find(";base64") == std::string::npos)
-        fail(where + " refers to the external file '" + u.substr(0, 64) +
-             "': only embedded buffers are read (a .glb, or data: URIs in a .gltf)");
-      decoded_.emplace_back();
-      if (!base64_decode(std::string_view(u).substr(comma + 1), decoded_.back()))
-        fail(where + ".uri is not valid base64");
-      data = decoded_.back();
+      const auto got = uri_bytes(u, why);
+      if (!got) fail(where + ": " + why);
+      data = *got;
+      if (!u.starts_with("data:")) companion_buffers_.push_back(i);
     }
     if (data.size() < length)
       fail(where + " has " + std::to_string(data.size()) + " bytes, fewer than its byteLength " +
            std::to_string(length));
     buffer_data_[i] = data.substr(0, length);
     return *buffer_data_[i];
+  }
+
+  // The bytes a buffer's or an image's uri stands for: a data: URI decoded,
+  // or a companion file the caller gives; nullopt with why not.
+  std::optional<std::string_view> uri_bytes(const std::string& u, std::string& why) {
+    const std::string shown = "'" + u.substr(0, 64) + (u.size() > 64 ? "...'" : "'");
+    if (u.starts_with("data:")) {
+      const auto comma = u.find(',');
+      if (comma == std::string::npos || u.substr(0, comma).find(";base64") == std::string::npos) {
+        why = "its data: URI is not base64";
+        return std::nullopt;
+      }
+      decoded_.emplace_back();
+      if (!base64_decode(std::string_view(u).substr(comma + 1), decoded_.back())) {
+        why = "its data: URI is not valid base64";
+        return std::nullopt;
+      }
+      return decoded_.back();
+    }
+    const auto path = bundle_path(u, why);
+    if (!path) {
+      why = "the uri " + shown + " is refused: " + why;
+      return std::nullopt;
+    }
+    std::optional<std::string_view> bytes;
+    if (options_.companion) bytes = options_.companion(*path);
+    if (!bytes) {
+      why = "the file '" + *path + "' it names is missing: " + kUploadTogether;
+      return std::nullopt;
+    }
+    used_companions_ = true;
+    return bytes;
   }
 
   std::string_view view(std::size_t i, std::uint64_t& stride) {
@@ -722,6 +825,7 @@ class GltfReader {
     int color_components = 4;
     std::vector<std::uint32_t> corners;  // triangle corners
     std::size_t vertices = 0;
+    std::int64_t material = -1;  // the primitive's glTF material, -1 for none
   };
 
   Part plain_primitive(const Json& prim, const std::string& where) {
@@ -834,6 +938,8 @@ class GltfReader {
       }
       Part part = draco_ext ? draco_primitive(*draco_ext, pw + ".extensions.KHR_draco_mesh_compression")
                             : plain_primitive(prim, pw);
+      if (const auto mat = prim.find("material"); mat != prim.end())
+        part.material = std::int64_t(index(*mat, materials_->size(), pw + ".material", "material"));
       // Triangles of the primitive's mode.
       if (mode != 4) {
         std::vector<std::uint32_t> tris;
@@ -908,9 +1014,150 @@ class GltfReader {
     (part.normals.empty() ? any_without_normals_ : any_normals_) = true;
     (part.uvs.empty() ? any_without_uvs_ : any_uvs_) = true;
     (part.colors.empty() ? any_without_colors_ : any_colors_) = true;
+    const std::uint32_t material = material_of(part.material);
     for (std::size_t t = 0; t + 2 < tris.size(); t += 3) {
+      result_.face_material.push_back(material);
       if (det < 0) mesh.faces.push_back({base + tris[t], base + tris[t + 2], base + tris[t + 1]});
       else mesh.faces.push_back({base + tris[t], base + tris[t + 1], base + tris[t + 2]});
+    }
+  }
+
+  // The index into result_.materials of glTF material m (-1: none), read on
+  // first use.  A texture that cannot be shown is a warning, not a refusal.
+  std::uint32_t material_of(std::int64_t m) {
+    const auto [it, fresh] = material_index_.try_emplace(m, std::uint32_t(result_.materials.size()));
+    if (!fresh) return it->second;
+    MeshMaterial out;
+    out.name = m < 0 ? "(no material)" : "material " + std::to_string(m);
+    if (m >= 0) {
+      const std::string where = "materials[" + std::to_string(m) + "]";
+      const Json& mat = object(*materials_, std::size_t(m), where);
+      if (const auto n = mat.find("name");
+          n != mat.end() && n->is_string() && !n->get_ref<const std::string&>().empty())
+        out.name = n->get_ref<const std::string&>().substr(0, 200);
+      const auto pbr = mat.find("pbrMetallicRoughness");
+      if (pbr != mat.end() && pbr->is_object()) {
+        const std::string pw = where + ".pbrMetallicRoughness";
+        if (const auto f = pbr->find("baseColorFactor"); f != pbr->end()) {
+          if (!f->is_array() || f->size() != 4 ||
+              !std::all_of(f->begin(), f->end(), [](const Json& x) { return x.is_number(); }))
+            fail(pw + ".baseColorFactor is not an array of 4 numbers");
+          std::array<float, 3> kd;
+          for (std::size_t k = 0; k < 3; ++k) kd[k] = std::clamp((*f)[k].get<float>(), 0.f, 1.f);
+          out.kd = kd;
+        }
+        if (const auto t = pbr->find("baseColorTexture"); t != pbr->end())
+          out.texture = texture(*t, pw + ".baseColorTexture", out.name);
+      }
+    }
+    result_.materials.push_back(std::move(out));
+    return it->second;
+  }
+
+  std::optional<std::size_t> texture(const Json& info, const std::string& where, const std::string& material) {
+    const std::string of = " of the material '" + material + "'";
+    try {
+      if (!info.is_object()) fail(where + " is not an object");
+      const Json& textures = array(doc_, "textures", "");
+      const std::uint64_t t = index_field(info, "index", textures.size(), where, "texture");
+      if (const std::uint64_t set = uint_field(info, "texCoord", where).value_or(0); set != 0) {
+        result_.warnings.push_back("the texture" + of + " uses texture coordinates TEXCOORD_" + std::to_string(set) +
+                                   ", which are not read: its faces show untextured");
+        return std::nullopt;
+      }
+      const std::string tw = "textures[" + std::to_string(t) + "]";
+      const Json& tex = object(textures, t, tw);
+      const auto src = tex.find("source");
+      if (src == tex.end()) {
+        const auto ext = tex.find("extensions");
+        const std::string kind = ext != tex.end() && ext->is_object() && !ext->empty() ? ext->begin().key() : "";
+        result_.warnings.push_back(
+            "the texture" + of + " (" + tw + ") has no PNG or JPEG image" +
+            (kind.empty() ? "" : ", only an image of " + kind.substr(0, 64) + " (KTX2 and WebP are not shown)") +
+            ": its faces show untextured");
+        return std::nullopt;
+      }
+      const Json& images = array(doc_, "images", "");
+      const std::uint64_t j = index(*src, images.size(), tw + ".source", "image");
+      if (const auto done = image_texture_.find(j); done != image_texture_.end()) return done->second;
+      const std::optional<std::size_t> got = image(images, j, of);
+      image_texture_[j] = got;
+      return got;
+    } catch (const ParseError& e) {
+      result_.warnings.push_back(std::string(e.what()) + ": the texture" + of + " is not shown");
+      return std::nullopt;
+    }
+  }
+
+  std::optional<std::size_t> image(const Json& images, std::uint64_t j, const std::string& of) {
+    const std::string iw = "images[" + std::to_string(j) + "]";
+    const Json& img = object(images, j, iw);
+    std::string label, why, declared;
+    if (const auto m = img.find("mimeType"); m != img.end() && m->is_string())
+      declared = m->get_ref<const std::string&>().substr(0, 64);
+    std::optional<std::string_view> bytes;
+    bool companion = false;
+    if (const auto u = img.find("uri"); u != img.end()) {
+      if (!u->is_string()) fail(iw + ".uri is not a string");
+      const std::string& us = u->get_ref<const std::string&>();
+      bytes = uri_bytes(us, why);
+      std::string unused;
+      if (!us.starts_with("data:"))
+        if (const auto p = bundle_path(us, unused)) label = file_base_name(*p), companion = true;
+    } else {
+      std::uint64_t stride = 0;
+      bytes = view(index_field(img, "bufferView", views_->size(), iw, "bufferView"), stride);
+    }
+    const std::string type = bytes ? image_mime_type(*bytes) : "";
+    if (label.empty())
+      label = "image" + std::to_string(j) + (type == "image/jpeg" ? ".jpg" : type == "image/png" ? ".png" : "");
+    if (!bytes) {
+      result_.warnings.push_back("the texture '" + label + "'" + of + " is not shown: " + why);
+      return std::nullopt;
+    }
+    if (type.empty()) {
+      result_.warnings.push_back("the texture '" + label + "'" + of + " is " +
+                                 (declared.empty() || declared == "image/png" || declared == "image/jpeg"
+                                      ? std::string("not a PNG or JPEG image")
+                                      : "an " + declared + " image, not PNG or JPEG") +
+                                 ": its faces show untextured");
+      return std::nullopt;
+    }
+    if (companion) companion_images_.push_back({j, *bytes, type});
+    result_.textures.push_back({label, std::string(*bytes)});
+    return result_.textures.size() - 1;
+  }
+
+  // The glTF with the buffers and images read from companion files as data:
+  // URIs (a GLB keeps its BIN chunk), so that it reads without them.
+  void write_self_contained() {
+    Json doc = doc_;
+    for (const std::size_t i : companion_buffers_)
+      doc["buffers"][i]["uri"] = "data:application/octet-stream;base64," + base64_encode(*buffer_data_[i]);
+    for (const auto& im : companion_images_)
+      doc["images"][im.index]["uri"] = "data:" + im.mime + ";base64," + base64_encode(im.bytes);
+    std::string json = doc.dump();
+    if (!json_offset_) {
+      result_.self_contained = std::move(json);
+      return;
+    }
+    while (json.size() % 4) json.push_back(' ');
+    std::string bin = bin_ ? std::string(*bin_) : std::string();
+    while (bin.size() % 4) bin.push_back('\0');
+    auto put32 = [](std::string& out, std::uint64_t v) {
+      for (int k = 0; k < 4; ++k) out.push_back(char((v >> (8 * k)) & 0xff));
+    };
+    std::string& out = result_.self_contained;
+    put32(out, 0x46546C67u);  // "glTF"
+    put32(out, 2);
+    put32(out, 12 + 8 + json.size() + (bin_ ? 8 + bin.size() : 0));
+    put32(out, json.size());
+    put32(out, 0x4E4F534Au);
+    out += json;
+    if (bin_) {
+      put32(out, bin.size());
+      put32(out, 0x004E4942u);
+      out += bin;
     }
   }
 
@@ -1022,6 +1269,7 @@ class GltfReader {
 
   std::string_view bytes_;
   const std::string& name_;
+  const ReadOptions& options_;
   ReadResult& result_;
   std::string_view json_;
   std::uint64_t json_offset_ = 0;
@@ -1032,6 +1280,17 @@ class GltfReader {
   const Json* accessors_ = nullptr;
   const Json* meshes_ = nullptr;
   const Json* nodes_ = nullptr;
+  const Json* materials_ = nullptr;
+  struct CompanionImage {
+    std::uint64_t index;
+    std::string_view bytes;
+    std::string mime;
+  };
+  bool used_companions_ = false;
+  std::vector<std::size_t> companion_buffers_;  // buffers read from companion files
+  std::vector<CompanionImage> companion_images_;
+  std::map<std::int64_t, std::uint32_t> material_index_;               // glTF material -> result_.materials
+  std::map<std::uint64_t, std::optional<std::size_t>> image_texture_;  // image -> result_.textures
   std::vector<std::optional<std::string_view>> buffer_data_;
   std::deque<std::string> decoded_;                      // data: URIs, decoded (stable addresses)
   std::vector<std::optional<std::vector<Part>>> parts_;  // per mesh, once read
@@ -1045,9 +1304,10 @@ class GltfReader {
 
 }  // namespace
 
-void read_gltf(std::string_view bytes, const std::string& name, bool binary, ReadResult& result) {
+void read_gltf(std::string_view bytes, const std::string& name, bool binary, const ReadOptions& options,
+               ReadResult& result) {
   if (bytes.empty()) throw ParseError(name, "the file is empty", std::nullopt, std::nullopt);
-  GltfReader(bytes, name, result).read(binary);
+  GltfReader(bytes, name, options, result).read(binary);
 }
 
 std::string write_draco(const Mesh& mesh, const WriteOptions& options, std::span<const std::uint32_t> face_material,

@@ -107,10 +107,10 @@ ReadResult read_mesh_bytes(std::string_view bytes, MeshFormat format, const std:
       detail::read_draco(bytes, name, r);
       break;
     case MeshFormat::glb:
-      detail::read_gltf(bytes, name, true, r);
+      detail::read_gltf(bytes, name, true, options, r);
       break;
     case MeshFormat::gltf:
-      detail::read_gltf(bytes, name, false, r);
+      detail::read_gltf(bytes, name, false, options, r);
       break;
   }
   try {

@@ -9,13 +9,16 @@
 // without a file; the path-taking overloads read the file first.  A malformed
 // input throws ParseError naming the file and the line (text) or byte offset
 // (binary); counts claimed by a header are checked against the bytes present
-// before anything is allocated, so a lying header costs nothing.  glTF
-// buffers must be embedded (a .glb's BIN chunk, or data: URIs): no reader
-// opens a file that the input names.
+// before anything is allocated, so a lying header costs nothing.  No reader
+// opens a file that the input names: a .gltf's external buffers and images
+// (relative URIs) come from ReadOptions::companion, which the caller fills
+// with the files uploaded or zipped with it.
 #pragma once
 
 #include <cstdint>
+#include <array>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -44,6 +47,28 @@ struct ReadOptions {
   std::uint64_t max_bytes = std::uint64_t(4) << 30;
   // Merge STL corners with identical coordinates into shared vertices.
   bool weld_stl = true;
+  // glTF: the bytes of a file that a buffer's or an image's "uri" names,
+  // given its path relative to the .gltf ('/'-separated, percent-decoded,
+  // never absolute, never with a ".." or "." component, never a scheme: the
+  // reader refuses those URIs before asking), or nullopt when the caller
+  // has no such file.  The bytes must outlive the read.  Unset: only
+  // embedded buffers (a .glb's BIN chunk, data: URIs) are read.
+  std::function<std::optional<std::string_view>(const std::string& path)> companion;
+};
+
+// A material of a glTF: its name, base colour (baseColorFactor's red, green
+// and blue, 0..1) and base-colour texture (an index into ReadResult::textures).
+struct MeshMaterial {
+  std::string name;
+  std::optional<std::array<float, 3>> kd;
+  std::optional<std::size_t> texture;
+};
+
+// An image a material uses: a name for it ("file.png", or "image3.png" for
+// an embedded one) and its bytes, PNG or JPEG.
+struct MeshTexture {
+  std::string name;
+  std::string bytes;
 };
 
 struct ReadResult {
@@ -54,6 +79,15 @@ struct ReadResult {
   // coordinates (a "quality", an "sdf" written by another tool): one field
   // each, per vertex, or per face (one value per triangle of mesh.faces).
   std::vector<ScalarField> properties;
+  // glTF: the materials the faces use, in order of first use, and each
+  // face's index into them (one per face, or empty when the file has no
+  // triangles); the images they use.
+  std::vector<MeshMaterial> materials;
+  std::vector<std::uint32_t> face_material;
+  std::vector<MeshTexture> textures;
+  // glTF that took bytes from companion files: the same glTF with those as
+  // data: URIs, which reads alone (what a server stores); empty otherwise.
+  std::string self_contained;
 };
 
 // Reads a file; the format comes from its extension.

@@ -19,7 +19,8 @@ void read_draco(std::string_view bytes, const std::string& name, ReadResult& res
 // bytes can hold, or more vertices than three a face (Draco's edgebreaker
 // decoder allocates for the claim before it reads the stream).
 void check_draco_counts(std::string_view bytes, const std::string& name);
-void read_gltf(std::string_view bytes, const std::string& name, bool binary, ReadResult& result);
+void read_gltf(std::string_view bytes, const std::string& name, bool binary, const ReadOptions& options,
+               ReadResult& result);
 
 std::string write_off(const Mesh& mesh);
 std::string write_obj(const Mesh& mesh);

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <fstream>
@@ -17,6 +18,7 @@
 
 #include "draco_faces.h"
 #include "io/materials.h"
+#include "io/mesh_io.h"
 #include "mesh_service.h"
 #include "router.h"
 #include "router_harness.h"
@@ -228,6 +230,114 @@ TEST_F(TextureUploadTest, SpiderKeepsEveryMaterialsTexture) {
   ASSERT_EQ(per_material.size(), 4u);
   for (std::size_t i = 0; i < use.names.size(); ++i)
     EXPECT_EQ(per_material[std::uint32_t(i)], mesh["materials"][i]["faces"]);
+}
+
+// glTF as it is shipped: a .gltf with its buffer in a .bin beside it, zipped.
+std::string le32(std::uint32_t v) { return std::string{char(v), char(v >> 8), char(v >> 16), char(v >> 24)}; }
+std::string le_floats(std::initializer_list<float> v) {
+  std::string s;
+  for (const float x : v) {
+    std::uint32_t u;
+    std::memcpy(&u, &x, 4);
+    s += le32(u);
+  }
+  return s;
+}
+std::string le16s(std::initializer_list<std::uint16_t> v) {
+  std::string s;
+  for (const std::uint16_t x : v) s += {char(x), char(x >> 8)};
+  return s;
+}
+// A unit square's positions (48 bytes), its uvs (32) and two triangles' uint16 indices (12).
+const std::string kQuadBin =
+    le_floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}) + le_floats({0, 0, 1, 0, 1, 1, 0, 1}) + le16s({0, 1, 2, 0, 2, 3});
+// The square as two primitives (one triangle each), of materials 0 and 1 when `materials` is
+// given; `buffer` is spliced into buffers[0], `extra` into the document.
+std::string quad_gltf(const std::string& buffer, const std::string& materials = "", const std::string& extra = "") {
+  const std::string m0 = materials.empty() ? "" : R"(,"material":0)", m1 = materials.empty() ? "" : R"(,"material":1)";
+  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+         R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1},"indices":2)" +
+         m0 + R"(},{"attributes":{"POSITION":0,"TEXCOORD_0":1},"indices":3)" + m1 + R"(}]}],)" +
+         (materials.empty() ? "" : R"("materials":)" + materials + ",") + extra +
+         R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},)"
+         R"({"bufferView":1,"componentType":5126,"count":4,"type":"VEC2"},)"
+         R"({"bufferView":2,"componentType":5123,"count":3,"type":"SCALAR"},)"
+         R"({"bufferView":2,"byteOffset":6,"componentType":5123,"count":3,"type":"SCALAR"}],)"
+         R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":32},)"
+         R"({"buffer":0,"byteOffset":80,"byteLength":12}],"buffers":[{"byteLength":92)" +
+         buffer + "}]}";
+}
+
+TEST_F(TextureUploadTest, GltfWithItsBinZipped) {
+  const std::string gltf = quad_gltf(R"(,"uri":"scene.bin")");
+  const json mesh = upload("scene.zip", make_zip({{"model/scene.gltf", gltf}, {"model/scene.bin", kQuadBin}}));
+  EXPECT_EQ(mesh["name"], "scene.gltf");
+  EXPECT_EQ(mesh["format"], "gltf");
+  EXPECT_EQ(mesh["report"]["faces"], 2) << mesh["report"];
+  EXPECT_EQ(mesh["warnings"], json::array()) << "the .bin counts as used";
+  // What is stored reads without the zip: the buffer is embedded.
+  const std::string id = mesh["id"];
+  ASSERT_EQ(store_->list_meshes().size(), 1u);
+  const std::string stored = store_->read_blob(store_->list_meshes()[0]);
+  EXPECT_EQ(stored.find("scene.bin"), std::string::npos);
+  EXPECT_EQ(read_mesh_bytes(stored, MeshFormat::gltf, "scene.gltf").mesh.num_faces(), 2u);
+  EXPECT_EQ(call("GET", "/api/v1/meshes/" + id + "/download?format=drc").status, 200);
+
+  // Alone, the .gltf names what to upload with it; a URI out of the zip is refused.
+  EXPECT_EQ(call("DELETE", "/api/v1/meshes/" + id).status, 204);
+  refused("scene.gltf", gltf, 400, "the file 'scene.bin' it names is missing: upload it together with the .gltf");
+  refused("scene.zip", make_zip({{"m/scene.gltf", quad_gltf(R"(,"uri":"../scene.bin")")}, {"scene.bin", kQuadBin}}),
+          400, "is refused: it leaves the .gltf's directory");
+  refused("scene.zip", make_zip({{"scene.gltf", quad_gltf(R"(,"uri":"/etc/passwd")")}}), 400,
+          "is refused: it is an absolute path");
+}
+
+// A .glb with an embedded PNG and two materials of different colours: the
+// texture is listed and served, each face keeps its material's colour.
+TEST_F(TextureUploadTest, GlbWithAnEmbeddedTextureAndTwoMaterials) {
+  const std::string png = std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR\0\0\0\1\0\0\0\1\x08\x02\0\0\0", 29);
+  std::string json_text = quad_gltf(
+      "",
+      R"([{"name":"red","pbrMetallicRoughness":{"baseColorFactor":[1,0,0,1],"baseColorTexture":{"index":0}}},)"
+      R"({"name":"blue","pbrMetallicRoughness":{"baseColorFactor":[0,0,1,1]}}])",
+      R"("textures":[{"source":0}],"images":[{"bufferView":3,"mimeType":"image/png"}],)");
+  // The image's bufferView after the square's bytes (92), and the buffer grown to hold it.
+  const std::string views_end = R"({"buffer":0,"byteOffset":80,"byteLength":12}])";
+  json_text.replace(json_text.find(views_end), views_end.size(),
+                    R"({"buffer":0,"byteOffset":80,"byteLength":12},{"buffer":0,"byteOffset":92,"byteLength":29}])");
+  json_text.replace(json_text.find(R"("byteLength":92})"), 16, R"("byteLength":121})");
+  while (json_text.size() % 4) json_text += ' ';
+  std::string bin = kQuadBin + png;
+  while (bin.size() % 4) bin += '\0';
+  const std::string glb = "glTF" + le32(2) + le32(std::uint32_t(28 + json_text.size() + bin.size())) +
+                          le32(std::uint32_t(json_text.size())) + "JSON" + json_text + le32(std::uint32_t(bin.size())) +
+                          std::string("BIN\0", 4) + bin;
+  const json mesh = upload("two.glb", glb);
+  EXPECT_EQ(mesh["has_uvs"], true);
+  EXPECT_EQ(mesh["warnings"], json::array());
+  ASSERT_EQ(mesh["textures"].size(), 1u) << mesh;
+  EXPECT_EQ(mesh["textures"][0]["name"], "image0.png");
+  EXPECT_EQ(mesh["textures"][0]["mime"], "image/png");
+  EXPECT_EQ(mesh["textures"][0]["material"], "red");
+  ASSERT_EQ(mesh["materials"].size(), 2u);
+  EXPECT_EQ(mesh["materials"][0]["name"], "red");
+  EXPECT_EQ(mesh["materials"][0]["kd"], json::array({1.0, 0.0, 0.0}));
+  EXPECT_EQ(mesh["materials"][0]["texture"], 0);
+  EXPECT_EQ(mesh["materials"][1]["name"], "blue");
+  EXPECT_EQ(mesh["materials"][1]["kd"], json::array({0.0, 0.0, 1.0}));
+  EXPECT_EQ(mesh["materials"][1]["texture"], nullptr);
+  EXPECT_EQ(mesh["kd"], json::array({1.0, 0.0, 0.0}));
+  const std::string id = mesh["id"];
+  const HttpResponse image = call("GET", "/api/v1/meshes/" + id + "/textures/0");
+  ASSERT_EQ(image.status, 200);
+  EXPECT_EQ(image.content_type, "image/png");
+  EXPECT_TRUE(image.body == png);
+  // The Draco stream gives each face its material, as an OBJ's usemtl groups.
+  const HttpResponse drc = call("GET", "/api/v1/meshes/" + id + "/download?format=drc");
+  ASSERT_EQ(drc.status, 200);
+  std::map<std::uint32_t, std::size_t> per_material;
+  for (const auto& f : test::draco_faces(drc.body)) ++per_material[f.material];
+  EXPECT_EQ(per_material, (std::map<std::uint32_t, std::size_t>{{0, 1}, {1, 1}}));
 }
 
 TEST_F(TextureUploadTest, MissingImageIsAWarning) {

@@ -7,6 +7,8 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -806,18 +808,188 @@ TEST(ReadGltf, TextGltfWithAnEmbeddedBuffer) {
 }
 
 TEST(ReadGltf, ExternalFilesAreNeverRead) {
-  // A buffer naming a file: refused, whatever the file holds.
+  // A buffer naming a file: without a companion the reader gives, nothing is opened.
   const auto d = test::temp_dir("readers_gltf");
   test::write_text(d / "secret.bin", kTriBin);
-  for (const std::string& uri :
-       {(d / "secret.bin").string(), std::string("secret.bin"), std::string("file:///etc/passwd")}) {
+  for (const auto& [uri, why] :
+       std::vector<std::pair<std::string, std::string>>{{(d / "secret.bin").string(), "is an absolute path"},
+                                                        {"secret.bin", "'secret.bin' it names is missing"},
+                                                        {"file:///etc/passwd", "scheme 'file:'"}}) {
     SCOPED_TRACE(uri);
     const std::string json = tri_json(R"([{"mesh":0}])", "[0]", R"(,"uri":")" + uri + "\"");
     for (MeshFormat f : {MeshFormat::glb, MeshFormat::gltf}) {
       const ParseError e = error_of(f == MeshFormat::glb ? glb(json, "") : json, f, "t.gl");
-      EXPECT_NE(std::string(e.what()).find("refers to the external file"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
     }
   }
+}
+
+// Two triangles (a unit square, uint16 indices) for a .gltf whose buffer is the
+// external file `uri`, and the .bin's bytes.
+const std::string kQuadBin = floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}) + le(std::uint16_t(0)) +
+                             le(std::uint16_t(1)) + le(std::uint16_t(2)) + le(std::uint16_t(0)) + le(std::uint16_t(2)) +
+                             le(std::uint16_t(3));
+std::string quad_gltf(const std::string& uri) {
+  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+         R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
+         R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},)"
+         R"({"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}],)"
+         R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12}],)"
+         R"("buffers":[{"byteLength":60,"uri":")" +
+         uri + R"("}]})";
+}
+
+// Companion files by path, recording what the reader asked for.
+struct Companions {
+  std::map<std::string, std::string> files;
+  std::vector<std::string> asked;
+  ReadOptions options() {
+    ReadOptions o;
+    o.companion = [this](const std::string& path) -> std::optional<std::string_view> {
+      asked.push_back(path);
+      const auto it = files.find(path);
+      if (it == files.end()) return std::nullopt;
+      return std::string_view(it->second);
+    };
+    return o;
+  }
+};
+
+std::string gltf_error(const std::string& json, const ReadOptions& o) {
+  try {
+    read(json, MeshFormat::gltf, "model.gltf", o);
+    ADD_FAILURE() << "no error";
+  } catch (const ParseError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ReadGltf, ExternalBufferFromACompanionFile) {
+  Companions c;
+  c.files["model.bin"] = kQuadBin;
+  const ReadResult r = read(quad_gltf("model.bin"), MeshFormat::gltf, "model.gltf", c.options());
+  EXPECT_EQ(c.asked, std::vector<std::string>{"model.bin"});
+  EXPECT_EQ(r.mesh.num_vertices(), 4u);
+  EXPECT_EQ(r.mesh.faces, (std::vector<Tri>{{0, 1, 2}, {0, 2, 3}}));
+  // The same glTF with the buffer embedded reads alone.
+  ASSERT_FALSE(r.self_contained.empty());
+  EXPECT_EQ(r.self_contained.find("model.bin"), std::string::npos);
+  const ReadResult alone = read(r.self_contained, MeshFormat::gltf, "model.gltf");
+  EXPECT_EQ(alone.mesh.positions, r.mesh.positions);
+  EXPECT_EQ(alone.mesh.faces, r.mesh.faces);
+  // Embedded buffers alone need nothing stored again.
+  EXPECT_TRUE(alone.self_contained.empty());
+}
+
+TEST(ReadGltf, CompanionPathsArePercentDecodedAndRelative) {
+  Companions c;
+  c.files["my model.bin"] = kQuadBin;
+  c.files["sub/x.bin"] = kQuadBin;
+  EXPECT_EQ(read(quad_gltf("my%20model.bin"), MeshFormat::gltf, "m.gltf", c.options()).mesh.num_faces(), 2u);
+  EXPECT_EQ(read(quad_gltf("./sub/x.bin"), MeshFormat::gltf, "m.gltf", c.options()).mesh.num_faces(), 2u);
+  EXPECT_EQ(c.asked, (std::vector<std::string>{"my model.bin", "sub/x.bin"}));
+}
+
+TEST(ReadGltf, UrisLeavingTheBundleAreRefusedUnasked) {
+  Companions c;
+  c.files["x.bin"] = kQuadBin;
+  for (const auto& [uri, why] :
+       std::vector<std::pair<std::string, std::string>>{{"../x.bin", "leaves the .gltf's directory ('..')"},
+                                                        {"sub/../../x.bin", "leaves the .gltf's directory ('..')"},
+                                                        {"%2e%2e/x.bin", "leaves the .gltf's directory ('..')"},
+                                                        {"/etc/passwd", "is an absolute path"},
+                                                        {"file:///etc/passwd", "names the scheme 'file:'"},
+                                                        {"file:x.bin", "names the scheme 'file:'"},
+                                                        {"https://example.com/x.bin", "names the scheme 'https:'"},
+                                                        {"C:/x.bin", "names the scheme 'C:'"}}) {
+    SCOPED_TRACE(uri);
+    const std::string e = gltf_error(quad_gltf(uri), c.options());
+    EXPECT_NE(e.find("buffers[0]: the uri '" + uri + "' is refused: it " + why), std::string::npos) << e;
+  }
+  EXPECT_TRUE(c.asked.empty());
+}
+
+TEST(ReadGltf, AMissingBinIsNamed) {
+  Companions c;
+  const std::string e = gltf_error(quad_gltf("model.bin"), c.options());
+  EXPECT_NE(e.find("the file 'model.bin' it names is missing: upload it together with the .gltf (zipped, or chosen "
+                   "together in the viewer)"),
+            std::string::npos)
+      << e;
+}
+
+// A 1x1 PNG.
+const std::string kPng =
+    std::string("\x89PNG\r\n\x1a\n", 8) + std::string("\0\0\0\rIHDR\0\0\0\1\0\0\0\1\x08\x02\0\0\0", 21);
+
+// Two primitives of the triangle with materials 0 and 1 (the second with
+// normals too), material 0 textured by an image in the BIN chunk.
+std::string two_material_glb(const std::string& image_json, const std::string& image_bytes) {
+  const std::string json =
+      R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+      R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":2},"indices":1,"material":0},)"
+      R"({"attributes":{"POSITION":0,"NORMAL":0,"TEXCOORD_0":2},"indices":1,"material":1}]}],)"
+      R"("materials":[{"name":"red","pbrMetallicRoughness":{"baseColorFactor":[1,0,0,1],)"
+      R"("baseColorTexture":{"index":0}}},{"name":"blue","pbrMetallicRoughness":{"baseColorFactor":[0,0,1,1]}}],)"
+      R"("textures":[{"source":0}],"images":[)" +
+      image_json +
+      R"(],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},)"
+      R"({"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"},)"
+      R"({"bufferView":0,"componentType":5126,"count":3,"type":"VEC2"}],)"
+      R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":6},)"
+      R"({"buffer":0,"byteOffset":44,"byteLength":)" +
+      std::to_string(image_bytes.size()) + R"(}],"buffers":[{"byteLength":)" + std::to_string(44 + image_bytes.size()) +
+      "}]}";
+  return glb(json, kTriBin + image_bytes);
+}
+
+TEST(ReadGltf, MaterialsBecomeFaceMaterialsAcrossAttributeSets) {
+  const ReadResult r =
+      read(two_material_glb(R"({"bufferView":2,"mimeType":"image/png"})", kPng), MeshFormat::glb, "m.glb");
+  ASSERT_EQ(r.mesh.num_faces(), 2u);
+  EXPECT_EQ(r.face_material, (std::vector<std::uint32_t>{0, 1}));
+  ASSERT_EQ(r.materials.size(), 2u);
+  EXPECT_EQ(r.materials[0].name, "red");
+  EXPECT_EQ(r.materials[0].kd, (std::array<float, 3>{1, 0, 0}));
+  EXPECT_EQ(r.materials[1].name, "blue");
+  EXPECT_EQ(r.materials[1].kd, (std::array<float, 3>{0, 0, 1}));
+  EXPECT_FALSE(r.materials[1].texture);
+  // The embedded image is the red material's texture.
+  ASSERT_EQ(r.textures.size(), 1u);
+  EXPECT_EQ(r.materials[0].texture, 0u);
+  EXPECT_EQ(r.textures[0].bytes, kPng);
+  EXPECT_EQ(r.textures[0].name, "image0.png");
+  EXPECT_TRUE(r.mesh.has_uvs());
+  EXPECT_TRUE(has_warning(r, "normals dropped")) << ::testing::PrintToString(r.warnings);
+  EXPECT_TRUE(r.self_contained.empty());
+}
+
+TEST(ReadGltf, UnusableImagesAreWarnings) {
+  // A WebP in the buffer, a missing file, an image only KTX2 gives.
+  const ReadResult webp =
+      read(two_material_glb(R"({"bufferView":2,"mimeType":"image/webp"})", std::string("RIFF\0\0\0\0WEBP", 12)),
+           MeshFormat::glb, "m.glb");
+  EXPECT_TRUE(webp.textures.empty());
+  EXPECT_TRUE(has_warning(webp, "the texture 'image0' of the material 'red' is an image/webp image, not PNG or JPEG"))
+      << ::testing::PrintToString(webp.warnings);
+  const ReadResult missing = read(two_material_glb(R"({"uri":"tex.png"})", ""), MeshFormat::glb, "m.glb");
+  EXPECT_TRUE(missing.textures.empty());
+  EXPECT_TRUE(has_warning(missing,
+                          "the texture 'tex.png' of the material 'red' is not shown: the file 'tex.png' it "
+                          "names is missing: upload it together with the .gltf"))
+      << ::testing::PrintToString(missing.warnings);
+  EXPECT_EQ(missing.materials.size(), 2u);
+  // The PNG beside it, as a companion: read, and embedded in the self-contained copy.
+  Companions c;
+  c.files["tex.png"] = kPng;
+  const ReadResult found = read(two_material_glb(R"({"uri":"tex.png"})", ""), MeshFormat::glb, "m.glb", c.options());
+  ASSERT_EQ(found.textures.size(), 1u);
+  EXPECT_EQ(found.textures[0].name, "tex.png");
+  ASSERT_FALSE(found.self_contained.empty());
+  const ReadResult alone = read(found.self_contained, MeshFormat::glb, "m.glb");
+  ASSERT_EQ(alone.textures.size(), 1u);
+  EXPECT_EQ(alone.textures[0].bytes, kPng);
 }
 
 TEST(ReadGltf, NodeTransformsAndHierarchy) {
