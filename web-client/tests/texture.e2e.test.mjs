@@ -10,7 +10,8 @@
 // JPEGs, Debian's assimp-testmodels) is drawn with its four materials'
 // textures and shows its leg texture's colour; a PLY with UVs
 // (Blender's cube_uv.ply) gets the checkerboard, and an OBJ whose UVs are
-// all one point does not (the panel says why).  Screenshots go to
+// all one point does not (the panel says why); a .gltf chosen with its .bin
+// and PNG goes up as one upload and shows the same quadrants.  Screenshots go to
 // build/test-artifacts/e2e-texture-*.png.
 //
 // Environment: CGVIEW_SERVER (default build/bin/cgview-server),
@@ -385,4 +386,66 @@ test('an OBJ whose UVs are all one point shows its plain surface, not the checke
   // The checkerboard is still there to choose.
   await v.page.selectOption('#texture-mode', 'checkerboard');
   await v.page.waitForFunction(() => window.__cgview.texture?.mode === 'checkerboard', null, { timeout: 10000 });
+});
+
+// The face-on quad as glTF ships it: the .gltf names its buffer in a .bin and
+// its image in a PNG beside it (glTF's v runs down the image, OBJ's up).
+function faceOnQuadGltf() {
+  const corners = [
+    [-1, -1],
+    [1, -1],
+    [1, 1],
+    [-1, 1],
+  ].map(([sx, sy]) => faceOnCorner(sx, sy).split(' ').map(Number));
+  const bin = Buffer.alloc(92);
+  corners.flat().forEach((x, i) => bin.writeFloatLE(x, 4 * i));
+  [0, 1, 1, 1, 1, 0, 0, 0].forEach((x, i) => bin.writeFloatLE(x, 48 + 4 * i));
+  [0, 1, 2, 0, 2, 3].forEach((x, i) => bin.writeUInt16LE(x, 80 + 2 * i));
+  const lo = [0, 1, 2].map((k) => Math.min(...corners.map((c) => c[k])));
+  const hi = [0, 1, 2].map((k) => Math.max(...corners.map((c) => c[k])));
+  const gltf = {
+    asset: { version: '2.0' },
+    scene: 0,
+    scenes: [{ nodes: [0] }],
+    nodes: [{ mesh: 0 }],
+    meshes: [{ primitives: [{ attributes: { POSITION: 0, TEXCOORD_0: 1 }, indices: 2, material: 0 }] }],
+    materials: [{ pbrMetallicRoughness: { baseColorTexture: { index: 0 } } }],
+    textures: [{ source: 0 }],
+    images: [{ uri: 'quad%20texture.png' }],
+    buffers: [{ uri: 'quad.bin', byteLength: 92 }],
+    bufferViews: [
+      { buffer: 0, byteOffset: 0, byteLength: 48 },
+      { buffer: 0, byteOffset: 48, byteLength: 32 },
+      { buffer: 0, byteOffset: 80, byteLength: 12 },
+    ],
+    accessors: [
+      { bufferView: 0, componentType: 5126, count: 4, type: 'VEC3', min: lo, max: hi },
+      { bufferView: 1, componentType: 5126, count: 4, type: 'VEC2' },
+      { bufferView: 2, componentType: 5123, count: 6, type: 'SCALAR' },
+    ],
+  };
+  return { gltf: JSON.stringify(gltf), bin };
+}
+
+test('a .gltf chosen with its .bin and its PNG goes up as one upload and shows the texture face-on', async () => {
+  const png = await quadPng();
+  const { gltf, bin } = faceOnQuadGltf();
+  await v.page.selectOption('#display-mode', 'flat');
+  const mesh = await pick(
+    [file('quad.gltf', gltf), { name: 'quad.bin', mimeType: 'application/octet-stream', buffer: bin }, { name: 'quad texture.png', mimeType: 'image/png', buffer: png }],
+    'texture',
+  );
+  assert.equal(mesh.name, 'quad.gltf');
+  assert.equal(mesh.report.faces, 2);
+  assert.equal(mesh.textures.length, 1);
+  const served = Buffer.from(await (await fetch(`${v.server.url}/api/v1/meshes/${mesh.id}/textures/0`)).arrayBuffer());
+  assert.ok(served.equals(png), 'the stored texture is the PNG chosen beside the .gltf');
+  const names = (await (await fetch(`${v.server.url}/api/v1/meshes`)).json()).meshes.map((m) => m.name);
+  assert.ok(!names.includes('quad.bin'), `the .bin is not a mesh of its own: ${names}`);
+  const img = await canvasPixels('gltf-quad');
+  for (const [where, [fx, fy]] of Object.entries(QUADRANTS)) {
+    const got = sample(img, fx, fy);
+    const h = hue(got);
+    assert.ok(h !== null && hueDistance(h, hue(TEXELS[where])) <= 20, `${where}: hue of ${got.map(Math.round)} is not that of ${TEXELS[where]}`);
+  }
 });
