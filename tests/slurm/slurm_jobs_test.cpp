@@ -294,12 +294,14 @@ TEST_F(SlurmJobs, CancelStopsTheSlurmJobWithinSeconds) {
 }
 
 TEST_F(SlurmJobs, TimeMemoryAndACrashFailWithTheirReasons) {
-  ASSERT_TRUE(start({"--job-timeout-s", "2", "--job-memory-mb", "300"}));
+  // 5 s, not 2: on a loaded machine the memory hog once ran out of time
+  // before it reached its 300 MB.
+  ASSERT_TRUE(start({"--job-timeout-s", "5", "--job-memory-mb", "300"}));
   const std::string mesh = upload("sphere.off");
   const json slow = submit(mesh, "test_sleep", {{"seconds", 60}});
   const json hog = submit(mesh, "test_memory_hog");
   const json crash = submit(mesh, "test_segfault");
-  EXPECT_EQ(wait_end(slow["id"]).value("error", ""), "exceeded its time limit of 2 s");
+  EXPECT_EQ(wait_end(slow["id"]).value("error", ""), "exceeded its time limit of 5 s");
   EXPECT_EQ(wait_end(hog["id"]).value("error", ""), "exceeded its memory limit of 300 MB");
   EXPECT_EQ(wait_end(crash["id"]).value("error", ""), "killed by signal SIGSEGV");
   for (const auto& j : {slow, hog, crash}) EXPECT_EQ(get(j["id"]).value("state", ""), "failed");
