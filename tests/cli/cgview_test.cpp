@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "render/image.h"
+#include "gltf_quad.h"
 #include "test_support.h"
 
 namespace cgview {
@@ -299,33 +300,11 @@ TEST(CliTest, InfoAndConvertTakeAZipBundle) {
   EXPECT_EQ(info_json(off_out.string()).value("faces", 0), 4);
 }
 
-// A .gltf whose buffer is the file `uri` (a unit square: 4 positions, 6 uint16
-// indices), and that .bin's bytes.
-std::string quad_gltf(const std::string& uri) {
-  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
-         R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
-         R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},)"
-         R"({"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}],)"
-         R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12}],)"
-         R"("buffers":[{"byteLength":60,"uri":")" +
-         uri + R"("}]})";
-}
-std::string quad_bin() {
-  std::string s;
-  for (const float x : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 1.f, 1.f, 0.f, 0.f, 1.f, 0.f}) {
-    char b[4];
-    std::memcpy(b, &x, 4);
-    s.append(b, 4);
-  }
-  for (const std::uint16_t i : {0, 1, 2, 0, 2, 3}) s += {char(i & 0xff), char(i >> 8)};
-  return s;
-}
-
 TEST(CliTest, GltfWithItsBinBesideItOrZipped) {
   const fs::path dir = test::temp_dir("cli-gltf");
   fs::create_directories(dir / "buffers");
-  test::write_text(dir / "quad.gltf", quad_gltf("buffers/quad%20data.bin"));
-  test::write_text(dir / "buffers" / "quad data.bin", quad_bin());
+  test::write_text(dir / "quad.gltf", test::gltf_quad("buffers/quad%20data.bin"));
+  test::write_text(dir / "buffers" / "quad data.bin", test::gltf_quad_bin());
   const json j = info_json((dir / "quad.gltf").string());
   EXPECT_EQ(j.value("vertices", 0), 4);
   EXPECT_EQ(j.value("faces", 0), 2);
@@ -335,26 +314,26 @@ TEST(CliTest, GltfWithItsBinBesideItOrZipped) {
 
   // Zipped together, the .gltf in a folder of the zip.
   const fs::path zip = dir / "quad.zip";
-  write_zip(zip, {{"model/quad.gltf", quad_gltf("quad.bin")}, {"model/quad.bin", quad_bin()}});
+  write_zip(zip, {{"model/quad.gltf", test::gltf_quad("quad.bin")}, {"model/quad.bin", test::gltf_quad_bin()}});
   const json z = info_json(zip.string());
   EXPECT_EQ(z.value("faces", 0), 2);
   EXPECT_EQ(z.value("format", ""), "gltf");
 
   // The .bin missing, or named outside the .gltf's directory: refused, saying why.
-  test::write_text(dir / "buffers" / "alone.gltf", quad_gltf("missing.bin"));
+  test::write_text(dir / "buffers" / "alone.gltf", test::gltf_quad("missing.bin"));
   Result r = cgview("info " + quote((dir / "buffers" / "alone.gltf").string()));
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.out.find("the file 'missing.bin' it names is missing: upload it together with the .gltf"),
             std::string::npos)
       << r.out;
-  test::write_text(dir / "buffers" / "up.gltf", quad_gltf("../buffers/quad%20data.bin"));
+  test::write_text(dir / "buffers" / "up.gltf", test::gltf_quad("../buffers/quad%20data.bin"));
   r = cgview("info " + quote((dir / "buffers" / "up.gltf").string()));
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.out.find("is refused: it leaves the .gltf's directory"), std::string::npos) << r.out;
   // A symbolic link out of the directory is no companion.
   fs::create_directories(dir / "inner");
   fs::create_symlink(dir / "buffers" / "quad data.bin", dir / "inner" / "link.bin");
-  test::write_text(dir / "inner" / "link.gltf", quad_gltf("link.bin"));
+  test::write_text(dir / "inner" / "link.gltf", test::gltf_quad("link.bin"));
   r = cgview("info " + quote((dir / "inner" / "link.gltf").string()));
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.out.find("'link.bin' it names is missing"), std::string::npos) << r.out;

@@ -15,6 +15,7 @@
 
 #include "auth.h"
 #include "config.h"
+#include "config_error.h"
 #include "jobs/scheduler.h"
 #include "mesh_service.h"
 #include "router.h"
@@ -30,15 +31,6 @@ using namespace std::chrono_literals;
 
 std::string sample_bytes(const std::string& name) { return test::read_bytes(test::sample(name)); }
 
-std::string config_error(const json& doc) {
-  ServerConfig c;
-  try {
-    apply_config(doc, c);
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(QuotaConfig, SectionsAndOverrides) {
   ServerConfig c;

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "config.h"
+#include "config_error.h"
 #include "settings.h"
 
 namespace cgview::server {
@@ -48,15 +49,6 @@ std::string flag_error(const std::vector<std::string>& args) {
   return "";
 }
 
-std::string config_error(const json& doc) {
-  ServerConfig c;
-  try {
-    apply_config(doc, c);
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(Settings, EveryFlagSetsWhatItDid) {
   // Every flag cgview-server took before server/settings.h, each with a value.

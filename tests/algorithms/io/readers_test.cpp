@@ -15,6 +15,7 @@
 #include "core/errors.h"
 #include "core/mesh.h"
 #include "io/mesh_io.h"
+#include "gltf_quad.h"
 #include "test_support.h"
 
 namespace cgview {
@@ -824,20 +825,7 @@ TEST(ReadGltf, ExternalFilesAreNeverRead) {
   }
 }
 
-// Two triangles (a unit square, uint16 indices) for a .gltf whose buffer is the
-// external file `uri`, and the .bin's bytes.
-const std::string kQuadBin = floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}) + le(std::uint16_t(0)) +
-                             le(std::uint16_t(1)) + le(std::uint16_t(2)) + le(std::uint16_t(0)) + le(std::uint16_t(2)) +
-                             le(std::uint16_t(3));
-std::string quad_gltf(const std::string& uri) {
-  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
-         R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
-         R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},)"
-         R"({"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}],)"
-         R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":12}],)"
-         R"("buffers":[{"byteLength":60,"uri":")" +
-         uri + R"("}]})";
-}
+const std::string kQuadBin = test::gltf_quad_bin();
 
 // Companion files by path, recording what the reader asked for.
 struct Companions {
@@ -868,7 +856,7 @@ std::string gltf_error(const std::string& json, const ReadOptions& o) {
 TEST(ReadGltf, ExternalBufferFromACompanionFile) {
   Companions c;
   c.files["model.bin"] = kQuadBin;
-  const ReadResult r = read(quad_gltf("model.bin"), MeshFormat::gltf, "model.gltf", c.options());
+  const ReadResult r = read(test::gltf_quad("model.bin"), MeshFormat::gltf, "model.gltf", c.options());
   EXPECT_EQ(c.asked, std::vector<std::string>{"model.bin"});
   EXPECT_EQ(r.mesh.num_vertices(), 4u);
   EXPECT_EQ(r.mesh.faces, (std::vector<Tri>{{0, 1, 2}, {0, 2, 3}}));
@@ -886,8 +874,8 @@ TEST(ReadGltf, CompanionPathsArePercentDecodedAndRelative) {
   Companions c;
   c.files["my model.bin"] = kQuadBin;
   c.files["sub/x.bin"] = kQuadBin;
-  EXPECT_EQ(read(quad_gltf("my%20model.bin"), MeshFormat::gltf, "m.gltf", c.options()).mesh.num_faces(), 2u);
-  EXPECT_EQ(read(quad_gltf("./sub/x.bin"), MeshFormat::gltf, "m.gltf", c.options()).mesh.num_faces(), 2u);
+  EXPECT_EQ(read(test::gltf_quad("my%20model.bin"), MeshFormat::gltf, "m.gltf", c.options()).mesh.num_faces(), 2u);
+  EXPECT_EQ(read(test::gltf_quad("./sub/x.bin"), MeshFormat::gltf, "m.gltf", c.options()).mesh.num_faces(), 2u);
   EXPECT_EQ(c.asked, (std::vector<std::string>{"my model.bin", "sub/x.bin"}));
 }
 
@@ -904,7 +892,7 @@ TEST(ReadGltf, UrisLeavingTheBundleAreRefusedUnasked) {
                                                         {"https://example.com/x.bin", "names the scheme 'https:'"},
                                                         {"C:/x.bin", "names the scheme 'C:'"}}) {
     SCOPED_TRACE(uri);
-    const std::string e = gltf_error(quad_gltf(uri), c.options());
+    const std::string e = gltf_error(test::gltf_quad(uri), c.options());
     EXPECT_NE(e.find("buffers[0]: the uri '" + uri + "' is refused: it " + why), std::string::npos) << e;
   }
   EXPECT_TRUE(c.asked.empty());
@@ -912,7 +900,7 @@ TEST(ReadGltf, UrisLeavingTheBundleAreRefusedUnasked) {
 
 TEST(ReadGltf, AMissingBinIsNamed) {
   Companions c;
-  const std::string e = gltf_error(quad_gltf("model.bin"), c.options());
+  const std::string e = gltf_error(test::gltf_quad("model.bin"), c.options());
   EXPECT_NE(e.find("the file 'model.bin' it names is missing: upload it together with the .gltf (zipped, or chosen "
                    "together in the viewer)"),
             std::string::npos)
