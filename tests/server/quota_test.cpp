@@ -31,7 +31,6 @@ using namespace std::chrono_literals;
 
 std::string sample_bytes(const std::string& name) { return test::read_bytes(test::sample(name)); }
 
-
 TEST(QuotaConfig, SectionsAndOverrides) {
   ServerConfig c;
   apply_config(json::parse(R"({

@@ -49,7 +49,6 @@ std::string flag_error(const std::vector<std::string>& args) {
   return "";
 }
 
-
 TEST(Settings, EveryFlagSetsWhatItDid) {
   // Every flag cgview-server took before server/settings.h, each with a value.
   // clang-format off
