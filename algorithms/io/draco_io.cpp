@@ -357,7 +357,10 @@ void read_draco(std::string_view bytes, const std::string& name, ReadResult& res
 // scene's node tree is flattened with each node's transform; triangle, strip
 // and fan primitives are read (POSITION, NORMAL, TEXCOORD_0, COLOR_0), Draco-
 // compressed ones (KHR_draco_mesh_compression) through Draco's decoder.
-// Each primitive's material gives its faces' base colour and texture.
+// Each primitive's material gives its faces' base colour and texture.  Where
+// primitives differ in attributes, normals and colours are kept only when all
+// have them (each primitive keeps its material's colour), texture coordinates
+// also when a textured primitive has them (the others' faces take (0, 0)).
 namespace {
 
 using Json = nlohmann::json;
@@ -1015,6 +1018,7 @@ class GltfReader {
     (part.uvs.empty() ? any_without_uvs_ : any_uvs_) = true;
     (part.colors.empty() ? any_without_colors_ : any_colors_) = true;
     const std::uint32_t material = material_of(part.material);
+    if (result_.materials[material].texture) ++(part.uvs.empty() ? textured_without_uvs_ : textured_with_uvs_);
     for (std::size_t t = 0; t + 2 < tris.size(); t += 3) {
       result_.face_material.push_back(material);
       if (det < 0) mesh.faces.push_back({base + tris[t], base + tris[t + 2], base + tris[t + 1]});
@@ -1257,9 +1261,19 @@ class GltfReader {
     if (mesh.faces.empty()) fail("the glTF scene has no triangles");
     if (any_normals_ && !any_without_normals_) mesh.normals = std::move(normals_);
     else if (any_normals_) result_.warnings.push_back("normals dropped: some primitives have them and others do not");
-    if (any_uvs_ && !any_without_uvs_) mesh.uvs = std::move(uvs_);
-    else if (any_uvs_)
+    if (any_uvs_ && !any_without_uvs_) {
+      mesh.uvs = std::move(uvs_);
+    } else if (any_uvs_ && textured_with_uvs_) {
+      // A texture shows on its primitives' coordinates; the faces of
+      // primitives without any take (0, 0), which their untextured
+      // materials never sample.
+      mesh.uvs = std::move(uvs_);
+      if (textured_without_uvs_)
+        result_.warnings.push_back("texture coordinates missing on " + std::to_string(textured_without_uvs_) +
+                                   " textured primitive(s): their faces show one texel of the texture");
+    } else if (any_uvs_) {
       result_.warnings.push_back("texture coordinates dropped: some primitives have them and others do not");
+    }
     if (any_colors_ && !any_without_colors_) mesh.colors = std::move(colors_);
     else if (any_colors_)
       result_.warnings.push_back("vertex colours dropped: some primitives have them and others do not");
@@ -1295,6 +1309,7 @@ class GltfReader {
   std::deque<std::string> decoded_;                      // data: URIs, decoded (stable addresses)
   std::vector<std::optional<std::vector<Part>>> parts_;  // per mesh, once read
   std::uint64_t stored_ = 0, used_ = 0, repeated_ = 0, skipped_primitives_ = 0;
+  std::uint64_t textured_with_uvs_ = 0, textured_without_uvs_ = 0;  // primitives shown with a textured material
   std::vector<Vec3f> normals_;
   std::vector<Vec2f> uvs_;
   std::vector<Color> colors_;

@@ -337,6 +337,31 @@ TEST(CliTest, GltfWithItsBinBesideItOrZipped) {
   r = cgview("info " + quote((dir / "inner" / "link.gltf").string()));
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.out.find("'link.bin' it names is missing"), std::string::npos) << r.out;
+
+  // A base-colour texture beside it is read; missing, a warning names it.
+  std::string textured = test::gltf_quad("quad.bin");
+  auto put = [&](const std::string& what, const std::string& with) {
+    const std::size_t at = textured.find(what);
+    ASSERT_NE(at, std::string::npos) << what;
+    textured.replace(at, what.size(), with);
+  };
+  put(R"("POSITION":0})", R"("POSITION":0,"TEXCOORD_0":2})");
+  put(R"("indices":1})", R"("indices":1,"material":0})");
+  put(R"("type":"SCALAR"}])", R"("type":"SCALAR"},{"bufferView":0,"componentType":5126,"count":4,"type":"VEC2"}])");
+  put(R"({"asset":{"version":"2.0"},)",
+      R"({"asset":{"version":"2.0"},"materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],)"
+      R"("textures":[{"source":0}],"images":[{"uri":"tex.png"}],)");
+  const fs::path tex_dir = dir / "textured";
+  fs::create_directories(tex_dir);
+  test::write_text(tex_dir / "quad.gltf", textured);
+  test::write_text(tex_dir / "quad.bin", test::gltf_quad_bin());
+  test::write_text(tex_dir / "tex.png", std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR\0\0\0\1\0\0\0\1\x08\x02\0\0\0", 29));
+  EXPECT_EQ(info_json((tex_dir / "quad.gltf").string())["warnings"], json::array());
+  fs::remove(tex_dir / "tex.png");
+  const json w = info_json((tex_dir / "quad.gltf").string());
+  ASSERT_EQ(w["warnings"].size(), 1u) << w;
+  EXPECT_NE(w["warnings"][0].get<std::string>().find("the file 'tex.png' it names is missing"), std::string::npos)
+      << w["warnings"];
 }
 
 TEST(CliTest, ZipBundleErrors) {

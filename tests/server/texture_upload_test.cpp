@@ -292,6 +292,53 @@ TEST_F(TextureUploadTest, GltfWithItsBinZipped) {
           "is refused: it is an absolute path");
 }
 
+// A .gltf as exporters ship it, zipped with its .bin and its texture in a
+// folder: the texture listed with its material and served, each material's
+// colour kept, nothing left unused, and the stored .gltf reads alone.
+TEST_F(TextureUploadTest, GltfWithItsBinAndTextureZipped) {
+  const std::string gltf = quad_gltf(
+      R"(,"uri":"scene.bin")",
+      R"([{"name":"wood","pbrMetallicRoughness":{"baseColorFactor":[1,0.5,0,1],"baseColorTexture":{"index":0}}},)"
+      R"({"name":"blue","pbrMetallicRoughness":{"baseColorFactor":[0,0,1,1]}}])",
+      R"("textures":[{"source":0}],"images":[{"uri":"maps/dark%20wood.jpg"}],)");
+  const json mesh = upload(
+      "scene.zip",
+      make_zip({{"model/scene.gltf", gltf}, {"model/scene.bin", kQuadBin}, {"model/maps/dark wood.jpg", jpeg_}}));
+  EXPECT_EQ(mesh["format"], "gltf");
+  EXPECT_EQ(mesh["has_uvs"], true);
+  EXPECT_EQ(mesh["warnings"], json::array()) << "the .bin and the image count as used";
+  ASSERT_EQ(mesh["textures"].size(), 1u) << mesh;
+  EXPECT_EQ(mesh["textures"][0]["name"], "dark wood.jpg");
+  EXPECT_EQ(mesh["textures"][0]["mime"], "image/jpeg");
+  EXPECT_EQ(mesh["textures"][0]["material"], "wood");
+  ASSERT_EQ(mesh["materials"].size(), 2u);
+  EXPECT_EQ(mesh["materials"][0]["kd"], json::array({1.0, 0.5, 0.0}));
+  EXPECT_EQ(mesh["materials"][0]["texture"], 0);
+  EXPECT_EQ(mesh["materials"][1]["kd"], json::array({0.0, 0.0, 1.0}));
+  EXPECT_EQ(mesh["materials"][1]["texture"], nullptr);
+  const std::string id = mesh["id"];
+  const HttpResponse image = call("GET", "/api/v1/meshes/" + id + "/textures/0");
+  ASSERT_EQ(image.status, 200);
+  EXPECT_EQ(image.content_type, "image/jpeg");
+  EXPECT_TRUE(image.body == jpeg_);
+  const std::string stored = store_->read_blob(store_->list_meshes()[0]);
+  EXPECT_EQ(stored.find("dark%20wood.jpg"), std::string::npos);
+  const ReadResult alone = read_mesh_bytes(stored, MeshFormat::gltf, "scene.gltf");
+  ASSERT_EQ(alone.textures.size(), 1u);
+  EXPECT_TRUE(alone.textures[0].bytes == jpeg_);
+
+  // Without the image: the mesh and its colours, and a warning naming what to upload.
+  EXPECT_EQ(call("DELETE", "/api/v1/meshes/" + id).status, 204);
+  const json bare = upload("scene.zip", make_zip({{"model/scene.gltf", gltf}, {"model/scene.bin", kQuadBin}}));
+  EXPECT_EQ(bare["textures"], json::array());
+  EXPECT_EQ(bare["materials"][0]["kd"], json::array({1.0, 0.5, 0.0}));
+  ASSERT_EQ(bare["warnings"].size(), 1u) << bare;
+  EXPECT_NE(bare["warnings"][0].get<std::string>().find(
+                "the file 'maps/dark wood.jpg' it names is missing: upload it together with the .gltf"),
+            std::string::npos)
+      << bare["warnings"];
+}
+
 // A .glb with an embedded PNG and two materials of different colours: the
 // texture is listed and served, each face keeps its material's colour.
 TEST_F(TextureUploadTest, GlbWithAnEmbeddedTextureAndTwoMaterials) {

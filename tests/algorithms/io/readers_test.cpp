@@ -912,16 +912,21 @@ const std::string kPng =
     std::string("\x89PNG\r\n\x1a\n", 8) + std::string("\0\0\0\rIHDR\0\0\0\1\0\0\0\1\x08\x02\0\0\0", 21);
 
 // Two primitives of the triangle with materials 0 and 1 (the second with
-// normals too), material 0 textured by an image in the BIN chunk.
-std::string two_material_glb(const std::string& image_json, const std::string& image_bytes) {
+// normals too, or the attributes given), material 0 textured (textures[0],
+// by default the image) by an image in the BIN chunk.
+std::string two_material_glb(const std::string& image_json, const std::string& image_bytes,
+                             const std::string& second_attributes = R"({"POSITION":0,"NORMAL":0,"TEXCOORD_0":2})",
+                             const std::string& texture_json = R"({"source":0})") {
   const std::string json =
       R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
       R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":2},"indices":1,"material":0},)"
-      R"({"attributes":{"POSITION":0,"NORMAL":0,"TEXCOORD_0":2},"indices":1,"material":1}]}],)"
+      R"({"attributes":)" +
+      second_attributes +
+      R"(,"indices":1,"material":1}]}],)"
       R"("materials":[{"name":"red","pbrMetallicRoughness":{"baseColorFactor":[1,0,0,1],)"
       R"("baseColorTexture":{"index":0}}},{"name":"blue","pbrMetallicRoughness":{"baseColorFactor":[0,0,1,1]}}],)"
-      R"("textures":[{"source":0}],"images":[)" +
-      image_json +
+      R"("textures":[)" +
+      texture_json + R"(],"images":[)" + image_json +
       R"(],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},)"
       R"({"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"},)"
       R"({"bufferView":0,"componentType":5126,"count":3,"type":"VEC2"}],)"
@@ -953,7 +958,70 @@ TEST(ReadGltf, MaterialsBecomeFaceMaterialsAcrossAttributeSets) {
   EXPECT_TRUE(r.self_contained.empty());
 }
 
+// A textured primitive beside one with no texture coordinates (nor normals):
+// the texture keeps its coordinates, the other's faces take (0, 0) and keep
+// their colour.
+TEST(ReadGltf, ATexturedPrimitiveKeepsItsUvsBesideOneWithout) {
+  const ReadResult r = read(two_material_glb(R"({"bufferView":2,"mimeType":"image/png"})", kPng, R"({"POSITION":0})"),
+                            MeshFormat::glb, "m.glb");
+  ASSERT_EQ(r.mesh.num_vertices(), 6u);
+  ASSERT_TRUE(r.mesh.has_uvs()) << ::testing::PrintToString(r.warnings);
+  // The positions' floats read as VEC2: (0, 0), (0, 1), (0, 0), v flipped.
+  EXPECT_EQ(r.mesh.uvs[0], (Vec2f{0, 1}));
+  EXPECT_EQ(r.mesh.uvs[2], (Vec2f{0, 1}));
+  for (std::size_t v = 3; v < 6; ++v) EXPECT_EQ(r.mesh.uvs[v], (Vec2f{0, 0}));
+  EXPECT_EQ(r.warnings, std::vector<std::string>{}) << ::testing::PrintToString(r.warnings);
+  EXPECT_EQ(r.face_material, (std::vector<std::uint32_t>{0, 1}));
+  EXPECT_EQ(r.materials[0].texture, 0u);
+  EXPECT_EQ(r.materials[1].kd, (std::array<float, 3>{0, 0, 1}));
+
+  // The untextured primitive with coordinates, the textured one without: dropped, as before.
+  const std::string swapped = [] {
+    std::string g = two_material_glb(R"({"bufferView":2,"mimeType":"image/png"})", kPng, R"({"POSITION":0})");
+    const std::string a = R"("material":0})", b = R"("material":1})";
+    g.replace(g.find(a), a.size(), R"("material":9})");
+    g.replace(g.find(b), b.size(), a);
+    g.replace(g.find(R"("material":9})"), a.size(), b);
+    return g;
+  }();
+  const ReadResult s = read(swapped, MeshFormat::glb, "m.glb");
+  EXPECT_EQ(s.face_material, (std::vector<std::uint32_t>{0, 1}));
+  EXPECT_EQ(s.materials[0].name, "blue");
+  EXPECT_FALSE(s.mesh.has_uvs());
+  EXPECT_TRUE(has_warning(s, "texture coordinates dropped")) << ::testing::PrintToString(s.warnings);
+
+  // Both primitives textured, one without coordinates: kept, and said.
+  std::string shared = two_material_glb(R"({"bufferView":2,"mimeType":"image/png"})", kPng, R"({"POSITION":0})");
+  shared.replace(shared.find(R"("material":1})"), 13, R"("material":0})");
+  const ReadResult both = read(shared, MeshFormat::glb, "m.glb");
+  EXPECT_TRUE(both.mesh.has_uvs());
+  EXPECT_TRUE(has_warning(both, "texture coordinates missing on 1 textured primitive(s)"))
+      << ::testing::PrintToString(both.warnings);
+}
+
+// The image as a data: URI shows as the embedded one does.
+TEST(ReadGltf, TextureFromADataUri) {
+  const ReadResult r = read(two_material_glb(R"({"uri":"data:image/png;base64,)" + base64(kPng) + R"("})", ""),
+                            MeshFormat::glb, "m.glb");
+  ASSERT_EQ(r.textures.size(), 1u) << ::testing::PrintToString(r.warnings);
+  EXPECT_EQ(r.textures[0].bytes, kPng);
+  EXPECT_EQ(r.textures[0].name, "image0.png");
+  EXPECT_EQ(r.materials[0].texture, 0u);
+  EXPECT_TRUE(r.self_contained.empty());
+}
+
 TEST(ReadGltf, UnusableImagesAreWarnings) {
+  // A texture whose only image is KTX2 (KHR_texture_basisu): said, not silent.
+  const ReadResult ktx2 =
+      read(two_material_glb(R"({"bufferView":2,"mimeType":"image/ktx2"})", kPng, R"({"POSITION":0,"TEXCOORD_0":2})",
+                            R"({"extensions":{"KHR_texture_basisu":{"source":0}}})"),
+           MeshFormat::glb, "m.glb");
+  EXPECT_TRUE(ktx2.textures.empty());
+  EXPECT_TRUE(has_warning(ktx2,
+                          "the texture of the material 'red' (textures[0]) has no PNG or JPEG image, only an "
+                          "image of KHR_texture_basisu (KTX2 and WebP are not shown)"))
+      << ::testing::PrintToString(ktx2.warnings);
+  EXPECT_EQ(ktx2.materials[0].kd, (std::array<float, 3>{1, 0, 0}));
   // A WebP in the buffer, a missing file, an image only KTX2 gives.
   const ReadResult webp =
       read(two_material_glb(R"({"bufferView":2,"mimeType":"image/webp"})", std::string("RIFF\0\0\0\0WEBP", 12)),
