@@ -40,6 +40,11 @@ export function needsMesh(kind: DataKind): boolean {
   return kind !== 'voxel_grid';
 }
 
+/** What a file of that kind is, as an error about it says ("a skeleton"); of the kinds that need a mesh. */
+export function dataKindWords(kind: DataKind): string {
+  return kind === 'skeleton' ? 'a skeleton' : "a scalar field's values";
+}
+
 /** Files that go up inside a mesh's zip, never alone: an OBJ's materials, a .gltf's buffers, images. */
 export const COMPANION_EXTENSIONS = ['.mtl', '.bin', '.png', '.jpg', '.jpeg'];
 const IMAGE_EXTENSIONS = ['.png', '.jpg', '.jpeg'];

@@ -10,7 +10,7 @@ import type { ArtifactRef } from '../state/app_state.ts';
 import { ComparisonView } from '../viewer/comparison.ts';
 import type { PlyMesh } from '../viewer/ply.ts';
 import { describe, jobOf, type AppContext } from './context.ts';
-import { fieldLegendTitle, type FieldSource } from '../kinds/scalar_field.ts';
+import { fieldLegendTitle, shownField, type FieldSource } from '../kinds/scalar_field.ts';
 
 /** A pane's prepared object (a skeleton over its mesh, a scene object). */
 export interface PaneObject {
@@ -51,7 +51,8 @@ export class CompareController {
 
   /** "Add to comparison": the field joins the fields compared now (or the one shown), on the same mesh. */
   addToComparison(jobId: string, artifact: string): void {
-    const { compared, field } = this.ctx.store.get();
+    const { compared } = this.ctx.store.get();
+    const field = shownField(this.ctx.store.get());
     const now = compared.length ? compared : field ? [field] : [];
     if (now.some((c) => c.jobId === jobId && c.artifact === artifact)) return;
     const meshId = jobMeshId(jobOf(this.ctx, jobId));

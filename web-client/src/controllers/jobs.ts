@@ -6,7 +6,7 @@
 // render from the state. A job's results are named after what they were made
 // from ("elephant · simplify 1000"), and a mesh run on is stored by the server
 // under that name.
-import { needsMesh, type DataKind } from '../api/data_files.ts';
+import { dataKindWords, needsMesh, type DataKind } from '../api/data_files.ts';
 import { ApiError, cancelJob, deleteJob, getJob, listAlgorithms, listJobs, submitJob, uploadData } from '../api/rest.ts';
 import { jobMeshId, type Algorithm, type Job, type JobInput, type JobProgress, type ParamSchema } from '../api/types.ts';
 import { AlgorithmsPanel } from '../panels/algorithms.ts';
@@ -72,9 +72,8 @@ export class JobsController {
       byId('jobs'),
       {
         cancel: (id) => void this.cancel(id),
-        // A mesh result is a scene object of its own, beside its source.
-        show: (jobId, artifact, kind) => void (kind === 'mesh' ? app.scene.addResult(jobId, artifact) : app.kinds.show(jobId, artifact, kind)),
-        hide: (jobId, artifact, kind) => (kind === 'mesh' ? app.scene.removeResult(jobId, artifact) : app.kinds.hide(jobId, artifact, kind)),
+        show: (jobId, artifact, kind) => void app.kinds.show(jobId, artifact, kind),
+        hide: (jobId, artifact, kind) => app.kinds.hide(jobId, artifact, kind),
         compare: (jobId) => app.compare.compareJob(jobId),
         addToComparison: (jobId, artifact) => app.compare.addToComparison(jobId, artifact),
         runOn: (jobId, artifact) => this.setRunTarget(jobId, artifact),
@@ -84,21 +83,15 @@ export class JobsController {
       app.kinds,
     );
     store.subscribe(
-      (s) => [s.jobs, s.meshes, s.field, s.compared, s.added, s.runTarget, s.metrics, s.texts, s.skeletons, s.vectors, s.me?.user, s.me?.admin],
+      (s) => [s.jobs, s.meshes, s.artifacts, s.compared, s.runTarget, s.me?.user, s.me?.admin],
       () => {
         const s = store.get();
         panel.render({
           jobs: [...s.jobs.values()].filter((j) => !HIDDEN.has(j.algorithm)).sort((a, b) => String(a.created ?? '').localeCompare(String(b.created ?? ''))),
           meshName: (id) => s.meshes.find((m) => m.id === id)?.name ?? null,
-          // The single field is hidden while fields are compared.
-          shown: s.field && !s.compared.length ? s.field : null,
           compared: new Set(s.compared.map((c) => artifactKey(c.jobId, c.artifact))),
-          added: s.added,
           target: s.runTarget ? artifactKey(s.runTarget.jobId, s.runTarget.artifact) : null,
-          metrics: s.metrics,
-          texts: s.texts,
-          skeletons: s.skeletons,
-          vectors: s.vectors,
+          state: s,
           mayChange: (owner) => app.account.mayChange(owner),
           ownerName: (owner) => app.account.otherOwner(owner),
         });
@@ -219,8 +212,7 @@ export class JobsController {
     const { app, progress } = this.ctx;
     const mesh = app.meshes.selected();
     if (!mesh && needsMesh(kind)) {
-      const what = kind === 'skeleton' ? 'a skeleton' : "a scalar field's values";
-      return this.ctx.error(`Choose a mesh first: ${file.name} is ${what} for the mesh shown.`);
+      return this.ctx.error(`Choose a mesh first: ${file.name} is ${dataKindWords(kind)} for the mesh shown.`);
     }
     let job: Job;
     progress.show('uploading', null, file.name);
@@ -332,12 +324,7 @@ export class JobsController {
     if (job.state !== 'done') throw new Error(`its job is ${job.state}${job.error ? `: ${job.error}` : ''}`);
     const a = job.artifacts?.find((x) => x.name === artifact) ?? job.artifacts?.[0];
     if (!a) throw new Error('its job made nothing to show');
-    if (a.kind === 'mesh') {
-      app.meshes.selectMeshOf(job);
-      await app.scene.addResult(job.id, a.name);
-    } else {
-      await app.kinds.show(job.id, a.name, a.kind);
-    }
+    await app.kinds.open(job, a);
   }
 
   async cancel(id: string): Promise<void> {
@@ -362,10 +349,7 @@ export class JobsController {
       this.ctx.error(`Cannot delete the job: ${describe(e)}`);
       return;
     }
-    for (const a of job?.artifacts ?? []) {
-      if (a.kind === 'mesh') app.scene.removeResult(id, a.name);
-      else app.kinds.hide(id, a.name, a.kind);
-    }
+    for (const a of job?.artifacts ?? []) app.kinds.hide(id, a.name, a.kind);
     const next = new Map(store.get().jobs);
     next.delete(id);
     store.update({ jobs: next });
@@ -393,7 +377,7 @@ export class JobsController {
     for (const m of merged) this.settled(m);
   }
 
-  /** What a job's new state brings: a done job's artifacts to their kinds, and the field of a job submitted here shown (its scalar field, else its vector field). */
+  /** What a job's new state brings: a done job's artifacts to their kinds, and what a job submitted here shows when done (its kinds' autoShow: a scalar field, else a vector field). */
   private settled(job: Job): void {
     if (HIDDEN.has(job.algorithm)) return;
     if (job.state === 'done') {
@@ -401,7 +385,7 @@ export class JobsController {
       if (this.autoShow.delete(job.id)) {
         // A run of this page that succeeds: the failure of an earlier one of the same algorithm on the same mesh no longer holds.
         this.ctx.dismiss(failureTopic(job));
-        const field = job.artifacts?.find((a) => a.kind === 'scalar_field') ?? job.artifacts?.find((a) => a.kind === 'vector_field');
+        const field = this.ctx.app.kinds.autoShown(job);
         if (field) void this.ctx.app.kinds.show(job.id, field.name, field.kind);
       }
     } else if (job.state === 'failed' && this.autoShow.delete(job.id)) {

@@ -13,7 +13,7 @@ import { fetchArtifactBytes } from '../api/rest.ts';
 import type { Mesh } from '../api/types.ts';
 import { byId } from '../panels/dom.ts';
 import { ScenePanel, type Placement, type SceneRow } from '../panels/scene.ts';
-import { artifactKey, type SceneEntry } from '../state/app_state.ts';
+import type { SceneEntry } from '../state/app_state.ts';
 import type { TestHooks } from '../test_hooks.ts';
 import { parsePly } from '../viewer/ply.ts';
 import { applySceneTransform, projectedBox } from '../viewer/scene_objects.ts';
@@ -36,7 +36,7 @@ function resultId(jobId: string, artifact: string): string {
 }
 
 /** The job and artifact of a result's scene id; null for a stored mesh's. */
-function resultOf(id: string): { jobId: string; artifact: string } | null {
+export function resultOf(id: string): { jobId: string; artifact: string } | null {
   if (!id.startsWith(RESULT_PREFIX)) return null;
   const rest = id.slice(RESULT_PREFIX.length);
   const slash = rest.indexOf('/');
@@ -63,17 +63,6 @@ export class SceneController {
       () => {
         const s = ctx.store.get();
         panel.render(this.rows(), s.scenePanes, ctx.display.state().display.color, s.picked);
-      },
-    );
-    // The job list's "Added" marks: the results in the scene.
-    ctx.store.subscribe(
-      (s) => s.scene.map((e) => e.mesh).join(' '),
-      () => {
-        const added = this.entries.flatMap((e) => {
-          const r = resultOf(e.mesh);
-          return r ? [artifactKey(r.jobId, r.artifact)] : [];
-        });
-        ctx.store.update({ added: new Set(added) });
       },
     );
   }

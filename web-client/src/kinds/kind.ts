@@ -14,6 +14,10 @@ export interface ArtifactKind {
   load(job: Job, artifact: ArtifactInfo): void;
   /** Draws or opens the artifact: its button in the job list. Resolves once it is shown (or has failed, with an error shown). */
   show(jobId: string, artifact: string): Promise<void>;
+  /** Opens the artifact from elsewhere than its row (a graded run from the Course panel); default: show(). */
+  open?(job: Job, artifact: string): Promise<void>;
+  /** Shows the artifact when the job this page ran ends, before kinds of a later rank (lower first); none: not shown by itself. */
+  readonly autoShow?: number;
   /** Stops drawing the artifact, if it is drawn. */
   hide(jobId: string, artifact: string): void;
   /** The artifacts of this kind drawn or open now, as `${jobId}/${artifact}` keys, which view links keep (`show=`); none: this kind is not kept. */

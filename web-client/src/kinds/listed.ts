@@ -1,26 +1,27 @@
 // Kinds shown in the job list itself rather than drawn in the view (text,
 // metrics): the artifact is fetched once its job is done, kept in the
-// application state by `${jobId}/${name}`, and shown under its row's
+// application state (the kind's part: kinds/slice.ts) by `${jobId}/${name}`, and shown under its row's
 // download links. A subclass says how to fetch it and how to show it.
 import type { ArtifactInfo, Job } from '../api/types.ts';
 import { describe, jobOf, type AppContext } from '../controllers/context.ts';
 import { artifactRow } from '../panels/artifact_row.ts';
 import type { JobsView } from '../panels/jobs.ts';
-import { artifactKey, withEntry, type AppState } from '../state/app_state.ts';
+import { artifactKey, withEntry } from '../state/app_state.ts';
 import type { ArtifactKind } from './kind.ts';
+import type { KindSlice } from './slice.ts';
 
-/** Where in the state a listed kind keeps what it fetched (undefined: loading; a string: the error sentence, for metrics). */
-type ListedSlot = 'texts' | 'metrics';
+/** What a listed kind fetched, by `${jobId}/${name}` (undefined: loading; a string: the error sentence, for metrics). */
+export type Listed = ReadonlyMap<string, unknown>;
 
 export abstract class ListedKind<T> implements ArtifactKind {
   abstract readonly kind: string;
   abstract readonly storedFormat: string;
   protected readonly ctx: AppContext;
-  private readonly slot: ListedSlot;
+  private readonly slice: KindSlice<Listed>;
 
-  constructor(ctx: AppContext, slot: ListedSlot) {
+  constructor(ctx: AppContext, slice: KindSlice<Listed>) {
     this.ctx = ctx;
-    this.slot = slot;
+    this.slice = slice;
   }
 
   /** The artifact as the row shows it. */
@@ -28,15 +29,11 @@ export abstract class ListedKind<T> implements ArtifactKind {
   /** What the row shows under its links: `value` undefined while loading, or an error sentence. */
   protected abstract content(value: T | string | undefined): HTMLElement;
 
-  private entries(state: AppState): ReadonlyMap<string, unknown> {
-    return state[this.slot];
-  }
-
   load(job: Job, artifact: ArtifactInfo): void {
     const { store } = this.ctx;
     const key = artifactKey(job.id, artifact.name);
-    if (this.entries(store.get()).has(key)) return;
-    const set = (value: unknown) => store.update((s) => ({ [this.slot]: withEntry(this.entries(s) as Map<string, unknown>, key, value) }) as Partial<AppState>);
+    if (this.slice.get(store.get()).has(key)) return;
+    const set = (value: unknown) => this.slice.set(store, (entries) => withEntry(entries, key, value));
     set(undefined);
     this.fetch(job.id, artifact.name).then(
       (value) => set(value),
@@ -45,12 +42,12 @@ export abstract class ListedKind<T> implements ArtifactKind {
   }
 
   row(job: Job, a: ArtifactInfo, view: JobsView): HTMLElement {
-    const value = (view[this.slot] as ReadonlyMap<string, unknown>).get(artifactKey(job.id, a.name)) as T | string | undefined;
+    const value = this.slice.get(view.state).get(artifactKey(job.id, a.name)) as T | string | undefined;
     return artifactRow(job, a, this.storedFormat, [], this.content(value));
   }
 
   rowState(job: Job, a: ArtifactInfo, view: JobsView): boolean {
-    return (view[this.slot] as ReadonlyMap<string, unknown>).get(artifactKey(job.id, a.name)) !== undefined;
+    return this.slice.get(view.state).get(artifactKey(job.id, a.name)) !== undefined;
   }
 
   async show(jobId: string, artifact: string): Promise<void> {

@@ -1,26 +1,36 @@
-// `mesh` artifacts: fetched as binary PLY and drawn plain light blue beside
-// the job's input mesh ("Add to view"); gone when another mesh is chosen.
-import type * as THREE from 'three';
-import { fetchArtifactBytes } from '../api/rest.ts';
+// `mesh` artifacts: a job's output mesh, drawn as an object of the scene of its
+// own beside its source ("Add to view": controllers/scene.ts draws it from its
+// PLY), or the input of the next job ("Run on this"). The job list marks the
+// results in the scene "Added".
 import type { ArtifactInfo, Job } from '../api/types.ts';
-import { describe, jobOf, type AppContext } from '../controllers/context.ts';
+import type { AppContext } from '../controllers/context.ts';
+import { resultOf } from '../controllers/scene.ts';
 import { artifactRow, runOnButton } from '../panels/artifact_row.ts';
 import { el } from '../panels/dom.ts';
 import type { JobsActions, JobsView } from '../panels/jobs.ts';
 import { artifactKey } from '../state/app_state.ts';
-import { parsePly } from '../viewer/ply.ts';
-import { buildPlainSurface } from '../viewer/surface_renderer.ts';
 import type { ArtifactKind } from './kind.ts';
+import { KindSlice } from './slice.ts';
 
 export class MeshSurfaceKind implements ArtifactKind {
   readonly kind = 'mesh';
   readonly storedFormat = 'ply';
   private readonly ctx: AppContext;
-  /** The surfaces in the view, by `${jobId}/${name}`. */
-  private readonly drawn = new Map<string, THREE.Object3D>();
+  /** The results in the scene, as `${jobId}/${name}`: the rows' "Added". */
+  private readonly added = new KindSlice<ReadonlySet<string>>('mesh', new Set());
 
   constructor(ctx: AppContext) {
     this.ctx = ctx;
+    ctx.store.subscribe(
+      (s) => s.scene.map((e) => e.mesh).join(' '),
+      () => {
+        const added = ctx.store.get().scene.flatMap((e) => {
+          const r = resultOf(e.mesh);
+          return r ? [artifactKey(r.jobId, r.artifact)] : [];
+        });
+        this.added.set(ctx.store, new Set(added));
+      },
+    );
   }
 
   load(): void {
@@ -29,7 +39,7 @@ export class MeshSurfaceKind implements ArtifactKind {
 
   /** "Add to view" (beside its input mesh) and "Run on this". */
   row(job: Job, a: ArtifactInfo, view: JobsView, actions: JobsActions): HTMLElement {
-    const added = view.added.has(artifactKey(job.id, a.name));
+    const added = this.added.get(view.state).has(artifactKey(job.id, a.name));
     const add = el('button', { type: 'button', class: added ? 'button small add active' : 'button small add' }, added ? 'Added' : 'Add to view');
     add.disabled = added;
     add.addEventListener('click', () => actions.show(job.id, a.name, a.kind));
@@ -38,50 +48,26 @@ export class MeshSurfaceKind implements ArtifactKind {
 
   rowState(job: Job, a: ArtifactInfo, view: JobsView): [boolean, boolean] {
     const key = artifactKey(job.id, a.name);
-    return [view.added.has(key), view.target === key];
+    return [this.added.get(view.state).has(key), view.target === key];
   }
 
-  /** Adds a job's mesh artifact (fetched as binary PLY) to the view, beside its input mesh. */
-  async show(jobId: string, artifactName: string): Promise<void> {
-    const { app, store, viewer, hooks } = this.ctx;
-    const job = jobOf(this.ctx, jobId);
-    if (!job) return;
-    app.meshes.selectMeshOf(job);
-    const selected = store.get().selectedId;
-    try {
-      const [bytes] = await Promise.all([fetchArtifactBytes(jobId, artifactName, 'ply'), app.loader.showing]);
-      if (store.get().selectedId !== selected) return;
-      const ply = parsePly(bytes);
-      const object = buildPlainSurface(ply.positions, ply.indices);
-      const key = artifactKey(jobId, artifactName);
-      viewer.addExtra(object, () => {
-        hooks.lastExtra = { jobId, artifact: artifactName, vertices: ply.vertices, faces: ply.faces };
-      });
-      this.drawn.set(key, object);
-      this.publish();
-    } catch (e) {
-      this.ctx.error(`Cannot add ${artifactName} of ${job.algorithm}: ${describe(e)}`);
-    }
+  /** Adds a job's output mesh to the scene, beside its source. */
+  show(jobId: string, artifact: string): Promise<void> {
+    return this.ctx.app.scene.addResult(jobId, artifact);
+  }
+
+  /** Opened from elsewhere (a graded run): its job's mesh shown first. */
+  open(job: Job, artifact: string): Promise<void> {
+    this.ctx.app.meshes.selectMeshOf(job);
+    return this.show(job.id, artifact);
   }
 
   hide(jobId: string, artifact: string): void {
-    const key = artifactKey(jobId, artifact);
-    const object = this.drawn.get(key);
-    if (!object) return;
-    this.ctx.viewer.removeExtra(object);
-    this.drawn.delete(key);
-    this.publish();
+    this.ctx.app.scene.removeResult(jobId, artifact);
   }
 
   dispose(): void {
+    // The scene takes its objects away itself.
     this.ctx.hooks.lastExtra = null;
-    if (!this.drawn.size) return;
-    for (const object of this.drawn.values()) this.ctx.viewer.removeExtra(object);
-    this.drawn.clear();
-    this.publish();
-  }
-
-  private publish(): void {
-    this.ctx.store.update({ added: new Set(this.drawn.keys()) });
   }
 }

@@ -5,7 +5,16 @@ import { fetchArtifactJson } from '../api/rest.ts';
 import type { AppContext } from '../controllers/context.ts';
 import { el } from '../panels/dom.ts';
 import { metricCell } from '../panels/format.ts';
-import { ListedKind } from './listed.ts';
+import type { AppState } from '../state/app_state.ts';
+import { ListedKind, type Listed } from './listed.ts';
+import { KindSlice } from './slice.ts';
+
+const slice = new KindSlice<Listed>('metrics', new Map());
+
+/** The metrics fetched, by `${jobId}/${name}` (the skeletons' table shows them too). */
+export function metricsOf(state: Readonly<AppState>): Listed {
+  return slice.get(state);
+}
 
 /** The metrics as a table of name and value with its unit (a nested object's names joined), or the error sentence fetching them gave. */
 function metricsTable(data: unknown): HTMLElement {
@@ -27,7 +36,7 @@ export class MetricsKind extends ListedKind<unknown> {
   readonly storedFormat = 'json';
 
   constructor(ctx: AppContext) {
-    super(ctx, 'metrics');
+    super(ctx, slice);
   }
 
   protected fetch(jobId: string, name: string): Promise<unknown> {

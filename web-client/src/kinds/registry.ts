@@ -2,7 +2,7 @@
 // job made is loaded, shown, hidden and disposed by its kind's module, which
 // also builds its row in the job list. A new kind is a module in this folder
 // and a line in `modules` below.
-import type { Job } from '../api/types.ts';
+import type { ArtifactInfo, Job } from '../api/types.ts';
 import type { AppContext } from '../controllers/context.ts';
 import { AnimationKind } from './animation.ts';
 import type { ArtifactKind } from './kind.ts';
@@ -56,6 +56,24 @@ export class Kinds {
   /** The skeletons and vector fields drawn and the grid whose slices are open, as `${jobId}/${artifact}` keys (view links' `show=`). */
   shownKeys(): string[] {
     return [...this.byKind.values()].flatMap((m) => m.shownKeys?.() ?? []);
+  }
+
+  /** Opens a job's artifact from elsewhere than its row (a graded run), as its kind does. */
+  open(job: Job, artifact: ArtifactInfo): Promise<void> {
+    const m = this.of(artifact.kind);
+    if (!m) return Promise.resolve();
+    return m.open ? m.open(job, artifact.name) : m.show(job.id, artifact.name);
+  }
+
+  /** What a job this page ran shows when it ends: its artifact of the kind of the lowest rank (kind.ts's autoShow), the first of them; null: none. */
+  autoShown(job: Job): ArtifactInfo | null {
+    let best: ArtifactInfo | null = null;
+    let rank = Infinity;
+    for (const a of job.artifacts ?? []) {
+      const r = this.of(a.kind)?.autoShow;
+      if (r !== undefined && r < rank) [best, rank] = [a, r];
+    }
+    return best;
   }
 
   hide(jobId: string, artifact: string, kind: string): void {

@@ -11,13 +11,14 @@ import { artifactRow } from '../panels/artifact_row.ts';
 import { byId, el } from '../panels/dom.ts';
 import { fieldUnit, withUnit } from '../panels/format.ts';
 import type { JobsActions, JobsView } from '../panels/jobs.ts';
-import { artifactKey } from '../state/app_state.ts';
+import { artifactKey, type AppState, type ArtifactRef } from '../state/app_state.ts';
 import type { TestHooks } from '../test_hooks.ts';
 import { defaultMapFor } from '../viewer/colormaps.ts';
 import { Legend } from '../viewer/legend.ts';
 import type { PlyMesh } from '../viewer/ply.ts';
 import { buildScalarSurface, colourGeometry, finiteRange, type ScalarField } from '../viewer/scalar_field_renderer.ts';
 import type { ArtifactKind } from './kind.ts';
+import { KindSlice } from './slice.ts';
 
 /** A scalar_field artifact to draw: its job, its description in the Job, and the mesh it is on. */
 export interface FieldSource {
@@ -41,9 +42,19 @@ export function fieldLegendTitle(algorithm: string, artifact: string): string {
   return withUnit(algorithm ? `${algorithm} · ${artifact}` : artifact, fieldUnit(artifact));
 }
 
+/** The field drawn, as the job list marks it (and a comparison starts from). */
+const shown = new KindSlice<ArtifactRef | null>('scalar_field', null);
+
+/** The scalar field drawn on the mesh in `state`, or null. */
+export function shownField(state: Readonly<AppState>): ArtifactRef | null {
+  return shown.get(state);
+}
+
 export class ScalarFieldKind implements ArtifactKind {
   readonly kind = 'scalar_field';
   readonly storedFormat = 'f32';
+  /** A job run here shows its field when it ends. */
+  readonly autoShow = 0;
   private readonly ctx: AppContext;
   private readonly legend: Legend;
   /** The field drawn now. */
@@ -78,7 +89,9 @@ export class ScalarFieldKind implements ArtifactKind {
   }
 
   rowState(job: Job, a: ArtifactInfo, view: JobsView): [boolean, boolean] {
-    return [view.shown?.jobId === job.id && view.shown.artifact === a.name, view.compared.has(artifactKey(job.id, a.name))];
+    // The single field is not marked while fields are compared.
+    const field = view.compared.size ? null : shown.get(view.state);
+    return [field?.jobId === job.id && field.artifact === a.name, view.compared.has(artifactKey(job.id, a.name))];
   }
 
   /** "Compare" on a job with two fields or more: all of them side by side. */
@@ -147,7 +160,7 @@ export class ScalarFieldKind implements ArtifactKind {
       });
       this.showLegend();
       display.setField({ range: data.range, full: data.range, values: data.values });
-      store.update({ field: { jobId, artifact: artifactName } });
+      shown.set(store, { jobId, artifact: artifactName });
     } catch (e) {
       if (token !== this.token) return;
       this.ctx.error(`Cannot show ${artifactName} of ${job.algorithm}: ${describe(e)}`);
@@ -169,7 +182,7 @@ export class ScalarFieldKind implements ArtifactKind {
     this.ctx.hooks.lastField = null;
     this.legend.hide();
     this.ctx.display.setField(null);
-    this.ctx.store.update({ field: null });
+    shown.set(this.ctx.store, null);
   }
 
   /** The field drawn, as a view link keeps it. */

@@ -13,28 +13,24 @@ import type { ArtifactInfo, Job } from '../api/types.ts';
 import { MAX_PANES } from '../controllers/compare.ts';
 import { describe, jobOf, type AppContext } from '../controllers/context.ts';
 import { artifactRow } from '../panels/artifact_row.ts';
-import { byId, el } from '../panels/dom.ts';
+import { byId } from '../panels/dom.ts';
 import type { JobsActions, JobsView } from '../panels/jobs.ts';
 import { SkeletonsPanel } from '../panels/skeletons.ts';
 import { artifactKey, selectedMesh, splitKey } from '../state/app_state.ts';
 import { buildSkeleton, setSkeletonXray, SKELETON_COLORS } from '../viewer/skeleton_renderer.ts';
 import { buildPlainSurface, SURFACE_COLOR } from '../viewer/surface_renderer.ts';
-import type { ArtifactKind } from './kind.ts';
+import { metricsOf } from './metrics.ts';
+import { OverlayKind, type DrawnOverlay } from './overlay.ts';
 
-interface DrawnSkeleton {
-  object: THREE.Object3D;
+interface DrawnSkeleton extends DrawnOverlay {
   data: SkeletonData;
-  color: string;
   nodes: number;
   edges: number;
 }
 
-export class SkeletonKind implements ArtifactKind {
+export class SkeletonKind extends OverlayKind<DrawnSkeleton> {
   readonly kind = 'skeleton';
   readonly storedFormat = 'obj';
-  private readonly ctx: AppContext;
-  /** The skeletons drawn over the mesh, by `${jobId}/${name}`, in the order shown. */
-  private readonly drawn = new Map<string, DrawnSkeleton>();
   /** skeleton_distance jobs submitted for the comparison table, by `${first key}|${other key}` ('' while submitting). */
   private readonly distanceJobs = new Map<string, string>();
   /** Whether skeletons show through the surface (the panel's "X-ray"). */
@@ -43,7 +39,7 @@ export class SkeletonKind implements ArtifactKind {
   private paneSkeletons: THREE.Object3D[] = [];
 
   constructor(ctx: AppContext) {
-    this.ctx = ctx;
+    super(ctx, 'skeleton', SKELETON_COLORS);
     const panel = new SkeletonsPanel(
       byId('skeletons'),
       () => void this.compare(),
@@ -53,74 +49,24 @@ export class SkeletonKind implements ArtifactKind {
       (on) => this.setXray(on),
     );
     ctx.store.subscribe(
-      (s) => [s.skeletons, s.jobs, s.metrics, selectedMesh(s) !== null],
+      (s) => [this.colorsOf(s), s.jobs, metricsOf(s), selectedMesh(s) !== null],
       () => this.renderTable(panel),
       { now: true },
     );
   }
 
-  load(): void {
-    // Fetched when shown.
-  }
-
   /** "Show" (over its mesh, in a colour of its own; a second click hides it) and, while drawn, its colour. */
   row(job: Job, a: ArtifactInfo, view: JobsView, actions: JobsActions): HTMLElement {
-    const color = view.skeletons.get(artifactKey(job.id, a.name));
-    const show = el('button', { type: 'button', class: color ? 'button small show-skeleton active' : 'button small show-skeleton' }, color ? 'Shown' : 'Show');
-    show.addEventListener('click', () => (color ? actions.hide(job.id, a.name, a.kind) : actions.show(job.id, a.name, a.kind)));
-    const swatch = color ? el('span', { class: 'swatch', style: `background:${color}`, title: color }) : null;
-    return artifactRow(job, a, this.storedFormat, [show, swatch]);
+    return artifactRow(job, a, this.storedFormat, this.toggle(job, a, view.state, actions, { class: 'show-skeleton', shown: 'Shown', hidden: 'Show' }));
   }
 
   rowState(job: Job, a: ArtifactInfo, view: JobsView): string {
-    return view.skeletons.get(artifactKey(job.id, a.name)) ?? '';
+    return this.colorIn(view.state, artifactKey(job.id, a.name)) ?? '';
   }
 
-  /** Draws a job's skeleton artifact over its mesh (selecting that mesh first when another one is shown). */
-  async show(jobId: string, artifactName: string): Promise<void> {
-    const { app, store, viewer } = this.ctx;
-    const key = artifactKey(jobId, artifactName);
-    if (this.drawn.has(key)) return;
-    const job = jobOf(this.ctx, jobId);
-    if (!job) return;
-    app.meshes.selectMeshOf(job);
-    const selected = store.get().selectedId;
-    try {
-      const [json] = await Promise.all([fetchArtifactJson(jobId, artifactName), app.loader.showing]);
-      if (store.get().selectedId !== selected || this.drawn.has(key)) return;
-      const data = parseSkeleton(json);
-      const palette = SKELETON_COLORS;
-      const used = new Set([...this.drawn.values()].map((v) => v.color));
-      const color = palette.find((c) => !used.has(c)) ?? palette[this.drawn.size % palette.length]!;
-      const object = buildSkeleton(data, color, this.xray);
-      this.drawn.set(key, { object, data, color, nodes: data.nodes.length / 3, edges: data.edges.length / 2 });
-      viewer.addExtra(object, () => this.report());
-      this.publish();
-    } catch (e) {
-      this.ctx.error(`Cannot show ${artifactName} of ${job.algorithm}: ${describe(e)}`);
-    }
-  }
-
-  shownKeys(): string[] {
-    return [...this.drawn.keys()];
-  }
-
-  hide(jobId: string, artifact: string): void {
-    const key = artifactKey(jobId, artifact);
-    const drawn = this.drawn.get(key);
-    if (!drawn) return;
-    this.ctx.viewer.removeExtra(drawn.object);
-    this.drawn.delete(key);
-    this.publish();
-    this.ctx.viewer.redraw(() => this.report());
-  }
-
-  dispose(): void {
-    this.ctx.hooks.skeletons = [];
-    if (!this.drawn.size) return;
-    for (const s of this.drawn.values()) this.ctx.viewer.removeExtra(s.object);
-    this.drawn.clear();
-    this.publish();
+  protected async fetch(job: Job, artifact: ArtifactInfo): Promise<(color: string) => DrawnSkeleton> {
+    const data = parseSkeleton(await fetchArtifactJson(job.id, artifact.name));
+    return (color) => ({ object: buildSkeleton(data, color, this.xray), data, color, nodes: data.nodes.length / 3, edges: data.edges.length / 2 });
   }
 
   /**
@@ -168,8 +114,8 @@ export class SkeletonKind implements ArtifactKind {
       const { jobId, artifact } = splitKey(key);
       return { job: jobId, artifact };
     };
-    const metricsOf = (jobId: string) => {
-      const m = store.get().metrics.get(`${jobId}/metrics`);
+    const metricsOfJob = (jobId: string) => {
+      const m = metricsOf(store.get()).get(`${jobId}/metrics`);
       return m && typeof m === 'object' ? (m as Record<string, unknown>) : undefined;
     };
     panel.render(
@@ -188,14 +134,14 @@ export class SkeletonKind implements ArtifactKind {
               })
               .catch((e) => this.ctx.error(`Cannot measure the distance between skeletons: ${describe(e)}`));
           }
-          const m = distanceJob ? metricsOf(distanceJob) : undefined;
+          const m = distanceJob ? metricsOfJob(distanceJob) : undefined;
           distance = m && typeof m.hausdorff === 'number' && typeof m.mean === 'number' ? { hausdorff: m.hausdorff, mean: m.mean } : undefined;
         }
         return {
           key,
           color: this.drawn.get(key)!.color,
           algorithm: jobOf(this.ctx, job)?.algorithm ?? job,
-          metrics: metricsOf(job),
+          metrics: metricsOfJob(job),
           distance,
         };
       }),
@@ -203,11 +149,7 @@ export class SkeletonKind implements ArtifactKind {
     );
   }
 
-  private publish(): void {
-    this.ctx.store.update({ skeletons: new Map([...this.drawn].map(([k, v]) => [k, v.color])) });
-  }
-
-  private report(): void {
+  protected report(): void {
     this.ctx.hooks.skeletons = [...this.drawn].map(([key, v]) => ({ key, color: v.color, nodes: v.nodes, edges: v.edges }));
   }
 }

@@ -4,14 +4,15 @@
 import { fetchArtifactBytes } from '../api/rest.ts';
 import type { AppContext } from '../controllers/context.ts';
 import { el } from '../panels/dom.ts';
-import { ListedKind } from './listed.ts';
+import { ListedKind, type Listed } from './listed.ts';
+import { KindSlice } from './slice.ts';
 
 export class TextKind extends ListedKind<string> {
   readonly kind = 'text';
   readonly storedFormat = 'txt';
 
   constructor(ctx: AppContext) {
-    super(ctx, 'texts');
+    super(ctx, new KindSlice<Listed>('text', new Map()));
   }
 
   protected async fetch(jobId: string, name: string): Promise<string> {

@@ -10,124 +10,78 @@
 import type * as THREE from 'three';
 import { fetchArtifactF32 } from '../api/rest.ts';
 import { jobMeshId, type ArtifactInfo, type Job } from '../api/types.ts';
-import { describe, jobOf, type AppContext } from '../controllers/context.ts';
+import type { AppContext } from '../controllers/context.ts';
 import { artifactRow } from '../panels/artifact_row.ts';
 import { el } from '../panels/dom.ts';
 import type { JobsActions, JobsView } from '../panels/jobs.ts';
 import { artifactKey } from '../state/app_state.ts';
 import { longest, VECTOR_COLORS, VectorGlyphs, type VectorField } from '../viewer/vector_field_renderer.ts';
-import type { ArtifactKind } from './kind.ts';
+import { OverlayKind, type DrawnOverlay } from './overlay.ts';
 import './vector_field.css';
 
-interface DrawnVectors {
+interface DrawnVectors extends DrawnOverlay {
   glyphs: VectorGlyphs;
-  color: string;
   field: VectorField;
 }
 
 /** The length slider's range: log2 of the scale, 1/4 to 4 times the default. */
 const SCALE_LOG2 = { min: -2, max: 2, step: 0.25 };
 
-export class VectorFieldKind implements ArtifactKind {
+export class VectorFieldKind extends OverlayKind<DrawnVectors> {
   readonly kind = 'vector_field';
   readonly storedFormat = 'f32';
-  private readonly ctx: AppContext;
-  /** The fields drawn over the mesh, by `${jobId}/${name}`, in the order shown. */
-  private readonly drawn = new Map<string, DrawnVectors>();
+  /** A job run here that made no scalar field shows its vector field when it ends. */
+  readonly autoShow = 1;
   /** Vectors without a value, by `${jobId}/${name}`, once a field has been fetched (what its row says, drawn or not). */
   private readonly missing = new Map<string, { missing: number; count: number; location: string }>();
   /** The length chosen for a field (a multiple of the default), by `${jobId}/${name}`. */
   private readonly scales = new Map<string, number>();
-  /** Counts disposals: a field fetched for a mesh since gone is not drawn. */
-  private token = 0;
 
   constructor(ctx: AppContext) {
-    this.ctx = ctx;
-  }
-
-  load(): void {
-    // Fetched when shown.
+    super(ctx, 'vector_field', VECTOR_COLORS);
   }
 
   /** "Show" (over its mesh, in a colour of its own), "Hide" while drawn, with the length slider and its colour; then how many vectors have no value. */
   row(job: Job, a: ArtifactInfo, view: JobsView, actions: JobsActions): HTMLElement {
     const key = artifactKey(job.id, a.name);
-    const color = view.vectors.get(key);
-    const toggle = el(
-      'button',
-      {
-        type: 'button',
-        class: color ? 'button small show-vectors active' : 'button small show-vectors',
-        title: color ? 'Stop drawing the vectors' : 'Draw the vectors over the mesh',
-      },
-      color ? 'Hide' : 'Show',
-    );
-    toggle.addEventListener('click', () => (color ? actions.hide(job.id, a.name, a.kind) : actions.show(job.id, a.name, a.kind)));
-    const swatch = color ? el('span', { class: 'swatch', style: `background:${color}`, title: color }) : null;
-    return artifactRow(job, a, this.storedFormat, [toggle, swatch, color ? this.lengthControl(key, a.name) : null], this.note(key));
+    const [toggle, swatch] = this.toggle(job, a, view.state, actions, {
+      class: 'show-vectors',
+      shown: 'Hide',
+      hidden: 'Show',
+      titles: { shown: 'Stop drawing the vectors', hidden: 'Draw the vectors over the mesh' },
+    });
+    return artifactRow(job, a, this.storedFormat, [toggle, swatch, swatch ? this.lengthControl(key, a.name) : null], this.note(key));
   }
 
   rowState(job: Job, a: ArtifactInfo, view: JobsView): [string, number | null] {
     const key = artifactKey(job.id, a.name);
-    return [view.vectors.get(key) ?? '', this.missing.get(key)?.missing ?? null];
+    return [this.colorIn(view.state, key) ?? '', this.missing.get(key)?.missing ?? null];
   }
 
-  /** Draws a job's vector_field artifact over its mesh (selecting that mesh first when another one is shown). */
-  async show(jobId: string, artifactName: string): Promise<void> {
-    const { app, store, viewer } = this.ctx;
-    const key = artifactKey(jobId, artifactName);
-    if (this.drawn.has(key)) return;
-    const job = jobOf(this.ctx, jobId);
-    const artifact = job?.artifacts?.find((a) => a.name === artifactName);
+  /** A field on a mesh gone cannot be drawn: says so. */
+  protected override canShow(job: Job, artifact: ArtifactInfo): boolean {
     const meshId = jobMeshId(job);
-    if (!job || !artifact || !meshId) return;
-    if (!app.meshes.mesh(meshId)) return this.ctx.error(`Cannot show ${artifactName} of ${job.algorithm}: its mesh no longer exists`);
-    app.meshes.selectMeshOf(job);
-    const token = this.token;
-    try {
-      // The mesh in the stored order: made from the streamed one (no second download of it).
-      const [values, ply] = await Promise.all([fetchArtifactF32(jobId, artifactName), app.loader.ply(meshId), app.loader.showing]);
-      if (token !== this.token || store.get().selectedId !== meshId || this.drawn.has(key)) return;
+    if (!meshId) return false;
+    if (this.ctx.app.meshes.mesh(meshId)) return true;
+    this.ctx.error(`Cannot show ${artifact.name} of ${job.algorithm}: its mesh no longer exists`);
+    return false;
+  }
+
+  /** The field and its mesh in the stored order: made from the streamed one (no second download of it). */
+  protected async fetch(job: Job, artifact: ArtifactInfo): Promise<(color: string) => DrawnVectors> {
+    const key = artifactKey(job.id, artifact.name);
+    const [values, ply] = await Promise.all([fetchArtifactF32(job.id, artifact.name), this.ctx.app.loader.ply(jobMeshId(job)!)]);
+    return (color) => {
       if (values.length % 3 !== 0) throw new Error(`${values.length} numbers are not whole x, y, z triples`);
       const location = artifact.location ?? (values.length / 3 === ply.faces && values.length / 3 !== ply.vertices ? 'face' : 'vertex');
       const hint = artifact.hint === 'direction' ? 'direction' : 'arrow';
       const maxLength = Number.isFinite(artifact.max_length) && artifact.max_length! > 0 ? artifact.max_length! : longest(values);
-      const field: VectorField = { name: artifactName, location, hint, values, maxLength };
-      const used = new Set([...this.drawn.values()].map((d) => d.color));
-      const color = VECTOR_COLORS.find((c) => !used.has(c)) ?? VECTOR_COLORS[this.drawn.size % VECTOR_COLORS.length]!;
+      const field: VectorField = { name: artifact.name, location, hint, values, maxLength };
       const glyphs = new VectorGlyphs(ply, field, color, this.scales.get(key) ?? 1);
       this.followShown(glyphs.object);
-      this.drawn.set(key, { glyphs, color, field });
       this.missing.set(key, { missing: glyphs.stats.missing, count: values.length / 3, location });
-      viewer.addExtra(glyphs.object, () => this.report());
-      this.publish();
-    } catch (e) {
-      if (token !== this.token) return;
-      this.ctx.error(`Cannot show ${artifactName} of ${job.algorithm}: ${describe(e)}`);
-    }
-  }
-
-  shownKeys(): string[] {
-    return [...this.drawn.keys()];
-  }
-
-  hide(jobId: string, artifact: string): void {
-    const key = artifactKey(jobId, artifact);
-    const drawn = this.drawn.get(key);
-    if (!drawn) return;
-    this.ctx.viewer.removeExtra(drawn.glyphs.object); // disposes of its geometry and material
-    this.drawn.delete(key);
-    this.publish();
-    this.ctx.viewer.redraw(() => this.report());
-  }
-
-  dispose(): void {
-    ++this.token;
-    this.ctx.hooks.vectors = [];
-    if (!this.drawn.size) return;
-    for (const d of this.drawn.values()) this.ctx.viewer.removeExtra(d.glyphs.object);
-    this.drawn.clear();
-    this.publish();
+      return { object: glyphs.object, glyphs, color, field };
+    };
   }
 
   /**
@@ -189,11 +143,7 @@ export class VectorFieldKind implements ArtifactKind {
     return el('p', { class: m.missing ? 'vector-missing warn' : 'vector-missing' }, text);
   }
 
-  private publish(): void {
-    this.ctx.store.update({ vectors: new Map([...this.drawn].map(([k, d]) => [k, d.color])) });
-  }
-
-  private report(): void {
+  protected report(): void {
     this.ctx.hooks.vectors = [...this.drawn].map(([key, d]) => ({
       key,
       color: d.color,

@@ -9,6 +9,7 @@
 import { jobMeshId } from '../api/types.ts';
 import type { ArtifactInfo, Job } from '../api/types.ts';
 import type { ArtifactKind } from '../kinds/kind.ts';
+import type { AppState } from '../state/app_state.ts';
 import { artifactRow } from './artifact_row.ts';
 import { el } from './dom.ts';
 
@@ -38,22 +39,12 @@ export interface JobsView {
   jobs: readonly Job[];
   /** Mesh names by id (a job's input may have been deleted since). */
   meshName(id: string): string | null;
-  /** The field shown now: job id and artifact name. */
-  shown: { jobId: string; artifact: string } | null;
   /** The fields compared side by side now, as `${jobId}/${name}`. */
   compared: ReadonlySet<string>;
-  /** Mesh artifacts in the view, as `${jobId}/${name}`. */
-  added: ReadonlySet<string>;
-  /** The mesh artifact the next job runs on (`${jobId}/${name}`), if one was chosen. */
+  /** The artifact the next job runs on (`${jobId}/${name}`), if one was chosen. */
   target: string | null;
-  /** Fetched metrics artifacts, by `${jobId}/${name}`: the JSON, or an error sentence. */
-  metrics: ReadonlyMap<string, unknown>;
-  /** Fetched text artifacts (chaos_extract's message), by `${jobId}/${name}`: the text, or undefined while loading. */
-  texts: ReadonlyMap<string, string | undefined>;
-  /** Skeleton artifacts drawn now, by `${jobId}/${name}`: their colour. */
-  skeletons: ReadonlyMap<string, string>;
-  /** Vector field artifacts drawn now, by `${jobId}/${name}`: their colour. */
-  vectors: ReadonlyMap<string, string>;
+  /** The state the list is built from: each kind's row reads its own part of it (kinds/slice.ts). */
+  state: Readonly<AppState>;
   /** Whether the user may share a job of that owner. */
   mayChange(owner: string | undefined): boolean;
   /** The owner to name beside a job: another user's (a student's run, shared with the staff), else null. */

@@ -148,20 +148,10 @@ export interface AppState {
   runTarget: RunTarget | null;
   /** What the algorithm form runs on, as its label says: the selected mesh's name, or the job output chosen with "Run on this"; null: Run is disabled. */
   inputName: string | null;
-  /** Fetched metrics artifacts, by `${jobId}/${name}`: the JSON, or an error sentence (undefined: loading). */
-  metrics: ReadonlyMap<string, unknown>;
-  /** Fetched text artifacts, by `${jobId}/${name}`: the text (undefined: loading). */
-  texts: ReadonlyMap<string, string | undefined>;
-  /** The scalar field drawn on the mesh. */
-  field: ArtifactRef | null;
+  /** Each artifact kind's part of the state (what the job list shows of its artifacts), by the kind's string: kinds/slice.ts. */
+  artifacts: Readonly<Record<string, unknown>>;
   /** The fields (or skeletons) compared side by side; empty: one view. */
   compared: readonly ArtifactRef[];
-  /** Mesh artifacts in the view beside the selected mesh, as `${jobId}/${name}`. */
-  added: ReadonlySet<string>;
-  /** Skeleton artifacts drawn over the mesh, by `${jobId}/${name}` in the order drawn: their colour. */
-  skeletons: ReadonlyMap<string, string>;
-  /** Vector field artifacts drawn over the mesh, by `${jobId}/${name}` in the order drawn: their colour. */
-  vectors: ReadonlyMap<string, string>;
   /** The scene: the selected mesh first (the viewer's shown object), then the meshes added beside it. */
   scene: readonly SceneEntry[];
   /** Whether the scene's objects are side by side, one per pane. */
@@ -185,13 +175,8 @@ export function initialState(): AppState {
     jobs: new Map(),
     runTarget: null,
     inputName: null,
-    metrics: new Map(),
-    texts: new Map(),
-    field: null,
+    artifacts: {},
     compared: [],
-    added: new Set(),
-    skeletons: new Map(),
-    vectors: new Map(),
     scene: [],
     scenePanes: false,
     picked: 0,
