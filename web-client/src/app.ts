@@ -8,6 +8,7 @@ import { CgviewSocket } from './api/ws.ts';
 import { AccountController } from './controllers/account.ts';
 import { CompareController } from './controllers/compare.ts';
 import { CourseController } from './controllers/course.ts';
+import { DisplayController } from './controllers/display.ts';
 import type { AppContext, Controllers } from './controllers/context.ts';
 import { JobsController } from './controllers/jobs.ts';
 import { LectureController } from './controllers/lecture.ts';
@@ -18,7 +19,6 @@ import { UndoOffers } from './controllers/undo.ts';
 import { ViewLinks } from './controllers/view_links.ts';
 import { Kinds } from './kinds/registry.ts';
 import { AccountPanel } from './panels/account.ts';
-import { DisplayPanel } from './panels/display.ts';
 import { byId } from './panels/dom.ts';
 import { MessagesPanel } from './panels/messages.ts';
 import { NavigationPanel } from './panels/navigation.ts';
@@ -117,7 +117,7 @@ export class App {
     hooks.camera = () => navigation.state();
     hooks.clipping = () => ({ near: viewer.camera.near, far: viewer.camera.far });
     hooks.selectionView = () => selectionTool.view();
-    const display = new DisplayPanel(byId('display'), viewer, {
+    const display = new DisplayController(byId('display'), store, viewer, {
       setFieldRange: (range) => app.kinds.field.setRange(range),
       drawn: (report) => (hooks.display = report),
       others: () => app.scene.others(),

@@ -1,7 +1,7 @@
 // What the tests read: window.__cgview. Controllers and kinds write the parts
 // they own (see each field); nothing in the page reads them back.
 import type { CameraState } from './viewer/navigation.ts';
-import type { DisplayReport } from './panels/display.ts';
+import type { DisplayReport } from './controllers/display.ts';
 import type { SceneObjectState } from './viewer/scene_state.ts';
 import type { ViewState } from './viewer/view_state.ts';
 import type { OrbitTimes } from './viewer/frame_timer.ts';
@@ -80,7 +80,7 @@ export interface TestHooks {
   clipping?: () => { near: number; far: number };
   /** The camera's view for the selection: canvas size in CSS pixels, projection × view (column-major). */
   selectionView?: () => { width: number; height: number; viewProjection: number[] };
-  /** The display mode, material and overlays of the shown object, set after the first frame with each change (panels/display.ts). */
+  /** The display mode, material and overlays of the shown object, set after the first frame with each change (controllers/display.ts). */
   display: DisplayReport | null;
   /** The last view link made with "Copy link". */
   lastLink: string | null;

@@ -5,7 +5,6 @@
 import { ApiError } from '../api/rest.ts';
 import type { Job } from '../api/types.ts';
 import { ServerError, type CgviewSocket } from '../api/ws.ts';
-import type { DisplayPanel } from '../panels/display.ts';
 import type { ProgressPanel } from '../panels/progress.ts';
 import type { AppStore } from '../state/app_state.ts';
 import type { TestHooks } from '../test_hooks.ts';
@@ -16,6 +15,7 @@ import type { Kinds } from '../kinds/registry.ts';
 import type { AccountController } from './account.ts';
 import type { CompareController } from './compare.ts';
 import type { CourseController } from './course.ts';
+import type { DisplayController } from './display.ts';
 import type { JobsController } from './jobs.ts';
 import type { LectureController } from './lecture.ts';
 import type { MeshLoader } from './mesh_loader.ts';
@@ -43,7 +43,7 @@ export interface AppContext {
   readonly hooks: TestHooks;
   readonly viewer: Viewer;
   readonly socket: CgviewSocket;
-  readonly display: DisplayPanel;
+  readonly display: DisplayController;
   readonly progress: ProgressPanel;
   readonly textures: MeshTextures;
   readonly selectionTool: SelectionTool;

@@ -1,62 +1,25 @@
-// The Display panel: the shown surface's mode and material, the overlays
-// over it, the range of the scalar field drawn on it, and the view link's
-// text. It owns the display and overlay settings and applies them to
-// whatever the viewer shows (viewer.onShownChange), so that a mesh shown
-// later keeps the mode chosen. With several meshes in the scene, the mode and
-// material apply to every object of it, each in its own colour where the
-// scene gives one (panels/scene.ts); the overlays are of the shown (first) one.
-// A comparison's panes (fields or skeletons side by side) draw their surfaces
-// in the mode too (viewer.onPanesChange). The up axis of the shown mesh is
-// chosen here too (viewer/up_axis.ts): the one the user chose for it, else
-// the one its file's format implies.
-import * as THREE from 'three';
-import { saveBlob } from '../api/auth.ts';
-import { RoomEnvironment } from 'three/addons/environments/RoomEnvironment.js';
-import { creaseOf, creaseRefusal } from '../viewer/crease.ts';
-import {
-  applyCrease,
-  applyDisplay,
-  CREASED_MODES,
-  DEFAULT_DISPLAY,
-  DISPLAY_MODES,
-  isDefaultDisplay,
-  isSurface,
-  MATERIAL_PRESETS,
-  sanitizeDisplay,
-  type DisplaySettings,
-} from '../viewer/display_modes.ts';
-import { percentileRange } from '../viewer/histogram.ts';
-import { DEFAULT_OVERLAYS, formatSize, sanitizeOverlays, updateOverlays, type OverlayInfo, type OverlaySettings } from '../viewer/overlays.ts';
-import { defaultUpAxis, setObjectUp, storeUpAxis, storedUpAxis, UP_AXIS_RULE, type UpAxis } from '../viewer/up_axis.ts';
-import type { Viewer } from '../viewer/viewer.ts';
+// The Display panel: the inputs of the shown surface's mode and material and
+// of the overlays over it, written from the state (AppState.display) and
+// writing it (controllers/display.ts applies the settings to what is shown);
+// the shown mesh's up axis, the range of the scalar field drawn, what the
+// overlays measured, and the view link's text.
+import { CREASED_MODES, DEFAULT_DISPLAY, DISPLAY_MODES, MATERIAL_PRESETS, type DisplaySettings } from '../viewer/display_modes.ts';
+import { formatSize, type OverlayInfo, type OverlaySettings } from '../viewer/overlays.ts';
+import { UP_AXIS_RULE, type UpAxis } from '../viewer/up_axis.ts';
+import type { AppStore } from '../state/app_state.ts';
 import { checkbox, edgeLegend, row, slider, sliderRow } from './display_controls.ts';
 import { el } from './dom.ts';
 import { formatMetric, formatNumber } from './format.ts';
 
-/** What the panel reports after each change has been drawn (window.__cgview.display). */
-export interface DisplayReport extends DisplaySettings, OverlayInfo {
-  overlays: OverlaySettings;
-  /** The shown object's name ("surface", "scalar:NAME"), or null. */
-  object: string | null;
-  /** The shown mesh's up axis. */
-  up: UpAxis;
-  /** The crease angle the shown surface is drawn with; null: as built (180°, its file's normals, not a surface). */
-  crease: number | null;
-}
-
-export interface DisplayCallbacks {
+/** What the panel's inputs do. */
+export interface DisplayActions {
+  setDisplay(settings: DisplaySettings): void;
+  setOverlays(overlays: OverlaySettings): void;
+  setUpAxis(axis: UpAxis): void;
   /** A new range for the field drawn (null: its full range). */
-  setFieldRange: (range: [number, number] | null) => void;
-  /** Called after a frame shows the settings. */
-  drawn: (report: DisplayReport) => void;
-  /** The scene's other objects, drawn in the same mode (none by default). */
-  others?: () => THREE.Object3D[];
-  /** An object's own colour in the scene, in place of the material's; null: the material's. */
-  colorOf?: (object: THREE.Object3D) => string | null;
-  /** The mesh an object of the scene draws (its up axis is that mesh's), or null. */
-  meshOf?: (object: THREE.Object3D) => string | null;
-  /** A mesh's file format ("stl", "glb"...), which gives its up axis until one is chosen; null: not known. */
-  formatOf?: (meshId: string) => string | null;
+  setFieldRange(range: [number, number] | null): void;
+  /** The field's range from its 1st to its 99th percentile. */
+  clipField(): void;
 }
 
 const MODE_LABELS: Record<string, string> = {
@@ -77,19 +40,6 @@ function normalLengthText(fraction: number): string {
 }
 
 export class DisplayPanel {
-  private settings: DisplaySettings = { ...DEFAULT_DISPLAY };
-  private overlays: OverlaySettings = { ...DEFAULT_OVERLAYS };
-  private info: OverlayInfo = { size: null, boundaryEdges: null, nonManifoldEdges: null };
-  private object: THREE.Object3D | null = null;
-  /** The surfaces of a comparison's panes (fields, skeletons over the mesh), drawn in the mode as the shown one is. */
-  private paneSurfaces: THREE.Mesh[] = [];
-  /** The objects of a comparison's panes, all of the shown mesh: they are drawn with its up axis. */
-  private paneObjects: readonly THREE.Object3D[] = [];
-  /** The scene object whose overlays are drawn, when not the shown one. */
-  private overlayObject: THREE.Object3D | null = null;
-  private environment: THREE.Texture | null = null;
-  private field: { range: [number, number]; full: [number, number]; values: Float32Array } | null = null;
-
   private readonly mode = el('select', { id: 'display-mode', 'aria-label': 'Display mode' });
   private readonly up = el(
     'select',
@@ -131,8 +81,8 @@ export class DisplayPanel {
 
   constructor(
     root: HTMLElement,
-    private readonly viewer: Viewer,
-    private readonly callbacks: DisplayCallbacks,
+    private readonly store: AppStore,
+    private readonly actions: DisplayActions,
   ) {
     for (const m of DISPLAY_MODES) this.mode.append(el('option', { value: m }, MODE_LABELS[m] ?? m));
     for (const p of MATERIAL_PRESETS) this.preset.append(el('option', { value: p.name }, p.name));
@@ -172,11 +122,11 @@ export class DisplayPanel {
       input.addEventListener('input', change);
       input.addEventListener('change', change);
     }
-    this.up.addEventListener('change', () => this.setUpAxis(this.up.value === 'z' ? 'z' : 'y'));
+    this.up.addEventListener('change', () => actions.setUpAxis(this.up.value === 'z' ? 'z' : 'y'));
     this.preset.addEventListener('change', () => {
       const p = MATERIAL_PRESETS.find((m) => m.name === this.preset.value);
       if (!p) return;
-      this.setDisplay({ ...this.settings, preset: p.name, color: p.color, roughness: p.roughness, metalness: p.metalness });
+      actions.setDisplay({ ...this.settings, preset: p.name, color: p.color, roughness: p.roughness, metalness: p.metalness });
     });
     const overlayChange = () => this.readOverlayInputs();
     for (const c of Object.values(this.checks)) c.input.addEventListener('change', overlayChange);
@@ -197,86 +147,48 @@ export class DisplayPanel {
       const lo = exactly(this.fieldMin, 0);
       const hi = exactly(this.fieldMax, 1);
       if (this.fieldMin.value !== '' && this.fieldMax.value !== '' && Number.isFinite(lo) && Number.isFinite(hi) && lo < hi) {
-        this.callbacks.setFieldRange([lo, hi]);
+        actions.setFieldRange([lo, hi]);
       }
     };
     this.fieldMin.addEventListener('change', rangeChange);
     this.fieldMax.addEventListener('change', rangeChange);
-    clip.addEventListener('click', () => {
-      if (this.field) this.callbacks.setFieldRange(percentileRange(this.field.values, 1, 99));
-    });
-    full.addEventListener('click', () => this.callbacks.setFieldRange(null));
-
-    viewer.onShownChange((object) => this.attach(object));
-    viewer.onPanesChange((panes) => this.attachPanes(panes));
+    clip.addEventListener('click', () => actions.clipField());
+    full.addEventListener('click', () => actions.setFieldRange(null));
+    store.subscribe(
+      (s) => s.display,
+      () => this.syncInputs(),
+    );
   }
 
-  /** The settings, for the view link. */
-  state(): { display: DisplaySettings; overlays: OverlaySettings } {
-    return { display: { ...this.settings }, overlays: { ...this.overlays } };
+  private get settings(): DisplaySettings {
+    return this.store.get().display.settings;
   }
 
-  /** Takes settings from a view link (untrusted: checked, invalid values fall back to the defaults). */
-  restore(display: Record<string, unknown> | undefined, overlays: Record<string, unknown> | undefined): void {
-    this.settings = sanitizeDisplay(display);
-    this.overlays = sanitizeOverlays(overlays);
-    this.syncInputs();
-    this.applyAll();
+  private get overlays(): OverlaySettings {
+    return this.store.get().display.overlays;
   }
 
   /** The shown mesh's up axis. */
-  upAxis(): UpAxis {
-    const mesh = this.object && this.meshOf(this.object);
-    return mesh ? this.upOf(mesh) : 'y';
-  }
-
-  /** A mesh's up axis: the one chosen for it, else its format's. */
-  private upOf(mesh: string): UpAxis {
-    return storedUpAxis(mesh, defaultUpAxis(this.callbacks.formatOf?.(mesh) ?? null));
-  }
-
-  /**
-   * Makes `axis` the shown mesh's up axis: kept for the mesh, put on its
-   * objects (the shown one, its panes, its copies in the scene), and the
-   * view framed again, since the objects turned.
-   */
-  setUpAxis(axis: UpAxis): void {
-    const mesh = this.object && this.meshOf(this.object);
-    if (!mesh) {
-      this.up.value = 'y';
-      return;
-    }
-    storeUpAxis(mesh, axis, defaultUpAxis(this.callbacks.formatOf?.(mesh) ?? null));
+  showUp(axis: UpAxis): void {
     this.up.value = axis;
-    let turned = false;
-    for (const o of [...(this.object ? [this.object] : []), ...(this.callbacks.others?.() ?? []), ...this.paneObjects]) {
-      if (this.meshOfOrShown(o) === mesh && setObjectUp(o, axis)) turned = true;
-    }
-    if (!turned) return;
-    this.viewer.fitAll();
-    this.refreshOverlays();
   }
 
-  /** The mesh an object draws; the panes' objects are the shown mesh's. */
-  private meshOfOrShown(object: THREE.Object3D): string | null {
-    if (this.paneObjects.includes(object)) return this.object && this.meshOf(this.object);
-    return this.meshOf(object);
+  /** What of the inputs applies to the shown object: the crease angle (or why not), its own vertex colours. */
+  showObject(shown: { creaseRefusal: string | null; vertexColors: boolean }): void {
+    this.crease.disabled = shown.creaseRefusal !== null;
+    this.crease.title = shown.creaseRefusal ?? CREASE_HELP;
+    this.vertexColors.row.hidden = !shown.vertexColors;
   }
 
-  private meshOf(object: THREE.Object3D): string | null {
-    return this.callbacks.meshOf?.(object) ?? null;
-  }
-
-  /** The field drawn now (its range and full range, and its values for percentiles), or null. */
-  setField(field: { range: [number, number]; full: [number, number]; values: Float32Array } | null): void {
-    this.field = field;
-    this.fieldBox.hidden = !field;
-    if (field) {
-      const text: [string, string] = [formatNumber(field.range[0]), formatNumber(field.range[1])];
-      this.fieldShown = { text, exact: [...field.range] };
+  /** The range of the field drawn now, or null: none drawn. */
+  showField(range: [number, number] | null): void {
+    this.fieldBox.hidden = !range;
+    if (range) {
+      const text: [string, string] = [formatNumber(range[0]), formatNumber(range[1])];
+      this.fieldShown = { text, exact: [...range] };
       [this.fieldMin.value, this.fieldMax.value] = text;
-      this.fieldMin.title = `${field.range[0]}`;
-      this.fieldMax.title = `${field.range[1]}`;
+      this.fieldMin.title = `${range[0]}`;
+      this.fieldMax.title = `${range[1]}`;
     }
   }
 
@@ -285,36 +197,6 @@ export class DisplayPanel {
     this.link.value = url;
     this.link.hidden = false;
     this.link.select();
-  }
-
-  /** Downloads the canvas as a PNG, drawn afresh (the drawing buffer is read in the frame's own task). */
-  screenshot(fileName: string, done?: (blob: Blob | null) => void): void {
-    this.viewer.redraw(() => {
-      this.viewer.renderer.domElement.toBlob((blob) => {
-        if (blob) saveBlob(blob, fileName);
-        done?.(blob);
-      }, 'image/png');
-    });
-  }
-
-  private setDisplay(s: DisplaySettings): void {
-    this.settings = s;
-    this.syncInputs();
-    for (const o of this.targets()) this.applyTo(o);
-    this.report();
-  }
-
-  /** Draws `object` (one of the scene's) in the mode and material, in its own colour. */
-  applyTo(object: THREE.Object3D | null): void {
-    const mesh = object && this.meshOf(object);
-    if (mesh) setObjectUp(object, this.upOf(mesh));
-    if (!isSurface(object)) return;
-    const color = this.callbacks.colorOf?.(object) ?? null;
-    applyDisplay(object, color ? { ...this.settings, color } : this.settings, () => this.env());
-  }
-
-  private targets(): THREE.Object3D[] {
-    return [...(this.object ? [this.object] : []), ...(this.callbacks.others?.() ?? []), ...this.paneSurfaces];
   }
 
   private readInputs(): void {
@@ -329,31 +211,18 @@ export class DisplayPanel {
       creaseAngle: Math.min(180, Math.max(0, Number(this.crease.value))),
       vertexColors: this.vertexColors.input.checked,
     };
-    this.setDisplay(s);
+    this.actions.setDisplay(s);
   }
 
   private readOverlayInputs(): void {
-    this.overlays = {
+    this.actions.setOverlays({
       bbox: this.checks.bbox.input.checked,
       axes: this.checks.axes.input.checked,
       vertexNormals: this.checks.vertexNormals.input.checked,
       faceNormals: this.checks.faceNormals.input.checked,
       edges: this.checks.edges.input.checked,
       normalLength: Number(this.normalLength.value),
-    };
-    this.refreshOverlays();
-  }
-
-  /** Draws the overlays over `object` (a scene object chosen in the Scene panel); null: over the shown one. */
-  setOverlayObject(object: THREE.Object3D | null): void {
-    this.overlayObject = object;
-    this.refreshOverlays();
-  }
-
-  /** Builds the overlays again (their object moved). */
-  refreshOverlays(): void {
-    this.info = updateOverlays(this.viewer, this.overlayObject ?? this.object, this.overlays);
-    this.report();
+    });
   }
 
   private syncInputs(): void {
@@ -378,71 +247,15 @@ export class DisplayPanel {
     this.normalLengthValue.value = normalLengthText(this.overlays.normalLength);
   }
 
-  /** A new shown object: the mode and the overlays follow it (a default display leaves it as built). */
-  private attach(object: THREE.Object3D | null): void {
-    this.object = object;
-    const mesh = object && this.meshOf(object);
-    // Before the viewer frames it: the camera frames the object as drawn, turned.
-    if (mesh) setObjectUp(object, this.upOf(mesh));
-    this.up.value = mesh ? this.upOf(mesh) : 'y';
-    if (object && (!isDefaultDisplay(this.settings) || this.callbacks.colorOf?.(object))) this.applyTo(object);
-    else if (isSurface(object)) applyCrease(object, this.settings);
-    // The slider stays for the other objects of the scene, but says when it does not apply to the shown one.
-    const refusal = isSurface(object) ? creaseRefusal(object) : null;
-    this.crease.disabled = refusal !== null;
-    this.crease.title = refusal ?? CREASE_HELP;
-    this.vertexColors.row.hidden = !(isSurface(object) && object.geometry.getAttribute('color') && !object.name.startsWith('scalar:'));
-    this.refreshOverlays();
-  }
-
-  /** New panes of a comparison: their surfaces (a pane's object, or the surfaces in its group) are drawn in the mode too. */
-  private attachPanes(panes: readonly THREE.Object3D[]): void {
-    this.paneObjects = [...panes];
-    const axis = this.upAxis();
-    for (const p of panes) setObjectUp(p, axis);
-    this.paneSurfaces = panes.flatMap((p) => (isSurface(p) ? [p] : p.children.filter(isSurface)));
-    if (!isDefaultDisplay(this.settings)) for (const o of this.paneSurfaces) this.applyTo(o);
-    else for (const o of this.paneSurfaces) applyCrease(o, this.settings);
-  }
-
-  private applyAll(): void {
-    for (const o of this.targets()) this.applyTo(o);
-    this.refreshOverlays();
-  }
-
-  /** Reflections for metals: a PMREM of three's room environment, made once, when first needed. */
-  private env(): THREE.Texture {
-    if (!this.environment) {
-      const pmrem = new THREE.PMREMGenerator(this.viewer.renderer);
-      const room = new RoomEnvironment();
-      this.environment = pmrem.fromScene(room, 0.04).texture;
-      room.dispose();
-      pmrem.dispose();
-    }
-    return this.environment;
-  }
-
-  /** Updates the readout, and tells the app once a frame shows the settings. */
-  private report(): void {
+  /** What the overlays measured: the box's size, the boundary and non-manifold edges. */
+  showInfo(info: OverlayInfo): void {
     const parts: string[] = [];
-    if (this.info.size) parts.push(`Box ${formatSize(this.info.size)}`);
-    if (this.info.boundaryEdges !== null) {
-      parts.push(`${this.info.boundaryEdges} boundary edges, ${this.info.nonManifoldEdges} non-manifold`);
+    if (info.size) parts.push(`Box ${formatSize(info.size)}`);
+    if (info.boundaryEdges !== null) {
+      parts.push(`${info.boundaryEdges} boundary edges, ${info.nonManifoldEdges} non-manifold`);
     }
     this.readout.textContent = parts.join(' · ');
-    this.readout.dataset.boundary = this.info.boundaryEdges === null ? '' : String(this.info.boundaryEdges);
-    this.readout.dataset.nonManifold = this.info.nonManifoldEdges === null ? '' : String(this.info.nonManifoldEdges);
-    const object = this.object;
-    const report: DisplayReport = {
-      ...this.settings,
-      ...this.info,
-      overlays: { ...this.overlays },
-      object: object?.name ?? null,
-      up: this.upAxis(),
-      crease: isSurface(object) ? creaseOf(object) : null,
-    };
-    this.viewer.redraw(() => {
-      if (this.object === object) this.callbacks.drawn(report);
-    });
+    this.readout.dataset.boundary = info.boundaryEdges === null ? '' : String(info.boundaryEdges);
+    this.readout.dataset.nonManifold = info.nonManifoldEdges === null ? '' : String(info.nonManifoldEdges);
   }
 }

@@ -5,6 +5,8 @@
 import type { Assignment, Course, CourseDetail, Grades, SignInLink, Submission } from '../api/courses.ts';
 import type { Hand, RoomSummary } from '../api/rooms.ts';
 import type { Job, Me, Mesh } from '../api/types.ts';
+import { DEFAULT_DISPLAY, type DisplaySettings } from '../viewer/display_modes.ts';
+import { DEFAULT_OVERLAYS, type OverlaySettings } from '../viewer/overlays.ts';
 import type { SceneObjectState } from '../viewer/scene_state.ts';
 import type * as THREE from 'three';
 import { Store } from './store.ts';
@@ -156,6 +158,8 @@ export interface AppState {
   scene: readonly SceneEntry[];
   /** Whether the scene's objects are side by side, one per pane. */
   scenePanes: boolean;
+  /** How surfaces are drawn (mode, material) and the overlays over the shown one: controllers/display.ts applies them. */
+  display: { settings: DisplaySettings; overlays: OverlaySettings };
   /** The scene object chosen in the Scene panel: the Display panel's overlays are drawn over it. */
   picked: number;
   message: Message | null;
@@ -179,6 +183,7 @@ export function initialState(): AppState {
     compared: [],
     scene: [],
     scenePanes: false,
+    display: { settings: { ...DEFAULT_DISPLAY }, overlays: { ...DEFAULT_OVERLAYS } },
     picked: 0,
     message: null,
     course: {
