@@ -125,7 +125,9 @@ export class App {
       meshOf: (object) => app.scene.entryOf(object)?.mesh ?? null,
       formatOf: (id) => store.get().meshes.find((m) => m.id === id)?.format ?? null,
     });
+    const account = (app.account = new AccountController(store, new AccountPanel(byId('account'))));
     const ctx: AppContext = {
+      account,
       store,
       hooks,
       viewer,
@@ -135,28 +137,26 @@ export class App {
       textures,
       selectionTool,
       undo,
-      app,
       error,
       dismiss: (topic) => messages.dismiss(topic),
       notice,
       warning,
     };
-    app.account = new AccountController(store, new AccountPanel(byId('account')));
-    app.loader = new MeshLoader(ctx, new DracoDecoder());
-    app.meshes = new MeshesController(ctx);
-    app.scene = new SceneController(ctx);
-    app.kinds = new Kinds(ctx);
-    app.compare = new CompareController(ctx);
-    app.jobs = new JobsController(ctx);
-    this.links = app.links = new ViewLinks(ctx);
+    app.loader = new MeshLoader(ctx, app, new DracoDecoder());
+    app.meshes = new MeshesController(ctx, app);
+    app.scene = new SceneController(ctx, app);
+    app.kinds = new Kinds(ctx, app);
+    app.compare = new CompareController(ctx, app);
+    app.jobs = new JobsController(ctx, app);
+    this.links = app.links = new ViewLinks(ctx, app);
     byId('screenshot').addEventListener('click', () => {
       const name = (app.meshes.selected()?.name ?? 'view').replace(/\.[^.]*$/, '');
       display.screenshot(`cgview-${name}.png`, (blob) => (hooks.lastScreenshot = blob ? { bytes: blob.size } : null));
     });
     byId('copy-link').addEventListener('click', () => this.links.copy());
-    const code = installPlayground(ctx);
-    app.course = new CourseController(ctx, byId('course'), byId<HTMLButtonElement>('course-toggle'), code);
-    app.lecture = new LectureController(ctx, byId('course'), code);
+    const code = installPlayground(ctx, app);
+    app.course = new CourseController(ctx, app, byId('course'), byId<HTMLButtonElement>('course-toggle'), code);
+    app.lecture = new LectureController(ctx, app, byId('course'), code);
   }
 
   async start(): Promise<void> {

@@ -11,6 +11,16 @@ import { ComparisonView } from '../viewer/comparison.ts';
 import type { PlyMesh } from '../viewer/ply.ts';
 import { describe, jobOf, type AppContext } from './context.ts';
 import { fieldLegendTitle, shownField, type FieldSource } from '../kinds/scalar_field.ts';
+import type { Kinds } from '../kinds/registry.ts';
+import type { MeshLoader } from './mesh_loader.ts';
+import type { SceneController } from './scene.ts';
+
+/** What a comparison uses: the scalar fields' kind, the mesh in its stored order, the scene side by side again. */
+export interface CompareDeps {
+  kinds: Pick<Kinds, 'field'>;
+  loader: Pick<MeshLoader, 'ply'>;
+  scene: Pick<SceneController, 'sideBySide'>;
+}
 
 /** A pane's prepared object (a skeleton over its mesh, a scene object). */
 export interface PaneObject {
@@ -25,6 +35,8 @@ export const MAX_PANES = 4;
 
 export class CompareController {
   private readonly ctx: AppContext;
+  /** What of the other controllers this one uses. */
+  private readonly app: CompareDeps;
   private readonly view: ComparisonView;
   private readonly leaveButton: HTMLButtonElement;
   /** The comparison being prepared: a later one, or leaving, makes it stale. */
@@ -32,8 +44,9 @@ export class CompareController {
   /** Shows the comparison now shown (or last shown) again: what "Undo" after leaving it does. */
   private again: (() => void) | null = null;
 
-  constructor(ctx: AppContext) {
+  constructor(ctx: AppContext, app: CompareDeps) {
     this.ctx = ctx;
+    this.app = app;
     this.view = new ComparisonView(ctx.viewer, byId('viewport'), (panes) => {
       const { selectedId: meshId, compared } = ctx.store.get();
       ctx.hooks.lastCompare = meshId && compared.length ? { meshId, panes: panes.map((p, i) => ({ ...compared[i]!, map: p.map, range: p.range })) } : null;
@@ -64,7 +77,7 @@ export class CompareController {
 
   /** Shows the fields (all on one mesh) side by side in synchronized panes, each with its legend (a view link's). */
   async compareFields(list: ArtifactRef[]): Promise<void> {
-    const field = this.ctx.app.kinds.field;
+    const field = this.app.kinds.field;
     const sources: FieldSource[] = [];
     for (const c of list) {
       const source = field.source(c.jobId, c.artifact);
@@ -101,7 +114,8 @@ export class CompareController {
    * mesh as stored; `what` words a failure.
    */
   async compareObjects(list: ArtifactRef[], build: (ply: PlyMesh) => PaneObject[], what: string): Promise<void> {
-    const { store, app } = this.ctx;
+    const { store } = this.ctx;
+    const { app } = this;
     const meshId = store.get().selectedId;
     if (list.length < 2 || !meshId) return;
     const token = ++this.token;
@@ -123,10 +137,10 @@ export class CompareController {
     ++this.token;
     this.ctx.store.update({ compared: [] });
     this.ctx.hooks.lastCompare = null;
-    this.ctx.app.kinds.field.hideLegend();
+    this.app.kinds.field.hideLegend();
     this.view.showObjects(items, false);
     this.leaveButton.hidden = false;
-    this.again = () => this.ctx.app.scene.sideBySide();
+    this.again = () => this.app.scene.sideBySide();
   }
 
   /**
@@ -158,13 +172,13 @@ export class CompareController {
     this.ctx.hooks.lastCompare = null;
     this.view.clear();
     this.leaveButton.hidden = true;
-    this.ctx.app.kinds.field.showLegend();
+    this.app.kinds.field.showLegend();
   }
 
   /** The panes go to `list` (the scene's side by side ends). */
   private take(list: ArtifactRef[]): void {
     this.ctx.store.update({ compared: list, scenePanes: false });
     this.ctx.hooks.lastCompare = null;
-    this.ctx.app.kinds.field.hideLegend();
+    this.app.kinds.field.hideLegend();
   }
 }

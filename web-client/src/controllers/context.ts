@@ -1,9 +1,12 @@
 // What the controllers and the artifact kinds share: the state, the test
-// hooks, the viewer and the connection, the panels several of them draw in,
-// and each other (filled in by App once all are made, so that each may call
-// the others at run time without an order of construction).
+// hooks, the viewer and the connection, the display, the panels several of
+// them draw in, and the account. What each uses of the other controllers it
+// is given explicitly, as its constructor's second argument, typed by what
+// it calls (MeshesDeps, SceneDeps, KindDeps...): App passes its `Controllers`,
+// filled as each is made, so that a controller made first may call one made
+// after it at run time.
 import { ApiError } from '../api/rest.ts';
-import type { Job } from '../api/types.ts';
+import type { Job, Mesh } from '../api/types.ts';
 import { ServerError, type CgviewSocket } from '../api/ws.ts';
 import type { ProgressPanel } from '../panels/progress.ts';
 import type { AppStore } from '../state/app_state.ts';
@@ -49,7 +52,8 @@ export interface AppContext {
   readonly selectionTool: SelectionTool;
   /** Offers "Undo" for what destroys (a delete, a cleared selection, a comparison left). */
   readonly undo: UndoOffers;
-  readonly app: Controllers;
+  /** The signed-in user: who may change what, whose it is. */
+  readonly account: AccountController;
   /** Shows an error in the page (and in the hooks' lastError); one of `topic` replaces the last one of it. */
   error(text: string, topic?: string): void;
   /** Takes the messages of `topic` away (what they said no longer holds: a rerun succeeded). */
@@ -74,6 +78,11 @@ export function isUnauthorized(e: unknown): boolean {
 
 export function isAbort(e: unknown): boolean {
   return e instanceof DOMException && e.name === 'AbortError';
+}
+
+/** A mesh by id, as the page knows it (null: not listed). */
+export function meshOf(ctx: AppContext, id: string): Mesh | null {
+  return ctx.store.get().meshes.find((m) => m.id === id) ?? null;
 }
 
 /** A job by id, as the page knows it. */

@@ -38,7 +38,15 @@ import { CoursePanel, type MeshChoice, type ReferenceChoice } from '../panels/co
 import { pluginName } from '../panels/course_format.ts';
 import type { CodePanel } from '../panels/playground_toggle.ts';
 import { isStaff, submittable, type CourseState, type CourseTab } from '../state/app_state.ts';
-import { describe, type AppContext } from './context.ts';
+import { describe, type AppContext, meshOf } from './context.ts';
+import type { JobsController } from './jobs.ts';
+import type { MeshesController } from './meshes.ts';
+
+/** What the Course panel opens things with: the mesh list, a job's result. */
+export interface CourseDeps {
+  meshes: Pick<MeshesController, 'refresh' | 'select'>;
+  jobs: Pick<JobsController, 'openResult'>;
+}
 
 /** How often the open assignment's submissions are asked for while one is being graded. */
 const POLL_MS = 1000;
@@ -68,6 +76,8 @@ function sameSubmissions(a: readonly Submission[], b: readonly Submission[]): bo
 
 export class CourseController {
   private readonly ctx: AppContext;
+  /** What of the other controllers this one uses. */
+  private readonly app: CourseDeps;
   private readonly code: CodePanel;
   private readonly panel: CoursePanel;
   private readonly section: HTMLElement;
@@ -76,8 +86,9 @@ export class CourseController {
   /** Counts course loads: a later one makes an earlier one's answers stale. */
   private loads = 0;
 
-  constructor(ctx: AppContext, section: HTMLElement, toggle: HTMLButtonElement, code: CodePanel) {
+  constructor(ctx: AppContext, app: CourseDeps, section: HTMLElement, toggle: HTMLButtonElement, code: CodePanel) {
     this.ctx = ctx;
+    this.app = app;
     this.code = code;
     this.section = section;
     this.toggle = toggle;
@@ -271,9 +282,9 @@ export class CourseController {
   }
 
   private async openMesh(id: string): Promise<void> {
-    const { app } = this.ctx;
-    if (!app.meshes.mesh(id)) await app.meshes.refresh();
-    if (!app.meshes.mesh(id)) return this.say('That mesh is not yours to read (any more).', 'error');
+    const { app } = this;
+    if (!meshOf(this.ctx, id)) await app.meshes.refresh();
+    if (!meshOf(this.ctx, id)) return this.say('That mesh is not yours to read (any more).', 'error');
     app.meshes.select(id);
   }
 
@@ -345,7 +356,7 @@ export class CourseController {
     const a = this.state.assignments.find((x) => x.id === s.assignment);
     this.set({ picked: id });
     try {
-      await this.ctx.app.jobs.openResult(job, a?.output);
+      await this.app.jobs.openResult(job, a?.output);
     } catch (e) {
       throw new Error(`Cannot show ${s.student}'s run on ${s.results[index]!.mesh}: ${describe(e)}`);
     }

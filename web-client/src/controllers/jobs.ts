@@ -14,9 +14,19 @@ import { orderedParams } from '../panels/param_control.ts';
 import { byId } from '../panels/dom.ts';
 import { JobsPanel } from '../panels/jobs.ts';
 import { openShareForm } from '../panels/share.ts';
-import { artifactKey, withEntry } from '../state/app_state.ts';
-import { describe, isUnauthorized, jobOf, type AppContext } from './context.ts';
+import { artifactKey, withEntry, selectedMesh } from '../state/app_state.ts';
+import { describe, isUnauthorized, jobOf, type AppContext, meshOf } from './context.ts';
 import { uploadName } from './meshes.ts';
+import type { Kinds } from '../kinds/registry.ts';
+import type { CompareController } from './compare.ts';
+import type { MeshesController } from './meshes.ts';
+
+/** What the jobs use of the others: the artifact kinds, the comparison, the mesh list. */
+export interface JobsDeps {
+  kinds: Pick<Kinds, 'autoShown' | 'hide' | 'load' | 'open' | 'show' | 'of'>;
+  compare: Pick<CompareController, 'addToComparison' | 'compareJob'>;
+  meshes: Pick<MeshesController, 'refresh' | 'select'>;
+}
 
 const FINAL = new Set(['done', 'failed', 'cancelled', 'interrupted']);
 /** Jobs the page runs for itself (a plugin's build): not listed, their artifacts not fetched. */
@@ -52,6 +62,8 @@ export function mainParamValue(job: Pick<Job, 'params'>, algorithm: Algorithm | 
 
 export class JobsController {
   private readonly ctx: AppContext;
+  /** What of the other controllers this one uses. */
+  private readonly app: JobsDeps;
   private readonly algorithms: AlgorithmsPanel;
   /** Jobs this page submitted: their scalar field is shown when they finish. */
   private readonly autoShow = new Set<string>();
@@ -60,9 +72,10 @@ export class JobsController {
   /** The algorithms the server listed last: their parameters' defaults name results. */
   private known: readonly Algorithm[] = [];
 
-  constructor(ctx: AppContext) {
+  constructor(ctx: AppContext, app: JobsDeps) {
     this.ctx = ctx;
-    const { store, app } = ctx;
+    this.app = app;
+    const { store } = ctx;
     this.algorithms = new AlgorithmsPanel(byId('algorithms'), {
       run: (algorithm, params, inputs) => this.run(algorithm, params, inputs),
       cancel: (id) => void this.cancel(id),
@@ -92,8 +105,8 @@ export class JobsController {
           compared: new Set(s.compared.map((c) => artifactKey(c.jobId, c.artifact))),
           target: s.runTarget ? artifactKey(s.runTarget.jobId, s.runTarget.artifact) : null,
           state: s,
-          mayChange: (owner) => app.account.mayChange(owner),
-          ownerName: (owner) => app.account.otherOwner(owner),
+          mayChange: (owner) => ctx.account.mayChange(owner),
+          ownerName: (owner) => ctx.account.otherOwner(owner),
         });
       },
       { now: true },
@@ -166,9 +179,10 @@ export class JobsController {
    * Resolves with the Job submitted; rejects with the server's detail (shown beside the form).
    */
   async run(algorithm: Algorithm, params: Record<string, unknown>, extra: Record<string, string> = {}): Promise<Job> {
-    const { store, app } = this.ctx;
+    const { store } = this.ctx;
+    const { app } = this;
     const target = store.get().runTarget;
-    const mesh = app.meshes.selected();
+    const mesh = selectedMesh(this.ctx.store.get());
     // The algorithm's first input: the selected mesh, or the output chosen with "Run on this".
     const first = algorithm.inputs?.[0] ?? { name: 'mesh', kind: 'mesh' };
     if (first.kind !== 'mesh' && target?.kind !== first.kind) {
@@ -190,13 +204,13 @@ export class JobsController {
       // A chained mesh is a stored mesh now: later runs and fields use it.
       store.update({ runTarget: null });
       const stored = typeof job.inputs.mesh === 'string' ? job.inputs.mesh : null;
-      if (stored && !app.meshes.mesh(stored)) await app.meshes.refresh();
+      if (stored && !meshOf(this.ctx, stored)) await app.meshes.refresh();
       if (stored) app.meshes.select(stored);
     }
     this.autoShow.add(job.id);
     // A job_done event may have come before this answer: upsert keeps the later state.
     this.upsert(job);
-    app.account.refreshSoon(); // one more job in use
+    this.ctx.account.refreshSoon(); // one more job in use
     return job;
   }
 
@@ -209,8 +223,9 @@ export class JobsController {
    * the file not used) are in its entry of the job list and said in a warning.
    */
   async importFile(file: File, kind: DataKind): Promise<void> {
-    const { app, progress } = this.ctx;
-    const mesh = app.meshes.selected();
+    const { progress } = this.ctx;
+    const { app } = this;
+    const mesh = selectedMesh(this.ctx.store.get());
     if (!mesh && needsMesh(kind)) {
       return this.ctx.error(`Choose a mesh first: ${file.name} is ${dataKindWords(kind)} for the mesh shown.`);
     }
@@ -225,7 +240,7 @@ export class JobsController {
     }
     // A job_done event may have come before this answer: upsert keeps the later state.
     this.upsert(job);
-    app.account.refreshSoon(); // its files count against the caller's storage
+    this.ctx.account.refreshSoon(); // its files count against the caller's storage
     for (const w of job.warnings ?? []) this.ctx.warning(`${file.name}: ${w}`);
     const artifact = job.artifacts?.find((a) => a.kind === kind);
     if (artifact) await app.kinds.show(job.id, artifact.name, artifact.kind);
@@ -236,11 +251,11 @@ export class JobsController {
    * stored mesh's), when it is of that kind and on the mesh the job runs on.
    */
   selectionFor(kind: string): number[] {
-    const { selectionTool, store, app } = this.ctx;
+    const { selectionTool, store } = this.ctx;
     const state = selectionTool.state();
     if (store.get().runTarget || state.meshId !== store.get().selectedId || state.kind !== kind) return [];
     // Vertices split at attribute seams in the PLY are not the stored ones (docs/DESIGN.md).
-    if (kind === 'vertices' && state.ids.length && selectionTool.vertexCount !== app.meshes.selected()?.report.vertices) {
+    if (kind === 'vertices' && state.ids.length && selectionTool.vertexCount !== selectedMesh(this.ctx.store.get())?.report.vertices) {
       this.ctx.error('This mesh has seams (separate normal or UV indices): its vertex selection cannot be sent as stored ids.');
       return [];
     }
@@ -292,7 +307,7 @@ export class JobsController {
 
   /** A stored mesh's name without its extension; one the server named after a job ("<job id>-mesh.ply") is named as that job's result. */
   private meshStem(meshId: string, depth: number): string {
-    const name = this.ctx.app.meshes.mesh(meshId)?.name;
+    const name = meshOf(this.ctx, meshId)?.name;
     if (!name) return 'mesh';
     const chained = CHAINED_NAME.exec(name);
     if (chained && depth < 8 && jobOf(this.ctx, chained[1]!)) return this.nameOf(chained[1]!, chained[2]!, depth + 1);
@@ -315,7 +330,7 @@ export class JobsController {
    * else the job's first. Rejects, saying why, when it has none to show.
    */
   async openResult(jobId: string, artifact?: string): Promise<void> {
-    const { app } = this.ctx;
+    const { app } = this;
     let job = jobOf(this.ctx, jobId);
     if (!job || !FINAL.has(job.state)) {
       job = await getJob(jobId);
@@ -341,7 +356,8 @@ export class JobsController {
 
   /** Deletes an ended job: what of it is shown is hidden first, then it leaves the list. */
   async remove(id: string): Promise<void> {
-    const { app, store } = this.ctx;
+    const { store } = this.ctx;
+    const { app } = this;
     const job = store.get().jobs.get(id);
     try {
       await deleteJob(id);
@@ -381,12 +397,12 @@ export class JobsController {
   private settled(job: Job): void {
     if (HIDDEN.has(job.algorithm)) return;
     if (job.state === 'done') {
-      this.ctx.app.kinds.load(job);
+      this.app.kinds.load(job);
       if (this.autoShow.delete(job.id)) {
         // A run of this page that succeeds: the failure of an earlier one of the same algorithm on the same mesh no longer holds.
         this.ctx.dismiss(failureTopic(job));
-        const field = this.ctx.app.kinds.autoShown(job);
-        if (field) void this.ctx.app.kinds.show(job.id, field.name, field.kind);
+        const field = this.app.kinds.autoShown(job);
+        if (field) void this.app.kinds.show(job.id, field.name, field.kind);
       }
     } else if (job.state === 'failed' && this.autoShow.delete(job.id)) {
       this.ctx.error(`${job.algorithm} failed: ${job.error ?? 'no reason given'}`, failureTopic(job));

@@ -18,9 +18,9 @@ import type { CodePanel } from '../panels/playground_toggle.ts';
 import { isStaff, noLecture, type LectureState } from '../state/app_state.ts';
 import { HandMarkers, pickPoint, type HandMark } from '../viewer/hand_markers.ts';
 import type * as THREE from 'three';
-import { describe, jobOf, type AppContext } from './context.ts';
-import { LectureBroadcast } from './lecture_broadcast.ts';
-import { LectureMirror } from './lecture_mirror.ts';
+import { describe, jobOf, type AppContext, meshOf } from './context.ts';
+import { LectureBroadcast, type BroadcastDeps } from './lecture_broadcast.ts';
+import { LectureMirror, type MirrorDeps } from './lecture_mirror.ts';
 import { ReplayPlayer } from './replay.ts';
 
 /** How often the course's lectures are asked for while the Course panel is open, in view, and no lecture is followed. */
@@ -50,15 +50,15 @@ export class LectureController {
   private myHand: HandPoint | null = null;
   private listTimer = 0;
 
-  constructor(ctx: AppContext, courseSection: HTMLElement, code: CodePanel) {
+  constructor(ctx: AppContext, app: MirrorDeps & BroadcastDeps, courseSection: HTMLElement, code: CodePanel) {
     this.ctx = ctx;
     const { store, viewer, hooks } = ctx;
     this.rooms = new RoomsApi(ctx.socket);
-    this.mirror = new LectureMirror(ctx, (part, value) => {
+    this.mirror = new LectureMirror(ctx, app, (part, value) => {
       if (part === 'code') this.set({ presenterCode: isObject(value) && typeof value.text === 'string' ? value.text : null });
       else this.set({ shownHand: isHand(value) ? value : null });
     });
-    this.broadcast = new LectureBroadcast(ctx, this.rooms, code, (e) => this.refused(e));
+    this.broadcast = new LectureBroadcast(ctx, app, this.rooms, code, (e) => this.refused(e));
     this.replay = new ReplayPlayer(this.mirror, (replay) => this.set({ replay }));
     this.panel = new LecturePanel({
       present: (to) => void this.present(to),
@@ -194,9 +194,8 @@ export class LectureController {
     this.rooms.end(room, (e) => this.say(`Cannot end the lecture: ${describe(e)}`, 'error'));
     this.none('The lecture ended; it is recorded for the course to replay.', 'ok');
     // What it showed of the presenter's own, its followers read no more: offered to the course, for its replays.
-    const { app } = this.ctx;
-    const meshes = named.meshes.filter((id) => app.meshes.mesh(id) && app.account.mayChange(app.meshes.mesh(id)!.owner));
-    const jobs = named.jobs.filter((id) => jobOf(this.ctx, id) && app.account.mayChange(jobOf(this.ctx, id)!.owner));
+    const meshes = named.meshes.filter((id) => meshOf(this.ctx, id) && this.ctx.account.mayChange(meshOf(this.ctx, id)!.owner));
+    const jobs = named.jobs.filter((id) => jobOf(this.ctx, id) && this.ctx.account.mayChange(jobOf(this.ctx, id)!.owner));
     if (course && meshes.length + jobs.length) this.set({ toShare: { course: course.id, meshes, jobs } });
   }
 

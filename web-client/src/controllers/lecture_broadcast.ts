@@ -10,6 +10,14 @@ import type { ServerError } from '../api/ws.ts';
 import type { CodePanel } from '../panels/playground_toggle.ts';
 import { viewParts } from '../viewer/view_state.ts';
 import type { AppContext } from './context.ts';
+import type { Kinds } from '../kinds/registry.ts';
+import type { ViewLinks } from './view_links.ts';
+
+/** What a presenter's view is read from: the view links' state, the voxel slice shown. */
+export interface BroadcastDeps {
+  links: Pick<ViewLinks, 'current'>;
+  kinds: Pick<Kinds, 'voxels'>;
+}
 
 /** The least time between two sends of the parts: the server's camera interval. */
 const SEND_MS = 33;
@@ -18,6 +26,8 @@ const CODE_MS = 300;
 
 export class LectureBroadcast {
   private readonly ctx: AppContext;
+  /** What of the other controllers this one uses. */
+  private readonly app: BroadcastDeps;
   private readonly rooms: RoomsApi;
   private readonly onError: (e: ServerError) => void;
   private readonly code: CodePanel;
@@ -32,8 +42,9 @@ export class LectureBroadcast {
   private last = 0;
   private codeTimer = 0;
 
-  constructor(ctx: AppContext, rooms: RoomsApi, code: CodePanel, onError: (e: ServerError) => void) {
+  constructor(ctx: AppContext, app: BroadcastDeps, rooms: RoomsApi, code: CodePanel, onError: (e: ServerError) => void) {
     this.ctx = ctx;
+    this.app = app;
     this.rooms = rooms;
     this.onError = onError;
     this.code = code;
@@ -98,7 +109,8 @@ export class LectureBroadcast {
 
   private sync(): void {
     this.last = performance.now();
-    const { app, selectionTool } = this.ctx;
+    const { selectionTool } = this.ctx;
+    const { app } = this;
     const view = app.links.current();
     if (!view) return; // no mesh shown: the followers keep the last view
     const selection = selectionTool.state();

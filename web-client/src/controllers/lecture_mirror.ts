@@ -12,7 +12,19 @@ import { AXES } from '../api/voxel_slice.ts';
 import type { SliceView } from '../panels/voxel_slices.ts';
 import { CameraGlide } from '../viewer/camera_glide.ts';
 import { checkCamera, viewFromParts, VIEW_PARTS, type FullView, type ViewState } from '../viewer/view_state.ts';
-import { describe, jobOf, type AppContext } from './context.ts';
+import { describe, jobOf, type AppContext, meshOf } from './context.ts';
+import type { Kinds } from '../kinds/registry.ts';
+import type { JobsController } from './jobs.ts';
+import type { MeshesController } from './meshes.ts';
+import type { ViewLinks } from './view_links.ts';
+
+/** What a follower's view is shown through: the view links, the mesh list, the jobs, the voxel slices. */
+export interface MirrorDeps {
+  links: Pick<ViewLinks, 'show'>;
+  meshes: Pick<MeshesController, 'refresh'>;
+  jobs: Pick<JobsController, 'upsert'>;
+  kinds: Pick<Kinds, 'voxels'>;
+}
 
 /** The parts the controller shows itself (not in the view). */
 export type SidePart = 'code' | 'hand';
@@ -21,6 +33,8 @@ const isObject = (v: unknown): v is Record<string, unknown> => typeof v === 'obj
 
 export class LectureMirror {
   private readonly ctx: AppContext;
+  /** What of the other controllers this one uses. */
+  private readonly app: MirrorDeps;
   private readonly onSide: (part: SidePart, value: unknown) => void;
   readonly glide: CameraGlide;
   private parts: Record<string, unknown> = {};
@@ -31,8 +45,9 @@ export class LectureMirror {
   /** The last error said, so that a part that keeps failing does not say it at every change. */
   private said = '';
 
-  constructor(ctx: AppContext, onSide: (part: SidePart, value: unknown) => void) {
+  constructor(ctx: AppContext, app: MirrorDeps, onSide: (part: SidePart, value: unknown) => void) {
     this.ctx = ctx;
+    this.app = app;
     this.onSide = onSide;
     this.glide = new CameraGlide(ctx.viewer);
   }
@@ -126,7 +141,7 @@ export class LectureMirror {
         if (!(await this.readable(view))) return;
         if (!this.attachedNow) return;
         this.glide.stop();
-        await this.ctx.app.links.show(view, 'lecture');
+        await this.app.links.show(view, 'lecture');
         if (!this.attachedNow) return;
         // The view began with the camera then: the latest one now.
         const camera = this.camera();
@@ -145,11 +160,11 @@ export class LectureMirror {
    * shared with the course). False, said, when its mesh cannot be read.
    */
   private async readable(view: FullView): Promise<boolean> {
-    const { app } = this.ctx;
+    const { app } = this;
     const { state } = view;
     const meshes = [state.mesh, ...(state.scene ?? []).map((o) => String(o.mesh)).filter((m) => !m.startsWith('job:'))];
-    if (meshes.some((m) => !app.meshes.mesh(m))) await app.meshes.refresh();
-    const unread = meshes.filter((m) => !app.meshes.mesh(m));
+    if (meshes.some((m) => !meshOf(this.ctx, m))) await app.meshes.refresh();
+    const unread = meshes.filter((m) => !meshOf(this.ctx, m));
     if (unread.length) {
       this.say(`The lecture shows a mesh you cannot read (${unread.join(', ')}): its presenter may share it with the course.`);
       return false;
@@ -192,7 +207,7 @@ export class LectureMirror {
   }
 
   private showSlice(): void {
-    const voxels = this.ctx.app.kinds.voxels;
+    const voxels = this.app.kinds.voxels;
     const s = this.parts.slice;
     const ok =
       isObject(s) &&

@@ -16,7 +16,21 @@ import { ReportPanel } from '../panels/report.ts';
 import { openShareForm } from '../panels/share.ts';
 import { uploadsOf } from '../panels/upload.ts';
 import { selectedMesh } from '../state/app_state.ts';
-import { describe, isUnauthorized, type AppContext } from './context.ts';
+import { describe, isUnauthorized, type AppContext, meshOf } from './context.ts';
+import type { CompareController } from './compare.ts';
+import type { JobsController } from './jobs.ts';
+import type { MeshLoader } from './mesh_loader.ts';
+import type { SceneController } from './scene.ts';
+import type { Kinds } from '../kinds/registry.ts';
+
+/** What the mesh list uses of the others: the scene it starts, the loader, the comparison and kinds it ends, data files' import. */
+export interface MeshesDeps {
+  scene: Pick<SceneController, 'add' | 'start' | 'clear' | 'isResult' | 'removeMesh'>;
+  loader: Pick<MeshLoader, 'abort' | 'forgetPly' | 'ply' | 'show'>;
+  compare: Pick<CompareController, 'leave'>;
+  kinds: Pick<Kinds, 'dispose'>;
+  jobs: Pick<JobsController, 'importFile'>;
+}
 
 /** The server refuses names of more than 255 bytes, or with '/', '\\' or control characters. */
 export function uploadName(name: string): string {
@@ -39,6 +53,8 @@ async function sha256Hex(body: Blob | ArrayBuffer): Promise<string | null> {
 
 export class MeshesController {
   private readonly ctx: AppContext;
+  /** What of the other controllers this one uses. */
+  private readonly app: MeshesDeps;
   private readonly list: MeshListPanel;
   /** Meshes deleted here whose DELETE is held back or on its way: the server's list still has them, the page does not. */
   private readonly deleting = new Set<string>();
@@ -52,15 +68,16 @@ export class MeshesController {
   /** Whether the server's list has come once: till then the first screen would offer no samples. */
   private listed = false;
 
-  constructor(ctx: AppContext) {
+  constructor(ctx: AppContext, app: MeshesDeps) {
     this.ctx = ctx;
+    this.app = app;
     this.list = new MeshListPanel(byId('mesh-list'), {
       select: (id) => this.select(id),
-      addToScene: (id) => void ctx.app.scene.add(id),
+      addToScene: (id) => void app.scene.add(id),
       remove: (id) => this.remove(id),
       share: (id) => openShareForm('meshes', id, this.mesh(id)?.name ?? id),
-      mayChange: (owner) => ctx.app.account.mayChange(owner),
-      ownerName: (owner) => ctx.app.account.otherOwner(owner),
+      mayChange: (owner) => ctx.account.mayChange(owner),
+      ownerName: (owner) => ctx.account.otherOwner(owner),
     });
     const report = new ReportPanel(byId('report'));
     report.render(null);
@@ -82,7 +99,7 @@ export class MeshesController {
   }
 
   mesh(id: string): Mesh | null {
-    return this.ctx.store.get().meshes.find((m) => m.id === id) ?? null;
+    return meshOf(this.ctx, id);
   }
 
   selected(): Mesh | null {
@@ -138,7 +155,7 @@ export class MeshesController {
       }
     }
     if (last) this.select(last.id);
-    for (const file of data) await this.ctx.app.jobs.importFile(file, dataKindOf(file.name)!);
+    for (const file of data) await this.app.jobs.importFile(file, dataKindOf(file.name)!);
   }
 
   /**
@@ -178,7 +195,8 @@ export class MeshesController {
   select(id: string): void {
     const mesh = this.mesh(id);
     if (!mesh) return;
-    const { store, app } = this.ctx;
+    const { store } = this.ctx;
+    const { app } = this;
     store.update({ selectedId: id });
     app.compare.leave();
     app.scene.start(mesh);
@@ -202,7 +220,8 @@ export class MeshesController {
   remove(id: string): void {
     const mesh = this.mesh(id);
     if (!mesh) return;
-    const { store, app } = this.ctx;
+    const { store } = this.ctx;
+    const { app } = this;
     const shown = store.get().selectedId === id;
     const scene = store.get().scene.map(({ object: _, ...entry }) => entry);
     this.deleting.add(id);
@@ -239,7 +258,7 @@ export class MeshesController {
   /** A mesh added or changed on the server. */
   upsert(mesh: Mesh): void {
     if (this.deleting.has(mesh.id)) return;
-    this.ctx.app.loader.forgetPly(mesh.id);
+    this.app.loader.forgetPly(mesh.id);
     this.ctx.store.update((s) => {
       const i = s.meshes.findIndex((m) => m.id === mesh.id);
       return { meshes: i >= 0 ? s.meshes.map((m, k) => (k === i ? mesh : m)) : [...s.meshes, mesh] };
@@ -248,7 +267,8 @@ export class MeshesController {
 
   /** Drops a mesh that no longer exists on the server; clears the view if it was shown. */
   forget(id: string): void {
-    const { store, app, viewer, hooks } = this.ctx;
+    const { store, viewer, hooks } = this.ctx;
+    const { app } = this;
     store.update((s) => ({ meshes: s.meshes.filter((m) => m.id !== id) }));
     app.scene.removeMesh(id);
     app.loader.forgetPly(id);

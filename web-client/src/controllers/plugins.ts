@@ -16,6 +16,14 @@ import { TEMPLATE, TEMPLATE_NAME } from '../panels/playground_template.ts';
 import { openShareForm } from '../panels/share.ts';
 import { submittable } from '../state/app_state.ts';
 import { describe, type AppContext } from './context.ts';
+import type { CourseController } from './course.ts';
+import type { JobsController } from './jobs.ts';
+
+/** What the code panel runs through: the jobs, and the course's Submit. */
+export interface PluginsDeps {
+  jobs: Pick<JobsController, 'loadAlgorithms' | 'run' | 'selectionFor' | 'upsert'>;
+  course: Pick<CourseController, 'submit'>;
+}
 
 const FINAL = new Set(['done', 'failed', 'cancelled', 'interrupted']);
 /** How often a job followed here is asked for, in case its events are missed (a reconnect). */
@@ -23,6 +31,8 @@ const POLL_MS = 2000;
 
 export class PluginsController {
   private readonly ctx: AppContext;
+  /** What of the other controllers this one uses. */
+  private readonly app: PluginsDeps;
   private readonly panel: PlaygroundPanel;
   private readonly editor: CodeEditor;
   /** The plugin open (null: a new file, not saved yet) as the server last answered it. */
@@ -38,8 +48,9 @@ export class PluginsController {
   /** Who hears of each change of the text (a lecture's presenter's code). */
   private readonly textListeners: Array<(text: string) => void> = [];
 
-  constructor(ctx: AppContext, root: HTMLElement) {
+  constructor(ctx: AppContext, app: PluginsDeps, root: HTMLElement) {
     this.ctx = ctx;
+    this.app = app;
     this.panel = new PlaygroundPanel(root, {
       open: (id) => void this.task(() => this.open(id)),
       create: () => void this.task(() => this.create()),
@@ -48,9 +59,9 @@ export class PluginsController {
       share: () => this.share(),
       build: () => void this.task(async () => void (await this.build())),
       run: () => void this.task(() => this.run()),
-      submit: () => void ctx.app.course.submit(),
+      submit: () => void app.course.submit(),
       goTo: (d) => this.editor.goTo(d.line, d.column),
-      selection: (kind) => ctx.app.jobs.selectionFor(kind),
+      selection: (kind) => app.jobs.selectionFor(kind),
     });
     this.panel.editorHost.replaceChildren();
     this.editor = new CodeEditor(this.panel.editorHost, TEMPLATE, () => this.edited());
@@ -144,7 +155,7 @@ export class PluginsController {
   private editable(): { change: boolean; share: boolean } {
     if (this.viewing !== null) return { change: false, share: false };
     const p = this.plugin;
-    const mine = !p || (p.origin !== 'lab' && this.ctx.app.account.mayChange(p.owner));
+    const mine = !p || (p.origin !== 'lab' && this.ctx.account.mayChange(p.owner));
     return { change: mine, share: !!p && mine };
   }
 
@@ -324,7 +335,7 @@ export class PluginsController {
     this.showBuild(plugin);
     if (this.dirty()) this.panel.status('Built what was saved; changed since.', plugin.build.state === 'ok' ? 'ok' : 'error');
     await this.loadAlgorithm();
-    if (plugin.build.state === 'ok') await this.ctx.app.jobs.loadAlgorithms(); // the algorithm menu lists it now
+    if (plugin.build.state === 'ok') await this.app.jobs.loadAlgorithms(); // the algorithm menu lists it now
     void this.refreshList();
     return plugin.build.state === 'ok';
   }
@@ -340,7 +351,7 @@ export class PluginsController {
     const selection = this.ctx.selectionTool.state();
     this.panel.setSelection(selection.kind, selection.ids.length);
     this.panel.status(`Running ${algorithm.name}…`, 'info', 0);
-    const job = await this.follow(await this.ctx.app.jobs.run(algorithm, this.panel.params()), (j) => `Running ${algorithm.name}: ${j.stage || j.state}`);
+    const job = await this.follow(await this.app.jobs.run(algorithm, this.panel.params()), (j) => `Running ${algorithm.name}: ${j.stage || j.state}`);
     if (job.state === 'done') this.panel.status(`${algorithm.name} done${job.cached ? ' (cached)' : ''}: its results are in the job list.`, 'ok');
     else this.panel.status(`${algorithm.name} ${job.state}: ${job.error ?? 'no reason given'}`, 'error');
   }
@@ -350,7 +361,8 @@ export class PluginsController {
    * events in), asking the server now and then as well; shows its progress.
    */
   private follow(first: Job, say: (job: Job) => string): Promise<Job> {
-    const { store, app } = this.ctx;
+    const { store } = this.ctx;
+    const { app } = this;
     app.jobs.upsert(first);
     return new Promise((resolve) => {
       let timer = 0;

@@ -20,7 +20,19 @@ import { applySceneTransform, projectedBox } from '../viewer/scene_objects.ts';
 import { defaultSceneObject, MAX_SCENE_OBJECTS, sceneColor, type SceneObjectState, type Vec3 } from '../viewer/scene_state.ts';
 import { buildPlainSurface, buildSurface } from '../viewer/surface_renderer.ts';
 import { LoadTimer } from '../viewer/timings.ts';
-import { describe, jobOf, type AppContext } from './context.ts';
+import { describe, jobOf, type AppContext, meshOf } from './context.ts';
+import type { CompareController } from './compare.ts';
+import type { JobsController } from './jobs.ts';
+import type { MeshLoader } from './mesh_loader.ts';
+import type { MeshesController } from './meshes.ts';
+
+/** What the scene uses of the others: meshes loaded and selected, results named after their job, panes side by side. */
+export interface SceneDeps {
+  meshes: Pick<MeshesController, 'select'>;
+  loader: Pick<MeshLoader, 'downloadMesh' | 'showing'>;
+  jobs: Pick<JobsController, 'resultName' | 'sourceMeshOf'>;
+  compare: Pick<CompareController, 'leave' | 'leaveWithUndo' | 'showScene'>;
+}
 
 /**
  * A job's output stands in the scene where a stored mesh's id would (no mesh
@@ -47,15 +59,18 @@ const near = (a: readonly number[], b: readonly number[], tolerance: number) => 
 
 export class SceneController {
   private readonly ctx: AppContext;
+  /** What of the other controllers this one uses. */
+  private readonly app: SceneDeps;
 
-  constructor(ctx: AppContext) {
+  constructor(ctx: AppContext, app: SceneDeps) {
     this.ctx = ctx;
+    this.app = app;
     const panel = new ScenePanel(byId('scene'), {
       change: (i, patch) => this.change(i, patch),
       remove: (i) => this.removeWithUndo(i),
       fitAll: () => ctx.viewer.fitAll(),
       pick: (i) => this.pick(i),
-      sideBySide: (on) => (on ? this.sideBySide() : ctx.app.compare.leaveWithUndo()),
+      sideBySide: (on) => (on ? this.sideBySide() : app.compare.leaveWithUndo()),
       place: (i, where) => this.place(i, where),
     });
     ctx.store.subscribe(
@@ -75,7 +90,7 @@ export class SceneController {
   /** Whether add() can draw a scene id: a stored mesh, or the output of a job the client knows. */
   canAdd(id: string): boolean {
     const result = resultOf(id);
-    return result ? jobOf(this.ctx, result.jobId) !== undefined : this.ctx.app.meshes.mesh(id) !== null;
+    return result ? jobOf(this.ctx, result.jobId) !== undefined : meshOf(this.ctx, id) !== null;
   }
 
   private rows(): SceneRow[] {
@@ -114,8 +129,9 @@ export class SceneController {
   async add(id: string, state?: SceneObjectState): Promise<void> {
     const result = resultOf(id);
     if (result) return this.addResult(result.jobId, result.artifact, state);
-    const { app, store } = this.ctx;
-    const mesh = app.meshes.mesh(id);
+    const { store } = this.ctx;
+    const { app } = this;
+    const mesh = meshOf(this.ctx, id);
     if (!mesh) return;
     if (!this.entries.length) {
       app.meshes.select(id);
@@ -137,13 +153,14 @@ export class SceneController {
    * gives its place instead. Resolves once it is drawn (or has failed).
    */
   async addResult(jobId: string, artifact: string, state?: SceneObjectState): Promise<void> {
-    const { app, store, viewer, hooks } = this.ctx;
+    const { store, viewer, hooks } = this.ctx;
+    const { app } = this;
     const job = jobOf(this.ctx, jobId);
     const id = resultId(jobId, artifact);
     if (!job || this.entries.some((e) => e.mesh === id)) return;
     const name = app.jobs.resultName(jobId, artifact);
     const source = app.jobs.sourceMeshOf(jobId);
-    if (!state && source && app.meshes.mesh(source) && !this.entries.some((e) => e.mesh === source)) app.meshes.select(source);
+    if (!state && source && meshOf(this.ctx, source) && !this.entries.some((e) => e.mesh === source)) app.meshes.select(source);
     if (!this.entries.length) return this.ctx.error(`Show a mesh first: ${name} is drawn beside it.`);
     if (this.entries.length >= MAX_SCENE_OBJECTS) return this.ctx.error(`A scene holds at most ${MAX_SCENE_OBJECTS} objects.`);
     const entry: SceneEntry = { ...(state ?? defaultSceneObject(id, sceneColor(this.entries.length - 1))), mesh: id, name, object: null };
@@ -175,7 +192,8 @@ export class SceneController {
    * whether it was drawn (false too when the entry left the scene meanwhile).
    */
   private async draw(entry: SceneEntry, build: (inScene: () => boolean) => Promise<THREE.Mesh | null>, place?: (object: THREE.Mesh) => void): Promise<boolean> {
-    const { app, store, display, viewer, progress } = this.ctx;
+    const { store, display, viewer, progress } = this.ctx;
+    const { app } = this;
     const inScene = () => this.entries.includes(entry);
     try {
       await app.loader.showing; // the first object's show() clears the viewer's extras
@@ -205,7 +223,7 @@ export class SceneController {
   private sourceIndex(index: number): number {
     const result = resultOf(this.entries[index]?.mesh ?? '');
     if (!result) return -1;
-    const source = this.ctx.app.jobs.sourceMeshOf(result.jobId);
+    const source = this.app.jobs.sourceMeshOf(result.jobId);
     const i = this.entries.findIndex((e) => e.mesh === source);
     // A source not in the scene: the result lies over the shown mesh (the job ran on what was shown then).
     return i >= 0 ? i : index > 0 ? 0 : -1;
@@ -293,7 +311,8 @@ export class SceneController {
   }
 
   remove(index: number): void {
-    const { store, app, viewer } = this.ctx;
+    const { store, viewer } = this.ctx;
+    const { app } = this;
     const entry = this.entries[index];
     if (!entry || index === 0) return;
     store.update((s) => ({ scene: s.scene.filter((e) => e !== entry) }));
@@ -315,7 +334,7 @@ export class SceneController {
     this.remove(index);
     this.ctx.undo.offer(`${entry.name} removed from the scene.`, {
       undo: () => {
-        if (this.entries[0]?.mesh === first && (this.isResult(state.mesh) || this.ctx.app.meshes.mesh(state.mesh))) void this.add(state.mesh, state);
+        if (this.entries[0]?.mesh === first && (this.isResult(state.mesh) || meshOf(this.ctx, state.mesh))) void this.add(state.mesh, state);
       },
     });
   }
@@ -328,7 +347,7 @@ export class SceneController {
       return object ? [{ key: `scene:${i}`, title: e.name, object, color: e.color ?? color }] : [];
     });
     if (items.length < 2) return this.ctx.error('Side by side needs two objects in the scene: add one with “+” in the mesh list.');
-    this.ctx.app.compare.showScene(items);
+    this.app.compare.showScene(items);
     this.ctx.store.update({ scenePanes: true });
     this.ctx.viewer.fitAll();
   }

@@ -20,7 +20,21 @@ import { artifactKey, splitKey } from '../state/app_state.ts';
 import { applyCamera, readCamera } from '../viewer/camera_state.ts';
 import { isIdentity, sanitizeScene, type SceneObjectState } from '../viewer/scene_state.ts';
 import { decodeViewHash, encodeViewHash, type FullView, type ViewState } from '../viewer/view_state.ts';
-import { describe, jobOf, type AppContext } from './context.ts';
+import { describe, jobOf, type AppContext, meshOf } from './context.ts';
+import type { Kinds } from '../kinds/registry.ts';
+import type { CompareController } from './compare.ts';
+import type { MeshLoader } from './mesh_loader.ts';
+import type { MeshesController } from './meshes.ts';
+import type { SceneController } from './scene.ts';
+
+/** What a view link shows again through: meshes, the scene, the kinds, the comparison. */
+export interface LinksDeps {
+  meshes: Pick<MeshesController, 'select'>;
+  loader: Pick<MeshLoader, 'showing'>;
+  scene: Pick<SceneController, 'add' | 'canAdd' | 'change' | 'sideBySide'>;
+  kinds: Pick<Kinds, 'field' | 'hide' | 'show' | 'shownKeys'>;
+  compare: Pick<CompareController, 'compareFields' | 'leave'>;
+}
 
 /** How long the view stays still before the address follows it (a camera's glide ends well within). */
 const FOLLOW_MS = 400;
@@ -40,6 +54,8 @@ interface WrittenView {
 
 export class ViewLinks {
   private readonly ctx: AppContext;
+  /** What of the other controllers this one uses. */
+  private readonly app: LinksDeps;
   private timer = 0;
   /** Restores under way: the address holds the view being opened, not yet the one shown. */
   private opening = 0;
@@ -48,8 +64,9 @@ export class ViewLinks {
   /** The big part of the view the current history entry holds; null: none written yet. */
   private entry: string | null = null;
 
-  constructor(ctx: AppContext) {
+  constructor(ctx: AppContext, app: LinksDeps) {
     this.ctx = ctx;
+    this.app = app;
     window.addEventListener('popstate', () => void this.restore());
   }
 
@@ -107,7 +124,8 @@ export class ViewLinks {
 
   /** The whole view shown (what a link holds, what a lecture's presenter sends); null with no mesh shown. */
   current(): FullView | null {
-    const { store, display, viewer, app } = this.ctx;
+    const { store, display, viewer } = this.ctx;
+    const { app } = this;
     const { selectedId: meshId, scene: entries, scenePanes, compared } = store.get();
     if (!meshId) return null;
     const { display: settings, overlays } = display.state();
@@ -181,7 +199,8 @@ export class ViewLinks {
   }
 
   private async open(view: FullView, source: string, current: () => boolean): Promise<void> {
-    const { store, display, viewer, hooks, app } = this.ctx;
+    const { store, display, viewer, hooks } = this.ctx;
+    const { app } = this;
     const { state } = view;
     let scene: SceneObjectState[] = [];
     try {
@@ -192,7 +211,7 @@ export class ViewLinks {
     }
     hooks.viewRestored = null;
     // The server lists what the reader may see: a mesh or job missing from the lists is gone, or another user's not shared with them (the server does not tell which).
-    if (!app.meshes.mesh(state.mesh)) {
+    if (!meshOf(this.ctx, state.mesh)) {
       const error = `the mesh ${state.mesh} of the ${source} ${NOT_SEEN}`;
       hooks.viewRestored = { error };
       return this.ctx.error(`Cannot open the ${source}: it shows a mesh (${state.mesh}) that ${NOT_SEEN}: ${ASK_OWNER}.`);

@@ -12,20 +12,27 @@ import { byId, el } from '../panels/dom.ts';
 import type { JobsActions, JobsView } from '../panels/jobs.ts';
 import { AnimationPlayer } from '../viewer/animation_player.ts';
 import { decodeFrames, framePositions } from '../viewer/frames.ts';
-import type { ArtifactKind } from './kind.ts';
+import { type ArtifactKind, type KindDeps } from './kind.ts';
+import { type ScalarFieldKind } from './scalar_field.ts';
 
 export class AnimationKind implements ArtifactKind {
   readonly kind = 'animation';
   readonly storedFormat = 'frames';
   private readonly ctx: AppContext;
+  /** What of the other controllers this one uses. */
+  private readonly app: KindDeps;
+  /** The scalar fields' kind: an animation replaces the field drawn. */
+  private readonly field: Pick<ScalarFieldKind, 'dispose'>;
   private readonly player: AnimationPlayer;
   /** The animation being fetched: a later one, or hiding, makes it stale. */
   private token = 0;
   /** The animation shown, as `${jobId}/${artifact}`, and its points. */
   private shown: { key: string; points: THREE.Points } | null = null;
 
-  constructor(ctx: AppContext) {
+  constructor(ctx: AppContext, app: KindDeps, field: Pick<ScalarFieldKind, 'dispose'>) {
     this.ctx = ctx;
+    this.app = app;
+    this.field = field;
     this.player = new AnimationPlayer(byId('viewport'), () => this.syncButtons());
     ctx.viewer.onShownChange((object) => {
       if (this.shown && object !== this.shown.points) this.hide();
@@ -75,7 +82,8 @@ export class AnimationKind implements ArtifactKind {
   }
 
   async show(jobId: string, artifactName: string): Promise<void> {
-    const { app, viewer, hooks, socket } = this.ctx;
+    const { viewer, hooks, socket } = this.ctx;
+    const { app } = this;
     const job = jobOf(this.ctx, jobId);
     if (!job) return;
     const token = ++this.token;
@@ -84,7 +92,7 @@ export class AnimationKind implements ArtifactKind {
       if (token !== this.token) return;
       const frames = decodeFrames(bytes);
       app.compare.leave();
-      app.kinds.field.dispose();
+      this.field.dispose();
       const positions = framePositions(frames, 0, new Float32Array(3 * frames.vertices));
       const geometry = new THREE.BufferGeometry();
       const attribute = new THREE.BufferAttribute(positions, 3);

@@ -4,6 +4,20 @@
 // string to its module, so a new kind is one file here and one line there.
 import type { ArtifactInfo, Job } from '../api/types.ts';
 import type { JobsActions, JobsView } from '../panels/jobs.ts';
+import type { CompareController } from '../controllers/compare.ts';
+import type { JobsController } from '../controllers/jobs.ts';
+import type { MeshLoader } from '../controllers/mesh_loader.ts';
+import type { MeshesController } from '../controllers/meshes.ts';
+import type { SceneController } from '../controllers/scene.ts';
+
+/** What of the controllers the kinds use: each kind's module is made with it (kinds/registry.ts). */
+export interface KindDeps {
+  loader: Pick<MeshLoader, 'showing' | 'ply'>;
+  meshes: Pick<MeshesController, 'select' | 'selectMeshOf'>;
+  scene: Pick<SceneController, 'addResult' | 'removeResult'>;
+  compare: Pick<CompareController, 'leave' | 'compareObjects'>;
+  jobs: Pick<JobsController, 'importFile' | 'upsert'>;
+}
 
 export interface ArtifactKind {
   /** The server's artifact kind this module handles (protocol/API.md, a Job's artifacts). */

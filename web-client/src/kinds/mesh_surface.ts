@@ -9,18 +9,21 @@ import { artifactRow, runOnButton } from '../panels/artifact_row.ts';
 import { el } from '../panels/dom.ts';
 import type { JobsActions, JobsView } from '../panels/jobs.ts';
 import { artifactKey } from '../state/app_state.ts';
-import type { ArtifactKind } from './kind.ts';
+import { type ArtifactKind, type KindDeps } from './kind.ts';
 import { KindSlice } from './slice.ts';
 
 export class MeshSurfaceKind implements ArtifactKind {
   readonly kind = 'mesh';
   readonly storedFormat = 'ply';
   private readonly ctx: AppContext;
+  /** What of the other controllers this one uses. */
+  private readonly app: KindDeps;
   /** The results in the scene, as `${jobId}/${name}`: the rows' "Added". */
   private readonly added = new KindSlice<ReadonlySet<string>>('mesh', new Set());
 
-  constructor(ctx: AppContext) {
+  constructor(ctx: AppContext, app: KindDeps) {
     this.ctx = ctx;
+    this.app = app;
     ctx.store.subscribe(
       (s) => s.scene.map((e) => e.mesh).join(' '),
       () => {
@@ -53,17 +56,17 @@ export class MeshSurfaceKind implements ArtifactKind {
 
   /** Adds a job's output mesh to the scene, beside its source. */
   show(jobId: string, artifact: string): Promise<void> {
-    return this.ctx.app.scene.addResult(jobId, artifact);
+    return this.app.scene.addResult(jobId, artifact);
   }
 
   /** Opened from elsewhere (a graded run): its job's mesh shown first. */
   open(job: Job, artifact: string): Promise<void> {
-    this.ctx.app.meshes.selectMeshOf(job);
+    this.app.meshes.selectMeshOf(job);
     return this.show(job.id, artifact);
   }
 
   hide(jobId: string, artifact: string): void {
-    this.ctx.app.scene.removeResult(jobId, artifact);
+    this.app.scene.removeResult(jobId, artifact);
   }
 
   dispose(): void {

@@ -11,7 +11,7 @@ import { describe, jobOf, type AppContext } from '../controllers/context.ts';
 import { el } from '../panels/dom.ts';
 import type { JobsActions, JobsView } from '../panels/jobs.ts';
 import { artifactKey, type AppState } from '../state/app_state.ts';
-import type { ArtifactKind } from './kind.ts';
+import { type ArtifactKind, type KindDeps } from './kind.ts';
 import { KindSlice } from './slice.ts';
 
 /** An artifact drawn over its mesh: its object in the view and its colour. */
@@ -32,6 +32,8 @@ export abstract class OverlayKind<D extends DrawnOverlay> implements ArtifactKin
   abstract readonly kind: string;
   abstract readonly storedFormat: string;
   protected readonly ctx: AppContext;
+  /** What of the other controllers this one uses. */
+  protected readonly app: KindDeps;
   /** Drawn over the mesh, by `${jobId}/${name}`, in the order shown. */
   protected readonly drawn = new Map<string, D>();
   /** The colours drawn, by `${jobId}/${name}`: what the rows show. */
@@ -41,10 +43,12 @@ export abstract class OverlayKind<D extends DrawnOverlay> implements ArtifactKin
 
   constructor(
     ctx: AppContext,
+    app: KindDeps,
     kind: string,
     private readonly palette: readonly string[],
   ) {
     this.ctx = ctx;
+    this.app = app;
     this.colors = new KindSlice<ReadonlyMap<string, string>>(kind, new Map());
   }
 
@@ -90,7 +94,8 @@ export abstract class OverlayKind<D extends DrawnOverlay> implements ArtifactKin
 
   /** Draws a job's artifact over its mesh (selecting that mesh first when another one is shown), in the first colour of the palette not drawn. */
   async show(jobId: string, artifactName: string): Promise<void> {
-    const { app, store, viewer } = this.ctx;
+    const { store, viewer } = this.ctx;
+    const { app } = this;
     const key = artifactKey(jobId, artifactName);
     if (this.drawn.has(key)) return;
     const job = jobOf(this.ctx, jobId);

@@ -5,7 +5,7 @@
 import type { ArtifactInfo, Job } from '../api/types.ts';
 import type { AppContext } from '../controllers/context.ts';
 import { AnimationKind } from './animation.ts';
-import type { ArtifactKind } from './kind.ts';
+import type { ArtifactKind, KindDeps } from './kind.ts';
 import { MeshSurfaceKind } from './mesh_surface.ts';
 import { MetricsKind } from './metrics.ts';
 import { ScalarFieldKind } from './scalar_field.ts';
@@ -21,20 +21,20 @@ export class Kinds {
   readonly voxels: VoxelGridKind;
   private readonly byKind: ReadonlyMap<string, ArtifactKind>;
 
-  constructor(ctx: AppContext) {
+  constructor(ctx: AppContext, app: KindDeps) {
     // Made in this order because the legend goes over the view before the animation player.
-    const skeleton = new SkeletonKind(ctx);
+    const skeleton = new SkeletonKind(ctx, app);
     const voxels = (this.voxels = new VoxelGridKind(ctx));
-    this.field = new ScalarFieldKind(ctx);
+    this.field = new ScalarFieldKind(ctx, app);
     const modules: ArtifactKind[] = [
-      new AnimationKind(ctx),
+      new AnimationKind(ctx, app, this.field),
       this.field,
-      new MeshSurfaceKind(ctx),
+      new MeshSurfaceKind(ctx, app),
       skeleton,
       voxels,
       new MetricsKind(ctx),
       new TextKind(ctx),
-      new VectorFieldKind(ctx),
+      new VectorFieldKind(ctx, app),
     ];
     this.byKind = new Map(modules.map((m) => [m.kind, m]));
   }

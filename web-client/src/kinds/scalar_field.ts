@@ -6,7 +6,7 @@
 import type * as THREE from 'three';
 import { fetchArtifactF32 } from '../api/rest.ts';
 import { jobMeshId, type ArtifactInfo, type Job } from '../api/types.ts';
-import { describe, jobOf, type AppContext } from '../controllers/context.ts';
+import { describe, jobOf, type AppContext, meshOf } from '../controllers/context.ts';
 import { artifactRow } from '../panels/artifact_row.ts';
 import { byId, el } from '../panels/dom.ts';
 import { fieldUnit, withUnit } from '../panels/format.ts';
@@ -17,7 +17,7 @@ import { defaultMapFor } from '../viewer/colormaps.ts';
 import { Legend } from '../viewer/legend.ts';
 import type { PlyMesh } from '../viewer/ply.ts';
 import { buildScalarSurface, colourGeometry, finiteRange, type ScalarField } from '../viewer/scalar_field_renderer.ts';
-import type { ArtifactKind } from './kind.ts';
+import { type ArtifactKind, type KindDeps } from './kind.ts';
 import { KindSlice } from './slice.ts';
 
 /** A scalar_field artifact to draw: its job, its description in the Job, and the mesh it is on. */
@@ -56,6 +56,8 @@ export class ScalarFieldKind implements ArtifactKind {
   /** A job run here shows its field when it ends. */
   readonly autoShow = 0;
   private readonly ctx: AppContext;
+  /** What of the other controllers this one uses. */
+  private readonly app: KindDeps;
   private readonly legend: Legend;
   /** The field drawn now. */
   private field: DrawnField | null = null;
@@ -64,8 +66,9 @@ export class ScalarFieldKind implements ArtifactKind {
   /** The colour map chosen in the legend; null: the field's hint chooses. */
   private mapName: string | null = null;
 
-  constructor(ctx: AppContext) {
+  constructor(ctx: AppContext, app: KindDeps) {
     this.ctx = ctx;
+    this.app = app;
     this.legend = new Legend(byId('viewport'), (name) => this.setColorMap(name), 'legend');
   }
 
@@ -108,13 +111,14 @@ export class ScalarFieldKind implements ArtifactKind {
    * shown, when the job, the artifact or the mesh is gone.
    */
   source(jobId: string, artifactName: string): FieldSource | null {
-    const { app, store } = this.ctx;
+    const { store } = this.ctx;
+    const { app } = this;
     const job = jobOf(this.ctx, jobId);
     const artifact = job?.artifacts?.find((a) => a.name === artifactName);
     const meshId = jobMeshId(job);
     if (!job || !artifact || !meshId) return null;
     if (store.get().selectedId !== meshId) {
-      if (!app.meshes.mesh(meshId)) {
+      if (!meshOf(this.ctx, meshId)) {
         this.ctx.error(`Cannot show ${artifactName} of ${job.algorithm}: its mesh no longer exists`);
         return null;
       }
@@ -128,7 +132,7 @@ export class ScalarFieldKind implements ArtifactKind {
    * from the Job, the mesh in the server's vertex order (viewer/ply.ts).
    */
   async fetch(jobId: string, artifact: ArtifactInfo, meshId: string): Promise<{ data: ScalarField; ply: PlyMesh }> {
-    const { loader } = this.ctx.app;
+    const { loader } = this.app;
     const [values, ply] = await Promise.all([fetchArtifactF32(jobId, artifact.name), loader.ply(meshId), loader.showing]);
     const location = artifact.location ?? (values.length === ply.faces && values.length !== ply.vertices ? 'face' : 'vertex');
     let range: [number, number] = artifact.range && artifact.range.length === 2 && artifact.range.every(Number.isFinite) ? artifact.range : finiteRange(values);
@@ -144,7 +148,8 @@ export class ScalarFieldKind implements ArtifactKind {
     const source = this.source(jobId, artifactName);
     if (!source) return;
     const { job, artifact, meshId } = source;
-    const { app, store, viewer, hooks, display } = this.ctx;
+    const { store, viewer, hooks, display } = this.ctx;
+    const { app } = this;
     app.compare.leave();
     const token = ++this.token;
     try {

@@ -10,7 +10,7 @@
 import type * as THREE from 'three';
 import { fetchArtifactF32 } from '../api/rest.ts';
 import { jobMeshId, type ArtifactInfo, type Job } from '../api/types.ts';
-import type { AppContext } from '../controllers/context.ts';
+import { type AppContext, meshOf } from '../controllers/context.ts';
 import { artifactRow } from '../panels/artifact_row.ts';
 import { el } from '../panels/dom.ts';
 import type { JobsActions, JobsView } from '../panels/jobs.ts';
@@ -18,6 +18,7 @@ import { artifactKey } from '../state/app_state.ts';
 import { longest, VECTOR_COLORS, VectorGlyphs, type VectorField } from '../viewer/vector_field_renderer.ts';
 import { OverlayKind, type DrawnOverlay } from './overlay.ts';
 import './vector_field.css';
+import { type KindDeps } from './kind.ts';
 
 interface DrawnVectors extends DrawnOverlay {
   glyphs: VectorGlyphs;
@@ -37,8 +38,8 @@ export class VectorFieldKind extends OverlayKind<DrawnVectors> {
   /** The length chosen for a field (a multiple of the default), by `${jobId}/${name}`. */
   private readonly scales = new Map<string, number>();
 
-  constructor(ctx: AppContext) {
-    super(ctx, 'vector_field', VECTOR_COLORS);
+  constructor(ctx: AppContext, app: KindDeps) {
+    super(ctx, app, 'vector_field', VECTOR_COLORS);
   }
 
   /** "Show" (over its mesh, in a colour of its own), "Hide" while drawn, with the length slider and its colour; then how many vectors have no value. */
@@ -62,7 +63,7 @@ export class VectorFieldKind extends OverlayKind<DrawnVectors> {
   protected override canShow(job: Job, artifact: ArtifactInfo): boolean {
     const meshId = jobMeshId(job);
     if (!meshId) return false;
-    if (this.ctx.app.meshes.mesh(meshId)) return true;
+    if (meshOf(this.ctx, meshId)) return true;
     this.ctx.error(`Cannot show ${artifact.name} of ${job.algorithm}: its mesh no longer exists`);
     return false;
   }
@@ -70,7 +71,7 @@ export class VectorFieldKind extends OverlayKind<DrawnVectors> {
   /** The field and its mesh in the stored order: made from the streamed one (no second download of it). */
   protected async fetch(job: Job, artifact: ArtifactInfo): Promise<(color: string) => DrawnVectors> {
     const key = artifactKey(job.id, artifact.name);
-    const [values, ply] = await Promise.all([fetchArtifactF32(job.id, artifact.name), this.ctx.app.loader.ply(jobMeshId(job)!)]);
+    const [values, ply] = await Promise.all([fetchArtifactF32(job.id, artifact.name), this.app.loader.ply(jobMeshId(job)!)]);
     return (color) => {
       if (values.length % 3 !== 0) throw new Error(`${values.length} numbers are not whole x, y, z triples`);
       const location = artifact.location ?? (values.length / 3 === ply.faces && values.length / 3 !== ply.vertices ? 'face' : 'vertex');

@@ -3,7 +3,7 @@
 // at its left edge), loading it (the editor and the plugin controller: a
 // chunk of their own) the first time it is shown.
 import type { AppContext } from '../controllers/context.ts';
-import type { PluginsController } from '../controllers/plugins.ts';
+import type { PluginsController, PluginsDeps } from '../controllers/plugins.ts';
 import { byId, el } from './dom.ts';
 import './playground.css';
 
@@ -23,7 +23,7 @@ export interface CodePanel {
   onShown(listener: (shown: boolean) => void): void;
 }
 
-export function installPlayground(ctx: AppContext): CodePanel {
+export function installPlayground(ctx: AppContext, app: PluginsDeps): CodePanel {
   const button = byId<HTMLButtonElement>('playground-toggle');
   const section = byId('playground');
   let loaded: Promise<PluginsController | null> | null = null;
@@ -58,7 +58,7 @@ export function installPlayground(ctx: AppContext): CodePanel {
       const body = el('div', { class: 'playground-body' });
       section.prepend(body);
       loaded = import('../controllers/plugins.ts').then(
-        (m) => new m.PluginsController(ctx, body),
+        (m) => new m.PluginsController(ctx, app, body),
         (e: unknown) => {
           loaded = null;
           body.remove();
