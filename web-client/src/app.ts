@@ -142,21 +142,24 @@ export class App {
       notice,
       warning,
     };
-    app.loader = new MeshLoader(ctx, app, new DracoDecoder());
-    app.meshes = new MeshesController(ctx, app);
-    app.scene = new SceneController(ctx, app);
-    app.kinds = new Kinds(ctx, app);
-    app.compare = new CompareController(ctx, app);
-    app.jobs = new JobsController(ctx, app);
-    this.links = app.links = new ViewLinks(ctx, app);
+    // Each is given what it uses of those made before it; the mesh list, the
+    // scene and the kinds also call the comparison and the jobs, made after
+    // them (and each other): those calls go through `app`, filled as each is made.
+    const loader = (app.loader = new MeshLoader(ctx, new DracoDecoder()));
+    const meshes = (app.meshes = new MeshesController(ctx, app));
+    const scene = (app.scene = new SceneController(ctx, app));
+    const kinds = (app.kinds = new Kinds(ctx, app));
+    const compare = (app.compare = new CompareController(ctx, { kinds, loader, scene }));
+    const jobs = (app.jobs = new JobsController(ctx, { kinds, compare, meshes }));
+    const links = (this.links = app.links = new ViewLinks(ctx, { meshes, loader, scene, kinds, compare }));
     byId('screenshot').addEventListener('click', () => {
       const name = (app.meshes.selected()?.name ?? 'view').replace(/\.[^.]*$/, '');
       display.screenshot(`cgview-${name}.png`, (blob) => (hooks.lastScreenshot = blob ? { bytes: blob.size } : null));
     });
     byId('copy-link').addEventListener('click', () => this.links.copy());
     const code = installPlayground(ctx, app);
-    app.course = new CourseController(ctx, app, byId('course'), byId<HTMLButtonElement>('course-toggle'), code);
-    app.lecture = new LectureController(ctx, app, byId('course'), code);
+    app.course = new CourseController(ctx, { meshes, jobs }, byId('course'), byId<HTMLButtonElement>('course-toggle'), code);
+    app.lecture = new LectureController(ctx, { links, meshes, jobs, kinds }, byId('course'), code);
   }
 
   async start(): Promise<void> {

@@ -2,9 +2,10 @@
 // hooks, the viewer and the connection, the display, the panels several of
 // them draw in, and the account. What each uses of the other controllers it
 // is given explicitly, as its constructor's second argument, typed by what
-// it calls (MeshesDeps, SceneDeps, KindDeps...): App passes its `Controllers`,
-// filled as each is made, so that a controller made first may call one made
-// after it at run time.
+// it calls (MeshesDeps, SceneDeps, KindDeps...): those made before it as they
+// are; where it calls one made after it (the mesh list, the scene and the
+// kinds call the comparison and the jobs), App's `Controllers`, filled as each
+// is made.
 import { ApiError } from '../api/rest.ts';
 import type { Job, Mesh } from '../api/types.ts';
 import { ServerError, type CgviewSocket } from '../api/ws.ts';

@@ -14,21 +14,11 @@ import { storedMesh, unpackStoredOrder } from '../viewer/stored_order.ts';
 import { buildSurface } from '../viewer/surface_renderer.ts';
 import { LoadTimer } from '../viewer/timings.ts';
 import { describe, isAbort, type AppContext } from './context.ts';
-import type { CompareController } from './compare.ts';
-import type { Kinds } from '../kinds/registry.ts';
-
-/** What the loader asks of the others when another mesh is shown: the comparison left, what the kinds drew on the last one gone. */
-export interface LoaderDeps {
-  compare: Pick<CompareController, 'leave'>;
-  kinds: Pick<Kinds, 'dispose'>;
-}
 
 export type DecodedMesh = Awaited<ReturnType<DracoDecoder['decode']>>;
 
 export class MeshLoader {
   private readonly ctx: AppContext;
-  /** What of the other controllers this one uses. */
-  private readonly app: LoaderDeps;
   private readonly decoder: DracoDecoder;
   private load: { id: string; controller: AbortController } | null = null;
   private readonly plyCache = new Map<string, Promise<PlyMesh>>();
@@ -37,9 +27,8 @@ export class MeshLoader {
   /** The latest show(): what is drawn on the mesh waits for it. */
   showing: Promise<void> = Promise.resolve();
 
-  constructor(ctx: AppContext, app: LoaderDeps, decoder: DracoDecoder) {
+  constructor(ctx: AppContext, decoder: DracoDecoder) {
     this.ctx = ctx;
-    this.app = app;
     this.decoder = decoder;
   }
 
@@ -88,10 +77,7 @@ export class MeshLoader {
   /** Downloads the mesh over the WebSocket, decodes it in the worker and shows it. */
   private async showMesh(mesh: Mesh): Promise<void> {
     const { hooks, viewer, progress } = this.ctx;
-    const { app } = this;
     this.load?.controller.abort();
-    app.compare.leave();
-    app.kinds.dispose();
     const load = { id: mesh.id, controller: new AbortController() };
     this.load = load;
     const current = () => this.load === load;

@@ -202,6 +202,7 @@ export class MeshesController {
     app.scene.start(mesh);
     store.update({ runTarget: null, inputName: mesh.name });
     this.ctx.selectionTool.setSource(id, (meshId) => app.loader.ply(meshId));
+    app.kinds.dispose(); // what the kinds drew on the last mesh
     app.loader.show(mesh);
   }
 
