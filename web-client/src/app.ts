@@ -150,7 +150,7 @@ export class App {
     const scene = (app.scene = new SceneController(ctx, app));
     const kinds = (app.kinds = new Kinds(ctx, app));
     const compare = (app.compare = new CompareController(ctx, { kinds, loader, scene }));
-    const jobs = (app.jobs = new JobsController(ctx, { kinds, compare, meshes }));
+    const jobs = (app.jobs = new JobsController(ctx, { kinds, meshes }));
     const links = (this.links = app.links = new ViewLinks(ctx, { meshes, loader, scene, kinds, compare }));
     byId('screenshot').addEventListener('click', () => {
       const name = (app.meshes.selected()?.name ?? 'view').replace(/\.[^.]*$/, '');

@@ -18,13 +18,11 @@ import { artifactKey, withEntry, selectedMesh } from '../state/app_state.ts';
 import { describe, isUnauthorized, jobOf, type AppContext, meshOf } from './context.ts';
 import { uploadName } from './meshes.ts';
 import type { Kinds } from '../kinds/registry.ts';
-import type { CompareController } from './compare.ts';
 import type { MeshesController } from './meshes.ts';
 
-/** What the jobs use of the others: the artifact kinds, the comparison, the mesh list. */
+/** What the jobs use of the others: the artifact kinds, the mesh list. */
 export interface JobsDeps {
   kinds: Pick<Kinds, 'autoShown' | 'hide' | 'load' | 'open' | 'show' | 'of'>;
-  compare: Pick<CompareController, 'addToComparison' | 'compareJob'>;
   meshes: Pick<MeshesController, 'refresh' | 'select'>;
 }
 
@@ -87,8 +85,6 @@ export class JobsController {
         cancel: (id) => void this.cancel(id),
         show: (jobId, artifact, kind) => void app.kinds.show(jobId, artifact, kind),
         hide: (jobId, artifact, kind) => app.kinds.hide(jobId, artifact, kind),
-        compare: (jobId) => app.compare.compareJob(jobId),
-        addToComparison: (jobId, artifact) => app.compare.addToComparison(jobId, artifact),
         runOn: (jobId, artifact) => this.setRunTarget(jobId, artifact),
         remove: (jobId) => void this.remove(jobId),
         share: (jobId) => openShareForm('jobs', jobId, `job ${jobOf(ctx, jobId)?.algorithm ?? ''} ${jobId.slice(0, 8)}`),

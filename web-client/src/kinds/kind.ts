@@ -15,7 +15,7 @@ export interface KindDeps {
   loader: Pick<MeshLoader, 'showing' | 'ply'>;
   meshes: Pick<MeshesController, 'select' | 'selectMeshOf'>;
   scene: Pick<SceneController, 'addResult' | 'removeResult'>;
-  compare: Pick<CompareController, 'leave' | 'compareObjects'>;
+  compare: Pick<CompareController, 'leave' | 'compareObjects' | 'compareJob' | 'addToComparison'>;
   jobs: Pick<JobsController, 'importFile' | 'upsert'>;
 }
 
@@ -50,5 +50,5 @@ export interface ArtifactKind {
    */
   rowState(job: Job, artifact: ArtifactInfo, view: JobsView): unknown;
   /** Buttons this kind adds to a done job as a whole (the fields' Compare), or null. */
-  jobControls?(job: Job, actions: JobsActions): HTMLElement | null;
+  jobControls?(job: Job): HTMLElement | null;
 }

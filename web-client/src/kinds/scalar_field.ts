@@ -87,7 +87,7 @@ export class ScalarFieldKind implements ArtifactKind {
       compared ? 'Compared' : 'Add to comparison',
     );
     add.disabled = compared;
-    add.addEventListener('click', () => actions.addToComparison(job.id, a.name));
+    add.addEventListener('click', () => this.app.compare.addToComparison(job.id, a.name));
     return artifactRow(job, a, this.storedFormat, [show, add]);
   }
 
@@ -98,10 +98,10 @@ export class ScalarFieldKind implements ArtifactKind {
   }
 
   /** "Compare" on a job with two fields or more: all of them side by side. */
-  jobControls(job: Job, actions: JobsActions): HTMLElement | null {
+  jobControls(job: Job): HTMLElement | null {
     if ((job.artifacts ?? []).filter((a) => a.kind === this.kind).length < 2) return null;
     const compare = el('button', { type: 'button', class: 'button small compare', title: "Show this job's fields side by side" }, 'Compare');
-    compare.addEventListener('click', () => actions.compare(job.id));
+    compare.addEventListener('click', () => this.app.compare.compareJob(job.id));
     return el('div', { class: 'job-actions' }, compare);
   }
 

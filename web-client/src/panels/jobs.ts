@@ -23,10 +23,6 @@ export interface JobsActions {
   show(jobId: string, artifact: string, kind: string): void;
   /** Stops showing an artifact (a skeleton's second click, a vector field's Hide). */
   hide(jobId: string, artifact: string, kind: string): void;
-  /** Shows every scalar_field artifact of the job side by side, in synchronized views. */
-  compare(jobId: string): void;
-  /** Adds a scalar_field artifact to the fields compared side by side (or to the one shown). */
-  addToComparison(jobId: string, artifact: string): void;
   /** Makes a mesh or voxel-grid artifact the input of the next job (the algorithm form runs on it). */
   runOn(jobId: string, artifact: string): void;
   /** Opens the share form on a job (its state and artifacts, read-only for those it is shared with). */
@@ -179,7 +175,7 @@ export class JobsPanel {
       if (warnings.length) li.append(el('ul', { class: 'warnings job-warnings' }, ...warnings.map((w) => el('li', {}, w))));
       const artifacts = job.artifacts ?? [];
       for (const kind of new Set(artifacts.map((a) => a.kind))) {
-        const controls = this.kinds.of(kind)?.jobControls?.(job, this.actions);
+        const controls = this.kinds.of(kind)?.jobControls?.(job);
         if (controls) li.append(controls);
       }
       for (const a of artifacts) li.append(this.artifact(job, a, view));
