@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "bench_util.h"
+#include "sdf_common.h"
 #include "core/surface_mesh.h"
 #include "io/mesh_io.h"
 #include "io/samples.h"
@@ -28,53 +29,25 @@
 
 using namespace cgview;
 
-namespace {
+using bench::our_sdf;
 
-// Our whole sdf: face graph, rays, post-processing (as the algorithm runs it).
-std::vector<double> our_sdf(const Mesh& mesh, const sdf::SdfParams& p, bool smooth) {
-  Context ctx;
-  const Adjacency graph = face_neighbors(mesh, edge_topology(mesh));
-  std::vector<double> v = sdf::raw_sdf(mesh, p).values;
-  sdf::SdfParams q = p;
-  q.smooth = smooth;
-  sdf::postprocess(mesh, graph, v, q, ctx);
-  return v;
-}
+namespace {
 
 std::vector<double> our_fast(const Mesh& mesh, const sdf::SdfParams& p, double fraction, sdf::Solver solver) {
   const Adjacency graph = face_neighbors(mesh, edge_topology(mesh));
   return sdf::poisson_sdf(mesh, graph, {.fraction = fraction, .solver = solver, .sdf = p}).values;
 }
 
-Mesh sample(const std::string& name) {
-  const auto path = resolve_mesh_path(name);
-  if (!path) {
-    std::fprintf(stderr, "sdf_bench: no sample mesh %s (install libcgal-demo)\n", name.c_str());
-    std::exit(1);
-  }
-  return read_mesh(*path);
-}
-
-struct Input {
-  std::string name;
-  Mesh mesh;
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
   const bench::Options opt = bench::parse_options(argc, argv, "sdf_bench");
-  std::vector<Input> inputs;
-  for (const char* n : {"elephant", "man", "armadillo", "refined_elephant"})
-    if (opt.wants(n) && (!opt.quick || std::string(n) == "elephant")) inputs.push_back({n, sample(n)});
-  if (!opt.quick && opt.wants("big"))
-    inputs.push_back({"big", subdivide_midpoint(subdivide_midpoint(sample("refined_elephant")))});
-
+  const std::vector<bench::SdfInput> inputs = bench::sdf_inputs(opt, "sdf_bench");
   std::printf(
       "sdf against CGAL 5.5 sdf_values (25 rays, 120 degrees, Vogel's spiral, uniform weights, MAD outliers)\n");
   std::printf("%-18s %9s %10s %10s %8s %9s\n", "mesh", "faces", "CGAL s", "ours s", "ratio", "Pearson");
   const sdf::SdfParams cgal_like{.weights = sdf::Weights::uniform, .outliers = sdf::Outliers::mad};
-  for (const Input& in : inputs) {
+  for (const bench::SdfInput& in : inputs) {
     const bool big = in.mesh.faces.size() > 500000;
     SurfaceMesh sm = manifold_surface_mesh(in.mesh, "sdf_bench");
     auto map = sm.add_property_map<SurfaceMesh::Face_index, double>("f:sdf", 0.0).first;
@@ -93,7 +66,7 @@ int main(int argc, char** argv) {
   std::printf("%-18s %9s %9s %10s %10s %8s %10s %10s %6s\n", "mesh", "fraction", "solver", "sdf s", "fast s", "ratio",
               "mean err", "p95 err", "");
   const sdf::SdfParams defaults;
-  for (const Input& in : inputs) {
+  for (const bench::SdfInput& in : inputs) {
     std::vector<double> full;
     const double full_s = bench::best_seconds(opt.repeat, [&] { full = our_sdf(in.mesh, defaults, true); });
     const auto [lo, hi] = std::minmax_element(full.begin(), full.end());

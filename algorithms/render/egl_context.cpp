@@ -58,7 +58,40 @@ struct Candidate {
   bool software;
 };
 
+// The EGL devices (EGL_EXT_device_enumeration), in EGL's order.
+std::vector<Candidate> device_candidates(const char* client) {
+  std::vector<Candidate> out;
+  if (!has_extension(client, "EGL_EXT_platform_device")) return out;
+  auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+  auto query_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+  EGLint n = 0;
+  if (!query_devices || !query_devices(0, nullptr, &n) || n <= 0) return out;
+  std::vector<EGLDeviceEXT> devices(n);
+  query_devices(n, devices.data(), &n);
+  for (EGLint i = 0; i < n; ++i) {
+    const char* ext = query_string ? query_string(devices[i], EGL_EXTENSIONS) : nullptr;
+    out.push_back({"device " + std::to_string(i), EGL_PLATFORM_DEVICE_EXT, devices[i],
+                   has_extension(ext, "EGL_MESA_device_software")});
+  }
+  return out;
+}
+
+// The setting, with CGVIEW_GL_PLATFORM where it is automatic.
+GlPlatform setting(GlPlatform platform) {
+  if (platform == GlPlatform::automatic)
+    if (const char* env = std::getenv("CGVIEW_GL_PLATFORM"); env && *env)
+      return parse_gl_platform(env, "CGVIEW_GL_PLATFORM");
+  return platform;
+}
+
 }  // namespace
+
+bool hardware_device_listed(GlPlatform platform) {
+  if (setting(platform) == GlPlatform::surfaceless) return false;
+  for (const Candidate& c : device_candidates(eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS)))
+    if (!c.software) return true;
+  return false;
+}
 
 GlPlatform parse_gl_platform(const std::string& text, const char* what) {
   if (text == "auto" || text == "automatic") return GlPlatform::automatic;
@@ -94,9 +127,10 @@ struct EglContext::Impl {
   EGLContext context = EGL_NO_CONTEXT;
   EglInfo info;
   GlFunctions gl;
+  GlComputeFunctions compute;
 
   // Tries one candidate; on failure returns the reason and leaves nothing behind.
-  std::string try_start(const Candidate& c, PFNEGLGETPLATFORMDISPLAYEXTPROC get_display) {
+  std::string try_start(const Candidate& c, PFNEGLGETPLATFORMDISPLAYEXTPROC get_display, GlVersion version) {
     EGLDisplay d = get_display(c.platform, c.native, nullptr);
     if (d == EGL_NO_DISPLAY) return "no display (" + egl_error() + ")";
     EGLint major = 0, minor = 0;
@@ -125,11 +159,17 @@ struct EglContext::Impl {
       if (eglChooseConfig(d, attrs, &config, 1, &count) && count > 0) break;
     }
     if (count <= 0) return fail("no OpenGL config");
-    const EGLint ctx_attrs[] = {
-        EGL_CONTEXT_MAJOR_VERSION,           3,       EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
-        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    const EGLint ctx_attrs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                EGLint(version.major),
+                                EGL_CONTEXT_MINOR_VERSION,
+                                EGLint(version.minor),
+                                EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                EGL_NONE};
     context = eglCreateContext(d, config, EGL_NO_CONTEXT, ctx_attrs);
-    if (context == EGL_NO_CONTEXT) return fail("no OpenGL 3.3 core context (" + egl_error() + ")");
+    if (context == EGL_NO_CONTEXT)
+      return fail("no OpenGL " + std::to_string(version.major) + "." + std::to_string(version.minor) +
+                  " core context (" + egl_error() + ")");
     if (!eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
       return fail("eglMakeCurrent failed (" + egl_error() + ")");
 #define CGVIEW_GL_LOAD(type, name) gl.name = reinterpret_cast<type>(eglGetProcAddress(#name));
@@ -157,6 +197,18 @@ struct EglContext::Impl {
     }
     info.platform = c.name;
     info.software = c.software || is_software_renderer(info.gl_renderer);
+    // Compute shaders where the context is 4.3 or later (asked for, or given
+    // by a driver that gives its newest core version).
+    GLint gl_major = 0, gl_minor = 0;
+    gl.glGetIntegerv(GL_MAJOR_VERSION, &gl_major);
+    gl.glGetIntegerv(GL_MINOR_VERSION, &gl_minor);
+#define CGVIEW_GL_LOAD(type, name) compute.name = reinterpret_cast<type>(eglGetProcAddress(#name));
+    CGVIEW_GL_COMPUTE_FUNCTIONS(CGVIEW_GL_LOAD)
+#undef CGVIEW_GL_LOAD
+    info.compute = gl_major * 10 + gl_minor >= 43;
+#define CGVIEW_GL_CHECK(type, name) info.compute = info.compute && compute.name;
+    CGVIEW_GL_COMPUTE_FUNCTIONS(CGVIEW_GL_CHECK)
+#undef CGVIEW_GL_CHECK
     eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     return {};
   }
@@ -176,32 +228,16 @@ struct EglContext::Impl {
   }
 };
 
-EglContext::EglContext(GlPlatform platform) : impl_(std::make_unique<Impl>()) {
-  if (platform == GlPlatform::automatic)
-    if (const char* env = std::getenv("CGVIEW_GL_PLATFORM"); env && *env)
-      platform = parse_gl_platform(env, "CGVIEW_GL_PLATFORM");
-
+EglContext::EglContext(GlPlatform platform, GlVersion version) : impl_(std::make_unique<Impl>()) {
+  platform = setting(platform);
   const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   auto get_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
   if (!client || !get_display)
     throw Error("render: EGL has no client extensions or no eglGetPlatformDisplayEXT: cannot render without a window");
 
   std::vector<Candidate> hardware, software_devices, surfaceless;
-  if (platform != GlPlatform::surfaceless && has_extension(client, "EGL_EXT_platform_device")) {
-    auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-    auto query_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
-    EGLint n = 0;
-    if (query_devices && query_devices(0, nullptr, &n) && n > 0) {
-      std::vector<EGLDeviceEXT> devices(n);
-      query_devices(n, devices.data(), &n);
-      for (EGLint i = 0; i < n; ++i) {
-        const char* ext = query_string ? query_string(devices[i], EGL_EXTENSIONS) : nullptr;
-        const bool sw = has_extension(ext, "EGL_MESA_device_software");
-        Candidate c{"device " + std::to_string(i), EGL_PLATFORM_DEVICE_EXT, devices[i], sw};
-        (sw ? software_devices : hardware).push_back(c);
-      }
-    }
-  }
+  if (platform != GlPlatform::surfaceless)
+    for (const Candidate& c : device_candidates(client)) (c.software ? software_devices : hardware).push_back(c);
   if (platform != GlPlatform::device && has_extension(client, "EGL_MESA_platform_surfaceless"))
     surfaceless.push_back({"surfaceless", EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, true});
 
@@ -211,14 +247,15 @@ EglContext::EglContext(GlPlatform platform) : impl_(std::make_unique<Impl>()) {
 
   std::string reasons;
   for (const Candidate& c : order) {
-    const std::string why = impl_->try_start(c, get_display);
+    const std::string why = impl_->try_start(c, get_display, version);
     if (why.empty()) break;
     impl_->info.attempts.push_back(c.name + ": " + why);
     reasons += (reasons.empty() ? "" : "; ") + c.name + ": " + why;
   }
   if (impl_->context == EGL_NO_CONTEXT)
-    throw Error(std::string("render: no EGL platform could start an OpenGL 3.3 core context (setting: ") +
-                to_string(platform) + ")" + (reasons.empty() ? ": none available" : ": " + reasons));
+    throw Error("render: no EGL platform could start an OpenGL " + std::to_string(version.major) + "." +
+                std::to_string(version.minor) + " core context (setting: " + to_string(platform) + ")" +
+                (reasons.empty() ? ": none available" : ": " + reasons));
   impl_->info.attempts.push_back(impl_->info.platform + ": started");
 
   if (impl_->info.software && !g_software_logged.exchange(true))
@@ -251,5 +288,6 @@ void EglContext::release() {
 
 const EglInfo& EglContext::info() const { return impl_->info; }
 const GlFunctions& EglContext::gl() const { return impl_->gl; }
+const GlComputeFunctions* EglContext::gl_compute() const { return impl_->info.compute ? &impl_->compute : nullptr; }
 
 }  // namespace cgview::render

@@ -1,7 +1,8 @@
-// Internal to algorithms/render: the OpenGL 3.3 core entry points the
-// renderer uses, loaded once per context through eglGetProcAddress (no GLEW,
-// no link to libGL/libOpenGL: EGL 1.5 returns core functions too).  Only
-// egl_context.cpp and renderer.cpp include this.
+// Internal to algorithms/render and the GPU ray caster: the OpenGL 3.3 core
+// entry points the renderer uses, loaded once per context through
+// eglGetProcAddress (no GLEW, no link to libGL/libOpenGL: EGL 1.5 returns
+// core functions too), and those of GL 4.3's compute shaders.  Only
+// egl_context.cpp, renderer.cpp and rays/gpu_ray_caster.cpp include this.
 #pragma once
 
 #include <GL/glcorearb.h>
@@ -86,7 +87,24 @@
   X(PFNGLDRAWELEMENTSPROC, glDrawElements)                         \
   X(PFNGLDRAWARRAYSPROC, glDrawArrays)
 
+// GL 4.3's compute shaders and storage buffers (rays/gpu_ray_caster.cpp):
+// loaded beside the others but not required, so that a 3.3 driver still
+// renders.
+#define CGVIEW_GL_COMPUTE_FUNCTIONS(X)             \
+  X(PFNGLDISPATCHCOMPUTEPROC, glDispatchCompute)   \
+  X(PFNGLBINDBUFFERBASEPROC, glBindBufferBase)     \
+  X(PFNGLMEMORYBARRIERPROC, glMemoryBarrier)       \
+  X(PFNGLBUFFERSUBDATAPROC, glBufferSubData)       \
+  X(PFNGLGETBUFFERSUBDATAPROC, glGetBufferSubData) \
+  X(PFNGLGETINTEGER64VPROC, glGetInteger64v)
+
 namespace cgview::render {
+
+struct GlComputeFunctions {
+#define CGVIEW_GL_MEMBER(type, name) type name = nullptr;
+  CGVIEW_GL_COMPUTE_FUNCTIONS(CGVIEW_GL_MEMBER)
+#undef CGVIEW_GL_MEMBER
+};
 
 struct GlFunctions {
 #define CGVIEW_GL_MEMBER(type, name) type name = nullptr;

@@ -29,6 +29,7 @@ SdfResult sdf(const Mesh& mesh, const SdfParams& p, Context* context) {
                            {"faces_without_value", double(raw.missing)},
                            {"min", *lo},
                            {"max", *hi}};
+  ray_metrics(raw, result.metrics);
   ctx.progress(1.0, "done");
   return result;
 }

@@ -30,6 +30,7 @@ SdfFastResult sdf_fast(const Mesh& mesh, const SdfFastParams& p, Context* contex
        {"unknowns", double(approx.unknowns)},
        {"iterations", double(approx.iterations)},
        {"seconds", fast_seconds}};
+  ray_metrics(approx.raw, m);
   result.sdf_fast =
       ScalarField{"sdf_fast", Location::face, ColorHint::standard, {approx.values.begin(), approx.values.end()}};
   if (p.compare) {

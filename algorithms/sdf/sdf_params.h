@@ -22,6 +22,12 @@ enum class Outliers { std_dev, mad, none };
 
 inline constexpr int kMaxRays = 1024;
 
+// Where the rays are cast: automatic (an OpenGL compute shader where the EGL
+// renderer finds a hardware device, else Embree on the CPU; the environment
+// variable CGVIEW_SDF_RAYS=auto|cpu|gpu overrides it), cpu (Embree) or gpu
+// (the compute shader on whatever context starts, llvmpipe included).
+enum class RayDevice { automatic, cpu, gpu };
+
 struct SdfParams {
   int rays = 25;
   double cone_angle = 120.0;  // degrees
@@ -29,6 +35,9 @@ struct SdfParams {
   Outliers outliers = Outliers::std_dev;
   bool smooth = true;
   int window = 0;
+  // Not a parameter of the algorithms' forms: a choice of the machine (as
+  // the renderer's platform is), for tests and benchmarks.
+  RayDevice device = RayDevice::automatic;
   template <class V>
   void describe(V& v) {
     v.integer("rays", rays, {.label = "Rays", .min = 1, .max = kMaxRays, .help = "rays in each face's cone"});

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 #include <numbers>
@@ -10,6 +11,7 @@
 #include <thread>
 
 #include "core/threads.h"
+#include "rays/gpu_ray_caster.h"
 #include "rays/ray_caster.h"
 #include "registry/registry.h"
 
@@ -109,6 +111,29 @@ double combine(std::vector<std::pair<double, double>>& hits, Outliers rule, std:
 
 }  // namespace
 
+namespace {
+
+// The device asked for: the parameter, else CGVIEW_SDF_RAYS; automatic unresolved.
+RayDevice asked_device(const SdfParams& p) {
+  if (p.device != RayDevice::automatic) return p.device;
+  const char* env = std::getenv("CGVIEW_SDF_RAYS");
+  const std::string e = env ? env : "";
+  if (e == "cpu") return RayDevice::cpu;
+  if (e == "gpu") return RayDevice::gpu;
+  if (!e.empty() && e != "auto") throw InvalidInput("CGVIEW_SDF_RAYS: unknown device '" + e + "' (auto, cpu or gpu)");
+  return RayDevice::automatic;
+}
+
+}  // namespace
+
+RayDevice ray_device(const SdfParams& p) {
+  const RayDevice d = asked_device(p);
+  if (d != RayDevice::automatic) return d;
+  return render::hardware_device_listed() ? RayDevice::gpu : RayDevice::cpu;
+}
+
+void ray_metrics(const RawSdf& raw, Metrics& metrics) { metrics["rays_on_gpu"] = raw.gpu ? 1.0 : 0.0; }
+
 RawSdf raw_sdf(const Mesh& mesh, const SdfParams& o, std::span<const std::uint32_t> faces, const Context* ctx,
                double from, double to) {
   check_params(o);
@@ -118,41 +143,105 @@ RawSdf raw_sdf(const Mesh& mesh, const SdfParams& o, std::span<const std::uint32
   const std::size_t n = faces.empty() ? mesh.faces.size() : faces.size();
   const auto face_at = [&](std::size_t i) { return faces.empty() ? std::uint32_t(i) : faces[i]; };
 
-  const RayCaster caster(mesh);
+  // The compute shader where asked, or automatically where it starts on a
+  // GPU (on a software context, llvmpipe, Embree is much faster).
+  std::unique_ptr<GpuRayCaster> gpu;
+  if (ray_device(o) == RayDevice::gpu) {
+    if (asked_device(o) == RayDevice::gpu) {
+      gpu = std::make_unique<GpuRayCaster>(mesh);
+    } else {
+      try {
+        gpu = std::make_unique<GpuRayCaster>(mesh);
+        if (gpu->info().software) gpu.reset();
+      } catch (const Error&) {  // no GPU context after all: Embree
+      }
+    }
+  }
+  const std::unique_ptr<RayCaster> caster = gpu ? nullptr : std::make_unique<RayCaster>(mesh);
+  const std::vector<Vec3> normals = caster ? caster->normals() : face_normals(mesh);
   if (ctx) ctx->check_cancelled();
-  const std::vector<Vec3>& normals = caster.normals();
   const std::vector<ConeRay> cone = cone_rays(o);
+  const std::size_t m = cone.size();
+
+  // The unit directions of face f's cone from its centroid c, or false for
+  // a degenerate face (no direction to look in).
+  const auto cone_of = [&](std::uint32_t f, Vec3& c, auto&& emit) {
+    const Vec3 n = normals[f];
+    if (dot(n, n) == 0) return false;
+    const Tri& t = mesh.faces[f];
+    c = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+    const Vec3 u = normalized(mesh.positions[t[1]] - mesh.positions[t[0]]);
+    const Vec3 v = cross(n, u);
+    for (std::size_t k = 0; k < m; ++k) emit(k, normalized((-cone[k].axis) * n + cone[k].du * u + cone[k].dv * v));
+    return true;
+  };
+  // A hit counts when the ray leaves the shape where it first meets the surface.
+  const auto accept = [&](std::vector<std::pair<double, double>>& hits, const Vec3& d, const RayCaster::Hit& h,
+                          std::size_t k) {
+    if (h && dot(d, normals[h.face]) > 0) hits.push_back({h.distance, cone[k].weight});
+  };
 
   RawSdf out;
   out.values.assign(n, kNaN);
   std::atomic<std::size_t> accepted{0};
-  parallel_blocks(n, 512, thread_count(), ctx, from, to, "casting rays", [&](std::size_t b, std::size_t e) {
-    std::vector<std::pair<double, double>> hits;
-    std::vector<double> scratch;
-    std::size_t local_accepted = 0;
-    for (std::size_t i = b; i < e; ++i) {
-      const std::uint32_t f = face_at(i);
-      const Vec3 n = normals[f];
-      if (dot(n, n) == 0) continue;  // degenerate face: no direction to look in
-      const Tri& t = mesh.faces[f];
-      const Vec3 c = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
-      const Vec3 u = normalized(mesh.positions[t[1]] - mesh.positions[t[0]]);
-      const Vec3 v = cross(n, u);
-      hits.clear();
-      for (const ConeRay& r : cone) {
-        const Vec3 d = (-r.axis) * n + r.du * u + r.dv * v;
-        const RayCaster::Hit h = caster.first_hit(c, d, f);
-        if (!h) continue;  // escaped: an open mesh
-        // The ray must leave the shape where it first meets the surface.
-        if (dot(d, normals[h.face]) <= 0) continue;
-        hits.push_back({h.distance, r.weight});
+  if (!gpu) {
+    parallel_blocks(n, 512, thread_count(), ctx, from, to, "casting rays", [&](std::size_t b, std::size_t e) {
+      std::vector<std::pair<double, double>> hits;
+      std::vector<double> scratch;
+      std::size_t local_accepted = 0;
+      for (std::size_t i = b; i < e; ++i) {
+        const std::uint32_t f = face_at(i);
+        Vec3 c;
+        hits.clear();
+        cone_of(f, c, [&](std::size_t k, const Vec3& d) { accept(hits, d, caster->first_hit(c, d, f), k); });
+        local_accepted += hits.size();
+        if (!hits.empty()) out.values[i] = combine(hits, o.outliers, scratch);
       }
-      local_accepted += hits.size();
-      if (!hits.empty()) out.values[i] = combine(hits, o.outliers, scratch);
+      accepted += local_accepted;
+    });
+  } else {
+    // Batches of faces: their rays made on every core, cast in the shader,
+    // then accepted and combined on every core.
+    out.gpu = true;
+    out.gpu_renderer = gpu->info().gl_renderer;
+    const std::size_t chunk = std::max<std::size_t>(1, (std::size_t(4) << 20) / m);
+    std::vector<GpuRayCaster::Ray> rays;
+    std::vector<RayCaster::Hit> found;
+    for (std::size_t cb = 0; cb < n; cb += chunk) {
+      if (ctx) {
+        ctx->check_cancelled();
+        ctx->progress(from + (to - from) * double(cb) / double(n), "casting rays on the GPU");
+      }
+      const std::size_t ce = std::min(n, cb + chunk);
+      rays.assign((ce - cb) * m, GpuRayCaster::Ray{});
+      parallel_blocks(ce - cb, 512, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+        for (std::size_t i = b; i < e; ++i) {
+          const std::uint32_t f = face_at(cb + i);
+          Vec3 c;
+          cone_of(f, c, [&](std::size_t k, const Vec3& d) {
+            rays[i * m + k] = {{float(c.x), float(c.y), float(c.z)}, f, {float(d.x), float(d.y), float(d.z)}};
+          });
+        }
+      });
+      gpu->first_hits(rays, found);
+      parallel_blocks(ce - cb, 512, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+        std::vector<std::pair<double, double>> hits;
+        std::vector<double> scratch;
+        std::size_t local_accepted = 0;
+        for (std::size_t i = b; i < e; ++i) {
+          hits.clear();
+          for (std::size_t k = 0; k < m; ++k) {
+            const float* d = rays[i * m + k].direction;
+            accept(hits, Vec3{d[0], d[1], d[2]}, found[i * m + k], k);
+          }
+          local_accepted += hits.size();
+          if (!hits.empty()) out.values[cb + i] = combine(hits, o.outliers, scratch);
+        }
+        accepted += local_accepted;
+      });
     }
-    accepted += local_accepted;
-  });
-  out.rays_cast = n * cone.size();
+  }
+  out.rays_cast = n * m;
   out.rays_accepted = accepted;
   out.missing =
       std::size_t(std::count_if(out.values.begin(), out.values.end(), [](double x) { return std::isnan(x); }));

@@ -16,7 +16,10 @@
 // weight of the next one, so that no weight is infinite).
 //
 // Ray casting uses Embree (Intel's ray tracing kernels, Debian's libembree):
-// a BVH built for the whole mesh once, rays traced on every core.
+// a BVH built for the whole mesh once, rays traced on every core; or, where
+// the EGL renderer finds a hardware device (SdfParams::device), an OpenGL
+// compute shader over a BVH in GPU buffers (rays/gpu_ray_caster.h), the
+// acceptance rule and the outliers then applied on the CPU alike.
 #pragma once
 
 #include <cstdint>
@@ -36,10 +39,13 @@ namespace cgview::sdf {
 // outliers); the rays are cast on every core.  `ctx` (may be null) gets
 // progress over [progress_from, progress_to] and is checked for
 // cancellation.  Throws InvalidInput for a mesh with no faces, a face not in
-// it, or parameters outside SdfParams' ranges.
+// it, parameters outside SdfParams' ranges, or a CGVIEW_SDF_RAYS other than
+// auto, cpu or gpu; Error when the GPU path is asked for and cannot start.
 struct RawSdf {
   std::vector<double> values;
   std::size_t rays_cast = 0, rays_accepted = 0, missing = 0;
+  bool gpu = false;          // the rays ran in the compute shader
+  std::string gpu_renderer;  // its GL renderer, when they did
 };
 RawSdf raw_sdf(const Mesh& mesh, const SdfParams& p, std::span<const std::uint32_t> faces = {},
                const Context* ctx = nullptr, double progress_from = 0, double progress_to = 1);
@@ -66,6 +72,13 @@ std::vector<double> normalize_linear(const std::vector<double>& values);
 // when `p.smooth`, over `p.window` rings.
 void postprocess(const Mesh& mesh, const Adjacency& face_graph, std::vector<double>& values, const SdfParams& p,
                  const Context& ctx);
+
+// The device rays run on for `p` on this machine (automatic resolved, with
+// CGVIEW_SDF_RAYS): gpu where EGL lists a hardware device.
+RayDevice ray_device(const SdfParams& p);
+
+// The metrics every SDF algorithm reports of its rays: rays_on_gpu (1 or 0).
+void ray_metrics(const RawSdf& raw, Metrics& metrics);
 
 // A warning for the faces whose rays found no inside (open meshes).
 void warn_missing(const RawSdf& raw, std::vector<std::string>& warnings);

@@ -59,6 +59,7 @@ SdfSegmentationResult sdf_segmentation(const Mesh& mesh, const SdfSegmentationPa
     for (const std::uint32_t* m = graph.begin(queue[q]); m != graph.end(queue[q]); ++m)
       if (!known[*m]) seg[*m] = seg[queue[q]], known[*m] = 1, queue.push_back(*m);
   result.metrics = Metrics{{"segments", double(segments)}, {"faces", double(mesh.faces.size())}};
+  ray_metrics(raw, result.metrics);
   ctx.progress(1.0, "done");
   return result;
 }

@@ -1,0 +1,384 @@
+#include "rays/gpu_ray_caster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "core/errors.h"
+#include "render/gl_functions.h"
+
+namespace cgview {
+namespace {
+
+using render::EglContext;
+using render::GlComputeFunctions;
+using render::GlFunctions;
+using render::GlPlatform;
+
+// The shader's buffers, std430.  A node's children: the next node and node
+// `a`; a leaf (count > 0) holds triangles a .. a + count - 1.
+struct GpuNode {
+  float lo[3];
+  std::uint32_t a;
+  float hi[3];
+  std::uint32_t count;
+};
+struct GpuTri {  // v0, and the edges v1 - v0, v2 - v0
+  float v0[3];
+  std::uint32_t face;
+  float e1[3];
+  float pad1;
+  float e2[3];
+  float pad2;
+};
+struct GpuHit {
+  float distance;
+  std::uint32_t face;
+};
+static_assert(sizeof(GpuNode) == 32 && sizeof(GpuTri) == 48 && sizeof(GpuHit) == 8);
+static_assert(sizeof(GpuRayCaster::Ray) == 32);
+
+constexpr int kLeafSize = 4;
+constexpr std::size_t kBatch = std::size_t(1) << 20;
+constexpr int kGroupSize = 64;
+
+const char* kShader = R"(#version 430
+layout(local_size_x = 64) in;
+struct Node { vec3 lo; uint a; vec3 hi; uint count; };
+struct Tri { vec3 v0; uint face; vec3 e1; float pad1; vec3 e2; float pad2; };
+struct Ray { vec3 origin; uint skip; vec3 direction; float max_distance; };
+struct Hit { float distance; uint face; };
+layout(std430, binding = 0) readonly buffer Nodes { Node nodes[]; };
+layout(std430, binding = 1) readonly buffer Tris { Tri tris[]; };
+layout(std430, binding = 2) readonly buffer Rays { Ray rays[]; };
+layout(std430, binding = 3) writeonly buffer Hits { Hit hits[]; };
+uniform uint ray_count;
+
+// Where the ray enters the box within (0, best), else a huge value.
+float enter(vec3 lo, vec3 hi, vec3 o, vec3 inv, float best) {
+  vec3 a = (lo - o) * inv, b = (hi - o) * inv;
+  vec3 near = min(a, b), far = max(a, b);
+  float t0 = max(max(near.x, near.y), max(near.z, 0.0));
+  float t1 = min(min(far.x, far.y), min(far.z, best));
+  return t0 <= t1 ? t0 : 3.0e38;
+}
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= ray_count) return;
+  Ray r = rays[i];
+  float best = r.max_distance;
+  uint face = 0xFFFFFFFFu;
+  if (dot(r.direction, r.direction) > 0.0) {
+    // Zero components: a huge inverse of their sign, not an infinity (0 * inf is NaN).
+    vec3 inv = vec3(r.direction.x < 0.0 ? -1.0 : 1.0, r.direction.y < 0.0 ? -1.0 : 1.0,
+                    r.direction.z < 0.0 ? -1.0 : 1.0) / max(abs(r.direction), vec3(1.0e-30));
+    // Median splits: depth at most log2(faces), and one node pushed a level.
+    uint stack[32];
+    int top = 0;
+    uint node = 0u;
+    if (enter(nodes[0].lo, nodes[0].hi, r.origin, inv, best) < 3.0e38) {
+      for (;;) {
+        Node n = nodes[node];
+        if (n.count > 0u) {
+          for (uint k = n.a; k < n.a + n.count; ++k) {
+            Tri t = tris[k];
+            if (t.face == r.skip) continue;
+            vec3 p = cross(r.direction, t.e2);
+            float det = dot(t.e1, p);
+            if (det == 0.0) continue;
+            float f = 1.0 / det;
+            vec3 s = r.origin - t.v0;
+            float u = f * dot(s, p);
+            if (u < 0.0 || u > 1.0) continue;
+            vec3 q = cross(s, t.e1);
+            float v = f * dot(r.direction, q);
+            if (v < 0.0 || u + v > 1.0) continue;
+            float d = f * dot(t.e2, q);
+            if (d > 0.0 && d < best) {
+              best = d;
+              face = t.face;
+            }
+          }
+        } else {
+          uint l = node + 1u, h = n.a;
+          float tl = enter(nodes[l].lo, nodes[l].hi, r.origin, inv, best);
+          float th = enter(nodes[h].lo, nodes[h].hi, r.origin, inv, best);
+          if (tl < 3.0e38 && th < 3.0e38) {
+            if (th < tl) { uint x = l; l = h; h = x; }
+            stack[top++] = h;
+            node = l;
+            continue;
+          }
+          if (tl < 3.0e38) { node = l; continue; }
+          if (th < 3.0e38) { node = h; continue; }
+        }
+        if (top == 0) break;
+        node = stack[--top];
+      }
+    }
+  }
+  hits[i] = Hit(best, face);
+}
+)";
+
+// The process's context for a platform and its compiled program, never
+// destroyed (at exit the EGL library may be gone before static destructors
+// run, as the renderer pool's).
+struct SharedContext {
+  std::mutex mutex;
+  std::unique_ptr<EglContext> context;
+  GLuint program = 0;
+  GLint ray_count = -1;
+};
+
+SharedContext& shared_context(GlPlatform platform) {
+  static auto* contexts = new SharedContext[3];
+  return contexts[int(platform)];
+}
+
+// Holds the shared context current on this thread, with its lock.
+class Current {
+ public:
+  explicit Current(SharedContext& s) : lock_(s.mutex), s_(s) {
+    s.context->make_current();
+    for (int k = 0; k < 16 && gl().glGetError() != GL_NO_ERROR; ++k) {  // errors left by an earlier call
+    }
+  }
+  ~Current() { s_.context->release(); }
+  const GlFunctions& gl() const { return s_.context->gl(); }
+  const GlComputeFunctions& gc() const { return *s_.context->gl_compute(); }
+  void check(const char* what) const {
+    if (const GLenum e = gl().glGetError(); e != GL_NO_ERROR)
+      throw Error(std::string("GPU rays: ") + what + " failed (GL error " + std::to_string(e) +
+                  (e == GL_OUT_OF_MEMORY ? ", out of GPU memory)" : ")"));
+  }
+
+ private:
+  std::lock_guard<std::mutex> lock_;
+  SharedContext& s_;
+};
+
+GLuint compile_program(const GlFunctions& gl) {
+  const GLuint shader = gl.glCreateShader(GL_COMPUTE_SHADER);
+  gl.glShaderSource(shader, 1, &kShader, nullptr);
+  gl.glCompileShader(shader);
+  GLint ok = 0;
+  gl.glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    gl.glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    gl.glDeleteShader(shader);
+    throw Error(std::string("GPU rays: the compute shader did not compile: ") + log);
+  }
+  const GLuint program = gl.glCreateProgram();
+  gl.glAttachShader(program, shader);
+  gl.glLinkProgram(program);
+  gl.glDeleteShader(shader);
+  gl.glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    gl.glGetProgramInfoLog(program, sizeof log, nullptr, log);
+    gl.glDeleteProgram(program);
+    throw Error(std::string("GPU rays: the compute shader did not link: ") + log);
+  }
+  return program;
+}
+
+// The flattened BVH: nodes depth-first, triangles in leaf order.
+class BvhBuilder {
+ public:
+  BvhBuilder(const Mesh& mesh) : mesh_(mesh), centroid_(mesh.faces.size()), order_(mesh.faces.size()) {
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+      const Tri& t = mesh.faces[f];
+      centroid_[f] = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+      order_[f] = std::uint32_t(f);
+    }
+    const BBox box = bounding_box(mesh);
+    // Boxes a little larger than their triangles, so that float rounding in
+    // the slab test never loses a hit on a box's face.
+    pad_ = 1e-6 * box.diagonal() + 1e-30;
+    nodes_.resize(node_count(mesh.faces.size()));
+    build(0, 0, mesh.faces.size(), 0);
+  }
+  std::vector<GpuNode>& nodes() { return nodes_; }
+  std::vector<GpuTri> tris() const {
+    std::vector<GpuTri> out(order_.size());
+    for (std::size_t k = 0; k < order_.size(); ++k) {
+      const Tri& t = mesh_.faces[order_[k]];
+      const Vec3 a = mesh_.positions[t[0]], b = mesh_.positions[t[1]], c = mesh_.positions[t[2]];
+      const Vec3 e1 = b - a, e2 = c - a;
+      out[k] = {{float(a.x), float(a.y), float(a.z)},    order_[k], {float(e1.x), float(e1.y), float(e1.z)}, 0,
+                {float(e2.x), float(e2.y), float(e2.z)}, 0};
+    }
+    return out;
+  }
+
+ private:
+  // Nodes of a subtree of n triangles: the split depends on n alone, so
+  // that both halves can be built at once, each at its known place.
+  std::size_t node_count(std::size_t n) {
+    if (n <= kLeafSize) return 1;
+    if (auto it = counts_.find(n); it != counts_.end()) return it->second;
+    const std::size_t c = 1 + node_count(n / 2) + node_count(n - n / 2);
+    counts_[n] = c;
+    return c;
+  }
+
+  void build(std::size_t node, std::size_t b, std::size_t e, int depth) {
+    GpuNode& out = nodes_[node];
+    Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    Vec3 clo = lo, chi = hi;
+    for (std::size_t k = b; k < e; ++k) {
+      const Tri& t = mesh_.faces[order_[k]];
+      for (int j = 0; j < 3; ++j) {
+        const Vec3& p = mesh_.positions[t[j]];
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+      }
+      const Vec3& c = centroid_[order_[k]];
+      clo = {std::min(clo.x, c.x), std::min(clo.y, c.y), std::min(clo.z, c.z)};
+      chi = {std::max(chi.x, c.x), std::max(chi.y, c.y), std::max(chi.z, c.z)};
+    }
+    out.lo[0] = float(lo.x - pad_), out.lo[1] = float(lo.y - pad_), out.lo[2] = float(lo.z - pad_);
+    out.hi[0] = float(hi.x + pad_), out.hi[1] = float(hi.y + pad_), out.hi[2] = float(hi.z + pad_);
+    const std::size_t n = e - b;
+    if (n <= kLeafSize) {
+      out.a = std::uint32_t(b);
+      out.count = std::uint32_t(n);
+      return;
+    }
+    const Vec3 ext = chi - clo;
+    const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
+    const std::size_t mid = b + n / 2;
+    std::nth_element(order_.begin() + std::ptrdiff_t(b), order_.begin() + std::ptrdiff_t(mid),
+                     order_.begin() + std::ptrdiff_t(e),
+                     [&](std::uint32_t x, std::uint32_t y) { return centroid_[x][axis] < centroid_[y][axis]; });
+    const std::size_t right = node + 1 + node_count(n / 2);
+    out.a = std::uint32_t(right);
+    out.count = 0;
+    // The top levels' halves on threads of their own (disjoint ranges and nodes).
+    if (depth < 3 && n > 100000) {
+      std::jthread left([&] { build(node + 1, b, mid, depth + 1); });
+      build(right, mid, e, depth + 1);
+    } else {
+      build(node + 1, b, mid, depth + 1);
+      build(right, mid, e, depth + 1);
+    }
+  }
+
+  const Mesh& mesh_;
+  std::vector<Vec3> centroid_;
+  std::vector<std::uint32_t> order_;
+  std::vector<GpuNode> nodes_;
+  std::map<std::size_t, std::size_t> counts_;
+  double pad_ = 0;
+};
+
+}  // namespace
+
+struct GpuRayCaster::Impl {
+  SharedContext* shared = nullptr;
+  GLuint buffers[4] = {0, 0, 0, 0};  // nodes, triangles, rays, hits
+  std::size_t batch = 0;             // rays the ray and hit buffers hold now
+  std::size_t max_batch = 0;         // and at most
+};
+
+GpuRayCaster::GpuRayCaster(const Mesh& mesh, GlPlatform platform) : impl_(std::make_unique<Impl>()) {
+  if (mesh.faces.empty()) throw InvalidInput("GPU rays: the mesh has no faces");
+  if (mesh.faces.size() >= std::size_t(kNoFace)) throw InvalidInput("GPU rays: too many faces");
+  SharedContext& s = shared_context(platform);
+  {
+    std::lock_guard lock(s.mutex);
+    if (!s.context) s.context = std::make_unique<EglContext>(platform, render::GlVersion{4, 3});
+  }
+  if (!s.context->info().compute)
+    throw Error("GPU rays: the OpenGL context (" + s.context->info().gl_renderer + ", " + s.context->info().gl_version +
+                ") has no compute shaders (OpenGL 4.3)");
+  impl_->shared = &s;
+
+  BvhBuilder bvh(mesh);
+  const std::vector<GpuTri> tris = bvh.tris();
+  nodes_ = bvh.nodes().size();
+
+  const Current current(s);
+  const GlFunctions& gl = current.gl();
+  const GlComputeFunctions& gc = current.gc();
+  if (!s.program) {
+    s.program = compile_program(gl);
+    s.ray_count = gl.glGetUniformLocation(s.program, "ray_count");
+  }
+  GLint64 max_block = 0;
+  gc.glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+  const std::size_t largest = std::max(nodes_ * sizeof(GpuNode), tris.size() * sizeof(GpuTri));
+  if (std::size_t(max_block) < largest)
+    throw Error("GPU rays: the mesh's BVH needs storage buffers of " + std::to_string(largest >> 20) +
+                " MiB, the driver allows " + std::to_string(std::size_t(max_block) >> 20) + " MiB");
+  gl.glGenBuffers(4, impl_->buffers);
+  const auto upload = [&](int k, std::size_t bytes, const void* data) {
+    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, impl_->buffers[k]);
+    gl.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes), data, GL_STATIC_DRAW);
+  };
+  upload(0, nodes_ * sizeof(GpuNode), bvh.nodes().data());
+  upload(1, tris.size() * sizeof(GpuTri), tris.data());
+  impl_->max_batch = std::min<std::size_t>(kBatch, std::size_t(max_block) / sizeof(Ray));
+  gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+  current.check("uploading the BVH");
+}
+
+GpuRayCaster::~GpuRayCaster() {
+  if (!impl_->shared || !impl_->buffers[0]) return;
+  try {
+    const Current current(*impl_->shared);
+    current.gl().glDeleteBuffers(4, impl_->buffers);
+  } catch (...) {  // the context is gone: so are its buffers
+  }
+}
+
+const render::EglInfo& GpuRayCaster::info() const { return impl_->shared->context->info(); }
+
+void GpuRayCaster::first_hits(std::span<const Ray> rays, std::vector<Hit>& hits) const {
+  hits.assign(rays.size(), Hit{});
+  if (rays.empty()) return;
+  const Current current(*impl_->shared);
+  const GlFunctions& gl = current.gl();
+  const GlComputeFunctions& gc = current.gc();
+  // The ray and hit buffers, grown to the calls' batches.
+  if (impl_->batch < std::min(rays.size(), impl_->max_batch)) {
+    impl_->batch = std::min(rays.size(), impl_->max_batch);
+    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, impl_->buffers[2]);
+    gl.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(impl_->batch * sizeof(Ray)), nullptr, GL_STREAM_DRAW);
+    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, impl_->buffers[3]);
+    gl.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(impl_->batch * sizeof(GpuHit)), nullptr, GL_STREAM_READ);
+    current.check("allocating the ray buffers");
+  }
+  gl.glUseProgram(impl_->shared->program);
+  for (int k = 0; k < 4; ++k) gc.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(k), impl_->buffers[k]);
+  std::vector<GpuHit> out(std::min(rays.size(), impl_->batch));
+  for (std::size_t b = 0; b < rays.size(); b += impl_->batch) {
+    const std::size_t n = std::min(impl_->batch, rays.size() - b);
+    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, impl_->buffers[2]);
+    gc.glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(n * sizeof(Ray)), rays.data() + b);
+    gl.glUniform1ui(impl_->shared->ray_count, GLuint(n));
+    gc.glDispatchCompute(GLuint((n + kGroupSize - 1) / kGroupSize), 1, 1);
+    gc.glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, impl_->buffers[3]);
+    gc.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(n * sizeof(GpuHit)), out.data());
+    current.check("casting rays");
+    for (std::size_t i = 0; i < n; ++i)
+      if (out[i].face != kNoFace) hits[b + i] = {double(out[i].distance), out[i].face};
+  }
+  gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+  gl.glUseProgram(0);
+}
+
+std::vector<GpuRayCaster::Hit> GpuRayCaster::first_hits(std::span<const Ray> rays) const {
+  std::vector<Hit> hits;
+  first_hits(rays, hits);
+  return hits;
+}
+
+}  // namespace cgview

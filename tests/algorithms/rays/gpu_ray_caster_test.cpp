@@ -1,0 +1,116 @@
+// The GPU ray caster (rays/gpu_ray_caster.h) against Embree's (RayCaster) on
+// the same rays: the same first face, at the same distance within float
+// rounding.  It runs on whatever EGL context starts: Mesa's llvmpipe where
+// there is no GPU.
+#include "rays/gpu_ray_caster.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "core/errors.h"
+#include "io/mesh_io.h"
+#include "test_support.h"
+
+namespace cgview {
+namespace {
+
+using Ray = GpuRayCaster::Ray;
+
+Ray make_ray(const Vec3& o, Vec3 d, std::uint32_t skip = RayCaster::kNoFace) {
+  d = normalized(d);
+  return {{float(o.x), float(o.y), float(o.z)}, skip, {float(d.x), float(d.y), float(d.z)}};
+}
+Vec3 origin(const Ray& r) { return {r.origin[0], r.origin[1], r.origin[2]}; }
+Vec3 direction(const Ray& r) { return {r.direction[0], r.direction[1], r.direction[2]}; }
+
+// Rays of two kinds, as the SDF and the skeleton measures cast them: from
+// each face's centroid into the shape (skipping the face), and from random
+// points of the bounding box in random directions.
+std::vector<Ray> sample_rays(const Mesh& mesh, std::size_t per_kind) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> gauss;
+  std::uniform_real_distribution<double> unit(0, 1);
+  const std::vector<Vec3> normals = face_normals(mesh);
+  const BBox box = bounding_box(mesh);
+  std::vector<Ray> rays;
+  for (std::size_t i = 0; i < per_kind; ++i) {
+    const std::uint32_t f = std::uint32_t(i * mesh.faces.size() / per_kind);
+    const Tri& t = mesh.faces[f];
+    const Vec3 c = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+    const Vec3 jitter{gauss(rng), gauss(rng), gauss(rng)};
+    rays.push_back(make_ray(c, -1.0 * normals[f] + 0.5 * normalized(jitter), f));
+  }
+  for (std::size_t i = 0; i < per_kind; ++i) {
+    const Vec3 p = box.min + Vec3{unit(rng) * (box.max.x - box.min.x), unit(rng) * (box.max.y - box.min.y),
+                                  unit(rng) * (box.max.z - box.min.z)};
+    rays.push_back(make_ray(p, {gauss(rng), gauss(rng), gauss(rng)}));
+  }
+  return rays;
+}
+
+TEST(GpuRayCaster, SameHitsAsEmbreeOnASampleMesh) {
+  const Mesh mesh = read_mesh(test::sample("elephant.off"));
+  const GpuRayCaster gpu(mesh);
+  const RayCaster cpu(mesh);
+  const std::vector<Ray> rays = sample_rays(mesh, 4000);
+  const std::vector<GpuRayCaster::Hit> hits = gpu.first_hits(rays);
+  ASSERT_EQ(hits.size(), rays.size());
+  const double scale = bounding_box(mesh).diagonal();
+  std::size_t hit = 0, same = 0, near_edge = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const RayCaster::Hit e = cpu.first_hit(origin(rays[i]), direction(rays[i]), rays[i].skip);
+    const GpuRayCaster::Hit g = hits[i];
+    hit += bool(e);
+    if (bool(e) == bool(g) && e.face == g.face) {
+      ++same;
+      if (e) {
+        EXPECT_NEAR(g.distance, e.distance, 1e-5 * scale) << "ray " << i;
+      }
+    } else if (e && g && std::abs(e.distance - g.distance) < 1e-5 * scale) {
+      ++near_edge;  // through an edge or vertex: either face is right
+    } else {
+      ADD_FAILURE() << "ray " << i << ": Embree face " << e.face << " at " << e.distance << ", GPU face " << g.face
+                    << " at " << g.distance;
+    }
+  }
+  EXPECT_GT(hit, rays.size() / 2);  // the comparison is about hits, mostly
+  EXPECT_GE(same, rays.size() - rays.size() / 1000) << near_edge << " hits through edges";
+  RecordProperty("renderer", gpu.info().gl_renderer);
+}
+
+TEST(GpuRayCaster, SkipsTheOriginFaceAndHonoursTheMaximumDistance) {
+  const Mesh cube = test::box();  // [0, 1]^3
+  const GpuRayCaster gpu(cube);
+  const RayCaster cpu(cube);
+  // Along +x (off the side's diagonal): the face at x = 1, at distance 0.5.
+  const Vec3 o{0.5, 0.2, 0.7};
+  Ray r = make_ray(o, {1, 0, 0});
+  GpuRayCaster::Hit h = gpu.first_hits({&r, 1})[0];
+  ASSERT_TRUE(h);
+  EXPECT_NEAR(h.distance, 0.5, 1e-6);
+  EXPECT_NEAR(cube.positions[cube.faces[h.face][0]].x, 1.0, 1e-12);
+  // Skipping that face, the ray leaves the box: nothing else lies ahead.
+  r.skip = h.face;
+  EXPECT_FALSE(gpu.first_hits({&r, 1})[0]);
+  EXPECT_FALSE(cpu.first_hit(o, {1, 0, 0}, h.face));
+  // Short of the face: nothing.
+  r = make_ray(o, {1, 0, 0});
+  r.max_distance = 0.4f;
+  EXPECT_FALSE(gpu.first_hits({&r, 1})[0]);
+  // A zero direction meets nothing; a ray past the box, nothing.
+  const Ray rays[] = {Ray{{0.5f, 0.5f, 0.5f}}, make_ray({2, 2, 2}, {1, 1, 1})};
+  for (const GpuRayCaster::Hit& g : gpu.first_hits(rays)) EXPECT_FALSE(g);
+  // Several batches' worth of rays in one call give the same hits.
+  std::vector<Ray> many((1u << 20) + 1000, make_ray(o, {0, 0, -1}));
+  const std::vector<GpuRayCaster::Hit> all = gpu.first_hits(many);
+  for (std::size_t i = 0; i < all.size(); i += 4099) ASSERT_NEAR(all[i].distance, 0.7, 1e-6) << i;
+  EXPECT_NEAR(all.back().distance, 0.7, 1e-6);
+}
+
+TEST(GpuRayCaster, EmptyMeshIsInvalidInput) { EXPECT_THROW(GpuRayCaster(Mesh{}), InvalidInput); }
+
+}  // namespace
+}  // namespace cgview
