@@ -2,6 +2,7 @@
 #include <nlohmann/json.hpp>
 
 #include "artifacts/artifact_codec.h"
+#include "io/mesh_formats.h"
 #include "io/mesh_io.h"
 
 namespace cgview {
@@ -12,12 +13,15 @@ class MeshCodec final : public ArtifactCodec {
  public:
   OutputKind kind() const override { return OutputKind::mesh; }
   const std::vector<ArtifactFormat>& formats() const override {
-    static const std::vector<ArtifactFormat> f = {{"ply", ".ply", "application/octet-stream"},
-                                                  {"off", ".off", "application/octet-stream"},
-                                                  {"obj", ".obj", "model/obj"},
-                                                  {"stl", ".stl", "model/stl"},
-                                                  {"glb", ".glb", "model/gltf-binary"},
-                                                  {"drc", ".drc", "application/octet-stream"}};
+    // The stored form first, then every other writable format.
+    static const std::vector<ArtifactFormat> f = [] {
+      std::vector<ArtifactFormat> out;
+      const MeshFormatInfo& stored = mesh_format_info(MeshFormat::ply);
+      out.push_back({stored.name, stored.extensions.front(), stored.mime});
+      for (const MeshFormatInfo& i : mesh_formats())
+        if (i.write && &i != &stored) out.push_back({i.name, i.extensions.front(), i.mime});
+      return out;
+    }();
     return f;
   }
   std::string encode(const ArtifactValue& value, const std::string&, const Mesh&,

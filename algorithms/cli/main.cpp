@@ -14,6 +14,7 @@
 
 #include "core/errors.h"
 #include "core/mesh_report.h"
+#include "io/mesh_formats.h"
 #include "io/mesh_io.h"
 #include "algorithm_json.h"
 #include "io/samples.h"
@@ -76,6 +77,18 @@ const char* kInfoHelp =
     "MESH is a file, a zip of one mesh file with its companions (an OBJ with its MTL\n"
     "and textures, as the server takes), or the name of a sample mesh (see cgview samples).\n";
 
+// One line a mesh format: its extensions and what of it is read.
+std::string format_lines() {
+  std::string s;
+  for (const MeshFormatInfo& f : mesh_formats()) {
+    std::string exts;
+    for (const std::string& e : f.extensions) exts += (exts.empty() ? "" : " ") + e;
+    s += "    " + exts + std::string(exts.size() < 10 ? 10 - exts.size() : 1, ' ') + f.help +
+         (f.write ? "" : " (read only)") + "\n";
+  }
+  return s;
+}
+
 std::string convert_help() {
   return "usage: cgview convert IN OUT [--ascii] [--bits N] [--no-weld]\n"
          "\n"
@@ -84,8 +97,7 @@ std::string convert_help() {
          readable_formats() +
          ", or a .zip of one mesh file with its companions (an OBJ with its MTL and textures)\n"
          "  writes: " +
-         writable_formats() +
-         "\n"
+         writable_formats() + "\n" + format_lines() +
          "\n"
          "  --ascii      write PLY and STL as text (default: binary)\n"
          "  --bits N     Draco position quantization in bits (default 14)\n"

@@ -9,44 +9,24 @@
 
 #include "core/ascii.h"
 #include "core/errors.h"
+#include "io/mesh_formats.h"
 #include "io/readers.h"
 
 namespace cgview {
 
 namespace {
-constexpr MeshFormat kAll[] = {MeshFormat::off, MeshFormat::obj, MeshFormat::ply, MeshFormat::stl,
-                               MeshFormat::drc, MeshFormat::glb, MeshFormat::gltf};
-
 std::string join_formats(bool writable) {
   std::string s;
-  for (MeshFormat f : kAll)
-    if (writable ? can_write(f) : can_read(f)) s += (s.empty() ? "" : ", ") + std::string(to_string(f));
+  for (const MeshFormatInfo& f : mesh_formats())
+    if (!writable || f.write) s += (s.empty() ? "" : ", ") + std::string(f.name);
   return s;
 }
 }  // namespace
 
-const char* to_string(MeshFormat f) {
-  switch (f) {
-    case MeshFormat::off:
-      return "off";
-    case MeshFormat::obj:
-      return "obj";
-    case MeshFormat::ply:
-      return "ply";
-    case MeshFormat::stl:
-      return "stl";
-    case MeshFormat::drc:
-      return "drc";
-    case MeshFormat::glb:
-      return "glb";
-    case MeshFormat::gltf:
-      return "gltf";
-  }
-  return "?";
-}
+const char* to_string(MeshFormat f) { return mesh_format_info(f).name; }
 
-bool can_read(MeshFormat) { return true; }
-bool can_write(MeshFormat f) { return f != MeshFormat::gltf; }
+bool can_read(MeshFormat f) { return mesh_format_info(f).read != nullptr; }
+bool can_write(MeshFormat f) { return mesh_format_info(f).write != nullptr; }
 std::string writable_formats() { return join_formats(true); }
 std::string readable_formats() { return join_formats(false); }
 
@@ -59,8 +39,8 @@ MeshFormat format_from_name(const std::string& path_or_name) {
     throw UnsupportedFormat("'" + path_or_name + "' has no extension to tell its format (one of " + readable_formats() +
                             ")");
   ext = ascii_lower(ext);
-  for (MeshFormat f : kAll)
-    if (ext == to_string(f)) return f;
+  for (const MeshFormatInfo& f : mesh_formats())
+    if (ext == f.name || mesh_format_of_extension("." + ext) == &f) return f.format;
   throw UnsupportedFormat("unknown mesh format '." + ext + "' of '" + path_or_name + "' (known: " + readable_formats() +
                           ")");
 }
@@ -90,29 +70,7 @@ ReadResult read_mesh_bytes(std::string_view bytes, MeshFormat format, const std:
                        std::to_string(options.max_bytes));
   ReadResult r;
   r.format = format;
-  switch (format) {
-    case MeshFormat::off:
-      detail::read_off(bytes, name, r);
-      break;
-    case MeshFormat::obj:
-      detail::read_obj(bytes, name, r);
-      break;
-    case MeshFormat::ply:
-      detail::read_ply(bytes, name, r);
-      break;
-    case MeshFormat::stl:
-      detail::read_stl(bytes, name, options, r);
-      break;
-    case MeshFormat::drc:
-      detail::read_draco(bytes, name, r);
-      break;
-    case MeshFormat::glb:
-      detail::read_gltf(bytes, name, true, options, r);
-      break;
-    case MeshFormat::gltf:
-      detail::read_gltf(bytes, name, false, options, r);
-      break;
-  }
+  mesh_format_info(format).read(bytes, name, options, r);
   try {
     r.mesh.validate();
   } catch (const InvalidInput& e) {
@@ -133,22 +91,7 @@ std::string write_mesh_bytes(const Mesh& mesh, MeshFormat format, const WriteOpt
   mesh.validate();
   if (options.position_bits < 1 || options.position_bits > 30)
     throw InvalidInput("position quantization must be 1..30 bits, got " + std::to_string(options.position_bits));
-  switch (format) {
-    case MeshFormat::off:
-      return detail::write_off(mesh);
-    case MeshFormat::obj:
-      return detail::write_obj(mesh);
-    case MeshFormat::ply:
-      return detail::write_ply(mesh, options.binary);
-    case MeshFormat::stl:
-      return detail::write_stl(mesh, options.binary);
-    case MeshFormat::drc:
-      return detail::write_draco(mesh, options);
-    case MeshFormat::glb:
-      return detail::write_glb(mesh);
-    case MeshFormat::gltf:
-      break;
-  }
+  if (const auto write = mesh_format_info(format).write) return write(mesh, options);
   throw UnsupportedFormat(std::string("cannot write ") + to_string(format) + " (writable: " + writable_formats() + ")");
 }
 

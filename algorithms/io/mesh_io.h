@@ -2,7 +2,7 @@
 //
 // Reads OFF, OBJ, PLY (ascii and binary), STL (ascii and binary), Draco
 // (.drc) and glTF (.glb, .gltf); writes OFF, OBJ, PLY, STL, glTF binary (.glb)
-// and Draco (.drc).  Polygons are fan-triangulated; STL's repeated corners
+// and Draco (.drc): the table of mesh_formats.h says which.  Polygons are fan-triangulated; STL's repeated corners
 // are welded into shared vertices; OBJ's vt/vn keep their own indices.
 //
 // Every reader works on bytes in memory, so a server can parse an upload
@@ -29,6 +29,7 @@
 
 namespace cgview {
 
+// One value a row of mesh_formats() (io/mesh_formats.h).
 enum class MeshFormat { off, obj, ply, stl, drc, glb, gltf };
 
 // "off", "obj", ... as in file extensions.

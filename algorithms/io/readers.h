@@ -1,4 +1,5 @@
-// Internal: one reader and writer per format, used by mesh_io.cpp.
+// Internal: one reader and writer per format, used by the table of formats
+// (mesh_formats.cpp).
 #pragma once
 
 #include <string>
@@ -6,6 +7,10 @@
 
 #include "core/scalar_field.h"
 #include "io/mesh_io.h"
+
+namespace draco {
+class PointAttribute;
+}
 
 namespace cgview::detail {
 
@@ -19,8 +24,13 @@ void read_draco(std::string_view bytes, const std::string& name, ReadResult& res
 // bytes can hold, or more vertices than three a face (Draco's edgebreaker
 // decoder allocates for the claim before it reads the stream).
 void check_draco_counts(std::string_view bytes, const std::string& name);
+// glTF (gltf_io.cpp): binary (.glb) or text (.gltf).
 void read_gltf(std::string_view bytes, const std::string& name, bool binary, const ReadOptions& options,
                ReadResult& result);
+// `a`, when it holds numbers (or null); throws ParseError naming `what`
+// ("positions") when it holds another type (Draco's bool).
+const draco::PointAttribute* numeric_draco_attribute(const draco::PointAttribute* a, const std::string& name,
+                                                     const char* what);
 
 std::string write_off(const Mesh& mesh);
 std::string write_obj(const Mesh& mesh);

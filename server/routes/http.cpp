@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "io/mesh_formats.h"
+
 namespace cgview::server {
 
 using nlohmann::json;
@@ -82,12 +84,11 @@ const char* content_type_of(const std::string& extension) {
                                                            {".png", "image/png"},
                                                            {".ico", "image/x-icon"},
                                                            {".txt", "text/plain; charset=utf-8"},
-                                                           {".map", "application/json"},
-                                                           {".obj", "model/obj"},
-                                                           {".stl", "model/stl"},
-                                                           {".glb", "model/gltf-binary"}};
+                                                           {".map", "application/json"}};
   const auto it = types.find(extension);
-  return it == types.end() ? "application/octet-stream" : it->second;
+  if (it != types.end()) return it->second;
+  if (const MeshFormatInfo* mesh = mesh_format_of_extension(extension)) return mesh->mime;
+  return "application/octet-stream";
 }
 
 double number_param(const Query& q, const std::string& name, double fallback) {

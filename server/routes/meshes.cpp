@@ -1,5 +1,7 @@
 #include "routes/routes.h"
 
+#include "io/mesh_formats.h"
+
 #include "jobs/scheduler.h"
 #include "router.h"
 #include "mesh_service.h"
@@ -23,7 +25,7 @@ void add_mesh_routes(Routes& routes, const RouteContext& ctx) {
                     "/api/v1/meshes",
                     "Upload a mesh: the file's bytes as the raw body, or a zip of it with its MTL and images",
                     {{"name", "the file name, e.g. bunny.ply or spider.zip (required)"},
-                     {"format", "off, obj, ply, stl, drc, glb, gltf or zip (default: from the name's extension)"}},
+                     {"format", readable_formats() + " or zip (default: from the name's extension)"}},
                     [&ctx](const Params&, const HttpRequest& req, const Caller& caller) {
                       const auto [path, q] = split_target(req.target);
                       const auto name = q.find("name");
@@ -38,6 +40,21 @@ void add_mesh_routes(Routes& routes, const RouteContext& ctx) {
                       r.headers.push_back({"Location", "/api/v1/meshes/" + rec.id});
                       return r;
                     }});
+  routes.push_back({"GET",
+                    "/api/v1/formats",
+                    "The mesh file formats the server reads and writes (what an upload may be, and the downloads)",
+                    {},
+                    [](const Params&, const HttpRequest&, const Caller&) {
+                      json list = json::array();
+                      for (const MeshFormatInfo& f : mesh_formats())
+                        list.push_back({{"name", f.name},
+                                        {"extensions", f.extensions},
+                                        {"mime", f.mime},
+                                        {"can_write", f.write != nullptr},
+                                        {"help", f.help}});
+                      return json_response(200, {{"formats", list}});
+                    },
+                    false});
   routes.push_back({"GET",
                     "/api/v1/meshes/{id}",
                     "One mesh's metadata and report",
@@ -66,7 +83,7 @@ void add_mesh_routes(Routes& routes, const RouteContext& ctx) {
       {"GET",
        "/api/v1/meshes/{id}/download",
        "Download a mesh in a format",
-       {{"format", "obj, off, ply, stl, glb or drc (default: the uploaded format)"}},
+       {{"format", writable_formats() + " (default: the uploaded format)"}},
        [&ctx](const Params& p, const HttpRequest& req, const Caller& caller) {
          const MeshRecord rec = ctx.mesh(p.at("id"), caller);
          const auto q = split_target(req.target).second;

@@ -6,6 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <map>
+#include <set>
+#include <array>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
@@ -18,6 +21,8 @@
 
 #include "core/errors.h"
 #include "frames.h"
+#include "gltf_quad.h"
+#include "io/mesh_formats.h"
 #include "io/mesh_io.h"
 #include "server_harness.h"
 #include "store.h"
@@ -176,7 +181,9 @@ TEST_F(ServerIntegration, HttpRoutes) {
   EXPECT_EQ(got.body_json(), mesh);
   EXPECT_EQ(http_get(port(), "/api/v1/health").body_json()["meshes"], 1);
 
-  for (const std::string format : {"drc", "obj", "ply", "stl", "glb", "off"}) {
+  for (const MeshFormatInfo& writable : mesh_formats()) {
+    if (!writable.write) continue;
+    const std::string format = writable.name;
     SCOPED_TRACE(format);
     const HttpResult d = http_get(port(), "/api/v1/meshes/" + id + "/download?format=" + format);
     ASSERT_FALSE(d.ec) << d.ec.message();
@@ -218,6 +225,89 @@ TEST_F(ServerIntegration, HttpRoutes) {
   expect_error(http_get(port(), "/api/v1/meshes/" + id), 404, "not_found");
   expect_error(http_call(port(), Method::delete_, "/api/v1/meshes/" + id), 404, "not_found");
   EXPECT_EQ(http_get(port(), "/api/v1/meshes").body_json()["meshes"].size(), 0u);
+}
+
+// A tetrahedron in each text format, written out here; Draco and glb by the
+// library's writers; a .gltf quad with its buffer as a data: URI.
+std::string base64(const std::string& in) {
+  static const char* abc = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < in.size(); i += 3) {
+    std::uint32_t n = std::uint32_t(std::uint8_t(in[i])) << 16;
+    if (i + 1 < in.size()) n |= std::uint32_t(std::uint8_t(in[i + 1])) << 8;
+    if (i + 2 < in.size()) n |= std::uint8_t(in[i + 2]);
+    out += abc[n >> 18];
+    out += abc[(n >> 12) & 63];
+    out += i + 1 < in.size() ? abc[(n >> 6) & 63] : '=';
+    out += i + 2 < in.size() ? abc[n & 63] : '=';
+  }
+  return out;
+}
+
+struct SmallFile {
+  std::string bytes;
+  std::size_t faces;
+};
+
+std::map<std::string, SmallFile> small_files() {
+  const std::string off = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 4\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  const char* corners[4] = {"0 0 0", "1 0 0", "0 1 0", "0 0 1"};
+  std::string stl = "solid t\n";
+  for (const auto& f : {std::array{0, 2, 1}, std::array{0, 1, 3}, std::array{0, 3, 2}, std::array{1, 2, 3}}) {
+    stl += "facet normal 0 0 0\nouter loop\n";
+    for (int v : f) stl += std::string("vertex ") + corners[v] + "\n";
+    stl += "endloop\nendfacet\n";
+  }
+  stl += "endsolid t\n";
+  const Mesh tetra = read_mesh_bytes(off, MeshFormat::off, "t.off").mesh;
+  return {{".off", {off, 4}},
+          {".obj", {obj, 4}},
+          {".ply", {ply, 4}},
+          {".stl", {stl, 4}},
+          {".drc", {write_mesh_bytes(tetra, MeshFormat::drc), 4}},
+          {".glb", {write_mesh_bytes(tetra, MeshFormat::glb), 4}},
+          {".gltf", {test::gltf_quad("data:application/octet-stream;base64," + base64(test::gltf_quad_bin())), 2}}};
+}
+
+TEST_F(ServerIntegration, FormatsListsWhatTheServerReadsAndWrites) {
+  ASSERT_TRUE(start());
+  const HttpResult r = http_get(port(), "/api/v1/formats");
+  ASSERT_FALSE(r.ec) << r.ec.message();
+  ASSERT_EQ(r.status, 200u) << r.body;
+  const json formats = r.body_json()["formats"];
+  std::set<std::string> names, writable;
+  const std::map<std::string, SmallFile> files = small_files();
+  for (const json& f : formats) {
+    const std::string name = f["name"];
+    SCOPED_TRACE(name);
+    names.insert(name);
+    if (f["can_write"].get<bool>()) writable.insert(name);
+    EXPECT_FALSE(f["help"].get<std::string>().empty());
+    ASSERT_FALSE(f["extensions"].empty());
+    for (const std::string ext : f["extensions"]) {
+      SCOPED_TRACE(ext);
+      const auto file = files.find(ext);
+      ASSERT_NE(file, files.end()) << "a listed extension with no small file in this test";
+      const HttpResult up = http_call(port(), Method::post, "/api/v1/meshes?name=t" + ext, file->second.bytes);
+      ASSERT_EQ(up.status, 201u) << up.body;
+      const json mesh = up.body_json();
+      EXPECT_EQ(mesh["format"], name);
+      EXPECT_EQ(mesh["report"]["faces"], file->second.faces);
+      if (!f["can_write"].get<bool>()) continue;
+      const HttpResult d =
+          http_get(port(), "/api/v1/meshes/" + mesh["id"].get<std::string>() + "/download?format=" + name);
+      ASSERT_EQ(d.status, 200u) << d.body.substr(0, 200);
+      EXPECT_EQ(d.header("Content-Type"), f["mime"]);
+      EXPECT_EQ(read_mesh_bytes(d.body, format_from_name("x" + ext), "download").mesh.num_faces(), file->second.faces);
+    }
+  }
+  EXPECT_EQ(names, (std::set<std::string>{"off", "obj", "ply", "stl", "drc", "glb", "gltf"}));
+  EXPECT_EQ(writable, (std::set<std::string>{"off", "obj", "ply", "stl", "drc", "glb"}));
 }
 
 TEST_F(ServerIntegration, KeepAliveServesSeveralRequestsOnOneConnection) {

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "io/mesh_formats.h"
 #include "io/mesh_io.h"
 
 namespace cgview::test {
@@ -16,12 +17,23 @@ struct Variant {
   bool text() const { return !binary; }
 };
 
+// Made from the table of formats: one variant a writable format, two (ascii
+// and binary) where WriteOptions::binary chooses.
 inline const std::vector<Variant>& variants() {
-  static const std::vector<Variant> v = {
-      {"off", MeshFormat::off, false, "off"},       {"obj", MeshFormat::obj, false, "obj"},
-      {"ply_ascii", MeshFormat::ply, false, "ply"}, {"ply_binary", MeshFormat::ply, true, "ply"},
-      {"stl_ascii", MeshFormat::stl, false, "stl"}, {"stl_binary", MeshFormat::stl, true, "stl"},
-      {"drc", MeshFormat::drc, true, "drc"},        {"glb", MeshFormat::glb, true, "glb"}};
+  static const std::vector<Variant> v = [] {
+    std::vector<Variant> out;
+    for (const MeshFormatInfo& f : mesh_formats()) {
+      if (!f.write) continue;
+      const std::string ext = f.extensions.front().substr(1);
+      if (f.encoding == MeshEncoding::either) {
+        out.push_back({std::string(f.name) + "_ascii", f.format, false, ext});
+        out.push_back({std::string(f.name) + "_binary", f.format, true, ext});
+      } else {
+        out.push_back({f.name, f.format, f.encoding == MeshEncoding::binary, ext});
+      }
+    }
+    return out;
+  }();
   return v;
 }
 

@@ -701,9 +701,11 @@ TEST_P(Fuzz, TruncatedOrFlippedBytesNeverEscapeAsAnotherError) {
   EXPECT_GT(loaded, 0);  // some variants are still valid files
 }
 
-INSTANTIATE_TEST_SUITE_P(BadInput, Fuzz,
-                         ::testing::Values("off", "obj", "ply_ascii", "ply_binary", "stl_ascii", "stl_binary", "drc",
-                                           "glb"),
+INSTANTIATE_TEST_SUITE_P(BadInput, Fuzz, ::testing::ValuesIn([] {
+                           std::vector<std::string> labels;
+                           for (const Variant& v : variants()) labels.push_back(v.label);
+                           return labels;
+                         }()),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 }  // namespace
