@@ -167,6 +167,17 @@ test('uploading the elephant through the page lists, reports and draws it', asyn
   assert.ok(await page.locator('#progress').isHidden(), 'the progress indicator is gone once shown');
   assert.deepEqual(await page.evaluate(() => window.__stages), ['uploading', 'downloading', 'decoding']);
 
+  // The picker offers what the server reads, and the report links every
+  // format it writes: both from the server's list (GET /api/v1/formats).
+  const formats = await page.evaluate(async () => (await (await fetch('/api/v1/formats')).json()).formats);
+  const accept = (await page.locator('#file-input').getAttribute('accept')).split(',');
+  for (const ext of [...formats.flatMap((f) => f.extensions), '.zip', '.mtl', '.nrrd']) assert.ok(accept.includes(ext), `the picker takes ${ext}: ${accept}`);
+  const writable = formats.filter((f) => f.can_write).map((f) => f.name);
+  assert.deepEqual([...writable].sort(), ['drc', 'glb', 'obj', 'off', 'ply', 'stl']);
+  const links = page.locator('#report .downloads a');
+  assert.deepEqual(await links.allInnerTexts(), writable);
+  for (const [i, f] of writable.entries()) assert.match(await links.nth(i).getAttribute('href'), new RegExp(`/download\\?format=${f}$`));
+
   // The canvas: orange mesh in the middle, background in the corners.
   const canvas = page.locator('#viewport canvas');
   const png = await canvas.screenshot({ path: path.join(artifacts, 'e2e-elephant.png') });

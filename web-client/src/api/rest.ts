@@ -97,7 +97,31 @@ export function deleteMesh(id: string): Promise<void> {
   return request<void>(`/meshes/${encodeURIComponent(id)}`, { method: 'DELETE', keepalive: true });
 }
 
-/** The URL that downloads a mesh converted to `format` (obj, off, ply, stl, glb, drc). */
+/** A mesh file format of the server (API.md, GET /api/v1/formats). */
+export interface MeshFormatInfo {
+  name: string;
+  /** Lowercase, with the dot: ".ply". */
+  extensions: string[];
+  mime: string;
+  can_write: boolean;
+  help: string;
+}
+
+let formatsAsked: Promise<MeshFormatInfo[]> | null = null;
+
+/** The mesh formats the server reads and writes, asked once (again after a failure). */
+export function meshFormats(): Promise<MeshFormatInfo[]> {
+  formatsAsked ??= request<{ formats: MeshFormatInfo[] }>('/formats').then(
+    (body) => body.formats,
+    (e: unknown) => {
+      formatsAsked = null;
+      throw e;
+    },
+  );
+  return formatsAsked;
+}
+
+/** The URL that downloads a mesh converted to `format` (a format of meshFormats() with can_write). */
 export function downloadUrl(id: string, format: string): string {
   return `${BASE}/meshes/${encodeURIComponent(id)}/download?format=${encodeURIComponent(format)}`;
 }

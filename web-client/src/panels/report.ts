@@ -1,12 +1,10 @@
 // The report of the shown mesh: every key the server sends, in its order,
 // each value with its unit (panels/format.ts), then the mesh's metadata,
 // warnings and download links.
-import { downloadUrl } from '../api/rest.ts';
+import { downloadUrl, meshFormats } from '../api/rest.ts';
 import type { Mesh } from '../api/types.ts';
 import { el, formatBytes } from './dom.ts';
 import { metricCell } from './format.ts';
-
-const DOWNLOAD_FORMATS = ['obj', 'off', 'ply', 'stl', 'glb', 'drc'];
 
 function label(key: string): string {
   return key.replace(/_/g, ' ');
@@ -69,12 +67,28 @@ function rows(report: Record<string, unknown>, prefix = ''): HTMLTableRowElement
 
 export class ReportPanel {
   private readonly root: HTMLElement;
+  /** The formats a mesh downloads in (the server's GET /api/v1/formats, can_write); empty till it answers. */
+  private writable: string[] = [];
+  private shown: Mesh | null = null;
 
   constructor(root: HTMLElement) {
     this.root = root;
   }
 
+  /** Asks the server for its writable formats, and shows the links when they come. */
+  private learnFormats(): void {
+    meshFormats().then(
+      (formats) => {
+        this.writable = formats.filter((f) => f.can_write).map((f) => f.name);
+        this.render(this.shown);
+      },
+      () => undefined,
+    );
+  }
+
   render(mesh: Mesh | null): void {
+    this.shown = mesh;
+    if (mesh && !this.writable.length) this.learnFormats();
     if (!mesh) {
       this.root.replaceChildren(el('p', { class: 'empty' }, 'Choose a mesh to see its report.'));
       return;
@@ -93,7 +107,7 @@ export class ReportPanel {
       'p',
       { class: 'downloads' },
       'Download: ',
-      ...DOWNLOAD_FORMATS.flatMap((f, i) => [i ? ' ' : '', el('a', { href: downloadUrl(mesh.id, f), download: '' }, f)]),
+      ...this.writable.flatMap((f, i) => [i ? ' ' : '', el('a', { href: downloadUrl(mesh.id, f), download: '' }, f)]),
     );
     const parts: Node[] = [el('h3', {}, mesh.name), el('table', { class: 'kv report' }, ...rows(mesh.report as Record<string, unknown>))];
     if (warnings) parts.push(el('h4', {}, 'Warnings'), warnings);

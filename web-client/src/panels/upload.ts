@@ -6,8 +6,12 @@
 // api/data_files.ts) goes up on its own.
 import { zipSync } from 'three/examples/jsm/libs/fflate.module.js';
 import { COMPANION_EXTENSIONS, DATA_EXTENSIONS, groupUploads } from '../api/data_files.ts';
+import { meshFormats, type MeshFormatInfo } from '../api/rest.ts';
 
-export const ACCEPTED = ['.off', '.obj', '.ply', '.stl', '.drc', '.glb', '.gltf', '.zip', ...COMPANION_EXTENSIONS, ...DATA_EXTENSIONS];
+/** What the file picker offers: the server's mesh formats, a zip of one with its companions, the companions, and data files. */
+export function acceptedExtensions(formats: readonly MeshFormatInfo[]): string[] {
+  return [...formats.flatMap((f) => f.extensions), '.zip', ...COMPANION_EXTENSIONS, ...DATA_EXTENSIONS];
+}
 
 /**
  * What to upload for the mesh files chosen together (groupUploads): each
@@ -46,7 +50,18 @@ export async function uploadsOf(files: File[]): Promise<{ uploads: Array<{ name:
 
 export class UploadControl {
   constructor(input: HTMLInputElement, dropTarget: HTMLElement, onFiles: (files: File[]) => void) {
-    input.accept = ACCEPTED.join(',');
+    // The server lists its formats (GET /api/v1/formats); till it has, and
+    // where it cannot be asked yet (not signed in), the picker offers any
+    // file and the server's answer says what it cannot read.
+    const learn = () =>
+      meshFormats().then(
+        (formats) => (input.accept = acceptedExtensions(formats).join(',')),
+        () => undefined,
+      );
+    void learn();
+    input.addEventListener('click', () => {
+      if (!input.accept) void learn();
+    });
     input.multiple = true;
     input.addEventListener('change', () => {
       const files = [...(input.files ?? [])];
