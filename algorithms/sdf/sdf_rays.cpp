@@ -10,7 +10,7 @@
 #include <string>
 #include <thread>
 
-#include "core/threads.h"
+#include "sdf/parallel_blocks.h"
 #include "rays/gpu_ray_caster.h"
 #include "rays/ray_caster.h"
 #include "registry/registry.h"
@@ -19,37 +19,6 @@ namespace cgview::sdf {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-int thread_count() { return std::max(1, int(std::thread::hardware_concurrency())); }
-
-// Runs fn(begin, end) over [0, n) in blocks on `threads` threads.  Only the
-// calling thread touches ctx (progress, cancellation: a Context need not be
-// thread-safe); the others stop at the next block once it is cancelled.
-template <class Fn>
-void parallel_blocks(std::size_t n, std::size_t block, int threads, const Context* ctx, double from, double to,
-                     const char* stage, Fn&& fn) {
-  std::atomic<std::size_t> next{0}, done{0};
-  std::atomic<bool> stop{false};
-  auto work = [&](bool main) {
-    for (;;) {
-      if (stop.load(std::memory_order_relaxed)) return;
-      if (main && ctx) {
-        if (ctx->cancelled()) {
-          stop = true;
-          return;
-        }
-        ctx->progress(from + (to - from) * double(done.load()) / double(std::max<std::size_t>(n, 1)), stage);
-      }
-      const std::size_t b = next.fetch_add(block);
-      if (b >= n) return;
-      const std::size_t e = std::min(n, b + block);
-      fn(b, e);
-      done += e - b;
-    }
-  };
-  on_threads(threads, [&](int t) { work(t == 0); });
-  if (ctx) ctx->check_cancelled();
-}
 
 // A ray of the cone in the face's frame: t along the axis (-n), (du, dv) in
 // the plane, and its weight.
@@ -266,64 +235,6 @@ void fill_missing(const Mesh& mesh, const Adjacency& graph, std::vector<double>&
     else still.push_back(f);
   }
   for (std::size_t f : still) values[f] = smallest;
-}
-
-int default_window(std::size_t faces) { return int(std::sqrt(double(faces) / 2000.0)) + 1; }
-
-void bilateral_smooth(const Adjacency& graph, std::vector<double>& values, int window, const Context* ctx,
-                      std::span<const std::uint32_t> only) {
-  const std::size_t n = values.size();
-  if (window <= 0) window = default_window(n);
-  const double spatial = window / 2.0;
-  std::vector<double> out = values;
-  const int threads = thread_count();
-  const std::size_t count = only.empty() ? n : only.size();
-  parallel_blocks(count, 1024, threads, ctx, 0.0, 1.0, "smoothing", [&](std::size_t b, std::size_t e) {
-    // A breadth-first walk over `window` edge-rings, with a visit stamp per face.
-    thread_local std::vector<std::uint32_t> stamp;
-    thread_local std::uint32_t epoch = 0;
-    if (stamp.size() != n) stamp.assign(n, 0), epoch = 0;
-    std::vector<std::pair<std::uint32_t, int>> ring;  // face, level
-    for (std::size_t i = b; i < e; ++i) {
-      const std::size_t f = only.empty() ? i : only[i];
-      if (std::isnan(values[f])) continue;
-      if (++epoch == 0) std::fill(stamp.begin(), stamp.end(), 0), epoch = 1;
-      ring.clear();
-      ring.push_back({std::uint32_t(f), 0});
-      stamp[f] = epoch;
-      for (std::size_t k = 0; k < ring.size(); ++k) {
-        const auto [g, level] = ring[k];
-        if (level >= window) continue;
-        for (const std::uint32_t* h = graph.begin(g); h != graph.end(g); ++h)
-          if (stamp[*h] != epoch) {
-            stamp[*h] = epoch;
-            ring.push_back({*h, level + 1});
-          }
-      }
-      // Faces without a value (those the accelerated SDF has not cast) are
-      // walked through but not averaged.
-      std::erase_if(ring, [&](const std::pair<std::uint32_t, int>& r) { return std::isnan(values[r.first]); });
-      const double c = values[f];
-      double dev = 0;
-      for (auto& [g, level] : ring) dev += (values[g] - c) * (values[g] - c);
-      dev = std::sqrt(dev / double(ring.size()));
-      if (dev == 0) {
-        out[f] = c;
-        continue;
-      }
-      const double range = 1.5 * dev;
-      double sum = 0, wsum = 0;
-      for (auto& [g, level] : ring) {
-        const double dv = values[g] - c;
-        const double w =
-            std::exp(-0.5 * (level / spatial) * (level / spatial)) * std::exp(-0.5 * (dv / range) * (dv / range));
-        sum += values[g] * w;
-        wsum += w;
-      }
-      out[f] = sum / wsum;
-    }
-  });
-  values = std::move(out);
 }
 
 std::vector<double> normalize_linear(const std::vector<double>& values) {

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "sdf/bilateral_filter.h"
 #include "sdf/sdf_params.h"
 
 namespace cgview::sdf {
@@ -54,17 +55,9 @@ RawSdf raw_sdf(const Mesh& mesh, const SdfParams& p, std::span<const std::uint32
 // Postprocess_sdf_values), with the same rules:
 // - fill_missing: a NaN face takes the mean of its edge neighbours' values,
 //   else the smallest value of the mesh;
-// - bilateral_smooth: each face becomes the average of the faces within
-//   `window` edge-rings (window = floor(sqrt(faces / 2000)) + 1 by default),
-//   weighted by exp(-ring^2 / (2 (window/2)^2)) exp(-dv^2 / (2 (1.5 s)^2)),
-//   s the RMS deviation of the window's values from the face's;
+// - bilateral_smooth (sdf/bilateral_filter.h);
 // - normalize: linear to [0, 1] over min..max (all 0.5 when constant).
 void fill_missing(const Mesh& mesh, const Adjacency& face_graph, std::vector<double>& values);
-//   Only the faces listed in `only` when it is not empty; NaN values are
-//   neither smoothed nor averaged (the accelerated SDF smooths its samples).
-void bilateral_smooth(const Adjacency& face_graph, std::vector<double>& values, int window = 0,
-                      const Context* ctx = nullptr, std::span<const std::uint32_t> only = {});
-int default_window(std::size_t faces);
 std::vector<double> normalize_linear(const std::vector<double>& values);
 
 // What the SDF algorithms do after the rays: holes filled (always: a face

@@ -1,0 +1,246 @@
+#include "sdf/bilateral_filter.h"
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+#include "sdf/parallel_blocks.h"
+
+namespace cgview::sdf {
+namespace {
+
+constexpr std::size_t kBlock = 64;  // faces per walk: a bit each in a word
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+// The face graph renumbered breadth-first, so that the faces of a window,
+// and of the next block's windows, lie in a few runs of nearby numbers: in
+// a file's order the walks wait on memory more than they compute.
+struct Renumbered {
+  std::vector<std::uint32_t> old_of, new_of;
+  Adjacency graph;  // in the new numbers
+};
+
+Renumbered breadth_first(const Adjacency& g) {
+  const std::size_t n = g.size();
+  Renumbered r;
+  r.new_of.assign(n, kNone);
+  r.old_of.reserve(n);
+  for (std::size_t s = 0; s < n; ++s) {
+    if (r.new_of[s] != kNone) continue;
+    r.new_of[s] = std::uint32_t(r.old_of.size());
+    r.old_of.push_back(std::uint32_t(s));
+    for (std::size_t k = r.old_of.size() - 1; k < r.old_of.size(); ++k)
+      for (const std::uint32_t* h = g.begin(r.old_of[k]); h != g.end(r.old_of[k]); ++h)
+        if (r.new_of[*h] == kNone) {
+          r.new_of[*h] = std::uint32_t(r.old_of.size());
+          r.old_of.push_back(*h);
+        }
+  }
+  r.graph.offsets.reserve(n + 1);
+  r.graph.offsets.push_back(0);
+  r.graph.items.reserve(g.items.size());
+  for (std::uint32_t old : r.old_of) {
+    for (const std::uint32_t* h = g.begin(old); h != g.end(old); ++h) r.graph.items.push_back(r.new_of[*h]);
+    r.graph.offsets.push_back(std::uint32_t(r.graph.items.size()));
+  }
+  return r;
+}
+
+// Blocks of up to 64 faces to smooth, each grown breadth-first from a seed so
+// that its faces lie close together and their windows overlap.  The walk that
+// gathers a block goes through the other faces, and gives up after `reach`
+// faces (the last scattered faces of a sparse list make blocks of their own).
+std::vector<std::vector<std::uint32_t>> blocks_of(const Adjacency& g, const std::vector<char>& wanted,
+                                                  std::size_t reach) {
+  const std::size_t n = g.size();
+  std::vector<char> taken(n, 0);
+  std::vector<std::uint32_t> seen(n, kNone), queue;
+  std::vector<std::vector<std::uint32_t>> blocks;
+  for (std::size_t s = 0; s < n; ++s) {
+    if (!wanted[s] || taken[s]) continue;
+    std::vector<std::uint32_t> block;
+    queue.assign(1, std::uint32_t(s));
+    seen[s] = std::uint32_t(blocks.size());
+    for (std::size_t k = 0; k < queue.size() && block.size() < kBlock && k < reach; ++k) {
+      const std::uint32_t f = queue[k];
+      if (wanted[f] && !taken[f]) taken[f] = 1, block.push_back(f);
+      for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h)
+        if (seen[*h] != blocks.size()) seen[*h] = std::uint32_t(blocks.size()), queue.push_back(*h);
+    }
+    blocks.push_back(std::move(block));
+  }
+  return blocks;
+}
+
+// One walk for a block: the faces met, with the bits of the block's faces
+// whose windows they are in, and for each face of the block the values of
+// its window with their rings' half of the weights' exponent.  Arrays keep
+// their size from block to block and grow before each ring by what that ring
+// can add, so that the inner loops write through plain pointers.
+class Walk {
+ public:
+  std::span<const float> values(std::size_t i) const { return {value_[i].data(), count_[i]}; }
+  std::span<const float> exponents(std::size_t i) const { return {exponent_[i].data(), count_[i]}; }
+
+  void run(const Adjacency& g, const std::vector<double>& v, std::span<const std::uint32_t> block,
+           const std::vector<float>& ring_exponent) {
+    const int window = int(ring_exponent.size()) - 1;
+    gather(g, v, block, window);
+    front_.clear();
+    for (std::size_t i = 0; i < block.size(); ++i) {
+      count_[i] = 0;
+      reached_[i] |= std::uint64_t(1) << i;  // the block's faces come first
+      front_.push_back({std::uint32_t(i), std::uint64_t(1) << i});
+    }
+    std::uint64_t* reached = reached_.data();
+    std::uint64_t* incoming = incoming_.data();
+    std::uint32_t* touched = touched_.data();
+    const std::uint32_t* near = near_.data();
+    const std::uint32_t* near_at = near_at_.data();
+    for (int level = 0;; ++level) {
+      record(block.size(), ring_exponent[std::size_t(level)]);
+      if (level == window) return;
+      std::size_t touches = 0;
+      for (const auto& [l, bits] : front_)
+        for (std::uint32_t k = near_at[l]; k < near_at[l + 1]; ++k) {
+          const std::uint32_t m = near[k];
+          if (!incoming[m]) touched[touches++] = m;
+          incoming[m] |= bits;
+        }
+      next_.clear();
+      for (std::size_t t = 0; t < touches; ++t) {
+        const std::uint32_t m = touched[t];
+        const std::uint64_t fresh = incoming[m] & ~reached[m];
+        incoming[m] = 0;
+        if (fresh) reached[m] |= fresh, next_.push_back({m, fresh});
+      }
+      front_.swap(next_);
+    }
+  }
+
+ private:
+  std::vector<std::uint32_t> stamp_, slot_;  // per face of the mesh: the walk's own numbering
+  std::uint32_t epoch_ = 0;
+  // Per face within the window of a face of the block:
+  std::vector<std::uint32_t> face_;                                    // its number in the mesh
+  std::vector<std::uint16_t> ring_;                                    // its ring from the block's nearest face
+  std::vector<std::uint32_t> near_at_, near_;                          // its neighbours among them
+  std::vector<float> face_value_;                                      // its value (the sums are in float: see below)
+  std::vector<std::uint64_t> reached_, incoming_;                      // whose windows it is in; reached at this ring
+  std::vector<std::pair<std::uint32_t, std::uint64_t>> front_, next_;  // faces first met at a ring, and by whom
+  std::vector<std::uint32_t> touched_;
+  std::vector<float> value_[kBlock], exponent_[kBlock];
+  std::size_t count_[kBlock] = {};
+
+  // The faces within `window` rings of the block's, numbered from 0 (the
+  // block's first), with their values and their neighbours among them in
+  // those numbers: the walks of every ring then stay in these arrays.
+  void gather(const Adjacency& g, const std::vector<double>& v, std::span<const std::uint32_t> block, int window) {
+    if (stamp_.size() != g.size()) stamp_.assign(g.size(), 0), slot_.resize(g.size()), epoch_ = 0;
+    if (++epoch_ == 0) std::fill(stamp_.begin(), stamp_.end(), 0), epoch_ = 1;
+    face_.clear(), ring_.clear();
+    const auto add = [&](std::uint32_t f, std::uint16_t ring) {
+      stamp_[f] = epoch_;
+      slot_[f] = std::uint32_t(face_.size());
+      face_.push_back(f);
+      ring_.push_back(ring);
+    };
+    for (std::uint32_t f : block) add(f, 0);
+    for (std::size_t k = 0; k < face_.size(); ++k) {
+      if (ring_[k] == window) continue;
+      for (const std::uint32_t* h = g.begin(face_[k]); h != g.end(face_[k]); ++h)
+        if (stamp_[*h] != epoch_) add(*h, std::uint16_t(ring_[k] + 1));
+    }
+    const std::size_t met = face_.size();
+    face_value_.resize(met), reached_.assign(met, 0), incoming_.assign(met, 0);
+    near_at_.resize(met + 1);
+    near_.clear();
+    for (std::size_t k = 0; k < met; ++k) {
+      face_value_[k] = float(v[face_[k]]);
+      near_at_[k] = std::uint32_t(near_.size());
+      // A face on the outermost ring may have neighbours beyond: no walk
+      // of the block reaches them within the window.
+      for (const std::uint32_t* h = g.begin(face_[k]); h != g.end(face_[k]); ++h)
+        if (stamp_[*h] == epoch_) near_.push_back(slot_[*h]);
+    }
+    near_at_[met] = std::uint32_t(near_.size());
+    touched_.resize(std::max(touched_.size(), near_.size()));
+  }
+
+  // A face joins the windows whose bits first reach it at this ring; faces
+  // without a value are walked through but not averaged.
+  void record(std::size_t sources, float exponent) {
+    float* value[kBlock];
+    float* expo[kBlock];
+    for (std::size_t i = 0; i < sources; ++i) {
+      if (value_[i].size() < count_[i] + front_.size()) {
+        const std::size_t size = std::max(count_[i] + front_.size(), 2 * value_[i].size());
+        value_[i].resize(size), exponent_[i].resize(size);
+      }
+      value[i] = value_[i].data();
+      expo[i] = exponent_[i].data();
+    }
+    const float* face_value = face_value_.data();
+    for (const auto& [l, bits] : front_) {
+      const float x = face_value[l];
+      if (std::isnan(x)) continue;
+      for (std::uint64_t b = bits; b; b &= b - 1) {
+        const int i = std::countr_zero(b);
+        value[i][count_[i]] = x;
+        expo[i][count_[i]++] = exponent;
+      }
+    }
+  }
+};
+
+}  // namespace
+
+int default_window(std::size_t faces) { return int(std::sqrt(double(faces) / 2000.0)) + 1; }
+
+void bilateral_smooth(const Adjacency& face_graph, std::vector<double>& values, int window, const Context* ctx,
+                      std::span<const std::uint32_t> only) {
+  const std::size_t n = values.size();
+  if (window <= 0) window = default_window(n);
+  const Renumbered order = breadth_first(face_graph);
+  const Adjacency& graph = order.graph;
+  std::vector<double> v(n);
+  for (std::size_t f = 0; f < n; ++f) v[f] = values[order.old_of[f]];
+  std::vector<char> wanted(n, only.empty() ? 1 : 0);
+  for (std::uint32_t f : only) wanted[order.new_of[f]] = 1;
+  for (std::size_t f = 0; f < n; ++f)
+    if (std::isnan(v[f])) wanted[f] = 0;
+  const auto blocks = blocks_of(graph, wanted, 64 * kBlock);
+  // exp(-ring^2 / (2 spatial^2)) exp(-dv^2 / (2 range^2)) as one exp: the
+  // rings' half of the exponent by ring.
+  const double spatial = window / 2.0;
+  std::vector<float> ring_exponent(std::size_t(window) + 1);
+  for (int l = 0; l <= window; ++l) ring_exponent[std::size_t(l)] = float(0.5 * (l / spatial) * (l / spatial));
+
+  std::vector<double> out = values;
+  parallel_blocks(blocks.size(), 4, thread_count(), ctx, 0.0, 1.0, "smoothing", [&](std::size_t b, std::size_t e) {
+    thread_local Walk walk;
+    thread_local Eigen::ArrayXf weight;
+    for (std::size_t k = b; k < e; ++k) {
+      const std::vector<std::uint32_t>& block = blocks[k];
+      walk.run(graph, v, block, ring_exponent);
+      for (std::size_t i = 0; i < block.size(); ++i) {
+        // In float, four to a vector instruction (Eigen's exp): the
+        // weights' rounding moves a result by about 1e-7 of its window's
+        // spread.
+        const Eigen::Map<const Eigen::ArrayXf> x(walk.values(i).data(), Eigen::Index(walk.values(i).size()));
+        const Eigen::Map<const Eigen::ArrayXf> ring(walk.exponents(i).data(), x.size());
+        const float c = float(v[block[i]]);
+        const double dev = std::sqrt(double((x - c).square().sum()) / double(x.size()));
+        if (dev == 0) continue;  // out keeps c
+        const float inv = float(0.5 / (2.25 * dev * dev));
+        weight = (-(ring + inv * (x - c).square())).exp();
+        out[order.old_of[block[i]]] = double((weight * x).sum()) / double(weight.sum());
+      }
+    }
+  });
+  values = std::move(out);
+}
+
+}  // namespace cgview::sdf
