@@ -162,32 +162,6 @@ class Current {
   SharedContext& s_;
 };
 
-GLuint compile_program(const GlFunctions& gl) {
-  const GLuint shader = gl.glCreateShader(GL_COMPUTE_SHADER);
-  gl.glShaderSource(shader, 1, &kShader, nullptr);
-  gl.glCompileShader(shader);
-  GLint ok = 0;
-  gl.glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    gl.glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    gl.glDeleteShader(shader);
-    throw Error(std::string("GPU rays: the compute shader did not compile: ") + log);
-  }
-  const GLuint program = gl.glCreateProgram();
-  gl.glAttachShader(program, shader);
-  gl.glLinkProgram(program);
-  gl.glDeleteShader(shader);
-  gl.glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    gl.glGetProgramInfoLog(program, sizeof log, nullptr, log);
-    gl.glDeleteProgram(program);
-    throw Error(std::string("GPU rays: the compute shader did not link: ") + log);
-  }
-  return program;
-}
-
 // The flattened BVH: nodes depth-first, triangles in leaf order.
 class BvhBuilder {
  public:
@@ -230,28 +204,23 @@ class BvhBuilder {
 
   void build(std::size_t node, std::size_t b, std::size_t e, int depth) {
     GpuNode& out = nodes_[node];
-    Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    Vec3 clo = lo, chi = hi;
+    BBox box, centroids;
     for (std::size_t k = b; k < e; ++k) {
       const Tri& t = mesh_.faces[order_[k]];
-      for (int j = 0; j < 3; ++j) {
-        const Vec3& p = mesh_.positions[t[j]];
-        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-      }
-      const Vec3& c = centroid_[order_[k]];
-      clo = {std::min(clo.x, c.x), std::min(clo.y, c.y), std::min(clo.z, c.z)};
-      chi = {std::max(chi.x, c.x), std::max(chi.y, c.y), std::max(chi.z, c.z)};
+      for (int j = 0; j < 3; ++j) box.add(mesh_.positions[t[j]]);
+      centroids.add(centroid_[order_[k]]);
     }
-    out.lo[0] = float(lo.x - pad_), out.lo[1] = float(lo.y - pad_), out.lo[2] = float(lo.z - pad_);
-    out.hi[0] = float(hi.x + pad_), out.hi[1] = float(hi.y + pad_), out.hi[2] = float(hi.z + pad_);
+    for (int j = 0; j < 3; ++j) {
+      out.lo[j] = float(box.min[j] - pad_);
+      out.hi[j] = float(box.max[j] + pad_);
+    }
     const std::size_t n = e - b;
     if (n <= kLeafSize) {
       out.a = std::uint32_t(b);
       out.count = std::uint32_t(n);
       return;
     }
-    const Vec3 ext = chi - clo;
+    const Vec3 ext = centroids.size();
     const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
     const std::size_t mid = b + n / 2;
     std::nth_element(order_.begin() + std::ptrdiff_t(b), order_.begin() + std::ptrdiff_t(mid),
@@ -308,7 +277,7 @@ GpuRayCaster::GpuRayCaster(const Mesh& mesh, GlPlatform platform) : impl_(std::m
   const GlFunctions& gl = current.gl();
   const GlComputeFunctions& gc = current.gc();
   if (!s.program) {
-    s.program = compile_program(gl);
+    s.program = render::link_program(gl, {{GL_COMPUTE_SHADER, kShader}}, "GPU rays");
     s.ray_count = gl.glGetUniformLocation(s.program, "ray_count");
   }
   GLint64 max_block = 0;

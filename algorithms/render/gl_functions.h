@@ -7,6 +7,12 @@
 
 #include <GL/glcorearb.h>
 
+#include <initializer_list>
+#include <string>
+#include <vector>
+
+#include "core/errors.h"
+
 #define CGVIEW_GL_FUNCTIONS(X)                                     \
   X(PFNGLGETSTRINGPROC, glGetString)                               \
   X(PFNGLGETERRORPROC, glGetError)                                 \
@@ -111,5 +117,43 @@ struct GlFunctions {
   CGVIEW_GL_FUNCTIONS(CGVIEW_GL_MEMBER)
 #undef CGVIEW_GL_MEMBER
 };
+
+struct ShaderStage {
+  GLenum type;  // GL_VERTEX_SHADER, GL_FRAGMENT_SHADER, GL_COMPUTE_SHADER
+  const char* source;
+};
+
+// A program linked from the stages.  Throws Error "<what>: shader
+// compilation failed: <the driver's log>" (or linking), leaving nothing behind.
+inline GLuint link_program(const GlFunctions& gl, std::initializer_list<ShaderStage> stages, const char* what) {
+  std::vector<GLuint> shaders;
+  const auto fail = [&](const char* stage, const char* log) {
+    for (GLuint s : shaders) gl.glDeleteShader(s);
+    throw Error(std::string(what) + ": shader " + stage + " failed: " + log);
+  };
+  char log[2048] = {};
+  GLint ok = 0;
+  for (const ShaderStage& st : stages) {
+    shaders.push_back(gl.glCreateShader(st.type));
+    gl.glShaderSource(shaders.back(), 1, &st.source, nullptr);
+    gl.glCompileShader(shaders.back());
+    gl.glGetShaderiv(shaders.back(), GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+      gl.glGetShaderInfoLog(shaders.back(), sizeof log, nullptr, log);
+      fail("compilation", log);
+    }
+  }
+  const GLuint p = gl.glCreateProgram();
+  for (GLuint s : shaders) gl.glAttachShader(p, s);
+  gl.glLinkProgram(p);
+  gl.glGetProgramiv(p, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    gl.glGetProgramInfoLog(p, sizeof log, nullptr, log);
+    gl.glDeleteProgram(p);
+    fail("linking", log);
+  }
+  for (GLuint s : shaders) gl.glDeleteShader(s);
+  return p;
+}
 
 }  // namespace cgview::render

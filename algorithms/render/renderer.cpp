@@ -270,36 +270,8 @@ struct Renderer::Impl {
     r = 0;
   }
 
-  GLuint compile(GLenum type, const char* src) {
-    GLuint s = gl.glCreateShader(type);
-    gl.glShaderSource(s, 1, &src, nullptr);
-    gl.glCompileShader(s);
-    GLint ok = 0;
-    gl.glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-      char log[2048] = {};
-      gl.glGetShaderInfoLog(s, sizeof log, nullptr, log);
-      gl.glDeleteShader(s);
-      throw Error(std::string("render: shader compilation failed: ") + log);
-    }
-    return s;
-  }
   GLuint link(const char* vs, const char* fs) {
-    const GLuint v = compile(GL_VERTEX_SHADER, vs), f = compile(GL_FRAGMENT_SHADER, fs);
-    GLuint p = gl.glCreateProgram();
-    gl.glAttachShader(p, v);
-    gl.glAttachShader(p, f);
-    gl.glLinkProgram(p);
-    gl.glDeleteShader(v);
-    gl.glDeleteShader(f);
-    GLint ok = 0;
-    gl.glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) {
-      char log[2048] = {};
-      gl.glGetProgramInfoLog(p, sizeof log, nullptr, log);
-      gl.glDeleteProgram(p);
-      throw Error(std::string("render: shader linking failed: ") + log);
-    }
+    const GLuint p = link_program(gl, {{GL_VERTEX_SHADER, vs}, {GL_FRAGMENT_SHADER, fs}}, "render");
     ++counts.programs;
     ever_programs.insert(p);
     return p;
