@@ -14,3 +14,6 @@ set(CGVIEW_REGISTRY_SOURCES registry/registry.cpp registry/artifact_io.cpp
   artifacts/artifact_codec.cpp artifacts/mesh_codec.cpp artifacts/scalar_field_codec.cpp artifacts/vector_field_codec.cpp
   artifacts/voxel_grid_codec.cpp artifacts/skeleton_codec.cpp artifacts/metrics_codec.cpp
   artifacts/text_codec.cpp artifacts/animation_codec.cpp)
+# The voxel file formats, one file each (cgview_voxel).
+set(CGVIEW_VOXEL_FORMAT_SOURCES voxel/voxel_file_parts.cpp voxel/binvox.cpp voxel/nrrd.cpp voxel/vti.cpp voxel/vox.cpp
+  voxel/raw_voxels.cpp)

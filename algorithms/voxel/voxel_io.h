@@ -1,4 +1,6 @@
-// Voxel grids in the formats other tools read, written and read back.
+// Voxel grids in the formats other tools read, written and read back; each
+// format is a file of its own (binvox.cpp, raw_voxels.cpp, nrrd.cpp, vti.cpp,
+// vox.cpp, voxel_vdb.cpp), voxel_io.cpp picks one by the extension.
 //
 //   .binvox  binvox 1 (Patrick Min): run-length bytes, y fastest, then z,
 //            then x; cubic: the grid is padded with empty voxels to its
