@@ -14,40 +14,6 @@ namespace {
 constexpr std::size_t kBlock = 64;  // faces per walk: a bit each in a word
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 
-// The face graph renumbered breadth-first, so that the faces of a window,
-// and of the next block's windows, lie in a few runs of nearby numbers: in
-// a file's order the walks wait on memory more than they compute.
-struct Renumbered {
-  std::vector<std::uint32_t> old_of, new_of;
-  Adjacency graph;  // in the new numbers
-};
-
-Renumbered breadth_first(const Adjacency& g) {
-  const std::size_t n = g.size();
-  Renumbered r;
-  r.new_of.assign(n, kNone);
-  r.old_of.reserve(n);
-  for (std::size_t s = 0; s < n; ++s) {
-    if (r.new_of[s] != kNone) continue;
-    r.new_of[s] = std::uint32_t(r.old_of.size());
-    r.old_of.push_back(std::uint32_t(s));
-    for (std::size_t k = r.old_of.size() - 1; k < r.old_of.size(); ++k)
-      for (const std::uint32_t* h = g.begin(r.old_of[k]); h != g.end(r.old_of[k]); ++h)
-        if (r.new_of[*h] == kNone) {
-          r.new_of[*h] = std::uint32_t(r.old_of.size());
-          r.old_of.push_back(*h);
-        }
-  }
-  r.graph.offsets.reserve(n + 1);
-  r.graph.offsets.push_back(0);
-  r.graph.items.reserve(g.items.size());
-  for (std::uint32_t old : r.old_of) {
-    for (const std::uint32_t* h = g.begin(old); h != g.end(old); ++h) r.graph.items.push_back(r.new_of[*h]);
-    r.graph.offsets.push_back(std::uint32_t(r.graph.items.size()));
-  }
-  return r;
-}
-
 // Blocks of up to 64 faces to smooth, each grown breadth-first from a seed so
 // that its faces lie close together and their windows overlap.  The walk that
 // gathers a block goes through the other faces, and gives up after `reach`
@@ -203,12 +169,10 @@ void bilateral_smooth(const Adjacency& face_graph, std::vector<double>& values, 
                       std::span<const std::uint32_t> only) {
   const std::size_t n = values.size();
   if (window <= 0) window = default_window(n);
-  const Renumbered order = breadth_first(face_graph);
-  const Adjacency& graph = order.graph;
-  std::vector<double> v(n);
-  for (std::size_t f = 0; f < n; ++f) v[f] = values[order.old_of[f]];
+  const Adjacency& graph = face_graph;
+  const std::vector<double>& v = values;
   std::vector<char> wanted(n, only.empty() ? 1 : 0);
-  for (std::uint32_t f : only) wanted[order.new_of[f]] = 1;
+  for (std::uint32_t f : only) wanted[f] = 1;
   for (std::size_t f = 0; f < n; ++f)
     if (std::isnan(v[f])) wanted[f] = 0;
   const auto blocks = blocks_of(graph, wanted, 64 * kBlock);
@@ -236,7 +200,7 @@ void bilateral_smooth(const Adjacency& face_graph, std::vector<double>& values, 
         if (dev == 0) continue;  // out keeps c
         const float inv = float(0.5 / (2.25 * dev * dev));
         weight = (-(ring + inv * (x - c).square())).exp();
-        out[order.old_of[block[i]]] = double((weight * x).sum()) / double(weight.sum());
+        out[block[i]] = double((weight * x).sum()) / double(weight.sum());
       }
     }
   });
