@@ -1,6 +1,7 @@
 #include "rays/gpu_ray_caster.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -39,7 +40,8 @@ struct GpuHit {
   std::uint32_t face;
 };
 static_assert(sizeof(GpuNode) == 32 && sizeof(GpuTri) == 48 && sizeof(GpuHit) == 8);
-static_assert(sizeof(GpuRayCaster::Ray) == 32);
+static_assert(sizeof(GpuRayCaster::Ray) == 32 && sizeof(GpuRayCaster::Frame) == 64 &&
+              sizeof(GpuRayCaster::ConeRay) == 16);
 
 constexpr int kLeafSize = 4;
 constexpr std::size_t kBatch = std::size_t(1) << 20;
@@ -51,11 +53,27 @@ struct Node { vec3 lo; uint a; vec3 hi; uint count; };
 struct Tri { vec3 v0; uint face; vec3 e1; float pad1; vec3 e2; float pad2; };
 struct Ray { vec3 origin; uint skip; vec3 direction; float max_distance; };
 struct Hit { float distance; uint face; };
+struct Frame { vec3 origin; uint face; vec3 n; float pad0; vec3 u; float pad1; vec3 v; float pad2; };
 layout(std430, binding = 0) readonly buffer Nodes { Node nodes[]; };
 layout(std430, binding = 1) readonly buffer Tris { Tri tris[]; };
 layout(std430, binding = 2) readonly buffer Rays { Ray rays[]; };
 layout(std430, binding = 3) writeonly buffer Hits { Hit hits[]; };
+layout(std430, binding = 4) readonly buffer Frames { Frame frames[]; };
+layout(std430, binding = 5) readonly buffer Cone { vec4 cone[]; };
 uniform uint ray_count;
+uniform uint cone_rays;  // 0: the rays are `rays`; else each frame's cone of this many
+
+Ray ray(uint i) {
+  if (cone_rays == 0u) return rays[i];
+  Frame f = frames[i / cone_rays];
+  vec4 k = cone[i % cone_rays];
+  Ray r;
+  r.origin = f.origin;
+  r.skip = f.face;
+  r.direction = f.face == 0xFFFFFFFFu ? vec3(0.0) : normalize(-k.x * f.n + k.y * f.u + k.z * f.v);
+  r.max_distance = uintBitsToFloat(0x7F800000u);  // infinity
+  return r;
+}
 
 // Where the ray enters the box within (0, best), else a huge value.
 float enter(vec3 lo, vec3 hi, vec3 o, vec3 inv, float best) {
@@ -69,7 +87,7 @@ float enter(vec3 lo, vec3 hi, vec3 o, vec3 inv, float best) {
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= ray_count) return;
-  Ray r = rays[i];
+  Ray r = ray(i);
   float best = r.max_distance;
   uint face = 0xFFFFFFFFu;
   if (dot(r.direction, r.direction) > 0.0) {
@@ -132,7 +150,7 @@ struct SharedContext {
   std::mutex mutex;
   std::unique_ptr<EglContext> context;
   GLuint program = 0;
-  GLint ray_count = -1;
+  GLint ray_count = -1, cone_rays = -1;
 };
 
 SharedContext& shared_context(GlPlatform platform) {
@@ -251,9 +269,60 @@ class BvhBuilder {
 
 struct GpuRayCaster::Impl {
   SharedContext* shared = nullptr;
-  GLuint buffers[4] = {0, 0, 0, 0};  // nodes, triangles, rays, hits
-  std::size_t batch = 0;             // rays the ray and hit buffers hold now
-  std::size_t max_batch = 0;         // and at most
+  static constexpr int kBuffers = 6;
+  GLuint buffers[kBuffers] = {};  // nodes, triangles, rays, hits, frames, cone
+  std::size_t bytes[kBuffers] = {};
+  std::size_t max_batch = 0;  // rays a dispatch casts at most
+
+  // Buffer k holding at least `size` bytes (grown, contents dropped).
+  void reserve(const GlFunctions& gl, int k, std::size_t size) {
+    if (bytes[k] >= size) return;
+    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[k]);
+    gl.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(size), nullptr, k == 3 ? GL_STREAM_READ : GL_STREAM_DRAW);
+    bytes[k] = size;
+  }
+  // The rays of `count` items (rays, or frames of `per_item` rays each
+  // with `cone` beside them) into hits, item by item in buffer `buffer`,
+  // in batches of at most max_batch rays.
+  void cast(const void* items, std::size_t count, std::size_t item_bytes, int buffer, std::size_t per_item,
+            std::span<const std::byte> cone, std::vector<Hit>& hits) {
+    const std::size_t rays_per = std::max<std::size_t>(1, per_item);
+    hits.assign(count * rays_per, Hit{});
+    if (hits.empty()) return;
+    const Current current(*shared);
+    const GlFunctions& gl = current.gl();
+    const GlComputeFunctions& gc = current.gc();
+    const std::size_t batch = std::min(count, std::max<std::size_t>(1, max_batch / rays_per));
+    reserve(gl, buffer, batch * item_bytes);
+    reserve(gl, 3, batch * rays_per * sizeof(GpuHit));
+    if (!cone.empty()) {
+      reserve(gl, 5, cone.size());
+      gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[5]);
+      gc.glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(cone.size()), cone.data());
+    }
+    current.check("allocating the ray buffers");
+    gl.glUseProgram(shared->program);
+    for (int k = 0; k < kBuffers; ++k) gc.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(k), buffers[k]);
+    gl.glUniform1ui(shared->cone_rays, GLuint(per_item));
+    std::vector<GpuHit> out;
+    for (std::size_t b = 0; b < count; b += batch) {
+      const std::size_t n = std::min(batch, count - b), rays = n * rays_per;
+      gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[buffer]);
+      gc.glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(n * item_bytes),
+                         static_cast<const std::byte*>(items) + b * item_bytes);
+      gl.glUniform1ui(shared->ray_count, GLuint(rays));
+      gc.glDispatchCompute(GLuint((rays + kGroupSize - 1) / kGroupSize), 1, 1);
+      gc.glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+      out.resize(rays);
+      gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[3]);
+      gc.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(rays * sizeof(GpuHit)), out.data());
+      current.check("casting rays");
+      for (std::size_t i = 0; i < rays; ++i)
+        if (out[i].face != kNoFace) hits[b * rays_per + i] = {double(out[i].distance), out[i].face};
+    }
+    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+    gl.glUseProgram(0);
+  }
 };
 
 GpuRayCaster::GpuRayCaster(const Mesh& mesh, GlPlatform platform) : impl_(std::make_unique<Impl>()) {
@@ -279,6 +348,7 @@ GpuRayCaster::GpuRayCaster(const Mesh& mesh, GlPlatform platform) : impl_(std::m
   if (!s.program) {
     s.program = render::link_program(gl, {{GL_COMPUTE_SHADER, kShader}}, "GPU rays");
     s.ray_count = gl.glGetUniformLocation(s.program, "ray_count");
+    s.cone_rays = gl.glGetUniformLocation(s.program, "cone_rays");
   }
   GLint64 max_block = 0;
   gc.glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
@@ -286,7 +356,7 @@ GpuRayCaster::GpuRayCaster(const Mesh& mesh, GlPlatform platform) : impl_(std::m
   if (std::size_t(max_block) < largest)
     throw Error("GPU rays: the mesh's BVH needs storage buffers of " + std::to_string(largest >> 20) +
                 " MiB, the driver allows " + std::to_string(std::size_t(max_block) >> 20) + " MiB");
-  gl.glGenBuffers(4, impl_->buffers);
+  gl.glGenBuffers(Impl::kBuffers, impl_->buffers);
   const auto upload = [&](int k, std::size_t bytes, const void* data) {
     gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, impl_->buffers[k]);
     gl.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes), data, GL_STATIC_DRAW);
@@ -294,6 +364,8 @@ GpuRayCaster::GpuRayCaster(const Mesh& mesh, GlPlatform platform) : impl_(std::m
   upload(0, nodes_ * sizeof(GpuNode), bvh.nodes().data());
   upload(1, tris.size() * sizeof(GpuTri), tris.data());
   impl_->max_batch = std::min<std::size_t>(kBatch, std::size_t(max_block) / sizeof(Ray));
+  // Every binding backed by storage, the unused ones too.
+  for (int k = 2; k < Impl::kBuffers; ++k) impl_->reserve(gl, k, 64);
   gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
   current.check("uploading the BVH");
 }
@@ -302,7 +374,7 @@ GpuRayCaster::~GpuRayCaster() {
   if (!impl_->shared || !impl_->buffers[0]) return;
   try {
     const Current current(*impl_->shared);
-    current.gl().glDeleteBuffers(4, impl_->buffers);
+    current.gl().glDeleteBuffers(Impl::kBuffers, impl_->buffers);
   } catch (...) {  // the context is gone: so are its buffers
   }
 }
@@ -310,38 +382,13 @@ GpuRayCaster::~GpuRayCaster() {
 const render::EglInfo& GpuRayCaster::info() const { return impl_->shared->context->info(); }
 
 void GpuRayCaster::first_hits(std::span<const Ray> rays, std::vector<Hit>& hits) const {
-  hits.assign(rays.size(), Hit{});
-  if (rays.empty()) return;
-  const Current current(*impl_->shared);
-  const GlFunctions& gl = current.gl();
-  const GlComputeFunctions& gc = current.gc();
-  // The ray and hit buffers, grown to the calls' batches.
-  if (impl_->batch < std::min(rays.size(), impl_->max_batch)) {
-    impl_->batch = std::min(rays.size(), impl_->max_batch);
-    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, impl_->buffers[2]);
-    gl.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(impl_->batch * sizeof(Ray)), nullptr, GL_STREAM_DRAW);
-    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, impl_->buffers[3]);
-    gl.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(impl_->batch * sizeof(GpuHit)), nullptr, GL_STREAM_READ);
-    current.check("allocating the ray buffers");
-  }
-  gl.glUseProgram(impl_->shared->program);
-  for (int k = 0; k < 4; ++k) gc.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(k), impl_->buffers[k]);
-  std::vector<GpuHit> out(std::min(rays.size(), impl_->batch));
-  for (std::size_t b = 0; b < rays.size(); b += impl_->batch) {
-    const std::size_t n = std::min(impl_->batch, rays.size() - b);
-    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, impl_->buffers[2]);
-    gc.glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(n * sizeof(Ray)), rays.data() + b);
-    gl.glUniform1ui(impl_->shared->ray_count, GLuint(n));
-    gc.glDispatchCompute(GLuint((n + kGroupSize - 1) / kGroupSize), 1, 1);
-    gc.glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, impl_->buffers[3]);
-    gc.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(n * sizeof(GpuHit)), out.data());
-    current.check("casting rays");
-    for (std::size_t i = 0; i < n; ++i)
-      if (out[i].face != kNoFace) hits[b + i] = {double(out[i].distance), out[i].face};
-  }
-  gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
-  gl.glUseProgram(0);
+  impl_->cast(rays.data(), rays.size(), sizeof(Ray), 2, 0, {}, hits);
+}
+
+void GpuRayCaster::cone_hits(std::span<const Frame> frames, std::span<const ConeRay> cone,
+                             std::vector<Hit>& hits) const {
+  impl_->cast(frames.data(), frames.size(), sizeof(Frame), 4, cone.size(),
+              {reinterpret_cast<const std::byte*>(cone.data()), cone.size_bytes()}, hits);
 }
 
 std::vector<GpuRayCaster::Hit> GpuRayCaster::first_hits(std::span<const Ray> rays) const {

@@ -132,17 +132,19 @@ RawSdf raw_sdf(const Mesh& mesh, const SdfParams& o, std::span<const std::uint32
   const std::vector<ConeRay> cone = cone_rays(o);
   const std::size_t m = cone.size();
 
-  // The unit directions of face f's cone from its centroid c, or false for
-  // a degenerate face (no direction to look in).
-  const auto cone_of = [&](std::uint32_t f, Vec3& c, auto&& emit) {
+  // Face f's centroid c and a basis (u, v) of its plane, or false for a
+  // degenerate face (no direction to look in); ray k's unit direction.
+  const auto frame_of = [&](std::uint32_t f, Vec3& c, Vec3& u, Vec3& v) {
     const Vec3 n = normals[f];
     if (dot(n, n) == 0) return false;
     const Tri& t = mesh.faces[f];
     c = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
-    const Vec3 u = normalized(mesh.positions[t[1]] - mesh.positions[t[0]]);
-    const Vec3 v = cross(n, u);
-    for (std::size_t k = 0; k < m; ++k) emit(k, normalized((-cone[k].axis) * n + cone[k].du * u + cone[k].dv * v));
+    u = normalized(mesh.positions[t[1]] - mesh.positions[t[0]]);
+    v = cross(n, u);
     return true;
+  };
+  const auto direction = [&](std::size_t k, std::uint32_t f, const Vec3& u, const Vec3& v) {
+    return normalized((-cone[k].axis) * normals[f] + cone[k].du * u + cone[k].dv * v);
   };
   // A hit counts when the ray leaves the shape where it first meets the surface.
   const auto accept = [&](std::vector<std::pair<double, double>>& hits, const Vec3& d, const RayCaster::Hit& h,
@@ -160,21 +162,28 @@ RawSdf raw_sdf(const Mesh& mesh, const SdfParams& o, std::span<const std::uint32
       std::size_t local_accepted = 0;
       for (std::size_t i = b; i < e; ++i) {
         const std::uint32_t f = face_at(i);
-        Vec3 c;
+        Vec3 c, u, v;
         hits.clear();
-        cone_of(f, c, [&](std::size_t k, const Vec3& d) { accept(hits, d, caster->first_hit(c, d, f), k); });
+        if (frame_of(f, c, u, v))
+          for (std::size_t k = 0; k < m; ++k) {
+            const Vec3 d = direction(k, f, u, v);
+            accept(hits, d, caster->first_hit(c, d, f), k);
+          }
         local_accepted += hits.size();
         if (!hits.empty()) out.values[i] = combine(hits, o.outliers, scratch);
       }
       accepted += local_accepted;
     });
   } else {
-    // Batches of faces: their rays made on every core, cast in the shader,
-    // then accepted and combined on every core.
+    // Batches of faces: their frames made on every core, their cones cast
+    // in the shader, the hits accepted and combined on every core.
     out.gpu = true;
     out.gpu_renderer = gpu->info().gl_renderer;
+    std::vector<GpuRayCaster::ConeRay> dirs;
+    for (const ConeRay& r : cone) dirs.push_back({float(r.axis), float(r.du), float(r.dv)});
+    const auto f3 = [](const Vec3& a, float* out) { out[0] = float(a.x), out[1] = float(a.y), out[2] = float(a.z); };
     const std::size_t chunk = std::max<std::size_t>(1, (std::size_t(4) << 20) / m);
-    std::vector<GpuRayCaster::Ray> rays;
+    std::vector<GpuRayCaster::Frame> frames;
     std::vector<RayCaster::Hit> found;
     for (std::size_t cb = 0; cb < n; cb += chunk) {
       if (ctx) {
@@ -182,27 +191,28 @@ RawSdf raw_sdf(const Mesh& mesh, const SdfParams& o, std::span<const std::uint32
         ctx->progress(from + (to - from) * double(cb) / double(n), "casting rays on the GPU");
       }
       const std::size_t ce = std::min(n, cb + chunk);
-      rays.assign((ce - cb) * m, GpuRayCaster::Ray{});
-      parallel_blocks(ce - cb, 512, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+      frames.assign(ce - cb, GpuRayCaster::Frame{});
+      parallel_blocks(ce - cb, 4096, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
         for (std::size_t i = b; i < e; ++i) {
           const std::uint32_t f = face_at(cb + i);
-          Vec3 c;
-          cone_of(f, c, [&](std::size_t k, const Vec3& d) {
-            rays[i * m + k] = {{float(c.x), float(c.y), float(c.z)}, f, {float(d.x), float(d.y), float(d.z)}};
-          });
+          Vec3 c, u, v;
+          if (!frame_of(f, c, u, v)) continue;
+          GpuRayCaster::Frame& fr = frames[i];
+          fr.face = f;
+          f3(c, fr.origin), f3(normals[f], fr.n), f3(u, fr.u), f3(v, fr.v);
         }
       });
-      gpu->first_hits(rays, found);
+      gpu->cone_hits(frames, dirs, found);
       parallel_blocks(ce - cb, 512, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
         std::vector<std::pair<double, double>> hits;
         std::vector<double> scratch;
         std::size_t local_accepted = 0;
         for (std::size_t i = b; i < e; ++i) {
+          const std::uint32_t f = face_at(cb + i);
+          Vec3 c, u, v;
           hits.clear();
-          for (std::size_t k = 0; k < m; ++k) {
-            const float* d = rays[i * m + k].direction;
-            accept(hits, Vec3{d[0], d[1], d[2]}, found[i * m + k], k);
-          }
+          if (frame_of(f, c, u, v))
+            for (std::size_t k = 0; k < m; ++k) accept(hits, direction(k, f, u, v), found[i * m + k], k);
           local_accepted += hits.size();
           if (!hits.empty()) out.values[cb + i] = combine(hits, o.outliers, scratch);
         }

@@ -51,12 +51,10 @@ std::vector<Ray> sample_rays(const Mesh& mesh, std::size_t per_kind) {
   return rays;
 }
 
-TEST(GpuRayCaster, SameHitsAsEmbreeOnASampleMesh) {
-  const Mesh mesh = read_mesh(test::sample("elephant.off"));
-  const GpuRayCaster gpu(mesh);
+// The GPU's hits of the rays against Embree's: the same face at the same
+// distance, but for a ray through an edge or a vertex (either face is right).
+void expect_embree_hits(const Mesh& mesh, const std::vector<Ray>& rays, const std::vector<GpuRayCaster::Hit>& hits) {
   const RayCaster cpu(mesh);
-  const std::vector<Ray> rays = sample_rays(mesh, 4000);
-  const std::vector<GpuRayCaster::Hit> hits = gpu.first_hits(rays);
   ASSERT_EQ(hits.size(), rays.size());
   const double scale = bounding_box(mesh).diagonal();
   std::size_t hit = 0, same = 0, near_edge = 0;
@@ -70,7 +68,7 @@ TEST(GpuRayCaster, SameHitsAsEmbreeOnASampleMesh) {
         EXPECT_NEAR(g.distance, e.distance, 1e-5 * scale) << "ray " << i;
       }
     } else if (e && g && std::abs(e.distance - g.distance) < 1e-5 * scale) {
-      ++near_edge;  // through an edge or vertex: either face is right
+      ++near_edge;
     } else {
       ADD_FAILURE() << "ray " << i << ": Embree face " << e.face << " at " << e.distance << ", GPU face " << g.face
                     << " at " << g.distance;
@@ -78,13 +76,51 @@ TEST(GpuRayCaster, SameHitsAsEmbreeOnASampleMesh) {
   }
   EXPECT_GT(hit, rays.size() / 2);  // the comparison is about hits, mostly
   EXPECT_GE(same, rays.size() - rays.size() / 1000) << near_edge << " hits through edges";
+}
+
+TEST(GpuRayCaster, SameHitsAsEmbreeOnASampleMesh) {
+  const Mesh mesh = read_mesh(test::sample("elephant.off"));
+  const GpuRayCaster gpu(mesh);
+  const std::vector<Ray> rays = sample_rays(mesh, 4000);
+  expect_embree_hits(mesh, rays, gpu.first_hits(rays));
   RecordProperty("renderer", gpu.info().gl_renderer);
+}
+
+TEST(GpuRayCaster, ConesMadeInTheShaderHitAsTheSameRaysFromTheCpu) {
+  const Mesh mesh = read_mesh(test::sample("elephant.off"));
+  const GpuRayCaster gpu(mesh);
+  const std::vector<Vec3> normals = face_normals(mesh);
+  // A cone of 9 rays around the inward normal, every 7th face.
+  std::vector<GpuRayCaster::ConeRay> cone;
+  for (int k = 0; k < 9; ++k) cone.push_back({0.8f, 0.6f * float(std::cos(k)), 0.6f * float(std::sin(k)) * k / 9});
+  std::vector<GpuRayCaster::Frame> frames;
+  std::vector<Ray> rays;
+  const auto f3 = [](const Vec3& a, float* out) { out[0] = float(a.x), out[1] = float(a.y), out[2] = float(a.z); };
+  for (std::uint32_t f = 0; f < mesh.faces.size(); f += 7) {
+    const Tri& t = mesh.faces[f];
+    const Vec3 c = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+    const Vec3 u = normalized(mesh.positions[t[1]] - mesh.positions[t[0]]), v = cross(normals[f], u);
+    GpuRayCaster::Frame fr;
+    fr.face = f;
+    f3(c, fr.origin), f3(normals[f], fr.n), f3(u, fr.u), f3(v, fr.v);
+    frames.push_back(fr);
+    for (const auto& k : cone)
+      rays.push_back(make_ray({fr.origin[0], fr.origin[1], fr.origin[2]},
+                              -double(k.axis) * normals[f] + double(k.du) * u + double(k.dv) * v, f));
+  }
+  frames.push_back({});  // a degenerate face's: no rays
+  std::vector<GpuRayCaster::Hit> hits;
+  gpu.cone_hits(frames, cone, hits);
+  ASSERT_EQ(hits.size(), frames.size() * cone.size());
+  for (std::size_t k = 0; k < cone.size(); ++k) EXPECT_FALSE(hits[hits.size() - 1 - k]);
+  hits.resize(rays.size());
+  expect_embree_hits(mesh, rays, hits);
 }
 
 TEST(GpuRayCaster, SkipsTheOriginFaceAndHonoursTheMaximumDistance) {
   const Mesh cube = test::box();  // [0, 1]^3
   const GpuRayCaster gpu(cube);
-  const RayCaster cpu(cube);
+  const RayCaster cpu(cube);  // the same answers, where a face is skipped
   // Along +x (off the side's diagonal): the face at x = 1, at distance 0.5.
   const Vec3 o{0.5, 0.2, 0.7};
   Ray r = make_ray(o, {1, 0, 0});
@@ -108,6 +144,19 @@ TEST(GpuRayCaster, SkipsTheOriginFaceAndHonoursTheMaximumDistance) {
   const std::vector<GpuRayCaster::Hit> all = gpu.first_hits(many);
   for (std::size_t i = 0; i < all.size(); i += 4099) ASSERT_NEAR(all[i].distance, 0.7, 1e-6) << i;
   EXPECT_NEAR(all.back().distance, 0.7, 1e-6);
+  // And as cones (3 rays a frame: down, up, and +x): several batches too.
+  GpuRayCaster::Frame down;
+  for (int j = 0; j < 3; ++j) down.origin[j] = float(o[j]);
+  down.n[2] = 1, down.u[0] = 1, down.v[1] = 1;   // the axis is -n
+  down.face = std::uint32_t(cube.faces.size());  // no face of the cube's to skip
+  const GpuRayCaster::ConeRay cone[] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}};
+  std::vector<GpuRayCaster::Hit> hits;
+  gpu.cone_hits(std::vector<GpuRayCaster::Frame>(700000, down), cone, hits);
+  ASSERT_EQ(hits.size(), 2100000u);
+  for (std::size_t i = 0; i < hits.size(); i += 3001) {
+    const double expected[] = {0.7, 0.3, 0.5};
+    ASSERT_NEAR(hits[i].distance, expected[i % 3], 1e-6) << i;
+  }
 }
 
 TEST(GpuRayCaster, EmptyMeshIsInvalidInput) { EXPECT_THROW(GpuRayCaster(Mesh{}), InvalidInput); }
