@@ -29,8 +29,6 @@ export interface JobsDeps {
 const FINAL = new Set(['done', 'failed', 'cancelled', 'interrupted']);
 /** Jobs the page runs for itself (a plugin's build): not listed, their artifacts not fetched. */
 const HIDDEN = new Set(['plugin_build']);
-/** What a mesh file's name ends with; a result's name ("elephant · smooth 0.5") has none to strip. */
-const MESH_EXTENSION = /\.(off|obj|ply|stl|drc|glb|gltf|zip)$/i;
 /** The name the server gives a mesh it stored from a job's output ("<job id>-<artifact>.ply"). */
 const CHAINED_NAME = /^([0-9a-f]{16})-(.+)\.ply$/;
 
@@ -303,11 +301,14 @@ export class JobsController {
 
   /** A stored mesh's name without its extension; one the server named after a job ("<job id>-mesh.ply") is named as that job's result. */
   private meshStem(meshId: string, depth: number): string {
-    const name = meshOf(this.ctx, meshId)?.name;
-    if (!name) return 'mesh';
+    const mesh = meshOf(this.ctx, meshId);
+    if (!mesh?.name) return 'mesh';
+    const name = mesh.name;
     const chained = CHAINED_NAME.exec(name);
     if (chained && depth < 8 && jobOf(this.ctx, chained[1]!)) return this.nameOf(chained[1]!, chained[2]!, depth + 1);
-    return name.replace(MESH_EXTENSION, '') || name;
+    // The extension of the stored format (the server's Mesh.format); a result's name ("elephant · smooth 0.5") has none to strip.
+    const extension = `.${mesh.format}`;
+    return (name.toLowerCase().endsWith(extension.toLowerCase()) ? name.slice(0, -extension.length) : name) || name;
   }
 
   private algorithmOf(job: Job): Algorithm | undefined {
