@@ -1,11 +1,11 @@
 #include "sdf/bilateral_filter.h"
 
-#include <Eigen/Core>
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <limits>
 
+#include "sdf/bilateral_sums.h"
 #include "sdf/parallel_blocks.h"
 
 namespace cgview::sdf {
@@ -185,22 +185,19 @@ void bilateral_smooth(const Adjacency& face_graph, std::vector<double>& values, 
   std::vector<double> out = values;
   parallel_blocks(blocks.size(), 4, thread_count(), ctx, 0.0, 1.0, "smoothing", [&](std::size_t b, std::size_t e) {
     thread_local Walk walk;
-    thread_local Eigen::ArrayXf weight;
     for (std::size_t k = b; k < e; ++k) {
       const std::vector<std::uint32_t>& block = blocks[k];
       walk.run(graph, v, block, ring_exponent);
       for (std::size_t i = 0; i < block.size(); ++i) {
-        // In float, four to a vector instruction (Eigen's exp): the
-        // weights' rounding moves a result by about 1e-7 of its window's
-        // spread.
-        const Eigen::Map<const Eigen::ArrayXf> x(walk.values(i).data(), Eigen::Index(walk.values(i).size()));
-        const Eigen::Map<const Eigen::ArrayXf> ring(walk.exponents(i).data(), x.size());
+        // In float, eight to a vector instruction: the weights' rounding
+        // moves a result by about 1e-7 of its window's spread.
+        const std::span<const float> x = walk.values(i);
         const float c = float(v[block[i]]);
-        const double dev = std::sqrt(double((x - c).square().sum()) / double(x.size()));
+        const double dev = std::sqrt(double(squared_deviation(x.data(), x.size(), c)) / double(x.size()));
         if (dev == 0) continue;  // out keeps c
-        const float inv = float(0.5 / (2.25 * dev * dev));
-        weight = (-(ring + inv * (x - c).square())).exp();
-        out[block[i]] = double((weight * x).sum()) / double(weight.sum());
+        float sum = 0, weights = 0;
+        weighted_sums(x.data(), walk.exponents(i).data(), x.size(), c, float(0.5 / (2.25 * dev * dev)), sum, weights);
+        out[block[i]] = double(sum) / double(weights);
       }
     }
   });
