@@ -1,4 +1,5 @@
-// OpenVDB .vdb files, kept in this one file: OpenVDB's headers are heavy.
+// OpenVDB .vdb files: the module libcgview_vdb.so, loaded on first use
+// (vdb_module.h says why and what crosses its boundary).
 //
 // Written as a FloatGrid named "density" (what Blender, Houdini and
 // ParaView's VDB readers look for first), class fog volume, with the
@@ -12,12 +13,16 @@
 
 #include <cmath>
 
-#include "core/errors.h"
-#include "voxel/voxel_io.h"
+#include "voxel/vdb_module.h"
 
 namespace cgview {
 
 namespace {
+// Why a read failed, as the program's ParseError will say it.
+struct Failed {
+  std::string why;
+};
+
 void init_once() {
   static const bool done = [] {
     openvdb::initialize();
@@ -25,9 +30,8 @@ void init_once() {
   }();
   (void)done;
 }
-}  // namespace
 
-void write_vdb(const VoxelGrid& g, const std::filesystem::path& path) {
+std::string write_file(const VoxelGrid& g, const std::string& path) {
   init_once();
   auto grid = openvdb::FloatGrid::create(0.f);
   grid->setName("density");
@@ -51,42 +55,43 @@ void write_vdb(const VoxelGrid& g, const std::filesystem::path& path) {
                                                           : g.type() == VoxelType::uint8 ? "uint8"
                                                                                          : "float32"));
   try {
-    openvdb::io::File file(path.string());
+    openvdb::io::File file(path);
     openvdb::GridPtrVec grids{grid};
     file.write(grids);
     file.close();
   } catch (const openvdb::Exception& e) {
-    throw IoError("cannot write " + path.string() + ": " + e.what());
+    return e.what();
   }
+  return "";
 }
 
-VoxelGrid read_vdb(const std::filesystem::path& path) {
+void read_file(const std::string& path, const vdb_module::Sink& sink) {
   init_once();
   openvdb::GridBase::Ptr base;
   try {
-    openvdb::io::File file(path.string());
+    openvdb::io::File file(path);
     file.open();
     auto grids = file.getGrids();
     file.close();
     for (auto& g : *grids)
       if (g->isType<openvdb::FloatGrid>() && (!base || g->getName() == "density")) base = g;
-    if (!base) throw ParseError(path.string(), "the file holds no float grid", std::nullopt, std::nullopt);
   } catch (const openvdb::Exception& e) {
-    throw ParseError(path.string(), std::string("OpenVDB cannot read it: ") + e.what(), std::nullopt, std::nullopt);
+    throw Failed{std::string("OpenVDB cannot read it: ") + e.what()};
   }
+  if (!base) throw Failed{"the file holds no float grid"};
   auto grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
   const auto& xf = grid->transform();
-  if (!xf.isLinear()) throw ParseError(path.string(), "the grid's transform is not linear", std::nullopt, std::nullopt);
+  if (!xf.isLinear()) throw Failed{"the grid's transform is not linear"};
   const openvdb::Vec3d vs = xf.voxelSize();
   if (std::abs(vs[0] - vs[1]) > 1e-9 * vs[0] || std::abs(vs[0] - vs[2]) > 1e-9 * vs[0])
-    throw ParseError(path.string(), "the voxels are not cubes", std::nullopt, std::nullopt);
+    throw Failed{"the voxels are not cubes"};
   openvdb::Coord lo(0, 0, 0);
   std::array<int, 3> d{};
   if (auto meta = grid->getMetadata<openvdb::Vec3IMetadata>("cgview_dims")) {
     d = {meta->value()[0], meta->value()[1], meta->value()[2]};
   } else {
     const openvdb::CoordBBox box = grid->evalActiveVoxelBoundingBox();
-    if (box.empty()) throw ParseError(path.string(), "the grid has no active voxels", std::nullopt, std::nullopt);
+    if (box.empty()) throw Failed{"the grid has no active voxels"};
     lo = box.min();
     d = {box.dim().x(), box.dim().y(), box.dim().z()};
   }
@@ -97,17 +102,32 @@ VoxelGrid read_vdb(const std::filesystem::path& path) {
   }
   const openvdb::Vec3d c = xf.indexToWorld(lo.asVec3d());
   const double s = vs[0];
-  VoxelGrid out(d, Vec3{c[0], c[1], c[2]} - Vec3{0.5, 0.5, 0.5} * s, s, type, std::uint64_t(1) << 34);
+  sink.start(sink.self, {d, Vec3{c[0], c[1], c[2]} - Vec3{0.5, 0.5, 0.5} * s, s, type});
   for (auto it = grid->cbeginValueOn(); it; ++it) {
     openvdb::CoordBBox box;
     it.getBoundingBox(box);
     for (auto ci = box.begin(); ci; ++ci) {
       const openvdb::Coord q = *ci - lo;
-      const VoxelIndex v{q.x(), q.y(), q.z()};
-      if (out.contains(v)) out.set(v, *it);
+      sink.set(sink.self, {q.x(), q.y(), q.z()}, *it);
     }
   }
-  return out;
 }
 
+}  // namespace
+
 }  // namespace cgview
+
+// The module's entry points (vdb_module.h's WriteFn and ReadFn), which
+// cgview_voxel looks up.
+extern "C" void cgview_vdb_write(const cgview::VoxelGrid& grid, const std::string& path, std::string& why) {
+  why = cgview::write_file(grid, path);
+}
+
+extern "C" void cgview_vdb_read(const std::string& path, const cgview::vdb_module::Sink& sink, std::string& why) {
+  try {
+    cgview::read_file(path, sink);
+    why.clear();
+  } catch (const cgview::Failed& f) {
+    why = f.why;
+  }
+}
