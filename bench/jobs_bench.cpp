@@ -84,7 +84,7 @@ double percentile(std::vector<double> v, double p) {
 
 int main(int argc, char** argv) {
   int jobs = 1000, sequential = 100;
-  std::string server = (fs::path(argv[0]).parent_path() / "cgview-server").string(), job_workers;
+  std::string server = (fs::path(argv[0]).parent_path() / "cgview-server").string(), job_workers, sandbox;
   fs::path mesh_file;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -92,10 +92,12 @@ int main(int argc, char** argv) {
     else if (a == "--sequential" && i + 1 < argc) sequential = std::stoi(argv[++i]);
     else if (a == "--job-workers" && i + 1 < argc) job_workers = argv[++i];
     else if (a == "--server" && i + 1 < argc) server = argv[++i];
+    else if (a == "--sandbox" && i + 1 < argc) sandbox = argv[++i];
     else if (a == "--mesh" && i + 1 < argc) mesh_file = argv[++i];
     else {
       std::fprintf(stderr,
-                   "usage: jobs_bench [--jobs N] [--sequential N] [--job-workers N] [--server PATH] [--mesh FILE]\n");
+                   "usage: jobs_bench [--jobs N] [--sequential N] [--job-workers N] [--sandbox on|off] [--server PATH] "
+                   "[--mesh FILE]\n");
       return 2;
     }
   }
@@ -127,9 +129,10 @@ int main(int argc, char** argv) {
   fs::remove_all(data);
   int rc = 0;
   {
-    ServerProcess srv(
-        server, data,
-        job_workers.empty() ? std::vector<std::string>{} : std::vector<std::string>{"--job-workers", job_workers});
+    std::vector<std::string> server_args;
+    if (!job_workers.empty()) server_args.insert(server_args.end(), {"--job-workers", job_workers});
+    if (!sandbox.empty()) server_args.insert(server_args.end(), {"--sandbox", sandbox});
+    ServerProcess srv(server, data, server_args);
     Http client(srv.port);
     const std::string mesh_id = cgview::bench::upload(srv.port, mesh_file.filename().string(), mesh_bytes.str());
 

@@ -156,7 +156,8 @@ pid_t spawn_child(const std::vector<std::string>& args, const ChildOptions& opti
     ::setrlimit(RLIMIT_NPROC, &rl);
   }
   const int null = ::open("/dev/null", O_RDWR);
-  if (null >= 0) ::dup2(null, 0);
+  if (options.stdin_fd >= 0) ::dup2(options.stdin_fd, 0);
+  else if (null >= 0) ::dup2(null, 0);
   if (options.stdout_fd >= 0) ::dup2(options.stdout_fd, 1);
   else if (null >= 0) ::dup2(null, 1);
   const int e = options.stderr_to_stdout ? -1

@@ -18,6 +18,7 @@ namespace cgview::server {
 
 struct ChildOptions {
   std::size_t memory_mb = 0;          // RLIMIT_AS; 0: none
+  int stdin_fd = -1;                  // the child's stdin (closed in the parent by the caller); -1: /dev/null
   int stdout_fd = -1;                 // the child's stdout (closed in the parent by the caller); -1: /dev/null
   std::filesystem::path stderr_file;  // the child's stderr, truncated; empty: /dev/null
   bool stderr_to_stdout = false;      // stderr goes where stdout goes (stderr_file unused)

@@ -8,6 +8,11 @@
 //   ("plugin": "/path/lib.so" loads a user's algorithm library first: plugins/plugin.h)
 //   cgview-worker --list        prints every algorithm linked in, as JSON (protocol/algorithm_json)
 //
+// A worker whose stdin is a pipe was started ahead of its job (the local
+// executor's pre-started worker, local_executor.h): it loads, says so on
+// stdout ("progress 0 ready"), waits for the pipe to close, and only then
+// reads JOB.json, which the server has written meanwhile.
+//
 // Progress goes to stdout as lines "progress FRACTION STAGE" (at most ~10 a
 // second), and nothing else: what the algorithm prints there goes to stderr.
 // Each artifact is stored in the output directory by its kind's codec
@@ -18,6 +23,7 @@
 // Exit status: 0 done; 2 invalid input; 3 out of memory; 4 no room for the
 // results (a full disk); 1 any other error
 // (the message on stderr and in OUT/error.txt).
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -26,11 +32,13 @@
 #include <new>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "algorithm_json.h"
 #include "child_process.h"
 #include "io/mesh_io.h"
+#include "jobs/executor.h"
 #include "artifacts/artifact_codec.h"
 #include "registry/artifact_io.h"
 #include "plugins/plugin.h"
@@ -60,7 +68,20 @@ std::string one_line(std::string_view stage) {
   return s;
 }
 
+// A pre-started worker's wait for its job: it says it is ready, then waits
+// for the end of its stdin pipe.
+void wait_for_the_job() {
+  struct stat st {};
+  if (::fstat(STDIN_FILENO, &st) != 0 || !S_ISFIFO(st.st_mode)) return;
+  if (::write(STDOUT_FILENO, server::kWorkerReady.data(), server::kWorkerReady.size()) < 0)
+    throw IoError("cannot write on the progress pipe");
+  char buf[256];
+  for (ssize_t n; (n = ::read(STDIN_FILENO, buf, sizeof buf)) != 0;)
+    if (n < 0 && errno != EINTR) return;
+}
+
 int run_job(const fs::path& spec_path, fs::path& out) {
+  wait_for_the_job();
   std::FILE* const progress = take_progress_pipe();
   std::ifstream f(spec_path);
   if (!f) throw IoError("cannot read the job file " + spec_path.string());

@@ -15,6 +15,7 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sandbox.h"
@@ -143,6 +144,10 @@ struct ProgressRead {
   std::string garbage;  // why the output is not progress lines (quoting it), or empty
 };
 inline constexpr std::size_t kMaxProgressLine = 4096;
+// The line a pre-started worker (local_executor.h) writes when it waits for
+// its job: its sandbox is set up and its libraries are loaded.  A progress
+// line, so that it is never taken for garbage.
+inline constexpr std::string_view kWorkerReady = "progress 0 ready\n";
 
 // Parses the worker's progress lines out of `buffer` (its output so far,
 // consumed up to the last newline).

@@ -11,6 +11,7 @@
 
 #include "child_process.h"
 #include "core/errors.h"
+#include "io/mesh_io.h"
 
 namespace cgview::server {
 
@@ -34,48 +35,189 @@ LocalExecutor::LocalExecutor(fs::path worker, int max_workers, std::shared_ptr<c
 
 LocalExecutor::~LocalExecutor() { shutdown(); }
 
-std::string LocalExecutor::launch(const LaunchSpec& job) {
+LocalExecutor::Started LocalExecutor::start_worker(const LaunchSpec& job, int stdin_fd) {
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) throw LaunchError("pipe failed");
   ChildOptions child;
   child.memory_mb = job.memory_mb;
+  child.stdin_fd = stdin_fd;
   child.stdout_fd = fds[1];
   child.stderr_file = job.dir / "stderr.txt";  // in the run's directory, out of the job's reach
   child.clean_env = true;
   child.end_with_server = true;
   const std::vector<std::string> argv = {worker_.string(), (job.dir / "job.json").string()};
-  pid_t pid = -1;
-  Sandbox::Slot slot;
-  if (sandbox_ && sandbox_->enabled()) {
-    slot = sandbox_->take_slot();
+  Started s;
+  if (sandboxed()) {
+    s.slot = sandbox_->take_slot();
     Sandbox::Command c;
     try {
-      c = sandboxed_worker(*sandbox_, job, worker_, slot.number(), child);
+      c = sandboxed_worker(*sandbox_, job, worker_, s.slot.number(), child);
     } catch (const std::exception& e) {
       ::close(fds[0]);
       ::close(fds[1]);
       throw LaunchError(e.what());
     }
-    pid = spawn_child(c.argv, c.options);
+    s.pid = spawn_child(c.argv, c.options);
   } else {
-    pid = spawn_child(argv, child);
+    s.pid = spawn_child(argv, child);
   }
   ::close(fds[1]);
-  if (pid < 0) {
+  if (s.pid < 0) {
     ::close(fds[0]);
     throw LaunchError("fork failed");
   }
   ::fcntl(fds[0], F_SETFL, O_NONBLOCK);
-  Run& r = runs_[job.job_id];
-  r.pid = pid;
-  r.slot = std::move(slot);
-  r.out_fd = fds[0];
+  s.out_fd = fds[0];
+  return s;
+}
+
+bool LocalExecutor::start_warm(const LaunchSpec& like) {
+  Warm w;
+  w.dir = like.dir.parent_path() / ("warm-" + std::to_string(++warms_));
+  w.memory_mb = like.memory_mb;
+  std::error_code ec;
+  fs::remove_all(w.dir, ec);
+  for (const char* d : {"work", "in", "plugin"}) fs::create_directories(w.dir / d, ec);
+  if (ec) return false;  // the next job starts a worker of its own
+  LaunchSpec s = like;
+  s.dir = w.dir;
+  s.work = w.dir / "work";
+  s.read_only = {{w.dir / "in", kSandboxInputs}, {w.dir / "plugin", kSandboxPlugin}};
+  int go[2];
+  if (::pipe2(go, O_CLOEXEC) != 0) return false;
+  try {
+    write_file_bytes(w.dir / "job.json", "");  // the file its sandbox binds; hand_over fills it
+    w.worker = start_worker(s, go[0]);
+  } catch (const std::exception&) {
+    ::close(go[0]);
+    ::close(go[1]);
+    fs::remove_all(w.dir, ec);
+    return false;
+  }
+  ::close(go[0]);
+  w.go_fd = go[1];
+  warm_.push_back(std::move(w));
+  return true;
+}
+
+bool LocalExecutor::ready(Warm& w) {
+  char buf[4096];
+  for (ssize_t n; (n = ::read(w.worker.out_fd, buf, sizeof buf)) > 0;) w.out.append(buf, std::size_t(n));
+  return w.out.find(kWorkerReady) != std::string::npos;
+}
+
+bool LocalExecutor::hand_over(Warm& w, const LaunchSpec& job) {
+  std::error_code ec;
+  auto unlink_all = [&] {
+    for (const char* d : {"in", "plugin"})
+      for (const auto& e : fs::directory_iterator(w.dir / d, ec)) fs::remove_all(e.path(), ec);
+    return false;
+  };
+  // Its inputs and plugin, where it sees them: links (the same file, on the
+  // data directory's file system), in directories its sandbox binds read-only.
+  if (sandboxed())
+    for (const auto& [file, inside] : job.read_only) {
+      fs::path link;
+      for (const auto& [under, dir] : {std::pair{kSandboxInputs, "in"}, std::pair{kSandboxPlugin, "plugin"}})
+        if (const std::string u = std::string(under) + "/"; inside.starts_with(u))
+          link = w.dir / dir / inside.substr(u.size());
+      if (link.empty()) return unlink_all();
+      fs::create_directories(link.parent_path(), ec);
+      fs::create_hard_link(file, link, ec);
+      if (ec) return unlink_all();
+    }
+  // Its job.json, into the file it was given (its sandbox binds that file).
+  try {
+    const std::string spec = read_file_bytes(job.dir / "job.json", std::uint64_t(1) << 30);
+    const int fd = ::open((w.dir / "job.json").c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+    if (fd < 0) return unlink_all();
+    const bool whole = ::write(fd, spec.data(), spec.size()) == ssize_t(spec.size());
+    ::close(fd);
+    if (!whole) return unlink_all();
+  } catch (const std::exception&) {
+    return unlink_all();
+  }
+  fs::rename(w.dir / "stderr.txt", job.dir / "stderr.txt", ec);  // its open file goes along
+  return true;
+}
+
+bool LocalExecutor::go(Run& r) {
+  // Its directory becomes the run's (the scheduler made it, empty): only
+  // now, as bubblewrap binds it by its name while it sets the sandbox up.
+  if (sandboxed()) {
+    std::error_code ec;
+    fs::rename(r.warm_dir / "work", r.work, ec);
+    if (ec) {
+      r.garbage = "the worker started ahead of the job could not be given the run's directory: " + ec.message();
+      kill_child(r.pid, SIGKILL);
+      return false;
+    }
+  }
+  ::close(r.go_fd);
+  r.go_fd = -1;
+  return true;
+}
+
+void LocalExecutor::go_when_ready(Run& r) {
+  if (r.go_fd < 0) return;
+  if (const auto at = r.out.find(kWorkerReady); at != std::string::npos) {
+    r.out.erase(at, kWorkerReady.size());
+    go(r);
+  }
+}
+
+void LocalExecutor::drop_warm(Warm& w) {
+  kill_child(w.worker.pid, SIGKILL);
+  ::waitpid(w.worker.pid, nullptr, 0);
+  if (w.go_fd >= 0) ::close(w.go_fd);
+  ::close(w.worker.out_fd);
+  std::error_code ec;
+  fs::remove_all(w.dir, ec);
+}
+
+std::string LocalExecutor::launch(const LaunchSpec& job) {
+  Run r;
+  // A worker ahead that is ready and fits (one that died waiting, or was
+  // started for another memory limit, goes).
+  auto warm = warm_.end();
+  for (auto it = warm_.begin(); it != warm_.end();) {
+    if (exited(it->worker.pid) || it->memory_mb != job.memory_mb) {
+      drop_warm(*it);
+      it = warm_.erase(it);
+      continue;
+    }
+    if (warm == warm_.end() && ready(*it)) warm = it;
+    ++it;
+  }
+  if (warm != warm_.end() && hand_over(*warm, job)) {
+    // What it wrote before counts as its job's output.
+    r.pid = warm->worker.pid;
+    r.slot = std::move(warm->worker.slot);
+    r.out_fd = warm->worker.out_fd;
+    r.out = std::move(warm->out);
+    r.go_fd = warm->go_fd;
+    r.warm_dir = warm->dir;
+    r.work = job.work;
+    warm_.erase(warm);
+    go_when_ready(r);
+  } else {
+    Started s = start_worker(job, -1);
+    r.pid = s.pid;
+    r.slot = std::move(s.slot);
+    r.out_fd = s.out_fd;
+  }
   r.launched = Clock::now();
   r.timeout_s = job.timeout_s;
+  const pid_t pid = r.pid;
+  runs_[job.job_id] = std::move(r);
   ExecutorEvent e;
   e.job_id = job.job_id;
   e.kind = ExecutorEvent::Kind::started;
   pending_.push_back(e);
+  // The next job's worker, at once: it starts while this one runs, and is
+  // ready when the next job comes (one that found none ready would start
+  // its own, which is what costs).
+  warm_like_ = job;  // workers ahead are started for its like when nothing waits to be said (poll)
   return std::to_string(pid);
 }
 
@@ -134,6 +276,8 @@ void LocalExecutor::check(std::vector<ExecutorEvent>& events) {
         e.end.how = WorkerEnd::How::signaled, e.end.signal = WEXITSTATUS(status) - 128;
       else e.end.how = WorkerEnd::How::exited, e.end.code = WEXITSTATUS(status);
       events.push_back(std::move(e));
+      if (!r.warm_dir.empty()) used_warm_dirs_.push_back(r.warm_dir);
+      if (r.go_fd >= 0) ::close(r.go_fd);
       it = runs_.erase(it);
       continue;
     }
@@ -146,6 +290,19 @@ std::vector<ExecutorEvent> LocalExecutor::poll(std::chrono::milliseconds timeout
   pending_.clear();
   check(events);
   if (!events.empty()) timeout = std::chrono::milliseconds(0);
+  // Not before a job's end is said: the removal of the directories
+  // pre-started workers left, and starting the workers ahead (while a job
+  // runs, they would take its CPU).
+  else {
+    std::error_code ec;
+    for (const fs::path& d : used_warm_dirs_) fs::remove_all(d, ec);
+    used_warm_dirs_.clear();
+    // Only with a worker's place free: a full executor has jobs waiting (a
+    // burst), which start their own workers; one ahead would only take
+    // their CPU.
+    while (warm_like_ && int(runs_.size()) < max_workers_ && warm_.size() < kWorkersAhead && start_warm(*warm_like_)) {
+    }
+  }
   std::vector<pollfd> fds;
   std::vector<std::string> ids;
   bool exited_unreaped = false;
@@ -168,6 +325,7 @@ std::vector<ExecutorEvent> LocalExecutor::poll(std::chrono::milliseconds timeout
     char buf[4096];
     ssize_t n;
     while ((n = ::read(r.out_fd, buf, sizeof buf)) > 0) r.out.append(buf, std::size_t(n));
+    go_when_ready(r);
     ExecutorEvent e;
     e.job_id = ids[k];
     e.kind = ExecutorEvent::Kind::progress;
@@ -192,12 +350,16 @@ std::vector<ExecutorEvent> LocalExecutor::poll(std::chrono::milliseconds timeout
 }
 
 void LocalExecutor::shutdown() {
+  for (Warm& w : warm_) drop_warm(w);
+  warm_.clear();
+  warm_like_.reset();
   for (auto& [id, r] : runs_) {
     if (r.pid > 0) {
       kill_child(r.pid, SIGKILL);
       ::waitpid(r.pid, nullptr, 0);
     }
     if (r.out_fd >= 0) ::close(r.out_fd);
+    if (r.go_fd >= 0) ::close(r.go_fd);
   }
   runs_.clear();
 }

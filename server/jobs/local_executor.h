@@ -4,12 +4,28 @@
 // from its stdout.  Cancelling sends SIGTERM, then SIGKILL a second later.
 // Workers die with the server (shutdown kills them), so a job of an
 // earlier run cannot be adopted.
+//
+// Up to two workers are started ahead of the next jobs (pre-started: each
+// in its own sandbox, its libraries loaded, waiting on its stdin), so that
+// a job does not wait for bubblewrap, the worker's exec and its dynamic
+// loading.  They are started when the executor has a free place and
+// nothing to report: a burst's jobs, which fill every place, start their
+// own, and a job's end is never said late for them.  Each takes one job
+// only and is then that job's worker as one started for it would be: its own
+// process, user, directory and limits.  Its inputs and plugin are linked
+// into directories its sandbox was given, its job.json is written into
+// the file it was given, its job directory is renamed to the run's and
+// it goes.  A job that finds none ready (a burst), or that one does not
+// fit (another memory limit, an input that cannot be linked
+// there) starts a worker of its own instead.
 #pragma once
 
 #include <sys/types.h>
 
+#include <deque>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <set>
 
 #include <memory>
@@ -46,7 +62,41 @@ class LocalExecutor : public Executor {
     std::chrono::steady_clock::time_point launched, term_sent;
     double timeout_s = 0;
     bool terminating = false, timed_out = false;
+    std::filesystem::path warm_dir;  // a pre-started worker's own directory, removed when it is reaped
+    // A pre-started worker not yet ready: its stdin, closed (go) once it
+    // said it is ready and its directory was renamed to `work`, the run's.
+    int go_fd = -1;
+    std::filesystem::path work;
   };
+  // A worker started, sandboxed where there is a sandbox, for `job`'s
+  // directories, with `stdin_fd` as its stdin (-1: none).  Throws LaunchError.
+  struct Started {
+    pid_t pid = -1;
+    Sandbox::Slot slot;
+    int out_fd = -1;
+  };
+  Started start_worker(const LaunchSpec& job, int stdin_fd);
+  // A pre-started worker: its directory (runs/warm-N) holds the job.json
+  // it was given, its stderr.txt, work/ (the job's directory once renamed),
+  // in/ and plugin/ (seen read-only where a job's inputs and plugin are).
+  struct Warm {
+    Started worker;
+    std::string out;  // what it wrote so far (kWorkerReady, once it is ready)
+    int go_fd = -1;   // its stdin, closed once its job can go
+    std::filesystem::path dir;
+    std::size_t memory_mb = 0;
+  };
+  // How many workers wait ahead: two, so that a job that comes as the one
+  // before it ends finds one started a job earlier, ready by then.
+  static constexpr std::size_t kWorkersAhead = 2;
+  bool start_warm(const LaunchSpec& like);  // false: none started (the next job starts its own)
+  bool ready(Warm& w);                      // it wrote kWorkerReady
+  // The job's inputs, plugin, job.json and stderr to `w`; false: it does
+  // not fit, `w` stays as it was.
+  bool hand_over(Warm& w, const LaunchSpec& job);
+  void go_when_ready(Run& r);  // go, once r.out holds kWorkerReady
+  bool go(Run& r);
+  void drop_warm(Warm& w);
   // Kills what is over its time or was cancelled a second ago; reaps what
   // exited (into `events`).
   void check(std::vector<ExecutorEvent>& events);
@@ -59,6 +109,10 @@ class LocalExecutor : public Executor {
   std::mutex cancel_mutex_;
   std::set<std::string> cancels_;  // asked from other threads, done in poll
   WakePipe wake_;
+  std::deque<Warm> warm_;                              // the workers ahead, oldest first
+  std::optional<LaunchSpec> warm_like_;                // the last job launched: workers ahead are started for its like
+  std::vector<std::filesystem::path> used_warm_dirs_;  // of reaped pre-started workers, to remove
+  int warms_ = 0;                                      // started so far: each its own directory
 };
 
 }  // namespace cgview::server

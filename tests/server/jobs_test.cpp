@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -114,15 +115,22 @@ class JobsTest : public ::testing::Test {
     return r.body;
   }
 
-  // How many processes run a job of this id (its job.json on the command line).
-  static int worker_processes(const std::string& job_id) {
-    int n = 0;
+  // The processes that run a job of this id: its job.json on their command
+  // line, or (a worker started ahead of its job) their stderr in its run's
+  // directory.
+  static std::set<pid_t> worker_pids(const std::string& job_id) {
+    std::set<pid_t> found;
     for (const auto& e : fs::directory_iterator("/proc")) {
       const std::string cmd = read_bytes(e.path() / "cmdline");
-      if (cmd.find("cgview-worker") != std::string::npos && cmd.find(job_id) != std::string::npos) ++n;
+      std::error_code ec;
+      const std::string err = fs::read_symlink(e.path() / "fd" / "2", ec).string();
+      if (cmd.find("cgview-worker") != std::string::npos &&
+          (cmd.find(job_id) != std::string::npos || err.find(job_id) != std::string::npos))
+        found.insert(pid_t(std::atoi(e.path().filename().c_str())));
     }
-    return n;
+    return found;
   }
+  static int worker_processes(const std::string& job_id) { return int(worker_pids(job_id).size()); }
 
   fs::path dir_, data_;
   ServerProcess server_;
@@ -822,6 +830,48 @@ TEST_F(JobsTest, DeletingAnEndedJobRemovesItsResultsAndFreesItsStorage) {
   EXPECT_FALSE(fs::exists(data_ / "jobs" / id)) << "the results outlived every job that names them";
   EXPECT_EQ(used(), meshes);
   EXPECT_EQ(http_call(server_.port(), Method::delete_, "/api/v1/jobs/" + id).status, 404);
+}
+
+// A job after another is run by the worker started ahead of it (in its
+// sandbox, its libraries loaded), not by one started for it: that worker
+// then is the job's alone, found and ended as any job's worker.
+TEST_F(JobsTest, TheWorkerStartedAheadRunsTheNextJobAndIsThatJobsAlone) {
+  EXPECT_EQ(wait_end(submit("centroid_distance", {{"exponent", 1.5}})["id"])["state"], "done");
+  std::map<pid_t, std::string> ahead;
+  for (int i = 0; i < 250 && ahead.empty(); ++i) {
+    ahead = test::processes_naming(data_);
+    std::erase_if(ahead, [](const auto& p) { return p.second.find(test::kPrestartedWorker) == std::string::npos; });
+    if (ahead.empty()) std::this_thread::sleep_for(20ms);
+  }
+  ASSERT_FALSE(ahead.empty()) << "no worker was started ahead of the next job";
+  // Ready once the worker itself waits on its stdin pipe (a job before
+  // that gets a worker of its own).
+  auto waiting = [&] {
+    for (const auto& e : fs::directory_iterator("/proc")) {
+      std::error_code ec;
+      const std::string exe = fs::read_symlink(e.path() / "exe", ec).string();
+      const std::string err = fs::read_symlink(e.path() / "fd" / "2", ec).string();
+      if (exe.ends_with("cgview-worker-test") && err.find("/runs/warm-") != std::string::npos &&
+          read_bytes(e.path() / "wchan").find("pipe_read") != std::string::npos)
+        return true;
+    }
+    return false;
+  };
+  for (int i = 0; i < 250 && !waiting(); ++i) std::this_thread::sleep_for(20ms);
+  ASSERT_TRUE(waiting()) << "the worker started ahead never waited for its job";
+  const std::string id = submit("test_sleep", {{"seconds", 30}})["id"];
+  wait_state(id, "running");
+  const std::set<pid_t> runs = worker_pids(id);
+  EXPECT_TRUE(std::any_of(runs.begin(), runs.end(), [&](pid_t p) { return ahead.count(p) > 0; }))
+      << "the job's workers are not the one started ahead of it";
+  EXPECT_EQ(http_call(server_.port(), Method::delete_, "/api/v1/jobs/" + id).status, 200);
+  EXPECT_EQ(wait_end(id)["state"], "cancelled");
+  const auto t0 = Clock::now();
+  while (worker_processes(id) > 0 && Clock::now() - t0 < 3s) std::this_thread::sleep_for(10ms);
+  EXPECT_EQ(worker_processes(id), 0);
+  // The job after it is done too.
+  const json j = wait_end(submit("centroid_distance", {{"exponent", 2.5}})["id"]);
+  EXPECT_EQ(j["state"], "done") << j.dump();
 }
 
 }  // namespace

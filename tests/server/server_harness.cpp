@@ -62,12 +62,18 @@ std::map<pid_t, std::string> processes_naming(const fs::path& dir) {
   return found;
 }
 
-std::map<pid_t, std::string> processes_outliving(const fs::path& dir, std::chrono::milliseconds limit) {
+std::map<pid_t, std::string> processes_outliving(const fs::path& dir, std::chrono::milliseconds limit,
+                                                 std::string_view but) {
   const auto end = std::chrono::steady_clock::now() + limit;
-  std::map<pid_t, std::string> left = processes_naming(dir);
+  auto naming = [&] {
+    std::map<pid_t, std::string> found = processes_naming(dir);
+    if (!but.empty()) std::erase_if(found, [&](const auto& p) { return p.second.find(but) != std::string::npos; });
+    return found;
+  };
+  std::map<pid_t, std::string> left = naming();
   while (!left.empty() && std::chrono::steady_clock::now() < end) {
     std::this_thread::sleep_for(std::chrono::milliseconds(25));
-    left = processes_naming(dir);
+    left = naming();
   }
   for (const auto& [pid, cmdline] : left) ::kill(pid, SIGKILL);
   return left;

@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <utility>
 #include <vector>
@@ -33,7 +34,13 @@ std::map<pid_t, std::string> processes_naming(const std::filesystem::path& dir);
 
 // Waits up to `limit` for processes_naming(dir) to be empty; those still
 // there are killed (this test's own, by id) and returned, to be reported.
-std::map<pid_t, std::string> processes_outliving(const std::filesystem::path& dir, std::chrono::milliseconds limit);
+// Those whose command line holds `but` (when not empty) are left out.
+std::map<pid_t, std::string> processes_outliving(const std::filesystem::path& dir, std::chrono::milliseconds limit,
+                                                 std::string_view but = {});
+
+// In the command line of a running server's pre-started worker (its
+// bubblewrap binds runs/warm-N): it waits for the next job, no job's.
+inline constexpr std::string_view kPrestartedWorker = "/runs/warm-";
 
 // ---------------------------------------------------------------- the server
 
