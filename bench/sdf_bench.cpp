@@ -8,7 +8,7 @@
 // On the 1M-triangle mesh CGAL runs without post-processing (its bilateral
 // filter walks std::maps over ~2000 faces per face: hours), said in the row.
 //
-//   build/bin/sdf_bench [--repeat N] [--quick] [--only elephant,...]
+//   build/bin/sdf_bench [--repeat N] [--quick] [--only elephant,...,big,diplodocus,...]
 #include <CGAL/mesh_segmentation.h>
 
 #include <algorithm>

@@ -3,6 +3,7 @@
 // and our whole sdf as the algorithm runs it.
 #pragma once
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -41,11 +42,16 @@ struct SdfInput {
   Mesh mesh;
 };
 
-// The four sample meshes and big, as --only and --quick (elephant alone) ask.
+// The four sample meshes and big, as --only and --quick (elephant alone) ask;
+// any other sample mesh named in --only too (diplodocus, bunny00, ...).
 inline std::vector<SdfInput> sdf_inputs(const Options& opt, const char* program) {
+  const std::vector<std::string> usual{"elephant", "man", "armadillo", "refined_elephant"};
   std::vector<SdfInput> inputs;
-  for (const char* n : {"elephant", "man", "armadillo", "refined_elephant"})
-    if (opt.wants(n) && (!opt.quick || std::string(n) == "elephant")) inputs.push_back({n, sample_mesh(n, program)});
+  for (const std::string& n : usual)
+    if (opt.wants(n) && (!opt.quick || n == "elephant")) inputs.push_back({n, sample_mesh(n, program)});
+  for (const std::string& n : opt.only)
+    if (n != "big" && std::find(usual.begin(), usual.end(), n) == usual.end())
+      inputs.push_back({n, sample_mesh(n, program)});
   if (!opt.quick && opt.wants("big"))
     inputs.push_back({"big", subdivide_midpoint(subdivide_midpoint(sample_mesh("refined_elephant", program)))});
   return inputs;

@@ -10,7 +10,7 @@
 // values from theirs as a fraction of the smoothed values' range.  Then the
 // whole sdf (rays and post-processing) on each mesh.
 //
-//   build/bin/sdf_smooth_bench [--repeat N] [--quick] [--only elephant,...,big]
+//   build/bin/sdf_smooth_bench [--repeat N] [--quick] [--only elephant,...,big,diplodocus,...]
 #include <CGAL/Surface_mesh_segmentation/internal/Filters.h>
 
 #include <algorithm>
@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "bench_util.h"
+#include "sdf_common.h"
 #include "core/threads.h"
 #include "core/surface_mesh.h"
 #include "io/mesh_io.h"
@@ -100,24 +101,11 @@ Difference difference(const std::vector<double>& ours, const std::vector<double>
   return d;
 }
 
-Mesh sample(const std::string& name) {
-  const auto path = resolve_mesh_path(name);
-  if (!path) {
-    std::fprintf(stderr, "sdf_smooth_bench: no sample mesh %s (install libcgal-demo)\n", name.c_str());
-    std::exit(1);
-  }
-  return read_mesh(*path);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   const bench::Options opt = bench::parse_options(argc, argv, "sdf_smooth_bench");
-  std::vector<std::pair<std::string, Mesh>> inputs;
-  for (const char* n : {"elephant", "man", "armadillo", "refined_elephant"})
-    if (opt.wants(n) && (!opt.quick || std::string(n) == "elephant")) inputs.push_back({n, sample(n)});
-  if (!opt.quick && opt.wants("big"))
-    inputs.push_back({"big", subdivide_midpoint(subdivide_midpoint(sample("refined_elephant")))});
+  const std::vector<bench::SdfInput> inputs = bench::sdf_inputs(opt, "sdf_smooth_bench");
 
   std::printf("bilateral filter of the raw SDF (default window), against CGAL 5.5 and the filter as it was\n");
   std::printf("%-17s %8s %6s %9s %9s %9s %8s %8s %11s %11s\n", "mesh", "faces", "window", "CGAL s", "was s", "ours s",
