@@ -43,8 +43,9 @@ std::vector<std::vector<std::uint32_t>> blocks_of(const Adjacency& g, const std:
 // One walk for a block: the faces met, with the bits of the block's faces
 // whose windows they are in, and for each face of the block the values of
 // its window with their rings' half of the weights' exponent.  Arrays keep
-// their size from block to block and grow before each ring by what that ring
-// can add, so that the inner loops write through plain pointers.
+// their size from block to block (a walk allocates nothing once they are
+// large enough), and are sized before the inner loops, which then write
+// through plain pointers.
 class Walk {
  public:
   std::span<const float> values(std::size_t i) const { return {value_[i].data(), count_[i]}; }
@@ -165,16 +166,14 @@ class Walk {
 
 int default_window(std::size_t faces) { return int(std::sqrt(double(faces) / 2000.0)) + 1; }
 
-void bilateral_smooth(const Adjacency& face_graph, std::vector<double>& values, int window, const Context* ctx,
+void bilateral_smooth(const Adjacency& graph, std::vector<double>& values, int window, const Context* ctx,
                       std::span<const std::uint32_t> only) {
   const std::size_t n = values.size();
   if (window <= 0) window = default_window(n);
-  const Adjacency& graph = face_graph;
-  const std::vector<double>& v = values;
   std::vector<char> wanted(n, only.empty() ? 1 : 0);
   for (std::uint32_t f : only) wanted[f] = 1;
   for (std::size_t f = 0; f < n; ++f)
-    if (std::isnan(v[f])) wanted[f] = 0;
+    if (std::isnan(values[f])) wanted[f] = 0;
   const auto blocks = blocks_of(graph, wanted, 64 * kBlock);
   // exp(-ring^2 / (2 spatial^2)) exp(-dv^2 / (2 range^2)) as one exp: the
   // rings' half of the exponent by ring.
@@ -187,12 +186,12 @@ void bilateral_smooth(const Adjacency& face_graph, std::vector<double>& values, 
     thread_local Walk walk;
     for (std::size_t k = b; k < e; ++k) {
       const std::vector<std::uint32_t>& block = blocks[k];
-      walk.run(graph, v, block, ring_exponent);
+      walk.run(graph, values, block, ring_exponent);
       for (std::size_t i = 0; i < block.size(); ++i) {
         // In float, eight to a vector instruction: the weights' rounding
         // moves a result by about 1e-7 of its window's spread.
         const std::span<const float> x = walk.values(i);
-        const float c = float(v[block[i]]);
+        const float c = float(values[block[i]]);
         const double dev = std::sqrt(double(squared_deviation(x.data(), x.size(), c)) / double(x.size()));
         if (dev == 0) continue;  // out keeps c
         float sum = 0, weights = 0;
