@@ -3,7 +3,7 @@
 # build (tests/fuzz, a project of its own that compiles them again,
 # instrumented) both take them from these lists.
 set(CGVIEW_CORE_SOURCES
-  core/errors.cpp core/mesh.cpp core/mesh_report.cpp core/orient.cpp core/scalar_field.cpp core/vector_field.cpp
+  core/errors.cpp core/mesh.cpp core/point_cloud.cpp core/mesh_report.cpp core/orient.cpp core/scalar_field.cpp core/vector_field.cpp
   core/voxel_grid.cpp core/skeleton.cpp core/animation.cpp core/cluster_decimate.cpp)
 set(CGVIEW_IO_SOURCES
   io/mesh_io.cpp io/mesh_formats.cpp io/read_off.cpp io/read_obj.cpp io/read_ply.cpp io/read_stl.cpp
