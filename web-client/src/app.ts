@@ -9,7 +9,7 @@ import { AccountController } from './controllers/account.ts';
 import { CompareController } from './controllers/compare.ts';
 import { CourseController } from './controllers/course.ts';
 import { DisplayController } from './controllers/display.ts';
-import type { AppContext, Controllers } from './controllers/context.ts';
+import type { AppContext } from './controllers/context.ts';
 import { JobsController } from './controllers/jobs.ts';
 import { LectureController } from './controllers/lecture.ts';
 import { MeshLoader } from './controllers/mesh_loader.ts';
@@ -48,25 +48,32 @@ export class App {
   private readonly store = new Store<AppState>(initialState());
   private readonly socket = new CgviewSocket();
   private readonly hooks: TestHooks;
-  private readonly app = {} as Controllers;
+  private readonly account: AccountController;
+  private readonly meshes: MeshesController;
+  private readonly scene: SceneController;
+  private readonly kinds: Kinds;
+  private readonly jobs: JobsController;
   private readonly links: ViewLinks;
+  private readonly course: CourseController;
+  /** Made last: a frame drawn before has no lecture to tell. */
+  private readonly lecture: LectureController | undefined;
   private readonly error: (text: string) => void;
   private readonly options: AppOptions;
 
   constructor(options: AppOptions = {}) {
     this.options = options;
-    const { store, app } = this;
+    const { store } = this;
     const hooks = (this.hooks = installTestHooks((frames) => orbitFrameTimes(viewer, frames)));
     const viewer = new Viewer(byId('viewport'), {
       onFrame: () => {
         ++hooks.frames;
-        hooks.scene = app.scene.report();
+        hooks.scene = this.scene.report();
         this.links.changed();
-        app.lecture?.frame();
+        this.lecture?.frame();
       },
     });
     // Before the Display panel's listener: the overlays measure the object where the scene puts it.
-    viewer.onShownChange((object) => app.scene.shownChanged(object));
+    viewer.onShownChange((object) => this.scene.shownChanged(object));
     const error = (this.error = (text: string, topic?: string): void => {
       hooks.lastError = text;
       store.update({ message: { level: 'error', text, topic } });
@@ -98,7 +105,7 @@ export class App {
         status.title = connected ? 'Connected to the server' : 'Not connected; retrying';
       },
     );
-    new UploadControl(byId<HTMLInputElement>('file-input'), document.body, (files) => void app.meshes.upload(files));
+    new UploadControl(byId<HTMLInputElement>('file-input'), document.body, (files) => void this.meshes.upload(files));
     byId('fit').addEventListener('click', () => viewer.fitToView());
     const navigation = new Navigation(viewer);
     new NavigationPanel(byId('navigation'), navigation, error);
@@ -108,7 +115,7 @@ export class App {
       byId('viewport'),
       (state) => {
         selectionPanel?.render(state);
-        app.jobs.selectionChanged(state.kind, state.ids.length);
+        this.jobs.selectionChanged(state.kind, state.ids.length);
         hooks.selection = { meshId: state.meshId, ready: state.ready, kind: state.kind, count: state.ids.length, ids: state.ids, area: state.area };
       },
       (enabled) => navigation.setEnabled(enabled),
@@ -118,14 +125,14 @@ export class App {
     hooks.clipping = () => ({ near: viewer.camera.near, far: viewer.camera.far });
     hooks.selectionView = () => selectionTool.view();
     const display = new DisplayController(byId('display'), store, viewer, {
-      setFieldRange: (range) => app.kinds.field.setRange(range),
+      setFieldRange: (range) => this.kinds.field.setRange(range),
       drawn: (report) => (hooks.display = report),
-      others: () => app.scene.others(),
-      colorOf: (object) => app.scene.entryOf(object)?.color ?? null,
-      meshOf: (object) => app.scene.entryOf(object)?.mesh ?? null,
+      others: () => this.scene.others(),
+      colorOf: (object) => this.scene.entryOf(object)?.color ?? null,
+      meshOf: (object) => this.scene.entryOf(object)?.mesh ?? null,
       formatOf: (id) => store.get().meshes.find((m) => m.id === id)?.format ?? null,
     });
-    const account = (app.account = new AccountController(store, new AccountPanel(byId('account'))));
+    const account = (this.account = new AccountController(store, new AccountPanel(byId('account'))));
     const ctx: AppContext = {
       account,
       store,
@@ -142,63 +149,87 @@ export class App {
       notice,
       warning,
     };
-    // Each is given what it uses of those made before it; the mesh list, the
-    // scene and the kinds also call the comparison and the jobs, made after
-    // them (and each other): those calls go through `app`, filled as each is made.
-    const loader = (app.loader = new MeshLoader(ctx, new DracoDecoder()));
-    const meshes = (app.meshes = new MeshesController(ctx, app));
-    const scene = (app.scene = new SceneController(ctx, app));
-    const kinds = (app.kinds = new Kinds(ctx, app));
-    const compare = (app.compare = new CompareController(ctx, { kinds, loader, scene }));
-    const jobs = (app.jobs = new JobsController(ctx, { kinds, meshes }));
-    const links = (this.links = app.links = new ViewLinks(ctx, { meshes, loader, scene, kinds, compare }));
+    // Each is given what it uses of those made before it, and calls back
+    // what it asks of those made after it (that use it in turn): the scene
+    // selects meshes and shows panes, the mesh list ends the comparison and
+    // the kinds, the kinds compare and import, the code panel submits.
+    const loader = new MeshLoader(ctx, new DracoDecoder());
+    const scene: SceneController = (this.scene = new SceneController(ctx, {
+      loader,
+      selectMesh: (id) => meshes.select(id),
+      resultName: (jobId, artifact) => jobs.resultName(jobId, artifact),
+      sourceMeshOf: (jobId) => jobs.sourceMeshOf(jobId),
+      leaveComparison: () => compare.leave(),
+      leaveComparisonWithUndo: () => compare.leaveWithUndo(),
+      showPanes: (items) => compare.showScene(items),
+    }));
+    const meshes: MeshesController = (this.meshes = new MeshesController(ctx, {
+      scene,
+      loader,
+      leaveComparison: () => compare.leave(),
+      disposeKinds: () => kinds.dispose(),
+      importFile: (file, kind) => jobs.importFile(file, kind),
+    }));
+    const kinds: Kinds = (this.kinds = new Kinds(ctx, {
+      loader,
+      meshes,
+      scene,
+      leaveComparison: () => compare.leave(),
+      compareObjects: (list, build, what) => compare.compareObjects(list, build, what),
+      compareJob: (jobId) => compare.compareJob(jobId),
+      addToComparison: (jobId, artifact) => compare.addToComparison(jobId, artifact),
+      importFile: (file, kind) => jobs.importFile(file, kind),
+      upsertJob: (job) => jobs.upsert(job),
+    }));
+    const compare: CompareController = new CompareController(ctx, { kinds, loader, scene });
+    const jobs: JobsController = (this.jobs = new JobsController(ctx, { kinds, meshes }));
+    const links = (this.links = new ViewLinks(ctx, { meshes, loader, scene, kinds, compare }));
     byId('screenshot').addEventListener('click', () => {
-      const name = (app.meshes.selected()?.name ?? 'view').replace(/\.[^.]*$/, '');
+      const name = (meshes.selected()?.name ?? 'view').replace(/\.[^.]*$/, '');
       display.screenshot(`cgview-${name}.png`, (blob) => (hooks.lastScreenshot = blob ? { bytes: blob.size } : null));
     });
-    byId('copy-link').addEventListener('click', () => this.links.copy());
-    const code = installPlayground(ctx, app);
-    app.course = new CourseController(ctx, { meshes, jobs }, byId('course'), byId<HTMLButtonElement>('course-toggle'), code);
-    app.lecture = new LectureController(ctx, { links, meshes, jobs, kinds }, byId('course'), code);
+    byId('copy-link').addEventListener('click', () => links.copy());
+    const code = installPlayground(ctx, { jobs, submit: () => course.submit() });
+    const course = (this.course = new CourseController(ctx, { meshes, jobs }, byId('course'), byId<HTMLButtonElement>('course-toggle'), code));
+    this.lecture = new LectureController(ctx, { links, meshes, jobs, kinds }, byId('course'), code);
   }
 
   async start(): Promise<void> {
-    const { app, socket } = this;
+    const { socket } = this;
     socket.onEvent((ev) => this.onServerEvent(ev));
     let connectedBefore = false;
     socket.onStatus((connected) => {
       this.store.update({ connected });
       // Events may have been missed while disconnected.
       if (connected && connectedBefore) {
-        void app.meshes.refresh();
-        void app.jobs.refresh();
+        void this.meshes.refresh();
+        void this.jobs.refresh();
       }
       if (connected) connectedBefore = true;
     });
     socket.connect().catch(() => this.error('Cannot open the WebSocket to the server; retrying.'));
     if (this.options.refusedLink) this.error('This sign-in link is used or expired: ask your teacher for another.');
-    await Promise.all([app.meshes.refresh(), app.jobs.loadAlgorithms(), app.account.refresh(), app.course.start(this.options.openCourse ?? false)]);
+    await Promise.all([this.meshes.refresh(), this.jobs.loadAlgorithms(), this.account.refresh(), this.course.start(this.options.openCourse ?? false)]);
     this.hooks.ready = true;
     await this.links.restore();
   }
 
   private onServerEvent(ev: ServerEvent): void {
-    const { app } = this;
-    if (ev.type !== 'job_progress') app.account.refreshSoon(); // storage or jobs in use changed
+    if (ev.type !== 'job_progress') this.account.refreshSoon(); // storage or jobs in use changed
     switch (ev.type) {
       case 'mesh_added':
-        app.meshes.upsert(ev.mesh);
+        this.meshes.upsert(ev.mesh);
         break;
       case 'mesh_deleted':
-        app.meshes.forget(ev.mesh_id);
+        this.meshes.forget(ev.mesh_id);
         break;
       case 'job_progress':
-        app.jobs.progress(ev.job);
+        this.jobs.progress(ev.job);
         break;
       case 'job_done':
       case 'job_failed':
       case 'job_cancelled':
-        app.jobs.upsert(ev.job);
+        this.jobs.upsert(ev.job);
         break;
     }
   }

@@ -36,7 +36,7 @@ export const MAX_PANES = 4;
 export class CompareController {
   private readonly ctx: AppContext;
   /** What of the other controllers this one uses. */
-  private readonly app: CompareDeps;
+  private readonly deps: CompareDeps;
   private readonly view: ComparisonView;
   private readonly leaveButton: HTMLButtonElement;
   /** The comparison being prepared: a later one, or leaving, makes it stale. */
@@ -44,9 +44,9 @@ export class CompareController {
   /** Shows the comparison now shown (or last shown) again: what "Undo" after leaving it does. */
   private again: (() => void) | null = null;
 
-  constructor(ctx: AppContext, app: CompareDeps) {
+  constructor(ctx: AppContext, deps: CompareDeps) {
     this.ctx = ctx;
-    this.app = app;
+    this.deps = deps;
     this.view = new ComparisonView(ctx.viewer, byId('viewport'), (panes) => {
       const { selectedId: meshId, compared } = ctx.store.get();
       ctx.hooks.lastCompare = meshId && compared.length ? { meshId, panes: panes.map((p, i) => ({ ...compared[i]!, map: p.map, range: p.range })) } : null;
@@ -77,7 +77,7 @@ export class CompareController {
 
   /** Shows the fields (all on one mesh) side by side in synchronized panes, each with its legend (a view link's). */
   async compareFields(list: ArtifactRef[]): Promise<void> {
-    const field = this.app.kinds.field;
+    const field = this.deps.kinds.field;
     const sources: FieldSource[] = [];
     for (const c of list) {
       const source = field.source(c.jobId, c.artifact);
@@ -115,12 +115,12 @@ export class CompareController {
    */
   async compareObjects(list: ArtifactRef[], build: (ply: PlyMesh) => PaneObject[], what: string): Promise<void> {
     const { store } = this.ctx;
-    const { app } = this;
+    const { deps } = this;
     const meshId = store.get().selectedId;
     if (list.length < 2 || !meshId) return;
     const token = ++this.token;
     try {
-      const ply = await app.loader.ply(meshId);
+      const ply = await deps.loader.ply(meshId);
       if (token !== this.token || store.get().selectedId !== meshId) return;
       this.take(list);
       this.again = () => void this.compareObjects(list, build, what);
@@ -137,10 +137,10 @@ export class CompareController {
     ++this.token;
     this.ctx.store.update({ compared: [] });
     this.ctx.hooks.lastCompare = null;
-    this.app.kinds.field.hideLegend();
+    this.deps.kinds.field.hideLegend();
     this.view.showObjects(items, false);
     this.leaveButton.hidden = false;
-    this.again = () => this.app.scene.sideBySide();
+    this.again = () => this.deps.scene.sideBySide();
   }
 
   /**
@@ -172,13 +172,13 @@ export class CompareController {
     this.ctx.hooks.lastCompare = null;
     this.view.clear();
     this.leaveButton.hidden = true;
-    this.app.kinds.field.showLegend();
+    this.deps.kinds.field.showLegend();
   }
 
   /** The panes go to `list` (the scene's side by side ends). */
   private take(list: ArtifactRef[]): void {
     this.ctx.store.update({ compared: list, scenePanes: false });
     this.ctx.hooks.lastCompare = null;
-    this.app.kinds.field.hideLegend();
+    this.deps.kinds.field.hideLegend();
   }
 }

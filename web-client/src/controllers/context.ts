@@ -3,9 +3,8 @@
 // them draw in, and the account. What each uses of the other controllers it
 // is given explicitly, as its constructor's second argument, typed by what
 // it calls (MeshesDeps, SceneDeps, KindDeps...): those made before it as they
-// are; where it calls one made after it (the mesh list, the scene and the
-// kinds call the comparison and the jobs), App's `Controllers`, filled as each
-// is made.
+// are, and what it asks of one made after it (the scene, the mesh list and
+// the kinds ask the comparison and the jobs) as callbacks that app.ts joins.
 import { ApiError } from '../api/rest.ts';
 import type { Job, Mesh } from '../api/types.ts';
 import { ServerError, type CgviewSocket } from '../api/ws.ts';
@@ -15,32 +14,9 @@ import type { TestHooks } from '../test_hooks.ts';
 import type { MeshTextures } from '../viewer/textures.ts';
 import type { Viewer } from '../viewer/viewer.ts';
 import type { SelectionTool } from '../viewer/selection_tool.ts';
-import type { Kinds } from '../kinds/registry.ts';
 import type { AccountController } from './account.ts';
-import type { CompareController } from './compare.ts';
-import type { CourseController } from './course.ts';
 import type { DisplayController } from './display.ts';
-import type { JobsController } from './jobs.ts';
-import type { LectureController } from './lecture.ts';
-import type { MeshLoader } from './mesh_loader.ts';
-import type { MeshesController } from './meshes.ts';
-import type { SceneController } from './scene.ts';
 import type { UndoOffers } from './undo.ts';
-import type { ViewLinks } from './view_links.ts';
-
-export interface Controllers {
-  account: AccountController;
-  meshes: MeshesController;
-  loader: MeshLoader;
-  scene: SceneController;
-  compare: CompareController;
-  jobs: JobsController;
-  kinds: Kinds;
-  course: CourseController;
-  /** The view as links hold it: read and shown again (a lecture's too). */
-  links: ViewLinks;
-  lecture: LectureController;
-}
 
 export interface AppContext {
   readonly store: AppStore;

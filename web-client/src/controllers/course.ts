@@ -77,7 +77,7 @@ function sameSubmissions(a: readonly Submission[], b: readonly Submission[]): bo
 export class CourseController {
   private readonly ctx: AppContext;
   /** What of the other controllers this one uses. */
-  private readonly app: CourseDeps;
+  private readonly deps: CourseDeps;
   private readonly code: CodePanel;
   private readonly panel: CoursePanel;
   private readonly section: HTMLElement;
@@ -86,9 +86,9 @@ export class CourseController {
   /** Counts course loads: a later one makes an earlier one's answers stale. */
   private loads = 0;
 
-  constructor(ctx: AppContext, app: CourseDeps, section: HTMLElement, toggle: HTMLButtonElement, code: CodePanel) {
+  constructor(ctx: AppContext, deps: CourseDeps, section: HTMLElement, toggle: HTMLButtonElement, code: CodePanel) {
     this.ctx = ctx;
-    this.app = app;
+    this.deps = deps;
     this.code = code;
     this.section = section;
     this.toggle = toggle;
@@ -282,10 +282,10 @@ export class CourseController {
   }
 
   private async openMesh(id: string): Promise<void> {
-    const { app } = this;
-    if (!meshOf(this.ctx, id)) await app.meshes.refresh();
+    const { deps } = this;
+    if (!meshOf(this.ctx, id)) await deps.meshes.refresh();
     if (!meshOf(this.ctx, id)) return this.say('That mesh is not yours to read (any more).', 'error');
-    app.meshes.select(id);
+    deps.meshes.select(id);
   }
 
   /** The student's own copy of the starter (made the first time, as a plugin named after the assignment), opened in the code panel. */
@@ -356,7 +356,7 @@ export class CourseController {
     const a = this.state.assignments.find((x) => x.id === s.assignment);
     this.set({ picked: id });
     try {
-      await this.app.jobs.openResult(job, a?.output);
+      await this.deps.jobs.openResult(job, a?.output);
     } catch (e) {
       throw new Error(`Cannot show ${s.student}'s run on ${s.results[index]!.mesh}: ${describe(e)}`);
     }

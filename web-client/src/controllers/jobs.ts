@@ -59,7 +59,7 @@ export function mainParamValue(job: Pick<Job, 'params'>, algorithm: Algorithm | 
 export class JobsController {
   private readonly ctx: AppContext;
   /** What of the other controllers this one uses. */
-  private readonly app: JobsDeps;
+  private readonly deps: JobsDeps;
   private readonly algorithms: AlgorithmsPanel;
   /** Jobs this page submitted: their scalar field is shown when they finish. */
   private readonly autoShow = new Set<string>();
@@ -68,9 +68,9 @@ export class JobsController {
   /** The algorithms the server listed last: their parameters' defaults name results. */
   private known: readonly Algorithm[] = [];
 
-  constructor(ctx: AppContext, app: JobsDeps) {
+  constructor(ctx: AppContext, deps: JobsDeps) {
     this.ctx = ctx;
-    this.app = app;
+    this.deps = deps;
     const { store } = ctx;
     this.algorithms = new AlgorithmsPanel(byId('algorithms'), {
       run: (algorithm, params, inputs) => this.run(algorithm, params, inputs),
@@ -81,13 +81,13 @@ export class JobsController {
       byId('jobs'),
       {
         cancel: (id) => void this.cancel(id),
-        show: (jobId, artifact, kind) => void app.kinds.show(jobId, artifact, kind),
-        hide: (jobId, artifact, kind) => app.kinds.hide(jobId, artifact, kind),
+        show: (jobId, artifact, kind) => void deps.kinds.show(jobId, artifact, kind),
+        hide: (jobId, artifact, kind) => deps.kinds.hide(jobId, artifact, kind),
         runOn: (jobId, artifact) => this.setRunTarget(jobId, artifact),
         remove: (jobId) => void this.remove(jobId),
         share: (jobId) => openShareForm('jobs', jobId, `job ${jobOf(ctx, jobId)?.algorithm ?? ''} ${jobId.slice(0, 8)}`),
       },
-      app.kinds,
+      deps.kinds,
     );
     store.subscribe(
       (s) => [s.jobs, s.meshes, s.artifacts, s.compared, s.runTarget, s.me?.user, s.me?.admin],
@@ -174,7 +174,7 @@ export class JobsController {
    */
   async run(algorithm: Algorithm, params: Record<string, unknown>, extra: Record<string, string> = {}): Promise<Job> {
     const { store } = this.ctx;
-    const { app } = this;
+    const { deps } = this;
     const target = store.get().runTarget;
     const mesh = selectedMesh(this.ctx.store.get());
     // The algorithm's first input: the selected mesh, or the output chosen with "Run on this".
@@ -198,8 +198,8 @@ export class JobsController {
       // A chained mesh is a stored mesh now: later runs and fields use it.
       store.update({ runTarget: null });
       const stored = typeof job.inputs.mesh === 'string' ? job.inputs.mesh : null;
-      if (stored && !meshOf(this.ctx, stored)) await app.meshes.refresh();
-      if (stored) app.meshes.select(stored);
+      if (stored && !meshOf(this.ctx, stored)) await deps.meshes.refresh();
+      if (stored) deps.meshes.select(stored);
     }
     this.autoShow.add(job.id);
     // A job_done event may have come before this answer: upsert keeps the later state.
@@ -218,7 +218,7 @@ export class JobsController {
    */
   async importFile(file: File, kind: DataKind): Promise<void> {
     const { progress } = this.ctx;
-    const { app } = this;
+    const { deps } = this;
     const mesh = selectedMesh(this.ctx.store.get());
     if (!mesh && needsMesh(kind)) {
       return this.ctx.error(`Choose a mesh first: ${file.name} is ${dataKindWords(kind)} for the mesh shown.`);
@@ -237,7 +237,7 @@ export class JobsController {
     this.ctx.account.refreshSoon(); // its files count against the caller's storage
     for (const w of job.warnings ?? []) this.ctx.warning(`${file.name}: ${w}`);
     const artifact = job.artifacts?.find((a) => a.kind === kind);
-    if (artifact) await app.kinds.show(job.id, artifact.name, artifact.kind);
+    if (artifact) await deps.kinds.show(job.id, artifact.name, artifact.kind);
   }
 
   /**
@@ -327,7 +327,7 @@ export class JobsController {
    * else the job's first. Rejects, saying why, when it has none to show.
    */
   async openResult(jobId: string, artifact?: string): Promise<void> {
-    const { app } = this;
+    const { deps } = this;
     let job = jobOf(this.ctx, jobId);
     if (!job || !FINAL.has(job.state)) {
       job = await getJob(jobId);
@@ -336,7 +336,7 @@ export class JobsController {
     if (job.state !== 'done') throw new Error(`its job is ${job.state}${job.error ? `: ${job.error}` : ''}`);
     const a = job.artifacts?.find((x) => x.name === artifact) ?? job.artifacts?.[0];
     if (!a) throw new Error('its job made nothing to show');
-    await app.kinds.open(job, a);
+    await deps.kinds.open(job, a);
   }
 
   async cancel(id: string): Promise<void> {
@@ -354,7 +354,7 @@ export class JobsController {
   /** Deletes an ended job: what of it is shown is hidden first, then it leaves the list. */
   async remove(id: string): Promise<void> {
     const { store } = this.ctx;
-    const { app } = this;
+    const { deps } = this;
     const job = store.get().jobs.get(id);
     try {
       await deleteJob(id);
@@ -362,7 +362,7 @@ export class JobsController {
       this.ctx.error(`Cannot delete the job: ${describe(e)}`);
       return;
     }
-    for (const a of job?.artifacts ?? []) app.kinds.hide(id, a.name, a.kind);
+    for (const a of job?.artifacts ?? []) deps.kinds.hide(id, a.name, a.kind);
     const next = new Map(store.get().jobs);
     next.delete(id);
     store.update({ jobs: next });
@@ -394,12 +394,12 @@ export class JobsController {
   private settled(job: Job): void {
     if (HIDDEN.has(job.algorithm)) return;
     if (job.state === 'done') {
-      this.app.kinds.load(job);
+      this.deps.kinds.load(job);
       if (this.autoShow.delete(job.id)) {
         // A run of this page that succeeds: the failure of an earlier one of the same algorithm on the same mesh no longer holds.
         this.ctx.dismiss(failureTopic(job));
-        const field = this.app.kinds.autoShown(job);
-        if (field) void this.app.kinds.show(job.id, field.name, field.kind);
+        const field = this.deps.kinds.autoShown(job);
+        if (field) void this.deps.kinds.show(job.id, field.name, field.kind);
       }
     } else if (job.state === 'failed' && this.autoShow.delete(job.id)) {
       this.ctx.error(`${job.algorithm} failed: ${job.error ?? 'no reason given'}`, failureTopic(job));

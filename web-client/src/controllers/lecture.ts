@@ -50,15 +50,15 @@ export class LectureController {
   private myHand: HandPoint | null = null;
   private listTimer = 0;
 
-  constructor(ctx: AppContext, app: MirrorDeps & BroadcastDeps, courseSection: HTMLElement, code: CodePanel) {
+  constructor(ctx: AppContext, deps: MirrorDeps & BroadcastDeps, courseSection: HTMLElement, code: CodePanel) {
     this.ctx = ctx;
     const { store, viewer, hooks } = ctx;
     this.rooms = new RoomsApi(ctx.socket);
-    this.mirror = new LectureMirror(ctx, app, (part, value) => {
+    this.mirror = new LectureMirror(ctx, deps, (part, value) => {
       if (part === 'code') this.set({ presenterCode: isObject(value) && typeof value.text === 'string' ? value.text : null });
       else this.set({ shownHand: isHand(value) ? value : null });
     });
-    this.broadcast = new LectureBroadcast(ctx, app, this.rooms, code, (e) => this.refused(e));
+    this.broadcast = new LectureBroadcast(ctx, deps, this.rooms, code, (e) => this.refused(e));
     this.replay = new ReplayPlayer(this.mirror, (replay) => this.set({ replay }));
     this.panel = new LecturePanel({
       present: (to) => void this.present(to),

@@ -27,7 +27,7 @@ const CODE_MS = 300;
 export class LectureBroadcast {
   private readonly ctx: AppContext;
   /** What of the other controllers this one uses. */
-  private readonly app: BroadcastDeps;
+  private readonly deps: BroadcastDeps;
   private readonly rooms: RoomsApi;
   private readonly onError: (e: ServerError) => void;
   private readonly code: CodePanel;
@@ -42,9 +42,9 @@ export class LectureBroadcast {
   private last = 0;
   private codeTimer = 0;
 
-  constructor(ctx: AppContext, app: BroadcastDeps, rooms: RoomsApi, code: CodePanel, onError: (e: ServerError) => void) {
+  constructor(ctx: AppContext, deps: BroadcastDeps, rooms: RoomsApi, code: CodePanel, onError: (e: ServerError) => void) {
     this.ctx = ctx;
-    this.app = app;
+    this.deps = deps;
     this.rooms = rooms;
     this.onError = onError;
     this.code = code;
@@ -110,14 +110,14 @@ export class LectureBroadcast {
   private sync(): void {
     this.last = performance.now();
     const { selectionTool } = this.ctx;
-    const { app } = this;
-    const view = app.links.current();
+    const { deps } = this;
+    const view = deps.links.current();
     if (!view) return; // no mesh shown: the followers keep the last view
     const selection = selectionTool.state();
     const parts: Record<string, unknown> = {
       ...viewParts(view),
       selection: selection.meshId && selection.ids.length ? { mesh: selection.meshId, kind: selection.kind, ids: selection.ids } : null,
-      slice: app.kinds.voxels.sliceView(),
+      slice: deps.kinds.voxels.sliceView(),
     };
     for (const [part, value] of Object.entries(parts)) this.send(part, value);
   }

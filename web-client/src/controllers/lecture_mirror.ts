@@ -34,7 +34,7 @@ const isObject = (v: unknown): v is Record<string, unknown> => typeof v === 'obj
 export class LectureMirror {
   private readonly ctx: AppContext;
   /** What of the other controllers this one uses. */
-  private readonly app: MirrorDeps;
+  private readonly deps: MirrorDeps;
   private readonly onSide: (part: SidePart, value: unknown) => void;
   readonly glide: CameraGlide;
   private parts: Record<string, unknown> = {};
@@ -45,9 +45,9 @@ export class LectureMirror {
   /** The last error said, so that a part that keeps failing does not say it at every change. */
   private said = '';
 
-  constructor(ctx: AppContext, app: MirrorDeps, onSide: (part: SidePart, value: unknown) => void) {
+  constructor(ctx: AppContext, deps: MirrorDeps, onSide: (part: SidePart, value: unknown) => void) {
     this.ctx = ctx;
-    this.app = app;
+    this.deps = deps;
     this.onSide = onSide;
     this.glide = new CameraGlide(ctx.viewer);
   }
@@ -141,7 +141,7 @@ export class LectureMirror {
         if (!(await this.readable(view))) return;
         if (!this.attachedNow) return;
         this.glide.stop();
-        await this.app.links.show(view, 'lecture');
+        await this.deps.links.show(view, 'lecture');
         if (!this.attachedNow) return;
         // The view began with the camera then: the latest one now.
         const camera = this.camera();
@@ -160,10 +160,10 @@ export class LectureMirror {
    * shared with the course). False, said, when its mesh cannot be read.
    */
   private async readable(view: FullView): Promise<boolean> {
-    const { app } = this;
+    const { deps } = this;
     const { state } = view;
     const meshes = [state.mesh, ...(state.scene ?? []).map((o) => String(o.mesh)).filter((m) => !m.startsWith('job:'))];
-    if (meshes.some((m) => !meshOf(this.ctx, m))) await app.meshes.refresh();
+    if (meshes.some((m) => !meshOf(this.ctx, m))) await deps.meshes.refresh();
     const unread = meshes.filter((m) => !meshOf(this.ctx, m));
     if (unread.length) {
       this.say(`The lecture shows a mesh you cannot read (${unread.join(', ')}): its presenter may share it with the course.`);
@@ -180,7 +180,7 @@ export class LectureMirror {
         .filter((id) => !jobOf(this.ctx, id))
         .map((id) =>
           getJob(id).then(
-            (job) => app.jobs.upsert(job),
+            (job) => deps.jobs.upsert(job),
             () => {},
           ),
         ),
@@ -207,7 +207,7 @@ export class LectureMirror {
   }
 
   private showSlice(): void {
-    const voxels = this.app.kinds.voxels;
+    const voxels = this.deps.kinds.voxels;
     const s = this.parts.slice;
     const ok =
       isObject(s) &&

@@ -6,7 +6,7 @@
 // asked to delete it only then. A file whose content the user already has is
 // not stored again: the mesh they have is shown. Over an empty view, the
 // first screen offers samples and the file picker.
-import { dataKindOf } from '../api/data_files.ts';
+import { dataKindOf, type DataKind } from '../api/data_files.ts';
 import { deleteMesh, listMeshes, uploadMesh } from '../api/rest.ts';
 import { jobMeshId, type Job, type Mesh } from '../api/types.ts';
 import { byId } from '../panels/dom.ts';
@@ -17,19 +17,24 @@ import { openShareForm } from '../panels/share.ts';
 import { uploadsOf } from '../panels/upload.ts';
 import { selectedMesh } from '../state/app_state.ts';
 import { describe, isUnauthorized, type AppContext, meshOf } from './context.ts';
-import type { CompareController } from './compare.ts';
-import type { JobsController } from './jobs.ts';
 import type { MeshLoader } from './mesh_loader.ts';
 import type { SceneController } from './scene.ts';
-import type { Kinds } from '../kinds/registry.ts';
 
-/** What the mesh list uses of the others: the scene it starts, the loader, the comparison and kinds it ends, data files' import. */
+/**
+ * What the mesh list uses of the others: the scene it starts and the loader,
+ * made before it; the comparison and the kinds it ends and the jobs that
+ * import data files are made after it (they use the mesh list), so they are
+ * called back.
+ */
 export interface MeshesDeps {
   scene: Pick<SceneController, 'add' | 'start' | 'clear' | 'isResult' | 'removeMesh'>;
   loader: Pick<MeshLoader, 'abort' | 'forgetPly' | 'ply' | 'show'>;
-  compare: Pick<CompareController, 'leave'>;
-  kinds: Pick<Kinds, 'dispose'>;
-  jobs: Pick<JobsController, 'importFile'>;
+  /** Leaves the comparison, if one is shown. */
+  leaveComparison(): void;
+  /** What the artifact kinds drew on the mesh shown goes. */
+  disposeKinds(): void;
+  /** Imports another tool's data file for the mesh shown (an import job). */
+  importFile(file: File, kind: DataKind): Promise<void>;
 }
 
 /** The server refuses names of more than 255 bytes, or with '/', '\\' or control characters. */
@@ -54,7 +59,7 @@ async function sha256Hex(body: Blob | ArrayBuffer): Promise<string | null> {
 export class MeshesController {
   private readonly ctx: AppContext;
   /** What of the other controllers this one uses. */
-  private readonly app: MeshesDeps;
+  private readonly deps: MeshesDeps;
   private readonly list: MeshListPanel;
   /** Meshes deleted here whose DELETE is held back or on its way: the server's list still has them, the page does not. */
   private readonly deleting = new Set<string>();
@@ -68,12 +73,12 @@ export class MeshesController {
   /** Whether the server's list has come once: till then the first screen would offer no samples. */
   private listed = false;
 
-  constructor(ctx: AppContext, app: MeshesDeps) {
+  constructor(ctx: AppContext, deps: MeshesDeps) {
     this.ctx = ctx;
-    this.app = app;
+    this.deps = deps;
     this.list = new MeshListPanel(byId('mesh-list'), {
       select: (id) => this.select(id),
-      addToScene: (id) => void app.scene.add(id),
+      addToScene: (id) => void deps.scene.add(id),
       remove: (id) => this.remove(id),
       share: (id) => openShareForm('meshes', id, this.mesh(id)?.name ?? id),
       mayChange: (owner) => ctx.account.mayChange(owner),
@@ -155,7 +160,7 @@ export class MeshesController {
       }
     }
     if (last) this.select(last.id);
-    for (const file of data) await this.app.jobs.importFile(file, dataKindOf(file.name)!);
+    for (const file of data) await this.deps.importFile(file, dataKindOf(file.name)!);
   }
 
   /**
@@ -196,14 +201,14 @@ export class MeshesController {
     const mesh = this.mesh(id);
     if (!mesh) return;
     const { store } = this.ctx;
-    const { app } = this;
+    const { deps } = this;
     store.update({ selectedId: id });
-    app.compare.leave();
-    app.scene.start(mesh);
+    deps.leaveComparison();
+    deps.scene.start(mesh);
     store.update({ runTarget: null, inputName: mesh.name });
-    this.ctx.selectionTool.setSource(id, (meshId) => app.loader.ply(meshId));
-    app.kinds.dispose(); // what the kinds drew on the last mesh
-    app.loader.show(mesh);
+    this.ctx.selectionTool.setSource(id, (meshId) => deps.loader.ply(meshId));
+    deps.disposeKinds(); // what the kinds drew on the last mesh
+    deps.loader.show(mesh);
   }
 
   /** Selects the mesh a job ran on (when it is another one, and still stored), so that what the job made is drawn on it. */
@@ -222,7 +227,7 @@ export class MeshesController {
     const mesh = this.mesh(id);
     if (!mesh) return;
     const { store } = this.ctx;
-    const { app } = this;
+    const { deps } = this;
     const shown = store.get().selectedId === id;
     const scene = store.get().scene.map(({ object: _, ...entry }) => entry);
     this.deleting.add(id);
@@ -234,9 +239,9 @@ export class MeshesController {
         const now = store.get().scene;
         if (shown && !store.get().selectedId) {
           this.select(id);
-          for (const entry of scene.slice(1)) if (this.mesh(entry.mesh) || app.scene.isResult(entry.mesh)) void app.scene.add(entry.mesh, entry);
+          for (const entry of scene.slice(1)) if (this.mesh(entry.mesh) || deps.scene.isResult(entry.mesh)) void deps.scene.add(entry.mesh, entry);
         } else if (now.length && now[0]!.mesh === scene[0]?.mesh) {
-          for (const entry of scene.slice(1)) if (entry.mesh === id) void app.scene.add(id, entry);
+          for (const entry of scene.slice(1)) if (entry.mesh === id) void deps.scene.add(id, entry);
         }
       },
       commit: () => void this.destroy(id, mesh.name),
@@ -259,7 +264,7 @@ export class MeshesController {
   /** A mesh added or changed on the server. */
   upsert(mesh: Mesh): void {
     if (this.deleting.has(mesh.id)) return;
-    this.app.loader.forgetPly(mesh.id);
+    this.deps.loader.forgetPly(mesh.id);
     this.ctx.store.update((s) => {
       const i = s.meshes.findIndex((m) => m.id === mesh.id);
       return { meshes: i >= 0 ? s.meshes.map((m, k) => (k === i ? mesh : m)) : [...s.meshes, mesh] };
@@ -269,21 +274,21 @@ export class MeshesController {
   /** Drops a mesh that no longer exists on the server; clears the view if it was shown. */
   forget(id: string): void {
     const { store, viewer, hooks } = this.ctx;
-    const { app } = this;
+    const { deps } = this;
     store.update((s) => ({ meshes: s.meshes.filter((m) => m.id !== id) }));
-    app.scene.removeMesh(id);
-    app.loader.forgetPly(id);
+    deps.scene.removeMesh(id);
+    deps.loader.forgetPly(id);
     if (store.get().selectedId !== id) return;
     store.update({ selectedId: null, inputName: null });
-    this.ctx.selectionTool.setSource(null, (meshId) => app.loader.ply(meshId));
-    app.compare.leave();
-    app.kinds.dispose();
-    app.loader.abort(id);
+    this.ctx.selectionTool.setSource(null, (meshId) => deps.loader.ply(meshId));
+    deps.leaveComparison();
+    deps.disposeKinds();
+    deps.loader.abort(id);
     viewer.clearAll();
     this.ctx.textures.detach();
     hooks.lastLoaded = null;
     hooks.timings = null;
-    app.scene.clear();
+    deps.scene.clear();
   }
 
   /** The first screen over an empty view, once the list (and so the samples) has come. */

@@ -16,13 +16,17 @@ import { TEMPLATE, TEMPLATE_NAME } from '../panels/playground_template.ts';
 import { openShareForm } from '../panels/share.ts';
 import { submittable } from '../state/app_state.ts';
 import { describe, type AppContext } from './context.ts';
-import type { CourseController } from './course.ts';
 import type { JobsController } from './jobs.ts';
 
-/** What the code panel runs through: the jobs, and the course's Submit. */
+/**
+ * What the code panel runs through: the jobs, made before it; and the
+ * course's Submit, called back, as the course is made after it (it opens
+ * files in the code panel).
+ */
 export interface PluginsDeps {
   jobs: Pick<JobsController, 'loadAlgorithms' | 'run' | 'selectionFor' | 'upsert'>;
-  course: Pick<CourseController, 'submit'>;
+  /** Submits the code panel's file to the assignment open in the Course panel. */
+  submit(): Promise<void>;
 }
 
 const FINAL = new Set(['done', 'failed', 'cancelled', 'interrupted']);
@@ -32,7 +36,7 @@ const POLL_MS = 2000;
 export class PluginsController {
   private readonly ctx: AppContext;
   /** What of the other controllers this one uses. */
-  private readonly app: PluginsDeps;
+  private readonly deps: PluginsDeps;
   private readonly panel: PlaygroundPanel;
   private readonly editor: CodeEditor;
   /** The plugin open (null: a new file, not saved yet) as the server last answered it. */
@@ -48,9 +52,9 @@ export class PluginsController {
   /** Who hears of each change of the text (a lecture's presenter's code). */
   private readonly textListeners: Array<(text: string) => void> = [];
 
-  constructor(ctx: AppContext, app: PluginsDeps, root: HTMLElement) {
+  constructor(ctx: AppContext, deps: PluginsDeps, root: HTMLElement) {
     this.ctx = ctx;
-    this.app = app;
+    this.deps = deps;
     this.panel = new PlaygroundPanel(root, {
       open: (id) => void this.task(() => this.open(id)),
       create: () => void this.task(() => this.create()),
@@ -59,9 +63,9 @@ export class PluginsController {
       share: () => this.share(),
       build: () => void this.task(async () => void (await this.build())),
       run: () => void this.task(() => this.run()),
-      submit: () => void app.course.submit(),
+      submit: () => void deps.submit(),
       goTo: (d) => this.editor.goTo(d.line, d.column),
-      selection: (kind) => app.jobs.selectionFor(kind),
+      selection: (kind) => deps.jobs.selectionFor(kind),
     });
     this.panel.editorHost.replaceChildren();
     this.editor = new CodeEditor(this.panel.editorHost, TEMPLATE, () => this.edited());
@@ -335,7 +339,7 @@ export class PluginsController {
     this.showBuild(plugin);
     if (this.dirty()) this.panel.status('Built what was saved; changed since.', plugin.build.state === 'ok' ? 'ok' : 'error');
     await this.loadAlgorithm();
-    if (plugin.build.state === 'ok') await this.app.jobs.loadAlgorithms(); // the algorithm menu lists it now
+    if (plugin.build.state === 'ok') await this.deps.jobs.loadAlgorithms(); // the algorithm menu lists it now
     void this.refreshList();
     return plugin.build.state === 'ok';
   }
@@ -351,7 +355,7 @@ export class PluginsController {
     const selection = this.ctx.selectionTool.state();
     this.panel.setSelection(selection.kind, selection.ids.length);
     this.panel.status(`Running ${algorithm.name}…`, 'info', 0);
-    const job = await this.follow(await this.app.jobs.run(algorithm, this.panel.params()), (j) => `Running ${algorithm.name}: ${j.stage || j.state}`);
+    const job = await this.follow(await this.deps.jobs.run(algorithm, this.panel.params()), (j) => `Running ${algorithm.name}: ${j.stage || j.state}`);
     if (job.state === 'done') this.panel.status(`${algorithm.name} done${job.cached ? ' (cached)' : ''}: its results are in the job list.`, 'ok');
     else this.panel.status(`${algorithm.name} ${job.state}: ${job.error ?? 'no reason given'}`, 'error');
   }
@@ -362,8 +366,8 @@ export class PluginsController {
    */
   private follow(first: Job, say: (job: Job) => string): Promise<Job> {
     const { store } = this.ctx;
-    const { app } = this;
-    app.jobs.upsert(first);
+    const { deps } = this;
+    deps.jobs.upsert(first);
     return new Promise((resolve) => {
       let timer = 0;
       let stop = (): void => {};
@@ -383,7 +387,7 @@ export class PluginsController {
       );
       timer = window.setInterval(() => {
         getJob(first.id).then(
-          (job) => app.jobs.upsert(job),
+          (job) => deps.jobs.upsert(job),
           () => {},
         );
       }, POLL_MS);

@@ -21,17 +21,28 @@ import { defaultSceneObject, MAX_SCENE_OBJECTS, sceneColor, type SceneObjectStat
 import { buildPlainSurface, buildSurface } from '../viewer/surface_renderer.ts';
 import { LoadTimer } from '../viewer/timings.ts';
 import { describe, jobOf, type AppContext, meshOf } from './context.ts';
-import type { CompareController } from './compare.ts';
-import type { JobsController } from './jobs.ts';
+import type { PaneObject } from './compare.ts';
 import type { MeshLoader } from './mesh_loader.ts';
-import type { MeshesController } from './meshes.ts';
 
-/** What the scene uses of the others: meshes loaded and selected, results named after their job, panes side by side. */
+/**
+ * What the scene uses of the others: the loader, made before it; the mesh
+ * list, the jobs and the comparison are made after it (they use the scene),
+ * so what it asks of them is called back.
+ */
 export interface SceneDeps {
-  meshes: Pick<MeshesController, 'select'>;
   loader: Pick<MeshLoader, 'downloadMesh' | 'showing'>;
-  jobs: Pick<JobsController, 'resultName' | 'sourceMeshOf'>;
-  compare: Pick<CompareController, 'leave' | 'leaveWithUndo' | 'showScene'>;
+  /** Shows a stored mesh alone (the mesh list's select). */
+  selectMesh(id: string): void;
+  /** A job's output named after what it was made from ("elephant · simplify 1000"). */
+  resultName(jobId: string, artifact: string): string;
+  /** The stored mesh a job's output came from; null: none known. */
+  sourceMeshOf(jobId: string): string | null;
+  /** Leaves the comparison (the panes side by side), if one is shown. */
+  leaveComparison(): void;
+  /** Leaves it and offers it back for a few seconds. */
+  leaveComparisonWithUndo(): void;
+  /** Shows these objects side by side, one per pane. */
+  showPanes(items: PaneObject[]): void;
 }
 
 /**
@@ -60,17 +71,17 @@ const near = (a: readonly number[], b: readonly number[], tolerance: number) => 
 export class SceneController {
   private readonly ctx: AppContext;
   /** What of the other controllers this one uses. */
-  private readonly app: SceneDeps;
+  private readonly deps: SceneDeps;
 
-  constructor(ctx: AppContext, app: SceneDeps) {
+  constructor(ctx: AppContext, deps: SceneDeps) {
     this.ctx = ctx;
-    this.app = app;
+    this.deps = deps;
     const panel = new ScenePanel(byId('scene'), {
       change: (i, patch) => this.change(i, patch),
       remove: (i) => this.removeWithUndo(i),
       fitAll: () => ctx.viewer.fitAll(),
       pick: (i) => this.pick(i),
-      sideBySide: (on) => (on ? this.sideBySide() : app.compare.leaveWithUndo()),
+      sideBySide: (on) => (on ? this.sideBySide() : deps.leaveComparisonWithUndo()),
       place: (i, where) => this.place(i, where),
     });
     ctx.store.subscribe(
@@ -130,18 +141,18 @@ export class SceneController {
     const result = resultOf(id);
     if (result) return this.addResult(result.jobId, result.artifact, state);
     const { store } = this.ctx;
-    const { app } = this;
+    const { deps } = this;
     const mesh = meshOf(this.ctx, id);
     if (!mesh) return;
     if (!this.entries.length) {
-      app.meshes.select(id);
+      deps.selectMesh(id);
       return;
     }
     if (this.entries.length >= MAX_SCENE_OBJECTS) return this.ctx.error(`A scene holds at most ${MAX_SCENE_OBJECTS} objects.`);
     const entry: SceneEntry = { ...(state ?? defaultSceneObject(id, sceneColor(this.entries.length - 1))), mesh: id, name: mesh.name, object: null };
     store.update((s) => ({ scene: [...s.scene, entry] }));
     await this.draw(entry, async (inScene) => {
-      const loaded = await app.loader.downloadMesh(mesh, new AbortController().signal, inScene, new LoadTimer());
+      const loaded = await deps.loader.downloadMesh(mesh, new AbortController().signal, inScene, new LoadTimer());
       return loaded ? buildSurface(loaded.decoded) : null;
     });
   }
@@ -154,13 +165,13 @@ export class SceneController {
    */
   async addResult(jobId: string, artifact: string, state?: SceneObjectState): Promise<void> {
     const { store, viewer, hooks } = this.ctx;
-    const { app } = this;
+    const { deps } = this;
     const job = jobOf(this.ctx, jobId);
     const id = resultId(jobId, artifact);
     if (!job || this.entries.some((e) => e.mesh === id)) return;
-    const name = app.jobs.resultName(jobId, artifact);
-    const source = app.jobs.sourceMeshOf(jobId);
-    if (!state && source && meshOf(this.ctx, source) && !this.entries.some((e) => e.mesh === source)) app.meshes.select(source);
+    const name = deps.resultName(jobId, artifact);
+    const source = deps.sourceMeshOf(jobId);
+    if (!state && source && meshOf(this.ctx, source) && !this.entries.some((e) => e.mesh === source)) deps.selectMesh(source);
     if (!this.entries.length) return this.ctx.error(`Show a mesh first: ${name} is drawn beside it.`);
     if (this.entries.length >= MAX_SCENE_OBJECTS) return this.ctx.error(`A scene holds at most ${MAX_SCENE_OBJECTS} objects.`);
     const entry: SceneEntry = { ...(state ?? defaultSceneObject(id, sceneColor(this.entries.length - 1))), mesh: id, name, object: null };
@@ -193,10 +204,10 @@ export class SceneController {
    */
   private async draw(entry: SceneEntry, build: (inScene: () => boolean) => Promise<THREE.Mesh | null>, place?: (object: THREE.Mesh) => void): Promise<boolean> {
     const { store, display, viewer, progress } = this.ctx;
-    const { app } = this;
+    const { deps } = this;
     const inScene = () => this.entries.includes(entry);
     try {
-      await app.loader.showing; // the first object's show() clears the viewer's extras
+      await deps.loader.showing; // the first object's show() clears the viewer's extras
       if (!inScene()) return false;
       const object = await build(inScene);
       progress.hide();
@@ -223,7 +234,7 @@ export class SceneController {
   private sourceIndex(index: number): number {
     const result = resultOf(this.entries[index]?.mesh ?? '');
     if (!result) return -1;
-    const source = this.app.jobs.sourceMeshOf(result.jobId);
+    const source = this.deps.sourceMeshOf(result.jobId);
     const i = this.entries.findIndex((e) => e.mesh === source);
     // A source not in the scene: the result lies over the shown mesh (the job ran on what was shown then).
     return i >= 0 ? i : index > 0 ? 0 : -1;
@@ -312,7 +323,7 @@ export class SceneController {
 
   remove(index: number): void {
     const { store, viewer } = this.ctx;
-    const { app } = this;
+    const { deps } = this;
     const entry = this.entries[index];
     if (!entry || index === 0) return;
     store.update((s) => ({ scene: s.scene.filter((e) => e !== entry) }));
@@ -320,7 +331,7 @@ export class SceneController {
     if (index === picked) this.pick(0);
     else if (index < picked) store.update({ picked: picked - 1 });
     const wasPanes = store.get().scenePanes;
-    if (wasPanes) app.compare.leave();
+    if (wasPanes) deps.leaveComparison();
     if (entry.object) viewer.removeExtra(entry.object);
     if (wasPanes && this.entries.length >= 2) this.sideBySide();
   }
@@ -347,7 +358,7 @@ export class SceneController {
       return object ? [{ key: `scene:${i}`, title: e.name, object, color: e.color ?? color }] : [];
     });
     if (items.length < 2) return this.ctx.error('Side by side needs two objects in the scene: add one with “+” in the mesh list.');
-    this.app.compare.showScene(items);
+    this.deps.showPanes(items);
     this.ctx.store.update({ scenePanes: true });
     this.ctx.viewer.fitAll();
   }

@@ -55,7 +55,7 @@ interface WrittenView {
 export class ViewLinks {
   private readonly ctx: AppContext;
   /** What of the other controllers this one uses. */
-  private readonly app: LinksDeps;
+  private readonly deps: LinksDeps;
   private timer = 0;
   /** Restores under way: the address holds the view being opened, not yet the one shown. */
   private opening = 0;
@@ -64,9 +64,9 @@ export class ViewLinks {
   /** The big part of the view the current history entry holds; null: none written yet. */
   private entry: string | null = null;
 
-  constructor(ctx: AppContext, app: LinksDeps) {
+  constructor(ctx: AppContext, deps: LinksDeps) {
     this.ctx = ctx;
-    this.app = app;
+    this.deps = deps;
     window.addEventListener('popstate', () => void this.restore());
   }
 
@@ -125,7 +125,7 @@ export class ViewLinks {
   /** The whole view shown (what a link holds, what a lecture's presenter sends); null with no mesh shown. */
   current(): FullView | null {
     const { store, display, viewer } = this.ctx;
-    const { app } = this;
+    const { deps } = this;
     const { selectedId: meshId, scene: entries, scenePanes, compared } = store.get();
     if (!meshId) return null;
     const { display: settings, overlays } = display.state();
@@ -134,11 +134,11 @@ export class ViewLinks {
     const scene = entries.map(({ name: _n, object: _o, ...e }) => ({ ...e }));
     if (scene.length > 1 || scene.some((e) => !e.visible || e.color !== null || !isIdentity(e))) state.scene = scene;
     if (scenePanes) state.panes = true;
-    const f = app.kinds.field.drawn();
+    const f = deps.kinds.field.drawn();
     if (f && f.meshId === meshId) state.field = { job: f.jobId, artifact: f.artifact, map: f.map, range: f.range };
     // Skeletons side by side are built by their kind from more than a list: only fields come back from a link.
     const compare = compared.every((c) => this.isField(c)) ? compared.map((c) => artifactKey(c.jobId, c.artifact)) : [];
-    const show = compared.length ? [] : app.kinds.shownKeys();
+    const show = compared.length ? [] : deps.kinds.shownKeys();
     return { state, up: display.upAxis() === 'z' ? 'z' : 'y', compare, show };
   }
 
@@ -200,7 +200,7 @@ export class ViewLinks {
 
   private async open(view: FullView, source: string, current: () => boolean): Promise<void> {
     const { store, display, viewer, hooks } = this.ctx;
-    const { app } = this;
+    const { deps } = this;
     const { state } = view;
     let scene: SceneObjectState[] = [];
     try {
@@ -228,26 +228,26 @@ export class ViewLinks {
     const compare = compareKeys.map(splitKey);
     const shows = view.show.map(splitKey);
     const now = store.get();
-    const drawn = app.kinds.field.drawn();
+    const drawn = deps.kinds.field.drawn();
     // The same mesh and scene with the same field (Back out of a comparison, say): no need to load them again.
     const same =
       now.selectedId === state.mesh &&
       meshesOf(now.scene) === (scene.length ? scene.map((o) => o.mesh) : [state.mesh]).join(' ') &&
       (drawn ? field?.job === drawn.jobId && field.artifact === drawn.artifact : !field);
     if (same) {
-      if ((!state.panes && now.scenePanes) || keysOf(compare) !== keysOf(now.compared)) app.compare.leave();
+      if ((!state.panes && now.scenePanes) || keysOf(compare) !== keysOf(now.compared)) deps.compare.leave();
       display.restore(state.display, state.overlays);
       if (field) {
-        app.kinds.field.chooseMap(field.map);
-        app.kinds.field.setRange(field.range);
+        deps.kinds.field.chooseMap(field.map);
+        deps.kinds.field.setRange(field.range);
       }
     } else {
-      app.meshes.select(state.mesh);
-      if (scene[0]) app.scene.change(0, scene[0]);
-      await app.loader.showing;
+      deps.meshes.select(state.mesh);
+      if (scene[0]) deps.scene.change(0, scene[0]);
+      await deps.loader.showing;
       if (!current()) return;
       // A job's output mesh stands in the scene as `job:<job>/<artifact>`: drawn again from its job, missing only when the job is gone.
-      const missing = scene.slice(1).filter((o) => !app.scene.canAdd(o.mesh));
+      const missing = scene.slice(1).filter((o) => !deps.scene.canAdd(o.mesh));
       if (missing.length) {
         this.ctx.error(`The ${source} shows meshes (${missing.map((o) => o.mesh).join(', ')}) that ${NOT_SEEN}: ${ASK_OWNER}. The scene is shown without them.`);
       }
@@ -255,12 +255,12 @@ export class ViewLinks {
         scene
           .slice(1)
           .filter((o) => !missing.includes(o))
-          .map((o) => app.scene.add(o.mesh, o)),
+          .map((o) => deps.scene.add(o.mesh, o)),
       );
       if (!current()) return;
       display.restore(state.display, state.overlays);
       if (field) {
-        const kind = app.kinds.field;
+        const kind = deps.kinds.field;
         kind.chooseMap(field.map);
         await kind.show(field.job, field.artifact);
         if (!current()) return;
@@ -271,25 +271,25 @@ export class ViewLinks {
     // Skeletons and vector fields drawn and a grid's slices, by their kind; those the view does not show go.
     const kindOf = (s: ArtifactRef) => jobOf(this.ctx, s.jobId)?.artifacts?.find((a) => a.name === s.artifact)?.kind;
     if (!compare.length) {
-      for (const s of app.kinds
+      for (const s of deps.kinds
         .shownKeys()
         .filter((k) => !view.show.includes(k))
         .map(splitKey)) {
         const kind = kindOf(s);
-        if (kind) app.kinds.hide(s.jobId, s.artifact, kind);
+        if (kind) deps.kinds.hide(s.jobId, s.artifact, kind);
       }
     }
     const unknown: string[] = [];
     for (const s of shows) {
       const kind = kindOf(s);
       if (!kind) unknown.push(artifactKey(s.jobId, s.artifact));
-      else if (!app.kinds.shownKeys().includes(artifactKey(s.jobId, s.artifact))) await app.kinds.show(s.jobId, s.artifact, kind);
+      else if (!deps.kinds.shownKeys().includes(artifactKey(s.jobId, s.artifact))) await deps.kinds.show(s.jobId, s.artifact, kind);
       if (!current()) return;
     }
     if (unknown.length) this.ctx.error(`The ${source} shows results (${unknown.join(', ')}) that ${NOT_SEEN}: ${ASK_OWNER}. The view is shown without them.`);
-    if (state.panes && !store.get().scenePanes && store.get().scene.length > 1) app.scene.sideBySide();
+    if (state.panes && !store.get().scenePanes && store.get().scene.length > 1) deps.scene.sideBySide();
     if (compare.length && keysOf(compare) !== keysOf(store.get().compared)) {
-      await app.compare.compareFields(compare);
+      await deps.compare.compareFields(compare);
       if (!current()) return;
     }
     applyCamera(viewer, state.camera);

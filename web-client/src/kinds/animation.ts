@@ -20,7 +20,7 @@ export class AnimationKind implements ArtifactKind {
   readonly storedFormat = 'frames';
   private readonly ctx: AppContext;
   /** What of the other controllers this one uses. */
-  private readonly app: KindDeps;
+  private readonly deps: KindDeps;
   /** The scalar fields' kind: an animation replaces the field drawn. */
   private readonly field: Pick<ScalarFieldKind, 'dispose'>;
   private readonly player: AnimationPlayer;
@@ -29,9 +29,9 @@ export class AnimationKind implements ArtifactKind {
   /** The animation shown, as `${jobId}/${artifact}`, and its points. */
   private shown: { key: string; points: THREE.Points } | null = null;
 
-  constructor(ctx: AppContext, app: KindDeps, field: Pick<ScalarFieldKind, 'dispose'>) {
+  constructor(ctx: AppContext, deps: KindDeps, field: Pick<ScalarFieldKind, 'dispose'>) {
     this.ctx = ctx;
-    this.app = app;
+    this.deps = deps;
     this.field = field;
     this.player = new AnimationPlayer(byId('viewport'), () => this.syncButtons());
     ctx.viewer.onShownChange((object) => {
@@ -83,15 +83,15 @@ export class AnimationKind implements ArtifactKind {
 
   async show(jobId: string, artifactName: string): Promise<void> {
     const { viewer, hooks, socket } = this.ctx;
-    const { app } = this;
+    const { deps } = this;
     const job = jobOf(this.ctx, jobId);
     if (!job) return;
     const token = ++this.token;
     try {
-      const [bytes] = await Promise.all([socket.getAnimation(jobId, artifactName), app.loader.showing]);
+      const [bytes] = await Promise.all([socket.getAnimation(jobId, artifactName), deps.loader.showing]);
       if (token !== this.token) return;
       const frames = decodeFrames(bytes);
-      app.compare.leave();
+      deps.leaveComparison();
       this.field.dispose();
       const positions = framePositions(frames, 0, new Float32Array(3 * frames.vertices));
       const geometry = new THREE.BufferGeometry();

@@ -4,19 +4,34 @@
 // string to its module, so a new kind is one file here and one line there.
 import type { ArtifactInfo, Job } from '../api/types.ts';
 import type { JobsActions, JobsView } from '../panels/jobs.ts';
+import type { DataKind } from '../api/data_files.ts';
 import type { CompareController } from '../controllers/compare.ts';
-import type { JobsController } from '../controllers/jobs.ts';
 import type { MeshLoader } from '../controllers/mesh_loader.ts';
 import type { MeshesController } from '../controllers/meshes.ts';
 import type { SceneController } from '../controllers/scene.ts';
 
-/** What of the controllers the kinds use: each kind's module is made with it (kinds/registry.ts). */
+/**
+ * What of the controllers the kinds use: each kind's module is made with it
+ * (kinds/registry.ts). The loader, the mesh list and the scene are made
+ * before the kinds; the comparison and the jobs after them (they use the
+ * kinds), so what the kinds ask of those is called back.
+ */
 export interface KindDeps {
   loader: Pick<MeshLoader, 'showing' | 'ply'>;
   meshes: Pick<MeshesController, 'select' | 'selectMeshOf'>;
   scene: Pick<SceneController, 'addResult' | 'removeResult'>;
-  compare: Pick<CompareController, 'leave' | 'compareObjects' | 'compareJob' | 'addToComparison'>;
-  jobs: Pick<JobsController, 'importFile' | 'upsert'>;
+  /** Leaves the comparison, if one is shown. */
+  leaveComparison(): void;
+  /** Artifacts of the selected mesh drawn as objects side by side (CompareController.compareObjects). */
+  compareObjects: CompareController['compareObjects'];
+  /** Every scalar field of the job side by side. */
+  compareJob(jobId: string): void;
+  /** A field added to the comparison as a pane. */
+  addToComparison(jobId: string, artifact: string): void;
+  /** Imports another tool's data file for the mesh shown (an import job). */
+  importFile(file: File, kind: DataKind): Promise<void>;
+  /** A job this page submitted itself (a skeleton's distance), listed and followed as any. */
+  upsertJob(job: Job): void;
 }
 
 export interface ArtifactKind {

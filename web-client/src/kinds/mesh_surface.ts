@@ -17,13 +17,13 @@ export class MeshSurfaceKind implements ArtifactKind {
   readonly storedFormat = 'ply';
   private readonly ctx: AppContext;
   /** What of the other controllers this one uses. */
-  private readonly app: KindDeps;
+  private readonly deps: KindDeps;
   /** The results in the scene, as `${jobId}/${name}`: the rows' "Added". */
   private readonly added = new KindSlice<ReadonlySet<string>>('mesh', new Set());
 
-  constructor(ctx: AppContext, app: KindDeps) {
+  constructor(ctx: AppContext, deps: KindDeps) {
     this.ctx = ctx;
-    this.app = app;
+    this.deps = deps;
     ctx.store.subscribe(
       (s) => s.scene.map((e) => e.mesh).join(' '),
       () => {
@@ -56,17 +56,17 @@ export class MeshSurfaceKind implements ArtifactKind {
 
   /** Adds a job's output mesh to the scene, beside its source. */
   show(jobId: string, artifact: string): Promise<void> {
-    return this.app.scene.addResult(jobId, artifact);
+    return this.deps.scene.addResult(jobId, artifact);
   }
 
   /** Opened from elsewhere (a graded run): its job's mesh shown first. */
   open(job: Job, artifact: string): Promise<void> {
-    this.app.meshes.selectMeshOf(job);
+    this.deps.meshes.selectMeshOf(job);
     return this.show(job.id, artifact);
   }
 
   hide(jobId: string, artifact: string): void {
-    this.app.scene.removeResult(jobId, artifact);
+    this.deps.scene.removeResult(jobId, artifact);
   }
 
   dispose(): void {

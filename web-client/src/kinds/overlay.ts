@@ -33,7 +33,7 @@ export abstract class OverlayKind<D extends DrawnOverlay> implements ArtifactKin
   abstract readonly storedFormat: string;
   protected readonly ctx: AppContext;
   /** What of the other controllers this one uses. */
-  protected readonly app: KindDeps;
+  protected readonly deps: KindDeps;
   /** Drawn over the mesh, by `${jobId}/${name}`, in the order shown. */
   protected readonly drawn = new Map<string, D>();
   /** The colours drawn, by `${jobId}/${name}`: what the rows show. */
@@ -43,12 +43,12 @@ export abstract class OverlayKind<D extends DrawnOverlay> implements ArtifactKin
 
   constructor(
     ctx: AppContext,
-    app: KindDeps,
+    deps: KindDeps,
     kind: string,
     private readonly palette: readonly string[],
   ) {
     this.ctx = ctx;
-    this.app = app;
+    this.deps = deps;
     this.colors = new KindSlice<ReadonlyMap<string, string>>(kind, new Map());
   }
 
@@ -95,17 +95,17 @@ export abstract class OverlayKind<D extends DrawnOverlay> implements ArtifactKin
   /** Draws a job's artifact over its mesh (selecting that mesh first when another one is shown), in the first colour of the palette not drawn. */
   async show(jobId: string, artifactName: string): Promise<void> {
     const { store, viewer } = this.ctx;
-    const { app } = this;
+    const { deps } = this;
     const key = artifactKey(jobId, artifactName);
     if (this.drawn.has(key)) return;
     const job = jobOf(this.ctx, jobId);
     const artifact = job?.artifacts?.find((a) => a.name === artifactName);
     if (!job || !artifact || !this.canShow(job, artifact)) return;
-    app.meshes.selectMeshOf(job);
+    deps.meshes.selectMeshOf(job);
     const selected = store.get().selectedId;
     const token = this.token;
     try {
-      const [build] = await Promise.all([this.fetch(job, artifact), app.loader.showing]);
+      const [build] = await Promise.all([this.fetch(job, artifact), deps.loader.showing]);
       if (token !== this.token || store.get().selectedId !== selected || this.drawn.has(key)) return;
       const used = new Set([...this.drawn.values()].map((d) => d.color));
       const color = this.palette.find((c) => !used.has(c)) ?? this.palette[this.drawn.size % this.palette.length]!;

@@ -21,20 +21,20 @@ export class Kinds {
   readonly voxels: VoxelGridKind;
   private readonly byKind: ReadonlyMap<string, ArtifactKind>;
 
-  constructor(ctx: AppContext, app: KindDeps) {
+  constructor(ctx: AppContext, deps: KindDeps) {
     // Made in this order because the legend goes over the view before the animation player.
-    const skeleton = new SkeletonKind(ctx, app);
+    const skeleton = new SkeletonKind(ctx, deps);
     const voxels = (this.voxels = new VoxelGridKind(ctx));
-    this.field = new ScalarFieldKind(ctx, app);
+    this.field = new ScalarFieldKind(ctx, deps);
     const modules: ArtifactKind[] = [
-      new AnimationKind(ctx, app, this.field),
+      new AnimationKind(ctx, deps, this.field),
       this.field,
-      new MeshSurfaceKind(ctx, app),
+      new MeshSurfaceKind(ctx, deps),
       skeleton,
       voxels,
       new MetricsKind(ctx),
       new TextKind(ctx),
-      new VectorFieldKind(ctx, app),
+      new VectorFieldKind(ctx, deps),
     ];
     this.byKind = new Map(modules.map((m) => [m.kind, m]));
   }

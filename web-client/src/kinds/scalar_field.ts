@@ -57,7 +57,7 @@ export class ScalarFieldKind implements ArtifactKind {
   readonly autoShow = 0;
   private readonly ctx: AppContext;
   /** What of the other controllers this one uses. */
-  private readonly app: KindDeps;
+  private readonly deps: KindDeps;
   private readonly legend: Legend;
   /** The field drawn now. */
   private field: DrawnField | null = null;
@@ -66,9 +66,9 @@ export class ScalarFieldKind implements ArtifactKind {
   /** The colour map chosen in the legend; null: the field's hint chooses. */
   private mapName: string | null = null;
 
-  constructor(ctx: AppContext, app: KindDeps) {
+  constructor(ctx: AppContext, deps: KindDeps) {
     this.ctx = ctx;
-    this.app = app;
+    this.deps = deps;
     this.legend = new Legend(byId('viewport'), (name) => this.setColorMap(name), 'legend');
   }
 
@@ -87,7 +87,7 @@ export class ScalarFieldKind implements ArtifactKind {
       compared ? 'Compared' : 'Add to comparison',
     );
     add.disabled = compared;
-    add.addEventListener('click', () => this.app.compare.addToComparison(job.id, a.name));
+    add.addEventListener('click', () => this.deps.addToComparison(job.id, a.name));
     return artifactRow(job, a, this.storedFormat, [show, add]);
   }
 
@@ -101,7 +101,7 @@ export class ScalarFieldKind implements ArtifactKind {
   jobControls(job: Job): HTMLElement | null {
     if ((job.artifacts ?? []).filter((a) => a.kind === this.kind).length < 2) return null;
     const compare = el('button', { type: 'button', class: 'button small compare', title: "Show this job's fields side by side" }, 'Compare');
-    compare.addEventListener('click', () => this.app.compare.compareJob(job.id));
+    compare.addEventListener('click', () => this.deps.compareJob(job.id));
     return el('div', { class: 'job-actions' }, compare);
   }
 
@@ -112,7 +112,7 @@ export class ScalarFieldKind implements ArtifactKind {
    */
   source(jobId: string, artifactName: string): FieldSource | null {
     const { store } = this.ctx;
-    const { app } = this;
+    const { deps } = this;
     const job = jobOf(this.ctx, jobId);
     const artifact = job?.artifacts?.find((a) => a.name === artifactName);
     const meshId = jobMeshId(job);
@@ -122,7 +122,7 @@ export class ScalarFieldKind implements ArtifactKind {
         this.ctx.error(`Cannot show ${artifactName} of ${job.algorithm}: its mesh no longer exists`);
         return null;
       }
-      app.meshes.select(meshId);
+      deps.meshes.select(meshId);
     }
     return { job, artifact, meshId };
   }
@@ -132,7 +132,7 @@ export class ScalarFieldKind implements ArtifactKind {
    * from the Job, the mesh in the server's vertex order (viewer/ply.ts).
    */
   async fetch(jobId: string, artifact: ArtifactInfo, meshId: string): Promise<{ data: ScalarField; ply: PlyMesh }> {
-    const { loader } = this.app;
+    const { loader } = this.deps;
     const [values, ply] = await Promise.all([fetchArtifactF32(jobId, artifact.name), loader.ply(meshId), loader.showing]);
     const location = artifact.location ?? (values.length === ply.faces && values.length !== ply.vertices ? 'face' : 'vertex');
     let range: [number, number] = artifact.range && artifact.range.length === 2 && artifact.range.every(Number.isFinite) ? artifact.range : finiteRange(values);
@@ -149,8 +149,8 @@ export class ScalarFieldKind implements ArtifactKind {
     if (!source) return;
     const { job, artifact, meshId } = source;
     const { store, viewer, hooks, display } = this.ctx;
-    const { app } = this;
-    app.compare.leave();
+    const { deps } = this;
+    deps.leaveComparison();
     const token = ++this.token;
     try {
       const { data, ply } = await this.fetch(jobId, artifact, meshId);

@@ -39,14 +39,14 @@ export class SkeletonKind extends OverlayKind<DrawnSkeleton> {
   /** The skeletons in the panes of the last side by side (the viewer disposes of them with the panes; x-ray on them then changes nothing seen). */
   private paneSkeletons: THREE.Object3D[] = [];
 
-  constructor(ctx: AppContext, app: KindDeps) {
-    super(ctx, app, 'skeleton', SKELETON_COLORS);
+  constructor(ctx: AppContext, deps: KindDeps) {
+    super(ctx, deps, 'skeleton', SKELETON_COLORS);
     const panel = new SkeletonsPanel(
       byId('skeletons'),
       () => void this.compare(),
       (file) => void this.loadFile(file),
       // Explicitly a field: a .ply is a mesh to the upload control.
-      (file) => void app.jobs.importFile(file, 'scalar_field'),
+      (file) => void deps.importFile(file, 'scalar_field'),
       (on) => this.setXray(on),
     );
     ctx.store.subscribe(
@@ -79,7 +79,7 @@ export class SkeletonKind extends OverlayKind<DrawnSkeleton> {
    * skeleton formats, never taken for a scalar field's values.
    */
   loadFile(file: File): Promise<void> {
-    return this.app.jobs.importFile(file, this.kind);
+    return this.deps.importFile(file, this.kind);
   }
 
   /** Shows every skeleton, over the mesh and in the panes, through the surface or hidden by it. */
@@ -92,7 +92,7 @@ export class SkeletonKind extends OverlayKind<DrawnSkeleton> {
   /** The skeletons drawn, side by side: one pane each, over the plain surface, through the one camera. */
   private compare(): Promise<void> {
     const list = [...this.drawn].slice(0, MAX_PANES);
-    return this.app.compare.compareObjects(
+    return this.deps.compareObjects(
       list.map(([key]) => splitKey(key)),
       (ply) => {
         this.paneSkeletons = list.map(([, s]) => buildSkeleton(s.data, s.color, this.xray));
@@ -110,7 +110,7 @@ export class SkeletonKind extends OverlayKind<DrawnSkeleton> {
   /** The comparison table of the skeletons drawn; asks the server for each one's distance to the first. */
   private renderTable(panel: SkeletonsPanel): void {
     const { store } = this.ctx;
-    const { app } = this;
+    const { deps } = this;
     const keys = [...this.drawn.keys()];
     const input = (key: string) => {
       const { jobId, artifact } = splitKey(key);
@@ -132,7 +132,7 @@ export class SkeletonKind extends OverlayKind<DrawnSkeleton> {
             submitJob('skeleton_distance', { skeleton: input(keys[0]!), reference: input(key) }, {})
               .then((j) => {
                 this.distanceJobs.set(pair, j.id);
-                app.jobs.upsert(j);
+                deps.upsertJob(j);
               })
               .catch((e) => this.ctx.error(`Cannot measure the distance between skeletons: ${describe(e)}`));
           }

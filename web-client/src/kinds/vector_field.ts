@@ -38,8 +38,8 @@ export class VectorFieldKind extends OverlayKind<DrawnVectors> {
   /** The length chosen for a field (a multiple of the default), by `${jobId}/${name}`. */
   private readonly scales = new Map<string, number>();
 
-  constructor(ctx: AppContext, app: KindDeps) {
-    super(ctx, app, 'vector_field', VECTOR_COLORS);
+  constructor(ctx: AppContext, deps: KindDeps) {
+    super(ctx, deps, 'vector_field', VECTOR_COLORS);
   }
 
   /** "Show" (over its mesh, in a colour of its own), "Hide" while drawn, with the length slider and its colour; then how many vectors have no value. */
@@ -71,7 +71,7 @@ export class VectorFieldKind extends OverlayKind<DrawnVectors> {
   /** The field and its mesh in the stored order: made from the streamed one (no second download of it). */
   protected async fetch(job: Job, artifact: ArtifactInfo): Promise<(color: string) => DrawnVectors> {
     const key = artifactKey(job.id, artifact.name);
-    const [values, ply] = await Promise.all([fetchArtifactF32(job.id, artifact.name), this.app.loader.ply(jobMeshId(job)!)]);
+    const [values, ply] = await Promise.all([fetchArtifactF32(job.id, artifact.name), this.deps.loader.ply(jobMeshId(job)!)]);
     return (color) => {
       if (values.length % 3 !== 0) throw new Error(`${values.length} numbers are not whole x, y, z triples`);
       const location = artifact.location ?? (values.length / 3 === ply.faces && values.length / 3 !== ply.vertices ? 'face' : 'vertex');

@@ -23,7 +23,7 @@ export interface CodePanel {
   onShown(listener: (shown: boolean) => void): void;
 }
 
-export function installPlayground(ctx: AppContext, app: PluginsDeps): CodePanel {
+export function installPlayground(ctx: AppContext, deps: PluginsDeps): CodePanel {
   const button = byId<HTMLButtonElement>('playground-toggle');
   const section = byId('playground');
   let loaded: Promise<PluginsController | null> | null = null;
@@ -58,7 +58,7 @@ export function installPlayground(ctx: AppContext, app: PluginsDeps): CodePanel 
       const body = el('div', { class: 'playground-body' });
       section.prepend(body);
       loaded = import('../controllers/plugins.ts').then(
-        (m) => new m.PluginsController(ctx, app, body),
+        (m) => new m.PluginsController(ctx, deps, body),
         (e: unknown) => {
           loaded = null;
           body.remove();
