@@ -15,9 +15,10 @@ export interface TestHooks {
   ready: boolean;
   /**
    * The mesh in the viewer, set after the first frame showing it has rendered;
-   * bytes: the Draco payload received for it.
+   * bytes: the Draco payload received for it; points: it was a point cloud,
+   * drawn as points (how: `display.cloud`).
    */
-  lastLoaded: { id: string; vertices: number; faces: number; bytes: number } | null;
+  lastLoaded: { id: string; vertices: number; faces: number; bytes: number; points?: boolean } | null;
   /**
    * The durations of the load of lastLoaded (see viewer/timings.ts): null
    * when lastLoaded changes, set once the GPU has finished its first frame.
@@ -72,6 +73,13 @@ export interface TestHooks {
     length: number;
     scale: number;
   }>;
+  /**
+   * Jobs' points drawn over the mesh (kinds/points.ts), set after the first
+   * frame with each change (a new point size too): key, colour, and as
+   * drawn the points, their size in pixels, whether the file's colours and
+   * normals are used.
+   */
+  points: Array<{ key: string; color: string; points: number; size: number; colors: boolean; normals: boolean }>;
   /** The selection (ids of the stored mesh), set after the frame that draws it. */
   selection?: { meshId: string | null; ready: boolean; kind: string; count: number; ids: number[]; area: number | null };
   /** The camera now: position, view direction, up, orbit centre, navigation mode. */
@@ -156,6 +164,7 @@ export function installTestHooks(orbit: TestHooks['orbit']): TestHooks {
     lastAnimation: null,
     skeletons: [],
     vectors: [],
+    points: [],
     display: null,
     lastLink: null,
     viewRestored: null,

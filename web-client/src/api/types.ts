@@ -33,6 +33,8 @@ export interface Mesh {
   kd?: [number, number, number];
   /** The user who uploaded it ("system" for the samples). */
   owner?: string;
+  /** A point cloud: no faces, streamed as a Draco point cloud and drawn as points. */
+  points?: boolean;
 }
 
 export interface MeshMaterial {
@@ -207,6 +209,15 @@ export type ServerEvent =
 export const SERVER_EVENT_TYPES: ReadonlySet<string> = new Set(['mesh_added', 'mesh_deleted', 'job_progress', 'job_done', 'job_failed', 'job_cancelled']);
 
 /** The id of a job's input mesh ("mesh"), or null (a job on a voxel grid). */
+/**
+ * Whether an algorithm's input of kind `input` takes an object of kind
+ * `object`: its own kind, and for points a mesh too (its vertices: a stored
+ * mesh, an uploaded cloud among them, is a cloud; protocol/API.md).
+ */
+export function takesKind(input: string, object: string): boolean {
+  return input === object || (input === 'points' && object === 'mesh');
+}
+
 export function jobMeshId(job: Job | undefined): string | null {
   const m = job?.inputs?.mesh;
   return typeof m === 'string' ? m : null;

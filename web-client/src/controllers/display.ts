@@ -19,6 +19,7 @@ import { applyCrease, applyDisplay, isDefaultDisplay, isSurface, sanitizeDisplay
 import { percentileRange } from '../viewer/histogram.ts';
 import { sanitizeOverlays, updateOverlays, type OverlayInfo, type OverlaySettings } from '../viewer/overlays.ts';
 import { defaultUpAxis, setObjectUp, storeUpAxis, storedUpAxis, type UpAxis } from '../viewer/up_axis.ts';
+import { isPointCloud, pointsReport, setPointsLook } from '../viewer/points_renderer.ts';
 import type { Viewer } from '../viewer/viewer.ts';
 
 /** What the display reports after each change has been drawn (window.__cgview.display). */
@@ -30,6 +31,8 @@ export interface DisplayReport extends DisplaySettings, OverlayInfo {
   up: UpAxis;
   /** The crease angle the shown surface is drawn with; null: as built (180°, its file's normals, not a surface). */
   crease: number | null;
+  /** The shown point cloud as drawn (its points, their size in pixels, its colours and normals used); null: no cloud shown. */
+  cloud: ReturnType<typeof pointsReport> | null;
 }
 
 export interface DisplayCallbacks {
@@ -61,6 +64,8 @@ export class DisplayController {
   private fieldValues: Float32Array | null = null;
   /** While a view link's settings are taken: they are applied all at once after. */
   private restoring = false;
+  /** Whether points are drawn over the shown object (a job's points): the point size applies to them. */
+  private pointsOver = false;
   private readonly panel: DisplayPanel;
 
   constructor(
@@ -189,8 +194,9 @@ export class DisplayController {
   applyTo(object: THREE.Object3D | null): void {
     const mesh = object && this.meshOf(object);
     if (mesh) setObjectUp(object, this.upOf(mesh));
+    const color = object ? (this.callbacks.colorOf?.(object) ?? null) : null;
+    if (isPointCloud(object)) return setPointsLook(object, color ? { ...this.settings, color } : this.settings);
     if (!isSurface(object)) return;
-    const color = this.callbacks.colorOf?.(object) ?? null;
     applyDisplay(object, color ? { ...this.settings, color } : this.settings, () => this.env());
   }
 
@@ -217,14 +223,29 @@ export class DisplayController {
     // Before the viewer frames it: the camera frames the object as drawn, turned.
     if (mesh) setObjectUp(object, this.upOf(mesh));
     this.panel.showUp(mesh ? this.upOf(mesh) : 'y');
-    if (object && (!isDefaultDisplay(this.settings) || this.callbacks.colorOf?.(object))) this.applyTo(object);
+    if (object && (!isDefaultDisplay(this.settings) || this.callbacks.colorOf?.(object) || isPointCloud(object))) this.applyTo(object);
     else if (isSurface(object)) applyCrease(object, this.settings);
+    this.showObject();
+    this.refreshOverlays();
+  }
+
+  /** Whether points are drawn over the shown object (a job's points): the Display panel offers their size then. */
+  setPointsOver(drawn: boolean): void {
+    if (drawn === this.pointsOver) return;
+    this.pointsOver = drawn;
+    this.showObject();
+  }
+
+  /** The controls that apply to what is shown. */
+  private showObject(): void {
+    const object = this.object;
+    const cloud = isPointCloud(object);
     // The slider stays for the other objects of the scene, but says when it does not apply to the shown one.
     this.panel.showObject({
       creaseRefusal: isSurface(object) ? creaseRefusal(object) : null,
-      vertexColors: Boolean(isSurface(object) && object.geometry.getAttribute('color') && !object.name.startsWith('scalar:')),
+      vertexColors: Boolean((isSurface(object) || cloud) && object.geometry.getAttribute('color') && !object.name.startsWith('scalar:')),
+      points: cloud || this.pointsOver,
     });
-    this.refreshOverlays();
   }
 
   /** New panes of a comparison: their surfaces (a pane's object, or the surfaces in its group) are drawn in the mode too. */
@@ -260,6 +281,7 @@ export class DisplayController {
       object: object?.name ?? null,
       up: this.upAxis(),
       crease: isSurface(object) ? creaseOf(object) : null,
+      cloud: isPointCloud(object) ? pointsReport(object) : null,
     };
     this.viewer.redraw(() => {
       if (this.object === object) this.callbacks.drawn(report);

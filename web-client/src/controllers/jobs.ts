@@ -8,7 +8,7 @@
 // under that name.
 import { dataKindWords, needsMesh, type DataKind } from '../api/data_files.ts';
 import { ApiError, cancelJob, deleteJob, getJob, listAlgorithms, listJobs, submitJob, uploadData } from '../api/rest.ts';
-import { jobMeshId, type Algorithm, type Job, type JobInput, type JobProgress, type ParamSchema } from '../api/types.ts';
+import { jobMeshId, takesKind, type Algorithm, type Job, type JobInput, type JobProgress, type ParamSchema } from '../api/types.ts';
 import { AlgorithmsPanel } from '../panels/algorithms.ts';
 import { orderedParams } from '../panels/param_control.ts';
 import { byId } from '../panels/dom.ts';
@@ -179,7 +179,7 @@ export class JobsController {
     const mesh = selectedMesh(this.ctx.store.get());
     // The algorithm's first input: the selected mesh, or the output chosen with "Run on this".
     const first = algorithm.inputs?.[0] ?? { name: 'mesh', kind: 'mesh' };
-    if (first.kind !== 'mesh' && target?.kind !== first.kind) {
+    if (first.kind !== 'mesh' && !takesKind(first.kind, target?.kind ?? 'mesh')) {
       throw new Error(`${algorithm.name} runs on a ${first.kind}: choose one with "Run on this" in the job list.`);
     }
     if (!target && !mesh) throw new Error('Choose a mesh first.');

@@ -3,6 +3,8 @@
 // the mesh in the server's vertex and face order, which fields and
 // selections are in: made from the streamed mesh and its stored order
 // (viewer/stored_order.ts), or, for a mesh not streamed here, its binary PLY.
+// A point cloud (a mesh with no faces, streamed as a Draco point cloud) is
+// drawn as points (viewer/points_renderer.ts) in the Display panel's size.
 import type * as THREE from 'three';
 import { fetchMeshBytes, fetchStoredOrder } from '../api/rest.ts';
 import type { Mesh } from '../api/types.ts';
@@ -10,6 +12,7 @@ import type { MeshTransfer } from '../api/ws.ts';
 import { readCamera } from '../viewer/camera_state.ts';
 import type { DracoDecoder } from '../viewer/draco_decoder.ts';
 import { parsePly, type PlyMesh } from '../viewer/ply.ts';
+import { buildPoints } from '../viewer/points_renderer.ts';
 import { storedMesh, unpackStoredOrder } from '../viewer/stored_order.ts';
 import { buildSurface } from '../viewer/surface_renderer.ts';
 import { LoadTimer } from '../viewer/timings.ts';
@@ -69,6 +72,16 @@ export class MeshLoader {
     this.ctx.progress.hide();
   }
 
+  /** Decodes a Draco stream in the worker (a job's points, fetched as drc). */
+  decode(payload: Uint8Array): Promise<DecodedMesh> {
+    return this.decoder.decode(payload);
+  }
+
+  /** What shows a decoded stream: its surface, or its points for a point cloud. */
+  private build(decoded: DecodedMesh): THREE.Object3D {
+    return decoded.points ? buildPoints(decoded, this.ctx.store.get().display.settings) : buildSurface(decoded);
+  }
+
   /** Shows the mesh in place of what is shown; `showing` settles once it is drawn (or has failed). */
   show(mesh: Mesh): void {
     this.showing = this.showMesh(mesh);
@@ -95,7 +108,7 @@ export class MeshLoader {
     const showPreview = async (transfer: MeshTransfer) => {
       const decoded = await this.decoder.decode(transfer.payload);
       if (!current() || fullDecoded) return;
-      const object = buildSurface(decoded);
+      const object = this.build(decoded);
       preview = object;
       previewDrawn = new Promise<void>((drawn) =>
         viewer.show(object, () => {
@@ -117,9 +130,9 @@ export class MeshLoader {
       if (!loaded) return;
       fullDecoded = true;
       const { decoded, bytes } = loaded;
-      const object = buildSurface(decoded);
+      const object = this.build(decoded);
       timer.mark('geometry-built');
-      this.ctx.textures.attach(object, mesh);
+      if (!decoded.points) this.ctx.textures.attach(object as THREE.Mesh, mesh);
       await previewDrawn;
       if (!current()) return;
       const swap = preview !== null && viewer.object === preview;
@@ -127,7 +140,7 @@ export class MeshLoader {
         if (viewer.object !== object) return;
         timer.mark('first-frame');
         hooks.timings = null;
-        hooks.lastLoaded = { id: mesh.id, vertices: decoded.vertices, faces: decoded.faces, bytes };
+        hooks.lastLoaded = { id: mesh.id, vertices: decoded.vertices, faces: decoded.faces, bytes, points: decoded.points };
         if (swap && hooks.lastPreview?.id === mesh.id) hooks.lastPreview.fullCamera = readCamera(viewer);
         void timer.markGpuDone(viewer.renderer.getContext()).then(() => {
           if (viewer.object === object) hooks.timings = timer.finish();

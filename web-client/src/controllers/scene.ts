@@ -153,6 +153,8 @@ export class SceneController {
     store.update((s) => ({ scene: [...s.scene, entry] }));
     await this.draw(entry, async (inScene) => {
       const loaded = await deps.loader.downloadMesh(mesh, new AbortController().signal, inScene, new LoadTimer());
+      // The scene's objects are surfaces (their mode, colour and panes): a cloud is shown alone.
+      if (loaded?.decoded.points) throw new Error('it is a point cloud, shown alone (choose it in the list)');
       return loaded ? buildSurface(loaded.decoded) : null;
     });
   }

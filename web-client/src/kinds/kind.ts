@@ -17,7 +17,7 @@ import type { SceneController } from '../controllers/scene.ts';
  * kinds), so what the kinds ask of those is called back.
  */
 export interface KindDeps {
-  loader: Pick<MeshLoader, 'showing' | 'ply'>;
+  loader: Pick<MeshLoader, 'showing' | 'ply' | 'decode'>;
   meshes: Pick<MeshesController, 'select' | 'selectMeshOf'>;
   scene: Pick<SceneController, 'addResult' | 'removeResult'>;
   /** Leaves the comparison, if one is shown. */

@@ -1,7 +1,8 @@
-// What the kinds drawn over their mesh share (skeletons, vector fields): each
-// artifact drawn is fetched, built in a colour of its own from the kind's
-// palette and added over the mesh it belongs to (that mesh selected first);
-// several at once, by `${jobId}/${name}` in the order drawn; hidden one by one
+// What the kinds drawn over their mesh share (skeletons, vector fields,
+// points): each artifact drawn is fetched, built in a colour of its own from
+// the kind's palette and added over the mesh it belongs to (that mesh
+// selected first; vectors and points follow it where it is turned or
+// moved); several at once, by `${jobId}/${name}` in the order drawn; hidden one by one
 // (its row's toggle) or all when another mesh is shown; kept in view links
 // (`show=`). The colours drawn are the kind's part of the state (its row
 // shows them); what each drawn one reports goes to the test hooks.
@@ -69,6 +70,27 @@ export abstract class OverlayKind<D extends DrawnOverlay> implements ArtifactKin
 
   load(): void {
     // Fetched when shown.
+  }
+
+  /**
+   * Draws `object` where the shown mesh is: what it draws is in the mesh's
+   * own coordinates (a vector per vertex, points it was sampled into), and
+   * the mesh may be turned (its up axis) or moved (the Scene panel). Before
+   * each frame (and each measure of its box) it takes the shown object's
+   * world matrix (the extras' group is not moved).
+   */
+  protected followShown(object: THREE.Object3D): void {
+    const { viewer } = this.ctx;
+    const update = object.updateMatrixWorld.bind(object);
+    object.matrixAutoUpdate = false;
+    object.updateMatrixWorld = () => {
+      const shown = viewer.object;
+      if (shown) {
+        shown.updateWorldMatrix(true, false);
+        object.matrix.copy(shown.matrixWorld);
+      }
+      update(true); // its matrix was set here, which three does not see
+    };
   }
 
   /** The colours drawn as `state` has them, by `${jobId}/${name}`. */

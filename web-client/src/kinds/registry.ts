@@ -8,6 +8,7 @@ import { AnimationKind } from './animation.ts';
 import type { ArtifactKind, KindDeps } from './kind.ts';
 import { MeshSurfaceKind } from './mesh_surface.ts';
 import { MetricsKind } from './metrics.ts';
+import { PointsKind } from './points.ts';
 import { ScalarFieldKind } from './scalar_field.ts';
 import { SkeletonKind } from './skeleton.ts';
 import { TextKind } from './text.ts';
@@ -35,6 +36,7 @@ export class Kinds {
       new MetricsKind(ctx),
       new TextKind(ctx),
       new VectorFieldKind(ctx, deps),
+      new PointsKind(ctx, deps),
     ];
     this.byKind = new Map(modules.map((m) => [m.kind, m]));
   }

@@ -7,7 +7,6 @@
 // directions) tell apart. Its row: Show / Hide, while drawn a slider for the
 // segments' length and a swatch, and once fetched how many vectors have no
 // value. The fields drawn are kept in view links (`show=`).
-import type * as THREE from 'three';
 import { fetchArtifactF32 } from '../api/rest.ts';
 import { jobMeshId, type ArtifactInfo, type Job } from '../api/types.ts';
 import { type AppContext, meshOf } from '../controllers/context.ts';
@@ -82,26 +81,6 @@ export class VectorFieldKind extends OverlayKind<DrawnVectors> {
       this.followShown(glyphs.object);
       this.missing.set(key, { missing: glyphs.stats.missing, count: values.length / 3, location });
       return { object: glyphs.object, glyphs, color, field };
-    };
-  }
-
-  /**
-   * Draws `object` where the shown mesh is: the vectors are in the mesh's own
-   * coordinates, and the mesh may be turned (its up axis) or moved (the Scene
-   * panel). Before each frame (and each measure of its box) it takes the
-   * shown object's world matrix (the extras' group is not moved).
-   */
-  private followShown(object: THREE.Object3D): void {
-    const { viewer } = this.ctx;
-    const update = object.updateMatrixWorld.bind(object);
-    object.matrixAutoUpdate = false;
-    object.updateMatrixWorld = () => {
-      const shown = viewer.object;
-      if (shown) {
-        shown.updateWorldMatrix(true, false);
-        object.matrix.copy(shown.matrixWorld);
-      }
-      update(true); // its matrix was set here, which three does not see
     };
   }
 

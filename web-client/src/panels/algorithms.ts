@@ -23,7 +23,7 @@
 // once a job's output is chosen with "Run on this", holds only the
 // algorithms whose first input is of that output's kind. Nothing here knows
 // any algorithm by name: a new one needs no JavaScript.
-import type { Algorithm, Job, ParamSchema } from '../api/types.ts';
+import { takesKind, type Algorithm, type Job, type ParamSchema } from '../api/types.ts';
 import { el } from './dom.ts';
 import { control, orderedParams } from './param_control.ts';
 import './algorithms.css';
@@ -294,7 +294,7 @@ export class AlgorithmsPanel {
   private refreshMenu(): void {
     // A stored mesh is the default input: every algorithm stays listed, and
     // one that needs another kind says so beside Run.
-    const fitting = this.runKind ? this.algorithms.filter((a) => firstKind(a) === this.runKind) : this.algorithms;
+    const fitting = this.runKind ? this.algorithms.filter((a) => takesKind(firstKind(a), this.runKind!)) : this.algorithms;
     const found = searchAlgorithms(fitting, this.search.value);
     let why = '';
     if (!fitting.length) why = `No algorithm runs on ${aKind(this.runKind!)}: choose a mesh, or another result with "Run on this".`;
@@ -353,7 +353,7 @@ export class AlgorithmsPanel {
     if (!this.target) return;
     const algorithm = this.algorithms.find((a) => a.name === this.chosen);
     const kind = algorithm ? firstKind(algorithm) : 'mesh';
-    if (!this.runKind && kind !== 'mesh') this.target.textContent = `needs ${aKind(kind)}: choose one with "Run on this" in the job list`;
+    if (!this.runKind && !takesKind(kind, 'mesh')) this.target.textContent = `needs ${aKind(kind)}: choose one with "Run on this" in the job list`;
     else this.target.textContent = this.meshName ? `on ${this.meshName}` : 'Choose a mesh first.';
     this.target.title = this.target.textContent;
   }

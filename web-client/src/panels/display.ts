@@ -76,6 +76,8 @@ export class DisplayPanel {
   private readonly link = el('input', { type: 'text', id: 'view-link', readonly: '', 'aria-label': 'View link' });
   /** Rows that only one mode uses, shown with it. */
   private readonly pointSizeRow = row('Point size', this.pointSize);
+  /** Whether points are drawn whatever the mode (a point cloud, a job's points): the point size applies to them. */
+  private points = false;
   private readonly toonBandsRow = row('Toon bands', this.toonBands);
   private readonly creaseRow = sliderRow('Crease angle', this.crease, this.creaseValue);
 
@@ -174,10 +176,12 @@ export class DisplayPanel {
   }
 
   /** What of the inputs applies to the shown object: the crease angle (or why not), its own vertex colours. */
-  showObject(shown: { creaseRefusal: string | null; vertexColors: boolean }): void {
+  showObject(shown: { creaseRefusal: string | null; vertexColors: boolean; points: boolean }): void {
     this.crease.disabled = shown.creaseRefusal !== null;
     this.crease.title = shown.creaseRefusal ?? CREASE_HELP;
     this.vertexColors.row.hidden = !shown.vertexColors;
+    this.points = shown.points;
+    this.syncInputs();
   }
 
   /** The range of the field drawn now, or null: none drawn. */
@@ -235,7 +239,7 @@ export class DisplayPanel {
     this.pointSize.value = String(s.pointSize);
     this.toonBands.value = String(s.toonBands);
     this.vertexColors.input.checked = s.vertexColors;
-    this.pointSizeRow.hidden = s.mode !== 'points';
+    this.pointSizeRow.hidden = s.mode !== 'points' && !this.points;
     this.toonBandsRow.hidden = s.mode !== 'toon';
     this.crease.value = String(s.creaseAngle);
     this.creaseValue.value = degreesText(s.creaseAngle);

@@ -71,7 +71,7 @@ export class MeshListPanel {
       const tag = tags.get(mesh.id);
       // What its buttons call it: with its tag where another mesh has its name.
       const called = tag ? `${mesh.name} (${tag})` : mesh.name;
-      const counts = `${mesh.report.vertices} V · ${mesh.report.faces} F`;
+      const counts = mesh.points ? `${mesh.report.vertices} points` : `${mesh.report.vertices} V · ${mesh.report.faces} F`;
       const owner = this.actions.ownerName?.(mesh.owner) ?? null;
       const remove = el('button', { class: 'delete', type: 'button', title: `Delete ${called}`, 'aria-label': `Delete ${called}` }, '✕');
       const thumb = this.thumbnail(mesh.id);

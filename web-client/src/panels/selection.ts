@@ -105,8 +105,8 @@ export class SelectionPanel {
     const kind = this.root.querySelector<HTMLInputElement>(`#selection-kind-${state.kind}`);
     if (kind) kind.checked = true;
     const n = state.ids.length;
-    if (!state.meshId) {
-      this.readout.replaceChildren(el('p', { class: 'empty' }, 'Choose a mesh first.'));
+    if (!state.meshId || state.refused) {
+      this.readout.replaceChildren(el('p', { class: 'empty' }, state.refused ?? 'Choose a mesh first.'));
       return;
     }
     const what = state.kind === 'faces' ? (n === 1 ? 'face' : 'faces') : n === 1 ? 'vertex' : 'vertices';

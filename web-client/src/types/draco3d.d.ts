@@ -10,24 +10,29 @@ declare module 'draco3d/draco_decoder_nodejs.js' {
     data_type(): number;
     normalized(): boolean;
   }
-  export interface DracoMesh {
+  /** A point cloud (a Draco POINT_CLOUD): points and their attributes, no faces. */
+  export interface DracoPointCloud {
     ptr: number;
     num_points(): number;
+  }
+  export interface DracoMesh extends DracoPointCloud {
     num_faces(): number;
   }
   export interface DracoDecoder {
     GetEncodedGeometryType(array: Int8Array): number;
     DecodeArrayToMesh(array: Int8Array, byteLength: number, mesh: DracoMesh): DracoStatus;
-    GetAttributeId(mesh: DracoMesh, type: number): number;
+    DecodeArrayToPointCloud(array: Int8Array, byteLength: number, cloud: DracoPointCloud): DracoStatus;
+    GetAttributeId(mesh: DracoPointCloud, type: number): number;
     /** The attribute whose metadata entry "name" is `name`, or -1. */
-    GetAttributeIdByName(mesh: DracoMesh, name: string): number;
-    GetAttribute(mesh: DracoMesh, id: number): DracoAttribute;
-    GetAttributeDataArrayForAllPoints(mesh: DracoMesh, attribute: DracoAttribute, dataType: number, byteLength: number, ptr: number): boolean;
+    GetAttributeIdByName(mesh: DracoPointCloud, name: string): number;
+    GetAttribute(mesh: DracoPointCloud, id: number): DracoAttribute;
+    GetAttributeDataArrayForAllPoints(mesh: DracoPointCloud, attribute: DracoAttribute, dataType: number, byteLength: number, ptr: number): boolean;
     GetTrianglesUInt32Array(mesh: DracoMesh, byteLength: number, ptr: number): boolean;
   }
   export interface DracoDecoderModule {
     Decoder: new () => DracoDecoder;
     Mesh: new () => DracoMesh;
+    PointCloud: new () => DracoPointCloud;
     destroy(object: unknown): void;
     _malloc(bytes: number): number;
     _free(ptr: number): void;

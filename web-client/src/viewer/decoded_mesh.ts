@@ -19,7 +19,7 @@ export interface MaterialGroup {
 export interface DecodedMesh {
   /** xyz per vertex. */
   positions: Float32Array;
-  /** Three vertex indices per triangle. */
+  /** Three vertex indices per triangle; empty for a point cloud. */
   indices: Uint32Array;
   /** xyz per vertex, or null when the payload has none. */
   normals: Float32Array | null;
@@ -41,6 +41,8 @@ export interface DecodedMesh {
   faceSource: Uint32Array | null;
   vertices: number;
   faces: number;
+  /** Whether the stream was a Draco point cloud (no faces: drawn as points, viewer/points_renderer.ts). */
+  points: boolean;
   /** How long the worker took, measured inside it. */
   timing: WorkerTiming;
 }

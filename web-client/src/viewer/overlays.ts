@@ -10,6 +10,7 @@ import * as THREE from 'three';
 import { VertexNormalsHelper } from 'three/addons/helpers/VertexNormalsHelper.js';
 import { formatNumber } from '../panels/format.ts';
 import { classifyEdges, type EdgeClasses } from './mesh_edges.ts';
+import { isPointCloud } from './points_renderer.ts';
 import type { Viewer } from './viewer.ts';
 
 export interface OverlaySettings {
@@ -232,12 +233,12 @@ export function updateOverlays(viewer: Viewer, object: THREE.Object3D | null, s:
       built.axes = axes(origin, Math.max(size.x, size.y, size.z) * 0.5, textHeight, turn);
     }
     const mesh = object as THREE.Mesh;
+    const length = s.normalLength * diagonal;
+    // A cloud's normals too (those it came with, or estimated by a job): what shades its points, shown.
+    if (s.vertexNormals && (mesh.isMesh || isPointCloud(object)) && mesh.geometry.getAttribute('normal')) {
+      built['vertex-normals'] = new VertexNormalsHelper(mesh, length, new THREE.Color(VERTEX_NORMAL_COLOR).getHex());
+    }
     if (mesh.isMesh) {
-      const length = s.normalLength * diagonal;
-      if (s.vertexNormals && mesh.geometry.getAttribute('normal')) {
-        const helper = new VertexNormalsHelper(mesh, length, new THREE.Color(VERTEX_NORMAL_COLOR).getHex());
-        built['vertex-normals'] = helper;
-      }
       // Built in the mesh's own coordinates, placed where the mesh stands (a scene object moved, turned or scaled).
       const scale = Math.max(mesh.matrixWorld.getMaxScaleOnAxis(), 1e-9);
       if (s.faceNormals) built['face-normals'] = placed(faceNormals(mesh.geometry, length / scale), mesh);

@@ -50,7 +50,12 @@ export interface SelectionState {
   ids: number[];
   /** The total area of the selected faces (faces only). */
   area: number | null;
+  /** Why nothing can be selected on this mesh (a point cloud has no faces to pick through), or null. */
+  refused: string | null;
 }
+
+/** Picking goes through an id buffer of faces: a cloud has none. */
+const CLOUD_REFUSAL = 'A point cloud has no faces: selections are of a mesh’s faces and vertices.';
 
 interface Target {
   meshId: string;
@@ -67,6 +72,8 @@ export class SelectionTool {
   through = false;
   private kindNow: SelectionKind = 'faces';
   private target: Target | null = null;
+  /** Why the mesh selected on cannot be selected on (see SelectionState.refused). */
+  private refused: string | null = null;
   private ids: number[] = [];
   private readonly viewer: Viewer;
   private readonly svg: SVGSVGElement;
@@ -108,6 +115,7 @@ export class SelectionTool {
       kind: this.kindNow,
       ids: this.ids,
       area: t && this.kindNow === 'faces' ? facesArea(t.ply.positions, t.ply.indices, this.ids) : null,
+      refused: this.refused,
     };
   }
 
@@ -136,6 +144,8 @@ export class SelectionTool {
   private setMesh(meshId: string | null, ply: PlyMesh | null): void {
     if (this.target?.idMesh) this.target.idMesh.geometry.dispose();
     this.idScene.clear();
+    this.refused = ply && ply.faces === 0 ? CLOUD_REFUSAL : null;
+    if (this.refused) ply = null;
     this.target = meshId && ply ? { meshId, ply, centroids: faceCentroids(ply.positions, ply.indices), around: vertexFaces(ply.indices, ply.vertices), idMesh: null } : null;
     this.set([]);
   }
