@@ -3,8 +3,9 @@
 //   uniform weights), the same cone (120 degrees) and the same
 //   post-processing (missing values filled, bilateral filter, linear
 //   normalization): time ratio, and Pearson r of the normalized values;
-// - sdf_fast at 5%, 10% and 20% against our sdf (same options): time ratio,
-//   mean and 95th-percentile error relative to the full SDF's range.
+// - sdf_fast at 5%, 10% and 20%, with each solver, against our sdf (same
+//   options): time ratio, mean and 95th-percentile error relative to the
+//   full SDF's range.
 // On the 1M-triangle mesh CGAL runs without post-processing (its bilateral
 // filter walks std::maps over ~2000 faces per face: hours), said in the row.
 //
@@ -66,13 +67,14 @@ int main(int argc, char** argv) {
   std::printf("%-18s %9s %9s %10s %10s %8s %10s %10s %6s\n", "mesh", "fraction", "solver", "sdf s", "fast s", "ratio",
               "mean err", "p95 err", "");
   const sdf::SdfParams defaults;
+  const char* const solver_names[] = {"diffusion", "cg", "cholesky"};  // in sdf::Solver's order
   for (const bench::SdfInput& in : inputs) {
     std::vector<double> full;
     const double full_s = bench::best_seconds(opt.repeat, [&] { full = our_sdf(in.mesh, defaults, true); });
     const auto [lo, hi] = std::minmax_element(full.begin(), full.end());
     const double range = *hi - *lo;
     for (double fraction : {0.05, 0.1, 0.2})
-      for (sdf::Solver solver : {sdf::Solver::conjugate_gradient, sdf::Solver::cholesky}) {
+      for (sdf::Solver solver : {sdf::Solver::diffusion, sdf::Solver::conjugate_gradient, sdf::Solver::cholesky}) {
         std::vector<double> fast;
         const double fast_s =
             bench::best_seconds(opt.repeat, [&] { fast = our_fast(in.mesh, defaults, fraction, solver); });
@@ -83,8 +85,7 @@ int main(int argc, char** argv) {
         std::sort(err.begin(), err.end());
         const double p95 = err[std::size_t(0.95 * double(err.size() - 1))];
         std::printf("%-18s %8.0f%% %9s %10.3f %10.3f %7.1fx %9.2f%% %9.2f%%\n", in.name.c_str(), 100 * fraction,
-                    solver == sdf::Solver::cholesky ? "cholesky" : "cg", full_s, fast_s, full_s / fast_s,
-                    100 * mean / range, 100 * p95 / range);
+                    solver_names[int(solver)], full_s, fast_s, full_s / fast_s, 100 * mean / range, 100 * p95 / range);
         std::fflush(stdout);
       }
   }

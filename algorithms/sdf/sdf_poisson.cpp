@@ -80,9 +80,10 @@ std::vector<double> guidance(const Mesh& mesh, const Adjacency& g, double weight
   return out;
 }
 
-}  // namespace
-
-std::vector<std::uint32_t> spread_samples(const Mesh& mesh, const Adjacency& g, std::size_t count) {
+// spread_samples, with the connected parts (face_components) given: they
+// are found once for the samples and the solve.
+std::vector<std::uint32_t> spread_over_parts(const Mesh& mesh, const std::vector<std::uint32_t>& part,
+                                             std::uint32_t parts, std::size_t count) {
   const std::size_t n = mesh.faces.size();
   count = std::clamp<std::size_t>(count, 1, n);
   BBox box;
@@ -101,8 +102,6 @@ std::vector<std::uint32_t> spread_samples(const Mesh& mesh, const Adjacency& g, 
   samples.reserve(count);
   for (std::size_t j = 0; j < count; ++j)
     samples.push_back(order[std::size_t((double(j) + 0.5) * double(n) / double(count))].second);
-  std::uint32_t parts = 0;
-  const std::vector<std::uint32_t> part = face_components(g, parts);
   std::vector<char> covered(parts, 0);
   for (std::uint32_t f : samples) covered[part[f]] = 1;
   for (std::size_t f = 0; f < n; ++f)
@@ -112,36 +111,66 @@ std::vector<std::uint32_t> spread_samples(const Mesh& mesh, const Adjacency& g, 
   return samples;
 }
 
+}  // namespace
+
+std::vector<std::uint32_t> spread_samples(const Mesh& mesh, const Adjacency& g, std::size_t count) {
+  std::uint32_t parts = 0;
+  const std::vector<std::uint32_t> part = face_components(g, parts);
+  return spread_over_parts(mesh, part, parts, count);
+}
+
 FastSdf poisson_sdf(const Mesh& mesh, const Adjacency& g, const SdfFastParams& p, const Context* ctx) {
   check_params(p);
   if (mesh.faces.empty()) throw InvalidInput("the mesh has no faces: the SDF is measured on faces");
   const std::size_t n = mesh.faces.size();
+  std::uint32_t parts = 0;
+  const std::vector<std::uint32_t> part = face_components(g, parts);
   FastSdf out;
-  out.samples = spread_samples(mesh, g, std::size_t(std::ceil(p.fraction * double(n))));
+  out.samples = spread_over_parts(mesh, part, parts, std::size_t(std::ceil(p.fraction * double(n))));
   out.raw = raw_sdf(mesh, p.sdf, out.samples, ctx, 0.0, 0.8);
+  // A sample whose rays all escaped (an open mesh) takes the smallest sampled
+  // value, as fill_missing gives the full SDF's faces inside such a region:
+  // left unknown, it would take its thick neighbours' values instead.
+  double smallest = HUGE_VAL;
+  for (double v : out.raw.values)
+    if (!std::isnan(v)) smallest = std::min(smallest, v);
+  if (smallest == HUGE_VAL) smallest = 0;  // no ray found the inside anywhere: 0, as fill_missing
   out.values.assign(n, std::numeric_limits<double>::quiet_NaN());
-  for (std::size_t i = 0; i < out.samples.size(); ++i) out.values[out.samples[i]] = out.raw.values[i];
+  for (std::size_t i = 0; i < out.samples.size(); ++i)
+    out.values[out.samples[i]] = std::isnan(out.raw.values[i]) ? smallest : out.raw.values[i];
   if (p.sdf.smooth) bilateral_smooth(g, out.values, p.sdf.window, nullptr, out.samples);
   if (ctx) ctx->progress(0.8, "solving the Poisson equation");
 
-  // Unknowns: faces without a value in parts that have some known face.
-  std::uint32_t parts = 0;
-  const std::vector<std::uint32_t> part = face_components(g, parts);
-  std::vector<char> anchored(parts, 0);
-  for (std::size_t f = 0; f < n; ++f)
-    if (!std::isnan(out.values[f])) anchored[part[f]] = 1;
+  // Every part has a sample with a value: every other face is an unknown.
   std::vector<std::int64_t> row(n, -1);
   std::vector<std::uint32_t> unknown;
   for (std::size_t f = 0; f < n; ++f)
-    if (std::isnan(out.values[f]) && anchored[part[f]])
-      row[f] = std::int64_t(unknown.size()), unknown.push_back(std::uint32_t(f));
+    if (std::isnan(out.values[f])) row[f] = std::int64_t(unknown.size()), unknown.push_back(std::uint32_t(f));
   out.unknowns = unknown.size();
-  if (unknown.empty()) {
-    fill_missing(mesh, g, out.values);
+  if (unknown.empty()) return out;
+  const std::vector<double> rhs_guide = guidance(mesh, g, p.curvature_weight);
+
+  if (p.solver == Solver::diffusion) {
+    // Samples are about 1 / sqrt(fraction) rings apart, and t sweeps spread
+    // a value over about sqrt(t) rings: 0.8 / fraction sweeps reach between
+    // samples without averaging over the next ones (the constant measured
+    // on four meshes at 5-40%, docs/DESIGN.md).  The cap bounds the time at
+    // fractions below 0.3%.
+    const int sweeps = int(std::min(256.0, std::ceil(0.8 / p.fraction)));
+    std::vector<double> x = nearest_known(g, out.values), next = x;
+    for (int s = 0; s < sweeps; ++s) {
+      for (std::uint32_t f : unknown) {
+        double sum = -rhs_guide[f];
+        for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) sum += x[*h];
+        next[f] = sum / double(g.degree(f));
+      }
+      x.swap(next);
+    }
+    out.values = std::move(x);
+    out.iterations = sweeps;
     return out;
   }
 
-  const std::vector<double> rhs_guide = guidance(mesh, g, p.curvature_weight);
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(g.items.size() + unknown.size());
   Eigen::VectorXd b(Eigen::Index(unknown.size()));
@@ -150,7 +179,7 @@ FastSdf poisson_sdf(const Mesh& mesh, const Adjacency& g, const SdfFastParams& p
     double known = 0;
     for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) {
       if (row[*h] >= 0) t.emplace_back(Eigen::Index(r), Eigen::Index(row[*h]), -1.0);
-      else known += out.values[*h];  // a Dirichlet value (anchored parts have no NaN neighbour left unknown)
+      else known += out.values[*h];  // a Dirichlet value
     }
     t.emplace_back(Eigen::Index(r), Eigen::Index(r), double(g.degree(f)));
     b[Eigen::Index(r)] = known - rhs_guide[f];
@@ -172,7 +201,6 @@ FastSdf poisson_sdf(const Mesh& mesh, const Adjacency& g, const SdfFastParams& p
     out.iterations = int(cg.iterations());
   }
   for (std::size_t r = 0; r < unknown.size(); ++r) out.values[unknown[r]] = x[Eigen::Index(r)];
-  fill_missing(mesh, g, out.values);  // parts where no ray found the inside
   return out;
 }
 

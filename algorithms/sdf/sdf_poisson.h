@@ -14,9 +14,20 @@
 //
 // The matrix (the graph Laplacian restricted to the unknown faces) is
 // symmetric positive definite when every connected part of the mesh has a
-// sampled face, which the sampling guarantees.  Solved with Eigen: a sparse
-// Cholesky factorization (SimplicialLDLT), or conjugate gradients (Jacobi
-// preconditioner) started from each face's nearest sample's value.
+// sampled face, which the sampling guarantees.  Solved exactly with Eigen: a
+// sparse Cholesky factorization (SimplicialLDLT), or conjugate gradients
+// (Jacobi preconditioner) started from each face's nearest sample's value.
+// By default (Solver::diffusion) it is not solved: from each face's nearest
+// sample's value, ceil(0.8 / fraction) Jacobi sweeps (each unknown face
+// takes its neighbours' mean, less its guidance term), capped at 256.  The
+// exact solution spreads each sample's value far beyond its neighbourhood,
+// where the full SDF has moved on: stopped early, the field is a local
+// average of the nearby samples, closer to the full SDF on every mesh
+// measured (docs/BENCHMARKS.md) and about ten times cheaper.
+//
+// A sample whose rays all escaped (an open mesh) takes the smallest sampled
+// value, as the full SDF's fill_missing gives the faces inside such a
+// region.
 //
 // What sdf_fast (sdf/sdf_fast.h) runs, without its metrics and comparison:
 // for the benchmark and the tests.
@@ -32,11 +43,11 @@
 namespace cgview::sdf {
 
 struct FastSdf {
-  std::vector<double> values;          // one per face (holes filled as fill_missing does)
+  std::vector<double> values;          // one per face
   std::vector<std::uint32_t> samples;  // the faces that got rays
   RawSdf raw;                          // their raw values, in the order of `samples`
   std::size_t unknowns = 0;            // faces solved for
-  int iterations = 0;                  // conjugate gradients' (0 for Cholesky)
+  int iterations = 0;                  // diffusion's sweeps, conjugate gradients' iterations (0 for Cholesky)
 };
 
 // `count` faces spread evenly over the surface: every (F / count)-th face
