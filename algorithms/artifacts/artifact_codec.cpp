@@ -21,6 +21,7 @@ const ArtifactCodec& metrics_codec();
 const ArtifactCodec& text_codec();
 const ArtifactCodec& animation_codec();
 const ArtifactCodec& vector_field_codec();
+const ArtifactCodec& points_codec();
 
 namespace {
 
@@ -47,6 +48,8 @@ const ArtifactCodec& artifact_codec(OutputKind kind) {
       return animation_codec();
     case OutputKind::vector_field:
       return vector_field_codec();
+    case OutputKind::points:
+      return points_codec();
   }
   throw InvalidInput("no codec for this artifact kind");
 }
@@ -72,6 +75,7 @@ std::string ArtifactCodec::noun() const {
   for (char& c : k)
     if (c == '_') c = ' ';
   if (kind() == OutputKind::metrics) return "a metrics table";
+  if (kind() == OutputKind::points) return "a point cloud";
   if (kind() == OutputKind::text || kind() == OutputKind::animation) return "an " + k;
   return "a " + k;
 }

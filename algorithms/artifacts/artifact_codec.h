@@ -13,6 +13,7 @@
 //   text          NAME.txt        txt bin (the bytes as they are)
 //   animation     NAME.frames     frames (core/animation.h)
 //   vector_field  NAME.vec.f32    json f32 (served only), csv ply (points with the vectors as normals) vtk
+//   points        NAME.ply        drc (served by default: the viewer's) ply xyz
 //
 // cgview-worker stores its results with store(), `cgview run` writes its -o
 // files with write(), and the server serves `?format=` with exported() and

@@ -19,7 +19,7 @@ class MeshCodec final : public ArtifactCodec {
       const MeshFormatInfo& stored = mesh_format_info(MeshFormat::ply);
       out.push_back({stored.name, stored.extensions.front(), stored.mime});
       for (const MeshFormatInfo& i : mesh_formats())
-        if (i.write && &i != &stored) out.push_back({i.name, i.extensions.front(), i.mime});
+        if (i.write && !i.points_only && &i != &stored) out.push_back({i.name, i.extensions.front(), i.mime});
       return out;
     }();
     return f;

@@ -165,8 +165,9 @@ const draco::PointAttribute* numeric_draco_attribute(const draco::PointAttribute
 
 namespace {
 
-// Our Mesh from a decoded draco::Mesh: one vertex per draco point.
-void from_draco(const draco::Mesh& dm, const std::string& name, ReadResult& result) {
+// Our Mesh from a decoded draco::Mesh, or draco::PointCloud (no faces): one
+// vertex per draco point.
+void from_draco(const draco::PointCloud& dm, const draco::Mesh* faces, const std::string& name, ReadResult& result) {
   Mesh& mesh = result.mesh;
   const draco::PointAttribute* pos =
       numeric_draco_attribute(dm.GetNamedAttribute(draco::GeometryAttribute::POSITION), name, "positions");
@@ -207,9 +208,10 @@ void from_draco(const draco::Mesh& dm, const std::string& name, ReadResult& resu
                         col->num_components() >= 4 ? byte(rgba[3]) : std::uint8_t(255)};
     }
   }
-  mesh.faces.resize(dm.num_faces());
-  for (std::size_t f = 0; f < dm.num_faces(); ++f) {
-    const auto& face = dm.face(draco::FaceIndex(static_cast<draco::FaceIndex::ValueType>(f)));
+  if (!faces) return;
+  mesh.faces.resize(faces->num_faces());
+  for (std::size_t f = 0; f < faces->num_faces(); ++f) {
+    const auto& face = faces->face(draco::FaceIndex(static_cast<draco::FaceIndex::ValueType>(f)));
     mesh.faces[f] = {face[0].value(), face[1].value(), face[2].value()};
   }
 }
@@ -343,15 +345,23 @@ void read_draco(std::string_view bytes, const std::string& name, ReadResult& res
   buffer.Init(bytes.data(), bytes.size());
   auto type = draco::Decoder::GetEncodedGeometryType(&buffer);
   if (!type.ok()) throw ParseError(name, "not a Draco file: " + type.status().error_msg_string(), std::nullopt, 0);
-  if (type.value() != draco::TRIANGULAR_MESH)
-    throw ParseError(name, "the Draco file holds a point cloud, not a triangle mesh", std::nullopt, 0);
-  check_draco_counts(bytes, name);
   draco::Decoder decoder;
+  auto fail = [&](const draco::Status& s) {
+    throw ParseError(name, "Draco could not decode it: " + s.error_msg_string(), std::nullopt, std::nullopt);
+  };
+  if (type.value() == draco::POINT_CLOUD) {
+    // A scan: its points become a mesh with no faces (core/point_cloud.h).
+    auto decoded = decoder.DecodePointCloudFromBuffer(&buffer);
+    if (!decoded.ok()) fail(decoded.status());
+    from_draco(*decoded.value(), nullptr, name, result);
+    return;
+  }
+  if (type.value() != draco::TRIANGULAR_MESH)
+    throw ParseError(name, "the Draco file holds neither a triangle mesh nor a point cloud", std::nullopt, 0);
+  check_draco_counts(bytes, name);
   auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
-  if (!decoded.ok())
-    throw ParseError(name, "Draco could not decode it: " + decoded.status().error_msg_string(), std::nullopt,
-                     std::nullopt);
-  from_draco(*decoded.value(), name, result);
+  if (!decoded.ok()) fail(decoded.status());
+  from_draco(*decoded.value(), decoded.value().get(), name, result);
 }
 
 std::string write_draco(const Mesh& mesh, const WriteOptions& options, std::span<const std::uint32_t> face_material,
@@ -364,7 +374,13 @@ std::string write_draco(const Mesh& mesh, const WriteOptions& options, std::span
   const int speed = std::clamp(options.draco_speed, 0, 10);
   encoder.SetSpeedOptions(speed, speed);
   draco::EncoderBuffer buf;
-  const draco::Status s = encoder.EncodeMeshToBuffer(*dm, &buf);
+  // A mesh with no faces is a point cloud, and Draco writes it as one (what
+  // draco3d's decoder, and so the viewer, reads as POINT_CLOUD), its points
+  // in their order: the kd-tree method would sort them, and the viewer's
+  // point i is the stored vertex i (draco_stored_order).
+  const bool cloud = mesh.num_faces() == 0;
+  if (cloud) encoder.SetEncodingMethod(draco::POINT_CLOUD_SEQUENTIAL_ENCODING);
+  const draco::Status s = cloud ? encoder.EncodePointCloudToBuffer(*dm, &buf) : encoder.EncodeMeshToBuffer(*dm, &buf);
   if (!s.ok()) throw Error("Draco could not encode the mesh: " + s.error_msg_string());
   return to_string(buf);
 }
@@ -402,6 +418,19 @@ std::unique_ptr<draco::Mesh> decode_draco(std::string_view bytes) {
 
 DracoStoredOrder draco_stored_order(std::string_view bytes, const Mesh& written,
                                     std::span<const std::uint32_t> face_material, const WriteOptions& options) {
+  if (written.num_faces() == 0) {
+    // A point cloud is written in its order (write_draco): point i is vertex i.
+    ReadResult r;
+    detail::read_draco(bytes, "the stream", r);
+    if (r.mesh.num_faces() != 0 || r.mesh.num_vertices() != written.num_vertices())
+      throw InvalidInput("the Draco stream does not decode as the point cloud written (" +
+                         std::to_string(r.mesh.num_vertices()) + " points against " +
+                         std::to_string(written.num_vertices()) + ")");
+    DracoStoredOrder order;
+    order.points.resize(written.num_vertices());
+    std::iota(order.points.begin(), order.points.end(), 0u);
+    return order;
+  }
   const std::unique_ptr<draco::Mesh> plain = decode_draco(bytes);
   const std::unique_ptr<draco::Mesh> dm = decode_draco(detail::write_draco(written, options, face_material, true));
   // The attribute must not change Draco's traversal: the same points, at the same places, and the same faces.

@@ -33,6 +33,9 @@ struct MeshFormatInfo {
   // Null: the format is read only (a text glTF needs side files).
   std::string (*write)(const Mesh& mesh, const WriteOptions& options);
   const char* help;  // one line for a user: what the format is and what of it is read
+  // The format holds points only, no faces (XYZ, PTS): not a mesh's export
+  // format, but a point cloud's (artifacts/points_codec.cpp).
+  bool points_only = false;
 };
 
 // Every format, in the order they are listed to users.

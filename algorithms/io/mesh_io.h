@@ -1,8 +1,10 @@
 // Reading and writing triangle meshes.
 //
 // Reads OFF, OBJ, PLY (ascii and binary), STL (ascii and binary), Draco
-// (.drc) and glTF (.glb, .gltf); writes OFF, OBJ, PLY, STL, glTF binary (.glb)
-// and Draco (.drc): the table of mesh_formats.h says which.  Polygons are fan-triangulated; STL's repeated corners
+// (.drc), glTF (.glb, .gltf) and the point clouds of XYZ and PTS; writes OFF,
+// OBJ, PLY, STL, glTF binary (.glb), Draco (.drc) and XYZ: the table of
+// mesh_formats.h says which.  A point cloud is a mesh with no faces
+// (core/point_cloud.h): PLY, OBJ and Draco hold one too.  Polygons are fan-triangulated; STL's repeated corners
 // are welded into shared vertices; OBJ's vt/vn keep their own indices.
 //
 // Every reader works on bytes in memory, so a server can parse an upload
@@ -30,7 +32,7 @@
 namespace cgview {
 
 // One value a row of mesh_formats() (io/mesh_formats.h).
-enum class MeshFormat { off, obj, ply, stl, drc, glb, gltf };
+enum class MeshFormat { off, obj, ply, stl, drc, glb, gltf, xyz, pts };
 
 // "off", "obj", ... as in file extensions.
 const char* to_string(MeshFormat f);

@@ -178,6 +178,11 @@ void read_obj(std::string_view bytes, const std::string& name, ReadResult& resul
   } else if (any_n) {
     result.warnings.push_back("normals dropped: some faces have them and others do not");
   }
+  // A point cloud's OBJ (no faces) pairs its normals with its vertices in order.
+  if (mesh.faces.empty() && !normals.empty()) {
+    if (normals.size() == mesh.positions.size()) mesh.normals = std::move(normals);
+    else result.warnings.push_back("normals dropped: a file of points has them, but not one per vertex");
+  }
   // Indices that coincide with the vertex indices become per-vertex attributes.
   auto collapse = [&](std::vector<Tri>& idx, auto& values) {
     if (idx.empty() || values.size() != mesh.positions.size()) return;

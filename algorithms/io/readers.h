@@ -20,6 +20,9 @@ void read_obj(std::string_view bytes, const std::string& name, ReadResult& resul
 void read_ply(std::string_view bytes, const std::string& name, ReadResult& result);
 void read_stl(std::string_view bytes, const std::string& name, const ReadOptions& options, ReadResult& result);
 void read_draco(std::string_view bytes, const std::string& name, ReadResult& result);
+// Point clouds (read_xyz.cpp): XYZ rows, and PTS's count lines and rows.
+void read_xyz(std::string_view bytes, const std::string& name, ReadResult& result);
+void read_pts(std::string_view bytes, const std::string& name, ReadResult& result);
 // Throws ParseError when a Draco stream's header claims more faces than its
 // bytes can hold, or more vertices than three a face (Draco's edgebreaker
 // decoder allocates for the claim before it reads the stream).
@@ -38,5 +41,7 @@ std::string write_ply(const Mesh& mesh, bool binary, const ScalarField* field = 
 std::string write_stl(const Mesh& mesh, bool binary);
 std::string write_draco(const Mesh& mesh, const WriteOptions& options);
 std::string write_glb(const Mesh& mesh);
+// The vertices, one a line, with their normals when they are one per vertex.
+std::string write_xyz(const Mesh& mesh);
 
 }  // namespace cgview::detail

@@ -143,7 +143,9 @@ std::string write_ply(const Mesh& input, bool binary, const ScalarField* field) 
   if (c) o.str("property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\n");
   if (t) o.str("property float s\nproperty float t\n");
   if (vf) o.str("property float ").str(prop).ch('\n');
-  o.str("element face ").num(std::uint64_t(mesh.num_faces())).str("\nproperty list uchar int vertex_indices\n");
+  // A point cloud's PLY has vertices only, as Open3D and CloudCompare write it.
+  if (mesh.num_faces() > 0 || ff)
+    o.str("element face ").num(std::uint64_t(mesh.num_faces())).str("\nproperty list uchar int vertex_indices\n");
   if (ff) o.str("property float ").str(prop).ch('\n');
   o.str("end_header\n");
   for (std::size_t v = 0; v < mesh.num_vertices(); ++v) {

@@ -25,6 +25,12 @@ std::vector<std::string> InputFiles::read(const InputSpec& spec, const std::file
     case OutputKind::skeleton:
       inputs_.add(spec.name, skeletons_.insert_or_assign(spec.name, read_skeleton(path)).first->second);
       return {};
+    case OutputKind::points: {
+      // Any mesh file: a cloud's file is a mesh with no faces, and a mesh with faces gives its vertices.
+      ReadResult r = read_mesh_file(path);
+      inputs_.add(spec.name, clouds_.insert_or_assign(spec.name, points_of(r.mesh)).first->second);
+      return std::move(r.warnings);
+    }
     default: {
       ReadResult r = read_mesh_file(path);
       const Mesh& m = meshes_.insert_or_assign(spec.name, std::move(r.mesh)).first->second;

@@ -24,9 +24,10 @@ void write_artifact(const Artifact& artifact, const Mesh& input, const std::file
 void check_artifact_extension(OutputKind kind, const std::filesystem::path& path);
 
 // The files of one run's inputs, each read as the kind its InputSpec
-// declares: a mesh file, a voxel grid file (voxel/voxel_io.h) or a skeleton
-// file (io/skeleton_io.h).  Owns what it read; inputs() refers to it.  Used
-// by `cgview run` and cgview-worker alike.
+// declares: a mesh file, a voxel grid file (voxel/voxel_io.h), a skeleton
+// file (io/skeleton_io.h), or a point cloud (any mesh file: its vertices).
+// Owns what it read; inputs() refers to it.  Used by `cgview run` and
+// cgview-worker alike.
 class InputFiles {
  public:
   // Reads `path` as input `spec`; returns the mesh reader's warnings (what
@@ -41,6 +42,7 @@ class InputFiles {
   std::map<std::string, Mesh> meshes_;
   std::map<std::string, VoxelGrid> grids_;
   std::map<std::string, Skeleton> skeletons_;
+  std::map<std::string, PointCloud> clouds_;
   Inputs inputs_;
   const Mesh* primary_ = nullptr;
 };

@@ -153,6 +153,8 @@ const char* to_string(OutputKind k) {
       return "animation";
     case OutputKind::vector_field:
       return "vector_field";
+    case OutputKind::points:
+      return "points";
   }
   return "?";
 }
@@ -381,6 +383,9 @@ void add_artifact(AlgorithmResult& out, const char* name, Animation&& v) {
   out.artifacts.push_back({name, std::move(v)});
 }
 void add_artifact(AlgorithmResult& out, const char* name, VectorField&& v) {
+  out.artifacts.push_back({name, std::move(v)});
+}
+void add_artifact(AlgorithmResult& out, const char* name, PointCloud&& v) {
   out.artifacts.push_back({name, std::move(v)});
 }
 void add_warnings(AlgorithmResult& out, std::vector<std::string>&& warnings) { out.warnings = std::move(warnings); }

@@ -50,6 +50,7 @@
 #include "core/animation.h"
 #include "core/errors.h"
 #include "core/mesh.h"
+#include "core/point_cloud.h"
 #include "core/scalar_field.h"
 #include "core/skeleton.h"
 #include "core/vector_field.h"
@@ -107,7 +108,7 @@ struct Text {
 };
 struct Artifact {
   std::string name;
-  std::variant<Mesh, ScalarField, VoxelGrid, Skeleton, Metrics, Text, Animation, VectorField> value;
+  std::variant<Mesh, ScalarField, VoxelGrid, Skeleton, Metrics, Text, Animation, VectorField, PointCloud> value;
 };
 
 struct AlgorithmResult {
@@ -138,11 +139,13 @@ class Context {
 };
 
 // The kinds of output an algorithm declares.
-enum class OutputKind { mesh, scalar_field, voxel_grid, skeleton, metrics, text, animation, vector_field };
+// points: a PointCloud (core/point_cloud.h), named "points".
+enum class OutputKind { mesh, scalar_field, voxel_grid, skeleton, metrics, text, animation, vector_field, points };
 // Every kind, in the order lists show them.
 inline constexpr OutputKind kOutputKinds[] = {
-    OutputKind::mesh,     OutputKind::scalar_field, OutputKind::vector_field, OutputKind::voxel_grid,
-    OutputKind::skeleton, OutputKind::metrics,      OutputKind::text,         OutputKind::animation};
+    OutputKind::mesh,         OutputKind::points,     OutputKind::scalar_field,
+    OutputKind::vector_field, OutputKind::voxel_grid, OutputKind::skeleton,
+    OutputKind::metrics,      OutputKind::text,       OutputKind::animation};
 
 // An algorithm's named input ("mesh", "reference", "grid"), of one kind.
 struct InputSpec {  // initializers as in ParamInfo
@@ -165,6 +168,7 @@ class Inputs {
   void add(const std::string& name, const ScalarField& v) { values_[name] = &v; }
   void add(const std::string& name, const VoxelGrid& v) { values_[name] = &v; }
   void add(const std::string& name, const Skeleton& v) { values_[name] = &v; }
+  void add(const std::string& name, const PointCloud& v) { values_[name] = &v; }
   bool has(const std::string& name) const { return values_.count(name) != 0; }
   // The input of that name; throws InvalidInput when it is missing or of
   // another kind ("input 'reference' is missing").
@@ -172,6 +176,7 @@ class Inputs {
   const ScalarField& scalar_field(const std::string& name) const { return get<ScalarField>(name, "a scalar field"); }
   const VoxelGrid& voxel_grid(const std::string& name) const { return get<VoxelGrid>(name, "a voxel grid"); }
   const Skeleton& skeleton(const std::string& name) const { return get<Skeleton>(name, "a skeleton"); }
+  const PointCloud& points(const std::string& name) const { return get<PointCloud>(name, "a point cloud"); }
 
  private:
   template <class T>
@@ -182,7 +187,9 @@ class Inputs {
     if (!v) throw InvalidInput("input '" + name + "' must be " + std::string(what));
     return **v;
   }
-  std::map<std::string, std::variant<const Mesh*, const ScalarField*, const VoxelGrid*, const Skeleton*>> values_;
+  std::map<std::string,
+           std::variant<const Mesh*, const ScalarField*, const VoxelGrid*, const Skeleton*, const PointCloud*>>
+      values_;
 };
 
 struct AlgorithmInfo {  // initializers as in ParamInfo
@@ -408,6 +415,8 @@ template <>
 struct ArtifactKind<Animation> : std::integral_constant<OutputKind, OutputKind::animation> {};
 template <>
 struct ArtifactKind<VectorField> : std::integral_constant<OutputKind, OutputKind::vector_field> {};
+template <>
+struct ArtifactKind<PointCloud> : std::integral_constant<OutputKind, OutputKind::points> {};
 template <class T>
 struct ArtifactKind<std::optional<T>> : ArtifactKind<T> {};
 
@@ -422,6 +431,7 @@ void add_artifact(AlgorithmResult& out, const char* name, Metrics&& v);
 void add_artifact(AlgorithmResult& out, const char* name, Text&& v);
 void add_artifact(AlgorithmResult& out, const char* name, Animation&& v);
 void add_artifact(AlgorithmResult& out, const char* name, VectorField&& v);
+void add_artifact(AlgorithmResult& out, const char* name, PointCloud&& v);
 void add_warnings(AlgorithmResult& out, std::vector<std::string>&& warnings);
 // Names the outputs a result struct declares, with their kinds.
 struct OutputCollector {

@@ -12,6 +12,7 @@
 #include "core/errors.h"
 #include "io/mesh_io.h"
 #include "io/skeleton_io.h"
+#include "open3d_reference.h"
 #include "test_support.h"
 #include "voxel/voxel_io.h"
 
@@ -23,7 +24,7 @@ using nlohmann::json;
 
 const OutputKind kKinds[] = {OutputKind::mesh,      OutputKind::scalar_field, OutputKind::voxel_grid,
                              OutputKind::skeleton,  OutputKind::metrics,      OutputKind::text,
-                             OutputKind::animation, OutputKind::vector_field};
+                             OutputKind::animation, OutputKind::vector_field, OutputKind::points};
 
 ScalarField sphere_field(const Mesh& m) {
   ScalarField f{"height", Location::vertex, ColorHint::symmetric, {}};
@@ -56,6 +57,17 @@ Skeleton y_skeleton() {
   return s;
 }
 
+// A sphere's vertices with their outward normals and a colour by height.
+PointCloud sphere_cloud(const Mesh& m) {
+  PointCloud c;
+  for (const Vec3& p : m.positions) {
+    c.positions.push_back(p);
+    c.normals.push_back({float(p.x), float(p.y), float(p.z)});
+    c.colors.push_back({std::uint8_t(127.5 * (p.z + 1)), 40, 200, 255});
+  }
+  return c;
+}
+
 // One artifact of each kind.
 std::vector<Artifact> one_of_each(const Mesh& sphere) {
   Animation anim;
@@ -70,7 +82,8 @@ std::vector<Artifact> one_of_each(const Mesh& sphere) {
           {"metrics", Metrics{{"area", 12.5}, {"genus", 0}}},
           {"message", Text{std::string("bytes \x00\xff as they are", 21)}},
           {"animation", anim},
-          {"normals", sphere_normals(sphere)}};
+          {"normals", sphere_normals(sphere)},
+          {"scan", sphere_cloud(sphere)}};
 }
 
 TEST(ArtifactCodec, EveryKindHasOneCodecFoundByItsKindAndItsName) {
@@ -134,10 +147,52 @@ TEST(ArtifactCodec, TheStoredFormReadsBackAsStoredWithItsSizeInTheEntry) {
       EXPECT_EQ(v->hint, in.hint);
       EXPECT_EQ(entry["count"], in.values.size());
       EXPECT_FLOAT_EQ(entry["max_length"].get<float>(), 1.0f);
+    } else if (const auto* pc = std::get_if<PointCloud>(&back)) {
+      const PointCloud& in = std::get<PointCloud>(a.value);
+      ASSERT_EQ(pc->size(), in.size());
+      EXPECT_EQ(pc->colors, in.colors);
+      ASSERT_EQ(pc->normals.size(), in.size());
+      for (std::size_t i = 0; i < in.size(); ++i) {
+        EXPECT_NEAR(pc->positions[i].z, in.positions[i].z, 1e-6);  // float, as PLY stores them
+        EXPECT_NEAR(pc->normals[i].z, in.normals[i].z, 1e-6);
+      }
     } else if (const auto* an = std::get_if<Animation>(&back)) {
       EXPECT_EQ(an->frame_count(), 2u);
       EXPECT_EQ(an->base.num_faces(), sphere.num_faces());
     }
+  }
+}
+
+// A point cloud's export, read by our reader (no faces, every point) and by
+// the format's owner: Draco's draco_decoder for drc, Open3D for ply and xyz.
+void expect_cloud_read_back(const ExportedArtifact& e, const std::string& format, const PointCloud& in,
+                            const fs::path& dir) {
+  const Mesh ours = read_mesh_bytes(e.bytes, format_from_name(format), e.file_name).mesh;
+  EXPECT_EQ(ours.num_faces(), 0u);
+  EXPECT_EQ(ours.num_vertices(), in.size());
+  const fs::path file = dir / e.file_name;
+  write_file_bytes(file, e.bytes);
+  std::string log;
+  if (format == "drc") {
+    const fs::path out = dir / "scan_decoded.ply";
+    ASSERT_EQ(test::run("draco_decoder -i '" + file.string() + "' -o '" + out.string() + "'", &log), 0) << log;
+    const Mesh decoded = read_mesh(out);
+    EXPECT_EQ(decoded.num_faces(), 0u);
+    EXPECT_EQ(decoded.num_vertices(), in.size());
+    EXPECT_EQ(decoded.normals.size(), in.size());
+    EXPECT_EQ(decoded.colors.size(), in.size());
+    return;
+  }
+  ASSERT_TRUE(test::have_open3d()) << "/usr/bin/python3 has no open3d (install Debian's python3-open3d)";
+  const auto cloud = test::open3d_read(file, format == "xyz" ? "xyzn" : "auto", &log);
+  ASSERT_TRUE(cloud) << log;
+  ASSERT_EQ((*cloud)["points"].size(), in.size());
+  ASSERT_EQ((*cloud)["normals"].size(), in.size());
+  EXPECT_NEAR((*cloud)["points"][7][2].get<double>(), in.positions[7].z, 1e-6);
+  EXPECT_NEAR((*cloud)["normals"][7][0].get<double>(), in.normals[7].x, 1e-6);
+  if (format == "ply") {  // XYZ holds no colours
+    ASSERT_EQ((*cloud)["colors"].size(), in.size());
+    EXPECT_NEAR((*cloud)["colors"][7][0].get<double>() * 255, in.colors[7].r, 1e-3);
   }
 }
 
@@ -227,11 +282,14 @@ TEST(ArtifactCodec, EveryServedFormatIsReadBackByItsOwnReader) {
           }
           break;
         }
+        case OutputKind::points:
+          expect_cloud_read_back(e, f.name, std::get<PointCloud>(a.value), dir);
+          break;
       }
       ++checked;
     }
   }
-  EXPECT_EQ(checked, 6 + 5 + 6 + 4 + 1 + 2 + 1 + 5);
+  EXPECT_EQ(checked, 6 + 5 + 6 + 4 + 1 + 2 + 1 + 5 + 3);
 }
 
 TEST(ArtifactCodec, AnUnknownFormatIsRefusedNamingTheKnownOnes) {

@@ -537,19 +537,19 @@ TEST(BadInput, NonManifoldMeshLoadsAndIsReportedNonManifold) {
 }
 
 TEST(BadInput, UnknownExtensionIsUnsupportedFormatNamingIt) {
-  const fs::path p = dir() / "mesh.xyz";
+  const fs::path p = dir() / "mesh.las";
   test::write_text(p, "OFF\n0 0 0\n");
   try {
     read_mesh_file(p);
     ADD_FAILURE() << "no exception";
   } catch (const UnsupportedFormat& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find(".xyz"), std::string::npos) << what;
+    EXPECT_NE(what.find(".las"), std::string::npos) << what;
     EXPECT_NE(what.find(p.string()), std::string::npos) << what;
     EXPECT_NE(what.find("off, obj, ply, stl, drc, glb"), std::string::npos) << what;
   }
   EXPECT_THROW(read_mesh_file(dir() / "no_extension"), UnsupportedFormat);
-  EXPECT_THROW(write_mesh(box(), dir() / "out.xyz"), UnsupportedFormat);
+  EXPECT_THROW(write_mesh(box(), dir() / "out.las"), UnsupportedFormat);
   try {
     write_mesh(box(), dir() / "out.gltf");
     ADD_FAILURE() << "wrote gltf";
@@ -557,7 +557,7 @@ TEST(BadInput, UnknownExtensionIsUnsupportedFormatNamingIt) {
     EXPECT_NE(std::string(e.what()).find("gltf"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(fs::exists(dir() / "out.gltf"));
-  EXPECT_FALSE(fs::exists(dir() / "out.xyz"));
+  EXPECT_FALSE(fs::exists(dir() / "out.las"));
 }
 
 TEST(BadInput, DirectoryOrMissingFileIsAnIoError) {

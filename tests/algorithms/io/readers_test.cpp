@@ -16,6 +16,7 @@
 #include "core/mesh.h"
 #include "io/mesh_io.h"
 #include "gltf_quad.h"
+#include "open3d_reference.h"
 #include "test_support.h"
 
 namespace cgview {
@@ -554,6 +555,126 @@ TEST(ReadPly, PointCloudLoadsWithoutFaces) {
                            "property float z\nend_header\n1 2 3\n4 5 6\n");
   EXPECT_EQ(r.mesh.num_vertices(), 2u);
   EXPECT_EQ(r.mesh.num_faces(), 0u);
+}
+
+// The same 64 points as Open3D, meshio and draco_encoder wrote them
+// (tests/data/points/README.md), read by us and by Open3D.
+const std::filesystem::path kPoints = CGVIEW_POINTS_DATA_DIR;
+
+TEST(ReadPointClouds, FilesThatOtherToolsWroteReadAsOpen3DReadsThem) {
+  ASSERT_TRUE(test::have_open3d()) << "/usr/bin/python3 has no open3d (install Debian's python3-open3d)";
+  std::string log;
+  const auto ref = test::open3d_read(kPoints / "sphere_open3d.ply", "auto", &log);
+  ASSERT_TRUE(ref) << log;
+  ASSERT_EQ((*ref)["points"].size(), 64u);
+  struct Case {
+    const char* file;
+    bool normals, colors;
+    double tol;  // the text files' 10 decimals; Draco's quantized positions (under 8e-4 seen)
+  };
+  for (const Case c : {Case{"sphere_open3d.ply", true, true, 1e-6}, Case{"sphere_open3d.xyz", true, false, 1e-9},
+                       Case{"sphere_open3d.pts", false, true, 1e-9}, Case{"sphere_draco.drc", true, false, 1e-3}}) {
+    SCOPED_TRACE(c.file);
+    const ReadResult r = read_mesh_file(kPoints / c.file);
+    EXPECT_EQ(r.mesh.num_faces(), 0u);
+    ASSERT_EQ(r.mesh.num_vertices(), 64u);
+    EXPECT_EQ(r.mesh.normals.size(), c.normals ? 64u : 0u);
+    EXPECT_EQ(r.mesh.colors.size(), c.colors ? 64u : 0u);
+    // Draco's kd-tree (draco_encoder's choice) reorders the points: each is
+    // matched to Open3D's nearest, and no two to the same.
+    std::vector<bool> taken(64, false);
+    for (std::size_t i = 0; i < 64; ++i) {
+      std::size_t best = 0;
+      double best_d = 1e300;
+      for (std::size_t j = 0; j < 64; ++j) {
+        const auto& q = (*ref)["points"][j];
+        const double d = norm(r.mesh.positions[i] - Vec3{q[0].get<double>(), q[1].get<double>(), q[2].get<double>()});
+        if (d < best_d) best_d = d, best = j;
+      }
+      EXPECT_LE(best_d, c.tol) << i;
+      EXPECT_FALSE(taken[best]) << i;
+      taken[best] = true;
+      for (int k = 0; c.normals && k < 3; ++k)
+        EXPECT_NEAR(r.mesh.normals[i][k], (*ref)["normals"][best][k].get<double>(), 1e-2) << i;
+      if (c.colors) {
+        EXPECT_NEAR(r.mesh.colors[i].r, (*ref)["colors"][best][0].get<double>() * 255, 0.5) << i;
+      }
+    }
+  }
+}
+
+TEST(ReadPointClouds, XyzRowsWithAndWithoutNormals) {
+  const ReadResult r = read("# a scan\n0 0 0\n1 2.5 -3e2\n\n  4 5 6 # last\n", MeshFormat::xyz, "s.xyz");
+  ASSERT_EQ(r.mesh.num_vertices(), 3u);
+  EXPECT_EQ(r.mesh.positions[1], (Vec3{1, 2.5, -300}));
+  EXPECT_TRUE(r.mesh.normals.empty());
+  const ReadResult n = read("0 0 0 0 0 1\r\n1 1 1 1 0 0\r\n", MeshFormat::xyz, "n.xyz");
+  ASSERT_EQ(n.mesh.normals.size(), 2u);
+  EXPECT_EQ(n.mesh.normals[1], (Vec3f{1, 0, 0}));
+}
+
+TEST(ReadPointClouds, PtsScansWithIntensityAndColours) {
+  // Two scans, each with its count; the intensities are dropped with a word.
+  const ReadResult r = read("2\n0 0 0 -1200 255 0 0\n1 0 0 30 0 255 0\n1\n0 1 0 7 0 0 255\n", MeshFormat::pts, "s.pts");
+  ASSERT_EQ(r.mesh.num_vertices(), 3u);
+  ASSERT_EQ(r.mesh.colors.size(), 3u);
+  EXPECT_EQ(r.mesh.colors[2].b, 255);
+  EXPECT_EQ(r.mesh.colors[1].g, 255);
+  EXPECT_TRUE(has_warning(r, "intensities are not kept"));
+  const ReadResult plain = read("1\n1 2 3\n", MeshFormat::pts, "p.pts");
+  EXPECT_EQ(plain.mesh.positions[0], (Vec3{1, 2, 3}));
+  EXPECT_TRUE(plain.warnings.empty());
+}
+
+TEST(ReadPointClouds, ObjOfVerticesAndTheirNormals) {
+  const ReadResult r = obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0 0 1\nvn 1 0 0\n");
+  EXPECT_EQ(r.mesh.num_faces(), 0u);
+  ASSERT_EQ(r.mesh.normals.size(), 3u);
+  EXPECT_EQ(r.mesh.normals[2], (Vec3f{1, 0, 0}));
+  const ReadResult odd = obj("v 0 0 0\nv 1 0 0\nvn 0 0 1\n");
+  EXPECT_TRUE(odd.mesh.normals.empty());
+  EXPECT_TRUE(has_warning(odd, "not one per vertex"));
+}
+
+TEST(ReadPointClouds, PlyOfVerticesWithNormalsAndColours) {
+  const ReadResult r = ply(std::string(kPlyHead) +
+                           "element vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+                           "property float nx\nproperty float ny\nproperty float nz\nproperty uchar red\n"
+                           "property uchar green\nproperty uchar blue\nend_header\n"
+                           "1 2 3 0 0 1 255 0 0\n4 5 6 1 0 0 0 0 255\n");
+  EXPECT_EQ(r.mesh.num_faces(), 0u);
+  ASSERT_EQ(r.mesh.normals.size(), 2u);
+  EXPECT_EQ(r.mesh.normals[1], (Vec3f{1, 0, 0}));
+  ASSERT_EQ(r.mesh.colors.size(), 2u);
+  EXPECT_EQ(r.mesh.colors[1].b, 255);
+}
+
+TEST(ReadPointClouds, Errors) {
+  struct Case {
+    std::string bytes;
+    MeshFormat format;
+    std::string says;
+    std::uint64_t line;
+  };
+  const std::vector<Case> cases = {
+      {"", MeshFormat::xyz, "no points", 1},
+      {"1 2 3\n4 5\n", MeshFormat::xyz, "a row of 2 numbers", 2},
+      {"1 2 3\n4 5 6 0 0 1\n", MeshFormat::xyz, "a row of 6 numbers after rows of 3", 2},
+      {"1,2,3\n", MeshFormat::xyz, "expected a number, found '1,2,3'", 1},
+      {"1 2 nan\n", MeshFormat::xyz, "non-finite", 1},
+      {"0 0 0 0 0 0 0\n", MeshFormat::xyz, "more than 6 numbers", 1},
+      {"2\n1 2 3\n# cut short\n", MeshFormat::pts, "ends after 1 of its 2 points", 4},
+      {"99999999\n1 2 3\n", MeshFormat::pts, "claims 99999999 points", 1},
+      {"1 2 3\n", MeshFormat::pts, "the number of points alone", 1},
+      {"1\n1 2 3 4 5\n", MeshFormat::pts, "a row of 5 numbers", 2},
+      {"1\n1 2 3 0 300 0 0\n", MeshFormat::pts, "outside 0..255", 2},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.bytes);
+    const ParseError e = error_of(c.bytes, c.format, c.format == MeshFormat::xyz ? "s.xyz" : "s.pts");
+    EXPECT_NE(std::string(e.what()).find(c.says), std::string::npos) << e.what();
+    EXPECT_EQ(e.line(), c.line) << e.what();
+  }
 }
 
 // Triangle strips as Stanford's scans store them: a 2 x 1 grid of squares as
@@ -1261,14 +1382,14 @@ TEST(FormatFromName, ExtensionsInAnyCase) {
   EXPECT_EQ(format_from_name("ply"), MeshFormat::ply);
   EXPECT_EQ(format_from_name("STL"), MeshFormat::stl);
   for (MeshFormat f : {MeshFormat::off, MeshFormat::obj, MeshFormat::ply, MeshFormat::stl, MeshFormat::drc,
-                       MeshFormat::glb, MeshFormat::gltf}) {
+                       MeshFormat::glb, MeshFormat::gltf, MeshFormat::xyz, MeshFormat::pts}) {
     EXPECT_EQ(format_from_name(to_string(f)), f);
     EXPECT_EQ(format_from_name(std::string("x.") + to_string(f)), f);
     EXPECT_TRUE(can_read(f));
-    EXPECT_EQ(can_write(f), f != MeshFormat::gltf);
+    EXPECT_EQ(can_write(f), f != MeshFormat::gltf && f != MeshFormat::pts);
   }
-  EXPECT_EQ(writable_formats(), "off, obj, ply, stl, drc, glb");
-  EXPECT_EQ(readable_formats(), "off, obj, ply, stl, drc, glb, gltf");
+  EXPECT_EQ(writable_formats(), "off, obj, ply, stl, drc, glb, xyz");
+  EXPECT_EQ(readable_formats(), "off, obj, ply, stl, drc, glb, gltf, xyz, pts");
 }
 
 TEST(FormatFromName, Errors) {
@@ -1281,7 +1402,7 @@ TEST(FormatFromName, Errors) {
       {"mesh.tar.gz", "unknown mesh format '.gz' of 'mesh.tar.gz'"},
       {"mesh.", "unknown mesh format '.'"},
       {"model.3DS", "unknown mesh format '.3ds'"},
-      {"xyz", "unknown mesh format '.xyz'"},
+      {"las", "unknown mesh format '.las'"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
@@ -1290,7 +1411,8 @@ TEST(FormatFromName, Errors) {
       ADD_FAILURE() << "no exception";
     } catch (const UnsupportedFormat& e) {
       EXPECT_NE(std::string(e.what()).find(c.says), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find("off, obj, ply, stl, drc, glb, gltf"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("off, obj, ply, stl, drc, glb, gltf, xyz, pts"), std::string::npos)
+          << e.what();
     }
   }
   // UnsupportedFormat is an InvalidInput (a server answers 400).
