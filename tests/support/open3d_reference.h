@@ -32,7 +32,7 @@ inline std::optional<nlohmann::json> open3d_read(const std::filesystem::path& pa
       "pc = o3d.io.read_point_cloud(sys.argv[1], format=sys.argv[2])\n"
       "print(json.dumps({'points': pc.points, 'normals': pc.normals, 'colors': pc.colors},"
       " default=lambda v: [list(x) for x in v]))\n";
-  const std::filesystem::path py = path.string() + ".read.py";
+  const std::filesystem::path py = temp_dir("open3d") / "read.py";  // never beside a committed file
   write_text(py, script);
   std::string out;
   if (run(std::string(kSystemPython) + " '" + py.string() + "' '" + path.string() + "' " + format + " 2>&1", &out) !=
