@@ -208,7 +208,6 @@ export type ServerEvent =
 
 export const SERVER_EVENT_TYPES: ReadonlySet<string> = new Set(['mesh_added', 'mesh_deleted', 'job_progress', 'job_done', 'job_failed', 'job_cancelled']);
 
-/** The id of a job's input mesh ("mesh"), or null (a job on a voxel grid). */
 /**
  * Whether an algorithm's input of kind `input` takes an object of kind
  * `object`: its own kind, and for points a mesh too (its vertices: a stored
@@ -218,7 +217,12 @@ export function takesKind(input: string, object: string): boolean {
   return input === object || (input === 'points' && object === 'mesh');
 }
 
+/**
+ * The id of the stored mesh a job ran on (its input "mesh", or "points"
+ * given a stored mesh: what it made is drawn over that one), or null (a job
+ * on a voxel grid, on an earlier job's output).
+ */
 export function jobMeshId(job: Job | undefined): string | null {
-  const m = job?.inputs?.mesh;
+  const m = job?.inputs?.mesh ?? job?.inputs?.points;
   return typeof m === 'string' ? m : null;
 }
