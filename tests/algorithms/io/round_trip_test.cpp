@@ -1,6 +1,8 @@
 // Round trips through every writable format, each file checked by a reader
 // that is not ours: CGAL's (OFF, OBJ, PLY, STL), Draco's own draco_decoder
-// (.drc) and assimp (.glb); then our reader reads everything back.  CGAL's
+// (.drc) and assimp (.glb); then our reader reads everything back.  Point
+// clouds (meshes with no faces) through PLY, XYZ and Draco, read back by
+// Open3D and draco_decoder.  CGAL's
 // headers are included here only (the test links cgview_cgal).
 #include <gtest/gtest.h>
 
@@ -28,6 +30,7 @@
 #include "core/surface_mesh.h"
 #include "io/mesh_io.h"
 #include "format_variants.h"
+#include "open3d_reference.h"
 #include "test_support.h"
 
 namespace cgview {
@@ -514,6 +517,55 @@ TEST(RoundTrip, SurfaceMeshOfRoundTripMatches) {
     EXPECT_EQ(b.mesh.number_of_edges(), a.mesh.number_of_edges());
     EXPECT_EQ(b.mesh.number_of_faces(), a.mesh.number_of_faces());
     EXPECT_EQ(CGAL::is_closed(b.mesh), CGAL::is_closed(a.mesh));
+  }
+}
+
+// A cloud of 500 points with normals and colours, written as a point cloud
+// (vertices only) and read back by each format's reference reader and ours.
+TEST(RoundTrip, APointCloudThroughPlyXyzAndDraco) {
+  Mesh cloud;
+  for (int i = 0; i < 500; ++i) {
+    const double t = i * 0.1, z = -1 + 2 * (i + 0.5) / 500;
+    cloud.positions.push_back({std::cos(t) * 3, std::sin(t) * 2, z});
+    cloud.normals.push_back(normalized(Vec3f{float(std::cos(t)), float(std::sin(t)), 0.5f}));
+    cloud.colors.push_back({std::uint8_t(i % 256), std::uint8_t(255 - i % 256), 7, 255});
+  }
+  const fs::path dir = test::temp_dir("round-trip-points");
+  for (const char* ext : {"ply", "xyz", "drc"}) {
+    SCOPED_TRACE(ext);
+    const fs::path file = dir / (std::string("cloud.") + ext);
+    write_mesh(cloud, file);
+    const Mesh back = read_mesh(file);
+    EXPECT_EQ(back.num_faces(), 0u);
+    ASSERT_EQ(back.num_vertices(), 500u);
+    EXPECT_EQ(back.normals.size(), 500u);
+    EXPECT_EQ(back.colors.size(), std::string(ext) == "xyz" ? 0u : 500u);  // XYZ holds none
+    const double tol = std::string(ext) == "drc" ? draco_tolerance(cloud) : 1e-6;
+    for (std::size_t i = 0; i < 500; ++i) EXPECT_LE(norm(back.positions[i] - cloud.positions[i]), tol) << i;
+    std::string log;
+    if (std::string(ext) == "drc") {
+      // Draco's own decoder, to PLY: every point in its place, in order.
+      const fs::path out = dir / "cloud_decoded.ply";
+      ASSERT_EQ(test::run("draco_decoder -i '" + file.string() + "' -o '" + out.string() + "'", &log), 0) << log;
+      const Mesh decoded = read_mesh(out);
+      ASSERT_EQ(decoded.num_vertices(), 500u);
+      for (std::size_t i = 0; i < 500; ++i) EXPECT_LE(norm(decoded.positions[i] - cloud.positions[i]), tol) << i;
+      continue;
+    }
+    ASSERT_TRUE(test::have_open3d()) << "/usr/bin/python3 has no open3d (install Debian's python3-open3d)";
+    const auto o3d = test::open3d_read(file, std::string(ext) == "xyz" ? "xyzn" : "auto", &log);
+    ASSERT_TRUE(o3d) << log;
+    ASSERT_EQ((*o3d)["points"].size(), 500u);
+    ASSERT_EQ((*o3d)["normals"].size(), 500u);
+    for (std::size_t i = 0; i < 500; i += 7)
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR((*o3d)["points"][i][k].get<double>(), cloud.positions[i][k], tol) << i;
+        EXPECT_NEAR((*o3d)["normals"][i][k].get<double>(), cloud.normals[i][k], 1e-6) << i;
+      }
+    if (std::string(ext) == "ply") {
+      ASSERT_EQ((*o3d)["colors"].size(), 500u);
+      EXPECT_NEAR((*o3d)["colors"][300][0].get<double>() * 255, cloud.colors[300].r, 1e-3);
+    }
   }
 }
 
