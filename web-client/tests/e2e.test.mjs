@@ -173,7 +173,7 @@ test('uploading the elephant through the page lists, reports and draws it', asyn
   const accept = (await page.locator('#file-input').getAttribute('accept')).split(',');
   for (const ext of [...formats.flatMap((f) => f.extensions), '.zip', '.mtl', '.nrrd']) assert.ok(accept.includes(ext), `the picker takes ${ext}: ${accept}`);
   const writable = formats.filter((f) => f.can_write).map((f) => f.name);
-  assert.deepEqual([...writable].sort(), ['drc', 'glb', 'obj', 'off', 'ply', 'stl']);
+  assert.deepEqual([...writable].sort(), ['drc', 'glb', 'obj', 'off', 'ply', 'stl', 'xyz']);
   const links = page.locator('#report .downloads a');
   assert.deepEqual(await links.allInnerTexts(), writable);
   for (const [i, f] of writable.entries()) assert.match(await links.nth(i).getAttribute('href'), new RegExp(`/download\\?format=${f}$`));
