@@ -217,10 +217,19 @@ VoxelizeGeometry voxelize_geometry(const BBox& box, const VoxelizeParams& p) {
 }
 
 VoxelizeResult voxelize_unchecked(const Mesh& mesh, const VoxelizeParams& p, const Context* ctx) {
-  if (mesh.num_faces() == 0) throw InvalidInput("voxelize needs a triangle mesh: the mesh has no faces");
+  // A mesh with no faces is a point cloud (as files hold one): its points
+  // mark voxels, and it has no inside to fill.
+  const bool cloud = mesh.num_faces() == 0;
+  if (cloud && mesh.num_vertices() == 0) throw InvalidInput("voxelize: the mesh is empty (no faces, no points)");
+  if (cloud && p.mode == VoxelizeMode::solid)
+    throw InvalidInput(
+        "voxelize: a point cloud (a mesh with no faces) has no inside to fill: use mode surface (each point marks "
+        "its voxel), or make a surface of it first (poisson_reconstruction)");
   mesh.validate();
-  // Only the vertices that faces use count for the box.
+  // Only the vertices that faces use count for the box (a cloud's: all).
   BBox box;
+  if (cloud)
+    for (const Vec3& q : mesh.positions) box.add(q);
   for (const Tri& t : mesh.faces)
     for (Index v : t) box.add(mesh.positions[v]);
   if (p.box) {
@@ -229,7 +238,8 @@ VoxelizeResult voxelize_unchecked(const Mesh& mesh, const VoxelizeParams& p, con
     const double slack = 1e-9 * norm(p.box->size());
     for (int a = 0; a < 3; ++a)
       if (box.min[a] < p.box->min[a] - slack || box.max[a] > p.box->max[a] + slack)
-        throw InvalidInput("voxelize: the given box does not hold the mesh's faces");
+        throw InvalidInput(std::string("voxelize: the given box does not hold the mesh's ") +
+                           (cloud ? "points" : "faces"));
     box = *p.box;
   }
   const auto [dims, size, need] = voxelize_geometry(box, p);
@@ -249,6 +259,25 @@ VoxelizeResult voxelize_unchecked(const Mesh& mesh, const VoxelizeParams& p, con
   for (std::size_t v = 0; v < g.size(); ++v) {
     const Vec3 q = (mesh.positions[v] - box.min) / size;
     for (int a = 0; a < 3; ++a) g[v][a] = std::clamp(q[a], 0.0, cells_of[a]) + p.padding;
+  }
+
+  if (cloud) {
+    // Voxel (i, j, k) is [i, i+1) x ...: a point marks the one holding it; a
+    // point on the box's far side, the last voxel before the padding.
+    std::uint8_t* bytes = result.grid.bytes().data();
+    const std::size_t nx = std::size_t(dims[0]), nxy = nx * std::size_t(dims[1]);
+    for (const Vec3& q : g) {
+      std::size_t at = 0, stride = 1;
+      for (int a = 0; a < 3; ++a) {
+        const int last = p.padding + int(cells_of[a]) - 1;
+        at += stride * std::size_t(std::min(int(std::floor(q[a])), last));
+        stride = a == 0 ? nx : nxy;
+      }
+      bytes[at] = 1;
+    }
+    result.surface_voxels = result.solid_voxels = result.grid.count_occupied();
+    if (ctx) ctx->progress(1.0, "done");
+    return result;
   }
 
   int nt = p.threads > 0 ? p.threads : int(std::thread::hardware_concurrency());

@@ -34,11 +34,14 @@ VoxelizeResult voxelize(const Mesh& mesh, const VoxelizeParams& p, Context* ctx)
 
 // voxelize takes a const Context (see voxelize.h), the registry a function
 // of a Context*: a lambda adapts it.
-CGVIEW_REGISTER_FUNCTION(voxelize, voxelize,
-                         {.title = "Voxelize",
-                          .description = "Surface or solid voxels of the mesh at a resolution or voxel size: exact "
-                                         "triangle-box overlap (no gaps), interior by a flood fill of the outside.",
-                          .area = "voxel"})
+CGVIEW_REGISTER_FUNCTION(
+    voxelize, voxelize,
+    {.title = "Voxelize",
+     .description =
+         "Surface or solid voxels of the mesh at a resolution or voxel size: exact "
+         "triangle-box overlap (no gaps), interior by a flood fill of the outside; a point cloud (no faces): "
+         "the voxels holding its points, in surface mode.",
+     .area = "voxel"})
 CGVIEW_REGISTER_PRECHECK(voxelize, VoxelizeParams, precheck)
 
 }  // namespace cgview

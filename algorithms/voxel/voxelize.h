@@ -24,6 +24,11 @@
 // gets a warning with its number of boundary loops; holes narrower than a
 // voxel are closed by the surface voxels, wider ones let the flood in.
 //
+// A point cloud (a mesh with no faces, as files hold one): in surface mode
+// each point marks the voxel holding it (voxel v is the half-open cube, a
+// point on the box's far side marks the last voxel inside the padding);
+// solid mode refuses it, having no inside.
+//
 // Grid: origin = bounding-box minimum - padding * voxel_size;
 // dims[a] = ceil(extent[a] / voxel_size) + 2 * padding (at least 1 + 2 * padding);
 // voxel_size = longest extent / resolution unless voxel_size > 0 is given.
@@ -116,9 +121,10 @@ struct VoxelizeResult {
 };
 
 // Throws InvalidInput for a parameter outside its range (check_params), an
-// empty or invalid mesh, a given box that does not hold the faces, and a grid
-// whose memory (one byte per voxel) would pass max_memory_mb: the message
-// says how much it would take.  ctx (optional): progress and cancellation
+// empty or invalid mesh, a point cloud in solid mode, a given box that does
+// not hold the faces (a cloud's points), and a grid whose memory (one byte
+// per voxel) would pass max_memory_mb: the message says how much it would
+// take.  ctx (optional): progress and cancellation
 // (throws Cancelled); a const one, so that a thread of another job
 // (skeleton_projection's solid) may pass its own.
 VoxelizeResult voxelize(const Mesh& mesh, const VoxelizeParams& p = {}, Context* ctx = nullptr);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -221,6 +222,48 @@ TEST(VoxelizeTest, SlicesMatchAnalyticCrossSections) {
       EXPECT_GE(area, std::numbers::pi * std::pow(std::max(0.0, rmin - 0.002), 2)) << "axis " << axis << " slice " << k;
       EXPECT_LE(area, std::numbers::pi * std::pow(rmax + std::sqrt(2.0) * s, 2)) << "axis " << axis << " slice " << k;
     }
+}
+
+// ---- point clouds ----------------------------------------------------------------------
+
+// A mesh with no faces, as a point cloud is stored: each point marks the
+// voxel [i, i+1) x [j, j+1) x [k, k+1) holding it, a point on the box's far
+// side the last voxel before the padding; solid mode has no inside to fill.
+TEST(VoxelizeTest, APointCloudMarksTheVoxelsHoldingItsPoints) {
+  Mesh cloud;
+  cloud.positions = {{0, 0, 0}, {3, 3, 3}, {0.5, 1.0, 2.999}, {2.49, 0.01, 1.5}, {3, 0.25, 0.75}};
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 3.0);
+  for (int n = 0; n < 200; ++n) cloud.positions.push_back({u(rng), u(rng), u(rng)});
+  const VoxelizeResult r = voxelize(cloud, {.voxel_size = 0.5, .mode = VoxelizeMode::surface});
+  ASSERT_EQ(r.grid.dims(), (std::array<int, 3>{8, 8, 8}));
+  std::set<std::array<int, 3>> expected;
+  for (const Vec3& q : cloud.positions)
+    expected.insert(
+        {1 + std::min(5, int(q.x / 0.5)), 1 + std::min(5, int(q.y / 0.5)), 1 + std::min(5, int(q.z / 0.5))});
+  std::set<std::array<int, 3>> marked;
+  for (std::size_t n = 0; n < r.grid.size(); ++n)
+    if (r.grid.bytes()[n]) {
+      const auto v = r.grid.unlinear(n);
+      marked.insert({v.i, v.j, v.k});
+    }
+  EXPECT_EQ(marked, expected);
+  EXPECT_EQ(r.surface_voxels, expected.size());
+  EXPECT_EQ(r.metrics.at("occupied_voxels"), double(expected.size()));
+  EXPECT_TRUE(r.warnings.empty());
+
+  const std::string solid = error_of([&] { voxelize(cloud, {.voxel_size = 0.5, .mode = VoxelizeMode::solid}); });
+  EXPECT_NE(solid.find("a point cloud (a mesh with no faces) has no inside"), std::string::npos) << solid;
+  EXPECT_NE(error_of([&] { vox(Mesh{}, 8, VoxelizeMode::surface); }).find("empty"), std::string::npos);
+  Mesh one;
+  one.positions = {{1, 2, 3}};
+  EXPECT_EQ(voxelize(one, {.voxel_size = 0.1, .mode = VoxelizeMode::surface}).surface_voxels, 1u);
+
+  // As a job runs it.
+  Context ctx;
+  const AlgorithmResult job =
+      find_algorithm("voxelize").run(cloud, {{"voxel_size", 0.5}, {"mode", std::string("surface")}}, ctx);
+  EXPECT_EQ(std::get<VoxelGrid>(job.artifacts.at(0).value).count_occupied(), expected.size());
 }
 
 // ---- bad input ----------------------------------------------------------------------
