@@ -17,8 +17,13 @@ nlohmann::json material_of(const MeshRecord& r) {
   return m;
 }
 
+// The report's "points" (a point cloud: points and no faces), found without
+// parsing it: the server writes the report (mesh_report_json.cpp) compact.
+bool is_point_cloud(const MeshRecord& r) { return r.report_json.find("\"points\":true") != std::string::npos; }
+
 nlohmann::json mesh_json(const MeshRecord& r) {
   nlohmann::json j = mesh_head(r);
+  j["points"] = is_point_cloud(r);
   j["report"] = nlohmann::json::parse(r.report_json);
   j["warnings"] = nlohmann::json::parse(r.warnings_json);
   j.update(material_of(r));
@@ -26,7 +31,9 @@ nlohmann::json mesh_json(const MeshRecord& r) {
 }
 
 std::string mesh_json_text(const MeshRecord& r) {
-  std::string s = mesh_head(r).dump();
+  nlohmann::json head = mesh_head(r);
+  head["points"] = is_point_cloud(r);
+  std::string s = head.dump();
   s.pop_back();                           // the closing brace
   std::string m = material_of(r).dump();  // {"has_uvs":...}: spliced in without its braces
   return s + ",\"report\":" + r.report_json + ",\"warnings\":" + r.warnings_json + "," + m.substr(1);

@@ -28,8 +28,11 @@ struct MeshRecord {
 // blob: name, mime, bytes, ...) and, when the material gives them, kd and
 // materials; a mesh stored before textures existed reads as untextured.
 nlohmann::json material_of(const MeshRecord& record);
+// Whether the stored mesh is a point cloud: its report's "points".
+bool is_point_cloud(const MeshRecord& record);
 // The Mesh clients read: id, name, format, bytes, created, sha256, owner,
-// report, warnings, has_uvs, textures.
+// points (true for a point cloud: points and no faces), report, warnings,
+// has_uvs, textures.
 nlohmann::json mesh_json(const MeshRecord& record);
 // The same as text, the stored report and warnings spliced in unparsed (a
 // big mesh's report is read often and need not be parsed for it).

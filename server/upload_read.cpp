@@ -283,10 +283,8 @@ UploadRead read_upload(const std::string& name, const std::string& format, std::
   }
   ReadResult r = read_mesh_bytes(mesh_bytes, f, n, options);
   if (r.mesh.num_vertices() == 0) throw InvalidInput(n + " is empty: it has no vertices and no faces");
-  if (r.mesh.num_faces() == 0)
-    throw InvalidInput(n + " has " + std::to_string(r.mesh.num_vertices()) +
-                       " points and no faces: point clouds are not supported yet; mesh it first (for example "
-                       "Poisson reconstruction in MeshLab or Open3D)");
+  // A file of points and no faces is a point cloud, stored as a mesh with
+  // no faces (core/point_cloud.h); its report and mesh JSON say "points".
   Textures textures = find_textures(r, mesh_bytes, files, mesh_file, bundle, read_with, r.warnings);
   UploadRead out;
   out.name = n;

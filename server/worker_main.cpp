@@ -91,8 +91,8 @@ int run_job(const fs::path& spec_path, fs::path& out) {
   const Algorithm& algo = find_algorithm(spec.at("algorithm").get<std::string>());
   const auto values = protocol::params_from_json(algo, spec.value("params", json::object()));
   // Every input is a file ("inputs": {"mesh": path, "reference": path}): a
-  // stored mesh, or an earlier job's voxel grid or skeleton, as the
-  // algorithm declares.
+  // stored mesh, or an earlier job's voxel grid, skeleton or points (a
+  // cloud's file, or a mesh's: its vertices), as the algorithm declares.
   InputFiles files;
   const json paths = spec.value("inputs", json::object());
   for (const InputSpec& in : algo.info.inputs)

@@ -92,7 +92,28 @@ Job Admission::admit(const json& req, const Caller& caller, JobLookup& jobs, std
   std::optional<MeshRecord> mesh;
   for (const auto& spec : specs) {
     const std::string name = spec.value("name", ""), kind = spec.value("kind", "mesh");
-    if (kind != "mesh") {
+    // A point cloud is a stored mesh (an uploaded cloud is one with no faces;
+    // a mesh's vertices are one), or an earlier job's points or mesh.
+    const bool points = kind == to_string(OutputKind::points);
+    if (points && inputs.contains(name) && inputs[name].is_object()) {
+      const json& v = inputs[name];
+      if (!v.value("job", json()).is_string() || !v.value("artifact", json()).is_string())
+        throw InvalidInput("input '" + name + "' is a point cloud: \"<mesh id>\" or {\"job\": \"<job id>\", " +
+                           "\"artifact\": \"<name>\"} of a points or mesh artifact");
+      try {
+        (void)jobs.artifact_file(v["job"], v["artifact"], kind, caller);
+      } catch (const InvalidInput& not_points) {
+        try {
+          (void)jobs.artifact_file(v["job"], v["artifact"], "mesh", caller);
+        } catch (const InvalidInput&) {
+          throw not_points;
+        }
+      }
+      resolved[name] = {{"job", v["job"]}, {"artifact", v["artifact"]}};
+      input_shas += "\n" + name + "=" + v["job"].get<std::string>() + "/" + v["artifact"].get<std::string>();
+      continue;
+    }
+    if (kind != "mesh" && !points) {
       // Any other kind is an earlier job's artifact of that kind.
       if (!inputs.contains(name))
         throw InvalidInput("input '" + name + "' is missing: {\"" + name +
@@ -141,6 +162,10 @@ Job Admission::admit(const json& req, const Caller& caller, JobLookup& jobs, std
       InputSummary& sum = summaries[name];
       sum.vertices = report.value("vertices", std::size_t(0));
       sum.faces = report.value("faces", std::size_t(0));
+      if (!points && sum.faces == 0)
+        throw InvalidInput("input '" + name + "' (" + rec->name + ") is a point cloud of " +
+                           std::to_string(sum.vertices) + " points and no faces: " + algorithm +
+                           " needs a mesh with faces (mesh the cloud first, or run an algorithm that takes points)");
       const json box = report.value("bbox", json::object());
       if (box.contains("min") && box.contains("max") && box["min"].size() == 3 && box["max"].size() == 3 &&
           box["min"][0].is_number() && box["max"][0].is_number())

@@ -51,6 +51,7 @@ void add_mesh_routes(Routes& routes, const RouteContext& ctx) {
                                         {"extensions", f.extensions},
                                         {"mime", f.mime},
                                         {"can_write", f.write != nullptr},
+                                        {"points_only", f.points_only},
                                         {"help", f.help}});
                       return json_response(200, {{"formats", list}});
                     },

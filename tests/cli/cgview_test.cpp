@@ -405,9 +405,9 @@ TEST(CliTest, ErrorMissingFile) {
 
 TEST(CliTest, ErrorUnknownExtension) {
   const fs::path dir = test::temp_dir("cli-ext");
-  const fs::path p = dir / "mesh.xyz";
+  const fs::path p = dir / "mesh.las";
   test::write_text(p, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
-  expect_one_line_error("info " + quote(p.string()), "xyz");
+  expect_one_line_error("info " + quote(p.string()), "las");
   expect_one_line_error("convert elephant " + quote((dir / "out.abc").string()), "abc");
   EXPECT_FALSE(fs::exists(dir / "out.abc"));
 }

@@ -388,6 +388,65 @@ TEST_F(JobsTest, ANonManifoldMeshIsRepairedFirstWithAWarning) {
       << refused.dump();
 }
 
+// An input of kind points takes a stored cloud, any stored mesh's vertices,
+// or an earlier job's points or mesh; an algorithm that needs faces refuses
+// a cloud with a 400 that says so.
+TEST_F(JobsTest, APointCloudInputFromACloudAMeshOrAnEarlierJob) {
+  const auto up = http_call(server_.port(), Method::post, "/api/v1/meshes?name=scan.xyz",
+                            "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n0 0 1 1 0 0\n");
+  ASSERT_EQ(up.status, 201) << up.body;
+  const std::string cloud = up.body_json()["id"];
+  EXPECT_EQ(up.body_json()["points"], true);
+  auto run = [&](const json& input) {
+    const auto r = http_call(server_.port(), Method::post, "/api/v1/jobs",
+                             json{{"algorithm", "test_points"}, {"inputs", {{"points", input}}}}.dump());
+    EXPECT_EQ(r.status, 201) << r.body;
+    const json done = wait_end(r.body_json()["id"]);
+    EXPECT_EQ(done["state"], "done") << done.dump();
+    return done;
+  };
+  const json first = run(cloud);
+  json given = json::parse(artifact(first["id"], "given", "json"));
+  EXPECT_EQ(given["points"], 4);
+  EXPECT_EQ(given["normals"], 1);
+  EXPECT_EQ(given["min_x"], 0);
+  ASSERT_EQ(first["artifacts"][0]["kind"], "points");
+  // Served as a Draco point cloud by default (the viewer's), and as ply and xyz.
+  const auto drc = http_get(server_.port(), "/api/v1/jobs/" + first["id"].get<std::string>() + "/artifacts/points");
+  ASSERT_EQ(drc.status, 200) << drc.body;
+  const Mesh moved = read_mesh_bytes(drc.body, MeshFormat::drc, "points.drc").mesh;
+  EXPECT_EQ(moved.num_vertices(), 4u);
+  EXPECT_EQ(moved.num_faces(), 0u);
+  EXPECT_EQ(moved.normals.size(), 4u);
+  EXPECT_EQ(read_mesh_bytes(artifact(first["id"], "points", "xyz"), MeshFormat::xyz, "p.xyz").mesh.num_vertices(), 4u);
+  // The earlier job's cloud, moved again.
+  given = json::parse(artifact(run({{"job", first["id"]}, {"artifact", "points"}})["id"], "given", "json"));
+  EXPECT_EQ(given["points"], 4);
+  EXPECT_EQ(given["min_x"], 1);
+  // A mesh's vertices: the stored sphere's, and an earlier job's mesh.
+  const std::size_t sphere = read_mesh(test::sample("sphere.off")).num_vertices();
+  given = json::parse(artifact(run(mesh_id_)["id"], "given", "json"));
+  EXPECT_EQ(given["points"], sphere);
+  const json translated = wait_end(submit("test_translate", json::object())["id"]);
+  given = json::parse(artifact(run({{"job", translated["id"]}, {"artifact", "mesh"}})["id"], "given", "json"));
+  EXPECT_EQ(given["points"], sphere);
+  // Not a cloud: an earlier job's metrics.
+  const auto metrics = http_call(
+      server_.port(), Method::post, "/api/v1/jobs",
+      json{{"algorithm", "test_points"}, {"inputs", {{"points", {{"job", first["id"]}, {"artifact", "given"}}}}}}
+          .dump());
+  EXPECT_EQ(metrics.status, 400) << metrics.body;
+  EXPECT_NE(metrics.body.find("is a metrics"), std::string::npos) << metrics.body;
+  // An algorithm that needs faces refuses the cloud, saying why.
+  const auto faces = http_call(server_.port(), Method::post, "/api/v1/jobs",
+                               json{{"algorithm", "test_translate"}, {"inputs", {{"mesh", cloud}}}}.dump());
+  EXPECT_EQ(faces.status, 400) << faces.body;
+  EXPECT_NE(faces.body.find("input 'mesh' (scan.xyz) is a point cloud of 4 points and no faces: test_translate "
+                            "needs a mesh with faces"),
+            std::string::npos)
+      << faces.body;
+}
+
 TEST_F(JobsTest, AJobOfTwoInputsTakesBothAndNamesAMissingOne) {
   // hausdorff between the mesh and its translated copy (an earlier job's output).
   const json moved = wait_end(submit("test_translate", json::object())["id"]);

@@ -185,10 +185,10 @@ TEST_F(RouterTest, UnknownIdsAre404) {
 
 TEST_F(RouterTest, BadFormatsAre400) {
   const std::string id = upload_sample("sphere.off")["id"];
-  expect_error(call("GET", "/api/v1/meshes/" + id + "/download?format=xyz"), 400, "unsupported_format");
+  expect_error(call("GET", "/api/v1/meshes/" + id + "/download?format=las"), 400, "unsupported_format");
   expect_error(call("GET", "/api/v1/meshes/" + id + "/download?format=gltf"), 400, "unsupported_format");
   expect_error(call("GET", "/api/v1/meshes/" + id + "/download?format="), 400, "unsupported_format");
-  expect_error(call("POST", "/api/v1/meshes?name=a.xyz", "whatever"), 400, "unsupported_format");
+  expect_error(call("POST", "/api/v1/meshes?name=a.las", "whatever"), 400, "unsupported_format");
   expect_error(call("POST", "/api/v1/meshes?name=a.off&format=doc", "whatever"), 400, "unsupported_format");
   EXPECT_EQ(store_->count(), 1u);
 }
@@ -206,29 +206,32 @@ TEST_F(RouterTest, MalformedFileIs400WithTheParsersMessage) {
   EXPECT_EQ(j["detail"], parser_message);
   EXPECT_NE(parser_message.find("broken.off"), std::string::npos) << parser_message;
 
-  // Truncated binary, empty body, and a mesh without faces.
+  // Truncated binary and an empty body.
   const std::string ply = write_mesh_bytes(test::box(), MeshFormat::ply);
   expect_error(call("POST", "/api/v1/meshes?name=cut.ply", ply.substr(0, ply.size() - 10)), 400, "invalid_mesh");
   expect_error(call("POST", "/api/v1/meshes?name=empty.off", ""), 400, "invalid_mesh");
-  expect_error(call("POST", "/api/v1/meshes?name=points.off", "OFF\n1 0 0\n0 0 0\n"), 400, "invalid_mesh");
-  // A point cloud is said to be one, with what to do about it.
-  const json points = expect_error(call("POST", "/api/v1/meshes?name=scan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"),
-                                   400, "invalid_mesh");
-  EXPECT_EQ(points["detail"],
-            "scan.obj has 4 points and no faces: point clouds are not supported yet; mesh it first (for example "
-            "Poisson reconstruction in MeshLab or Open3D)");
-  const json ply_points = expect_error(
-      call("POST", "/api/v1/meshes?name=scan.ply",
-           "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
-           "end_header\n0 0 0\n1 2 3\n"),
-      400, "invalid_mesh");
-  EXPECT_NE(ply_points["detail"].get<std::string>().find("scan.ply has 2 points and no faces: point clouds"),
-            std::string::npos)
-      << ply_points;
   const json nothing = expect_error(call("POST", "/api/v1/meshes?name=none.off", "OFF\n0 0 0\n"), 400, "invalid_mesh");
   EXPECT_EQ(nothing["detail"], "none.off is empty: it has no vertices and no faces");
   EXPECT_EQ(store_->count(), 0u);
   EXPECT_TRUE(events_.empty());
+}
+
+// A file of points and no faces is a point cloud: stored as a mesh with no
+// faces, and its JSON and report say so.
+TEST_F(RouterTest, APointCloudIsStoredAndSaidToBeOne) {
+  const HttpResponse obj = call("POST", "/api/v1/meshes?name=scan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n");
+  ASSERT_EQ(obj.status, 201) << obj.body;
+  const json j = json::parse(call("GET", "/api/v1/meshes/" + json::parse(obj.body)["id"].get<std::string>()).body);
+  EXPECT_EQ(j["points"], true);
+  EXPECT_EQ(j["report"]["points"], true);
+  EXPECT_EQ(j["report"]["vertices"], 4);
+  EXPECT_EQ(j["report"]["faces"], 0);
+  const HttpResponse xyz = call("POST", "/api/v1/meshes?name=scan.xyz", "0 0 0\n1 2 3\n");
+  ASSERT_EQ(xyz.status, 201) << xyz.body;
+  EXPECT_EQ(json::parse(xyz.body)["points"], true);
+  const HttpResponse box = call("POST", "/api/v1/meshes?name=box.ply", write_mesh_bytes(test::box(), MeshFormat::ply));
+  EXPECT_EQ(json::parse(box.body)["points"], false);
+  EXPECT_EQ(json::parse(box.body)["report"]["points"], false);
 }
 
 TEST_F(RouterTest, MissingOrBadNameIs400) {

@@ -20,6 +20,7 @@
 #include "io/mesh_formats.h"
 #include "io/mesh_io.h"
 #include "mesh_service.h"
+#include "stored_order.h"
 #include "store.h"
 #include "sqlite_query.h"
 #include "test_support.h"
@@ -321,7 +322,7 @@ TEST(MeshService, UploadReportsAndRefusesBadInput) {
   EXPECT_EQ(service.upload("box.bin", "off", bytes).format, "off");
   EXPECT_THROW(service.upload("", "", bytes), InvalidInput);
   EXPECT_THROW(service.upload("a/b.off", "", bytes), InvalidInput);
-  EXPECT_THROW(service.upload("box.xyz", "", bytes), UnsupportedFormat);
+  EXPECT_THROW(service.upload("box.las", "", bytes), UnsupportedFormat);
   EXPECT_THROW(service.upload("bad.off", "", "OFF\n3 1 0\n0 0 0\n"), InvalidInput);
   EXPECT_EQ(store.count(), 2u);
 }
@@ -338,11 +339,37 @@ TEST(MeshService, DownloadConvertsAndReturnsTheOriginal) {
     SCOPED_TRACE(f);
     const std::string out = service.download(r, f);
     const Mesh m = read_mesh_bytes(out, writable.format, "download").mesh;
-    EXPECT_EQ(m.num_faces(), 12u);
+    EXPECT_EQ(m.num_faces(), writable.points_only ? 0u : 12u);  // XYZ: the vertices as a cloud
     EXPECT_EQ(m.num_vertices(), 8u);
   }
   EXPECT_THROW(service.download(r, "gltf"), UnsupportedFormat);
-  EXPECT_THROW(service.download(r, "xyz"), UnsupportedFormat);
+  EXPECT_THROW(service.download(r, "las"), UnsupportedFormat);
+}
+
+// A cloud's stream is a Draco point cloud with its normals and colours, its
+// points in the stored order, and it gets no preview however big.
+TEST(MeshService, APointCloudStreamsAsADracoPointCloudInItsOrder) {
+  Store store(test::temp_dir("service-points"));
+  MeshService service(store);
+  service.set_preview({.threshold_faces = 1, .target_faces = 1});
+  std::string xyz;
+  for (int i = 0; i < 300; ++i) xyz += std::to_string(i) + " " + std::to_string(i % 7) + " 1 0 0 1\n";
+  const MeshRecord r = service.upload("scan.xyz", "", xyz);
+  EXPECT_FALSE(service.has_preview(r));
+  const auto enc = service.draco(r, 14);
+  EXPECT_EQ(enc->vertices, 300u);
+  EXPECT_EQ(enc->faces, 0u);
+  EXPECT_TRUE(enc->has_normals);
+  const Mesh decoded = read_mesh_bytes(enc->bytes, MeshFormat::drc, "stream").mesh;
+  ASSERT_EQ(decoded.num_vertices(), 300u);
+  EXPECT_EQ(decoded.num_faces(), 0u);
+  EXPECT_EQ(decoded.normals.size(), 300u);
+  EXPECT_NEAR(decoded.positions[123].x, 123, 0.05);
+  EXPECT_NEAR(decoded.positions[123].y, 123 % 7, 0.05);
+  const protocol::StoredOrder order = protocol::unpack_stored_order(service.stored_order(r, 14));
+  ASSERT_EQ(order.points.size(), 300u);
+  for (std::uint32_t i = 0; i < 300; ++i) EXPECT_EQ(order.points[i], i);
+  EXPECT_TRUE(order.faces.empty());
 }
 
 TEST(MeshServiceCache, SecondDracoCallIsServedFromTheCache) {

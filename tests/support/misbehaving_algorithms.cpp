@@ -1,6 +1,7 @@
 // Algorithms that misbehave on purpose, for the job scheduler's tests.
 // Linked only into cgview-worker-test (area "test"), never into the server,
 // the CLI or the normal worker.
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -66,6 +67,22 @@ AlgorithmResult translate(const Mesh& mesh, const NoParams&, Context&) {
   return {{{"mesh", out}}, {}};
 }
 
+// The cloud it is given moved by +1 along x, and what it was given (how many
+// points, with normals, with colours): what the worker hands an input of
+// kind points, from a stored mesh or an earlier job's points or mesh.
+AlgorithmResult move_points(const Inputs& in, const NoParams&, Context&) {
+  PointCloud out = in.points("points");
+  Metrics m{{"points", double(out.size())},
+            {"normals", out.has_normals() ? 1.0 : 0.0},
+            {"colors", out.has_colors() ? 1.0 : 0.0},
+            {"min_x", out.positions.empty() ? 0.0 : out.positions[0].x}};
+  for (Vec3& p : out.positions) {
+    m["min_x"] = std::min(m["min_x"], p.x);
+    p.x += 1.0;
+  }
+  return {{{"points", std::move(out)}, {"given", std::move(m)}}, {}};
+}
+
 // Prints to stdout as libraries and students' code do: that must not reach
 // the worker's progress pipe, or the job would fail for it.
 AlgorithmResult chatty(const Mesh& mesh, const NoParams&, Context& ctx) {
@@ -88,6 +105,12 @@ CGVIEW_REGISTER_ALGORITHM(test_translate, NoParams, translate,
                            .description = "moves the mesh by +1 in x",
                            .area = "test",
                            .outputs = {{"mesh", OutputKind::mesh}}})
+CGVIEW_REGISTER_ALGORITHM(test_points, NoParams, move_points,
+                          {.title = "Move points (test)",
+                           .description = "moves the point cloud by +1 in x",
+                           .area = "test",
+                           .outputs = {{"points", OutputKind::points}, {"given", OutputKind::metrics}},
+                           .inputs = {{.name = "points", .kind = OutputKind::points, .help = "the cloud to move"}}})
 CGVIEW_REGISTER_ALGORITHM(test_segfault, NoParams, segfault,
                           {.title = "Crash (test)", .description = "raises SIGSEGV", .area = "test", .outputs = {}})
 CGVIEW_REGISTER_ALGORITHM(
