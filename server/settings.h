@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "jobs/executor_registry.h"
 #include "server.h"
 
 namespace cgview::server {
@@ -129,8 +130,7 @@ struct Settings {
               {.min = 1, .max = 86400, .help = "time limit of reading one upload, in its own process; over it: 413"});
     v.choice("on_restart", j.requeue_on_restart, {{"requeue", true}, {"interrupt", false}},
              {.help = "jobs left queued or running by a previous run: run again, or marked interrupted"});
-    v.choice("executor", j.executor, {{"local", "local"}, {"slurm", "slurm"}},
-             {.help = "where jobs run: this machine, or a Slurm cluster as the config's slurm section says"});
+    v.choice("executor", j.executor, executor_choices(), {.help = executor_help()});
     v.integer("job_cpus", j.cpus, {.min = 1, .max = 1024, .help = "CPUs of a job, Slurm's --cpus-per-task"});
     v.text("plugin_dir", c.plugin_dir,
            {.arg = "DIR",

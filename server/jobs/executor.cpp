@@ -45,6 +45,38 @@ void WakePipe::drain() {
   }
 }
 
+void ExecutorBase::cancel(const std::string& job_id) {
+  {
+    std::lock_guard lock(cancel_mutex_);
+    cancels_.insert(job_id);
+  }
+  wake();
+}
+
+std::set<std::string> ExecutorBase::take_cancels() {
+  std::set<std::string> cancels;
+  std::lock_guard lock(cancel_mutex_);
+  cancels.swap(cancels_);
+  return cancels;
+}
+
+void ExecutorBase::watch(const std::string& job_id, double timeout_s) {
+  if (timeout_s > 0)
+    deadlines_[job_id] =
+        std::chrono::steady_clock::now() +
+        std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(timeout_s));
+  else deadlines_.erase(job_id);
+}
+
+std::set<std::string> ExecutorBase::overdue() {
+  std::set<std::string> over;
+  const auto now = std::chrono::steady_clock::now();
+  for (auto it = deadlines_.begin(); it != deadlines_.end();)
+    if (now > it->second) over.insert(it->first), it = deadlines_.erase(it);
+    else ++it;
+  return over;
+}
+
 namespace {
 
 // At most 60 bytes of what the worker wrote, unprintable bytes as '?'.

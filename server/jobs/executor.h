@@ -1,9 +1,13 @@
 // Where a job's worker runs.  The scheduler hands an executor one prepared
 // job at a time (its directory holds job.json, the worker writes its
 // results there) and hears back what happened: the worker started (and on
-// which node), waits (and why), made progress, ended (and how).  Two
-// implementations: local (a child process of the server: local_executor.h)
-// and slurm (a batch job on the lab's cluster: slurm_executor.h).
+// which node), waits (and why), made progress, ended (and how).  Each
+// implementation derives from ExecutorBase (below: the cancel requests, the
+// wake pipe and the watchdog of the time limit, one copy for all) and is
+// chosen by its name from executor_registry.h: local (a child process of the
+// server: local_executor.h) and slurm (a batch job on the lab's cluster:
+// slurm_executor.h).  What differs between them that the scheduler must
+// know is in Executor::capabilities(), never in a test of the name.
 //
 // launch, adopt, poll and shutdown are called from the scheduler's thread
 // only; cancel and wake from any thread.
@@ -13,6 +17,8 @@
 #include <cstddef>
 #include <filesystem>
 #include <map>
+#include <mutex>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -60,6 +66,8 @@ struct WorkerEnd {
     node_failed,    // the machine it ran on went away
     lost,           // its executor no longer knows it (`detail` says why)
     garbled,        // it wrote something other than progress lines on its progress pipe (`detail` quotes it)
+    not_started,    // where it was sent, its worker could not start (`detail` says why: a node without the data
+                    // directory)
   };
   How how = How::exited;
   int code = 0, signal = 0;
@@ -91,10 +99,26 @@ struct LaunchError : std::runtime_error {
 Sandbox::Command sandboxed_worker(const Sandbox& sandbox, const LaunchSpec& job, const std::filesystem::path& worker,
                                   int slot, ChildOptions options = {});
 
+// A pipe that ends an executor's wait from another thread (cancel, a new
+// job): poll its fd(), then drain() it.
+class WakePipe {
+ public:
+  WakePipe();  // throws IoError
+  ~WakePipe();
+  WakePipe(const WakePipe&) = delete;
+  WakePipe& operator=(const WakePipe&) = delete;
+  void wake();
+  void drain();
+  int fd() const { return fds_[0]; }
+
+ private:
+  int fds_[2] = {-1, -1};
+};
+
 class Executor {
  public:
   virtual ~Executor() = default;
-  // "local" or "slurm": stored with each job it runs.
+  // Its name in the registry (executor_registry.h): stored with each job it runs.
   virtual const char* name() const = 0;
   // How many jobs it takes at once (launched and not ended).
   virtual int capacity() const = 0;
@@ -116,22 +140,48 @@ class Executor {
   virtual void shutdown() = 0;
   // Whether its workers start in the sandbox (they then see the paths of sandbox.h).
   virtual bool sandboxed() const { return false; }
+  // What the scheduler does differently for it.
+  struct Capabilities {
+    // A run it lost (WorkerEnd::How::lost: the cluster forgot it) goes back to the queue.
+    bool requeue_lost = false;
+    // Its workers do not see the data directory: each fetches its inputs and
+    // sends its results with its job's own token (scheduler.h's worker_*),
+    // reaching the server at `server_url` ("": the server's own address).
+    bool remote_data = false;
+    std::string server_url;
+    // The setting that makes its workers see the data directory, for the
+    // message of what needs it (a plugin).
+    std::string shared_data_setting;
+  };
+  virtual Capabilities capabilities() const { return {}; }
 };
 
-// A pipe that ends an executor's wait from another thread (cancel, a new
-// job): poll its fd(), then drain() it.
-class WakePipe {
+// What every executor shares: cancel requests taken from any thread and
+// done in poll, the pipe that ends poll's wait, and the watchdog that holds
+// each job to its time limit to the second (Slurm's own counts minutes).
+class ExecutorBase : public Executor {
  public:
-  WakePipe();  // throws IoError
-  ~WakePipe();
-  WakePipe(const WakePipe&) = delete;
-  WakePipe& operator=(const WakePipe&) = delete;
-  void wake();
-  void drain();
-  int fd() const { return fds_[0]; }
+  void cancel(const std::string& job_id) final;
+  void wake() final { wake_.wake(); }
+
+ protected:
+  // The jobs whose cancel was asked since the last call (the scheduler's thread).
+  std::set<std::string> take_cancels();
+  // poll's wait ends when this fd is readable (a cancel, a wake); drain it then.
+  int wake_fd() const { return wake_.fd(); }
+  void drain_wake() { wake_.drain(); }
+  // The watchdog: the job's time limit counts from now (its worker started;
+  // again when it starts again).  `timeout_s` 0: none.
+  void watch(const std::string& job_id, double timeout_s);
+  void unwatch(const std::string& job_id) { deadlines_.erase(job_id); }
+  // The jobs over their time limit, each said once (no longer watched).
+  std::set<std::string> overdue();
 
  private:
-  int fds_[2] = {-1, -1};
+  std::mutex cancel_mutex_;
+  std::set<std::string> cancels_;
+  WakePipe wake_;
+  std::map<std::string, std::chrono::steady_clock::time_point> deadlines_;
 };
 
 // What a worker's output held.  `garbage` is not empty when the output is

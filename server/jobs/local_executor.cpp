@@ -206,8 +206,7 @@ std::string LocalExecutor::launch(const LaunchSpec& job) {
     r.slot = std::move(s.slot);
     r.out_fd = s.out_fd;
   }
-  r.launched = Clock::now();
-  r.timeout_s = job.timeout_s;
+  watch(job.job_id, job.timeout_s);
   const pid_t pid = r.pid;
   runs_[job.job_id] = std::move(r);
   ExecutorEvent e;
@@ -221,22 +220,8 @@ std::string LocalExecutor::launch(const LaunchSpec& job) {
   return std::to_string(pid);
 }
 
-void LocalExecutor::cancel(const std::string& job_id) {
-  {
-    std::lock_guard lock(cancel_mutex_);
-    cancels_.insert(job_id);
-  }
-  wake();
-}
-
-void LocalExecutor::wake() { wake_.wake(); }
-
 void LocalExecutor::check(std::vector<ExecutorEvent>& events) {
-  std::set<std::string> cancels;
-  {
-    std::lock_guard lock(cancel_mutex_);
-    cancels.swap(cancels_);
-  }
+  const std::set<std::string> cancels = take_cancels(), over = overdue();
   const auto now = Clock::now();
   for (auto it = runs_.begin(); it != runs_.end();) {
     Run& r = it->second;
@@ -251,8 +236,7 @@ void LocalExecutor::check(std::vector<ExecutorEvent>& events) {
       // whole group is killed at once.
       kill_child(r.pid, sandboxed() ? SIGKILL : SIGTERM);
     }
-    if (!r.terminating && !r.timed_out && r.timeout_s > 0 &&
-        now - r.launched > std::chrono::duration<double>(r.timeout_s)) {
+    if (!r.terminating && !r.timed_out && over.count(it->first)) {
       r.timed_out = true;
       kill_child(r.pid, SIGKILL);
     }
@@ -278,6 +262,7 @@ void LocalExecutor::check(std::vector<ExecutorEvent>& events) {
       events.push_back(std::move(e));
       if (!r.warm_dir.empty()) used_warm_dirs_.push_back(r.warm_dir);
       if (r.go_fd >= 0) ::close(r.go_fd);
+      unwatch(it->first);
       it = runs_.erase(it);
       continue;
     }
@@ -314,11 +299,11 @@ std::vector<ExecutorEvent> LocalExecutor::poll(std::chrono::milliseconds timeout
       exited_unreaped = true;
     }
   }
-  fds.push_back({wake_.fd(), POLLIN, 0});
+  fds.push_back({wake_fd(), POLLIN, 0});
   // A worker whose stdout closed is reaped soon; a running one is checked for its limits every 100 ms.
   const auto wait = std::min<std::chrono::milliseconds>(timeout, std::chrono::milliseconds(exited_unreaped ? 5 : 100));
   ::poll(fds.data(), fds.size(), int(wait.count()));
-  if (fds.back().revents) wake_.drain();
+  if (fds.back().revents) drain_wake();
   for (std::size_t k = 0; k + 1 < fds.size(); ++k) {
     if (!fds[k].revents) continue;
     Run& r = runs_.at(ids[k]);
@@ -360,6 +345,7 @@ void LocalExecutor::shutdown() {
     }
     if (r.out_fd >= 0) ::close(r.out_fd);
     if (r.go_fd >= 0) ::close(r.go_fd);
+    unwatch(id);
   }
   runs_.clear();
 }

@@ -24,9 +24,7 @@
 
 #include <deque>
 #include <map>
-#include <mutex>
 #include <optional>
-#include <set>
 
 #include <memory>
 
@@ -35,7 +33,7 @@
 
 namespace cgview::server {
 
-class LocalExecutor : public Executor {
+class LocalExecutor : public ExecutorBase {
  public:
   // `worker`: the cgview-worker executable; `sandbox`: where each worker
   // starts (nullptr or off: a plain child process).
@@ -46,9 +44,7 @@ class LocalExecutor : public Executor {
   int capacity() const override { return max_workers_; }
   std::string launch(const LaunchSpec& job) override;
   bool adopt(const LaunchSpec&, const std::string&) override { return false; }
-  void cancel(const std::string& job_id) override;
   std::vector<ExecutorEvent> poll(std::chrono::milliseconds timeout) override;
-  void wake() override;
   void shutdown() override;
   bool sandboxed() const override { return sandbox_ && sandbox_->enabled(); }
 
@@ -59,8 +55,7 @@ class LocalExecutor : public Executor {
     int out_fd = -1;     // the worker's stdout; -1 once it closed
     std::string out;
     std::string garbage;  // why it was stopped: its output was not progress lines
-    std::chrono::steady_clock::time_point launched, term_sent;
-    double timeout_s = 0;
+    std::chrono::steady_clock::time_point term_sent;
     bool terminating = false, timed_out = false;
     std::filesystem::path warm_dir;  // a pre-started worker's own directory, removed when it is reaped
     // A pre-started worker not yet ready: its stdin, closed (go) once it
@@ -104,11 +99,8 @@ class LocalExecutor : public Executor {
   std::filesystem::path worker_;
   int max_workers_;
   std::shared_ptr<const Sandbox> sandbox_;
-  std::map<std::string, Run> runs_;     // by job id
-  std::vector<ExecutorEvent> pending_;  // started events, sent at the next poll
-  std::mutex cancel_mutex_;
-  std::set<std::string> cancels_;  // asked from other threads, done in poll
-  WakePipe wake_;
+  std::map<std::string, Run> runs_;                    // by job id
+  std::vector<ExecutorEvent> pending_;                 // started events, sent at the next poll
   std::deque<Warm> warm_;                              // the workers ahead, oldest first
   std::optional<LaunchSpec> warm_like_;                // the last job launched: workers ahead are started for its like
   std::vector<std::filesystem::path> used_warm_dirs_;  // of reaped pre-started workers, to remove

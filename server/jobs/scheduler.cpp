@@ -8,9 +8,8 @@
 #include "auth.h"
 #include "core/errors.h"
 #include "io/mesh_io.h"
+#include "jobs/executor_registry.h"
 #include "jobs/job_files.h"
-#include "jobs/local_executor.h"
-#include "jobs/slurm_executor.h"
 #include "jobs/worker_result.h"
 #include "jobs/artifact_files.h"
 
@@ -19,16 +18,6 @@ namespace cgview::server {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
-
-namespace {
-
-std::unique_ptr<Executor> make_executor(const JobConfig& c) {
-  if (c.executor == "local") return std::make_unique<LocalExecutor>(c.worker, c.max_workers, c.sandbox);
-  if (c.executor == "slurm") return std::make_unique<SlurmExecutor>(c.slurm, c.worker, c.sandbox);
-  throw InvalidInput("executor '" + c.executor + "': it is local or slurm");
-}
-
-}  // namespace
 
 JobScheduler::JobScheduler(MeshService& meshes, JobConfig config)
     : meshes_(meshes),
@@ -314,7 +303,8 @@ std::optional<LaunchSpec> JobScheduler::prepare(Job& j) {
       inputs[name] = local;
     }
     out = "out";
-    s.server_url = config_.slurm.server_url.empty() ? server_url_ : config_.slurm.server_url;
+    const std::string url = executor_->capabilities().server_url;
+    s.server_url = url.empty() ? server_url_ : url;
     s.token = random_hex(32);
     j.worker_token_sha = sha256_hex(s.token);
   }
@@ -338,7 +328,8 @@ std::optional<LaunchSpec> JobScheduler::prepare(Job& j) {
       return std::nullopt;
     }
     if (remote_data()) {
-      j.error = "plugins run on a Slurm cluster only where its nodes share the data directory (slurm.shared_data)";
+      j.error = "plugins run only where the workers see the data directory (" +
+                executor_->capabilities().shared_data_setting + ")";
       return std::nullopt;
     }
     const std::string inside = std::string(kSandboxPlugin) + "/" + fs::path(library).filename().string();
@@ -358,7 +349,7 @@ std::optional<LaunchSpec> JobScheduler::prepare(Job& j) {
 }
 
 bool JobScheduler::requeued_when_lost(const WorkerEnd& how) const {
-  return how.how == WorkerEnd::How::lost && config_.slurm.requeue_lost && config_.executor == "slurm";
+  return how.how == WorkerEnd::How::lost && executor_->capabilities().requeue_lost;
 }
 
 void JobScheduler::end(Job& j, const WorkerEnd* how, std::vector<json>& events, const Collected* collected) {

@@ -49,8 +49,8 @@ struct JobConfig {
   int cpus = 1;                    // per job (Slurm's --cpus-per-task)
   bool requeue_on_restart = true;  // else: jobs of a previous run that cannot be followed are marked interrupted
   QuotaConfig quotas;              // per-user storage and concurrent-job limits
-  std::string executor = "local";  // or "slurm"
-  SlurmConfig slurm;
+  std::string executor = "local";  // a name in executor_registry.h
+  SlurmConfig slurm;               // the slurm executor's settings
   // Where local workers start (sandbox.h); nullptr: plain child processes.
   std::shared_ptr<const Sandbox> sandbox;
 };
@@ -69,7 +69,8 @@ struct JobCounts {
 
 class JobScheduler : private JobLookup {
  public:
-  // Throws InvalidInput for an executor it does not know.
+  // Throws InvalidInput for an executor it does not know, or as its factory
+  // does (executor_registry.h: a Slurm cluster that no job fits).
   JobScheduler(MeshService& meshes, JobConfig config);
   ~JobScheduler();  // local workers are killed (their jobs run again at the next start); Slurm's go on
   JobScheduler(const JobScheduler&) = delete;
@@ -181,7 +182,7 @@ class JobScheduler : private JobLookup {
   // Every input of the job by name -> its file on this machine; "" with
   // *error set when one is gone (under mutex_).
   std::optional<nlohmann::json> input_files(const Job& job, std::string* error) const;
-  bool remote_data() const { return config_.executor == "slurm" && !config_.slurm.shared_data; }
+  bool remote_data() const { return executor_->capabilities().remote_data; }
   // The in-flight job whose token this is (under mutex_); throws WorkerTokenRefused.
   const Job& worker_job_locked(const std::string& id, std::string_view token) const;
   // What an ended run left, read outside mutex_ (the run's files are the

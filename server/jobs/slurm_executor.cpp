@@ -4,6 +4,7 @@
 #include <poll.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "child_process.h"
@@ -86,7 +87,8 @@ std::string newest_exit_file(const fs::path& dir) {
 
 }  // namespace
 
-SlurmExecutor::SlurmExecutor(SlurmConfig config, fs::path worker, std::shared_ptr<const Sandbox> sandbox)
+SlurmExecutor::SlurmExecutor(SlurmConfig config, fs::path worker, std::shared_ptr<const Sandbox> sandbox,
+                             std::size_t memory_mb)
     : config_(std::move(config)), sandbox_(std::move(sandbox)), worker_(std::move(worker)) {
   if (!config_.worker.empty()) worker_ = config_.worker;
   if (config_.max_jobs < 1) config_.max_jobs = 1;
@@ -98,6 +100,71 @@ SlurmExecutor::SlurmExecutor(SlurmConfig config, fs::path worker, std::shared_pt
   scontrol_ = find_program("scontrol");
   if (sbatch_.empty() || squeue_.empty() || scancel_.empty() || scontrol_.empty())
     throw InvalidInput("slurm: sbatch, squeue, scancel and scontrol must be on PATH (Debian's slurm-client)");
+  sinfo_ = find_program("sinfo");
+  // Said at the start, not as each job's refusal by sbatch; a cluster that
+  // does not answer now is asked again at the first launch.
+  if (memory_mb > 0) {
+    bool answered = false;
+    if (const std::string why = memory_problem(memory_mb, &answered); !why.empty()) throw InvalidInput(why);
+    if (answered) memory_checked_ = memory_mb;
+  }
+}
+
+std::string SlurmExecutor::memory_problem(std::size_t memory_mb, bool* answered) const {
+  *answered = false;
+  if (sinfo_.empty()) return "";
+  // One line per node and partition; the default partition ends in '*'.
+  const ToolRun r = run_tool({sinfo_.string(), "--noheader", "--Node", "--format=%P|%m"}, kToolLimit);
+  if (!r.ok()) return "";
+  const std::vector<std::string> wanted =
+      config_.partition.empty() ? std::vector<std::string>{} : split(config_.partition, ',');
+  unsigned long long largest = 0;
+  bool any = false;
+  for (const std::string& line : split(r.output, '\n')) {
+    const auto f = split(line, '|');
+    if (f.size() < 2 || f[1].empty() || f[1].find_first_not_of("0123456789") != std::string::npos) continue;
+    std::string partition = f[0];
+    const bool default_partition = partition.ends_with('*');
+    if (default_partition) partition.pop_back();
+    if (wanted.empty() ? !default_partition : std::find(wanted.begin(), wanted.end(), partition) == wanted.end())
+      continue;
+    any = true;
+    largest = std::max(largest, std::stoull(f[1].substr(0, 18)));
+  }
+  if (!any) return "";  // no such partition (sbatch says so), or no default one
+  *answered = true;
+  if (largest >= memory_mb) return "";
+  const std::string where = config_.partition.empty() ? "" : " of partition " + config_.partition;
+  return "no Slurm node" + where + " has the " + std::to_string(memory_mb) +
+         " MB of memory a job asks (the largest has " + std::to_string(largest) +
+         " MB): lower job_memory_mb (--job-memory-mb) to " + std::to_string(largest) +
+         " or less, or name in slurm.partition a partition whose nodes have more";
+}
+
+std::string SlurmExecutor::unseen_data(const Tracked& t, const std::string& state, const std::string& said) const {
+  // Only a launch that failed on the node it was given (Slurm 22.05:
+  // FAILED, JobLaunchFailure); a node that died is NODE_FAIL, a job
+  // cancelled while it waited never reached one.
+  if (!config_.shared_data || state != "FAILED" || t.node.empty() || t.node == "(null)") return "";
+  // On the node slurmstepd opens the job's --output and --error in the run's
+  // directory before the batch script runs, and the script marks its start
+  // there: none of them means the node did not see the directory.
+  std::error_code ec;
+  for (const char* file : {"stderr.txt", "batch-output.txt"})
+    if (fs::exists(t.spec.dir / file, ec)) return "";
+  if (!newest_run_file(t.spec.dir, "started").empty()) return "";
+  return "the Slurm nodes cannot see the data directory " + t.spec.data_dir.string() +
+         " that slurm.shared_data says they share (node " + t.node + " wrote nothing in the job's directory there; " +
+         said +
+         "): mount it at the same path on every node, or set slurm.shared_data to false (the nodes then fetch the "
+         "inputs from slurm.server_url)";
+}
+
+Executor::Capabilities SlurmExecutor::capabilities() const {
+  return {.requeue_lost = config_.requeue_lost,
+          .remote_data = !config_.shared_data,
+          .server_url = config_.server_url,
+          .shared_data_setting = "slurm.shared_data"};
 }
 
 bool SlurmExecutor::sandboxed() const {
@@ -225,6 +292,11 @@ std::string SlurmExecutor::batch_script(const LaunchSpec& job, int slot) const {
 }
 
 std::string SlurmExecutor::launch(const LaunchSpec& job) {
+  if (job.memory_mb > 0 && job.memory_mb != memory_checked_) {
+    bool answered = false;
+    if (const std::string why = memory_problem(job.memory_mb, &answered); !why.empty()) throw LaunchError(why);
+    if (answered) memory_checked_ = job.memory_mb;
+  }
   Sandbox::Slot slot;
   if (sandboxed()) slot = sandbox_->take_slot();
   std::string script;
@@ -259,16 +331,6 @@ bool SlurmExecutor::adopt(const LaunchSpec& job, const std::string& handle) {
   t.slurm_id = handle;
   return true;
 }
-
-void SlurmExecutor::cancel(const std::string& job_id) {
-  {
-    std::lock_guard lock(cancel_mutex_);
-    cancels_.insert(job_id);
-  }
-  wake();
-}
-
-void SlurmExecutor::wake() { wake_.wake(); }
 
 void SlurmExecutor::read_progress(Tracked& t, std::vector<ExecutorEvent>& events) {
   const std::string name = newest_run_file(t.spec.dir, "stdout");
@@ -327,6 +389,11 @@ WorkerEnd SlurmExecutor::ended(const Tracked& t, const std::string& state, const
     else end.how = WorkerEnd::How::exited, end.code = c;
     return end;
   }
+  if (std::string why = unseen_data(t, state, said); !why.empty()) {
+    end.how = WorkerEnd::How::not_started;
+    end.detail = std::move(why);
+    return end;
+  }
   if (state == "NODE_FAIL" || state == "BOOT_FAIL") {
     end.how = WorkerEnd::How::node_failed;
     return end;
@@ -370,6 +437,7 @@ void SlurmExecutor::refresh(std::vector<ExecutorEvent>& events) {
     std::string state, reason, node;
     if (row != rows.end()) {
       state = row->second[0], reason = row->second[1], node = row->second[2];
+      if (!node.empty()) t.node = node;
       t.unseen = 0;
     } else if (++t.unseen < 2) {
       ++it;  // just submitted, or a hiccup: look again next cycle
@@ -397,26 +465,25 @@ void SlurmExecutor::refresh(std::vector<ExecutorEvent>& events) {
       e.kind = ExecutorEvent::Kind::ended;
       e.end = ended(t, state, reason);
       events.push_back(std::move(e));
+      unwatch(it->first);
       it = jobs_.erase(it);
       continue;
     }
     if (active_state) {
       if (!t.running) {
         t.running = true;
-        t.started = now;
+        // Slurm's --time is in minutes: the job's own limit is held by the
+        // watchdog (poll), from each start (a requeued job's again).
+        watch(it->first, t.spec.timeout_s);
         e.kind = ExecutorEvent::Kind::started;
         e.node = node;
         events.push_back(e);
-      }
-      // Slurm's --time is in minutes: the job's own limit is held here.
-      if (t.spec.timeout_s > 0 && !t.cancelling && now - t.started > std::chrono::duration<double>(t.spec.timeout_s)) {
-        t.timed_out = t.cancelling = true;
-        run_tool({scancel_.string(), t.slurm_id}, kToolLimit);
       }
     } else if (!t.cancelling) {  // PENDING, REQUEUED, SUSPENDED, ...: waiting, and why
       const std::string why =
           state == "PENDING" ? (reason == "None" ? "" : reason) : state + (reason == "None" ? "" : ": " + reason);
       if (t.running || why != t.reason) {
+        if (t.running) unwatch(it->first);
         t.running = false;
         t.reason = why;
         e.kind = ExecutorEvent::Kind::waiting;
@@ -438,19 +505,20 @@ std::vector<ExecutorEvent> SlurmExecutor::poll(std::chrono::milliseconds timeout
                                     : std::min<std::chrono::milliseconds>(
                                           timeout, std::chrono::duration_cast<std::chrono::milliseconds>(due - now) +
                                                        std::chrono::milliseconds(1));
-    pollfd p{wake_.fd(), POLLIN, 0};
+    pollfd p{wake_fd(), POLLIN, 0};
     ::poll(&p, 1, int(wait.count()));
-    wake_.drain();
+    drain_wake();
   }
-  std::set<std::string> cancels;
-  {
-    std::lock_guard lock(cancel_mutex_);
-    cancels.swap(cancels_);
-  }
+  // What was cancelled, and what ran over its time: one scancel.
   std::vector<std::string> scancel = {scancel_.string()};
-  for (const auto& id : cancels)
+  for (const auto& id : take_cancels())
     if (const auto it = jobs_.find(id); it != jobs_.end() && !it->second.cancelling) {
       it->second.cancelling = true;
+      scancel.push_back(it->second.slurm_id);
+    }
+  for (const auto& id : overdue())
+    if (const auto it = jobs_.find(id); it != jobs_.end() && it->second.running && !it->second.cancelling) {
+      it->second.timed_out = it->second.cancelling = true;
       scancel.push_back(it->second.slurm_id);
     }
   if (scancel.size() > 1) run_tool(scancel, kToolLimit);

@@ -16,31 +16,31 @@
 #include <chrono>
 #include <map>
 #include <optional>
-#include <mutex>
-#include <set>
 
 #include "jobs/executor.h"
 #include "jobs/slurm_config.h"
 
 namespace cgview::server {
 
-class SlurmExecutor : public Executor {
+class SlurmExecutor : public ExecutorBase {
  public:
-  // Throws InvalidInput when Slurm's tools are not on PATH.
+  // Throws InvalidInput when Slurm's tools are not on PATH, or when no node
+  // of the cluster (of slurm.partition) has the `memory_mb` a job asks (the
+  // server's job_memory_mb; 0: none): every job would be refused.
   // A sandbox that is on wraps each worker (with a shared data directory
   // and slurm.sandbox): the nodes run the same bubblewrap command.
-  SlurmExecutor(SlurmConfig config, std::filesystem::path worker, std::shared_ptr<const Sandbox> sandbox = {});
+  SlurmExecutor(SlurmConfig config, std::filesystem::path worker, std::shared_ptr<const Sandbox> sandbox = {},
+                std::size_t memory_mb = 0);
 
   const char* name() const override { return "slurm"; }
   // Its running jobs and max_pending more, at most max_jobs.
   int capacity() const override;
   std::string launch(const LaunchSpec& job) override;
   bool adopt(const LaunchSpec& job, const std::string& handle) override;
-  void cancel(const std::string& job_id) override;
   std::vector<ExecutorEvent> poll(std::chrono::milliseconds timeout) override;
-  void wake() override;
   void shutdown() override {}  // the cluster's jobs outlive the server
   bool sandboxed() const override;
+  Capabilities capabilities() const override;
 
   // The sbatch command line for a job, and its batch script.
   std::vector<std::string> sbatch_command(const LaunchSpec& job) const;
@@ -53,11 +53,11 @@ class SlurmExecutor : public Executor {
     LaunchSpec spec;
     Sandbox::Slot slot;  // its sandbox's user (a root server's), while it is in the cluster
     std::string slurm_id;
-    bool running = false;     // a started event was sent
-    bool cancelling = false;  // scancel sent
-    bool timed_out = false;   // our watchdog cancelled it over its time limit
-    std::string reason;       // the pending reason last reported
-    std::chrono::steady_clock::time_point started;
+    bool running = false;            // a started event was sent
+    bool cancelling = false;         // scancel sent
+    bool timed_out = false;          // our watchdog cancelled it over its time limit
+    std::string reason;              // the pending reason last reported
+    std::string node;                // where squeue last said it is (or was)
     std::string output_file;         // the run's output file being read (the newest run's: stdout.N)
     std::uintmax_t output_read = 0;  // bytes of it read for progress
     std::string output;              // a partial line
@@ -74,17 +74,24 @@ class SlurmExecutor : public Executor {
   // Whether the cluster has held the job (pending) for long with its newest
   // run ended and its result on disk.
   bool held_with_a_result(Tracked& t, std::chrono::steady_clock::time_point now) const;
+  // Why no node takes a job of `memory_mb` ("": one does, or Slurm did not
+  // answer); `answered` says whether it did.
+  std::string memory_problem(std::size_t memory_mb, bool* answered) const;
+  // Why a job that ended as `state` left nothing in its run's directory
+  // where its node should have written ("": it did, or it never ran).
+  std::string unseen_data(const Tracked& t, const std::string& state, const std::string& said) const;
 
   SlurmConfig config_;
   std::shared_ptr<const Sandbox> sandbox_;
   std::filesystem::path worker_;
   std::filesystem::path sbatch_, squeue_, scancel_, scontrol_;
+  std::filesystem::path sinfo_;
   std::map<std::string, Tracked> jobs_;  // by CGView job id
-  std::mutex cancel_mutex_;
-  std::set<std::string> cancels_;
   std::chrono::steady_clock::time_point last_refresh_{};
   std::uint64_t squeue_calls_ = 0;
-  WakePipe wake_;
+  // The job memory checked against the nodes' (0: not yet: Slurm did not
+  // answer at the start, it is asked again at the next launch).
+  std::size_t memory_checked_ = 0;
 };
 
 }  // namespace cgview::server

@@ -44,7 +44,7 @@ WorkerOutcome read_worker_outcome(const JobDir& work, const JobDir& run, const W
   std::string result_why;
   const auto result_text =
       exited_ok ? work.read("result.json", kMaxResultJsonBytes, &result_why) : std::optional<std::string>();
-  if (end.how == How::garbled) {
+  if (end.how == How::garbled || end.how == How::not_started) {
     out.error = end.detail;
   } else if (end.how == How::timed_out) {
     out.error = std::string("exceeded its time limit of ") + seconds + " s";

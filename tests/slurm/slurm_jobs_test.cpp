@@ -527,6 +527,50 @@ TEST_F(SlurmJobsNodeDeath, AJobOnAKilledNodeIsRequeuedByTheClusterAndRunsElsewhe
   EXPECT_EQ(slurm_id(id), sid) << "requeued by Slurm, not submitted again";
 }
 
+// The harness's nodes have RealMemory=4000 (slurm_cluster.h): the
+// server's default job memory, 8192 MB, fits none of them.  The server says
+// so as it starts, not as each job's refusal by sbatch.
+TEST_F(SlurmJobs, AJobMemoryNoNodeHasIsSaidWhenTheServerStarts) {
+  write_text(dir_ / "config.json", json{{"slurm", {{"poll_s", 0.2}}}}.dump());
+  const std::string command = bin("cgview-server") + " --host 127.0.0.1 --port 0 --samples none --data-dir " +
+                              data_.string() + " --worker " + bin("cgview-worker-test") +
+                              " --executor slurm --config " + (dir_ / "config.json").string();
+  std::string out;
+  EXPECT_EQ(run(command, &out), 1) << out;
+  EXPECT_NE(out.find("cgview-server: error: no Slurm node has the 8192 MB of memory a job asks (the largest has "
+                     "4000 MB): lower job_memory_mb (--job-memory-mb) to 4000 or less, or name in slurm.partition a "
+                     "partition whose nodes have more"),
+            std::string::npos)
+      << out;
+  // Of a partition named in slurm.partition, the same (the harness's one partition).
+  write_text(dir_ / "config.json", json{{"slurm", {{"partition", "debug"}}}}.dump());
+  EXPECT_EQ(run(command + " --job-memory-mb 5000", &out), 1) << out;
+  EXPECT_NE(out.find("no Slurm node of partition debug has the 5000 MB of memory a job asks (the largest has 4000 MB)"),
+            std::string::npos)
+      << out;
+  // What a node has is enough.
+  ASSERT_TRUE(start({"--job-memory-mb", "4000"}));
+  EXPECT_EQ(wait_end(submit(upload("sphere.off"), "test_sleep", {{"seconds", 0}})["id"]).value("state", ""), "done");
+}
+
+// The data directory is shared by default (slurm.shared_data): where the
+// nodes do not see it, the job's error says so, not Slurm's "JobLaunchFailure".
+TEST_F(SlurmJobs, NodesThatDoNotSeeTheSharedDataDirectorySaySoInTheJobsError) {
+  if (!hide_data_from_the_nodes()) GTEST_SKIP() << "cannot mount a tmpfs here (needs root: unshare, mount)";
+  ASSERT_TRUE(start());
+  const json j = wait_end(submit(upload("sphere.off"), "test_sleep", {{"seconds", 0}})["id"]);
+  EXPECT_EQ(j.value("state", ""), "failed");
+  const std::string error = j.value("error", "");
+  EXPECT_EQ(error.rfind("the Slurm nodes cannot see the data directory " + data_.string() +
+                            " that slurm.shared_data says they share (node n",
+                        0),
+            0u)
+      << error;
+  EXPECT_NE(error.find("): mount it at the same path on every node, or set slurm.shared_data to false"),
+            std::string::npos)
+      << error;
+}
+
 TEST_F(SlurmJobs, WithoutASharedDirectoryWorkersFetchInputsAndSendResultsWithTheirJobsToken) {
   if (!hide_data_from_the_nodes()) GTEST_SKIP() << "cannot mount a tmpfs here (needs root: unshare, mount)";
   ASSERT_TRUE(start({}, {}, {{"shared_data", false}}));
