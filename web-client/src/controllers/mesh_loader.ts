@@ -132,7 +132,9 @@ export class MeshLoader {
       const { decoded, bytes } = loaded;
       const object = this.build(decoded);
       timer.mark('geometry-built');
-      if (!decoded.points) this.ctx.textures.attach(object as THREE.Mesh, mesh);
+      if (decoded.points)
+        this.ctx.textures.detach(); // a cloud has no texture: the last mesh's panel goes
+      else this.ctx.textures.attach(object as THREE.Mesh, mesh);
       await previewDrawn;
       if (!current()) return;
       const swap = preview !== null && viewer.object === preview;
