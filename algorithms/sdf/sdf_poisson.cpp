@@ -13,39 +13,9 @@
 namespace cgview::sdf {
 namespace {
 
-std::uint64_t spread_bits(std::uint64_t x) {  // 21 bits to every third of 63
-  x &= 0x1fffff;
-  x = (x | x << 32) & 0x1f00000000ffffULL;
-  x = (x | x << 16) & 0x1f0000ff0000ffULL;
-  x = (x | x << 8) & 0x100f00f00f00f00fULL;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
-  x = (x | x << 2) & 0x1249249249249249ULL;
-  return x;
-}
-
 Vec3 centroid(const Mesh& m, std::size_t f) {
   const Tri& t = m.faces[f];
   return (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) / 3.0;
-}
-
-// Connected part of each face in the dual graph.
-std::vector<std::uint32_t> face_components(const Adjacency& g, std::uint32_t& count) {
-  constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> part(g.size(), none), stack;
-  count = 0;
-  for (std::size_t s = 0; s < g.size(); ++s) {
-    if (part[s] != none) continue;
-    part[s] = count;
-    stack.assign(1, std::uint32_t(s));
-    while (!stack.empty()) {
-      const std::uint32_t f = stack.back();
-      stack.pop_back();
-      for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h)
-        if (part[*h] == none) part[*h] = count, stack.push_back(*h);
-    }
-    ++count;
-  }
-  return part;
 }
 
 // Each face's nearest known face's value (breadth-first from all of them):
@@ -80,53 +50,51 @@ std::vector<double> guidance(const Mesh& mesh, const Adjacency& g, double weight
   return out;
 }
 
-// spread_samples, with the connected parts (face_components) given: they
-// are found once for the samples and the solve.
-std::vector<std::uint32_t> spread_over_parts(const Mesh& mesh, const std::vector<std::uint32_t>& part,
-                                             std::uint32_t parts, std::size_t count) {
-  const std::size_t n = mesh.faces.size();
-  count = std::clamp<std::size_t>(count, 1, n);
-  BBox box;
-  for (const Vec3& p : mesh.positions) box.add(p);
-  const Vec3 size = box.size();
-  const double extent = std::max({size.x, size.y, size.z, 1e-300});
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> order(n);
-  for (std::size_t f = 0; f < n; ++f) {
-    const Vec3 q = (centroid(mesh, f) - box.min) / extent * double((1 << 21) - 1);
-    order[f] = {
-        spread_bits(std::uint64_t(q.x)) | spread_bits(std::uint64_t(q.y)) << 1 | spread_bits(std::uint64_t(q.z)) << 2,
-        std::uint32_t(f)};
-  }
-  std::sort(order.begin(), order.end());
-  std::vector<std::uint32_t> samples;
-  samples.reserve(count);
-  for (std::size_t j = 0; j < count; ++j)
-    samples.push_back(order[std::size_t((double(j) + 0.5) * double(n) / double(count))].second);
-  std::vector<char> covered(parts, 0);
-  for (std::uint32_t f : samples) covered[part[f]] = 1;
-  for (std::size_t f = 0; f < n; ++f)
-    if (!covered[part[f]]) covered[part[f]] = 1, samples.push_back(std::uint32_t(f));
-  std::sort(samples.begin(), samples.end());
-  samples.erase(std::unique(samples.begin(), samples.end()), samples.end());
-  return samples;
-}
-
 }  // namespace
 
-std::vector<std::uint32_t> spread_samples(const Mesh& mesh, const Adjacency& g, std::size_t count) {
-  std::uint32_t parts = 0;
-  const std::vector<std::uint32_t> part = face_components(g, parts);
-  return spread_over_parts(mesh, part, parts, count);
+std::vector<std::uint32_t> spread_samples(const Adjacency& g, std::size_t count) {
+  const std::size_t n = g.size();
+  constexpr std::uint32_t far = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> ring(n, far), queue, samples;
+  queue.reserve(n);
+  // Rings from the samples so far, lowered by a breadth-first walk from each
+  // new one that stops where they are no lower.
+  const auto add = [&](std::uint32_t s) {
+    samples.push_back(s);
+    ring[s] = 0;
+    queue.assign(1, s);
+    for (std::size_t k = 0; k < queue.size(); ++k)
+      for (const std::uint32_t* h = g.begin(queue[k]); h != g.end(queue[k]); ++h)
+        if (ring[*h] > ring[queue[k]] + 1) ring[*h] = ring[queue[k]] + 1, queue.push_back(*h);
+  };
+  for (std::size_t f = 0; f < n; ++f)
+    if (ring[f] == far) add(std::uint32_t(f));  // the first face of each part
+  // The farthest face next: faces by ring, each moved down to its ring as
+  // it is now when it comes up (rings only fall).
+  std::uint32_t top = 0;
+  for (std::uint32_t r : ring) top = std::max(top, r);
+  std::vector<std::vector<std::uint32_t>> by_ring(top + 1);
+  for (std::size_t f = 0; f < n; ++f) by_ring[ring[f]].push_back(std::uint32_t(f));
+  while (samples.size() < count && top > 0) {
+    if (by_ring[top].empty()) {
+      --top;
+      continue;
+    }
+    const std::uint32_t f = by_ring[top].back();
+    by_ring[top].pop_back();
+    if (ring[f] == top) add(f);
+    else if (ring[f] > 0) by_ring[ring[f]].push_back(f);
+  }
+  std::sort(samples.begin(), samples.end());
+  return samples;
 }
 
 FastSdf poisson_sdf(const Mesh& mesh, const Adjacency& g, const SdfFastParams& p, const Context* ctx) {
   check_params(p);
   if (mesh.faces.empty()) throw InvalidInput("the mesh has no faces: the SDF is measured on faces");
   const std::size_t n = mesh.faces.size();
-  std::uint32_t parts = 0;
-  const std::vector<std::uint32_t> part = face_components(g, parts);
   FastSdf out;
-  out.samples = spread_over_parts(mesh, part, parts, std::size_t(std::ceil(p.fraction * double(n))));
+  out.samples = spread_samples(g, std::size_t(std::ceil(p.fraction * double(n))));
   out.raw = raw_sdf(mesh, p.sdf, out.samples, ctx, 0.0, 0.8);
   // A sample whose rays all escaped (an open mesh) takes the smallest sampled
   // value, as fill_missing gives the full SDF's faces inside such a region:

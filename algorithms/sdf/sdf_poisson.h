@@ -50,10 +50,13 @@ struct FastSdf {
   int iterations = 0;                  // diffusion's sweeps, conjugate gradients' iterations (0 for Cholesky)
 };
 
-// `count` faces spread evenly over the surface: every (F / count)-th face
-// along the Morton (Z-order) curve through the face centroids, plus one face
-// of each connected part (of `face_graph`) that got none.  Sorted.
-std::vector<std::uint32_t> spread_samples(const Mesh& mesh, const Adjacency& face_graph, std::size_t count);
+// `count` faces spread evenly over the surface by farthest-point sampling in
+// rings of `face_graph`: the first face of each connected part, then again
+// and again a face the most rings away from all those chosen.  Even in
+// faces, not in area: as many samples in a finely meshed finger as in as
+// many faces of a coarse torso.  max(count, parts) faces (all when count is
+// larger), sorted.
+std::vector<std::uint32_t> spread_samples(const Adjacency& face_graph, std::size_t count);
 
 // The accelerated SDF of every face: `p.fraction` of them cast (with
 // `p.sdf`'s rays, their values smoothed among themselves when

@@ -19,7 +19,7 @@ namespace {
 TEST(SdfPoisson, SampledFacesKeepTheirRayValuesAndEveryPartGetsOne) {
   const Mesh two = test::merged(test::uv_sphere(1, 16, 32), test::torus(4, 1));
   const Adjacency graph = face_neighbors(two, edge_topology(two));
-  const std::vector<std::uint32_t> samples = sdf::spread_samples(two, graph, 1);
+  const std::vector<std::uint32_t> samples = sdf::spread_samples(graph, 1);
   ASSERT_EQ(samples.size(), 2u);  // one face asked for, one more for the other part
   // Without smoothing, else the samples are filtered among themselves.
   const sdf::FastSdf approx =
