@@ -86,10 +86,6 @@ EstimateNormalsResult estimate_normals(const PointCloud& cloud, const EstimateNo
   return result;
 }
 
-}  // namespace cgview
-
-namespace cgview {
-
 CGVIEW_REGISTER_FUNCTION(
     estimate_normals,
     [](const Inputs& in, const EstimateNormalsParams& p, Context* c) {
