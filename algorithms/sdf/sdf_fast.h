@@ -21,9 +21,8 @@
 namespace cgview::sdf {
 
 // diffusion: the equation's Jacobi iterations from each face's nearest
-// sample, stopped after ceil(0.8 / fraction) sweeps (sdf/sdf_poisson.h says
-// why stopping early is closer to the full SDF); conjugate_gradient and
-// cholesky solve it exactly.
+// sample, stopped early (sdf/sdf_poisson.h says when, and why that is
+// closer to the full SDF); conjugate_gradient and cholesky solve it exactly.
 enum class Solver { diffusion, conjugate_gradient, cholesky };
 
 struct SdfFastParams {

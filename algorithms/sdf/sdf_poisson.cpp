@@ -19,7 +19,7 @@ Vec3 centroid(const Mesh& m, std::size_t f) {
 }
 
 // Each face's nearest known face's value (breadth-first from all of them):
-// the conjugate gradients' start.
+// where the diffusion and the conjugate gradients start.
 std::vector<double> nearest_known(const Adjacency& g, const std::vector<double>& values) {
   std::vector<double> out = values;
   std::vector<std::uint32_t> queue;
@@ -120,11 +120,11 @@ FastSdf poisson_sdf(const Mesh& mesh, const Adjacency& g, const SdfFastParams& p
 
   if (p.solver == Solver::diffusion) {
     // Samples are about 1 / sqrt(fraction) rings apart, and t sweeps spread
-    // a value over about sqrt(t) rings: 0.8 / fraction sweeps reach between
+    // a value over about sqrt(t) rings: 0.6 / fraction sweeps reach between
     // samples without averaging over the next ones (the constant measured
-    // on four meshes at 5-40%, docs/DESIGN.md).  The cap bounds the time at
-    // fractions below 0.3%.
-    const int sweeps = int(std::min(256.0, std::ceil(0.8 / p.fraction)));
+    // on four meshes at 5-20%, docs/DESIGN.md).  The cap bounds the time at
+    // fractions below 0.25%.
+    const int sweeps = int(std::clamp(std::lround(0.6 / p.fraction), 1L, 256L));
     std::vector<double> x = nearest_known(g, out.values), next = x;
     for (int s = 0; s < sweeps; ++s) {
       for (std::uint32_t f : unknown) {

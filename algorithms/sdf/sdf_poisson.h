@@ -18,7 +18,7 @@
 // sparse Cholesky factorization (SimplicialLDLT), or conjugate gradients
 // (Jacobi preconditioner) started from each face's nearest sample's value.
 // By default (Solver::diffusion) it is not solved: from each face's nearest
-// sample's value, ceil(0.8 / fraction) Jacobi sweeps (each unknown face
+// sample's value, round(0.6 / fraction) Jacobi sweeps (each unknown face
 // takes its neighbours' mean, less its guidance term), capped at 256.  The
 // exact solution spreads each sample's value far beyond its neighbourhood,
 // where the full SDF has moved on: stopped early, the field is a local
