@@ -9,9 +9,9 @@ namespace cgview::server {
 
 const std::vector<ExecutorKind>& executor_kinds() {
   static const std::vector<ExecutorKind> kinds = {
-      {"local", "this machine", "",
+      {LocalExecutor::kName, "this machine", "",
        [](const JobConfig& c) { return std::make_unique<LocalExecutor>(c.worker, c.max_workers, c.sandbox); }},
-      {"slurm", "a Slurm cluster", "slurm",
+      {SlurmExecutor::kName, "a Slurm cluster", "slurm",
        [](const JobConfig& c) { return std::make_unique<SlurmExecutor>(c.slurm, c.worker, c.sandbox, c.memory_mb); }},
   };
   return kinds;

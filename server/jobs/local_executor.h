@@ -40,7 +40,8 @@ class LocalExecutor : public ExecutorBase {
   LocalExecutor(std::filesystem::path worker, int max_workers, std::shared_ptr<const Sandbox> sandbox = nullptr);
   ~LocalExecutor() override;
 
-  const char* name() const override { return "local"; }
+  static constexpr const char* kName = "local";  // in the registry (executor_registry.cpp)
+  const char* name() const override { return kName; }
   int capacity() const override { return max_workers_; }
   std::string launch(const LaunchSpec& job) override;
   bool adopt(const LaunchSpec&, const std::string&) override { return false; }

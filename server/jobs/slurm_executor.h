@@ -32,7 +32,8 @@ class SlurmExecutor : public ExecutorBase {
   SlurmExecutor(SlurmConfig config, std::filesystem::path worker, std::shared_ptr<const Sandbox> sandbox = {},
                 std::size_t memory_mb = 0);
 
-  const char* name() const override { return "slurm"; }
+  static constexpr const char* kName = "slurm";  // in the registry (executor_registry.cpp)
+  const char* name() const override { return kName; }
   // Its running jobs and max_pending more, at most max_jobs.
   int capacity() const override;
   std::string launch(const LaunchSpec& job) override;

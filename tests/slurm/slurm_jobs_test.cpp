@@ -3,7 +3,9 @@
 // node, their results equal the local executor's byte for byte, and cancel,
 // the time and memory limits, a crash, a killed node, a server killed and
 // started again, and a job Slurm forgot each end as a person expects; a
-// user's plugin is built and run on the nodes in the sandbox.
+// user's plugin is built and run on the nodes in the sandbox; a job memory
+// no node has, and nodes that do not see the shared data directory, are
+// said in those words (at the start, or as the job's error).
 #include <gtest/gtest.h>
 
 #include <sys/stat.h>
@@ -551,6 +553,29 @@ TEST_F(SlurmJobs, AJobMemoryNoNodeHasIsSaidWhenTheServerStarts) {
   // What a node has is enough.
   ASSERT_TRUE(start({"--job-memory-mb", "4000"}));
   EXPECT_EQ(wait_end(submit(upload("sphere.off"), "test_sleep", {{"seconds", 0}})["id"]).value("state", ""), "done");
+}
+
+// A cluster that did not answer as the server started is asked again at
+// the first launch: that job fails with the same words.
+TEST_F(SlurmJobs, AJobMemoryNoNodeHasFailsTheFirstJobWhereTheClusterDidNotAnswerAtTheStart) {
+  // An sinfo that fails until the marker is there, then is Slurm's own.
+  const fs::path tools = dir_ / "tools", marker = dir_ / "sinfo-answers";
+  fs::create_directories(tools);
+  std::string sinfo = cluster_.run("command -v sinfo");
+  sinfo.erase(sinfo.find('\n'));
+  write_text(tools / "sinfo", "#!/bin/sh\n[ -e '" + marker.string() + "' ] && exec '" + sinfo + "' \"$@\"\nexit 1\n");
+  fs::permissions(tools / "sinfo", fs::perms::owner_all);
+  const std::string path = ::getenv("PATH");
+  ::setenv("PATH", (tools.string() + ":" + path).c_str(), 1);
+  const bool started = start({"--job-memory-mb", "6000"});
+  ::setenv("PATH", path.c_str(), 1);
+  ASSERT_TRUE(started);
+  write_text(marker, "");
+  const json j = wait_end(submit(upload("sphere.off"), "test_sleep", {{"seconds", 0}})["id"]);
+  EXPECT_EQ(j.value("state", ""), "failed");
+  EXPECT_EQ(j.value("error", ""),
+            "no Slurm node has the 6000 MB of memory a job asks (the largest has 4000 MB): lower job_memory_mb "
+            "(--job-memory-mb) to 4000 or less, or name in slurm.partition a partition whose nodes have more");
 }
 
 // The data directory is shared by default (slurm.shared_data): where the
