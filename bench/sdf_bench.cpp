@@ -4,8 +4,8 @@
 //   post-processing (missing values filled, bilateral filter, linear
 //   normalization): time ratio, and Pearson r of the normalized values;
 // - sdf_fast at 5%, 10% and 20%, with each solver, against our sdf (same
-//   options): time ratio, mean and 95th-percentile error relative to the
-//   full SDF's range.
+//   options): the rays it casts as a share of the full SDF's, time ratio,
+//   mean and 95th-percentile error relative to the full SDF's range.
 // On the 1M-triangle mesh CGAL runs without post-processing (its bilateral
 // filter walks std::maps over ~2000 faces per face: hours), said in the row.
 //
@@ -34,9 +34,9 @@ using bench::our_sdf;
 
 namespace {
 
-std::vector<double> our_fast(const Mesh& mesh, const sdf::SdfParams& p, double fraction, sdf::Solver solver) {
+sdf::FastSdf our_fast(const Mesh& mesh, const sdf::SdfParams& p, double fraction, sdf::Solver solver) {
   const Adjacency graph = face_neighbors(mesh, edge_topology(mesh));
-  return sdf::poisson_sdf(mesh, graph, {.fraction = fraction, .solver = solver, .sdf = p}).values;
+  return sdf::poisson_sdf(mesh, graph, {.fraction = fraction, .solver = solver, .sdf = p});
 }
 
 }  // namespace
@@ -64,8 +64,8 @@ int main(int argc, char** argv) {
   }
 
   std::printf("\nsdf_fast against our sdf (defaults: inverse-angle weights, std-dev outliers, bilateral filter)\n");
-  std::printf("%-18s %9s %9s %10s %10s %8s %10s %10s %6s\n", "mesh", "fraction", "solver", "sdf s", "fast s", "ratio",
-              "mean err", "p95 err", "");
+  std::printf("%-18s %9s %9s %7s %10s %10s %8s %10s %10s\n", "mesh", "fraction", "solver", "rays", "sdf s", "fast s",
+              "ratio", "mean err", "p95 err");
   const sdf::SdfParams defaults;
   const char* const solver_names[] = {"diffusion", "cg", "cholesky"};  // in sdf::Solver's order
   for (const bench::SdfInput& in : inputs) {
@@ -75,17 +75,20 @@ int main(int argc, char** argv) {
     const double range = *hi - *lo;
     for (double fraction : {0.05, 0.1, 0.2})
       for (sdf::Solver solver : {sdf::Solver::diffusion, sdf::Solver::conjugate_gradient, sdf::Solver::cholesky}) {
-        std::vector<double> fast;
+        sdf::FastSdf fast;
         const double fast_s =
             bench::best_seconds(opt.repeat, [&] { fast = our_fast(in.mesh, defaults, fraction, solver); });
         std::vector<double> err(full.size());
         double mean = 0;
-        for (std::size_t f = 0; f < full.size(); ++f) mean += (err[f] = std::abs(fast[f] - full[f]));
+        for (std::size_t f = 0; f < full.size(); ++f) mean += (err[f] = std::abs(fast.values[f] - full[f]));
         mean /= double(full.size());
         std::sort(err.begin(), err.end());
         const double p95 = err[std::size_t(0.95 * double(err.size() - 1))];
-        std::printf("%-18s %8.0f%% %9s %10.3f %10.3f %7.1fx %9.2f%% %9.2f%%\n", in.name.c_str(), 100 * fraction,
-                    solver_names[int(solver)], full_s, fast_s, full_s / fast_s, 100 * mean / range, 100 * p95 / range);
+        // The rays cast, as a share of the full SDF's (defaults.rays on every face).
+        const double rays = double(fast.raw.rays_cast) / (double(defaults.rays) * double(in.mesh.faces.size()));
+        std::printf("%-18s %8.0f%% %9s %6.2f%% %10.3f %10.3f %7.1fx %9.2f%% %9.2f%%\n", in.name.c_str(), 100 * fraction,
+                    solver_names[int(solver)], 100 * rays, full_s, fast_s, full_s / fast_s, 100 * mean / range,
+                    100 * p95 / range);
         std::fflush(stdout);
       }
   }
