@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <deque>
 #include <map>
@@ -222,8 +223,11 @@ std::string to_string(const draco::EncoderBuffer& buf) { return std::string(buf.
 // decoder reads them (header, metadata, edgebreaker's traversal byte, then
 // the counts: uint32s before bitstream 2.0, varints after).
 struct DracoClaims {
-  bool edgebreaker = false;
+  bool edgebreaker = false, point_cloud = false;
   std::uint64_t faces = 0, vertices = 0;
+  // A point cloud's: its points, and the components of their attributes
+  // (3 for positions, ...), summed over those its header declares.
+  std::uint64_t points = 0, components = 0;
 };
 
 class DracoHeaderReader {
@@ -293,8 +297,30 @@ std::optional<DracoClaims> draco_claims(std::string_view bytes) {
       if (!r.varint(id) || !r.metadata()) return std::nullopt;
     if (!r.metadata()) return std::nullopt;
   }
-  auto count = [&](std::uint64_t& v) { return version < 0x0200 ? r.u32(v) : r.varint(v); };
   DracoClaims c;
+  if (type == draco::POINT_CLOUD) {
+    // Both of its methods (sequential, kd-tree) start with the count as an
+    // int32; then the attribute decoders, each with its attributes (type,
+    // data type, components, normalized, id), which the bytes must hold
+    // before any is decoded (a count cut short is claimed as far as it goes).
+    c.point_cloud = true;
+    if (!r.u32(c.points)) return std::nullopt;
+    std::uint8_t decoders;
+    if (!r.byte(decoders)) return c;
+    for (int d = 0; d < decoders; ++d) {
+      std::uint64_t attributes, id;
+      if (!(version < 0x0200 ? r.u32(attributes) : r.varint(attributes))) return c;
+      for (std::uint64_t a = 0; a < attributes; ++a) {
+        std::uint8_t att_type, data_type, components, normalized;
+        if (!r.byte(att_type) || !r.byte(data_type) || !r.byte(components) || !r.byte(normalized) ||
+            !(version < 0x0103 ? r.skip(2) : r.varint(id)))
+          return c;
+        c.components += components;
+      }
+    }
+    return c;
+  }
+  auto count = [&](std::uint64_t& v) { return version < 0x0200 ? r.u32(v) : r.varint(v); };
   c.edgebreaker = method == 1;
   if (c.edgebreaker) {
     std::uint8_t traversal;
@@ -309,6 +335,33 @@ std::optional<DracoClaims> draco_claims(std::string_view bytes) {
   return c;
 }
 
+// Draco quantizes float positions over their box, texture coordinates too,
+// and normals as unit floats: a coordinate past a float's range (1e308 in a
+// text file, valid as a double) or a box wider than one has no float, and
+// Draco fails on it.  Refused, naming the first.
+void check_float_range(const Mesh& mesh) {
+  std::array<float, 3> lo{}, hi{};
+  for (std::size_t v = 0; v < mesh.num_vertices(); ++v) {
+    const Vec3f p = to_float(mesh.positions[v]);
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = v == 0 ? p[a] : std::min(lo[a], p[a]);
+      hi[a] = v == 0 ? p[a] : std::max(hi[a], p[a]);
+    }
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(hi[0] - lo[0]) ||
+        !std::isfinite(hi[1] - lo[1]) || !std::isfinite(hi[2] - lo[2]))
+      throw InvalidInput("vertex " + std::to_string(v) +
+                         " lies beyond the range of a float (3.4e38), which Draco needs");
+  }
+  for (std::size_t i = 0; i < mesh.normals.size(); ++i) {
+    const Vec3f n = mesh.normals[i];
+    if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z))
+      throw InvalidInput("normal " + std::to_string(i) + " is not finite");
+  }
+  for (std::size_t i = 0; i < mesh.uvs.size(); ++i)
+    if (!std::isfinite(mesh.uvs[i].u) || !std::isfinite(mesh.uvs[i].v))
+      throw InvalidInput("texture coordinate " + std::to_string(i) + " is not finite");
+}
+
 }  // namespace
 
 // Draco's edgebreaker decoder sizes its corner table from the face count the
@@ -321,10 +374,34 @@ std::optional<DracoClaims> draco_claims(std::string_view bytes) {
 // exactly, 6.5 at 14 bits, 115 at 4 and 715 (3.9 million faces) at 1 bit
 // (test TheDensestHonestDracoStreamIsUnderTheBoundAndLoads).  A bigger file
 // whose claim passes is stopped by the reader's memory limit (upload_read.h).
+//
+// A point cloud's decoder sizes each attribute from the count of points its
+// header claims (up to 2 billion) and the attribute's components (up to 255
+// of 8 bytes): refused when that claims more than kDracoCloudBytesPerByte
+// bytes (8 a component) a byte of the stream, with 256 MiB always allowed.
+// Honest clouds stay far under it: a regular grid of a million points at 14
+// bits takes 0.5 to 1.2 bytes a point (draco_encoder's kd-tree and
+// sequential methods) for 24 claimed; only degenerate clouds (all points at
+// one place, 1-bit positions) go over, and only past 10 million points.
 void check_draco_counts(std::string_view bytes, const std::string& name) {
   constexpr std::uint64_t kDracoFacesPerByte = 1024, kAlwaysAllowed = std::uint64_t(1) << 20;
+  constexpr std::uint64_t kDracoCloudBytesPerByte = 1024, kCloudAlwaysAllowed = std::uint64_t(256) << 20;
   const std::optional<DracoClaims> c = draco_claims(bytes);
   if (!c) return;
+  if (c->point_cloud) {
+    const std::uint64_t most = std::max<std::uint64_t>(kCloudAlwaysAllowed, kDracoCloudBytesPerByte * bytes.size());
+    // Over 2^31 points Draco refuses by itself; the product then cannot overflow.
+    const std::uint64_t claimed =
+        std::min<std::uint64_t>(c->points, std::uint64_t(1) << 32) * std::max<std::uint64_t>(c->components, 1) * 8;
+    if (claimed > most)
+      throw ParseError(name,
+                       "the Draco header claims " + std::to_string(c->points) + " points of " +
+                           std::to_string(c->components) + " components (" + std::to_string(claimed) + " bytes), but " +
+                           std::to_string(bytes.size()) + " bytes cannot hold more than " + std::to_string(most) +
+                           " (a damaged or crafted file)",
+                       std::nullopt, std::nullopt);
+    return;
+  }
   const std::uint64_t most = std::max<std::uint64_t>(kAlwaysAllowed, kDracoFacesPerByte * bytes.size());
   if (c->faces > most)
     throw ParseError(name,
@@ -349,6 +426,7 @@ void read_draco(std::string_view bytes, const std::string& name, ReadResult& res
   auto fail = [&](const draco::Status& s) {
     throw ParseError(name, "Draco could not decode it: " + s.error_msg_string(), std::nullopt, std::nullopt);
   };
+  check_draco_counts(bytes, name);
   if (type.value() == draco::POINT_CLOUD) {
     // A scan: its points become a mesh with no faces (core/point_cloud.h).
     auto decoded = decoder.DecodePointCloudFromBuffer(&buffer);
@@ -358,7 +436,6 @@ void read_draco(std::string_view bytes, const std::string& name, ReadResult& res
   }
   if (type.value() != draco::TRIANGULAR_MESH)
     throw ParseError(name, "the Draco file holds neither a triangle mesh nor a point cloud", std::nullopt, 0);
-  check_draco_counts(bytes, name);
   auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
   if (!decoded.ok()) fail(decoded.status());
   from_draco(*decoded.value(), decoded.value().get(), name, result);
@@ -366,6 +443,7 @@ void read_draco(std::string_view bytes, const std::string& name, ReadResult& res
 
 std::string write_draco(const Mesh& mesh, const WriteOptions& options, std::span<const std::uint32_t> face_material,
                         bool stored_ids) {
+  check_float_range(mesh);
   auto dm = to_draco(mesh, face_material, stored_ids);
   draco::Encoder encoder;
   encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, options.position_bits);

@@ -14,7 +14,7 @@ ASSIMP=/usr/share/assimp/models
 C=corpus
 # Written over, never removed: the regression-* inputs (findings, fixed) and
 # the hand-written params/ and config/ seeds stay.
-mkdir -p $C/{off,obj,ply,stl,gltf,glb,drc,mtl,skeleton,voxel,zip,frame,json,params,config}
+mkdir -p $C/{off,obj,ply,stl,xyz,gltf,glb,drc,mtl,skeleton,voxel,zip,frame,json,params,config}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
@@ -28,6 +28,15 @@ for m in tetrahedron cube_quad; do
   "$CGVIEW" convert "$SAMPLES/$m.off" $C/glb/$m.glb >/dev/null
   "$CGVIEW" convert "$SAMPLES/$m.off" $C/drc/$m.drc >/dev/null
 done
+# Point clouds that Open3D and draco_encoder wrote (tests/data/points); the
+# first byte of an xyz seed picks the format (0: XYZ, 1: PTS).
+POINTS=../data/points
+{ printf '\0'; cat $POINTS/sphere_open3d.xyz; } >$C/xyz/sphere_open3d.xyz
+{ printf '\1'; cat $POINTS/sphere_open3d.pts; } >$C/xyz/sphere_open3d.pts
+printf '\0# a scan\n0 0 0\n1 2.5 -3e2\n' >$C/xyz/rows.xyz
+printf '\1 2\n0 0 0 7\n1 0 0 7\n1\n0 1 0 7\n' >$C/xyz/two_scans.pts
+cp $POINTS/sphere_open3d.ply $C/ply/
+cp $POINTS/sphere_draco.drc $C/drc/
 # Files from other tools (assimp's test models), where small.
 small() { find "$@" -type f -size -6k 2>/dev/null | head -12; }
 for f in $(small $ASSIMP/OBJ -name '*.obj'); do cp "$f" $C/obj/; done

@@ -39,7 +39,7 @@ JOBS=${CGVIEW_JOBS:-$(nproc)}
 [ "${CGVIEW_FUZZ_BUILT:-0}" = 1 ] || cmake --build "$BUILD" -j "$JOBS"
 [ "$MODE" != --build ] || exit 0
 TARGETS=("$@")
-[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(off obj ply stl gltf glb drc mtl skeleton voxel zip frame json params config ws)
+[ ${#TARGETS[@]} -gt 0 ] || TARGETS=(off obj ply stl xyz gltf glb drc mtl skeleton voxel zip frame json params config ws)
 failed=()
 # One run of target $1 for $2 seconds: adds its CPU seconds to spent and its
 # inputs to runs, and sets last (its final status line) and log; fails as the target did.

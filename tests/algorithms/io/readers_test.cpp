@@ -677,6 +677,26 @@ TEST(ReadPointClouds, Errors) {
   }
 }
 
+// The fuzzer's findings: a Draco cloud whose header claims 2 billion points
+// is refused before Draco allocates for them, and a coordinate that is a
+// double but no float is refused by the Draco writer (the viewer's stream).
+TEST(ReadPointClouds, HostileDracoCloudsAndCoordinatesPastAFloat) {
+  // DRACO 2.2, a point cloud, sequential; 2^31 - 1 points; one decoder of one
+  // float32 attribute of 3 components.
+  std::string claim = std::string("DRACO") + '\x02' + '\x02' + '\x00' + '\x00' + '\x00' + '\x00';
+  claim += le(std::uint32_t(0x7fffffff));
+  claim += std::string("\x01\x01\x00\x09\x03\x00\x00", 7) + std::string(16, '\0');
+  const ParseError e = error_of(claim, MeshFormat::drc, "claim.drc");
+  EXPECT_NE(std::string(e.what()).find("claims 2147483647 points of 3 components"), std::string::npos) << e.what();
+  const Mesh far = read("0 0 0\n1 2 1e308\n", MeshFormat::xyz, "far.xyz").mesh;
+  try {
+    write_mesh_bytes(far, MeshFormat::drc);
+    ADD_FAILURE() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("vertex 1 lies beyond the range of a float"), std::string::npos) << e.what();
+  }
+}
+
 // Triangle strips as Stanford's scans store them: a 2 x 1 grid of squares as
 // one strip (0 3 1 4 2 5), a -1, then a second strip whose two runs are
 // joined by repeated corners (the join's triangles are left out).  The expected
