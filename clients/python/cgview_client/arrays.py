@@ -80,6 +80,58 @@ def vector_array(data):
 
 
 @dataclass
+class PointCloud:
+    """positions (n, 3) float64 (stored as float32), normals (n, 3) float32 or
+    None, colors (n, 4) uint8 RGBA or None: a point cloud artifact, its
+    points in the order the algorithm gave them."""
+    positions: object
+    normals: object = None
+    colors: object = None
+
+
+_PLY_TYPES = {"char": "i1", "int8": "i1", "uchar": "u1", "uint8": "u1", "short": "<i2", "int16": "<i2",
+              "ushort": "<u2", "uint16": "<u2", "int": "<i4", "int32": "<i4", "uint": "<u4", "uint32": "<u4",
+              "float": "<f4", "float32": "<f4", "double": "<f8", "float64": "<f8"}
+
+
+def ply_points(data):
+    """A PointCloud from a binary little-endian PLY whose first element is
+    its vertices (the server's "ply" of a points artifact; Open3D's and
+    CloudCompare's PLY of a cloud too)."""
+    np = numpy()
+    end = data.find(b"end_header\n")
+    if not data.startswith(b"ply") or end < 0:
+        raise ValueError("not a PLY file")
+    header = data[:end].decode("ascii", "replace").splitlines()
+    if "format binary_little_endian 1.0" not in header:
+        raise ValueError("the PLY is not binary little-endian")
+    count, fields, element = None, [], None
+    for line in header:
+        words = line.split()
+        if words[:1] == ["element"]:
+            element = words[1]
+            if element == "vertex":
+                count = int(words[2])
+        elif words[:1] == ["property"] and element == "vertex":
+            if words[1] == "list" or words[1] not in _PLY_TYPES:
+                raise ValueError(f"vertex property '{line}' is not a number")
+            fields.append((words[2], _PLY_TYPES[words[1]]))
+    if count is None:
+        raise ValueError("the PLY has no vertex element")
+    rows = np.frombuffer(data, dtype=np.dtype(fields), count=count, offset=end + len("end_header\n"))
+    names = set(rows.dtype.names)
+
+    def columns(*keys, dtype):
+        return np.stack([rows[k] for k in keys], axis=1).astype(dtype) if names.issuperset(keys) else None
+
+    colors = columns("red", "green", "blue", dtype="uint8")
+    if colors is not None:
+        alpha = rows["alpha"] if "alpha" in names else np.full(count, 255)
+        colors = np.concatenate([colors, alpha.astype("uint8")[:, None]], axis=1)
+    return PointCloud(columns("x", "y", "z", dtype="float64"), columns("nx", "ny", "nz", dtype="float32"), colors)
+
+
+@dataclass
 class VoxelGrid:
     """values[x, y, z] (uint8 occupancy, or float32), the grid's corner
     (`origin`, the low corner of voxel 0) and its voxel size."""

@@ -136,6 +136,12 @@ class Job(dict):
         name = self._artifact(name, "metrics")
         return json.loads(self._client.artifact(self.id, name, "json")[0])
 
+    def points(self, name=None):
+        """A point cloud artifact as arrays.PointCloud (positions, and normals
+        and colors where it has them)."""
+        name = self._artifact(name, "points")
+        return arrays.ply_points(self._client.artifact(self.id, name, "ply")[0])
+
     def mesh(self, name=None):
         """A mesh artifact as (vertices, faces) arrays."""
         name = self._artifact(name, "mesh")

@@ -117,6 +117,37 @@ class ArraysTest(WithElephant):
         distance = self.client.run("centroid_distance", {"job": surface.id, "artifact": "mesh"})
         self.assertEqual(distance.field().shape, (len(surface.mesh()[0]),))
 
+    def test_a_point_cloud_comes_back_as_arrays(self):
+        # A sphere's points as XYZ; estimate_normals gives each its normal,
+        # the position itself up to sign (PCA of its neighbours: the plane).
+        n = 400
+        i = np.arange(n) + 0.5
+        z = 1 - 2 * i / n
+        r = np.sqrt(1 - z * z)
+        phi = np.pi * (1 + 5 ** 0.5) * i
+        sphere = np.stack([r * np.cos(phi), r * np.sin(phi), z], axis=1)
+        text = "".join(f"{x!r} {y!r} {w!r}\n" for x, y, w in sphere)
+        cloud = self.client.upload_bytes(text.encode(), "sphere.xyz")
+        self.assertTrue(cloud["points"])
+        job = self.client.run("estimate_normals", None, inputs={"points": cloud.id})
+        pc = job.points()
+        np.testing.assert_allclose(pc.positions, sphere, atol=1e-6)  # float32, as stored
+        self.assertEqual(pc.normals.shape, (n, 3))
+        self.assertGreater(np.abs((pc.normals * sphere).sum(axis=1)).min(), 0.9)
+        self.assertIsNone(pc.colors)
+        # Open3D reads the same points from the artifact's ply.
+        if open3d is not None:
+            import tempfile
+            with tempfile.TemporaryDirectory() as d:
+                path = os.path.join(d, "points.ply")
+                with open(path, "wb") as f:
+                    f.write(self.client.artifact(job.id, "points", "ply")[0])
+                o3d = open3d.io.read_point_cloud(path)
+            np.testing.assert_array_equal(np.asarray(o3d.points), pc.positions)
+            np.testing.assert_allclose(np.asarray(o3d.normals), pc.normals, atol=1e-6)
+        with self.assertRaisesRegex(ValueError, "is a points, not a mesh"):
+            job.mesh("points")
+
     @unittest.skipIf(open3d is None, "open3d is not installed (Debian: python3-open3d)")
     def test_open3d_meshes_both_ways(self):
         box = open3d.geometry.TriangleMesh.create_box(2.0, 1.0, 0.5)
