@@ -1,5 +1,6 @@
 #include "points/poisson_reconstruction.h"
 
+#include <CGAL/IO/facets_in_complex_2_to_triangle_mesh.h>
 #include <CGAL/Implicit_surface_3.h>
 #include <CGAL/Poisson_reconstruction_function.h>
 #include <CGAL/Surface_mesh_default_triangulation_3.h>
@@ -8,12 +9,11 @@
 #include <CGAL/property_map.h>
 
 #include <cmath>
-#include <unordered_map>
+#include <memory>
 #include <utility>
 
 #include "core/orient.h"
 #include "core/surface_mesh.h"
-#include "filters/repair_mesh.h"
 #include "points/estimate_normals.h"
 
 namespace cgview {
@@ -82,38 +82,34 @@ PoissonReconstructionResult poisson_reconstruction(const PointCloud& cloud, cons
                           dichotomy_error / sphere_radius);
   const CGAL::Surface_mesh_default_criteria_3<Triangulation> criteria(p.angle, p.radius * spacing,
                                                                       p.distance * spacing);
-  Triangulation tr;
-  Complex c2t3(tr);
-  CGAL::make_surface_mesh(c2t3, surface, criteria, CGAL::Manifold_with_boundary_tag());
-  if (tr.number_of_vertices() == 0)
+  // The mesher starts from points where segments from the inner point
+  // cross the surface (20 by default): on a thin shape (the 44k points of
+  // refined_elephant, about one run in eight) none of their Delaunay facets
+  // may cross it, and the complex stays empty (whereupon CGAL 5.5's
+  // facets_in_complex_2_to_triangle_mesh reads the first of no facets: a
+  // crash); more starting points then.
+  struct Meshed {
+    Triangulation tr;
+    Complex c2t3{tr};
+  };
+  std::unique_ptr<Meshed> meshed;
+  for (const int initial : {20, 200, 2000}) {
+    meshed = std::make_unique<Meshed>();
+    CGAL::make_surface_mesh(meshed->c2t3, surface, criteria, CGAL::Manifold_with_boundary_tag(), initial);
+    if (meshed->c2t3.number_of_facets() > 0) break;
+    ctx.check_cancelled();
+  }
+  const Complex& c2t3 = meshed->c2t3;
+  if (c2t3.number_of_facets() == 0)
     throw InvalidInput("poisson_reconstruction: the mesher found no surface (do the normals point consistently?)");
   ctx.check_cancelled();
 
   ctx.progress(0.95, "mesh");
-  // Not CGAL's facets_in_complex_2_to_triangle_mesh: in CGAL 5.5 its walk
-  // over the facets ran past their end now and then (a crash: twice in
-  // about 16 runs on the 44k points of refined_elephant).  The facets as a
-  // soup, oriented and made a halfedge mesh by the repair's soup tools.
-  Mesh soup;
-  std::unordered_map<Triangulation::Vertex_handle, Index> index;
-  for (auto f = c2t3.facets_begin(); f != c2t3.facets_end(); ++f) {
-    Tri t;
-    for (int j = 0; j < 3; ++j) {
-      const Triangulation::Vertex_handle v = f->first->vertex(tr.vertex_triple_index(f->second, j));
-      const auto [at, fresh] = index.try_emplace(v, Index(soup.positions.size()));
-      if (fresh) soup.positions.push_back({v->point().x(), v->point().y(), v->point().z()});
-      t[j] = at->second;
-    }
-    soup.faces.push_back(t);
-  }
-  RepairReport repair;
-  const SurfaceMesh sm = repair_to_surface_mesh(soup, false, repair);
+  SurfaceMesh sm;
+  CGAL::facets_in_complex_2_to_triangle_mesh(c2t3, sm);
   const bool closed = CGAL::is_closed(sm);
   result.mesh = from_surface_mesh(sm);
   orient_outward_in_place(result.mesh);
-  if (repair.vertices_duplicated > 0)
-    result.warnings.push_back(std::to_string(repair.vertices_duplicated) +
-                              " vertices of the surface were duplicated where it touched itself (non-manifold)");
   if (!closed)
     result.warnings.push_back(
         "the surface is not closed (the mesher left holes): more points, or a larger approximation error, may "

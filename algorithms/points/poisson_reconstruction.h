@@ -13,6 +13,9 @@
 // `distance` average spacings of the surface; the average spacing is the
 // mean distance from a point to its 6 nearest neighbours
 // (compute_average_spacing).  The faces point outward (positive volume).
+// Two runs on the same cloud may give different triangles of the same
+// accuracy: the mesher starts from random points on the surface (seeding
+// CGAL's default generator for it was tried: runs still differed).
 //
 // A cloud without normals gets them first from estimate_normals (jet, 18
 // neighbours, oriented), and a warning says so: normals pointing inward
