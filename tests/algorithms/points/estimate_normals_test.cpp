@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <string>
 
+#include "invalid_input.h"
 #include "point_shapes.h"
 
 namespace cgview {
@@ -94,23 +95,23 @@ TEST(EstimateNormals, PointsTheTreeCannotReachAreAWarning) {
 
 TEST(EstimateNormals, BadParametersAndCloudsAreRefused) {
   const PointCloud c = test::sphere_cloud(100);
-  EXPECT_NE(test::invalid_input_of([&] { estimate_normals(c, {.neighbors = 2}); }).find("'neighbors'"),
+  EXPECT_NE(test::invalid_input_message([&] { estimate_normals(c, {.neighbors = 2}); }).find("'neighbors'"),
             std::string::npos);
-  EXPECT_NE(test::invalid_input_of([&] { estimate_normals(c, {.neighbors = 501}); }).find("'neighbors'"),
+  EXPECT_NE(test::invalid_input_message([&] { estimate_normals(c, {.neighbors = 501}); }).find("'neighbors'"),
             std::string::npos);
-  EXPECT_NE(test::invalid_input_of([&] { estimate_normals(c, {.method = NormalMethod(7)}); }).find("'method'"),
+  EXPECT_NE(test::invalid_input_message([&] { estimate_normals(c, {.method = NormalMethod(7)}); }).find("'method'"),
             std::string::npos);
-  EXPECT_NE(test::invalid_input_of([&] { estimate_normals(PointCloud{}); }).find("at least 6 points"),
+  EXPECT_NE(test::invalid_input_message([&] { estimate_normals(PointCloud{}); }).find("at least 6 points"),
             std::string::npos);
   PointCloud five = test::sphere_cloud(5);
-  EXPECT_NE(test::invalid_input_of([&] { estimate_normals(five); }).find("the cloud has 5"), std::string::npos);
+  EXPECT_NE(test::invalid_input_message([&] { estimate_normals(five); }).find("the cloud has 5"), std::string::npos);
   EXPECT_NO_THROW(estimate_normals(five, {.method = NormalMethod::pca}));
   PointCloud nan = c;
   nan.positions[3].y = NAN;
-  EXPECT_NE(test::invalid_input_of([&] { estimate_normals(nan); }).find("point 3"), std::string::npos);
+  EXPECT_NE(test::invalid_input_message([&] { estimate_normals(nan); }).find("point 3"), std::string::npos);
   PointCloud uneven = c;
   uneven.normals.pop_back();
-  EXPECT_NE(test::invalid_input_of([&] { estimate_normals(uneven); }).find("99 normals"), std::string::npos);
+  EXPECT_NE(test::invalid_input_message([&] { estimate_normals(uneven); }).find("99 normals"), std::string::npos);
 }
 
 TEST(EstimateNormals, ProgressIsReportedAndCancellationHonoured) {
@@ -139,11 +140,11 @@ TEST(EstimateNormals, RegisteredWithAPointsInputAndOutput) {
   ASSERT_EQ(r.artifacts.size(), 1u);
   EXPECT_EQ(r.artifacts[0].name, "points");
   EXPECT_EQ(compare(exact, std::get<PointCloud>(r.artifacts[0].value)).inward, 0u);
-  EXPECT_NE(test::invalid_input_of([&] {
+  EXPECT_NE(test::invalid_input_message([&] {
               a.run(in, {{"method", std::string("mls")}}, ctx);
             }).find("'method'"),
             std::string::npos);
-  EXPECT_NE(test::invalid_input_of([&] { a.run(Inputs{}, {}, ctx); }).find("'points'"), std::string::npos);
+  EXPECT_NE(test::invalid_input_message([&] { a.run(Inputs{}, {}, ctx); }).find("'points'"), std::string::npos);
 }
 
 }  // namespace

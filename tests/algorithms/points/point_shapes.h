@@ -2,12 +2,10 @@
 // the point-cloud algorithms' tests.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
-#include <functional>
 #include <numbers>
-#include <string>
 
-#include "core/errors.h"
 #include "core/point_cloud.h"
 
 namespace cgview::test {
@@ -44,15 +42,6 @@ inline PointCloud torus_cloud(int rings, int segments, double R = 2.0, double r 
 inline double line_angle_deg(Vec3 a, Vec3 b) {
   const double c = std::abs(dot(a, b)) / (norm(a) * norm(b));
   return std::acos(std::min(1.0, c)) * 180.0 / std::numbers::pi;
-}
-
-inline std::string invalid_input_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InvalidInput& e) {
-    return e.what();
-  }
-  return "(no InvalidInput thrown)";
 }
 
 }  // namespace cgview::test

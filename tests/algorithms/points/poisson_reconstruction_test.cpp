@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/mesh_report.h"
+#include "invalid_input.h"
 #include "point_shapes.h"
 
 namespace cgview {
@@ -51,18 +52,18 @@ TEST(PoissonReconstruction, NormalsAreEstimatedWhenTheCloudHasNone) {
 
 TEST(PoissonReconstruction, BadParametersAndCloudsAreRefused) {
   const PointCloud c = test::sphere_cloud(100);
-  EXPECT_NE(test::invalid_input_of([&] { poisson_reconstruction(c, {.angle = 31}); }).find("'angle'"),
+  EXPECT_NE(test::invalid_input_message([&] { poisson_reconstruction(c, {.angle = 31}); }).find("'angle'"),
             std::string::npos);
-  EXPECT_NE(test::invalid_input_of([&] { poisson_reconstruction(c, {.radius = 0}); }).find("'radius'"),
+  EXPECT_NE(test::invalid_input_message([&] { poisson_reconstruction(c, {.radius = 0}); }).find("'radius'"),
             std::string::npos);
-  EXPECT_NE(test::invalid_input_of([&] { poisson_reconstruction(c, {.distance = 0}); }).find("'distance'"),
+  EXPECT_NE(test::invalid_input_message([&] { poisson_reconstruction(c, {.distance = 0}); }).find("'distance'"),
             std::string::npos);
-  EXPECT_NE(test::invalid_input_of([&] { poisson_reconstruction(PointCloud{}); }).find("at least 6 points"),
+  EXPECT_NE(test::invalid_input_message([&] { poisson_reconstruction(PointCloud{}); }).find("at least 6 points"),
             std::string::npos);
   PointCloud same;
   same.positions.assign(10, Vec3{1, 2, 3});
   same.normals.assign(10, Vec3f{0, 0, 1});
-  EXPECT_NE(test::invalid_input_of([&] { poisson_reconstruction(same); }).find("coincide"), std::string::npos);
+  EXPECT_NE(test::invalid_input_message([&] { poisson_reconstruction(same); }).find("coincide"), std::string::npos);
 }
 
 TEST(PoissonReconstruction, CancellationIsHonoured) {
