@@ -262,11 +262,11 @@ void postprocess(const Mesh& mesh, const Adjacency& graph, std::vector<double>& 
   if (p.smooth) bilateral_smooth(graph, values, p.window, &ctx);
 }
 
-void warn_missing(const RawSdf& raw, std::vector<std::string>& warnings) {
+void warn_missing(const RawSdf& raw, std::vector<std::string>& warnings, std::string_view fill) {
   if (raw.missing)
     warnings.push_back(std::to_string(raw.missing) + " of " + std::to_string(raw.values.size()) +
-                       " faces had no ray that found the inside (an open or degenerate mesh): they take their "
-                       "neighbours' mean, else the smallest value");
+                       " faces had no ray that found the inside (an open or degenerate mesh): they take " +
+                       std::string(fill));
 }
 
 double pearson(std::span<const double> a, std::span<const double> b) {

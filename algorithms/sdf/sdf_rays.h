@@ -25,6 +25,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/mesh.h"
@@ -73,8 +74,10 @@ RayDevice ray_device(const SdfParams& p);
 // The metrics every SDF algorithm reports of its rays: rays_on_gpu (1 or 0).
 void ray_metrics(const RawSdf& raw, Metrics& metrics);
 
-// A warning for the faces whose rays found no inside (open meshes).
-void warn_missing(const RawSdf& raw, std::vector<std::string>& warnings);
+// A warning for the faces whose rays found no inside (open meshes), saying
+// what they take instead (`fill`).
+void warn_missing(const RawSdf& raw, std::vector<std::string>& warnings,
+                  std::string_view fill = "their neighbours' mean, else the smallest value");
 
 // Pearson's correlation of two equally long series (how far two SDFs agree:
 // the tests and the benchmark compare ours with CGAL's by it); 0 when either

@@ -100,6 +100,10 @@ TEST(SdfFast, TenPercentOnMannequinDevilStaysWithinTheBenchmarksErrorBounds) {
   const sdf::SdfFastResult res = sdf::sdf_fast(mesh, {.fraction = 0.1, .compare = true});
   EXPECT_LE(res.metrics.at("mean_error"), 0.05);
   EXPECT_LE(res.metrics.at("p95_error"), 0.2);
+  EXPECT_TRUE(std::any_of(res.warnings.begin(), res.warnings.end(), [](const std::string& w) {
+    return w.find("no ray that found the inside") != std::string::npos &&
+           w.find("they take the smallest sampled value") != std::string::npos;
+  })) << "the warning says what the samples without a value take";
 }
 
 // The turn is the registry's (InputSpec::outward, kSdfInput): a job's path.
