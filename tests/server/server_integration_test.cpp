@@ -408,6 +408,29 @@ TEST_F(ServerIntegration, WebSocketPingListAndGetMesh) {
   EXPECT_FALSE(ws.close());
 }
 
+// A point cloud streams as a Draco point cloud, which draco_decoder (as
+// draco3d in the viewer) reads as one, its colours with it.
+TEST_F(ServerIntegration, WebSocketStreamsAPointCloudAsADracoPointCloud) {
+  ASSERT_TRUE(start());
+  std::string pts = "100\n";
+  for (int i = 0; i < 100; ++i) pts += std::to_string(i % 10) + " " + std::to_string(i / 10) + " 0.5 0 200 100 50\n";
+  const HttpResult up = http_call(port(), Method::post, "/api/v1/meshes?name=scan.pts", pts);
+  ASSERT_EQ(up.status, 201u) << up.body;
+  EXPECT_EQ(up.body_json()["points"], true);
+  WsClient ws;
+  ASSERT_FALSE(ws.connect(port()));
+  const MeshStream s = get_mesh(ws, up.body_json()["id"], 2);
+  EXPECT_EQ(s.begin["vertices"], 100);
+  EXPECT_EQ(s.begin["faces"], 0);
+  EXPECT_FALSE(s.begin["has_normals"].get<bool>());
+  EXPECT_TRUE(s.begin["has_colors"].get<bool>());
+  ASSERT_GT(s.payload.size(), 8u);
+  EXPECT_EQ(s.payload.substr(0, 5), "DRACO");
+  EXPECT_EQ(int(s.payload[7]), 0) << "the encoder type: 0 is a point cloud, 1 a triangle mesh";
+  EXPECT_EQ(draco_counts(s.payload, dir_, "ws-points"), std::make_pair(std::size_t(100), std::size_t(0)));
+  EXPECT_FALSE(ws.close());
+}
+
 TEST_F(ServerIntegration, WebSocketEventsForUploadsAndDeletes) {
   ASSERT_TRUE(start());
   WsClient ws;
