@@ -62,7 +62,8 @@ CGVIEW_REGISTER_FUNCTION(sdf_fast, sdf_fast,
                          {.title = "Accelerated SDF (Poisson)",
                           .description = "The SDF cast on a fraction of the faces, spread over the surface, and "
                                          "propagated to the others by a Poisson equation on the dual graph (the "
-                                         "CGView paper, 3.2); with compare, the full SDF and the error map beside it.",
+                                         "CGView paper, 3.2), by default a few of its Jacobi sweeps; with compare, "
+                                         "the full SDF and the error map beside it.",
                           .area = "sdf",
                           .inputs = {kSdfInput}})
 

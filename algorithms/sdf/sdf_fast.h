@@ -1,8 +1,9 @@
 // sdf_fast: the accelerated SDF (the CGView paper, section 3.2).  The SDF
 // (sdf/sdf.h) is cast by rays on a well-spread fraction of the faces only,
 // and propagated to the others by a Poisson equation on the dual graph,
-// optionally guided by the mean curvature (sdf/sdf_poisson.h gives the
-// equation and its solvers).  With `compare`, also the full SDF and the
+// optionally guided by the mean curvature: by default a few of its Jacobi
+// sweeps from each face's nearest sample, closer to the full SDF than its
+// exact solution (sdf/sdf_poisson.h gives the equation and its solvers).  With `compare`, also the full SDF and the
 // error map of the paper's Figure 9.
 //
 //   Mesh m = read_mesh("armadillo.off");
