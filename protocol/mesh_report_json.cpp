@@ -30,8 +30,7 @@ nlohmann::json to_json(const MeshReport& r) {
       {"euler_characteristic", opt(r.euler_characteristic)},
       {"area", r.area},
       {"volume", opt(r.volume)},
-      // Points and no faces: a point cloud (core/point_cloud.h).
-      {"points", r.faces == 0 && r.vertices > 0},
+      {"points", r.point_cloud()},
   };
 }
 

@@ -216,6 +216,7 @@ int cmd_info(const std::vector<std::string>& args) {
   else std::printf("file              %s: %s (%s)\n", file.c_str(), input.entry.c_str(), to_string(r.format));
   std::printf("vertices          %llu\n", (unsigned long long)rep.vertices);
   std::printf("faces             %llu\n", (unsigned long long)rep.faces);
+  if (rep.point_cloud()) std::printf("point cloud       yes (points and no faces)\n");
   std::printf("edges             %llu\n", (unsigned long long)rep.edges);
   if (!rep.bbox.empty())
     std::printf("bounding box      [%g %g %g] .. [%g %g %g] (size %g x %g x %g)\n", rep.bbox.min.x, rep.bbox.min.y,

@@ -36,6 +36,8 @@ struct MeshReport {
   // solid (a common export error).  What needs the inside (the SDF) would
   // cast its rays outward; orient_outward (core/orient.h) turns it.
   bool faces_inward = false;
+  // Points and no faces: a point cloud (core/point_cloud.h).
+  bool point_cloud() const { return faces == 0 && vertices > 0; }
 };
 
 // Computes the report in O(n log n).  Never throws for a validated mesh.

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -15,6 +16,7 @@
 
 #include "render/image.h"
 #include "gltf_quad.h"
+#include "io/mesh_io.h"
 #include "test_support.h"
 
 namespace cgview {
@@ -163,6 +165,28 @@ TEST(CliTest, InfoText) {
   EXPECT_NE(r.out.find("genus             3\n"), std::string::npos);
   EXPECT_NE(r.out.find("manifold          yes\n"), std::string::npos);
   EXPECT_NE(r.out.find("closed            yes\n"), std::string::npos);
+}
+
+// A file of points: info says it is a cloud, and an algorithm that takes
+// points (estimate_normals) runs on it and writes the cloud with normals.
+TEST(CliTest, APointCloudIsSaidToBeOneAndRunsAnAlgorithmThatTakesPoints) {
+  const fs::path dir = test::temp_dir("cli-points");
+  std::string xyz;
+  for (int i = 0; i < 200; ++i) {
+    const double z = 1 - 2 * (i + 0.5) / 200, r = std::sqrt(1 - z * z), phi = 3.883222077450933 * (i + 0.5);
+    xyz += std::to_string(r * std::cos(phi)) + " " + std::to_string(r * std::sin(phi)) + " " + std::to_string(z) + "\n";
+  }
+  test::write_text(dir / "scan.xyz", xyz);
+  const Result info = cgview("info " + quote((dir / "scan.xyz").string()));
+  ASSERT_EQ(info.status, 0) << info.out;
+  EXPECT_NE(info.out.find("faces             0\npoint cloud       yes"), std::string::npos) << info.out;
+  const Result run = cgview("run estimate_normals " + quote((dir / "scan.xyz").string()) + " -o " +
+                            quote((dir / "with_normals.ply").string()));
+  ASSERT_EQ(run.status, 0) << run.out;
+  const Mesh back = read_mesh(dir / "with_normals.ply");
+  EXPECT_EQ(back.num_vertices(), 200u);
+  EXPECT_EQ(back.num_faces(), 0u);
+  EXPECT_EQ(back.normals.size(), 200u);
 }
 
 TEST(CliTest, InfoOfNonManifoldMesh) {
