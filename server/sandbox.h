@@ -60,6 +60,18 @@ struct SandboxMounts {
       visible;  // read-only at their own paths, over the job's /tmp too (the worker's directory)
 };
 
+// The variable that tells a program that drops to the job's user itself
+// (Sandbox::Drop::by_program) that user's id.
+inline constexpr const char* kJobUserVariable = "CGVIEW_JOB_USER";
+
+// In a root sandbox's program given kJobUserVariable, before anything of
+// the job runs: what setpriv would have done (no new privileges, an empty
+// bounding set, no groups, the user `id` as real, effective and saved user
+// and group, no capabilities left), then checked in /proc/self/status.
+// Throws IoError where any of it fails, or where the process has more than
+// one thread (the rest would keep their privileges).
+void drop_to_job_user(long id);
+
 class Sandbox {
  public:
   // Probes bubblewrap once (a run of /bin/true in a full sandbox).
@@ -78,8 +90,14 @@ class Sandbox {
     std::vector<std::string> argv;
     ChildOptions options;
   };
-  Command wrap(const std::vector<std::string>& argv, const SandboxMounts& mounts, int slot,
-               ChildOptions options = {}) const;
+  // Who drops a root server's run to its user: setpriv, exec'd before the
+  // program, or the program itself (cgview-worker), told the user in its
+  // environment (kJobUserVariable), which saves an exec for each job.  (A
+  // wrapper script given as the worker then runs as root in the sandbox,
+  // until the worker it starts drops.)
+  enum class Drop { by_setpriv, by_program };
+  Command wrap(const std::vector<std::string>& argv, const SandboxMounts& mounts, int slot, ChildOptions options = {},
+               Drop drop = Drop::by_setpriv) const;
 
   // The user a root server's run in `slot` runs as; nullopt where runs keep
   // the server's user (a server that is not root, or no sandbox).

@@ -7,6 +7,7 @@
 //   (an input the algorithm declares as a voxel_grid is a grid file: .nrrd, .binvox, ...)
 //   ("plugin": "/path/lib.so" loads a user's algorithm library first: plugins/plugin.h)
 //   cgview-worker --list        prints every algorithm linked in, as JSON (protocol/algorithm_json)
+//   (CGVIEW_JOB_USER=ID, set by a root server's sandbox: it drops to that user first, sandbox.h)
 //
 // A worker whose stdin is a pipe was started ahead of its job (the local
 // executor's pre-started worker, local_executor.h): it loads, says so on
@@ -27,6 +28,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <new>
@@ -43,6 +45,7 @@
 #include "registry/artifact_io.h"
 #include "plugins/plugin.h"
 #include "registry/registry.h"
+#include "sandbox.h"
 
 namespace {
 
@@ -121,6 +124,17 @@ int run_job(const fs::path& spec_path, fs::path& out) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A root server's sandbox starts it as root, for it to drop to the job's
+  // user here, before anything of the job is read or loaded (sandbox.h).
+  if (const char* user = std::getenv(server::kJobUserVariable)) {
+    try {
+      server::drop_to_job_user(std::stol(user));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "cannot drop to the job's user %s: %s\n", user, e.what());
+      return 1;
+    }
+    ::unsetenv(server::kJobUserVariable);
+  }
   if (argc == 2 && std::string(argv[1]) == "--list") {
     json list = json::array();
     for (const auto& [name, a] : algorithms()) list.push_back(protocol::to_json(a));

@@ -22,7 +22,7 @@ Sandbox::Command sandboxed_worker(const Sandbox& sandbox, const LaunchSpec& job,
   return sandbox.wrap(
       {program, kSandboxSpec},
       {.writable = job.work, .readable = readable, .hidden = {job.data_dir}, .visible = {worker.parent_path()}}, slot,
-      std::move(options));
+      std::move(options), Sandbox::Drop::by_program);
 }
 
 WakePipe::WakePipe() {

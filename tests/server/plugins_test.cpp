@@ -241,6 +241,10 @@ TEST_F(Plugins, EveryWayOutOfTheSandboxFailsItsJobAloneWithTheLimitItHit) {
       {"loop", "", "exceeded its time limit of 15 s"},
       {"big_file", "", "file-size limit of 64 MB"},
       {"segfault", "", "SIGSEGV"},
+      // Not root, no capability, and none to gain by an exec.
+      {"become_root", "",
+       "; CapInh: 0000000000000000 CapPrm: 0000000000000000 CapEff: 0000000000000000 CapBnd: 0000000000000000 "
+       "CapAmb: 0000000000000000 NoNewPrivs: 1"},
   };
   // Bob's long job runs beside them all.
   const HttpResult bob_long = as(bob_, "POST", "/api/v1/jobs",

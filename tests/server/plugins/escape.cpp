@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -31,12 +32,13 @@ struct Params {
   std::string target;  // a path, or a port
   template <class V>
   void describe(V& v) {
-    v.choice("attempt", attempt,
-             {.label = "Attempt",
-              .choices = {"read_file",     "write_file", "connect_local", "connect_outside", "fork_bomb",
-                          "allocate",      "loop",       "big_file",      "segfault",        "link_error",
-                          "link_artifact", "fifo_error", "zero_error",    "huge_result",     "many_artifacts",
-                          "many_files",    "link_tmp",   "read_env",      "link_exit",       "fill_disk"}});
+    v.choice(
+        "attempt", attempt,
+        {.label = "Attempt",
+         .choices = {"read_file",  "write_file",  "connect_local",  "connect_outside", "fork_bomb",     "allocate",
+                     "loop",       "big_file",    "segfault",       "link_error",      "link_artifact", "fifo_error",
+                     "zero_error", "huge_result", "many_artifacts", "many_files",      "link_tmp",      "read_env",
+                     "link_exit",  "fill_disk",   "become_root"}});
     v.text("target", target, {.label = "Target"});
   }
 };
@@ -122,6 +124,16 @@ AlgorithmResult run(const Mesh&, const Params& p, Context& ctx) {
     if (::rename("tmp", "tmp.old") != 0 && ::rmdir("tmp") != 0) fail("cannot move tmp");
     if (::symlink(p.target.empty() ? "../../.." : p.target.c_str(), "tmp") != 0) fail("symlink");
     for (;;) ::pause();
+  }
+  if (p.attempt == "become_root") {
+    if (::setuid(0) == 0 || ::setgid(0) == 0) return escaped();
+    // What the kernel says the job holds, for the test to read in its error.
+    std::string held = std::string("cannot become root: ") + std::strerror(errno) + ";";
+    std::ifstream status("/proc/self/status");
+    for (std::string line; std::getline(status, line);)
+      if (line.starts_with("Cap") || line.starts_with("NoNewPrivs:")) held += " " + line;
+    std::replace(held.begin(), held.end(), '\t', ' ');
+    throw std::runtime_error(held);
   }
   if (p.attempt == "read_env") {
     for (char** e = ::environ; *e; ++e)
