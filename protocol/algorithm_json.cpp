@@ -56,8 +56,10 @@ json to_json(const Algorithm& a) {
     order.push_back(p.name);
   }
   json inputs = json::array();
-  for (const InputSpec& in : a.info.inputs)
+  for (const InputSpec& in : a.info.inputs) {
     inputs.push_back({{"name", in.name}, {"kind", to_string(in.kind)}, {"description", in.help}});
+    if (in.faceless) inputs.back()["faceless"] = true;
+  }
   json outputs = json::array();
   for (const auto& [name, kind] : a.info.outputs) outputs.push_back({{"name", name}, {"kind", to_string(kind)}});
   return {{"name", a.info.name},
@@ -104,7 +106,10 @@ Algorithm algorithm_from_json(const json& d) {
   a.info.area = d.value("area", "");
   a.info.inputs.clear();
   for (const auto& in : d.value("inputs", json::array()))
-    a.info.inputs.push_back({in.value("name", ""), kind_from(in.value("kind", "mesh")), in.value("description", "")});
+    a.info.inputs.push_back({.name = in.value("name", ""),
+                             .kind = kind_from(in.value("kind", "mesh")),
+                             .help = in.value("description", ""),
+                             .faceless = in.value("faceless", false)});
   for (const auto& out : d.value("outputs", json::array()))
     a.info.outputs.emplace_back(out.value("name", ""), kind_from(out.value("kind", "")));
   const json params = d.value("params", json::object());

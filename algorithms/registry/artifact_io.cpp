@@ -33,6 +33,10 @@ std::vector<std::string> InputFiles::read(const InputSpec& spec, const std::file
     }
     default: {
       ReadResult r = read_mesh_file(path);
+      if (r.mesh.num_faces() == 0 && !spec.faceless)
+        throw InvalidInput("input '" + spec.name + "' (" + path.filename().string() + ") is a point cloud of " +
+                           std::to_string(r.mesh.num_vertices()) +
+                           " points and no faces: this algorithm needs a mesh with faces");
       const Mesh& m = meshes_.insert_or_assign(spec.name, std::move(r.mesh)).first->second;
       inputs_.add(spec.name, m);
       if (!primary_) primary_ = &m;

@@ -156,6 +156,10 @@ struct InputSpec {  // initializers as in ParamInfo
   // normal): a closed mesh whose faces face inward is turned outward for
   // the run (face indices kept), and a warning says so.
   bool outward = false;
+  // A mesh input that may be a mesh with no faces, a point cloud
+  // (voxelize's surface mode); without it the server refuses a cloud with a
+  // 400 before the job runs, and `cgview run` and the worker before reading on.
+  bool faceless = false;
 };
 
 // The inputs of one run, by name; it refers to values the caller owns.

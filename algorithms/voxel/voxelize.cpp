@@ -41,7 +41,11 @@ CGVIEW_REGISTER_FUNCTION(
          "Surface or solid voxels of the mesh at a resolution or voxel size: exact "
          "triangle-box overlap (no gaps), interior by a flood fill of the outside; a point cloud (no faces): "
          "the voxels holding its points, in surface mode.",
-     .area = "voxel"})
+     .area = "voxel",
+     .inputs = {{.name = "mesh",
+                 .kind = OutputKind::mesh,
+                 .help = "the mesh to voxelize, or a point cloud (surface mode)",
+                 .faceless = true}}})
 CGVIEW_REGISTER_PRECHECK(voxelize, VoxelizeParams, precheck)
 
 }  // namespace cgview

@@ -162,7 +162,7 @@ Job Admission::admit(const json& req, const Caller& caller, JobLookup& jobs, std
       InputSummary& sum = summaries[name];
       sum.vertices = report.value("vertices", std::size_t(0));
       sum.faces = report.value("faces", std::size_t(0));
-      if (!points && sum.faces == 0)
+      if (!points && sum.faces == 0 && !spec.value("faceless", false))
         throw InvalidInput("input '" + name + "' (" + rec->name + ") is a point cloud of " +
                            std::to_string(sum.vertices) + " points and no faces: " + algorithm +
                            " needs a mesh with faces (mesh the cloud first, or run an algorithm that takes points)");

@@ -187,6 +187,13 @@ TEST(CliTest, APointCloudIsSaidToBeOneAndRunsAnAlgorithmThatTakesPoints) {
   EXPECT_EQ(back.num_vertices(), 200u);
   EXPECT_EQ(back.num_faces(), 0u);
   EXPECT_EQ(back.normals.size(), 200u);
+  // An algorithm that needs faces refuses it, saying why.
+  const Result faces = cgview("run centroid_distance " + quote((dir / "scan.xyz").string()));
+  EXPECT_NE(faces.status, 0);
+  EXPECT_NE(faces.out.find("input 'mesh' (scan.xyz) is a point cloud of 200 points and no faces: this algorithm "
+                           "needs a mesh with faces"),
+            std::string::npos)
+      << faces.out;
 }
 
 TEST(CliTest, InfoOfNonManifoldMesh) {

@@ -437,6 +437,17 @@ TEST_F(JobsTest, APointCloudInputFromACloudAMeshOrAnEarlierJob) {
           .dump());
   EXPECT_EQ(metrics.status, 400) << metrics.body;
   EXPECT_NE(metrics.body.find("is a metrics"), std::string::npos) << metrics.body;
+  // voxelize takes a cloud as its mesh (surface mode: the voxels holding the points), and says so.
+  for (const json& a : http_get(server_.port(), "/api/v1/algorithms").body_json()["algorithms"])
+    if (a["name"] == "voxelize") EXPECT_EQ(a["inputs"][0].value("faceless", false), true) << a.dump();
+  const auto voxels = http_call(server_.port(), Method::post, "/api/v1/jobs",
+                                json{{"algorithm", "voxelize"},
+                                     {"inputs", {{"mesh", cloud}}},
+                                     {"params", {{"resolution", 8}, {"mode", "surface"}}}}
+                                    .dump());
+  ASSERT_EQ(voxels.status, 201) << voxels.body;
+  const json voxelized = wait_end(voxels.body_json()["id"]);
+  EXPECT_EQ(voxelized["state"], "done") << voxelized.dump();
   // An algorithm that needs faces refuses the cloud, saying why.
   const auto faces = http_call(server_.port(), Method::post, "/api/v1/jobs",
                                json{{"algorithm", "test_translate"}, {"inputs", {{"mesh", cloud}}}}.dump());
