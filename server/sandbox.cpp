@@ -223,7 +223,13 @@ Sandbox::Command Sandbox::wrap(const std::vector<std::string>& argv, const Sandb
   }
 
   if (root && drop == Drop::by_program) {
-    c.argv.insert(c.argv.end(), {"--setenv", kJobUserVariable, std::to_string(uid), "--"});
+    // Until it drops, the program holds only what dropping takes, and the
+    // job's files (bwrap would leave a root sandbox's first process every
+    // capability): a wrapper script given as the worker, which runs as root
+    // around it, cannot remount or reach past the sandbox's mounts either.
+    c.argv.insert(c.argv.end(), {"--cap-drop", "ALL", "--cap-add", "CAP_SETUID", "--cap-add", "CAP_SETGID", "--cap-add",
+                                 "CAP_SETPCAP", "--cap-add", "CAP_DAC_OVERRIDE", "--setenv", kJobUserVariable,
+                                 std::to_string(uid), "--"});
     c.argv.insert(c.argv.end(), argv.begin(), argv.end());
     return c;
   }

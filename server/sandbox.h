@@ -94,7 +94,8 @@ class Sandbox {
   // program, or the program itself (cgview-worker), told the user in its
   // environment (kJobUserVariable), which saves an exec for each job.  (A
   // wrapper script given as the worker then runs as root in the sandbox,
-  // until the worker it starts drops.)
+  // with no capability but those the drop takes and the one to reach the
+  // job's files, until the worker it starts drops.)
   enum class Drop { by_setpriv, by_program };
   Command wrap(const std::vector<std::string>& argv, const SandboxMounts& mounts, int slot, ChildOptions options = {},
                Drop drop = Drop::by_setpriv) const;
