@@ -19,8 +19,11 @@ namespace {
 constexpr double kRadius = 2.0;
 const Vec3 kCentre{0.5, -1.0, 3.0};
 
-// The mesh is closed and oriented outward, its vertices within 1% of the
-// radius from the sphere, its volume within 3% of the ball's.
+// The mesh is closed and oriented outward, its vertices within 2% of the
+// radius from the sphere, its volume within 3% of the ball's.  The mesher
+// only promises its facets within `distance` (0.375) of the average spacing
+// of the implicit surface: 0.027 here, 1.3% of the radius (its random start
+// put the worst vertex at 1.01% in one run of 25 with estimated normals).
 void expect_sphere(const Mesh& m) {
   ASSERT_GT(m.num_faces(), 100u);
   const MeshReport r = mesh_report(m);
@@ -29,7 +32,7 @@ void expect_sphere(const Mesh& m) {
   EXPECT_EQ(r.components, 1u);
   double worst = 0;
   for (const Vec3& p : m.positions) worst = std::max(worst, std::abs(norm(p - kCentre) - kRadius));
-  EXPECT_LT(worst, 0.01 * kRadius);
+  EXPECT_LT(worst, 0.02 * kRadius);
   const double ball = 4.0 / 3.0 * std::numbers::pi * kRadius * kRadius * kRadius;
   ASSERT_TRUE(r.volume.has_value());
   EXPECT_NEAR(*r.volume / ball, 1.0, 0.03);
