@@ -228,6 +228,10 @@ struct DracoClaims {
   // A point cloud's: its points, and the components of their attributes
   // (3 for positions, ...), summed over those its header declares.
   std::uint64_t points = 0, components = 0;
+  // A kd-tree point cloud of a bitstream before 2.3 (Draco before 1.3)
+  // carries a second count of points, which Draco's backward-compatible
+  // decoder allocates for unchecked.
+  bool old_kd_tree = false;
 };
 
 class DracoHeaderReader {
@@ -304,6 +308,7 @@ std::optional<DracoClaims> draco_claims(std::string_view bytes) {
     // data type, components, normalized, id), which the bytes must hold
     // before any is decoded (a count cut short is claimed as far as it goes).
     c.point_cloud = true;
+    c.old_kd_tree = method == 1 && version < 0x0203;  // POINT_CLOUD_KD_TREE_ENCODING
     if (!r.u32(c.points)) return std::nullopt;
     std::uint8_t decoders;
     if (!r.byte(decoders)) return c;
@@ -389,6 +394,11 @@ void check_draco_counts(std::string_view bytes, const std::string& name) {
   const std::optional<DracoClaims> c = draco_claims(bytes);
   if (!c) return;
   if (c->point_cloud) {
+    if (c->old_kd_tree)
+      throw ParseError(name,
+                       "a kd-tree Draco point cloud of a bitstream before 2.3 (Draco before 1.3) is not read: "
+                       "encode it again with a current draco_encoder",
+                       std::nullopt, std::nullopt);
     const std::uint64_t most = std::max<std::uint64_t>(kCloudAlwaysAllowed, kDracoCloudBytesPerByte * bytes.size());
     // Over 2^31 points Draco refuses by itself; the product then cannot overflow.
     const std::uint64_t claimed =

@@ -677,8 +677,8 @@ TEST(ReadPointClouds, Errors) {
   }
 }
 
-// The fuzzer's findings: a Draco cloud whose header claims 2 billion points
-// is refused before Draco allocates for them, and a coordinate that is a
+// The fuzzer's findings: a Draco cloud whose header claims 2 billion points,
+// or of an old kd-tree bitstream, is refused before Draco allocates for them, and a coordinate that is a
 // double but no float is refused by the Draco writer (the viewer's stream).
 TEST(ReadPointClouds, HostileDracoCloudsAndCoordinatesPastAFloat) {
   // DRACO 2.2, a point cloud, sequential; 2^31 - 1 points; one decoder of one
@@ -688,6 +688,17 @@ TEST(ReadPointClouds, HostileDracoCloudsAndCoordinatesPastAFloat) {
   claim += std::string("\x01\x01\x00\x09\x03\x00\x00", 7) + std::string(16, '\0');
   const ParseError e = error_of(claim, MeshFormat::drc, "claim.drc");
   EXPECT_NE(std::string(e.what()).find("claims 2147483647 points of 3 components"), std::string::npos) << e.what();
+  // DRACO 2.0, a kd-tree point cloud (tests/fuzz/corpus/drc/regression-old-kd-tree):
+  // the old bitstream's second count of points, 0xffff0101, went to Draco's
+  // allocation unchecked (4 GB for 51 bytes).
+  const std::string old_kd_tree(
+      "\x44\x52\x41\x43\x4f\x02\x00\x00\x01\xbf\x02\x09\x01\xff\x01\x01\x01\x01\x01\x01\x01\x01\x01\x01"
+      "\x01\x01\xff\xff\xff\xff\x0f\x01\x00\x01\x01\x81\x01\x32\x01\x01\x01\x02\x02\x01\x01\x01\x01\x01"
+      "\x01\x01\xff",
+      51);
+  const ParseError old = error_of(old_kd_tree, MeshFormat::drc, "old.drc");
+  EXPECT_NE(std::string(old.what()).find("a kd-tree Draco point cloud of a bitstream before 2.3"), std::string::npos)
+      << old.what();
   const Mesh far = read("0 0 0\n1 2 1e308\n", MeshFormat::xyz, "far.xyz").mesh;
   try {
     write_mesh_bytes(far, MeshFormat::drc);
