@@ -17,3 +17,8 @@ set(CGVIEW_REGISTRY_SOURCES registry/registry.cpp registry/artifact_io.cpp
 # The voxel file formats, one file each (cgview_voxel).
 set(CGVIEW_VOXEL_FORMAT_SOURCES voxel/voxel_file_parts.cpp voxel/binvox.cpp voxel/nrrd.cpp voxel/vti.cpp voxel/vox.cpp
   voxel/raw_voxels.cpp)
+# Voxel grid operations and the loader of OpenVDB's module (cgview_voxel), and the module itself (cgview_vdb).
+set(CGVIEW_VOXEL_SOURCES voxel/voxel_ops.cpp voxel/voxel_io.cpp voxel/voxel_vdb_load.cpp)
+set(CGVIEW_VDB_SOURCES voxel/voxel_vdb.cpp)
+# The EGL context alone: the config file names its platforms (the server's settings).
+set(CGVIEW_EGL_SOURCES render/egl_context.cpp)
