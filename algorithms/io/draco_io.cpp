@@ -507,12 +507,12 @@ std::unique_ptr<draco::Mesh> decode_draco(std::string_view bytes) {
 DracoStoredOrder draco_stored_order(std::string_view bytes, const Mesh& written,
                                     std::span<const std::uint32_t> face_material, const WriteOptions& options) {
   if (written.num_faces() == 0) {
-    // A point cloud is written in its order (write_draco): point i is vertex i.
-    ReadResult r;
-    detail::read_draco(bytes, "the stream", r);
-    if (r.mesh.num_faces() != 0 || r.mesh.num_vertices() != written.num_vertices())
+    // A point cloud is written in its order (write_draco): point i is vertex
+    // i.  Its header says whether it is that cloud; no need to decode it.
+    const std::optional<detail::DracoClaims> c = detail::draco_claims(bytes);
+    if (!c || !c->point_cloud || c->points != written.num_vertices())
       throw InvalidInput("the Draco stream does not decode as the point cloud written (" +
-                         std::to_string(r.mesh.num_vertices()) + " points against " +
+                         std::to_string(c ? c->points : 0) + " points against " +
                          std::to_string(written.num_vertices()) + ")");
     DracoStoredOrder order;
     order.points.resize(written.num_vertices());

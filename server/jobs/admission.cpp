@@ -93,35 +93,29 @@ Job Admission::admit(const json& req, const Caller& caller, JobLookup& jobs, std
   for (const auto& spec : specs) {
     const std::string name = spec.value("name", ""), kind = spec.value("kind", "mesh");
     // A point cloud is a stored mesh (an uploaded cloud is one with no faces;
-    // a mesh's vertices are one), or an earlier job's points or mesh.
+    // a mesh's vertices are one), or an earlier job's points or mesh; any
+    // other kind but a mesh is an earlier job's artifact of that kind.
     const bool points = kind == to_string(OutputKind::points);
-    if (points && inputs.contains(name) && inputs[name].is_object()) {
-      const json& v = inputs[name];
-      if (!v.value("job", json()).is_string() || !v.value("artifact", json()).is_string())
-        throw InvalidInput("input '" + name + "' is a point cloud: \"<mesh id>\" or {\"job\": \"<job id>\", " +
-                           "\"artifact\": \"<name>\"} of a points or mesh artifact");
-      try {
-        (void)jobs.artifact_file(v["job"], v["artifact"], kind, caller);
-      } catch (const InvalidInput& not_points) {
-        try {
-          (void)jobs.artifact_file(v["job"], v["artifact"], "mesh", caller);
-        } catch (const InvalidInput&) {
-          throw not_points;
-        }
-      }
-      resolved[name] = {{"job", v["job"]}, {"artifact", v["artifact"]}};
-      input_shas += "\n" + name + "=" + v["job"].get<std::string>() + "/" + v["artifact"].get<std::string>();
-      continue;
-    }
-    if (kind != "mesh" && !points) {
-      // Any other kind is an earlier job's artifact of that kind.
+    if ((kind != "mesh" && !points) || (points && inputs.contains(name) && inputs[name].is_object())) {
       if (!inputs.contains(name))
         throw InvalidInput("input '" + name + "' is missing: {\"" + name +
                            "\": {\"job\": \"<job id>\", \"artifact\": \"<name>\"}}");
       const json& v = inputs[name];
       if (!v.is_object() || !v.value("job", json()).is_string() || !v.value("artifact", json()).is_string())
-        throw InvalidInput("input '" + name + "' is a " + kind + ": {\"job\": \"<job id>\", \"artifact\": \"<name>\"}");
-      (void)jobs.artifact_file(v["job"], v["artifact"], kind, caller);
+        throw InvalidInput(points ? "input '" + name + "' is a point cloud: \"<mesh id>\" or {\"job\": \"<job id>\", " +
+                                        "\"artifact\": \"<name>\"} of a points or mesh artifact"
+                                  : "input '" + name + "' is a " + kind +
+                                        ": {\"job\": \"<job id>\", \"artifact\": \"<name>\"}");
+      try {
+        (void)jobs.artifact_file(v["job"], v["artifact"], kind, caller);
+      } catch (const InvalidInput& wrong_kind) {
+        if (!points) throw;
+        try {  // a points input takes a mesh artifact too; the error stays the one about points
+          (void)jobs.artifact_file(v["job"], v["artifact"], "mesh", caller);
+        } catch (const InvalidInput&) {
+          throw wrong_kind;
+        }
+      }
       resolved[name] = {{"job", v["job"]}, {"artifact", v["artifact"]}};
       input_shas += "\n" + name + "=" + v["job"].get<std::string>() + "/" + v["artifact"].get<std::string>();
       continue;
