@@ -37,15 +37,7 @@ class CrashRestart : public ServerFixture {
 
   json meshes() { return http_get(port(), "/api/v1/meshes").body_json()["meshes"]; }
   json job(const std::string& id) { return http_get(port(), "/api/v1/jobs/" + id).body_json(); }
-  json wait_end(const std::string& id) {
-    json j;
-    for (int i = 0; i < 600; ++i) {
-      j = job(id);
-      if (j.value("state", "") != "queued" && j.value("state", "") != "running") break;
-      std::this_thread::sleep_for(50ms);
-    }
-    return j;
-  }
+  json wait_end(const std::string& id) { return wait_job_end(port(), id, 30s); }
 
   // The store as a user and an admin see it: every mesh listed downloads as
   // `bytes`, the blobs are exactly the listed meshes' files, no upload is

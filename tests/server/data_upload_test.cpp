@@ -52,15 +52,7 @@ class DataUpload : public ServerFixture {
     EXPECT_EQ(r.status, 200) << format << ": " << r.body;
     return r.body;
   }
-  json wait_end(const std::string& id) {
-    json j;
-    for (int i = 0; i < 600; ++i) {
-      j = http_get(port(), "/api/v1/jobs/" + id).body_json();
-      if (j.value("state", "") != "queued" && j.value("state", "") != "running") break;
-      std::this_thread::sleep_for(50ms);
-    }
-    return j;
-  }
+  json wait_end(const std::string& id) { return wait_job_end(port(), id, 30s); }
   std::size_t vertices() const { return mesh_["report"]["vertices"].get<std::size_t>(); }
   std::size_t faces() const { return mesh_["report"]["faces"].get<std::size_t>(); }
   json mesh_;

@@ -85,16 +85,7 @@ class JobsTest : public ::testing::Test {
 
   // Polls until the job leaves queued/running (or the limit); the last Job.
   json wait_end(const std::string& id, std::chrono::milliseconds limit = 20s) {
-    const auto deadline = Clock::now() + limit;
-    json j;
-    while (Clock::now() < deadline) {
-      j = get(id);
-      const std::string s = j.value("state", "");
-      if (s != "queued" && s != "running") return j;
-      std::this_thread::sleep_for(20ms);
-    }
-    ADD_FAILURE() << "job " << id << " did not end in time: " << j.dump();
-    return j;
+    return test::wait_job_end(server_.port(), id, limit);
   }
 
   json wait_state(const std::string& id, const std::string& state, std::chrono::milliseconds limit = 10s) {

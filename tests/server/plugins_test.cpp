@@ -81,15 +81,7 @@ class Plugins : public ServerFixture {
     EXPECT_EQ(up.status, 201u) << up.body;
     return up.body_json().value("id", "");
   }
-  json wait_job(const std::string& token, const std::string& id) {
-    json j;
-    for (int i = 0; i < 1200; ++i) {
-      j = as(token, "GET", "/api/v1/jobs/" + id).body_json();
-      if (j.value("state", "") != "queued" && j.value("state", "") != "running") break;
-      std::this_thread::sleep_for(50ms);
-    }
-    return j;
-  }
+  json wait_job(const std::string& token, const std::string& id) { return wait_job_end(port(), id, 60s, token); }
   // Saves and builds a plugin; the plugin as it stands after its build.
   json build(const std::string& token, const std::string& name, const std::string& source) {
     const HttpResult c = as(token, "POST", "/api/v1/plugins", {{"name", name}, {"source", source}});

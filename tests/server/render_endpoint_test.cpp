@@ -27,6 +27,7 @@ using test::http_get;
 using test::Method;
 using test::read_bytes;
 using test::ServerProcess;
+using test::wait_job_end;
 
 class RenderEndpointTest : public ::testing::Test {
  protected:
@@ -96,14 +97,7 @@ TEST_F(RenderEndpointTest, ColoursByAScalarFieldArtifact) {
   const auto sub = http_call(server_.port(), Method::post, "/api/v1/jobs", body.dump());
   ASSERT_EQ(sub.status, 201u) << sub.body;
   const std::string job = sub.body_json()["id"];
-  const auto deadline = std::chrono::steady_clock::now() + 60s;
-  std::string state;
-  while (std::chrono::steady_clock::now() < deadline) {
-    state = http_get(server_.port(), "/api/v1/jobs/" + job).body_json().value("state", "");
-    if (state != "queued" && state != "running") break;
-    std::this_thread::sleep_for(50ms);
-  }
-  ASSERT_EQ(state, "done");
+  ASSERT_EQ(wait_job_end(server_.port(), job).value("state", ""), "done");
   const auto plain = http_get(server_.port(), target("?width=80&height=80"));
   const auto by_id = http_get(server_.port(), target("?width=80&height=80&field=" + job + "/distance"));
   const auto by_name = http_get(server_.port(), target("?width=80&height=80&field=distance"));

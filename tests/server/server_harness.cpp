@@ -468,6 +468,24 @@ HttpResult call_as(unsigned short port, const std::string& token, const std::str
                             body);
 }
 
+nlohmann::json wait_job_end(unsigned short port, const std::string& id, std::chrono::milliseconds limit,
+                            const std::string& token) {
+  const auto deadline = std::chrono::steady_clock::now() + limit;
+  const std::string target = "/api/v1/jobs/" + id;
+  nlohmann::json j;
+  for (;;) {
+    j = (token.empty() ? http_get(port, target) : call_as(port, token, "GET", target)).body_json();
+    const std::string state = j.is_object() ? j.value("state", "") : "";
+    if (state != "queued" && state != "running") return j;
+    if (std::chrono::steady_clock::now() >= deadline) break;
+    // A job's end has no reply to wait on here; 20 ms keeps the poll cheap
+    // for the server and the wait short for the test.
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ADD_FAILURE() << "job " << id << " did not end within " << limit.count() << " ms: " << j.dump();
+  return j;
+}
+
 std::string server_command(const fs::path& data, const std::string& args) {
   std::ostringstream cmd;  // (one + chain of strings here trips GCC 12's -Wrestrict)
   cmd << "'" << bin("cgview-server") << "' --data-dir '" << data.string() << "' " << args << " 2>/dev/null";

@@ -112,6 +112,12 @@ HttpResult http_raw(unsigned short port, const std::string& bytes,
 HttpResult call_as(unsigned short port, const std::string& token, const std::string& method, const std::string& target,
                    const std::string& body = "");
 
+// Polls GET /api/v1/jobs/ID (as `token` when not empty) until the job
+// leaves queued and running; the last Job seen.  A job still queued or
+// running after `limit` is a failure added to the test, with its Job.
+nlohmann::json wait_job_end(unsigned short port, const std::string& id,
+                            std::chrono::milliseconds limit = std::chrono::seconds(60), const std::string& token = "");
+
 // cgview-server ARGS... on a data directory (user add, user revoke, ...); its
 // stdout without the final newlines.
 std::string server_command(const std::filesystem::path& data, const std::string& args);

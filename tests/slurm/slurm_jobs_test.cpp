@@ -88,15 +88,9 @@ class SlurmJobs : public ServerFixture {
   }
   json get(const std::string& id) { return http_get(port(), "/api/v1/jobs/" + id).body_json(); }
   json wait_end(const std::string& id, std::chrono::seconds limit = 60s) {
-    const auto deadline = Clock::now() + limit;
-    json j;
-    while (Clock::now() < deadline) {
-      j = get(id);
-      const std::string s = j.value("state", "");
-      if (s != "queued" && s != "running") return j;
-      std::this_thread::sleep_for(50ms);
-    }
-    ADD_FAILURE() << "job " << id << " did not end in time: " << j.dump() << "\n" << cluster_.log_tail();
+    const json j = wait_job_end(port(), id, limit);
+    const std::string s = j.value("state", "");
+    if (s == "queued" || s == "running") ADD_FAILURE() << "the cluster's log:\n" << cluster_.log_tail();
     return j;
   }
   json wait_running(const std::string& id, std::chrono::seconds limit = 30s) {
