@@ -41,12 +41,17 @@ PoissonReconstructionResult poisson_reconstruction(const PointCloud& cloud, cons
   PointCloud estimated;
   const PointCloud* with_normals = &cloud;
   if (!cloud.has_normals()) {
-    EstimateNormalsResult e = estimate_normals(cloud);
+    const EstimateNormalsParams defaults;
+    EstimateNormalsResult e = estimate_normals(cloud, defaults);
     estimated = std::move(e.points);
     with_normals = &estimated;
-    result.warnings.push_back(
-        "the cloud has no normals: they were estimated (estimate_normals: jet, 18 neighbours, oriented); run "
-        "estimate_normals yourself to choose how, or bring the scanner's");
+    // The defaults named from their own description, so that the warning
+    // says what ran whatever estimate_normals' defaults become.
+    std::string how;
+    for (const ParamSpec& s : detail::described(defaults))
+      how += (how.empty() ? "" : ", ") + s.name + " " + to_string(s.default_value);
+    result.warnings.push_back("the cloud has no normals: they were estimated (estimate_normals with " + how +
+                              "); run estimate_normals yourself to choose how, or bring the scanner's");
     for (std::string& w : e.warnings) result.warnings.push_back("estimate_normals: " + std::move(w));
   }
   ctx.check_cancelled();

@@ -12,6 +12,7 @@
 #include "core/mesh_report.h"
 #include "invalid_input.h"
 #include "point_shapes.h"
+#include "points/estimate_normals.h"
 
 namespace cgview {
 namespace {
@@ -51,6 +52,11 @@ TEST(PoissonReconstruction, NormalsAreEstimatedWhenTheCloudHasNone) {
   expect_sphere(r.mesh);
   ASSERT_EQ(r.warnings.size(), 1u);
   EXPECT_NE(r.warnings[0].find("no normals: they were estimated"), std::string::npos) << r.warnings[0];
+  // It names what ran: estimate_normals' own defaults.
+  EXPECT_NE(r.warnings[0].find("method jet, neighbors " + std::to_string(EstimateNormalsParams{}.neighbors) +
+                               ", orient true"),
+            std::string::npos)
+      << r.warnings[0];
 }
 
 TEST(PoissonReconstruction, BadParametersAndCloudsAreRefused) {
