@@ -22,7 +22,9 @@ SdfFastResult sdf_fast(const Mesh& mesh, const SdfFastParams& p, Context* contex
   const Adjacency graph = face_neighbors(mesh, edge_topology(mesh));
   FastSdf approx = poisson_sdf(mesh, graph, p, &ctx);
   SdfFastResult result;
-  warn_missing(approx.raw, result.warnings, "the smallest sampled value");
+  warn_missing(approx.raw, result.warnings,
+               "with the faces nearest them, what the full SDF gives such a region (their neighbours' mean, "
+               "else the smallest value, then smoothed)");
   const double fast_seconds = seconds_since(t0);
   Metrics& m = result.metrics;
   m = {{"faces", double(mesh.faces.size())},

@@ -50,6 +50,98 @@ std::vector<double> guidance(const Mesh& mesh, const Adjacency& g, double weight
   return out;
 }
 
+// The unknown faces' values (`row` numbers them, -1 for the others) from the
+// kept samples' in out.values, by p.solver, started from `start` (each
+// face's nearest kept sample's value).
+void solve(const Mesh& mesh, const Adjacency& g, const SdfFastParams& p, const std::vector<double>& start,
+           const std::vector<std::uint32_t>& unknown, const std::vector<std::int64_t>& row, FastSdf& out) {
+  if (unknown.empty()) return;
+  const std::vector<double> rhs_guide = guidance(mesh, g, p.curvature_weight);
+
+  if (p.solver == Solver::diffusion) {
+    // Samples are about 1 / sqrt(fraction) rings apart, and t sweeps spread
+    // a value over about sqrt(t) rings: 0.6 / fraction sweeps reach between
+    // samples without averaging over the next ones (the constant measured
+    // on four meshes at 5-20%, docs/DESIGN.md).  The cap bounds the time at
+    // fractions below 0.25%.
+    const int sweeps = int(std::clamp(std::lround(0.6 / p.fraction), 1L, 256L));
+    std::vector<double> x = start, next = x;
+    for (int s = 0; s < sweeps; ++s) {
+      for (std::uint32_t f : unknown) {
+        double sum = -rhs_guide[f];
+        for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) sum += x[*h];
+        next[f] = sum / double(g.degree(f));
+      }
+      x.swap(next);
+    }
+    out.values = std::move(x);
+    out.iterations = sweeps;
+    return;
+  }
+
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(g.items.size() + unknown.size());
+  Eigen::VectorXd b(Eigen::Index(unknown.size()));
+  for (std::size_t r = 0; r < unknown.size(); ++r) {
+    const std::uint32_t f = unknown[r];
+    double known = 0;
+    for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) {
+      if (row[*h] >= 0) t.emplace_back(Eigen::Index(r), Eigen::Index(row[*h]), -1.0);
+      else known += out.values[*h];  // a Dirichlet value
+    }
+    t.emplace_back(Eigen::Index(r), Eigen::Index(r), double(g.degree(f)));
+    b[Eigen::Index(r)] = known - rhs_guide[f];
+  }
+  Eigen::SparseMatrix<double> A(Eigen::Index(unknown.size()), Eigen::Index(unknown.size()));
+  A.setFromTriplets(t.begin(), t.end());
+  Eigen::VectorXd x;
+  if (p.solver == Solver::cholesky) {
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
+    if (ldlt.info() != Eigen::Success) throw Error("the Poisson system could not be factorized");
+    x = ldlt.solve(b);
+  } else {
+    Eigen::VectorXd x0(Eigen::Index(unknown.size()));
+    for (std::size_t r = 0; r < unknown.size(); ++r) x0[Eigen::Index(r)] = start[unknown[r]];
+    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg(A);
+    cg.setTolerance(1e-6);  // relative residual: far below the SDF's own noise
+    x = cg.solveWithGuess(b, x0);
+    out.iterations = int(cg.iterations());
+  }
+  for (std::size_t r = 0; r < unknown.size(); ++r) out.values[unknown[r]] = x[Eigen::Index(r)];
+}
+
+// The faces whose nearest sample escaped are taken as the region without a
+// value they mark, and given what the full SDF gives such a region
+// (sdf/sdf_rays.h's postprocess): fill_missing (the border's faces their
+// neighbours' mean, the inner ones the smallest value), then the bilateral
+// filter over the faces within its window of them.  The full SDF ramps
+// from the smallest value up to its neighbours' over a few rings there;
+// the smallest value alone, interpolated, missed that ramp by 8-10% of the
+// range (docs/BENCHMARKS.md).
+void fill_escaped(const Mesh& mesh, const Adjacency& g, const SdfFastParams& p,
+                  const std::vector<std::uint32_t>& samples, const std::vector<std::uint32_t>& escaped,
+                  std::vector<double>& values) {
+  if (escaped.empty()) return;
+  const std::size_t n = values.size();
+  std::vector<double> mark(n, std::numeric_limits<double>::quiet_NaN());
+  for (std::uint32_t s : samples) mark[s] = 0.0;
+  for (std::uint32_t s : escaped) mark[s] = 1.0;
+  mark = nearest_known(g, mark);
+  // The region, then the faces within the filter's window of it.
+  const int window = p.sdf.window > 0 ? p.sdf.window : default_window(n);
+  std::vector<int> ring(n, std::numeric_limits<int>::max());
+  std::vector<std::uint32_t> near;
+  for (std::size_t f = 0; f < n; ++f)
+    if (mark[f] == 1.0)
+      values[f] = std::numeric_limits<double>::quiet_NaN(), ring[f] = 0, near.push_back(std::uint32_t(f));
+  for (std::size_t k = 0; k < near.size(); ++k)
+    if (ring[near[k]] < window)
+      for (const std::uint32_t* h = g.begin(near[k]); h != g.end(near[k]); ++h)
+        if (ring[*h] > ring[near[k]] + 1) ring[*h] = ring[near[k]] + 1, near.push_back(*h);
+  fill_missing(mesh, g, values);
+  if (p.sdf.smooth) bilateral_smooth(g, values, p.sdf.window, nullptr, near);
+}
+
 }  // namespace
 
 std::vector<std::uint32_t> spread_samples(const Adjacency& g, std::size_t count) {
@@ -96,79 +188,34 @@ FastSdf poisson_sdf(const Mesh& mesh, const Adjacency& g, const SdfFastParams& p
   FastSdf out;
   out.samples = spread_samples(g, std::size_t(std::ceil(p.fraction * double(n))));
   out.raw = raw_sdf(mesh, p.sdf, out.samples, ctx, 0.0, 0.8);
-  // A sample whose rays all escaped (an open mesh) takes the smallest sampled
-  // value, as fill_missing gives the full SDF's faces inside such a region:
-  // left unknown, it would take its thick neighbours' values instead.
-  double smallest = HUGE_VAL;
-  for (double v : out.raw.values)
-    if (!std::isnan(v)) smallest = std::min(smallest, v);
-  if (smallest == HUGE_VAL) smallest = 0;  // no ray found the inside anywhere: 0, as fill_missing
+  // Only the samples whose rays found the inside are boundary values: one
+  // whose rays all escaped (an open mesh) marks a region the full SDF fills
+  // afterwards (fill_escaped below), and as a boundary value it would pull
+  // its thick neighbours down.
+  std::vector<std::uint32_t> kept, escaped;
   out.values.assign(n, std::numeric_limits<double>::quiet_NaN());
-  for (std::size_t i = 0; i < out.samples.size(); ++i)
-    out.values[out.samples[i]] = std::isnan(out.raw.values[i]) ? smallest : out.raw.values[i];
-  if (p.sdf.smooth) bilateral_smooth(g, out.values, p.sdf.window, nullptr, out.samples);
+  for (std::size_t i = 0; i < out.samples.size(); ++i) {
+    if (std::isnan(out.raw.values[i])) escaped.push_back(out.samples[i]);
+    else out.values[out.samples[i]] = out.raw.values[i], kept.push_back(out.samples[i]);
+  }
+  if (kept.empty()) {  // no ray found the inside anywhere: 0, as fill_missing
+    std::fill(out.values.begin(), out.values.end(), 0.0);
+    return out;
+  }
+  if (p.sdf.smooth) bilateral_smooth(g, out.values, p.sdf.window, nullptr, kept);
   if (ctx) ctx->progress(0.8, "solving the Poisson equation");
 
-  // Every part has a sample with a value: every other face is an unknown.
+  // The unknowns: the faces of the parts that have a kept sample (those of a
+  // part whose samples all escaped are filled afterwards).
+  const std::vector<double> start = nearest_known(g, out.values);
   std::vector<std::int64_t> row(n, -1);
   std::vector<std::uint32_t> unknown;
   for (std::size_t f = 0; f < n; ++f)
-    if (std::isnan(out.values[f])) row[f] = std::int64_t(unknown.size()), unknown.push_back(std::uint32_t(f));
+    if (std::isnan(out.values[f]) && !std::isnan(start[f]))
+      row[f] = std::int64_t(unknown.size()), unknown.push_back(std::uint32_t(f));
   out.unknowns = unknown.size();
-  if (unknown.empty()) return out;
-  const std::vector<double> rhs_guide = guidance(mesh, g, p.curvature_weight);
-
-  if (p.solver == Solver::diffusion) {
-    // Samples are about 1 / sqrt(fraction) rings apart, and t sweeps spread
-    // a value over about sqrt(t) rings: 0.6 / fraction sweeps reach between
-    // samples without averaging over the next ones (the constant measured
-    // on four meshes at 5-20%, docs/DESIGN.md).  The cap bounds the time at
-    // fractions below 0.25%.
-    const int sweeps = int(std::clamp(std::lround(0.6 / p.fraction), 1L, 256L));
-    std::vector<double> x = nearest_known(g, out.values), next = x;
-    for (int s = 0; s < sweeps; ++s) {
-      for (std::uint32_t f : unknown) {
-        double sum = -rhs_guide[f];
-        for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) sum += x[*h];
-        next[f] = sum / double(g.degree(f));
-      }
-      x.swap(next);
-    }
-    out.values = std::move(x);
-    out.iterations = sweeps;
-    return out;
-  }
-
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(g.items.size() + unknown.size());
-  Eigen::VectorXd b(Eigen::Index(unknown.size()));
-  for (std::size_t r = 0; r < unknown.size(); ++r) {
-    const std::uint32_t f = unknown[r];
-    double known = 0;
-    for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) {
-      if (row[*h] >= 0) t.emplace_back(Eigen::Index(r), Eigen::Index(row[*h]), -1.0);
-      else known += out.values[*h];  // a Dirichlet value
-    }
-    t.emplace_back(Eigen::Index(r), Eigen::Index(r), double(g.degree(f)));
-    b[Eigen::Index(r)] = known - rhs_guide[f];
-  }
-  Eigen::SparseMatrix<double> A(Eigen::Index(unknown.size()), Eigen::Index(unknown.size()));
-  A.setFromTriplets(t.begin(), t.end());
-  Eigen::VectorXd x;
-  if (p.solver == Solver::cholesky) {
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
-    if (ldlt.info() != Eigen::Success) throw Error("the Poisson system could not be factorized");
-    x = ldlt.solve(b);
-  } else {
-    const std::vector<double> start = nearest_known(g, out.values);
-    Eigen::VectorXd x0(Eigen::Index(unknown.size()));
-    for (std::size_t r = 0; r < unknown.size(); ++r) x0[Eigen::Index(r)] = start[unknown[r]];
-    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg(A);
-    cg.setTolerance(1e-6);  // relative residual: far below the SDF's own noise
-    x = cg.solveWithGuess(b, x0);
-    out.iterations = int(cg.iterations());
-  }
-  for (std::size_t r = 0; r < unknown.size(); ++r) out.values[unknown[r]] = x[Eigen::Index(r)];
+  solve(mesh, g, p, start, unknown, row, out);
+  fill_escaped(mesh, g, p, out.samples, escaped, out.values);
   return out;
 }
 

@@ -91,19 +91,40 @@ TEST(SdfFast, TenPercentOnAShapeWithThinAndThickPartsStaysWithinThreePercentOfTh
 }
 
 // An open mesh with horns and fingers a few samples wide, whose rays escape
-// on 5% of the faces: those samples take the smallest value, as the full SDF's
-// faces there do.  The bounds are bench/sdf_bench's measure, rounded up
-// (docs/BENCHMARKS.md: 4.5% mean, 18% p95; 6.8% and 25% before): not the 3%
-// the other meshes of 20k faces or more keep.
+// on 5% of the faces: the faces nearest those samples are filled as the
+// full SDF fills its faces without a value.  The bounds are
+// bench/sdf_bench's measure, rounded up (docs/BENCHMARKS.md: 4.26% mean;
+// 4.47% when those samples took the smallest value as boundary values): not
+// the 3% the other meshes of 20k faces or more keep.
 TEST(SdfFast, TenPercentOnMannequinDevilStaysWithinTheBenchmarksErrorBounds) {
   const Mesh mesh = read_mesh(test::sample("mannequin-devil.off"));
   const sdf::SdfFastResult res = sdf::sdf_fast(mesh, {.fraction = 0.1, .compare = true});
-  EXPECT_LE(res.metrics.at("mean_error"), 0.05);
-  EXPECT_LE(res.metrics.at("p95_error"), 0.2);
+  EXPECT_LE(res.metrics.at("mean_error"), 0.044);
+  EXPECT_LE(res.metrics.at("p95_error"), 0.18);
   EXPECT_TRUE(std::any_of(res.warnings.begin(), res.warnings.end(), [](const std::string& w) {
     return w.find("no ray that found the inside") != std::string::npos &&
-           w.find("they take the smallest sampled value") != std::string::npos;
-  })) << "the warning says what the samples without a value take";
+           w.find("what the full SDF gives such a region") != std::string::npos;
+  })) << "the warning says what the faces without a value take";
+}
+
+// An open mesh whose rays escape on a quarter of the faces: there the full
+// SDF ramps over a few rings from the smallest value (deep inside such a
+// region) up to its neighbours' (fill_missing, then the bilateral filter).
+// With the samples that found no inside as boundary values at the smallest
+// value, the ramp was missed and the thick faces beside it pulled down:
+// 5.30% mean error; filled as the full SDF fills them, 4.51%.
+TEST(SdfFast, TenPercentOnAnOpenMeshFillsTheRegionsWithoutRaysAsTheFullSdfDoes) {
+  const Mesh mesh = read_mesh(test::sample("polygon_mesh.off"));
+  ASSERT_GE(mesh.faces.size(), 20000u);
+  const sdf::SdfFastResult res = sdf::sdf_fast(mesh, {.fraction = 0.1, .compare = true});
+  ASSERT_TRUE(res.sdf);
+  EXPECT_LE(res.metrics.at("mean_error"), 0.047);
+  // Not biased low where rays escape: the full SDF's smallest values are
+  // not spread over the regions' borders.
+  const auto [lo, hi] = std::minmax_element(res.sdf->values.begin(), res.sdf->values.end());
+  double signed_sum = 0;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) signed_sum += res.sdf_fast.values[f] - res.sdf->values[f];
+  EXPECT_GE(signed_sum / double(mesh.faces.size()) / double(*hi - *lo), -0.005);
 }
 
 // The turn is the registry's (InputSpec::outward, kSdfInput): a job's path.
