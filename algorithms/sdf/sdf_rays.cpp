@@ -103,18 +103,22 @@ RayDevice ray_device(const SdfParams& p) {
 
 void ray_metrics(const RawSdf& raw, Metrics& metrics) { metrics["rays_on_gpu"] = raw.gpu ? 1.0 : 0.0; }
 
-RawSdf raw_sdf(const Mesh& mesh, const SdfParams& o, std::span<const std::uint32_t> faces, const Context* ctx,
-               double from, double to) {
+struct SdfRayCaster::State {
+  const Mesh& mesh;
+  SdfParams params;
+  std::unique_ptr<GpuRayCaster> gpu;
+  std::unique_ptr<RayCaster> caster;
+  std::vector<Vec3> normals;
+  std::vector<ConeRay> cone;
+};
+
+SdfRayCaster::SdfRayCaster(const Mesh& mesh, const SdfParams& o) {
   check_params(o);
   if (mesh.faces.empty()) throw InvalidInput("the mesh has no faces: the SDF is measured on faces");
-  for (std::uint32_t f : faces)
-    if (f >= mesh.faces.size()) throw InvalidInput("face " + std::to_string(f) + " is not in the mesh");
-  const std::size_t n = faces.empty() ? mesh.faces.size() : faces.size();
-  const auto face_at = [&](std::size_t i) { return faces.empty() ? std::uint32_t(i) : faces[i]; };
-
+  s_ = std::unique_ptr<State>(new State{mesh, o, nullptr, nullptr, {}, cone_rays(o)});
   // The compute shader where asked, or automatically where it starts on a
   // GPU (on a software context, llvmpipe, Embree is much faster).
-  std::unique_ptr<GpuRayCaster> gpu;
+  std::unique_ptr<GpuRayCaster>& gpu = s_->gpu;
   if (ray_device(o) == RayDevice::gpu) {
     if (asked_device(o) == RayDevice::gpu) {
       gpu = std::make_unique<GpuRayCaster>(mesh);
@@ -126,10 +130,24 @@ RawSdf raw_sdf(const Mesh& mesh, const SdfParams& o, std::span<const std::uint32
       }
     }
   }
-  const std::unique_ptr<RayCaster> caster = gpu ? nullptr : std::make_unique<RayCaster>(mesh);
-  const std::vector<Vec3> normals = caster ? caster->normals() : face_normals(mesh);
+  if (!gpu) s_->caster = std::make_unique<RayCaster>(mesh);
+  s_->normals = s_->caster ? s_->caster->normals() : face_normals(mesh);
+}
+
+SdfRayCaster::~SdfRayCaster() = default;
+
+RawSdf SdfRayCaster::cast(std::span<const std::uint32_t> faces, const Context* ctx, double from, double to) const {
+  const Mesh& mesh = s_->mesh;
+  const SdfParams& o = s_->params;
+  for (std::uint32_t f : faces)
+    if (f >= mesh.faces.size()) throw InvalidInput("face " + std::to_string(f) + " is not in the mesh");
+  const std::size_t n = faces.empty() ? mesh.faces.size() : faces.size();
+  const auto face_at = [&](std::size_t i) { return faces.empty() ? std::uint32_t(i) : faces[i]; };
+  GpuRayCaster* gpu = s_->gpu.get();
+  const RayCaster* caster = s_->caster.get();
+  const std::vector<Vec3>& normals = s_->normals;
   if (ctx) ctx->check_cancelled();
-  const std::vector<ConeRay> cone = cone_rays(o);
+  const std::vector<ConeRay>& cone = s_->cone;
   const std::size_t m = cone.size();
 
   // Face f's centroid c and a basis (u, v) of its plane, or false for a
@@ -225,6 +243,11 @@ RawSdf raw_sdf(const Mesh& mesh, const SdfParams& o, std::span<const std::uint32
   out.missing =
       std::size_t(std::count_if(out.values.begin(), out.values.end(), [](double x) { return std::isnan(x); }));
   return out;
+}
+
+RawSdf raw_sdf(const Mesh& mesh, const SdfParams& o, std::span<const std::uint32_t> faces, const Context* ctx,
+               double from, double to) {
+  return SdfRayCaster(mesh, o).cast(faces, ctx, from, to);
 }
 
 void fill_missing(const Mesh& mesh, const Adjacency& graph, std::vector<double>& values) {

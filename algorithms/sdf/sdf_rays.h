@@ -23,6 +23,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -51,6 +52,24 @@ struct RawSdf {
 };
 RawSdf raw_sdf(const Mesh& mesh, const SdfParams& p, std::span<const std::uint32_t> faces = {},
                const Context* ctx = nullptr, double progress_from = 0, double progress_to = 1);
+
+// raw_sdf in rounds on one mesh, its BVH (Embree's, or the GPU's) built
+// once: the accelerated SDF casts a second round where its first leaves the
+// SDF least certain.  The constructor throws what raw_sdf throws for the
+// mesh and `p`, cast() for `faces`; the mesh must outlive the caster.
+class SdfRayCaster {
+ public:
+  SdfRayCaster(const Mesh& mesh, const SdfParams& p);
+  ~SdfRayCaster();
+  SdfRayCaster(const SdfRayCaster&) = delete;
+  SdfRayCaster& operator=(const SdfRayCaster&) = delete;
+  RawSdf cast(std::span<const std::uint32_t> faces = {}, const Context* ctx = nullptr, double progress_from = 0,
+              double progress_to = 1) const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
+};
 
 // CGAL's post-processing of SDF values (Surface_mesh_segmentation's
 // Postprocess_sdf_values), with the same rules:

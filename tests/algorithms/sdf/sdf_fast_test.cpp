@@ -90,17 +90,18 @@ TEST(SdfFast, TenPercentOnAShapeWithThinAndThickPartsStaysWithinThreePercentOfTh
   EXPECT_NEAR(m.at("samples"), 0.1 * double(ring.faces.size()), 1.0);
 }
 
-// An open mesh with horns and fingers a few samples wide, whose rays escape
-// on 5% of the faces: the faces nearest those samples are filled as the
-// full SDF fills its faces without a value.  The bounds are
-// bench/sdf_bench's measure, rounded up (docs/BENCHMARKS.md: 4.26% mean;
-// 4.47% when those samples took the smallest value as boundary values): not
-// the 3% the other meshes of 20k faces or more keep.
+// An open mesh with horns and fingers a few samples wide, whose full SDF is
+// rough at the scale of a few faces and whose rays escape on 5% of the
+// faces.  The bounds are bench/sdf_bench's measure, rounded up
+// (docs/BENCHMARKS.md: 3.66% mean): 4.47% before the faces nearest the
+// samples whose rays escaped were filled as the full SDF fills them, 4.26%
+// before the second round of samples where the first disagree.  Not the 3%
+// the other meshes of 20k faces or more keep.
 TEST(SdfFast, TenPercentOnMannequinDevilStaysWithinTheBenchmarksErrorBounds) {
   const Mesh mesh = read_mesh(test::sample("mannequin-devil.off"));
   const sdf::SdfFastResult res = sdf::sdf_fast(mesh, {.fraction = 0.1, .compare = true});
-  EXPECT_LE(res.metrics.at("mean_error"), 0.044);
-  EXPECT_LE(res.metrics.at("p95_error"), 0.18);
+  EXPECT_LE(res.metrics.at("mean_error"), 0.039);
+  EXPECT_LE(res.metrics.at("p95_error"), 0.16);
   EXPECT_TRUE(std::any_of(res.warnings.begin(), res.warnings.end(), [](const std::string& w) {
     return w.find("no ray that found the inside") != std::string::npos &&
            w.find("what the full SDF gives such a region") != std::string::npos;
