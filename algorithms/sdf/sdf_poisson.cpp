@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <thread>
 
 #include "filters/vertex_curvatures.h"
 
@@ -221,14 +222,16 @@ std::vector<double> uncertainty(const Adjacency& g, const SdfFastParams& p, cons
   if (smallest == HUGE_VAL) smallest = largest = 0;
   std::vector<double> mean(n, std::numeric_limits<double>::quiet_NaN());
   for (std::size_t i = 0; i < samples.size(); ++i) mean[samples[i]] = std::isnan(raw[i]) ? smallest : raw[i];
-  std::vector<double> square(n, std::numeric_limits<double>::quiet_NaN());
-  for (std::uint32_t s : samples) square[s] = mean[s] * mean[s];
   std::vector<std::uint32_t> unknown;
   for (std::size_t f = 0; f < n; ++f)
     if (std::isnan(mean[f])) unknown.push_back(std::uint32_t(f));
-  mean = nearest_known(g, mean), square = nearest_known(g, square);
+  mean = nearest_known(g, mean);
+  std::vector<double> square(n);
+  for (std::size_t f = 0; f < n; ++f) square[f] = mean[f] * mean[f];
+  // The two spreads side by side on two cores: this step is serial else.
+  std::thread other([&] { jacobi(g, unknown, {}, sweeps_for(p), square); });
   jacobi(g, unknown, {}, sweeps_for(p), mean);
-  jacobi(g, unknown, {}, sweeps_for(p), square);
+  other.join();
   std::vector<double> out(n);
   for (std::size_t f = 0; f < n; ++f)
     out[f] = std::sqrt(std::max(0.0, square[f] - mean[f] * mean[f])) + 1e-3 * (largest - smallest);
