@@ -40,6 +40,11 @@ struct ChildOptions {
   // compiler (job_environment() lists them).  A job never reads the
   // server's secrets, its configuration or its command line from there.
   bool clean_env = false;
+  // The mount namespace the child enters just before its exec (an open
+  // /proc/PID/ns/mnt); -1: the server's.  A root server's bubblewraps
+  // start in one with fewer mounts (Sandbox), each of which bubblewrap
+  // would read again after every mount it makes.
+  int mount_ns_fd = -1;
 };
 
 // The server's variables a job gets ("NAME=value"): the locale, PATH and

@@ -4,16 +4,22 @@
 #include <grp.h>
 #include <linux/capability.h>
 #include <poll.h>
+#include <sched.h>
+#include <signal.h>
+#include <sys/mount.h>
 #include <sys/prctl.h>
+#include <sys/stat.h>
 #include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "core/errors.h"
 
@@ -71,6 +77,87 @@ std::map<std::string, std::string> status_lines() {
   return lines;
 }
 
+// A mount point of /proc/self/mountinfo, its octal escapes ("\040") undone.
+std::string unescaped(const std::string& field) {
+  auto octal = [](char c) { return c >= '0' && c <= '7'; };
+  std::string s;
+  for (std::size_t i = 0; i < field.size(); ++i)
+    if (field[i] == '\\' && i + 3 < field.size() && octal(field[i + 1]) && octal(field[i + 2]) && octal(field[i + 3])) {
+      s += char((field[i + 1] - '0') * 64 + (field[i + 2] - '0') * 8 + (field[i + 3] - '0'));
+      i += 3;
+    } else {
+      s += field[i];
+    }
+  return s;
+}
+
+// The mounts a job's sandbox does without, in the order to undo them (the
+// last made first): every one below /proc and /sys (the control groups,
+// binfmt_misc, tracing: the job's /proc is its own, and it reads /sys only
+// for what the kernel puts there itself), and below /dev the terminals,
+// message queues and huge pages (bubblewrap makes the job's /dev anew from
+// the devices themselves).  No user's data lives on those.
+std::vector<std::string> mounts_jobs_do_without() {
+  std::vector<std::string> drop;
+  std::ifstream f("/proc/self/mountinfo");
+  for (std::string line; std::getline(f, line);) {
+    std::istringstream in(line);
+    std::string id, parent, device, root, point, field;
+    in >> id >> parent >> device >> root >> point;
+    while (in >> field && field != "-") {
+    }
+    std::string type;
+    in >> type;
+    point = unescaped(point);
+    const bool below_proc_sys = point.starts_with("/proc/") || point.starts_with("/sys/");
+    const bool dev_pseudo = point.starts_with("/dev/") && (type == "devpts" || type == "mqueue" || type == "hugetlbfs");
+    if (below_proc_sys || dev_pseudo) drop.push_back(point);
+  }
+  std::reverse(drop.begin(), drop.end());
+  return drop;
+}
+
+// A mount namespace like the server's less `drop`, kept by the descriptor
+// returned (-1 where it cannot be made: the server's own is used).  A child
+// makes it and goes; mounts the system makes later still reach it (a
+// slave of the server's), and nothing done in it reaches the system.
+int slim_mount_namespace(const std::vector<std::string>& drop) {
+  int ready[2], done[2];
+  if (::pipe2(ready, O_CLOEXEC) != 0) return -1;
+  if (::pipe2(done, O_CLOEXEC) != 0) {
+    ::close(ready[0]);
+    ::close(ready[1]);
+    return -1;
+  }
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    // Only system calls here, the paths made before the fork.  Not one
+    // mount is undone unless the namespace is the child's own and a slave.
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    ::close(ready[0]);
+    ::close(done[1]);  // the server's: its end is the child's cue to go
+    if (::unshare(CLONE_NEWNS) != 0 || ::mount(nullptr, "/", nullptr, MS_REC | MS_SLAVE, nullptr) != 0) ::_exit(1);
+    for (const std::string& p : drop) ::umount2(p.c_str(), MNT_DETACH);
+    if (::write(ready[1], "1", 1) != 1) ::_exit(1);
+    char c;
+    while (::read(done[0], &c, 1) < 0 && errno == EINTR) {
+    }
+    ::_exit(0);
+  }
+  ::close(ready[1]);
+  ::close(done[0]);
+  int fd = -1;
+  char c;
+  ssize_t n;
+  do n = ::read(ready[0], &c, 1);
+  while (n < 0 && errno == EINTR);
+  if (pid > 0 && n == 1) fd = ::open(("/proc/" + std::to_string(pid) + "/ns/mnt").c_str(), O_RDONLY | O_CLOEXEC);
+  ::close(ready[0]);
+  ::close(done[1]);
+  if (pid > 0) ::waitpid(pid, nullptr, 0);
+  return fd;
+}
+
 }  // namespace
 
 void drop_to_job_user(long id) {
@@ -123,6 +210,7 @@ Sandbox::Sandbox(SandboxConfig config, fs::path bwrap) : config_(std::move(confi
     why_not_ = "setpriv (util-linux) is not installed";
     return;
   }
+  if (root) mount_ns_ = slim_mount_namespace(mounts_jobs_do_without());
   // A real run, as a worker would start, tells whether this machine allows it.
   std::vector<std::string> argv = base_args(bwrap_, root);
   argv.push_back("--");
@@ -141,6 +229,7 @@ Sandbox::Sandbox(SandboxConfig config, fs::path bwrap) : config_(std::move(confi
   ChildOptions o;
   o.stdout_fd = fds[1];
   o.stderr_to_stdout = true;
+  o.mount_ns_fd = mount_ns_;
   const pid_t pid = spawn_child(argv, o);
   ::close(fds[1]);
   std::string out;
@@ -155,6 +244,10 @@ Sandbox::Sandbox(SandboxConfig config, fs::path bwrap) : config_(std::move(confi
   }
 }
 
+Sandbox::~Sandbox() {
+  if (mount_ns_ >= 0) ::close(mount_ns_);
+}
+
 Sandbox::Command Sandbox::wrap(const std::vector<std::string>& argv, const SandboxMounts& mounts, int slot,
                                ChildOptions options, Drop drop) const {
   Command c;
@@ -165,6 +258,7 @@ Sandbox::Command Sandbox::wrap(const std::vector<std::string>& argv, const Sandb
   }
   c.options.processes = config_.processes;
   c.options.file_mb = config_.file_mb;
+  c.options.mount_ns_fd = mount_ns_;
   const bool root = ::geteuid() == 0;
   const long uid = config_.uid_base + slot;
   c.argv = base_args(bwrap_, root);
@@ -200,11 +294,11 @@ Sandbox::Command Sandbox::wrap(const std::vector<std::string>& argv, const Sandb
   std::set<fs::path> visible(mounts.visible.begin(), mounts.visible.end());
   visible.insert(config_.visible.begin(), config_.visible.end());
   for (const fs::path& v : visible) {
-    if (v.empty() || !fs::exists(v, ec)) continue;
+    const auto at = v.empty() ? std::nullopt : place(v);
     // Elsewhere the read-only root shows it already: a mount of its own
     // would cost bubblewrap a mount and a read of the whole mount table
     // (those reads were 40% of its CPU).
-    if (!under_replaced(fs::weakly_canonical(v, ec))) continue;
+    if (!at || !at->replaced) continue;
     // Under the job's /tmp, the directories above it are made anew: walkable
     // by the job's user (bwrap would make them 0700).
     std::vector<std::string> above;
@@ -243,6 +337,34 @@ Sandbox::Command Sandbox::wrap(const std::vector<std::string>& argv, const Sandb
   }
   c.argv.insert(c.argv.end(), argv.begin(), argv.end());
   return c;
+}
+
+std::optional<Sandbox::Place> Sandbox::place(const fs::path& path) const {
+  {
+    std::lock_guard lock(places_mutex_);
+    if (const auto it = places_.find(path); it != places_.end()) return it->second;
+  }
+  // Not remembered while it does not exist (a precompiled header's
+  // directory made later).
+  std::error_code ec;
+  const fs::path real = fs::canonical(path, ec);
+  if (ec) return std::nullopt;
+  Place p;
+  p.replaced = under_replaced(real);
+  p.open_to_all = true;
+  for (fs::path d = real;; d = d.parent_path()) {
+    struct stat st {};
+    if (::stat(d.c_str(), &st) != 0 || !(st.st_mode & S_IXOTH)) p.open_to_all = false;
+    if (d == d.root_path() || !p.open_to_all) break;
+  }
+  std::lock_guard lock(places_mutex_);
+  places_[path] = p;
+  return p;
+}
+
+bool Sandbox::shows_at_own_path(const fs::path& path) const {
+  const auto p = place(path);
+  return p && !p->replaced && p->open_to_all;
 }
 
 std::optional<long> Sandbox::job_user(int slot) const {

@@ -16,6 +16,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -76,6 +77,9 @@ class Sandbox {
  public:
   // Probes bubblewrap once (a run of /bin/true in a full sandbox).
   Sandbox(SandboxConfig config, std::filesystem::path bwrap = {});
+  ~Sandbox();
+  Sandbox(const Sandbox&) = delete;
+  Sandbox& operator=(const Sandbox&) = delete;
   bool enabled() const { return enabled_; }
   // Why it is off ("bwrap is not installed", its own error), for the start message.
   const std::string& why_not() const { return why_not_; }
@@ -99,6 +103,14 @@ class Sandbox {
   enum class Drop { by_setpriv, by_program };
   Command wrap(const std::vector<std::string>& argv, const SandboxMounts& mounts, int slot, ChildOptions options = {},
                Drop drop = Drop::by_setpriv) const;
+
+  // Whether a sandboxed run sees the existing `path` at its own path, through
+  // the read-only root, and may walk to it as the job's user: not under
+  // what the sandbox replaces (its /tmp, /run, /dev, /proc), and every
+  // directory above it, and it, open to all (o+x).  Such a path needs no
+  // mount of its own.  Remembered once found (the worker's directory, the
+  // plugins' headers: asked for every job).
+  bool shows_at_own_path(const std::filesystem::path& path) const;
 
   // The user a root server's run in `slot` runs as; nullopt where runs keep
   // the server's user (a server that is not root, or no sandbox).
@@ -134,6 +146,22 @@ class Sandbox {
   // job's processes alone: a limit set before bubblewrap counts every
   // process of the server's user, so one job's could starve another's.
   std::filesystem::path prlimit_;
+  // A root server's bubblewraps start in a mount namespace of its own
+  // making, the system's without the mounts no job uses (the control
+  // groups, terminals, message queues and other kernel file systems below
+  // /proc, /sys and /dev): bubblewrap reads the whole mount table again
+  // after each of a job's ~20 mounts, twice over (the old root and the new),
+  // and those reads were 40% of its CPU.  Its descriptor, which keeps it;
+  // -1: none (the server's namespace).
+  int mount_ns_ = -1;
+  // Of shows_at_own_path: for each path asked, its real path's place
+  // (under what the sandbox replaces) and whether all may walk to it.
+  struct Place {
+    bool replaced = false, open_to_all = false;
+  };
+  std::optional<Place> place(const std::filesystem::path& path) const;  // nullopt: it does not exist
+  mutable std::mutex places_mutex_;
+  mutable std::map<std::filesystem::path, Place> places_;
   bool enabled_ = false;
   std::string why_not_;
   std::shared_ptr<Slot::Held> slots_ = std::make_shared<Slot::Held>();

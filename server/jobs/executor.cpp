@@ -13,11 +13,15 @@ namespace cgview::server {
 
 Sandbox::Command sandboxed_worker(const Sandbox& sandbox, const LaunchSpec& job, const std::filesystem::path& worker,
                                   int slot, ChildOptions options) {
-  // The worker program too is mounted where the job sees it: it may lie
-  // where the job may not walk (a wrapper script in a test's /tmp).
-  const std::string program = std::string(kSandboxPrograms) + "/" + worker.filename().string();
+  // The worker program is mounted where the job sees it where it lies
+  // where the job may not walk (a wrapper script in a test's /tmp);
+  // elsewhere it runs at its own path, one mount fewer.
   auto readable = job.read_only;
-  readable.push_back({worker, program});
+  std::string program = worker.string();
+  if (!sandbox.shows_at_own_path(worker)) {
+    program = std::string(kSandboxPrograms) + "/" + worker.filename().string();
+    readable.push_back({worker, program});
+  }
   readable.push_back({job.dir / "job.json", kSandboxSpec});
   return sandbox.wrap(
       {program, kSandboxSpec},
