@@ -1,7 +1,9 @@
 #include "rays/ray_caster.h"
 
+#include <dlfcn.h>
 #include <embree3/rtcore.h>
 
+#include <optional>
 #include <string>
 
 #include "core/errors.h"
@@ -26,31 +28,64 @@ void skip_origin_face(const RTCFilterFunctionNArguments* args) {
     if (args->valid[i] == -1 && RTCHitN_primID(args->hit, args->N, i) == c->skip) args->valid[i] = 0;
 }
 
+// Embree's functions, from the library opened by the first ray caster:
+// linked in, its eager binding (15,000 relocations, -z now) cost every
+// start of a job's worker, for the jobs that cast rays alone.
+// clang-format off
+#define CGVIEW_EMBREE_FUNCTIONS(X)                                                              \
+  X(rtcNewDevice) X(rtcReleaseDevice) X(rtcGetDeviceError) X(rtcNewScene) X(rtcReleaseScene)    \
+  X(rtcSetSceneFlags) X(rtcSetSceneBuildQuality) X(rtcNewGeometry) X(rtcReleaseGeometry)        \
+  X(rtcSetNewGeometryBuffer) X(rtcCommitGeometry) X(rtcAttachGeometry) X(rtcCommitScene)        \
+  X(rtcIntersect1)
+// clang-format on
+struct Embree {
+#define CGVIEW_EMBREE_MEMBER(f) decltype(&::f) f = nullptr;
+  CGVIEW_EMBREE_FUNCTIONS(CGVIEW_EMBREE_MEMBER)
+#undef CGVIEW_EMBREE_MEMBER
+};
+
+const Embree& embree() {
+  static const std::optional<Embree> e = []() -> std::optional<Embree> {
+    void* lib = ::dlopen(CGVIEW_LIBEMBREE, RTLD_NOW | RTLD_LOCAL);
+    if (!lib) return std::nullopt;
+    Embree e;
+    bool all = true;
+#define CGVIEW_EMBREE_FIND(f) all = (e.f = reinterpret_cast<decltype(&::f)>(::dlsym(lib, #f))) && all;
+    CGVIEW_EMBREE_FUNCTIONS(CGVIEW_EMBREE_FIND)
+#undef CGVIEW_EMBREE_FIND
+    return all ? std::optional(e) : std::nullopt;
+  }();
+  if (!e) throw Error(std::string("cannot load Embree (") + CGVIEW_LIBEMBREE + ")");
+  return *e;
+}
+
 }  // namespace
 
 struct RayCaster::Impl {
+  const Embree& rtc = embree();
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
   ~Impl() {
-    if (scene) rtcReleaseScene(scene);
-    if (device) rtcReleaseDevice(device);
+    if (scene) rtc.rtcReleaseScene(scene);
+    if (device) rtc.rtcReleaseDevice(device);
   }
 };
 
 RayCaster::RayCaster(const Mesh& mesh) : impl_(std::make_unique<Impl>()), normals_(face_normals(mesh)) {
   Impl& s = *impl_;
-  s.device = rtcNewDevice(nullptr);
-  if (!s.device) throw Error("Embree could not start: error " + std::to_string(int(rtcGetDeviceError(nullptr))));
-  s.scene = rtcNewScene(s.device);
-  rtcSetSceneFlags(s.scene, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION | RTC_SCENE_FLAG_ROBUST);
-  rtcSetSceneBuildQuality(s.scene, RTC_BUILD_QUALITY_HIGH);
-  RTCGeometry g = rtcNewGeometry(s.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                        3 * sizeof(float), mesh.positions.size()));
-  auto* f = static_cast<unsigned*>(
-      rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.faces.size()));
+  const Embree& rtc = s.rtc;
+  s.device = rtc.rtcNewDevice(nullptr);
+  if (!s.device) throw Error("Embree could not start: error " + std::to_string(int(rtc.rtcGetDeviceError(nullptr))));
+  s.scene = rtc.rtcNewScene(s.device);
+  rtc.rtcSetSceneFlags(s.scene, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION | RTC_SCENE_FLAG_ROBUST);
+  rtc.rtcSetSceneBuildQuality(s.scene, RTC_BUILD_QUALITY_HIGH);
+  RTCGeometry g = rtc.rtcNewGeometry(s.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = static_cast<float*>(rtc.rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                            3 * sizeof(float), mesh.positions.size()));
+  auto* f = static_cast<unsigned*>(rtc.rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                               3 * sizeof(unsigned), mesh.faces.size()));
   if (!v || !f) {
-    rtcReleaseGeometry(g);
+    rtc.rtcReleaseGeometry(g);
     throw Error("Embree could not allocate the mesh's buffers");
   }
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
@@ -60,11 +95,11 @@ RayCaster::RayCaster(const Mesh& mesh) : impl_(std::make_unique<Impl>()), normal
   }
   for (std::size_t i = 0; i < mesh.faces.size(); ++i)
     for (int k = 0; k < 3; ++k) f[3 * i + k] = unsigned(mesh.faces[i][k]);
-  rtcCommitGeometry(g);
-  rtcAttachGeometry(s.scene, g);
-  rtcReleaseGeometry(g);
-  rtcCommitScene(s.scene);
-  if (rtcGetDeviceError(s.device) != RTC_ERROR_NONE) throw Error("Embree could not build the mesh's BVH");
+  rtc.rtcCommitGeometry(g);
+  rtc.rtcAttachGeometry(s.scene, g);
+  rtc.rtcReleaseGeometry(g);
+  rtc.rtcCommitScene(s.scene);
+  if (rtc.rtcGetDeviceError(s.device) != RTC_ERROR_NONE) throw Error("Embree could not build the mesh's BVH");
   // Which way the faces face: from outside the bounding box along each
   // direction, whether the first face met faces the ray's origin.
   const BBox box = bounding_box(mesh);
@@ -93,7 +128,7 @@ RayCaster::Hit RayCaster::first_hit(const Vec3& origin, const Vec3& direction, s
   rh.ray.tfar = max_distance < 3.0e38 ? float(max_distance) : std::numeric_limits<float>::infinity();
   rh.ray.mask = ~0u;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl_->scene, &sc.context, &rh);
+  impl_->rtc.rtcIntersect1(impl_->scene, &sc.context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
   return {double(rh.ray.tfar), rh.hit.primID};
 }
