@@ -136,13 +136,22 @@ void fill_escaped(const Mesh& mesh, const Adjacency& g, const SdfFastParams& p,
   for (std::uint32_t s : samples) mark[s] = 0.0;
   for (std::uint32_t s : escaped) mark[s] = 1.0;
   mark = nearest_known(g, mark);
-  // The region, then the faces within the filter's window of it.
+  // The filter changes only the faces within its window of the region's
+  // border (its faces beside one outside it, which fill_missing gives their
+  // neighbours' mean): deeper inside, a window holds the smallest value
+  // alone; outside, a window that reaches the region reaches its border.
   const int window = p.sdf.window > 0 ? p.sdf.window : default_window(n);
   std::vector<int> ring(n, std::numeric_limits<int>::max());
   std::vector<std::uint32_t> near;
-  for (std::size_t f = 0; f < n; ++f)
-    if (mark[f] == 1.0)
-      values[f] = std::numeric_limits<double>::quiet_NaN(), ring[f] = 0, near.push_back(std::uint32_t(f));
+  for (std::size_t f = 0; f < n; ++f) {
+    if (mark[f] != 1.0) continue;
+    values[f] = std::numeric_limits<double>::quiet_NaN();
+    for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h)
+      if (mark[*h] != 1.0) {
+        ring[f] = 0, near.push_back(std::uint32_t(f));
+        break;
+      }
+  }
   for (std::size_t k = 0; k < near.size(); ++k)
     if (ring[near[k]] < window)
       for (const std::uint32_t* h = g.begin(near[k]); h != g.end(near[k]); ++h)
