@@ -4,11 +4,14 @@
 //   the sample meshes only: on the 1.42M-triangle mesh it takes hours;
 // - the filter as it was: a breadth-first walk per face in the file's face
 //   order, two exp per neighbour (kept here as the reference for that mesh);
-// - ours (sdf::bilateral_smooth);
-// times, our speed-up over each (and over the filter as it was in CPU
-// seconds), and the largest and mean difference of our
-// values from theirs as a fraction of the smoothed values' range.  Then the
-// whole sdf (rays and post-processing) on each mesh.
+// - ours, exact (sdf::bilateral_smooth);
+// - ours, sampled (sdf::bilateral_smooth_sampled, what the sdf takes where
+//   the window and the mesh are large, sdf/bilateral_filter.h);
+// times, the speed-ups, and the largest and mean difference of our exact
+// values from theirs (CGAL's; the filter as it was where CGAL does not run)
+// and of the sampled values from our exact ones, as fractions of the
+// smoothed values' range.  Then the whole sdf (rays and post-processing) on
+// each mesh.
 //
 //   build/bin/sdf_smooth_bench [--repeat N] [--quick] [--only elephant,...,big,diplodocus,...]
 #include <CGAL/Surface_mesh_segmentation/internal/Filters.h>
@@ -27,6 +30,7 @@
 #include "core/surface_mesh.h"
 #include "io/mesh_io.h"
 #include "io/samples.h"
+#include "sdf/bilateral_sampled.h"
 #include "sdf/sdf.h"
 #include "sdf/sdf_rays.h"
 
@@ -108,15 +112,16 @@ int main(int argc, char** argv) {
   const std::vector<bench::SdfInput> inputs = bench::sdf_inputs(opt, "sdf_smooth_bench");
 
   std::printf("bilateral filter of the raw SDF (default window), against CGAL 5.5 and the filter as it was\n");
-  std::printf("%-17s %8s %6s %9s %9s %9s %8s %8s %11s %11s\n", "mesh", "faces", "window", "CGAL s", "was s", "ours s",
-              "x CGAL", "x was", "max diff", "mean diff");
+  std::printf("%-17s %8s %6s %9s %9s %9s %8s %8s %8s %11s %11s | %9s %8s %8s %10s %10s\n", "mesh", "faces", "window",
+              "CGAL s", "was s", "ours s", "x CGAL", "x was", "x cpu", "max diff", "mean diff", "sampled s", "x was",
+              "exact %", "max vs ours", "mean");
   for (const auto& [name, mesh] : inputs) {
     const bool big = mesh.faces.size() > 500000;
     const Adjacency graph = face_neighbors(mesh, edge_topology(mesh));
     std::vector<double> raw = sdf::raw_sdf(mesh, {}).values;
     sdf::fill_missing(mesh, graph, raw);
     const int window = sdf::default_window(raw.size());
-    std::vector<double> cgal, was, ours;
+    std::vector<double> cgal, was, ours, sampled;
     const double cgal_s = big ? 0
                               : bench::best_seconds(
                                     opt.repeat, [&] { cgal = raw; }, [&] { cgal_filter(mesh, cgal, window); });
@@ -129,16 +134,23 @@ int main(int argc, char** argv) {
     const double ours_s = bench::best_seconds(
         opt.repeat, [&] { ours = raw; }, [&] { sdf::bilateral_smooth(graph, ours, window); });
     const double ours_cpu = (bench::cpu_seconds() - cpu) / opt.repeat;
-    const Difference d = difference(ours, big ? was : cgal);
+    sdf::SampledFilterStats stats;
+    const double sampled_s = bench::best_seconds(
+        opt.repeat, [&] { sampled = raw; },
+        [&] { sdf::bilateral_smooth_sampled(mesh, graph, sampled, window, nullptr, {}, &stats); });
+    const Difference d = difference(ours, big ? was : cgal), ds = difference(sampled, ours);
     char cgal_col[16] = "-", ratio_col[16] = "-";
     if (!big) {
       std::snprintf(cgal_col, sizeof cgal_col, "%.3f", cgal_s);
       std::snprintf(ratio_col, sizeof ratio_col, "%.1fx", cgal_s / ours_s);
     }
-    std::printf("%-17s %8zu %6d %9s %9.3f %9.3f %8s %7.1fx %7.1fx %10.2g%% %10.2g%%%s\n", name.c_str(),
-                mesh.faces.size(), window, cgal_col, was_s, ours_s, ratio_col, was_s / ours_s, was_cpu / ours_cpu,
-                100 * d.largest, 100 * d.mean,
-                big ? "  (differences from the filter as it was)" : "  (differences from CGAL's)");
+    std::printf(
+        "%-17s %8zu %6d %9s %9.3f %9.3f %8s %7.1fx %7.1fx %10.2g%% %10.2g%% | %9.3f %7.1fx %7.1f%% %10.3f%% "
+        "%9.4f%%%s\n",
+        name.c_str(), mesh.faces.size(), window, cgal_col, was_s, ours_s, ratio_col, was_s / ours_s, was_cpu / ours_cpu,
+        100 * d.largest, 100 * d.mean, sampled_s, was_s / sampled_s,
+        100.0 * double(stats.exact) / double(mesh.faces.size()), 100 * ds.largest, 100 * ds.mean,
+        big ? "  (exact: differences from the filter as it was)" : "  (exact: differences from CGAL's)");
     std::fflush(stdout);
   }
 

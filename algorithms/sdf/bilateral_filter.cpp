@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "sdf/bilateral_sampled.h"
 #include "sdf/bilateral_sums.h"
 #include "sdf/parallel_blocks.h"
 
@@ -201,6 +202,14 @@ void bilateral_smooth(const Adjacency& graph, std::vector<double>& values, int w
     }
   });
   values = std::move(out);
+}
+
+void bilateral_smooth(const Mesh& mesh, const Adjacency& graph, std::vector<double>& values, int window,
+                      const Context* ctx) {
+  const int own = default_window(values.size());
+  if (window <= 0) window = own;
+  if (window >= kSampledWindow && own >= kSampledWindow) bilateral_smooth_sampled(mesh, graph, values, window, ctx);
+  else bilateral_smooth(graph, values, window, ctx);
 }
 
 }  // namespace cgview::sdf

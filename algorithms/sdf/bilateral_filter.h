@@ -33,4 +33,13 @@ void bilateral_smooth(const Adjacency& face_graph, std::vector<double>& values, 
                       const Context* ctx = nullptr, std::span<const std::uint32_t> only = {});
 int default_window(std::size_t faces);
 
+// The filter of every face, as above, where the window is small or the mesh
+// coarse; where both the window and the mesh's own default window are
+// kSampledWindow rings or more (meshes from 722k faces), the faster
+// approximation of sdf/bilateral_sampled.h, within 0.5% of the smoothed
+// values' range of this filter.
+inline constexpr int kSampledWindow = 20;
+void bilateral_smooth(const Mesh& mesh, const Adjacency& face_graph, std::vector<double>& values, int window = 0,
+                      const Context* ctx = nullptr);
+
 }  // namespace cgview::sdf

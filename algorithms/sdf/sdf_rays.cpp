@@ -282,7 +282,7 @@ std::vector<double> normalize_linear(const std::vector<double>& values) {
 void postprocess(const Mesh& mesh, const Adjacency& graph, std::vector<double>& values, const SdfParams& p,
                  const Context& ctx) {
   fill_missing(mesh, graph, values);
-  if (p.smooth) bilateral_smooth(graph, values, p.window, &ctx);
+  if (p.smooth) bilateral_smooth(mesh, graph, values, p.window, &ctx);
 }
 
 void warn_missing(const RawSdf& raw, std::vector<std::string>& warnings, std::string_view fill) {

@@ -1,0 +1,341 @@
+#include "sdf/bilateral_sampled.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "sdf/bilateral_filter.h"
+#include "sdf/bilateral_sums.h"
+#include "sdf/parallel_blocks.h"
+
+namespace cgview::sdf {
+namespace {
+
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+constexpr int kMostNear = 24;  // sites interpolated per face, at most
+
+// Sites: each face in turn (along the curve, so that they spread
+// evenly), unless one is within `spacing` rings already.
+std::vector<std::uint32_t> sites_of(const Adjacency& g, int spacing) {
+  std::vector<std::uint8_t> ring(g.size(), std::numeric_limits<std::uint8_t>::max());
+  std::vector<std::uint32_t> sites, queue;
+  for (std::size_t s = 0; s < g.size(); ++s) {
+    if (ring[s] <= spacing) continue;
+    sites.push_back(std::uint32_t(s));
+    ring[s] = 0;
+    queue.assign(1, std::uint32_t(s));
+    // Rings only fall: a walk stops where they are no lower.
+    for (std::size_t k = 0; k < queue.size(); ++k)
+      if (ring[queue[k]] < spacing)
+        for (const std::uint32_t* h = g.begin(queue[k]); h != g.end(queue[k]); ++h)
+          if (ring[*h] > ring[queue[k]] + 1) ring[*h] = std::uint8_t(ring[queue[k]] + 1), queue.push_back(*h);
+  }
+  return sites;
+}
+
+// Each face's nearest site (by rings), and each site's neighbours: the
+// sites whose regions touch its own.
+struct Regions {
+  std::vector<std::uint32_t> site_of;
+  std::vector<std::vector<std::uint32_t>> near;
+};
+
+Regions regions_of(const Adjacency& g, const std::vector<std::uint32_t>& sites) {
+  Regions r;
+  r.site_of.assign(g.size(), kNone);
+  std::vector<std::uint32_t> queue;
+  queue.reserve(g.size());
+  for (std::size_t k = 0; k < sites.size(); ++k) r.site_of[sites[k]] = std::uint32_t(k), queue.push_back(sites[k]);
+  for (std::size_t k = 0; k < queue.size(); ++k)
+    for (const std::uint32_t* h = g.begin(queue[k]); h != g.end(queue[k]); ++h)
+      if (r.site_of[*h] == kNone) r.site_of[*h] = r.site_of[queue[k]], queue.push_back(*h);
+  r.near.resize(sites.size());
+  for (std::size_t f = 0; f < g.size(); ++f)
+    for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h)
+      if (r.site_of[*h] != r.site_of[f]) r.near[r.site_of[f]].push_back(r.site_of[*h]);
+  for (auto& n : r.near) {
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+    if (n.size() + 1 > std::size_t(kMostNear)) n.resize(kMostNear - 1);
+  }
+  return r;
+}
+
+// The value at d = 0 of the least-squares plane through (d_j, v_j) with
+// weights w_j, and the plane's slope; false where the sites do not span a
+// plane around the face.  The slope's components along the surface normal
+// are damped (the sites lie on the surface, a plane through them is
+// undetermined across it).
+bool fit_plane(int m, const Vec3* d, const double* v, const double* w, double& value, Vec3& slope) {
+  double a[4][5] = {};
+  double scale = 0;
+  for (int j = 0; j < m; ++j) {
+    const double e[4] = {1, d[j].x, d[j].y, d[j].z};
+    for (int r = 0; r < 4; ++r) {
+      for (int c = 0; c < 4; ++c) a[r][c] += w[j] * e[r] * e[c];
+      a[r][4] += w[j] * e[r] * v[j];
+    }
+    scale += w[j] * dot(d[j], d[j]);
+  }
+  if (!(scale > 0)) return false;
+  for (int r = 1; r < 4; ++r) a[r][r] += 1e-3 * scale;
+  for (int c = 0; c < 4; ++c) {
+    int pivot = c;
+    for (int r = c + 1; r < 4; ++r)
+      if (std::abs(a[r][c]) > std::abs(a[pivot][c])) pivot = r;
+    std::swap(a[c], a[pivot]);
+    if (a[c][c] == 0) return false;
+    for (int r = 0; r < 4; ++r)
+      if (r != c) {
+        const double q = a[r][c] / a[c][c];
+        for (int k = c; k < 5; ++k) a[r][k] -= q * a[c][k];
+      }
+  }
+  double x[4];
+  for (int r = 0; r < 4; ++r) x[r] = a[r][4] / a[r][r];
+  value = x[0], slope = {x[1], x[2], x[3]};
+  return std::isfinite(value);
+}
+
+// The filter in the order given (faces numbered along a space-filling
+// curve: each window's faces then lie close together in memory), but for
+// the faces it leaves to the exact filter (unsure_at); false where all
+// values are equal (or NaN).
+bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std::vector<double>& values, int window,
+                  const Context* ctx, const SampledFilterParams& p, SampledFilterStats& st, std::vector<double>& out,
+                  std::vector<char>& unsure_at) {
+  const std::size_t n = values.size();
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  for (double v : values)
+    if (!std::isnan(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  if (!(hi > lo)) return false;
+  const int bins = p.bins;
+  const double step = (hi - lo) / (bins - 1);
+
+  const std::vector<std::uint32_t> sites = sites_of(g, p.spacing);
+  const Regions regions = regions_of(g, sites);
+  st.sites = sites.size();
+
+  // The centres each site will be asked about: its faces' and its
+  // neighbours' faces' values, as a range of grid nodes.
+  std::vector<int> first_node(sites.size(), bins), last_node(sites.size(), -1);
+  for (std::size_t f = 0; f < n; ++f) {
+    if (std::isnan(values[f])) continue;
+    const double t = (values[f] - lo) / step;
+    const int below = std::clamp(int(t), 0, bins - 2);
+    const std::uint32_t s = regions.site_of[f];
+    const auto widen = [&](std::uint32_t k) {
+      first_node[k] = std::min(first_node[k], below), last_node[k] = std::max(last_node[k], below + 1);
+    };
+    widen(s);
+    for (std::uint32_t k : regions.near[s]) widen(k);
+  }
+  std::vector<std::size_t> table_at(sites.size() + 1, 0);
+  for (std::size_t k = 0; k < sites.size(); ++k)
+    table_at[k + 1] = table_at[k] + std::size_t(std::max(0, last_node[k] - first_node[k] + 1));
+
+  // Each site's window, exact, and from it the filtered value of a face
+  // centred on the site with each value of its range of nodes.
+  const double spatial = window / 2.0;
+  std::vector<float> ring_weight(std::size_t(window) + 1);
+  for (int l = 0; l <= window; ++l) ring_weight[std::size_t(l)] = float(std::exp(-0.5 * (l / spatial) * (l / spatial)));
+  std::vector<float> value(n);
+  std::vector<std::int16_t> bin(n, -1);
+  for (std::size_t f = 0; f < n; ++f) {
+    value[f] = float(values[f]);
+    if (!std::isnan(values[f]))
+      bin[f] = std::int16_t(std::clamp(int(std::lround((values[f] - lo) / step)), 0, bins - 1));
+  }
+  std::vector<float> table(table_at.back(), std::numeric_limits<float>::quiet_NaN());
+  parallel_blocks(sites.size(), 16, thread_count(), ctx, 0.0, 0.6, "smoothing", [&](std::size_t b, std::size_t e) {
+    thread_local std::vector<std::uint32_t> stamp, queue;
+    thread_local std::uint32_t epoch = 0;
+    thread_local std::vector<float> weight, moment, mean, log_weight;
+    if (stamp.size() != n) stamp.assign(n, 0), epoch = 0;
+    weight.assign(std::size_t(bins), 0.0f), moment.assign(std::size_t(bins), 0.0f);
+    for (std::size_t k = b; k < e; ++k) {
+      if (table_at[k + 1] == table_at[k]) continue;
+      if (++epoch == 0) std::fill(stamp.begin(), stamp.end(), 0), epoch = 1;
+      // Ring by ring: queue[begin, end) is the ring's faces.
+      double count = 0, sum = 0, squares = 0;
+      int first = bins, last = -1;
+      // Branch-free: a face met again is written and then overwritten (a
+      // branch on it would be mispredicted about every other time).
+      if (queue.size() < 64) queue.resize(64);
+      queue[0] = sites[k];
+      stamp[sites[k]] = epoch;
+      std::size_t size = 1;
+      for (std::size_t begin = 0, ring = 0; begin < size; ++ring) {
+        const std::size_t end = size;
+        const float w = ring_weight[ring];
+        for (std::size_t q = begin; q < end; ++q) {
+          const std::uint32_t f = queue[q];
+          const int i = bin[f];
+          if (i >= 0) {
+            const float x = value[f];
+            count += 1, sum += x, squares += double(x) * x;
+            weight[std::size_t(i)] += w, moment[std::size_t(i)] += w * x;
+            first = std::min(first, i), last = std::max(last, i);
+          }
+          if (ring == std::size_t(window)) continue;
+          if (queue.size() < size + g.degree(f)) queue.resize(2 * (size + g.degree(f)));
+          std::uint32_t* tail = queue.data();
+          for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) {
+            const std::uint32_t m = *h;
+            const bool fresh = stamp[m] != epoch;
+            stamp[m] = epoch;
+            tail[size] = m;
+            size += fresh;
+          }
+        }
+        begin = end;
+      }
+      if (last < 0) continue;  // no value within the window
+      mean.clear(), log_weight.clear();
+      float heaviest = 0;
+      for (int i = first; i <= last; ++i) heaviest = std::max(heaviest, weight[std::size_t(i)]);
+      for (int i = first; i <= last; ++i) {
+        const float w = weight[std::size_t(i)];
+        if (w > 0) mean.push_back(moment[std::size_t(i)] / w), log_weight.push_back(std::log(heaviest / w));
+        weight[std::size_t(i)] = moment[std::size_t(i)] = 0;
+      }
+      for (int j = first_node[k]; j <= last_node[k]; ++j) {
+        const double c = lo + j * step;
+        const double dev2 = (squares - 2 * c * sum + count * c * c) / count;
+        float& out = table[table_at[k] + std::size_t(j - first_node[k])];
+        if (!(dev2 > 1e-12 * step * step)) {
+          out = float(c);
+          continue;
+        }
+        float s = 0, w = 0;
+        weighted_sums(mean.data(), log_weight.data(), mean.size(), float(c), float(0.5 / (2.25 * dev2)), s, w);
+        out = s / w;
+      }
+    }
+  });
+
+  // Each face from its own site and that site's neighbours.
+  out = values;
+  // The tolerance is of the smoothed values' range (the sites' own), which
+  // a few outlying raw values do not widen.
+  double smooth_lo = HUGE_VAL, smooth_hi = -HUGE_VAL;
+  for (std::size_t k = 0; k < sites.size(); ++k) {
+    const double c = values[sites[k]];
+    if (std::isnan(c)) continue;
+    const double t = (c - lo) / step;
+    const int below = std::clamp(int(t), 0, bins - 2);
+    const float* row = &table[table_at[k]] - first_node[k];
+    const double v = (1 - (t - below)) * row[below] + (t - below) * row[below + 1];
+    if (!std::isnan(v)) smooth_lo = std::min(smooth_lo, v), smooth_hi = std::max(smooth_hi, v);
+  }
+  const double tolerance = p.tolerance * (smooth_hi > smooth_lo ? smooth_hi - smooth_lo : hi - lo);
+  unsure_at.assign(n, 0);
+  parallel_blocks(n, 4096, thread_count(), ctx, 0.6, 0.7, "smoothing", [&](std::size_t b, std::size_t e) {
+    for (std::size_t f = b; f < e; ++f) {
+      const double c = values[f];
+      if (std::isnan(c)) continue;
+      const double t = (c - lo) / step;
+      const int below = std::clamp(int(t), 0, bins - 2);
+      const double frac = t - below;
+      const std::uint32_t own = regions.site_of[f];
+      Vec3 d[kMostNear];
+      double v[kMostNear], w[kMostNear];
+      int m = 0;
+      const auto add = [&](std::uint32_t k) {
+        const float* row = &table[table_at[k]] - first_node[k];
+        v[m] = (1 - frac) * row[below] + frac * row[below + 1];
+        d[m] = centre[sites[k]] - centre[f];
+        ++m;
+      };
+      add(own);
+      for (std::uint32_t k : regions.near[own]) add(k);
+      double ring = 0;
+      for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) ring += norm(centre[*h] - centre[f]);
+      ring /= double(std::max<std::size_t>(g.degree(f), 1));
+      // Weights that follow the nearest site closely: a plane through
+      // sites a few rings apart misses each by about its misfit.
+      for (int j = 0; j < m; ++j) w[j] = 1.0 / (dot(d[j], d[j]) / (ring * ring) + 0.25);
+      double value = 0;
+      Vec3 slope;
+      bool sure = m >= 4 && ring > 0 && fit_plane(m, d, v, w, value, slope);
+      if (sure) {
+        // The plane's misfit, and its change over a ring: a face's window
+        // differs from its sites' in shape, not only in place, and by about
+        // that much where the values change fast.
+        double misfit = 0;
+        for (int j = 0; j < m; ++j) misfit = std::max(misfit, std::abs(v[j] - value - dot(slope, d[j])));
+        sure = misfit + p.slope_rings * norm(slope) * ring <= tolerance;
+      }
+      if (sure) out[f] = value;
+      else unsure_at[f] = 1;
+    }
+  });
+  return true;
+}
+
+// Faces sorted by the Morton code of their centres (21 bits an axis).
+std::vector<std::uint32_t> curve_order(const std::vector<Vec3>& centre) {
+  Vec3 lo = centre.empty() ? Vec3{} : centre[0], hi = lo;
+  for (const Vec3& c : centre)
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> key(centre.size());
+  for (std::size_t f = 0; f < centre.size(); ++f) {
+    std::uint64_t code = 0;
+    std::uint32_t q[3];
+    for (int a = 0; a < 3; ++a)
+      q[a] = hi[a] > lo[a] ? std::uint32_t((centre[f][a] - lo[a]) / (hi[a] - lo[a]) * 2097151.0) : 0;
+    for (int bit = 20; bit >= 0; --bit)
+      for (int a = 0; a < 3; ++a) code = (code << 1) | ((q[a] >> bit) & 1);
+    key[f] = {code, std::uint32_t(f)};
+  }
+  std::sort(key.begin(), key.end());
+  std::vector<std::uint32_t> order(centre.size());
+  for (std::size_t i = 0; i < key.size(); ++i) order[i] = key[i].second;
+  return order;
+}
+
+}  // namespace
+
+void bilateral_smooth_sampled(const Mesh& mesh, const Adjacency& g, std::vector<double>& values, int window,
+                              const Context* ctx, const SampledFilterParams& p, SampledFilterStats* stats) {
+  SampledFilterStats st;
+  const std::size_t n = values.size();
+  if (window <= 0) window = default_window(n);
+  std::vector<Vec3> centre(n);
+  for (std::size_t f = 0; f < n; ++f) {
+    const Tri& t = mesh.faces[f];
+    centre[f] = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+  }
+  const std::vector<std::uint32_t> order = curve_order(centre);
+  std::vector<std::uint32_t> rank(n);
+  for (std::size_t i = 0; i < n; ++i) rank[order[i]] = std::uint32_t(i);
+  Adjacency sorted;
+  sorted.offsets.reserve(n + 1), sorted.items.reserve(g.items.size());
+  sorted.offsets.push_back(0);
+  std::vector<double> sorted_values(n);
+  std::vector<Vec3> sorted_centre(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t f = order[i];
+    for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) sorted.items.push_back(rank[*h]);
+    sorted.offsets.push_back(std::uint32_t(sorted.items.size()));
+    sorted_values[i] = values[f], sorted_centre[i] = centre[f];
+  }
+  std::vector<double> sorted_out;
+  std::vector<char> unsure_at;
+  if (!sampled_pass(sorted_centre, sorted, sorted_values, window, ctx, p, st, sorted_out, unsure_at)) return;
+  // The exact filter where the sites are not enough, on the sorted faces
+  // too (its walks gather each block's window faster there).
+  std::vector<std::uint32_t> unsure;
+  for (std::size_t i = 0; i < n; ++i)
+    if (unsure_at[i]) unsure.push_back(std::uint32_t(i));
+  st.exact = unsure.size();
+  if (!unsure.empty()) {
+    std::vector<double> exact = sorted_values;
+    bilateral_smooth(sorted, exact, window, ctx, unsure);
+    for (std::uint32_t i : unsure) sorted_out[i] = exact[i];
+  }
+  for (std::size_t i = 0; i < n; ++i) values[order[i]] = sorted_out[i];
+  if (stats) *stats = st;
+}
+
+}  // namespace cgview::sdf
