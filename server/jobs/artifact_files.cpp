@@ -49,7 +49,7 @@ std::string incomplete_artifact(const JobDir& dir, const json& artifacts, std::u
   return "";
 }
 
-std::string take_artifacts(const JobDir& work, const json& artifacts, const fs::path& to) {
+std::string take_artifacts(const JobDir& work, const json& artifacts, const fs::path& to, bool whole) {
   std::error_code ec;
   fs::remove_all(to, ec);
   fs::create_directories(to, ec);
@@ -57,11 +57,14 @@ std::string take_artifacts(const JobDir& work, const json& artifacts, const fs::
   std::string why;
   for (const auto& a : artifacts) {
     const std::string file = a.value("file", "");
-    if (!work.copy(file, to / file, a.value("bytes", std::uint64_t(0)), &why)) break;
+    const std::uint64_t bytes = a.value("bytes", std::uint64_t(0));
+    if (!(whole ? work.move(file, to / file, bytes, &why) : work.copy(file, to / file, bytes, &why))) break;
     const ArtifactCodec* codec = artifact_codec(a.value("kind", ""));
     for (const std::string& side : codec ? codec->side_files(a) : std::vector<std::string>{}) {
       if (!plain_name(side) || fs::exists(to / side, ec)) continue;
-      if (!work.copy(side, to / side, kMaxSideFileBytes, &why) && !why.empty()) break;
+      const auto taken = whole ? work.move(side, to / side, kMaxSideFileBytes, &why)
+                               : work.copy(side, to / side, kMaxSideFileBytes, &why);
+      if (!taken && !why.empty()) break;
       why.clear();
     }
     if (!why.empty()) break;

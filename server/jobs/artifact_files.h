@@ -23,8 +23,10 @@ std::string incomplete_artifact(const JobDir& dir, const nlohmann::json& artifac
 
 // Copies each artifact's file, and the side files its codec names, out of
 // `work` into `to` (a fresh directory only the server writes), where the
-// job's results are served from ever after.  "" when all were taken, else
-// why not (`to` is then removed).
-std::string take_artifacts(const JobDir& work, const nlohmann::json& artifacts, const std::filesystem::path& to);
+// job's results are served from ever after; moves them instead where
+// `whole` says nothing of the run writes any more (JobDir::move).  "" when
+// all were taken, else why not (`to` is then removed).
+std::string take_artifacts(const JobDir& work, const nlohmann::json& artifacts, const std::filesystem::path& to,
+                           bool whole = false);
 
 }  // namespace cgview::server

@@ -152,6 +152,10 @@ class Executor {
     // The setting that makes its workers see the data directory, for the
     // message of what needs it (a plugin).
     std::string shared_data_setting;
+    // Once it says a run ended, nothing of the run is left to write (a
+    // sandbox's process namespace ends with its first process): the run's
+    // artifacts are then moved out of its directory, not copied.
+    bool run_ends_whole = false;
   };
   virtual Capabilities capabilities() const { return {}; }
 };

@@ -194,6 +194,32 @@ std::optional<std::uint64_t> JobDir::copy(const std::string& name, const fs::pat
   return size;
 }
 
+std::optional<std::uint64_t> JobDir::move(const std::string& name, const fs::path& to, std::uint64_t cap,
+                                          std::string* why) const {
+  std::uint64_t size = 0;
+  const Fd in(open_regular(name, why, &size));
+  if (in.fd < 0) return std::nullopt;
+  if (size > cap) {
+    *why = name + " has " + std::to_string(size) + " bytes, over the limit of " + std::to_string(cap);
+    return std::nullopt;
+  }
+  struct stat opened {};
+  // Its one name, as one hard link more would be another way to it.
+  if (::fstat(in.fd, &opened) == 0 && opened.st_nlink == 1 && name.find('/') == std::string::npos &&
+      ::renameat2(fd_, name.c_str(), AT_FDCWD, to.c_str(), RENAME_NOREPLACE) == 0) {
+    // What was renamed is the file checked above (nothing else renames in a
+    // run's directory once it ended, but a name is not a file).
+    struct stat moved {};
+    if (::fstatat(AT_FDCWD, to.c_str(), &moved, AT_SYMLINK_NOFOLLOW) == 0 && moved.st_dev == opened.st_dev &&
+        moved.st_ino == opened.st_ino && ::fchown(in.fd, ::geteuid(), ::getegid()) == 0 && ::fchmod(in.fd, 0644) == 0)
+      return size;
+    *why = "cannot take " + name + " out of the run's directory";
+    ::unlink(to.c_str());
+    return std::nullopt;
+  }
+  return copy(name, to, cap, why);
+}
+
 JobDir::Usage JobDir::usage(std::uint64_t max_names) const {
   Usage u;
   if (fd_ >= 0) walk(fd_, u, max_names, 0);

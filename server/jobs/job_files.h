@@ -46,6 +46,12 @@ class JobDir {
   // writes), at most `cap` bytes; its size, or nullopt with *why set as read does.
   std::optional<std::uint64_t> copy(const std::string& name, const std::filesystem::path& to, std::uint64_t cap,
                                     std::string* why) const;
+  // The same file moved there instead (a rename: no new file, no bytes
+  // copied), made the server's (its owner, mode 0644), where nothing can
+  // write it any more (a sandboxed run, ended) and it is the file's only
+  // name; else, or where it cannot be renamed there, copied.
+  std::optional<std::uint64_t> move(const std::string& name, const std::filesystem::path& to, std::uint64_t cap,
+                                    std::string* why) const;
 
   // The bytes and the names under the directory, links and all counted as
   // names and none followed; the walk stops past `max_names`.

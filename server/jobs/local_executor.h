@@ -48,6 +48,11 @@ class LocalExecutor : public ExecutorBase {
   std::vector<ExecutorEvent> poll(std::chrono::milliseconds timeout) override;
   void shutdown() override;
   bool sandboxed() const override { return sandbox_ && sandbox_->enabled(); }
+  Capabilities capabilities() const override {
+    Capabilities c;
+    c.run_ends_whole = sandboxed();
+    return c;
+  }
 
  private:
   struct Run {

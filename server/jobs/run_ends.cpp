@@ -99,7 +99,7 @@ JobScheduler::Collected JobScheduler::collect_run(const ExecutorEvent& e, const 
     }
   }
   if (c.outcome.done) {
-    std::string why = take_artifacts(work_dir, c.outcome.artifacts, results);
+    std::string why = take_artifacts(work_dir, c.outcome.artifacts, results, executor_->capabilities().run_ends_whole);
     if (why.empty()) {
       try {
         write_file_bytes(results / "result.json",
