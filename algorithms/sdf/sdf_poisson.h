@@ -39,10 +39,11 @@
 // A sample whose rays all escaped (an open mesh) is no boundary value: the
 // faces nearer to such a sample than to any other are taken as the region
 // without a value it marks, and get what the full SDF's postprocess gives
-// such a region (fill_missing, then the bilateral filter over the faces
-// within its window): a ramp over a few rings from the smallest value up to
-// the neighbours', where the smallest value as a boundary value missed it
-// by 8-10% of the range and pulled the thick neighbours down.
+// such a region (fill_missing, then its bilateral filter's smoothing, here
+// window^2 / 6 sweeps of neighbours' means, near the region's border): a
+// ramp over a few rings from the smallest value up to the neighbours',
+// where the smallest value as a boundary value missed it by 8-10% of the
+// range and pulled the thick neighbours down.
 //
 // What sdf_fast (sdf/sdf_fast.h) runs, without its metrics and comparison:
 // for the benchmark and the tests.

@@ -93,7 +93,7 @@ TEST(SdfFast, TenPercentOnAShapeWithThinAndThickPartsStaysWithinThreePercentOfTh
 // An open mesh with horns and fingers a few samples wide, whose full SDF is
 // rough at the scale of a few faces and whose rays escape on 5% of the
 // faces.  The bounds are bench/sdf_bench's measure, rounded up
-// (docs/BENCHMARKS.md: 3.66% mean): 4.47% before the faces nearest the
+// (docs/BENCHMARKS.md: 3.71% mean): 4.47% before the faces nearest the
 // samples whose rays escaped were filled as the full SDF fills them, 4.26%
 // before the second round of samples where the first disagree.  Not the 3%
 // the other meshes of 20k faces or more keep.
@@ -113,7 +113,8 @@ TEST(SdfFast, TenPercentOnMannequinDevilStaysWithinTheBenchmarksErrorBounds) {
 // region) up to its neighbours' (fill_missing, then the bilateral filter).
 // With the samples that found no inside as boundary values at the smallest
 // value, the ramp was missed and the thick faces beside it pulled down:
-// 5.30% mean error; filled as the full SDF fills them, 4.51%.
+// 5.30% mean error; filled as the full SDF fills them, 4.51% (4.17% with the
+// second round of samples).
 TEST(SdfFast, TenPercentOnAnOpenMeshFillsTheRegionsWithoutRaysAsTheFullSdfDoes) {
   const Mesh mesh = read_mesh(test::sample("polygon_mesh.off"));
   ASSERT_GE(mesh.faces.size(), 20000u);
