@@ -1,8 +1,8 @@
 // The SDF's bilateral filter (sdf/bilateral_filter.h) for large windows,
 // approximately: exact windows at sites a few rings apart, interpolated.
 //
-// - Sites: every face within `spacing` rings of one (about 1 face in 13 at
-//   4 rings); each face belongs to its nearest site's region.
+// - Sites: every face within `spacing` rings of one (about 1 face in 8 at
+//   3 rings); each face belongs to its nearest site's region.
 // - Per site, its window exactly (the faces within `window` rings, NaN
 //   skipped), binned on `bins` values over the values' range, each bin as
 //   its faces' mean value m_b and spatial weight w_b = sum exp(-ring^2 /
@@ -24,12 +24,13 @@
 //   difference is about the values' change over a ring.
 //
 // Its difference from the exact filter, as a fraction of the smoothed
-// values' range: at most 0.38% (mean 0.02%) on the 1.42M-face mesh of
-// bench/sdf_smooth_bench.cpp (window 27, 20% of the faces exact), 0.47% on
-// refined_elephant subdivided once with window 20 (45% exact).  On
+// values' range: at most 0.37% (mean 0.02%) on the 1.42M-face mesh of
+// bench/sdf_smooth_bench.cpp (window 27, 10% of the faces exact), 0.40% on
+// refined_elephant subdivided once with window 20 (26% exact).  On
 // coarser meshes the windows change shape faster than the sites follow
-// (0.5-1% on 90-140k faces with window 20): bilateral_smooth takes it only
-// where a mesh's own default window is large (sdf/bilateral_filter.h).
+// (0.5-1% on 90-140k faces with window 20, half of them exact):
+// bilateral_smooth takes it only where a mesh's own default window is
+// large (sdf/bilateral_filter.h).
 #pragma once
 
 #include <cstddef>
@@ -44,9 +45,9 @@ class Context;
 namespace cgview::sdf {
 
 struct SampledFilterParams {
-  int spacing = 4;           // rings from a face to its nearest site, at most
+  int spacing = 3;           // rings from a face to its nearest site, at most
   int bins = 128;            // nodes of the value grid
-  double tolerance = 0.006;  // of the smoothed values' range
+  double tolerance = 0.008;  // of the smoothed values' range
   double slope_rings = 1.0;  // rings of the values' change counted against it
 };
 
