@@ -123,6 +123,16 @@ int JobDir::open_regular(const std::string& name, std::string* why, std::uint64_
   return fd;
 }
 
+int JobDir::open_within(const std::string& name, std::uint64_t cap, std::string* why, std::uint64_t* size) const {
+  const int fd = open_regular(name, why, size);
+  if (fd >= 0 && *size > cap) {
+    *why = name + " has " + std::to_string(*size) + " bytes, over the limit of " + std::to_string(cap);
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
 std::optional<std::string> JobDir::read(const std::string& name, std::uint64_t cap, std::string* why, bool cut) const {
   std::uint64_t size = 0;
   const Fd fd(open_regular(name, why, &size));
@@ -161,12 +171,8 @@ std::optional<std::string> JobDir::read_from(const std::string& name, std::uint6
 std::optional<std::uint64_t> JobDir::copy(const std::string& name, const fs::path& to, std::uint64_t cap,
                                           std::string* why) const {
   std::uint64_t size = 0;
-  const Fd in(open_regular(name, why, &size));
+  const Fd in(open_within(name, cap, why, &size));
   if (in.fd < 0) return std::nullopt;
-  if (size > cap) {
-    *why = name + " has " + std::to_string(size) + " bytes, over the limit of " + std::to_string(cap);
-    return std::nullopt;
-  }
   const Fd out(::open(to.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644));
   if (out.fd < 0) {
     *why = "cannot write " + to.string() + ": " + std::strerror(errno);
@@ -197,12 +203,8 @@ std::optional<std::uint64_t> JobDir::copy(const std::string& name, const fs::pat
 std::optional<std::uint64_t> JobDir::move(const std::string& name, const fs::path& to, std::uint64_t cap,
                                           std::string* why) const {
   std::uint64_t size = 0;
-  const Fd in(open_regular(name, why, &size));
+  const Fd in(open_within(name, cap, why, &size));
   if (in.fd < 0) return std::nullopt;
-  if (size > cap) {
-    *why = name + " has " + std::to_string(size) + " bytes, over the limit of " + std::to_string(cap);
-    return std::nullopt;
-  }
   struct stat opened {};
   // Its one name, as one hard link more would be another way to it.
   if (::fstat(in.fd, &opened) == 0 && opened.st_nlink == 1 && name.find('/') == std::string::npos &&

@@ -64,6 +64,8 @@ class JobDir {
   // An open descriptor of the regular file `name` beneath the directory,
   // or -1 with *why set (empty when missing).
   int open_regular(const std::string& name, std::string* why, std::uint64_t* size) const;
+  // The same, refused (*why set) when over `cap` bytes.
+  int open_within(const std::string& name, std::uint64_t cap, std::string* why, std::uint64_t* size) const;
   int fd_ = -1;
 };
 
