@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "sdf/bilateral_filter.h"
 #include "sdf/bilateral_sums.h"
@@ -34,10 +35,14 @@ std::vector<std::uint32_t> sites_of(const Adjacency& g, int spacing) {
 }
 
 // Each face's nearest site (by rings), and each site's neighbours: the
-// sites whose regions touch its own.
+// sites whose regions touch its own (kMostNear - 1 of them at most).
 struct Regions {
   std::vector<std::uint32_t> site_of;
-  std::vector<std::vector<std::uint32_t>> near;
+  std::vector<std::uint32_t> near;       // kMostNear - 1 per site
+  std::vector<std::uint8_t> near_count;  // per site
+  std::span<const std::uint32_t> near_of(std::size_t k) const {
+    return {near.data() + k * (kMostNear - 1), near_count[k]};
+  }
 };
 
 Regions regions_of(const Adjacency& g, const std::vector<std::uint32_t>& sites) {
@@ -49,14 +54,18 @@ Regions regions_of(const Adjacency& g, const std::vector<std::uint32_t>& sites) 
   for (std::size_t k = 0; k < queue.size(); ++k)
     for (const std::uint32_t* h = g.begin(queue[k]); h != g.end(queue[k]); ++h)
       if (r.site_of[*h] == kNone) r.site_of[*h] = r.site_of[queue[k]], queue.push_back(*h);
-  r.near.resize(sites.size());
-  for (std::size_t f = 0; f < g.size(); ++f)
-    for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h)
-      if (r.site_of[*h] != r.site_of[f]) r.near[r.site_of[f]].push_back(r.site_of[*h]);
-  for (auto& n : r.near) {
-    std::sort(n.begin(), n.end());
-    n.erase(std::unique(n.begin(), n.end()), n.end());
-    if (n.size() + 1 > std::size_t(kMostNear)) n.resize(kMostNear - 1);
+  r.near.resize(sites.size() * (kMostNear - 1));
+  r.near_count.assign(sites.size(), 0);
+  for (std::size_t f = 0; f < g.size(); ++f) {
+    const std::uint32_t s = r.site_of[f];
+    std::uint32_t* near = r.near.data() + s * (kMostNear - 1);
+    for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) {
+      const std::uint32_t t = r.site_of[*h];
+      if (t == s || r.near_count[s] == kMostNear - 1 ||
+          std::find(near, near + r.near_count[s], t) != near + r.near_count[s])
+        continue;
+      near[r.near_count[s]++] = t;
+    }
   }
   return r;
 }
@@ -128,7 +137,7 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
       first_node[k] = std::min(first_node[k], below), last_node[k] = std::max(last_node[k], below + 1);
     };
     widen(s);
-    for (std::uint32_t k : regions.near[s]) widen(k);
+    for (std::uint32_t k : regions.near_of(s)) widen(k);
   }
   std::vector<std::size_t> table_at(sites.size() + 1, 0);
   for (std::size_t k = 0; k < sites.size(); ++k)
@@ -248,7 +257,7 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
         ++m;
       };
       add(own);
-      for (std::uint32_t k : regions.near[own]) add(k);
+      for (std::uint32_t k : regions.near_of(own)) add(k);
       double ring = 0;
       for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) ring += norm(centre[*h] - centre[f]);
       ring /= double(std::max<std::size_t>(g.degree(f), 1));
@@ -273,24 +282,26 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
   return true;
 }
 
-// Faces sorted by the Morton code of their centres (21 bits an axis).
+// Faces sorted by the Morton code of their centres (10 bits an axis: a
+// cell holds a face or two on the 1.42M-face mesh), the code and the face
+// in one integer.
 std::vector<std::uint32_t> curve_order(const std::vector<Vec3>& centre) {
   Vec3 lo = centre.empty() ? Vec3{} : centre[0], hi = lo;
   for (const Vec3& c : centre)
     for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> key(centre.size());
+  std::vector<std::uint64_t> key(centre.size());
   for (std::size_t f = 0; f < centre.size(); ++f) {
     std::uint64_t code = 0;
     std::uint32_t q[3];
     for (int a = 0; a < 3; ++a)
-      q[a] = hi[a] > lo[a] ? std::uint32_t((centre[f][a] - lo[a]) / (hi[a] - lo[a]) * 2097151.0) : 0;
-    for (int bit = 20; bit >= 0; --bit)
+      q[a] = hi[a] > lo[a] ? std::uint32_t((centre[f][a] - lo[a]) / (hi[a] - lo[a]) * 1023.0) : 0;
+    for (int bit = 9; bit >= 0; --bit)
       for (int a = 0; a < 3; ++a) code = (code << 1) | ((q[a] >> bit) & 1);
-    key[f] = {code, std::uint32_t(f)};
+    key[f] = code << 32 | f;
   }
   std::sort(key.begin(), key.end());
   std::vector<std::uint32_t> order(centre.size());
-  for (std::size_t i = 0; i < key.size(); ++i) order[i] = key[i].second;
+  for (std::size_t i = 0; i < key.size(); ++i) order[i] = std::uint32_t(key[i]);
   return order;
 }
 

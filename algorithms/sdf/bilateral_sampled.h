@@ -24,13 +24,14 @@
 //   difference is about the values' change over a ring.
 //
 // Its difference from the exact filter, as a fraction of the smoothed
-// values' range: at most 0.37% (mean 0.02%) on the 1.42M-face mesh of
-// bench/sdf_smooth_bench.cpp (window 27, 10% of the faces exact), 0.40% on
-// refined_elephant subdivided once with window 20 (26% exact).  On
-// coarser meshes the windows change shape faster than the sites follow
-// (0.5-1% on 90-140k faces with window 20, half of them exact):
-// bilateral_smooth takes it only where a mesh's own default window is
-// large (sdf/bilateral_filter.h).
+// values' range: at most 0.36% (mean 0.02%) on the 1.42M-face mesh of
+// bench/sdf_smooth_bench.cpp (window 27, 12% of the faces exact), 0.42% on
+// refined_elephant subdivided once with window 20 (31% exact); where the
+// sites fall moves these by a few hundredths of a percent.  On coarser
+// meshes the windows change shape faster than the sites follow (0.5-1% on
+// 90-140k faces with window 20, half of them exact): bilateral_smooth takes
+// it only where a mesh's own default window is large
+// (sdf/bilateral_filter.h).
 #pragma once
 
 #include <cstddef>
@@ -47,7 +48,7 @@ namespace cgview::sdf {
 struct SampledFilterParams {
   int spacing = 3;           // rings from a face to its nearest site, at most
   int bins = 128;            // nodes of the value grid
-  double tolerance = 0.008;  // of the smoothed values' range
+  double tolerance = 0.007;  // of the smoothed values' range
   double slope_rings = 1.0;  // rings of the values' change counted against it
 };
 

@@ -125,7 +125,7 @@ TEST(BilateralFilter, SmoothsTheListedFacesAndWalksThroughThoseWithoutAValue) {
 
 // A window of 20 rings on refined_elephant subdivided once (355k faces):
 // the approximation within 0.5% of the smoothed values' range of the exact
-// filter at every face (0.40% here), while most faces come from its sites.
+// filter at every face (0.42% here), while most faces come from its sites.
 // Coarse bins (8 or 16) leave faces 0.95-1.8% off, and a check blind to the
 // values' slope 1.0%.
 TEST(BilateralFilter, SampledFilterIsWithinHalfAPercentOfTheExactFilterOnALargeWindow) {
