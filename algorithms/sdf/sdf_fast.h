@@ -1,5 +1,6 @@
 // sdf_fast: the accelerated SDF (the CGView paper, section 3.2).  The SDF
-// (sdf/sdf.h) is cast by rays on a well-spread fraction of the faces only,
+// (sdf/sdf.h) is cast by rays on a fraction of the faces only (in two
+// rounds: spread evenly, then where the first round's values disagree),
 // and propagated to the others by a Poisson equation on the dual graph,
 // optionally guided by the mean curvature: by default a few of its Jacobi
 // sweeps from each face's nearest sample, closer to the full SDF than its

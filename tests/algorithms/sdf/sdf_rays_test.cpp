@@ -109,6 +109,29 @@ TEST(SdfRays, SphereWithTheDefaultConeIsTheMeanOfItsChords) {
   for (double v : raw.values) ASSERT_NEAR(v, expected, 0.02 * expected);
 }
 
+// The accelerated SDF casts in two rounds on one BVH: each round gives the
+// faces it lists what one call over every face gives them (here the
+// sphere's diameter), and a face not in the mesh is refused.
+TEST(SdfRays, ACasterCastsInRoundsWhatOneCallGivesEveryFace) {
+  const double r = 2.0;
+  const Mesh sphere = test::uv_sphere(r, 32, 64);
+  const sdf::SdfRayCaster rays(sphere, {.cone_angle = 10});
+  std::vector<std::uint32_t> even, odd;
+  for (std::uint32_t f = 0; f < sphere.faces.size(); ++f) (f % 2 ? odd : even).push_back(f);
+  const sdf::RawSdf a = rays.cast(even), b = rays.cast(odd);
+  const sdf::RawSdf all = sdf::raw_sdf(sphere, {.cone_angle = 10});
+  ASSERT_EQ(a.values.size(), even.size());
+  ASSERT_EQ(b.values.size(), odd.size());
+  for (std::size_t i = 0; i < even.size(); ++i) {
+    EXPECT_NEAR(a.values[i], 2 * r, 0.02 * 2 * r);
+    EXPECT_DOUBLE_EQ(a.values[i], all.values[even[i]]);
+  }
+  for (std::size_t i = 0; i < odd.size(); ++i) EXPECT_DOUBLE_EQ(b.values[i], all.values[odd[i]]);
+  EXPECT_EQ(a.rays_cast + b.rays_cast, all.rays_cast);
+  const std::vector<std::uint32_t> outside{std::uint32_t(sphere.faces.size())};
+  EXPECT_THROW(rays.cast(outside), InvalidInput);
+}
+
 TEST(SdfRays, LongCylinderGivesItsDiameterAwayFromTheCaps) {
   const double radius = 0.5, length = 10;
   const Mesh c = cylinder(radius, length, 96, 60);
