@@ -5,6 +5,7 @@
 #include <limits>
 #include <span>
 
+#include "core/threads.h"
 #include "sdf/bilateral_filter.h"
 #include "sdf/bilateral_sums.h"
 #include "sdf/parallel_blocks.h"
@@ -13,7 +14,8 @@ namespace cgview::sdf {
 namespace {
 
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-constexpr int kMostNear = 24;  // sites interpolated per face, at most
+constexpr int kMostNear = 24;                 // sites interpolated per face, at most
+constexpr std::size_t kSetUpBlock = 1 << 16;  // faces a block in the set-up's parallel passes
 
 // Sites: each face in turn (along the curve, so that they spread
 // evenly), unless one is within `spacing` rings already.
@@ -150,11 +152,13 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
   for (int l = 0; l <= window; ++l) ring_weight[std::size_t(l)] = float(std::exp(-0.5 * (l / spatial) * (l / spatial)));
   std::vector<float> value(n);
   std::vector<std::int16_t> bin(n, -1);
-  for (std::size_t f = 0; f < n; ++f) {
-    value[f] = float(values[f]);
-    if (!std::isnan(values[f]))
-      bin[f] = std::int16_t(std::clamp(int(std::lround((values[f] - lo) / step)), 0, bins - 1));
-  }
+  parallel_blocks(n, kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+    for (std::size_t f = b; f < e; ++f) {
+      value[f] = float(values[f]);
+      if (!std::isnan(values[f]))
+        bin[f] = std::int16_t(std::clamp(int(std::lround((values[f] - lo) / step)), 0, bins - 1));
+    }
+  });
   std::vector<float> table(table_at.back(), std::numeric_limits<float>::quiet_NaN());
   parallel_blocks(sites.size(), 16, thread_count(), ctx, 0.0, 0.6, "smoothing", [&](std::size_t b, std::size_t e) {
     thread_local std::vector<std::uint32_t> stamp, queue;
@@ -290,18 +294,29 @@ std::vector<std::uint32_t> curve_order(const std::vector<Vec3>& centre) {
   for (const Vec3& c : centre)
     for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
   std::vector<std::uint64_t> key(centre.size());
-  for (std::size_t f = 0; f < centre.size(); ++f) {
-    std::uint64_t code = 0;
-    std::uint32_t q[3];
-    for (int a = 0; a < 3; ++a)
-      q[a] = hi[a] > lo[a] ? std::uint32_t((centre[f][a] - lo[a]) / (hi[a] - lo[a]) * 1023.0) : 0;
-    for (int bit = 9; bit >= 0; --bit)
-      for (int a = 0; a < 3; ++a) code = (code << 1) | ((q[a] >> bit) & 1);
-    key[f] = code << 32 | f;
-  }
-  std::sort(key.begin(), key.end());
+  parallel_blocks(centre.size(), kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+    for (std::size_t f = b; f < e; ++f) {
+      std::uint64_t code = 0;
+      std::uint32_t q[3];
+      for (int a = 0; a < 3; ++a)
+        q[a] = hi[a] > lo[a] ? std::uint32_t((centre[f][a] - lo[a]) / (hi[a] - lo[a]) * 1023.0) : 0;
+      for (int bit = 9; bit >= 0; --bit)
+        for (int a = 0; a < 3; ++a) code = (code << 1) | ((q[a] >> bit) & 1);
+      key[f] = code << 32 | f;
+    }
+  });
+  // Halves sorted on two threads, then merged.
+  const auto middle = key.begin() + std::ptrdiff_t(key.size() / 2);
+  on_threads(std::min(2, thread_count()), [&](int t) {
+    if (thread_count() < 2) std::sort(key.begin(), key.end());
+    else if (t == 0) std::sort(key.begin(), middle);
+    else std::sort(middle, key.end());
+  });
+  if (thread_count() >= 2) std::inplace_merge(key.begin(), middle, key.end());
   std::vector<std::uint32_t> order(centre.size());
-  for (std::size_t i = 0; i < key.size(); ++i) order[i] = std::uint32_t(key[i]);
+  parallel_blocks(key.size(), kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) order[i] = std::uint32_t(key[i]);
+  });
   return order;
 }
 
@@ -313,24 +328,36 @@ void bilateral_smooth_sampled(const Mesh& mesh, const Adjacency& g, std::vector<
   const std::size_t n = values.size();
   if (window <= 0) window = default_window(n);
   std::vector<Vec3> centre(n);
-  for (std::size_t f = 0; f < n; ++f) {
-    const Tri& t = mesh.faces[f];
-    centre[f] = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
-  }
+  parallel_blocks(n, kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+    for (std::size_t f = b; f < e; ++f) {
+      const Tri& t = mesh.faces[f];
+      centre[f] = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+    }
+  });
   const std::vector<std::uint32_t> order = curve_order(centre);
+  // The faces renumbered along the curve: their graph, values and centres.
   std::vector<std::uint32_t> rank(n);
-  for (std::size_t i = 0; i < n; ++i) rank[order[i]] = std::uint32_t(i);
   Adjacency sorted;
-  sorted.offsets.reserve(n + 1), sorted.items.reserve(g.items.size());
-  sorted.offsets.push_back(0);
+  sorted.offsets.resize(n + 1);
   std::vector<double> sorted_values(n);
   std::vector<Vec3> sorted_centre(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t f = order[i];
-    for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) sorted.items.push_back(rank[*h]);
-    sorted.offsets.push_back(std::uint32_t(sorted.items.size()));
-    sorted_values[i] = values[f], sorted_centre[i] = centre[f];
-  }
+  parallel_blocks(n, kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      const std::uint32_t f = order[i];
+      rank[f] = std::uint32_t(i);
+      sorted.offsets[i + 1] = std::uint32_t(g.degree(f));
+      sorted_values[i] = values[f], sorted_centre[i] = centre[f];
+    }
+  });
+  sorted.offsets[0] = 0;
+  for (std::size_t i = 0; i < n; ++i) sorted.offsets[i + 1] += sorted.offsets[i];
+  sorted.items.resize(g.items.size());
+  parallel_blocks(n, kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      std::uint32_t* item = sorted.items.data() + sorted.offsets[i];
+      for (const std::uint32_t* h = g.begin(order[i]); h != g.end(order[i]); ++h) *item++ = rank[*h];
+    }
+  });
   std::vector<double> sorted_out;
   std::vector<char> unsure_at;
   if (!sampled_pass(sorted_centre, sorted, sorted_values, window, ctx, p, st, sorted_out, unsure_at)) return;
