@@ -128,19 +128,19 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
   st.sites = sites.size();
 
   // The centres each site will be asked about: its faces' and its
-  // neighbours' faces' values, as a range of grid nodes.
-  std::vector<int> first_node(sites.size(), bins), last_node(sites.size(), -1);
+  // neighbours' faces' values, as a range of grid nodes: each region's
+  // own range, widened by its neighbours'.
+  std::vector<int> own_first(sites.size(), bins), own_last(sites.size(), -1);
   for (std::size_t f = 0; f < n; ++f) {
     if (std::isnan(values[f])) continue;
-    const double t = (values[f] - lo) / step;
-    const int below = std::clamp(int(t), 0, bins - 2);
+    const int below = std::clamp(int((values[f] - lo) / step), 0, bins - 2);
     const std::uint32_t s = regions.site_of[f];
-    const auto widen = [&](std::uint32_t k) {
-      first_node[k] = std::min(first_node[k], below), last_node[k] = std::max(last_node[k], below + 1);
-    };
-    widen(s);
-    for (std::uint32_t k : regions.near_of(s)) widen(k);
+    own_first[s] = std::min(own_first[s], below), own_last[s] = std::max(own_last[s], below + 1);
   }
+  std::vector<int> first_node = own_first, last_node = own_last;
+  for (std::size_t s = 0; s < sites.size(); ++s)
+    for (std::uint32_t k : regions.near_of(s))
+      first_node[k] = std::min(first_node[k], own_first[s]), last_node[k] = std::max(last_node[k], own_last[s]);
   std::vector<std::size_t> table_at(sites.size() + 1, 0);
   for (std::size_t k = 0; k < sites.size(); ++k)
     table_at[k + 1] = table_at[k] + std::size_t(std::max(0, last_node[k] - first_node[k] + 1));
