@@ -364,8 +364,10 @@ export class CourseController {
 
   private async regrade(assignment: string): Promise<void> {
     const r = await regrade(assignment);
-    this.say(`Grading ${r.regrading} submission${r.regrading === 1 ? '' : 's'} again…`, 'ok');
+    // The list first, so that the message never stands beside the scores
+    // of before (a script waiting on both would read those).
     if (this.state.open === assignment) await this.loadSubmissions();
+    this.say(`Grading ${r.regrading} submission${r.regrading === 1 ? '' : 's'} again…`, 'ok');
   }
 
   private async exportCsv(assignment: string): Promise<void> {
