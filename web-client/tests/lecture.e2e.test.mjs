@@ -371,9 +371,21 @@ test("a student replays the recorded lecture: each moment is the teacher's view 
   // Played at 4x: the clock runs four times as fast as the wall's.
   await kim.getByRole('combobox', { name: 'Speed' }).selectOption('4');
   await button(kim, 'Play').click();
-  const t0 = await kim.evaluate(() => [window.__cgview.lecture().replay.t, performance.now()]);
+  // The clock moves once a frame: each reading is taken in a frame callback, right after the replay's own, so the
+  // clock and the wall are read together (a reading between frames is a frame stale, a third of the span here).
+  const reading = () =>
+    kim.evaluate(
+      () =>
+        new Promise((resolve) =>
+          requestAnimationFrame(() => {
+            const r = window.__cgview.lecture().replay;
+            resolve([r.t, performance.now(), r.playing]);
+          }),
+        ),
+    );
+  const t0 = await reading();
   await kim.waitForFunction((t) => window.__cgview.lecture().replay.t > t + 2000, t0[0], { timeout: 10_000 });
-  const t1 = await kim.evaluate(() => [window.__cgview.lecture().replay.t, performance.now(), window.__cgview.lecture().replay.playing]);
+  const t1 = await reading();
   const rate = (t1[0] - t0[0]) / (t1[1] - t0[1]);
   assert.ok(t1[2], 'playing');
   assert.ok(rate > 2.5 && rate < 5, `the replay runs at 4x: ${rate.toFixed(2)}x`);
