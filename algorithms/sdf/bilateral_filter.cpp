@@ -14,13 +14,19 @@ namespace {
 
 constexpr std::size_t kBlock = 64;  // faces per walk: a bit each in a word
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+constexpr std::uint32_t kFree = kNone - 1;  // queued by an earlier block's walk, not walked
 
 // Blocks of up to 64 faces to smooth, each grown breadth-first from a seed so
 // that its faces lie close together and their windows overlap.  The walk that
 // gathers a block goes through the other faces, and gives up after `reach`
 // faces (the last scattered faces of a sparse list make blocks of their own).
+// With `claim` (a sparse list: the accelerated SDF's samples), a block's walk
+// goes only through faces no earlier block's walk went through, so that each
+// face is walked once: walking through the earlier blocks' faces to the next
+// free ones cost more than the smoothing itself (1.5 ms of polygon_mesh's 2.7
+// with 2,400 samples in 32k faces).
 std::vector<std::vector<std::uint32_t>> blocks_of(const Adjacency& g, const std::vector<char>& wanted,
-                                                  std::size_t reach) {
+                                                  std::size_t reach, bool claim = false) {
   const std::size_t n = g.size();
   std::vector<char> taken(n, 0);
   std::vector<std::uint32_t> seen(n, kNone), queue;
@@ -30,12 +36,17 @@ std::vector<std::vector<std::uint32_t>> blocks_of(const Adjacency& g, const std:
     std::vector<std::uint32_t> block;
     queue.assign(1, std::uint32_t(s));
     seen[s] = std::uint32_t(blocks.size());
-    for (std::size_t k = 0; k < queue.size() && block.size() < kBlock && k < reach; ++k) {
+    std::size_t k = 0;
+    for (; k < queue.size() && block.size() < kBlock && k < reach; ++k) {
       const std::uint32_t f = queue[k];
       if (wanted[f] && !taken[f]) taken[f] = 1, block.push_back(f);
       for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h)
-        if (seen[*h] != blocks.size()) seen[*h] = std::uint32_t(blocks.size()), queue.push_back(*h);
+        if (claim ? seen[*h] == kNone || seen[*h] == kFree : seen[*h] != blocks.size())
+          seen[*h] = std::uint32_t(blocks.size()), queue.push_back(*h);
     }
+    // Faces queued but not walked stay free for the next blocks.
+    if (claim)
+      for (std::size_t j = k; j < queue.size(); ++j) seen[queue[j]] = kFree;
     blocks.push_back(std::move(block));
   }
   return blocks;
@@ -175,7 +186,7 @@ void bilateral_smooth(const Adjacency& graph, std::vector<double>& values, int w
   for (std::uint32_t f : only) wanted[f] = 1;
   for (std::size_t f = 0; f < n; ++f)
     if (std::isnan(values[f])) wanted[f] = 0;
-  const auto blocks = blocks_of(graph, wanted, 64 * kBlock);
+  const auto blocks = blocks_of(graph, wanted, 64 * kBlock, !only.empty());
   // exp(-ring^2 / (2 spatial^2)) exp(-dv^2 / (2 range^2)) as one exp: the
   // rings' half of the exponent by ring.
   const double spatial = window / 2.0;

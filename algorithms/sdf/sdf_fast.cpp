@@ -19,8 +19,8 @@ SdfFastResult sdf_fast(const Mesh& mesh, const SdfFastParams& p, Context* contex
   check_params(p);
   const Context& ctx = context_or_none(context);
   const auto t0 = std::chrono::steady_clock::now();
-  const Adjacency graph = face_neighbors(mesh, edge_topology(mesh));
-  FastSdf approx = poisson_sdf(mesh, graph, p, &ctx);
+  FastSdf approx = poisson_sdf(mesh, p, &ctx);
+  const Adjacency& graph = approx.graph;
   SdfFastResult result;
   warn_missing(approx.raw, result.warnings,
                "with the faces nearest them, what the full SDF gives such a region (their neighbours' mean, "

@@ -7,8 +7,10 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <thread>
 
+#include "core/threads.h"
 #include "filters/vertex_curvatures.h"
 
 namespace cgview::sdf {
@@ -127,11 +129,19 @@ void solve(const Mesh& mesh, const Adjacency& g, const SdfFastParams& p, const s
 // full SDF ramps from the smallest value up to its neighbours' over a few
 // rings there; the smallest value alone, interpolated, missed that ramp by
 // 8-10% of the range (docs/BENCHMARKS.md).
-void fill_escaped(const Mesh& mesh, const Adjacency& g, const SdfFastParams& p,
-                  const std::vector<std::uint32_t>& samples, const std::vector<std::uint32_t>& escaped,
-                  std::vector<double>& values) {
-  if (escaped.empty()) return;
-  const std::size_t n = values.size();
+//
+// The region depends on the samples alone: escaped_region finds it on the
+// second core while the first solves for the other faces (fill_escaped).
+struct EscapedRegion {
+  std::vector<std::uint32_t> faces;  // whose nearest sample escaped
+  std::vector<std::uint32_t> near;   // those within the filter's window of its border
+};
+
+EscapedRegion escaped_region(const Adjacency& g, const SdfFastParams& p, const std::vector<std::uint32_t>& samples,
+                             const std::vector<std::uint32_t>& escaped) {
+  EscapedRegion region;
+  if (escaped.empty()) return region;
+  const std::size_t n = g.size();
   std::vector<double> mark(n, std::numeric_limits<double>::quiet_NaN());
   for (std::uint32_t s : samples) mark[s] = 0.0;
   for (std::uint32_t s : escaped) mark[s] = 1.0;
@@ -142,10 +152,10 @@ void fill_escaped(const Mesh& mesh, const Adjacency& g, const SdfFastParams& p,
   // alone; outside, a window that reaches the region reaches its border.
   const int window = p.sdf.window > 0 ? p.sdf.window : default_window(n);
   std::vector<int> ring(n, std::numeric_limits<int>::max());
-  std::vector<std::uint32_t> near;
+  std::vector<std::uint32_t>& near = region.near;
   for (std::size_t f = 0; f < n; ++f) {
     if (mark[f] != 1.0) continue;
-    values[f] = std::numeric_limits<double>::quiet_NaN();
+    region.faces.push_back(std::uint32_t(f));
     for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h)
       if (mark[*h] != 1.0) {
         ring[f] = 0, near.push_back(std::uint32_t(f));
@@ -156,6 +166,13 @@ void fill_escaped(const Mesh& mesh, const Adjacency& g, const SdfFastParams& p,
     if (ring[near[k]] < window)
       for (const std::uint32_t* h = g.begin(near[k]); h != g.end(near[k]); ++h)
         if (ring[*h] > ring[near[k]] + 1) ring[*h] = ring[near[k]] + 1, near.push_back(*h);
+  return region;
+}
+
+void fill_escaped(const Mesh& mesh, const Adjacency& g, const SdfFastParams& p, const EscapedRegion& region,
+                  std::vector<double>& values) {
+  if (region.faces.empty()) return;
+  for (std::uint32_t f : region.faces) values[f] = std::numeric_limits<double>::quiet_NaN();
   fill_missing(mesh, g, values);
   // The filter's ramp by sweeps of neighbours' means over the same faces:
   // t sweeps spread a value over about sqrt(t) rings, and the filter's
@@ -164,7 +181,8 @@ void fill_escaped(const Mesh& mesh, const Adjacency& g, const SdfFastParams& p,
   // The filter itself came 0.1-0.2 points closer to the full SDF, for 13 ms
   // of polygon_mesh's 45 (a quarter of its faces have no ray that finds the
   // inside), which took it below 4x the full SDF's speed.
-  if (p.sdf.smooth) jacobi(g, near, {}, std::max(1, int(std::lround(window * window / 6.0))), values);
+  const int window = p.sdf.window > 0 ? p.sdf.window : default_window(values.size());
+  if (p.sdf.smooth) jacobi(g, region.near, {}, std::max(1, int(std::lround(window * window / 6.0))), values);
 }
 
 // Lowers `ring` (each face's rings from the samples so far) by a
@@ -319,17 +337,33 @@ std::vector<std::uint32_t> spread_samples(const Adjacency& g, std::size_t count)
   return spread_rings(g, count, ring);
 }
 
-FastSdf poisson_sdf(const Mesh& mesh, const Adjacency& g, const SdfFastParams& p, const Context* ctx) {
+namespace {
+
+// poisson_sdf on `given`, else on the face graph it builds into out.graph.
+FastSdf poisson_sdf_on(const Mesh& mesh, const Adjacency* given, const SdfFastParams& p, const Context* ctx) {
   check_params(p);
   if (mesh.faces.empty()) throw InvalidInput("the mesh has no faces: the SDF is measured on faces");
   const std::size_t n = mesh.faces.size();
   FastSdf out;
+  const Adjacency& g = given ? *given : out.graph;
   // Two rounds of rays on one BVH: 60% of the samples spread evenly, the
   // rest where those leave the SDF least certain (more_samples).
-  const SdfRayCaster rays(mesh, p.sdf);
+  // The face graph and the first round's samples, which need no BVH, are
+  // made on a second thread while the BVH is built: Embree's build keeps
+  // both cores busy only in part (on polygon_mesh, 32k faces, it takes 3.5
+  // ms on two threads, 7 on one).
   const std::size_t total = std::size_t(std::ceil(p.fraction * double(n)));
-  std::vector<std::uint32_t> ring;
-  const std::vector<std::uint32_t> first = spread_rings(g, std::size_t(std::ceil(kFirstRound * double(total))), ring);
+  std::vector<std::uint32_t> ring, first;
+  std::optional<SdfRayCaster> caster;
+  on_threads(2, [&](int t) {
+    if (t == 1) {
+      if (!given) out.graph = face_neighbors(mesh, edge_topology(mesh));
+      first = spread_rings(g, std::size_t(std::ceil(kFirstRound * double(total))), ring);
+    } else {
+      caster.emplace(mesh, p.sdf);
+    }
+  });
+  const SdfRayCaster& rays = *caster;
   const RawSdf raw1 = rays.cast(first, ctx, 0.0, 0.5);
   std::vector<std::uint32_t> second;
   RawSdf raw2;
@@ -365,16 +399,33 @@ FastSdf poisson_sdf(const Mesh& mesh, const Adjacency& g, const SdfFastParams& p
 
   // The unknowns: the faces of the parts that have a kept sample (those of a
   // part whose samples all escaped are filled afterwards).
-  const std::vector<double> start = nearest_known(g, out.values);
-  std::vector<std::int64_t> row(n, -1);
-  std::vector<std::uint32_t> unknown;
-  for (std::size_t f = 0; f < n; ++f)
-    if (std::isnan(out.values[f]) && !std::isnan(start[f]))
-      row[f] = std::int64_t(unknown.size()), unknown.push_back(std::uint32_t(f));
-  out.unknowns = unknown.size();
-  solve(mesh, g, p, start, unknown, row, out);
-  fill_escaped(mesh, g, p, out.samples, escaped, out.values);
+  EscapedRegion region;
+  on_threads(escaped.empty() ? 1 : 2, [&](int t) {
+    if (t == 1) {
+      region = escaped_region(g, p, out.samples, escaped);
+      return;
+    }
+    const std::vector<double> start = nearest_known(g, out.values);
+    std::vector<std::int64_t> row(n, -1);
+    std::vector<std::uint32_t> unknown;
+    for (std::size_t f = 0; f < n; ++f)
+      if (std::isnan(out.values[f]) && !std::isnan(start[f]))
+        row[f] = std::int64_t(unknown.size()), unknown.push_back(std::uint32_t(f));
+    out.unknowns = unknown.size();
+    solve(mesh, g, p, start, unknown, row, out);
+  });
+  fill_escaped(mesh, g, p, region, out.values);
   return out;
+}
+
+}  // namespace
+
+FastSdf poisson_sdf(const Mesh& mesh, const Adjacency& face_graph, const SdfFastParams& p, const Context* ctx) {
+  return poisson_sdf_on(mesh, &face_graph, p, ctx);
+}
+
+FastSdf poisson_sdf(const Mesh& mesh, const SdfFastParams& p, const Context* ctx) {
+  return poisson_sdf_on(mesh, nullptr, p, ctx);
 }
 
 }  // namespace cgview::sdf

@@ -64,6 +64,7 @@ struct FastSdf {
   RawSdf raw;                          // their raw values, in the order of `samples`
   std::size_t unknowns = 0;            // faces solved for
   int iterations = 0;                  // diffusion's sweeps, conjugate gradients' iterations (0 for Cholesky)
+  Adjacency graph;                     // the face graph, when poisson_sdf built it
 };
 
 // `count` faces spread evenly over the surface by farthest-point sampling in
@@ -81,5 +82,8 @@ std::vector<std::uint32_t> spread_samples(const Adjacency& face_graph, std::size
 // and what raw_sdf throws.
 FastSdf poisson_sdf(const Mesh& mesh, const Adjacency& face_graph, const SdfFastParams& p,
                     const Context* ctx = nullptr);
+// The same, with the face graph built on a second thread while the BVH is,
+// and left in the result's `graph`.
+FastSdf poisson_sdf(const Mesh& mesh, const SdfFastParams& p, const Context* ctx = nullptr);
 
 }  // namespace cgview::sdf

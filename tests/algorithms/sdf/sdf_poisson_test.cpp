@@ -62,6 +62,19 @@ TEST(SdfPoisson, DiffusionStoppedEarlyIsCloserToTheFullSdfThanTheExactSolution) 
   }
 }
 
+// sdf_fast's call: the face graph built beside the BVH, and handed back.
+TEST(SdfPoisson, BuildingTheFaceGraphItselfGivesTheSameValuesAndHandsTheGraphBack) {
+  const Mesh mesh = read_mesh(test::sample("elephant.off"));
+  const Adjacency graph = face_neighbors(mesh, edge_topology(mesh));
+  const sdf::FastSdf given = sdf::poisson_sdf(mesh, graph, {});
+  const sdf::FastSdf built = sdf::poisson_sdf(mesh, {});
+  EXPECT_EQ(built.graph.offsets, graph.offsets);
+  EXPECT_EQ(built.graph.items, graph.items);
+  EXPECT_TRUE(given.graph.offsets.empty());
+  EXPECT_EQ(built.samples, given.samples);
+  EXPECT_EQ(built.values, given.values);
+}
+
 TEST(SdfPoisson, AFractionOfZeroIsRefused) {
   const Mesh sphere = test::uv_sphere();
   const Adjacency graph = face_neighbors(sphere, edge_topology(sphere));
