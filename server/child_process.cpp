@@ -143,13 +143,18 @@ int child_main(void* p) {
     };
     ::setrlimit(RLIMIT_NPROC, &rl);
   }
+  // Out of the way of the numbers given below first (a parent's data_fd may be 3).
+  const int data = options.data_fd >= 0 ? ::fcntl(options.data_fd, F_DUPFD_CLOEXEC, kChildDataFd + 1) : -1;
   const int null = ::open("/dev/null", O_RDWR);
   if (options.stdin_fd >= 0) ::dup2(options.stdin_fd, 0);
   else if (null >= 0) ::dup2(null, 0);
   if (options.stdout_fd >= 0) ::dup2(options.stdout_fd, 1);
   else if (null >= 0) ::dup2(null, 1);
-  const int e = options.stderr_to_stdout ? -1 : *s.err == '\0' ? -1 : ::open(s.err, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const int e = options.stderr_to_stdout || options.stderr_fd >= 0 || *s.err == '\0'
+                    ? -1
+                    : ::open(s.err, O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (options.stderr_to_stdout) ::dup2(1, 2);
+  else if (options.stderr_fd >= 0) ::dup2(options.stderr_fd, 2);
   else if (e >= 0) ::dup2(e, 2);
   else if (null >= 0) ::dup2(null, 2);
   // After the files above, opened in the server's namespace, and before its
@@ -159,9 +164,13 @@ int child_main(void* p) {
   // Last, as the stdio descriptors above may have taken 3 meanwhile.
   if (s.life == kServerFd) ::fcntl(kServerFd, F_SETFD, 0);
   else if (s.life >= 0) ::dup2(s.life, kServerFd);
+  if (data >= 0) {
+    ::dup2(data, kChildDataFd);
+    if (s.life < 0) ::close(kServerFd);
+  }
   // Nothing else of the server's: its listening socket, clients' sockets and
   // the store's files are not the child's to hold open or write.
-  ::close_range(s.life >= 0 ? kServerFd + 1 : kServerFd, ~0U, 0);
+  ::close_range(data >= 0 ? kChildDataFd + 1 : s.life >= 0 ? kServerFd + 1 : kServerFd, ~0U, 0);
   ::execve(s.argv[0], s.argv, s.envp);
   ::_exit(127);
 }

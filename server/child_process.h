@@ -21,6 +21,7 @@ struct ChildOptions {
   int stdin_fd = -1;                  // the child's stdin (closed in the parent by the caller); -1: /dev/null
   int stdout_fd = -1;                 // the child's stdout (closed in the parent by the caller); -1: /dev/null
   std::filesystem::path stderr_file;  // the child's stderr, truncated; empty: /dev/null
+  int stderr_fd = -1;                 // else this descriptor (a pipe; closed in the parent by the caller)
   bool stderr_to_stdout = false;      // stderr goes where stdout goes (stderr_file unused)
   // A sandboxed child (sandbox.h): its processes (RLIMIT_NPROC, counted per
   // user; 0: none) and the largest file it may write (RLIMIT_FSIZE; 0: none).
@@ -45,7 +46,16 @@ struct ChildOptions {
   // start in one with fewer mounts (Sandbox), each of which bubblewrap
   // would read again after every mount it makes.
   int mount_ns_fd = -1;
+  // A descriptor the child gets as kChildDataFd, to read: bubblewrap copies
+  // a sandboxed job's job.json from it into the sandbox's own memory
+  // (--ro-bind-data), so that no file of it is made on the server's disk.
+  // -1: none.
+  int data_fd = -1;
 };
+
+// The number the child holds ChildOptions::data_fd at (after the server's
+// life pipe, 3).
+inline constexpr int kChildDataFd = 4;
 
 // The server's variables a job gets ("NAME=value"): the locale, PATH and
 // those that choose a GPU, the renderer and the plugins' compiler.  A clean

@@ -272,22 +272,28 @@ Sandbox::Command Sandbox::wrap(const std::vector<std::string>& argv, const Sandb
   };
   for (const auto& [file, inside] : mounts.readable) parents(inside);
   parents(kSandboxJob);
+  if (mounts.data_fd >= 0) parents(mounts.data_at);
   for (const std::string& d : dirs) c.argv.insert(c.argv.end(), {"--perms", "0755", "--dir", d});
   for (const auto& [file, inside] : mounts.readable) c.argv.insert(c.argv.end(), {"--ro-bind", file.string(), inside});
+  if (mounts.data_fd >= 0) {
+    // Readable by the job's user (bubblewrap, root here, makes the file).
+    c.options.data_fd = mounts.data_fd;
+    c.argv.insert(c.argv.end(), {"--perms", "0444", "--ro-bind-data", std::to_string(kChildDataFd), mounts.data_at});
+  }
   if (!mounts.writable.empty()) {
-    // The job's /tmp is in its own directory: what it leaves there counts
-    // as its files do (a tmpfs would be memory no limit holds).
-    const fs::path tmp = mounts.writable / "tmp";
-    fs::create_directories(tmp, ec);
+    // The job's /tmp is its own directory, shown there too: what it leaves
+    // there counts as its files do (a tmpfs would be memory no limit
+    // holds), and no directory more is made and removed for each run (on
+    // ext4 without a journal, each new one is a scan past the inodes freed
+    // in the last minutes).
     if (root) {
-      for (const fs::path& d : {mounts.writable, tmp})
-        if (::chown(d.c_str(), uid_t(uid), gid_t(uid)) != 0)
-          throw IoError("cannot give " + d.string() + " to the sandbox's user: " + std::strerror(errno));
+      if (::chown(mounts.writable.c_str(), uid_t(uid), gid_t(uid)) != 0)
+        throw IoError("cannot give " + mounts.writable.string() + " to the sandbox's user: " + std::strerror(errno));
       for (const auto& e : fs::directory_iterator(mounts.writable, ec))
         (void)::chown(e.path().c_str(), uid_t(uid), gid_t(uid));
     }
-    c.argv.insert(c.argv.end(), {"--bind", mounts.writable.string(), kSandboxJob, "--bind", tmp.string(), "/tmp",
-                                 "--chdir", kSandboxJob});
+    c.argv.insert(c.argv.end(), {"--bind", mounts.writable.string(), kSandboxJob, "--bind", mounts.writable.string(),
+                                 "/tmp", "--chdir", kSandboxJob});
   }
   // After /tmp: a build tree under /tmp (a CI's clone) keeps its programs and headers.
   // (Once each: the worker's directory is most often the server's own.)

@@ -54,11 +54,16 @@ inline constexpr const char* kSandboxPrograms = "/run/cgview/bin";
 // What one sandboxed run sees besides the read-only system.
 struct SandboxMounts {
   std::filesystem::path writable;  // the job's directory (given to the job's user), seen at kSandboxJob;
-                                   // its tmp/ is the job's /tmp
+                                   // and at /tmp too (the job's /tmp is its directory)
   std::vector<std::pair<std::filesystem::path, std::string>> readable;  // a file -> where the job sees it, read-only
   std::vector<std::filesystem::path> hidden;  // replaced by an empty read-only directory (the data directory)
   std::vector<std::filesystem::path>
       visible;  // read-only at their own paths, over the job's /tmp too (the worker's directory)
+  // A descriptor's bytes as a read-only file the job sees at `data_at` (its
+  // job.json): bubblewrap copies them into the sandbox's own memory, so no
+  // file is made for them on the server's disk.  -1: none.
+  int data_fd = -1;
+  std::string data_at = {};
 };
 
 // The variable that tells a program that drops to the job's user itself

@@ -12,7 +12,7 @@
 namespace cgview::server {
 
 Sandbox::Command sandboxed_worker(const Sandbox& sandbox, const LaunchSpec& job, const std::filesystem::path& worker,
-                                  int slot, ChildOptions options) {
+                                  int slot, ChildOptions options, int spec_fd) {
   // The worker program is mounted where the job sees it where it lies
   // where the job may not walk (a wrapper script in a test's /tmp);
   // elsewhere it runs at its own path, one mount fewer.
@@ -22,11 +22,15 @@ Sandbox::Command sandboxed_worker(const Sandbox& sandbox, const LaunchSpec& job,
     program = std::string(kSandboxPrograms) + "/" + worker.filename().string();
     readable.push_back({worker, program});
   }
-  readable.push_back({job.dir / "job.json", kSandboxSpec});
-  return sandbox.wrap(
-      {program, kSandboxSpec},
-      {.writable = job.work, .readable = readable, .hidden = {job.data_dir}, .visible = {worker.parent_path()}}, slot,
-      std::move(options), Sandbox::Drop::by_program);
+  if (spec_fd < 0) readable.push_back({job.dir / "job.json", kSandboxSpec});
+  return sandbox.wrap({program, kSandboxSpec},
+                      {.writable = job.work,
+                       .readable = readable,
+                       .hidden = {job.data_dir},
+                       .visible = {worker.parent_path()},
+                       .data_fd = spec_fd,
+                       .data_at = spec_fd >= 0 ? kSandboxSpec : ""},
+                      slot, std::move(options), Sandbox::Drop::by_program);
 }
 
 WakePipe::WakePipe() {

@@ -53,6 +53,9 @@ struct LaunchSpec {
   // directory they live in is otherwise hidden.
   std::vector<std::pair<std::filesystem::path, std::string>> read_only;  // file -> where the job sees it
   std::filesystem::path data_dir;
+  // job.json's text.  It is also written in `dir` unless the executor takes
+  // it from here alone (Capabilities::job_json_in_memory).
+  std::string spec;
 };
 
 // How a worker ended, as its executor saw it; the scheduler reads the
@@ -95,9 +98,11 @@ struct LaunchError : std::runtime_error {
 
 // The command that runs `worker` on the job in `sandbox`: its directory the
 // only writable one, its inputs, plugin and the worker read-only where
-// job.json names them, the data directory hidden.  Throws IoError.
+// job.json names them, the data directory hidden.  job.json is the file in
+// the run's directory, or where `spec_fd` is given (a descriptor of the
+// text, read from its start), that descriptor's bytes.  Throws IoError.
 Sandbox::Command sandboxed_worker(const Sandbox& sandbox, const LaunchSpec& job, const std::filesystem::path& worker,
-                                  int slot, ChildOptions options = {});
+                                  int slot, ChildOptions options = {}, int spec_fd = -1);
 
 // A pipe that ends an executor's wait from another thread (cancel, a new
 // job): poll its fd(), then drain() it.
@@ -156,6 +161,9 @@ class Executor {
     // sandbox's process namespace ends with its first process): the run's
     // artifacts are then moved out of its directory, not copied.
     bool run_ends_whole = false;
+    // Its runs take job.json from LaunchSpec::spec, and no file of it is
+    // written in the run's directory (one file fewer made and removed a run).
+    bool job_json_in_memory = false;
   };
   virtual Capabilities capabilities() const { return {}; }
 };

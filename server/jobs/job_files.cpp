@@ -2,7 +2,9 @@
 
 #include <dirent.h>
 #include <fcntl.h>
+#include <linux/fs.h>
 #include <linux/openat2.h>
+#include <sys/ioctl.h>
 #include <sys/sendfile.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
@@ -229,5 +231,14 @@ JobDir::Usage JobDir::usage(std::uint64_t max_names) const {
 }
 
 std::uint64_t dir_bytes(const fs::path& dir) { return JobDir(dir).usage().bytes; }
+
+bool spread_subdirectories(const fs::path& dir) {
+  const Fd fd(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
+  int flags = 0;
+  if (fd.fd < 0 || ::ioctl(fd.fd, FS_IOC_GETFLAGS, &flags) != 0) return false;
+  if (flags & FS_TOPDIR_FL) return true;
+  flags |= FS_TOPDIR_FL;
+  return ::ioctl(fd.fd, FS_IOC_SETFLAGS, &flags) == 0;
+}
 
 }  // namespace cgview::server

@@ -3,15 +3,19 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <thread>
 
 #include "child_process.h"
 #include "core/errors.h"
 #include "io/mesh_io.h"
+#include "jobs/job_files.h"
 
 namespace cgview::server {
 
@@ -35,40 +39,95 @@ LocalExecutor::LocalExecutor(fs::path worker, int max_workers, std::shared_ptr<c
 
 LocalExecutor::~LocalExecutor() { shutdown(); }
 
-LocalExecutor::Started LocalExecutor::start_worker(const LaunchSpec& job, int stdin_fd) {
-  int fds[2];
+namespace {
+
+// job.json's text in memory (a sealed memfd, read from its start): what
+// bubblewrap copies into the sandbox.  -1 where it cannot be made.
+int spec_in_memory_fd(const std::string& spec) {
+  const int fd = ::memfd_create("job.json", MFD_CLOEXEC | MFD_ALLOW_SEALING);
+  if (fd < 0) return -1;
+  std::size_t done = 0;
+  while (done < spec.size()) {
+    const ssize_t n = ::write(fd, spec.data() + done, spec.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    done += std::size_t(n);
+  }
+  // Sealed: whoever else holds it can neither change nor grow it.
+  if (done != spec.size() || ::lseek(fd, 0, SEEK_SET) != 0 ||
+      ::fcntl(fd, F_ADD_SEALS, F_SEAL_SHRINK | F_SEAL_GROW | F_SEAL_WRITE | F_SEAL_SEAL) != 0) {
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+}  // namespace
+
+LocalExecutor::Started LocalExecutor::start_worker(const LaunchSpec& job, int stdin_fd, bool in_memory) {
+  in_memory = in_memory && sandboxed();
+  int fds[2], err[2] = {-1, -1};
   if (::pipe2(fds, O_CLOEXEC) != 0) throw LaunchError("pipe failed");
+  if (in_memory && ::pipe2(err, O_CLOEXEC) != 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw LaunchError("pipe failed");
+  }
+  auto close_all = [&] {
+    for (int fd : {fds[0], fds[1], err[0], err[1]})
+      if (fd >= 0) ::close(fd);
+  };
   ChildOptions child;
   child.memory_mb = job.memory_mb;
   child.stdin_fd = stdin_fd;
   child.stdout_fd = fds[1];
-  child.stderr_file = job.dir / "stderr.txt";  // in the run's directory, out of the job's reach
+  if (in_memory) child.stderr_fd = err[1];
+  else child.stderr_file = job.dir / "stderr.txt";  // in the run's directory, out of the job's reach
   child.clean_env = true;
   child.end_with_server = true;
   const std::vector<std::string> argv = {worker_.string(), (job.dir / "job.json").string()};
   Started s;
   if (sandboxed()) {
     s.slot = sandbox_->take_slot();
+    const int spec_fd = in_memory ? spec_in_memory_fd(job.spec) : -1;
     Sandbox::Command c;
     try {
-      c = sandboxed_worker(*sandbox_, job, worker_, s.slot.number(), child);
+      if (in_memory && spec_fd < 0) throw LaunchError(std::string("cannot hold job.json: ") + std::strerror(errno));
+      c = sandboxed_worker(*sandbox_, job, worker_, s.slot.number(), child, spec_fd);
     } catch (const std::exception& e) {
-      ::close(fds[0]);
-      ::close(fds[1]);
+      close_all();
+      if (spec_fd >= 0) ::close(spec_fd);
       throw LaunchError(e.what());
     }
     s.pid = spawn_child(c.argv, c.options);
+    if (spec_fd >= 0) ::close(spec_fd);  // the child holds its own (it has exec'd: spawn_child)
   } else {
     s.pid = spawn_child(argv, child);
   }
   ::close(fds[1]);
+  if (err[1] >= 0) ::close(err[1]);
+  fds[1] = err[1] = -1;
   if (s.pid < 0) {
-    ::close(fds[0]);
+    close_all();
     throw LaunchError("fork failed");
   }
   ::fcntl(fds[0], F_SETFL, O_NONBLOCK);
   s.out_fd = fds[0];
+  if (err[0] >= 0) ::fcntl(err[0], F_SETFL, O_NONBLOCK);
+  s.err_fd = err[0];
   return s;
+}
+
+void LocalExecutor::read_stderr(Run& r) {
+  char buf[16384];
+  ssize_t n = -1;
+  while (r.err_fd >= 0 && ((n = ::read(r.err_fd, buf, sizeof buf)) > 0 || (n < 0 && errno == EINTR)))
+    if (n > 0 && r.err.size() < kMaxReportBytes)
+      r.err.append(buf, std::min(std::size_t(n), std::size_t(kMaxReportBytes) - r.err.size()));
+  if (r.err_fd >= 0 && n == 0) {
+    ::close(r.err_fd);
+    r.err_fd = -1;
+  }
 }
 
 bool LocalExecutor::start_warm(const LaunchSpec& like) {
@@ -128,7 +187,7 @@ bool LocalExecutor::hand_over(Warm& w, const LaunchSpec& job) {
     }
   // Its job.json, into the file it was given (its sandbox binds that file).
   try {
-    const std::string spec = read_file_bytes(job.dir / "job.json", std::uint64_t(1) << 30);
+    const std::string& spec = job.spec;
     const int fd = ::open((w.dir / "job.json").c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
     if (fd < 0) return unlink_all();
     const bool whole = ::write(fd, spec.data(), spec.size()) == ssize_t(spec.size());
@@ -201,10 +260,12 @@ std::string LocalExecutor::launch(const LaunchSpec& job) {
     warm_.erase(warm);
     go_when_ready(r);
   } else {
-    Started s = start_worker(job, -1);
+    Started s = start_worker(job, -1, true);
     r.pid = s.pid;
     r.slot = std::move(s.slot);
     r.out_fd = s.out_fd;
+    r.err_fd = s.err_fd;
+    r.dir = job.dir;
   }
   watch(job.job_id, job.timeout_s);
   const pid_t pid = r.pid;
@@ -249,6 +310,16 @@ void LocalExecutor::check(std::vector<ExecutorEvent>& events) {
     if (r.out_fd < 0 && exited(r.pid)) {
       kill_child(r.pid, SIGKILL);
       ::waitpid(r.pid, &status, 0);
+      // What it left in its stderr pipe (no writer is left: its sandbox's
+      // processes went with their namespace's first), where it is read.
+      read_stderr(r);
+      if (r.err_fd >= 0) ::close(r.err_fd);
+      if (!r.err.empty()) {
+        try {
+          write_file_bytes(r.dir / "stderr.txt", r.err);
+        } catch (const std::exception&) {  // a full disk: the job's message goes without it
+        }
+      }
       ExecutorEvent e;
       e.job_id = it->first;
       e.kind = ExecutorEvent::Kind::ended;
@@ -299,12 +370,22 @@ std::vector<ExecutorEvent> LocalExecutor::poll(std::chrono::milliseconds timeout
       exited_unreaped = true;
     }
   }
+  // The stderr pipes after them (read as they fill: a worker that writes
+  // more than a pipe holds waits for it).
+  const std::size_t outs = fds.size();
+  for (const auto& [id, r] : runs_)
+    if (r.err_fd >= 0) {
+      fds.push_back({r.err_fd, POLLIN, 0});
+      ids.push_back(id);
+    }
   fds.push_back({wake_fd(), POLLIN, 0});
   // A worker whose stdout closed is reaped soon; a running one is checked for its limits every 100 ms.
   const auto wait = std::min<std::chrono::milliseconds>(timeout, std::chrono::milliseconds(exited_unreaped ? 5 : 100));
   ::poll(fds.data(), fds.size(), int(wait.count()));
   if (fds.back().revents) drain_wake();
-  for (std::size_t k = 0; k + 1 < fds.size(); ++k) {
+  for (std::size_t k = outs; k + 1 < fds.size(); ++k)
+    if (fds[k].revents) read_stderr(runs_.at(ids[k]));
+  for (std::size_t k = 0; k < outs; ++k) {
     if (!fds[k].revents) continue;
     Run& r = runs_.at(ids[k]);
     char buf[4096];
@@ -344,6 +425,7 @@ void LocalExecutor::shutdown() {
       ::waitpid(r.pid, nullptr, 0);
     }
     if (r.out_fd >= 0) ::close(r.out_fd);
+    if (r.err_fd >= 0) ::close(r.err_fd);
     if (r.go_fd >= 0) ::close(r.go_fd);
     unwatch(id);
   }

@@ -51,6 +51,7 @@ class LocalExecutor : public ExecutorBase {
   Capabilities capabilities() const override {
     Capabilities c;
     c.run_ends_whole = sandboxed();
+    c.job_json_in_memory = sandboxed();
     return c;
   }
 
@@ -60,6 +61,13 @@ class LocalExecutor : public ExecutorBase {
     Sandbox::Slot slot;  // the sandbox's user for it (a root server's)
     int out_fd = -1;     // the worker's stdout; -1 once it closed
     std::string out;
+    // A worker started for its job in the sandbox: its stderr, a pipe (-1
+    // once it closed), the first kMaxReportBytes of it kept (the rest read
+    // and dropped), written to `dir`/stderr.txt at its end where there was
+    // any: no file made for the many runs that print nothing.
+    int err_fd = -1;
+    std::string err;
+    std::filesystem::path dir;
     std::string garbage;  // why it was stopped: its output was not progress lines
     std::chrono::steady_clock::time_point term_sent;
     bool terminating = false, timed_out = false;
@@ -70,13 +78,20 @@ class LocalExecutor : public ExecutorBase {
     std::filesystem::path work;
   };
   // A worker started, sandboxed where there is a sandbox, for `job`'s
-  // directories, with `stdin_fd` as its stdin (-1: none).  Throws LaunchError.
+  // directories, with `stdin_fd` as its stdin (-1: none).  Its job.json is
+  // the file in `job.dir` and its stderr `job.dir`/stderr.txt, or where
+  // `in_memory` (a sandboxed worker started for its job), job.spec copied
+  // into its sandbox and a pipe (err_fd): two files fewer made and removed
+  // a job (on ext4 without a journal, each new file is a scan past the
+  // inodes freed in the last minutes).  Throws LaunchError.
   struct Started {
     pid_t pid = -1;
     Sandbox::Slot slot;
-    int out_fd = -1;
+    int out_fd = -1, err_fd = -1;
   };
-  Started start_worker(const LaunchSpec& job, int stdin_fd);
+  Started start_worker(const LaunchSpec& job, int stdin_fd, bool in_memory = false);
+  // Reads what the run's stderr pipe holds now, up to its end (then closed).
+  static void read_stderr(Run& r);
   // A pre-started worker: its directory (runs/warm-N) holds the job.json
   // it was given, its stderr.txt, work/ (the job's directory once renamed),
   // in/ and plugin/ (seen read-only where a job's inputs and plugin are).

@@ -2,7 +2,14 @@
 // artifacts taken into the job's results directory when it ends
 // (collect), and its directory's size while it runs (check_disk).  The
 // run's directory is the job's, hostile input: jobs/job_files.h reads it.
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
 #include "auth.h"
+#include "core/errors.h"
 #include "io/mesh_io.h"
 #include "jobs/artifact_files.h"
 #include "jobs/job_files.h"
@@ -13,6 +20,26 @@ namespace cgview::server {
 namespace fs = std::filesystem;
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
+
+namespace {
+
+// `text` written over the file at `path` (the server's, which nothing else
+// writes), in place: no new file.
+void rewrite(const fs::path& path, const std::string& text) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_TRUNC | O_NOFOLLOW | O_CLOEXEC);
+  int err = fd < 0 ? errno : 0;
+  for (std::size_t done = 0; fd >= 0 && !err && done < text.size();) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) err = n < 0 ? errno : EIO;
+    else done += std::size_t(n);
+  }
+  if (fd >= 0 && ::close(fd) != 0 && !err) err = errno;
+  if (err == ENOSPC || err == EDQUOT) throw DiskFull(path.string() + ": " + std::strerror(err));
+  if (err) throw IoError(path.string() + ": cannot write: " + std::strerror(err));
+}
+
+}  // namespace
 
 std::uint64_t JobScheduler::room_of(const std::string& user) const {
   Caller owner{user, false};
@@ -102,8 +129,16 @@ JobScheduler::Collected JobScheduler::collect_run(const ExecutorEvent& e, const 
     std::string why = take_artifacts(work_dir, c.outcome.artifacts, results, executor_->capabilities().run_ends_whole);
     if (why.empty()) {
       try {
-        write_file_bytes(results / "result.json",
-                         json{{"artifacts", c.outcome.artifacts}, {"warnings", c.outcome.warnings}}.dump());
+        const std::string result = json{{"artifacts", c.outcome.artifacts}, {"warnings", c.outcome.warnings}}.dump();
+        // Where the run ended whole, the worker's result.json (read above)
+        // is moved beside the artifacts and the server's written over it:
+        // one file fewer made and removed a job.  (The job is not done
+        // before this returns: nothing reads the file meanwhile.)
+        std::string not_moved;
+        if (executor_->capabilities().run_ends_whole &&
+            work_dir.move("result.json", results / "result.json", kMaxResultJsonBytes, &not_moved))
+          rewrite(results / "result.json", result);
+        else write_file_bytes(results / "result.json", result);
       } catch (const std::exception& x) {
         why = x.what();
       }

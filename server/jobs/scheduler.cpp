@@ -29,6 +29,9 @@ JobScheduler::JobScheduler(MeshService& meshes, JobConfig config)
   fs::create_directories(meshes_.store().data_dir() / "jobs", ec);
   fs::create_directories(meshes_.store().data_dir() / "runs", ec);
   fs::permissions(meshes_.store().data_dir() / "runs", fs::perms::owner_all, ec);
+  // A job's directories in block groups of their own, not in the data
+  // directory's (jobs/job_files.h).
+  for (const char* d : {"jobs", "runs"}) spread_subdirectories(meshes_.store().data_dir() / d);
   load();
 }
 
@@ -336,8 +339,9 @@ std::optional<LaunchSpec> JobScheduler::prepare(Job& j) {
     spec["plugin"] = sandboxed ? inside : library;
     s.read_only.push_back({library, sandboxed ? inside : library});
   }
+  s.spec = spec.dump();
   try {
-    write_file_bytes(dir / "job.json", spec.dump());
+    if (!executor_->capabilities().job_json_in_memory) write_file_bytes(dir / "job.json", s.spec);
   } catch (const DiskFull&) {
     j.error = "the server's storage is full: the job could not start";
     return std::nullopt;

@@ -229,7 +229,7 @@ std::string SlurmExecutor::batch_script(const LaunchSpec& job, int slot) const {
                 " --fsize=" + std::to_string(std::uint64_t(c.options.file_mb) << 20) + " --";
       for (const std::string& a : c.argv) command += " " + quoted(a);
       if (const auto uid = sandbox_->job_user(slot))
-        give = "chown " + std::to_string(*uid) + ":" + std::to_string(*uid) + " work work/tmp || exit 97\n";
+        give = "chown " + std::to_string(*uid) + ":" + std::to_string(*uid) + " work || exit 97\n";
     }
     return "#!/bin/sh\n# CGView job " + job.job_id + "\nexport PATH=/usr/local/bin:/usr/bin:/bin:$PATH\ncd " +
            quoted(job.dir.string()) +
@@ -237,7 +237,7 @@ std::string SlurmExecutor::batch_script(const LaunchSpec& job, int slot) const {
            "R=${SLURM_RESTART_COUNT:-0}\n"
            "case $R in *[!0-9]*|'') exit 97 ;; esac\n"
            "if [ -e work ] || [ -L work ]; then mv work \"old-work.$R.$$\" || exit 97; rm -rf \"old-work.$R.$$\"; fi\n"
-           "mkdir -m 0700 work && mkdir work/tmp || exit 97\n"
+           "mkdir -m 0700 work || exit 97\n"
            ": > \"started.$R\"\n" +
            give + "(" + limit + "exec " + command +
            ") > \"stdout.$R\"\nrc=$?\necho $rc > \"worker.exit.tmp.$R\" && mv \"worker.exit.tmp.$R\" "

@@ -84,5 +84,35 @@ TEST_F(JobFiles, AFileWithOneNameIsMovedAndMadeTheServersAnyOtherIsCopiedOrRefus
   EXPECT_TRUE(fs::exists(root_ / "work" / "again.f32"));
 }
 
+// spread_subdirectories: the directory marked as the top of directory
+// trees ('T' as lsattr, e2fsprogs, reads the flags), where the file system
+// has that flag; left as it was where it has not.
+TEST_F(JobFiles, ADirectoryOfRunsIsMarkedAsTheTopOfDirectoryTrees) {
+  const fs::path runs = root_ / "runs";
+  fs::create_directories(runs);
+  auto lsattr_flags = [&] {
+    const fs::path out = root_ / "lsattr.txt";
+    if (std::system(("lsattr -d '" + runs.string() + "' > '" + out.string() + "' 2>/dev/null").c_str()) != 0)
+      return std::string();
+    const std::string line = read(out);
+    return line.substr(0, line.find(' '));
+  };
+  const std::string before = lsattr_flags();
+  if (before.empty()) GTEST_SKIP() << "lsattr cannot read the flags of " << runs << " here";
+  EXPECT_EQ(before.find('T'), std::string::npos) << before;
+  ASSERT_TRUE(spread_subdirectories(runs));
+  const std::string after = lsattr_flags();
+  EXPECT_NE(after.find('T'), std::string::npos) << after;
+  // Again: still so, nothing else changed.
+  EXPECT_TRUE(spread_subdirectories(runs));
+  std::string expected = before;
+  for (std::size_t i = 0; i < after.size() && i < expected.size(); ++i)
+    if (after[i] == 'T') expected[i] = 'T';
+  EXPECT_EQ(lsattr_flags(), expected);
+  // Not a directory: refused.
+  write(root_ / "file", "x");
+  EXPECT_FALSE(spread_subdirectories(root_ / "file"));
+}
+
 }  // namespace
 }  // namespace cgview::server

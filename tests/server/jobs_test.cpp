@@ -107,16 +107,19 @@ class JobsTest : public ::testing::Test {
   }
 
   // The processes that run a job of this id: its job.json on their command
-  // line, or (a worker started ahead of its job) their stderr in its run's
-  // directory.
+  // line, (a worker started ahead of its job) their stderr in its run's
+  // directory, or (in the sandbox) its run's directory mounted in their
+  // mount namespace.
   static std::set<pid_t> worker_pids(const std::string& job_id) {
     std::set<pid_t> found;
     for (const auto& e : fs::directory_iterator("/proc")) {
       const std::string cmd = read_bytes(e.path() / "cmdline");
+      if (cmd.find("cgview-worker") == std::string::npos) continue;
       std::error_code ec;
       const std::string err = fs::read_symlink(e.path() / "fd" / "2", ec).string();
-      if (cmd.find("cgview-worker") != std::string::npos &&
-          (cmd.find(job_id) != std::string::npos || err.find(job_id) != std::string::npos))
+      const std::string run = "/runs/" + job_id + "/";
+      if (cmd.find(job_id) != std::string::npos || err.find(job_id) != std::string::npos ||
+          read_bytes(e.path() / "mountinfo").find(run) != std::string::npos)
         found.insert(pid_t(std::atoi(e.path().filename().c_str())));
     }
     return found;

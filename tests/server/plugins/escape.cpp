@@ -117,11 +117,12 @@ AlgorithmResult run(const Mesh&, const Params& p, Context& ctx) {
   }
   if (p.attempt == "link_tmp") {
     // A run that sees the server's data as its /tmp has escaped; any other
-    // puts a link where its /tmp's directory was, for a later run to be
-    // given as its /tmp, and waits to be stopped.
+    // puts a link named tmp in its directory (where a tmp/ there was its
+    // /tmp, in its place), for a later run to be given as its /tmp, and
+    // waits to be stopped.
     for (const char* server_side : {"/tmp/cgview.db", "/tmp/jobs", "/tmp/runs", "/tmp/job.json", "/tmp/work"})
       if (::access(server_side, F_OK) == 0) return escaped();
-    if (::rename("tmp", "tmp.old") != 0 && ::rmdir("tmp") != 0) fail("cannot move tmp");
+    if (::access("tmp", F_OK) == 0 && ::rename("tmp", "tmp.old") != 0 && ::rmdir("tmp") != 0) fail("cannot move tmp");
     if (::symlink(p.target.empty() ? "../../.." : p.target.c_str(), "tmp") != 0) fail("symlink");
     for (;;) ::pause();
   }
