@@ -1,6 +1,7 @@
 #include "sdf/bilateral_sampled.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <span>
@@ -18,27 +19,12 @@ constexpr int kMostNear = 24;                 // sites interpolated per face, at
 constexpr std::size_t kSetUpBlock = 1 << 16;  // faces a block in the set-up's parallel passes
 
 // Sites: each face in turn (along the curve, so that they spread
-// evenly), unless one is within `spacing` rings already.
-std::vector<std::uint32_t> sites_of(const Adjacency& g, int spacing) {
-  std::vector<std::uint8_t> ring(g.size(), std::numeric_limits<std::uint8_t>::max());
-  std::vector<std::uint32_t> sites, queue;
-  for (std::size_t s = 0; s < g.size(); ++s) {
-    if (ring[s] <= spacing) continue;
-    sites.push_back(std::uint32_t(s));
-    ring[s] = 0;
-    queue.assign(1, std::uint32_t(s));
-    // Rings only fall: a walk stops where they are no lower.
-    for (std::size_t k = 0; k < queue.size(); ++k)
-      if (ring[queue[k]] < spacing)
-        for (const std::uint32_t* h = g.begin(queue[k]); h != g.end(queue[k]); ++h)
-          if (ring[*h] > ring[queue[k]] + 1) ring[*h] = std::uint8_t(ring[queue[k]] + 1), queue.push_back(*h);
-  }
-  return sites;
-}
-
-// Each face's nearest site (by rings), and each site's neighbours: the
-// sites whose regions touch its own (kMostNear - 1 of them at most).
+// evenly), unless one is within `spacing` rings already; each face's
+// nearest site (by rings) is the one that last lowered its ring.
+// Each site's neighbours: the sites whose regions touch its own
+// (kMostNear - 1 of them at most).
 struct Regions {
+  std::vector<std::uint32_t> sites;
   std::vector<std::uint32_t> site_of;
   std::vector<std::uint32_t> near;       // kMostNear - 1 per site
   std::vector<std::uint8_t> near_count;  // per site
@@ -47,28 +33,58 @@ struct Regions {
   }
 };
 
-Regions regions_of(const Adjacency& g, const std::vector<std::uint32_t>& sites) {
+Regions regions_of(const Adjacency& g, int spacing) {
   Regions r;
+  std::vector<std::uint8_t> ring(g.size(), std::numeric_limits<std::uint8_t>::max());
   r.site_of.assign(g.size(), kNone);
   std::vector<std::uint32_t> queue;
-  queue.reserve(g.size());
-  for (std::size_t k = 0; k < sites.size(); ++k) r.site_of[sites[k]] = std::uint32_t(k), queue.push_back(sites[k]);
-  for (std::size_t k = 0; k < queue.size(); ++k)
-    for (const std::uint32_t* h = g.begin(queue[k]); h != g.end(queue[k]); ++h)
-      if (r.site_of[*h] == kNone) r.site_of[*h] = r.site_of[queue[k]], queue.push_back(*h);
+  for (std::size_t s = 0; s < g.size(); ++s) {
+    if (ring[s] <= spacing) continue;
+    const std::uint32_t k = std::uint32_t(r.sites.size());
+    r.sites.push_back(std::uint32_t(s));
+    ring[s] = 0, r.site_of[s] = k;
+    queue.assign(1, std::uint32_t(s));
+    // Rings only fall: a walk stops where they are no lower.
+    for (std::size_t q = 0; q < queue.size(); ++q)
+      if (ring[queue[q]] < spacing)
+        for (const std::uint32_t* h = g.begin(queue[q]); h != g.end(queue[q]); ++h)
+          if (ring[*h] > ring[queue[q]] + 1)
+            ring[*h] = std::uint8_t(ring[queue[q]] + 1), r.site_of[*h] = k, queue.push_back(*h);
+  }
+  const std::vector<std::uint32_t>& sites = r.sites;
   r.near.resize(sites.size() * (kMostNear - 1));
   r.near_count.assign(sites.size(), 0);
-  for (std::size_t f = 0; f < g.size(); ++f) {
-    const std::uint32_t s = r.site_of[f];
-    std::uint32_t* near = r.near.data() + s * (kMostNear - 1);
-    for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) {
-      const std::uint32_t t = r.site_of[*h];
-      if (t == s || r.near_count[s] == kMostNear - 1 ||
-          std::find(near, near + r.near_count[s], t) != near + r.near_count[s])
-        continue;
-      near[r.near_count[s]++] = t;
+  // On every core, a lock per site (two threads meet at a site only where
+  // their blocks of faces do); each list sorted afterwards, and where a
+  // site has more neighbours than fit, the lowest numbered kept, so that
+  // the lists do not depend on the threads' timing.
+  std::vector<std::atomic_flag> lock(sites.size());
+  parallel_blocks(g.size(), kSetUpBlock / 4, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+    std::uint32_t last_s = kNone, last_t = kNone;
+    for (std::size_t f = b; f < e; ++f) {
+      const std::uint32_t s = r.site_of[f];
+      for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) {
+        const std::uint32_t t = r.site_of[*h];
+        if (t == s || (s == last_s && t == last_t)) continue;
+        last_s = s, last_t = t;
+        while (lock[s].test_and_set(std::memory_order_acquire)) {
+        }
+        std::uint32_t* near = r.near.data() + s * (kMostNear - 1);
+        std::uint32_t* end = near + r.near_count[s];
+        if (std::find(near, end, t) == end) {
+          if (r.near_count[s] < kMostNear - 1) *end = t, ++r.near_count[s];
+          else if (std::uint32_t* most = std::max_element(near, end); t < *most) *most = t;
+        }
+        lock[s].clear(std::memory_order_release);
+      }
     }
-  }
+  });
+  parallel_blocks(sites.size(), kSetUpBlock / 4, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+    for (std::size_t k = b; k < e; ++k) {
+      std::uint32_t* near = r.near.data() + k * (kMostNear - 1);
+      std::sort(near, near + r.near_count[k]);
+    }
+  });
   return r;
 }
 
@@ -108,13 +124,142 @@ bool fit_plane(int m, const Vec3* d, const double* v, const double* w, double& v
   return std::isfinite(value);
 }
 
+// A face's neighbours (three at most) and value, for the walks.
+struct FaceRecord {
+  std::uint32_t near[3];
+  float value;
+};
+
+// Values to bins: round((x - lo) / step).
+struct Binning {
+  float lo, inverse_step;
+  int bins;
+  int operator()(float x) const { return std::min(int((x - lo) * inverse_step + 0.5f), bins - 1); }
+};
+
+// One window, exact: the faces within `window` rings of a face, breadth
+// first, binned by value (each bin its spatial weight and weighted sum of
+// values), with the count, sum and sum of squares of the values.
+class WindowWalk {
+ public:
+  // The bins of the last window run as their means and the logarithms of
+  // their weights relative to the heaviest (so that the exponents stay
+  // small); the bins zero again.  False where the window has no value.
+  bool summarize() {
+    mean_.clear(), log_weight_.clear();
+    if (count_ == 0) return false;
+    float heaviest = 0;
+    for (float w : weight_) heaviest = std::max(heaviest, w);
+    for (std::size_t i = 0; i < weight_.size(); ++i) {
+      const float w = weight_[i];
+      if (w > 0) mean_.push_back(moment_[i] / w), log_weight_.push_back(std::log(heaviest / w));
+      weight_[i] = moment_[i] = 0;
+    }
+    return true;
+  }
+
+  // The filtered value of a face with value c and this window (summarized).
+  double at(double c, double step) const {
+    const double dev2 = (squares_ - 2 * c * sum_ + double(count_) * c * c) / double(count_);
+    if (!(dev2 > 1e-12 * step * step)) return c;
+    float s = 0, w = 0;
+    weighted_sums(mean_.data(), log_weight_.data(), mean_.size(), float(c), float(0.5 / (2.25 * dev2)), s, w);
+    return s / w;
+  }
+
+  // Faces as records (fixed) or a graph and values.
+  void run(const FaceRecord* record, std::size_t n, std::uint32_t start, const std::vector<float>& ring_weight,
+           const Binning& binning) {
+    walk(
+        n, start, ring_weight, binning, [record](std::uint32_t f) { return record[f].value; },
+        [record](std::uint32_t f, std::uint32_t* tail, std::size_t& size, std::uint8_t* seen) {
+          const FaceRecord& r = record[f];
+          for (int j = 0; j < 3; ++j) {
+            const std::uint32_t m = r.near[j];
+            const bool fresh = !seen[m];
+            seen[m] = 1;
+            tail[size] = m;
+            size += fresh;
+          }
+        });
+  }
+  void run(const Adjacency& g, const float* value, std::uint32_t start, const std::vector<float>& ring_weight,
+           const Binning& binning) {
+    walk(
+        g.size(), start, ring_weight, binning, [value](std::uint32_t f) { return value[f]; },
+        [&g](std::uint32_t f, std::uint32_t* tail, std::size_t& size, std::uint8_t* seen) {
+          for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) {
+            const std::uint32_t m = *h;
+            const bool fresh = !seen[m];
+            seen[m] = 1;
+            tail[size] = m;
+            size += fresh;
+          }
+        });
+  }
+
+ private:
+  std::vector<std::uint32_t> queue_;
+  std::vector<std::uint8_t> seen_;  // zero again after each walk
+  std::vector<float> weight_, moment_;
+  std::size_t count_ = 0;
+  double sum_ = 0, squares_ = 0;
+  std::vector<float> mean_, log_weight_;  // the bins used, as summarize leaves them
+
+  template <class Value, class Expand>
+  void walk(std::size_t n, std::uint32_t start, const std::vector<float>& ring_weight, const Binning& binning,
+            const Value& value_of, const Expand& expand) {
+    if (seen_.size() != n) seen_.assign(n, 0), queue_.resize(n + 1);
+    if (weight_.size() != std::size_t(binning.bins)) weight_.assign(std::size_t(binning.bins), 0.0f), moment_ = weight_;
+    // Locals: the compiler need not reload them after each store.
+    std::uint8_t* const seen = seen_.data();
+    std::uint32_t* const queue = queue_.data();
+    float* const weights = weight_.data();
+    float* const moments = moment_.data();
+    const Binning to_bin = binning;
+    const int window = int(ring_weight.size()) - 1;
+    // The sums in float about the first face's value (a window's values
+    // are close), the count as those met less those without a value.
+    const float origin = value_of(start) == value_of(start) ? value_of(start) : 0.0f;
+    float s = 0, q = 0;
+    std::size_t missing = 0;
+    queue[0] = start;
+    seen[start] = 1;
+    std::size_t size = 1;
+    // Ring by ring: queue[begin, end) is the ring's faces.  Branch-free: a
+    // face met again is written and then overwritten (a branch on it would
+    // be mispredicted about every other time).
+    for (std::size_t begin = 0, ring = 0; begin < size; ++ring) {
+      const std::size_t end = size;
+      const float w = ring_weight[ring];
+      const bool outer = ring == std::size_t(window);
+      for (std::size_t k = begin; k < end; ++k) {
+        const std::uint32_t f = queue[k];
+        const float x = value_of(f);
+        if (x == x) {  // NaN: walked through, not averaged
+          const int i = to_bin(x);
+          const float y = x - origin;
+          s += y, q += y * y;
+          weights[i] += w, moments[i] += w * x;
+        } else {
+          ++missing;
+        }
+        if (!outer) expand(f, queue, size, seen);
+      }
+      begin = end;
+    }
+    for (std::size_t k = 0; k < size; ++k) seen[queue[k]] = 0;
+    count_ = size - missing;
+    sum_ = double(s) + double(count_) * origin;
+    squares_ = double(q) + 2.0 * origin * double(s) + double(count_) * double(origin) * origin;
+  }
+};
+
 // The filter in the order given (faces numbered along a space-filling
-// curve: each window's faces then lie close together in memory), but for
-// the faces it leaves to the exact filter (unsure_at); false where all
-// values are equal (or NaN).
+// curve: each window's faces then lie close together in memory); false
+// where all values are equal (or NaN).
 bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std::vector<double>& values, int window,
-                  const Context* ctx, const SampledFilterParams& p, SampledFilterStats& st, std::vector<double>& out,
-                  std::vector<char>& unsure_at) {
+                  const Context* ctx, const SampledFilterParams& p, SampledFilterStats& st, std::vector<double>& out) {
   const std::size_t n = values.size();
   double lo = HUGE_VAL, hi = -HUGE_VAL;
   for (double v : values)
@@ -123,8 +268,8 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
   const int bins = p.bins;
   const double step = (hi - lo) / (bins - 1);
 
-  const std::vector<std::uint32_t> sites = sites_of(g, p.spacing);
-  const Regions regions = regions_of(g, sites);
+  const Regions regions = regions_of(g, p.spacing);
+  const std::vector<std::uint32_t>& sites = regions.sites;
   st.sites = sites.size();
 
   // The centres each site will be asked about: its faces' and its
@@ -150,80 +295,37 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
   const double spatial = window / 2.0;
   std::vector<float> ring_weight(std::size_t(window) + 1);
   for (int l = 0; l <= window; ++l) ring_weight[std::size_t(l)] = float(std::exp(-0.5 * (l / spatial) * (l / spatial)));
-  std::vector<float> value(n);
-  std::vector<std::int16_t> bin(n, -1);
+  // Each face's neighbours and value in one record (a walk reads one cache
+  // line a face), where no face has more than three neighbours (a closed
+  // or bordered manifold mesh): fewer are padded with the face itself,
+  // which its walk has always met already.
+  const bool fixed = [&] {
+    for (std::size_t f = 0; f < n; ++f)
+      if (g.degree(f) > 3) return false;
+    return true;
+  }();
+  std::vector<FaceRecord> record(fixed ? n : 0);
+  std::vector<float> value32(n);
   parallel_blocks(n, kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
     for (std::size_t f = b; f < e; ++f) {
-      value[f] = float(values[f]);
-      if (!std::isnan(values[f]))
-        bin[f] = std::int16_t(std::clamp(int(std::lround((values[f] - lo) / step)), 0, bins - 1));
+      value32[f] = float(values[f]);
+      if (!fixed) continue;
+      FaceRecord& r = record[f];
+      r.value = value32[f];
+      for (int j = 0; j < 3; ++j) r.near[j] = j < int(g.degree(f)) ? g.begin(f)[j] : std::uint32_t(f);
     }
   });
   std::vector<float> table(table_at.back(), std::numeric_limits<float>::quiet_NaN());
+  const Binning binning{float(lo), float(1 / step), bins};
   parallel_blocks(sites.size(), 16, thread_count(), ctx, 0.0, 0.6, "smoothing", [&](std::size_t b, std::size_t e) {
-    thread_local std::vector<std::uint32_t> stamp, queue;
-    thread_local std::uint32_t epoch = 0;
-    thread_local std::vector<float> weight, moment, mean, log_weight;
-    if (stamp.size() != n) stamp.assign(n, 0), epoch = 0;
-    weight.assign(std::size_t(bins), 0.0f), moment.assign(std::size_t(bins), 0.0f);
+    thread_local WindowWalk walk;
     for (std::size_t k = b; k < e; ++k) {
       if (table_at[k + 1] == table_at[k]) continue;
-      if (++epoch == 0) std::fill(stamp.begin(), stamp.end(), 0), epoch = 1;
-      // Ring by ring: queue[begin, end) is the ring's faces.
-      double count = 0, sum = 0, squares = 0;
-      int first = bins, last = -1;
-      // Branch-free: a face met again is written and then overwritten (a
-      // branch on it would be mispredicted about every other time).
-      if (queue.size() < 64) queue.resize(64);
-      queue[0] = sites[k];
-      stamp[sites[k]] = epoch;
-      std::size_t size = 1;
-      for (std::size_t begin = 0, ring = 0; begin < size; ++ring) {
-        const std::size_t end = size;
-        const float w = ring_weight[ring];
-        for (std::size_t q = begin; q < end; ++q) {
-          const std::uint32_t f = queue[q];
-          const int i = bin[f];
-          if (i >= 0) {
-            const float x = value[f];
-            count += 1, sum += x, squares += double(x) * x;
-            weight[std::size_t(i)] += w, moment[std::size_t(i)] += w * x;
-            first = std::min(first, i), last = std::max(last, i);
-          }
-          if (ring == std::size_t(window)) continue;
-          if (queue.size() < size + g.degree(f)) queue.resize(2 * (size + g.degree(f)));
-          std::uint32_t* tail = queue.data();
-          for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) {
-            const std::uint32_t m = *h;
-            const bool fresh = stamp[m] != epoch;
-            stamp[m] = epoch;
-            tail[size] = m;
-            size += fresh;
-          }
-        }
-        begin = end;
-      }
-      if (last < 0) continue;  // no value within the window
-      mean.clear(), log_weight.clear();
-      float heaviest = 0;
-      for (int i = first; i <= last; ++i) heaviest = std::max(heaviest, weight[std::size_t(i)]);
-      for (int i = first; i <= last; ++i) {
-        const float w = weight[std::size_t(i)];
-        if (w > 0) mean.push_back(moment[std::size_t(i)] / w), log_weight.push_back(std::log(heaviest / w));
-        weight[std::size_t(i)] = moment[std::size_t(i)] = 0;
-      }
-      for (int j = first_node[k]; j <= last_node[k]; ++j) {
-        const double c = lo + j * step;
-        const double dev2 = (squares - 2 * c * sum + count * c * c) / count;
-        float& out = table[table_at[k] + std::size_t(j - first_node[k])];
-        if (!(dev2 > 1e-12 * step * step)) {
-          out = float(c);
-          continue;
-        }
-        float s = 0, w = 0;
-        weighted_sums(mean.data(), log_weight.data(), mean.size(), float(c), float(0.5 / (2.25 * dev2)), s, w);
-        out = s / w;
-      }
+      if (fixed) walk.run(record.data(), n, sites[k], ring_weight, binning);
+      else walk.run(g, value32.data(), sites[k], ring_weight, binning);
+      if (!walk.summarize()) continue;  // no value within the window
+      for (int j = first_node[k]; j <= last_node[k]; ++j)
+        table[table_at[k] + std::size_t(j - first_node[k])] = float(walk.at(lo + j * step, step));
     }
   });
 
@@ -242,8 +344,10 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
     if (!std::isnan(v)) smooth_lo = std::min(smooth_lo, v), smooth_hi = std::max(smooth_hi, v);
   }
   const double tolerance = p.tolerance * (smooth_hi > smooth_lo ? smooth_hi - smooth_lo : hi - lo);
-  unsure_at.assign(n, 0);
-  parallel_blocks(n, 4096, thread_count(), ctx, 0.6, 0.7, "smoothing", [&](std::size_t b, std::size_t e) {
+  std::atomic<std::size_t> walked{0};
+  parallel_blocks(n, 1024, thread_count(), ctx, 0.6, 1.0, "smoothing", [&](std::size_t b, std::size_t e) {
+    thread_local WindowWalk walk;
+    std::size_t own_walks = 0;
     for (std::size_t f = b; f < e; ++f) {
       const double c = values[f];
       if (std::isnan(c)) continue;
@@ -279,10 +383,19 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
         for (int j = 0; j < m; ++j) misfit = std::max(misfit, std::abs(v[j] - value - dot(slope, d[j])));
         sure = misfit + p.slope_rings * norm(slope) * ring <= tolerance;
       }
-      if (sure) out[f] = value;
-      else unsure_at[f] = 1;
+      if (sure) {
+        out[f] = value;
+        continue;
+      }
+      // Elsewhere the face's own window, binned as the sites' are.
+      if (fixed) walk.run(record.data(), n, std::uint32_t(f), ring_weight, binning);
+      else walk.run(g, value32.data(), std::uint32_t(f), ring_weight, binning);
+      if (walk.summarize()) out[f] = walk.at(c, step);
+      ++own_walks;
     }
+    walked += own_walks;
   });
+  st.exact = walked;
   return true;
 }
 
@@ -359,19 +472,7 @@ void bilateral_smooth_sampled(const Mesh& mesh, const Adjacency& g, std::vector<
     }
   });
   std::vector<double> sorted_out;
-  std::vector<char> unsure_at;
-  if (!sampled_pass(sorted_centre, sorted, sorted_values, window, ctx, p, st, sorted_out, unsure_at)) return;
-  // The exact filter where the sites are not enough, on the sorted faces
-  // too (its walks gather each block's window faster there).
-  std::vector<std::uint32_t> unsure;
-  for (std::size_t i = 0; i < n; ++i)
-    if (unsure_at[i]) unsure.push_back(std::uint32_t(i));
-  st.exact = unsure.size();
-  if (!unsure.empty()) {
-    std::vector<double> exact = sorted_values;
-    bilateral_smooth(sorted, exact, window, ctx, unsure);
-    for (std::uint32_t i : unsure) sorted_out[i] = exact[i];
-  }
+  if (!sampled_pass(sorted_centre, sorted, sorted_values, window, ctx, p, st, sorted_out)) return;
   for (std::size_t i = 0; i < n; ++i) values[order[i]] = sorted_out[i];
   if (stats) *stats = st;
 }
