@@ -30,7 +30,10 @@
 // (Jacobi preconditioner) started from each face's nearest sample's value.
 // By default (Solver::diffusion) it is not solved: from each face's nearest
 // sample's value, round(0.6 / fraction) Jacobi sweeps (each unknown face
-// takes its neighbours' mean, less its guidance term), capped at 256.  The
+// takes its neighbours' mean, less its guidance term), capped at 256, both
+// weighted by the dihedral angles: an arc across a sharp edge, a concave
+// one most (where parts meet and the SDF jumps), counts less in the means
+// and more in the distances to the nearest sample.  The
 // exact solution spreads each sample's value far beyond its neighbourhood,
 // where the full SDF has moved on: stopped early, the field is a local
 // average of the nearby samples, closer to the full SDF on every mesh
