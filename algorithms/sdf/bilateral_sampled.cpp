@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <span>
+#include <utility>
 
 #include "core/threads.h"
 #include "sdf/bilateral_filter.h"
@@ -94,32 +95,43 @@ Regions regions_of(const Adjacency& g, int spacing) {
 // are damped (the sites lie on the surface, a plane through them is
 // undetermined across it).
 bool fit_plane(int m, const Vec3* d, const double* v, const double* w, double& value, Vec3& slope) {
-  double a[4][5] = {};
+  // The normal equations (symmetric, positive definite once damped),
+  // solved by Cholesky.
+  double a[4][4] = {}, rhs[4] = {};
   double scale = 0;
   for (int j = 0; j < m; ++j) {
     const double e[4] = {1, d[j].x, d[j].y, d[j].z};
     for (int r = 0; r < 4; ++r) {
-      for (int c = 0; c < 4; ++c) a[r][c] += w[j] * e[r] * e[c];
-      a[r][4] += w[j] * e[r] * v[j];
+      const double we = w[j] * e[r];
+      for (int c = 0; c <= r; ++c) a[r][c] += we * e[c];
+      rhs[r] += we * v[j];
     }
     scale += w[j] * dot(d[j], d[j]);
   }
   if (!(scale > 0)) return false;
   for (int r = 1; r < 4; ++r) a[r][r] += 1e-3 * scale;
   for (int c = 0; c < 4; ++c) {
-    int pivot = c;
-    for (int r = c + 1; r < 4; ++r)
-      if (std::abs(a[r][c]) > std::abs(a[pivot][c])) pivot = r;
-    std::swap(a[c], a[pivot]);
-    if (a[c][c] == 0) return false;
-    for (int r = 0; r < 4; ++r)
-      if (r != c) {
-        const double q = a[r][c] / a[c][c];
-        for (int k = c; k < 5; ++k) a[r][k] -= q * a[c][k];
-      }
+    double pivot = a[c][c];
+    for (int k = 0; k < c; ++k) pivot -= a[c][k] * a[c][k];
+    if (!(pivot > 0)) return false;
+    a[c][c] = std::sqrt(pivot);
+    for (int r = c + 1; r < 4; ++r) {
+      double x = a[r][c];
+      for (int k = 0; k < c; ++k) x -= a[r][k] * a[c][k];
+      a[r][c] = x / a[c][c];
+    }
   }
-  double x[4];
-  for (int r = 0; r < 4; ++r) x[r] = a[r][4] / a[r][r];
+  double y[4], x[4];
+  for (int r = 0; r < 4; ++r) {
+    y[r] = rhs[r];
+    for (int k = 0; k < r; ++k) y[r] -= a[r][k] * y[k];
+    y[r] /= a[r][r];
+  }
+  for (int r = 3; r >= 0; --r) {
+    x[r] = y[r];
+    for (int k = r + 1; k < 4; ++k) x[r] -= a[k][r] * x[k];
+    x[r] /= a[r][r];
+  }
   value = x[0], slope = {x[1], x[2], x[3]};
   return std::isfinite(value);
 }
@@ -149,11 +161,10 @@ class WindowWalk {
     mean_.clear(), log_weight_.clear();
     if (count_ == 0) return false;
     float heaviest = 0;
-    for (float w : weight_) heaviest = std::max(heaviest, w);
-    for (std::size_t i = 0; i < weight_.size(); ++i) {
-      const float w = weight_[i];
-      if (w > 0) mean_.push_back(moment_[i] / w), log_weight_.push_back(std::log(heaviest / w));
-      weight_[i] = moment_[i] = 0;
+    for (const Bin& b : bin_) heaviest = std::max(heaviest, b.weight);
+    for (Bin& b : bin_) {
+      if (b.weight > 0) mean_.push_back(b.moment / b.weight), log_weight_.push_back(std::log(heaviest / b.weight));
+      b = {};
     }
     return true;
   }
@@ -201,7 +212,12 @@ class WindowWalk {
  private:
   std::vector<std::uint32_t> queue_;
   std::vector<std::uint8_t> seen_;  // zero again after each walk
-  std::vector<float> weight_, moment_;
+  // A bin's spatial weight and weighted sum of values side by side: one
+  // load and one store of both.
+  struct alignas(8) Bin {
+    float weight = 0, moment = 0;
+  };
+  std::vector<Bin> bin_;
   std::size_t count_ = 0;
   double sum_ = 0, squares_ = 0;
   std::vector<float> mean_, log_weight_;  // the bins used, as summarize leaves them
@@ -210,12 +226,11 @@ class WindowWalk {
   void walk(std::size_t n, std::uint32_t start, const std::vector<float>& ring_weight, const Binning& binning,
             const Value& value_of, const Expand& expand) {
     if (seen_.size() != n) seen_.assign(n, 0), queue_.resize(n + 1);
-    if (weight_.size() != std::size_t(binning.bins)) weight_.assign(std::size_t(binning.bins), 0.0f), moment_ = weight_;
+    if (bin_.size() != std::size_t(binning.bins)) bin_.assign(std::size_t(binning.bins), Bin{});
     // Locals: the compiler need not reload them after each store.
     std::uint8_t* const seen = seen_.data();
     std::uint32_t* const queue = queue_.data();
-    float* const weights = weight_.data();
-    float* const moments = moment_.data();
+    Bin* const bins = bin_.data();
     const Binning to_bin = binning;
     const int window = int(ring_weight.size()) - 1;
     // The sums in float about the first face's value (a window's values
@@ -240,7 +255,7 @@ class WindowWalk {
           const int i = to_bin(x);
           const float y = x - origin;
           s += y, q += y * y;
-          weights[i] += w, moments[i] += w * x;
+          bins[i].weight += w, bins[i].moment += w * x;
         } else {
           ++missing;
         }
@@ -329,6 +344,12 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
     }
   });
 
+  // Each site's row of the table (indexed by node) and centre, in site
+  // order: a face reads one entry of each for each of its sites.
+  std::vector<const float*> row_of(sites.size());
+  std::vector<Vec3> site_centre(sites.size());
+  for (std::size_t k = 0; k < sites.size(); ++k)
+    row_of[k] = table.data() + table_at[k] - first_node[k], site_centre[k] = centre[sites[k]];
   // Each face from its own site and that site's neighbours.
   out = values;
   // The tolerance is of the smoothed values' range (the sites' own), which
@@ -359,9 +380,9 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
       double v[kMostNear], w[kMostNear];
       int m = 0;
       const auto add = [&](std::uint32_t k) {
-        const float* row = &table[table_at[k]] - first_node[k];
+        const float* row = row_of[k];
         v[m] = (1 - frac) * row[below] + frac * row[below + 1];
-        d[m] = centre[sites[k]] - centre[f];
+        d[m] = site_centre[k] - centre[f];
         ++m;
       };
       add(own);
@@ -418,14 +439,18 @@ std::vector<std::uint32_t> curve_order(const std::vector<Vec3>& centre) {
       key[f] = code << 32 | f;
     }
   });
-  // Halves sorted on two threads, then merged.
-  const auto middle = key.begin() + std::ptrdiff_t(key.size() / 2);
-  on_threads(std::min(2, thread_count()), [&](int t) {
-    if (thread_count() < 2) std::sort(key.begin(), key.end());
-    else if (t == 0) std::sort(key.begin(), middle);
-    else std::sort(middle, key.end());
-  });
-  if (thread_count() >= 2) std::inplace_merge(key.begin(), middle, key.end());
+  // Sorted by code, ten bits a pass from the lowest, each pass stable (so
+  // faces of one code keep their order, as a sort of the whole keys).
+  std::vector<std::uint64_t> other(key.size());
+  std::vector<std::size_t> count(3 << 10, 0);
+  for (std::uint64_t k : key)
+    for (int pass = 0; pass < 3; ++pass) ++count[std::size_t(pass << 10) + ((k >> (32 + 10 * pass)) & 1023)];
+  for (int pass = 0; pass < 3; ++pass) {
+    std::size_t* at = count.data() + (pass << 10);
+    for (std::size_t d = 0, sum = 0; d < 1024; ++d) sum += std::exchange(at[d], sum);
+    for (std::uint64_t k : key) other[at[(k >> (32 + 10 * pass)) & 1023]++] = k;
+    key.swap(other);
+  }
   std::vector<std::uint32_t> order(centre.size());
   parallel_blocks(key.size(), kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) order[i] = std::uint32_t(key[i]);
