@@ -93,7 +93,7 @@ TEST(SdfFast, TenPercentOnAShapeWithThinAndThickPartsStaysWithinThreePercentOfTh
 // An open mesh with horns and fingers a few samples wide, whose full SDF is
 // rough at the scale of a few faces and whose rays escape on 5% of the
 // faces.  The bounds are bench/sdf_bench's measure, rounded up
-// (docs/BENCHMARKS.md: 3.33% mean): 4.47% before the faces nearest the
+// (docs/BENCHMARKS.md: 3.32% mean): 4.47% before the faces nearest the
 // samples whose rays escaped were filled as the full SDF fills them, 4.26%
 // before the second round of samples where the first disagree, 3.71%
 // before the diffusion was weighted by the dihedral angles.  Not the 3% the
@@ -115,7 +115,7 @@ TEST(SdfFast, TenPercentOnMannequinDevilStaysWithinTheBenchmarksErrorBounds) {
 // With the samples that found no inside as boundary values at the smallest
 // value, the ramp was missed and the thick faces beside it pulled down:
 // 5.30% mean error; filled as the full SDF fills them, 4.51% (4.17% with the
-// second round of samples, 3.91% with the diffusion weighted by the dihedral
+// second round of samples, 3.80% with the diffusion weighted by the dihedral
 // angles).
 TEST(SdfFast, TenPercentOnAnOpenMeshFillsTheRegionsWithoutRaysAsTheFullSdfDoes) {
   const Mesh mesh = read_mesh(test::sample("polygon_mesh.off"));
