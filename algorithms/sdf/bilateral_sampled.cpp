@@ -178,11 +178,12 @@ class WindowWalk {
     return s / w;
   }
 
-  // Faces as records (fixed) or a graph and values.
+  // Faces as records (fixed) or a graph (no face with more than `degree`
+  // neighbours) and values.
   void run(const FaceRecord* record, std::size_t n, std::uint32_t start, const std::vector<float>& ring_weight,
            const Binning& binning) {
     walk(
-        n, start, ring_weight, binning, [record](std::uint32_t f) { return record[f].value; },
+        n, 3, start, ring_weight, binning, [record](std::uint32_t f) { return record[f].value; },
         [record](std::uint32_t f, std::uint32_t* tail, std::size_t& size, std::uint8_t* seen) {
           const FaceRecord& r = record[f];
           for (int j = 0; j < 3; ++j) {
@@ -194,10 +195,10 @@ class WindowWalk {
           }
         });
   }
-  void run(const Adjacency& g, const float* value, std::uint32_t start, const std::vector<float>& ring_weight,
-           const Binning& binning) {
+  void run(const Adjacency& g, std::size_t degree, const float* value, std::uint32_t start,
+           const std::vector<float>& ring_weight, const Binning& binning) {
     walk(
-        g.size(), start, ring_weight, binning, [value](std::uint32_t f) { return value[f]; },
+        g.size(), degree, start, ring_weight, binning, [value](std::uint32_t f) { return value[f]; },
         [&g](std::uint32_t f, std::uint32_t* tail, std::size_t& size, std::uint8_t* seen) {
           for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) {
             const std::uint32_t m = *h;
@@ -223,13 +224,14 @@ class WindowWalk {
   std::vector<float> mean_, log_weight_;  // the bins used, as summarize leaves them
 
   template <class Value, class Expand>
-  void walk(std::size_t n, std::uint32_t start, const std::vector<float>& ring_weight, const Binning& binning,
-            const Value& value_of, const Expand& expand) {
-    if (seen_.size() != n) seen_.assign(n, 0), queue_.resize(n + 1);
+  void walk(std::size_t n, std::size_t degree, std::uint32_t start, const std::vector<float>& ring_weight,
+            const Binning& binning, const Value& value_of, const Expand& expand) {
+    if (seen_.size() != n) seen_.assign(n, 0);
     if (bin_.size() != std::size_t(binning.bins)) bin_.assign(std::size_t(binning.bins), Bin{});
     // Locals: the compiler need not reload them after each store.
     std::uint8_t* const seen = seen_.data();
-    std::uint32_t* const queue = queue_.data();
+    if (queue_.size() < 64) queue_.resize(64);
+    std::uint32_t* queue = queue_.data();
     Bin* const bins = bin_.data();
     const Binning to_bin = binning;
     const int window = int(ring_weight.size()) - 1;
@@ -248,6 +250,10 @@ class WindowWalk {
       const std::size_t end = size;
       const float w = ring_weight[ring];
       const bool outer = ring == std::size_t(window);
+      // Room for every neighbour of the ring (the queue grows with the
+      // windows, never to the mesh's size).
+      if (!outer && queue_.size() < size + (end - begin) * degree + 1)
+        queue_.resize(2 * (size + (end - begin) * degree + 1)), queue = queue_.data();
       for (std::size_t k = begin; k < end; ++k) {
         const std::uint32_t f = queue[k];
         const float x = value_of(f);
@@ -271,10 +277,13 @@ class WindowWalk {
 };
 
 // The filter in the order given (faces numbered along a space-filling
-// curve: each window's faces then lie close together in memory); false
-// where all values are equal (or NaN).
+// curve: each window's faces then lie close together in memory), face f's
+// result written to out[order[f]] (faces without a value, or without one
+// in their window, left as they are); false where all values are equal
+// (or NaN).
 bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std::vector<double>& values, int window,
-                  const Context* ctx, const SampledFilterParams& p, SampledFilterStats& st, std::vector<double>& out) {
+                  const Context* ctx, const SampledFilterParams& p, SampledFilterStats& st, const std::uint32_t* order,
+                  double* out) {
   const std::size_t n = values.size();
   double lo = HUGE_VAL, hi = -HUGE_VAL;
   for (double v : values)
@@ -314,19 +323,19 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
   // line a face), where no face has more than three neighbours (a closed
   // or bordered manifold mesh): fewer are padded with the face itself,
   // which its walk has always met already.
-  const bool fixed = [&] {
-    for (std::size_t f = 0; f < n; ++f)
-      if (g.degree(f) > 3) return false;
-    return true;
-  }();
+  std::size_t degree = 0;
+  for (std::size_t f = 0; f < n; ++f) degree = std::max(degree, g.degree(f));
+  const bool fixed = degree <= 3;
   std::vector<FaceRecord> record(fixed ? n : 0);
-  std::vector<float> value32(n);
+  std::vector<float> value32(fixed ? 0 : n);
   parallel_blocks(n, kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
     for (std::size_t f = b; f < e; ++f) {
-      value32[f] = float(values[f]);
-      if (!fixed) continue;
+      if (!fixed) {
+        value32[f] = float(values[f]);
+        continue;
+      }
       FaceRecord& r = record[f];
-      r.value = value32[f];
+      r.value = float(values[f]);
       for (int j = 0; j < 3; ++j) r.near[j] = j < int(g.degree(f)) ? g.begin(f)[j] : std::uint32_t(f);
     }
   });
@@ -337,7 +346,7 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
     for (std::size_t k = b; k < e; ++k) {
       if (table_at[k + 1] == table_at[k]) continue;
       if (fixed) walk.run(record.data(), n, sites[k], ring_weight, binning);
-      else walk.run(g, value32.data(), sites[k], ring_weight, binning);
+      else walk.run(g, degree, value32.data(), sites[k], ring_weight, binning);
       if (!walk.summarize()) continue;  // no value within the window
       for (int j = first_node[k]; j <= last_node[k]; ++j)
         table[table_at[k] + std::size_t(j - first_node[k])] = float(walk.at(lo + j * step, step));
@@ -351,7 +360,6 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
   for (std::size_t k = 0; k < sites.size(); ++k)
     row_of[k] = table.data() + table_at[k] - first_node[k], site_centre[k] = centre[sites[k]];
   // Each face from its own site and that site's neighbours.
-  out = values;
   // The tolerance is of the smoothed values' range (the sites' own), which
   // a few outlying raw values do not widen.
   double smooth_lo = HUGE_VAL, smooth_hi = -HUGE_VAL;
@@ -405,13 +413,13 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
         sure = misfit + p.slope_rings * norm(slope) * ring <= tolerance;
       }
       if (sure) {
-        out[f] = value;
+        out[order[f]] = value;
         continue;
       }
       // Elsewhere the face's own window, binned as the sites' are.
       if (fixed) walk.run(record.data(), n, std::uint32_t(f), ring_weight, binning);
-      else walk.run(g, value32.data(), std::uint32_t(f), ring_weight, binning);
-      if (walk.summarize()) out[f] = walk.at(c, step);
+      else walk.run(g, degree, value32.data(), std::uint32_t(f), ring_weight, binning);
+      if (walk.summarize()) out[order[f]] = walk.at(c, step);
       ++own_walks;
     }
     walked += own_walks;
@@ -423,17 +431,37 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
 // Faces sorted by the Morton code of their centres (10 bits an axis: a
 // cell holds a face or two on the 1.42M-face mesh), the code and the face
 // in one integer.
-std::vector<std::uint32_t> curve_order(const std::vector<Vec3>& centre) {
-  Vec3 lo = centre.empty() ? Vec3{} : centre[0], hi = lo;
-  for (const Vec3& c : centre)
-    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
-  std::vector<std::uint64_t> key(centre.size());
-  parallel_blocks(centre.size(), kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+Vec3 centre_of(const Mesh& mesh, std::size_t f) {
+  const Tri& t = mesh.faces[f];
+  return (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+}
+
+std::vector<std::uint32_t> curve_order(const Mesh& mesh) {
+  const std::size_t n = mesh.faces.size();
+  // The centres' bounding box, a part on each core.
+  const int threads = thread_count();
+  std::vector<Vec3> part_lo(std::size_t(threads), Vec3{HUGE_VAL, HUGE_VAL, HUGE_VAL}),
+      part_hi(std::size_t(threads), Vec3{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL});
+  on_threads(threads, [&](int t) {
+    Vec3& l = part_lo[std::size_t(t)];
+    Vec3& h = part_hi[std::size_t(t)];
+    for (std::size_t f = n * std::size_t(t) / std::size_t(threads); f < n * std::size_t(t + 1) / std::size_t(threads);
+         ++f) {
+      const Vec3 c = centre_of(mesh, f);
+      for (int a = 0; a < 3; ++a) l[a] = std::min(l[a], c[a]), h[a] = std::max(h[a], c[a]);
+    }
+  });
+  Vec3 lo = part_lo[0], hi = part_hi[0];
+  for (int t = 1; t < threads; ++t)
+    for (int a = 0; a < 3; ++a)
+      lo[a] = std::min(lo[a], part_lo[std::size_t(t)][a]), hi[a] = std::max(hi[a], part_hi[std::size_t(t)][a]);
+  std::vector<std::uint64_t> key(n);
+  parallel_blocks(n, kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
     for (std::size_t f = b; f < e; ++f) {
+      const Vec3 c = centre_of(mesh, f);
       std::uint64_t code = 0;
       std::uint32_t q[3];
-      for (int a = 0; a < 3; ++a)
-        q[a] = hi[a] > lo[a] ? std::uint32_t((centre[f][a] - lo[a]) / (hi[a] - lo[a]) * 1023.0) : 0;
+      for (int a = 0; a < 3; ++a) q[a] = hi[a] > lo[a] ? std::uint32_t((c[a] - lo[a]) / (hi[a] - lo[a]) * 1023.0) : 0;
       for (int bit = 9; bit >= 0; --bit)
         for (int a = 0; a < 3; ++a) code = (code << 1) | ((q[a] >> bit) & 1);
       key[f] = code << 32 | f;
@@ -451,7 +479,7 @@ std::vector<std::uint32_t> curve_order(const std::vector<Vec3>& centre) {
     for (std::uint64_t k : key) other[at[(k >> (32 + 10 * pass)) & 1023]++] = k;
     key.swap(other);
   }
-  std::vector<std::uint32_t> order(centre.size());
+  std::vector<std::uint32_t> order(n);
   parallel_blocks(key.size(), kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) order[i] = std::uint32_t(key[i]);
   });
@@ -465,14 +493,7 @@ void bilateral_smooth_sampled(const Mesh& mesh, const Adjacency& g, std::vector<
   SampledFilterStats st;
   const std::size_t n = values.size();
   if (window <= 0) window = default_window(n);
-  std::vector<Vec3> centre(n);
-  parallel_blocks(n, kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
-    for (std::size_t f = b; f < e; ++f) {
-      const Tri& t = mesh.faces[f];
-      centre[f] = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
-    }
-  });
-  const std::vector<std::uint32_t> order = curve_order(centre);
+  const std::vector<std::uint32_t> order = curve_order(mesh);
   // The faces renumbered along the curve: their graph, values and centres.
   std::vector<std::uint32_t> rank(n);
   Adjacency sorted;
@@ -484,7 +505,7 @@ void bilateral_smooth_sampled(const Mesh& mesh, const Adjacency& g, std::vector<
       const std::uint32_t f = order[i];
       rank[f] = std::uint32_t(i);
       sorted.offsets[i + 1] = std::uint32_t(g.degree(f));
-      sorted_values[i] = values[f], sorted_centre[i] = centre[f];
+      sorted_values[i] = values[f], sorted_centre[i] = centre_of(mesh, f);
     }
   });
   sorted.offsets[0] = 0;
@@ -496,9 +517,7 @@ void bilateral_smooth_sampled(const Mesh& mesh, const Adjacency& g, std::vector<
       for (const std::uint32_t* h = g.begin(order[i]); h != g.end(order[i]); ++h) *item++ = rank[*h];
     }
   });
-  std::vector<double> sorted_out;
-  if (!sampled_pass(sorted_centre, sorted, sorted_values, window, ctx, p, st, sorted_out)) return;
-  for (std::size_t i = 0; i < n; ++i) values[order[i]] = sorted_out[i];
+  if (!sampled_pass(sorted_centre, sorted, sorted_values, window, ctx, p, st, order.data(), values.data())) return;
   if (stats) *stats = st;
 }
 
