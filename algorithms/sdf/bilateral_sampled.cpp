@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <span>
+#include <type_traits>
 #include <utility>
 
 #include "core/threads.h"
@@ -34,7 +35,8 @@ struct Regions {
   }
 };
 
-Regions regions_of(const Adjacency& g, int spacing) {
+template <class Graph>
+Regions regions_of(const Graph& g, int spacing) {
   Regions r;
   std::vector<std::uint8_t> ring(g.size(), std::numeric_limits<std::uint8_t>::max());
   r.site_of.assign(g.size(), kNone);
@@ -142,6 +144,16 @@ struct FaceRecord {
   float value;
 };
 
+// Records as a graph: a face with fewer than three neighbours has itself
+// in their place (no walk goes anywhere by it).
+struct RecordGraph {
+  const FaceRecord* record;
+  std::size_t n;
+  std::size_t size() const { return n; }
+  const std::uint32_t* begin(std::size_t f) const { return record[f].near; }
+  const std::uint32_t* end(std::size_t f) const { return record[f].near + 3; }
+};
+
 // Values to bins: round((x - lo) / step).
 struct Binning {
   float lo, inverse_step;
@@ -178,10 +190,11 @@ class WindowWalk {
     return s / w;
   }
 
-  // Faces as records (fixed) or a graph (no face with more than `degree`
+  // Faces as records or a graph (no face with more than `degree`
   // neighbours) and values.
-  void run(const FaceRecord* record, std::size_t n, std::uint32_t start, const std::vector<float>& ring_weight,
-           const Binning& binning) {
+  void run(const RecordGraph& g, std::uint32_t start, const std::vector<float>& ring_weight, const Binning& binning) {
+    const FaceRecord* record = g.record;
+    const std::size_t n = g.n;
     walk(
         n, 3, start, ring_weight, binning, [record](std::uint32_t f) { return record[f].value; },
         [record](std::uint32_t f, std::uint32_t* tail, std::size_t& size, std::uint8_t* seen) {
@@ -281,7 +294,8 @@ class WindowWalk {
 // result written to out[order[f]] (faces without a value, or without one
 // in their window, left as they are); false where all values are equal
 // (or NaN).
-bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std::vector<double>& values, int window,
+template <class Graph>
+bool sampled_pass(const std::vector<Vec3>& centre, const Graph& g, const std::vector<double>& values, int window,
                   const Context* ctx, const SampledFilterParams& p, SampledFilterStats& st, const std::uint32_t* order,
                   double* out) {
   const std::size_t n = values.size();
@@ -319,37 +333,32 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
   const double spatial = window / 2.0;
   std::vector<float> ring_weight(std::size_t(window) + 1);
   for (int l = 0; l <= window; ++l) ring_weight[std::size_t(l)] = float(std::exp(-0.5 * (l / spatial) * (l / spatial)));
-  // Each face's neighbours and value in one record (a walk reads one cache
-  // line a face), where no face has more than three neighbours (a closed
-  // or bordered manifold mesh): fewer are padded with the face itself,
-  // which its walk has always met already.
+  // Where the faces are not records (some face has more than three
+  // neighbours), their values in float for the walks.
+  constexpr bool kRecords = std::is_same_v<Graph, RecordGraph>;
   std::size_t degree = 0;
-  for (std::size_t f = 0; f < n; ++f) degree = std::max(degree, g.degree(f));
-  const bool fixed = degree <= 3;
-  std::vector<FaceRecord> record(fixed ? n : 0);
-  std::vector<float> value32(fixed ? 0 : n);
-  parallel_blocks(n, kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
-    for (std::size_t f = b; f < e; ++f) {
-      if (!fixed) {
-        value32[f] = float(values[f]);
-        continue;
-      }
-      FaceRecord& r = record[f];
-      r.value = float(values[f]);
-      for (int j = 0; j < 3; ++j) r.near[j] = j < int(g.degree(f)) ? g.begin(f)[j] : std::uint32_t(f);
-    }
-  });
+  std::vector<float> value32;
+  if constexpr (!kRecords) {
+    for (std::size_t f = 0; f < n; ++f) degree = std::max(degree, g.degree(f));
+    value32.resize(n);
+    for (std::size_t f = 0; f < n; ++f) value32[f] = float(values[f]);
+  }
+  const auto walk_from = [&](WindowWalk& walk, std::uint32_t f, const Binning& binning) {
+    if constexpr (kRecords) walk.run(g, f, ring_weight, binning);
+    else walk.run(g, degree, value32.data(), f, ring_weight, binning);
+  };
   std::vector<float> table(table_at.back(), std::numeric_limits<float>::quiet_NaN());
   const Binning binning{float(lo), float(1 / step), bins};
   parallel_blocks(sites.size(), 16, thread_count(), ctx, 0.0, 0.6, "smoothing", [&](std::size_t b, std::size_t e) {
     thread_local WindowWalk walk;
     for (std::size_t k = b; k < e; ++k) {
       if (table_at[k + 1] == table_at[k]) continue;
-      if (fixed) walk.run(record.data(), n, sites[k], ring_weight, binning);
-      else walk.run(g, degree, value32.data(), sites[k], ring_weight, binning);
+      walk_from(walk, sites[k], binning);
       if (!walk.summarize()) continue;  // no value within the window
       for (int j = first_node[k]; j <= last_node[k]; ++j)
         table[table_at[k] + std::size_t(j - first_node[k])] = float(walk.at(lo + j * step, step));
+      // The site itself from its own window at its own value.
+      if (!std::isnan(values[sites[k]])) out[order[sites[k]]] = walk.at(values[sites[k]], step);
     }
   });
 
@@ -379,11 +388,11 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
     std::size_t own_walks = 0;
     for (std::size_t f = b; f < e; ++f) {
       const double c = values[f];
-      if (std::isnan(c)) continue;
+      const std::uint32_t own = regions.site_of[f];
+      if (std::isnan(c) || sites[own] == f) continue;  // a site has its value
       const double t = (c - lo) / step;
       const int below = std::clamp(int(t), 0, bins - 2);
       const double frac = t - below;
-      const std::uint32_t own = regions.site_of[f];
       Vec3 d[kMostNear];
       double v[kMostNear], w[kMostNear];
       int m = 0;
@@ -396,8 +405,10 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
       add(own);
       for (std::uint32_t k : regions.near_of(own)) add(k);
       double ring = 0;
-      for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) ring += norm(centre[*h] - centre[f]);
-      ring /= double(std::max<std::size_t>(g.degree(f), 1));
+      std::size_t met = 0;
+      for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h)
+        if (*h != f) ring += norm(centre[*h] - centre[f]), ++met;
+      ring /= double(std::max<std::size_t>(met, 1));
       // Weights that follow the nearest site closely: a plane through
       // sites a few rings apart misses each by about its misfit.
       for (int j = 0; j < m; ++j) w[j] = 1.0 / (dot(d[j], d[j]) / (ring * ring) + 0.25);
@@ -417,8 +428,7 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Adjacency& g, const std
         continue;
       }
       // Elsewhere the face's own window, binned as the sites' are.
-      if (fixed) walk.run(record.data(), n, std::uint32_t(f), ring_weight, binning);
-      else walk.run(g, degree, value32.data(), std::uint32_t(f), ring_weight, binning);
+      walk_from(walk, std::uint32_t(f), binning);
       if (walk.summarize()) out[order[f]] = walk.at(c, step);
       ++own_walks;
     }
@@ -494,30 +504,48 @@ void bilateral_smooth_sampled(const Mesh& mesh, const Adjacency& g, std::vector<
   const std::size_t n = values.size();
   if (window <= 0) window = default_window(n);
   const std::vector<std::uint32_t> order = curve_order(mesh);
-  // The faces renumbered along the curve: their graph, values and centres.
+  // The faces renumbered along the curve: their values, centres and graph,
+  // as records where no face has more than three neighbours (a closed or
+  // bordered manifold mesh: a walk then reads one cache line a face).
+  std::size_t degree = 0;
+  for (std::size_t f = 0; f < n; ++f) degree = std::max(degree, g.degree(f));
   std::vector<std::uint32_t> rank(n);
-  Adjacency sorted;
-  sorted.offsets.resize(n + 1);
   std::vector<double> sorted_values(n);
   std::vector<Vec3> sorted_centre(n);
   parallel_blocks(n, kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       const std::uint32_t f = order[i];
       rank[f] = std::uint32_t(i);
-      sorted.offsets[i + 1] = std::uint32_t(g.degree(f));
       sorted_values[i] = values[f], sorted_centre[i] = centre_of(mesh, f);
     }
   });
-  sorted.offsets[0] = 0;
-  for (std::size_t i = 0; i < n; ++i) sorted.offsets[i + 1] += sorted.offsets[i];
-  sorted.items.resize(g.items.size());
-  parallel_blocks(n, kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i) {
-      std::uint32_t* item = sorted.items.data() + sorted.offsets[i];
-      for (const std::uint32_t* h = g.begin(order[i]); h != g.end(order[i]); ++h) *item++ = rank[*h];
-    }
-  });
-  if (!sampled_pass(sorted_centre, sorted, sorted_values, window, ctx, p, st, order.data(), values.data())) return;
+  if (degree <= 3) {
+    std::vector<FaceRecord> record(n);
+    parallel_blocks(n, kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        const std::uint32_t f = order[i];
+        FaceRecord& r = record[i];
+        r.value = float(sorted_values[i]);
+        for (std::size_t j = 0; j < 3; ++j) r.near[j] = j < g.degree(f) ? rank[g.begin(f)[j]] : std::uint32_t(i);
+      }
+    });
+    if (!sampled_pass(sorted_centre, RecordGraph{record.data(), n}, sorted_values, window, ctx, p, st, order.data(),
+                      values.data()))
+      return;
+  } else {
+    Adjacency sorted;
+    sorted.offsets.resize(n + 1);
+    sorted.offsets[0] = 0;
+    for (std::size_t i = 0; i < n; ++i) sorted.offsets[i + 1] = sorted.offsets[i] + std::uint32_t(g.degree(order[i]));
+    sorted.items.resize(g.items.size());
+    parallel_blocks(n, kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        std::uint32_t* item = sorted.items.data() + sorted.offsets[i];
+        for (const std::uint32_t* h = g.begin(order[i]); h != g.end(order[i]); ++h) *item++ = rank[*h];
+      }
+    });
+    if (!sampled_pass(sorted_centre, sorted, sorted_values, window, ctx, p, st, order.data(), values.data())) return;
+  }
   if (stats) *stats = st;
 }
 
