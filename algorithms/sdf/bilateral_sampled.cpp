@@ -446,29 +446,15 @@ Vec3 centre_of(const Mesh& mesh, std::size_t f) {
   return (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
 }
 
-std::vector<std::uint32_t> curve_order(const Mesh& mesh) {
-  const std::size_t n = mesh.faces.size();
-  // The centres' bounding box, a part on each core.
-  const int threads = thread_count();
-  std::vector<Vec3> part_lo(std::size_t(threads), Vec3{HUGE_VAL, HUGE_VAL, HUGE_VAL}),
-      part_hi(std::size_t(threads), Vec3{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL});
-  on_threads(threads, [&](int t) {
-    Vec3& l = part_lo[std::size_t(t)];
-    Vec3& h = part_hi[std::size_t(t)];
-    for (std::size_t f = n * std::size_t(t) / std::size_t(threads); f < n * std::size_t(t + 1) / std::size_t(threads);
-         ++f) {
-      const Vec3 c = centre_of(mesh, f);
-      for (int a = 0; a < 3; ++a) l[a] = std::min(l[a], c[a]), h[a] = std::max(h[a], c[a]);
-    }
-  });
-  Vec3 lo = part_lo[0], hi = part_hi[0];
-  for (int t = 1; t < threads; ++t)
-    for (int a = 0; a < 3; ++a)
-      lo[a] = std::min(lo[a], part_lo[std::size_t(t)][a]), hi[a] = std::max(hi[a], part_hi[std::size_t(t)][a]);
+std::vector<std::uint32_t> curve_order(const std::vector<Vec3>& centre) {
+  const std::size_t n = centre.size();
+  Vec3 lo = n == 0 ? Vec3{} : centre[0], hi = lo;
+  for (const Vec3& c : centre)
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
   std::vector<std::uint64_t> key(n);
   parallel_blocks(n, kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
     for (std::size_t f = b; f < e; ++f) {
-      const Vec3 c = centre_of(mesh, f);
+      const Vec3& c = centre[f];
       std::uint64_t code = 0;
       std::uint32_t q[3];
       for (int a = 0; a < 3; ++a) q[a] = hi[a] > lo[a] ? std::uint32_t((c[a] - lo[a]) / (hi[a] - lo[a]) * 1023.0) : 0;
@@ -503,7 +489,11 @@ void bilateral_smooth_sampled(const Mesh& mesh, const Adjacency& g, std::vector<
   SampledFilterStats st;
   const std::size_t n = values.size();
   if (window <= 0) window = default_window(n);
-  const std::vector<std::uint32_t> order = curve_order(mesh);
+  std::vector<Vec3> centre(n);
+  parallel_blocks(n, kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+    for (std::size_t f = b; f < e; ++f) centre[f] = centre_of(mesh, f);
+  });
+  const std::vector<std::uint32_t> order = curve_order(centre);
   // The faces renumbered along the curve: their values, centres and graph,
   // as records where no face has more than three neighbours (a closed or
   // bordered manifold mesh: a walk then reads one cache line a face).
@@ -516,7 +506,7 @@ void bilateral_smooth_sampled(const Mesh& mesh, const Adjacency& g, std::vector<
     for (std::size_t i = b; i < e; ++i) {
       const std::uint32_t f = order[i];
       rank[f] = std::uint32_t(i);
-      sorted_values[i] = values[f], sorted_centre[i] = centre_of(mesh, f);
+      sorted_values[i] = values[f], sorted_centre[i] = centre[f];
     }
   });
   if (degree <= 3) {
