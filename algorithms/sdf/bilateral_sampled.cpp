@@ -197,12 +197,12 @@ class WindowWalk {
     const std::size_t n = g.n;
     walk(
         n, 3, start, ring_weight, binning, [record](std::uint32_t f) { return record[f].value; },
-        [record](std::uint32_t f, std::uint32_t* tail, std::size_t& size, std::uint8_t* seen) {
+        [record](std::uint32_t f, std::uint32_t* tail, std::size_t& size, std::uint8_t* seen, std::uint8_t mark) {
           const FaceRecord& r = record[f];
           for (int j = 0; j < 3; ++j) {
             const std::uint32_t m = r.near[j];
-            const bool fresh = !seen[m];
-            seen[m] = 1;
+            const bool fresh = seen[m] != mark;
+            seen[m] = mark;
             tail[size] = m;
             size += fresh;
           }
@@ -212,11 +212,11 @@ class WindowWalk {
            const std::vector<float>& ring_weight, const Binning& binning) {
     walk(
         g.size(), degree, start, ring_weight, binning, [value](std::uint32_t f) { return value[f]; },
-        [&g](std::uint32_t f, std::uint32_t* tail, std::size_t& size, std::uint8_t* seen) {
+        [&g](std::uint32_t f, std::uint32_t* tail, std::size_t& size, std::uint8_t* seen, std::uint8_t mark) {
           for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) {
             const std::uint32_t m = *h;
-            const bool fresh = !seen[m];
-            seen[m] = 1;
+            const bool fresh = seen[m] != mark;
+            seen[m] = mark;
             tail[size] = m;
             size += fresh;
           }
@@ -225,7 +225,8 @@ class WindowWalk {
 
  private:
   std::vector<std::uint32_t> queue_;
-  std::vector<std::uint8_t> seen_;  // zero again after each walk
+  std::vector<std::uint8_t> seen_;  // the walk's mark where met
+  std::uint8_t mark_ = 0;
   // A bin's spatial weight and weighted sum of values side by side: one
   // load and one store of both.
   struct alignas(8) Bin {
@@ -239,7 +240,10 @@ class WindowWalk {
   template <class Value, class Expand>
   void walk(std::size_t n, std::size_t degree, std::uint32_t start, const std::vector<float>& ring_weight,
             const Binning& binning, const Value& value_of, const Expand& expand) {
-    if (seen_.size() != n) seen_.assign(n, 0);
+    if (seen_.size() != n) seen_.assign(n, 0), mark_ = 0;
+    // A new mark for each walk, the marks cleared once every 255 walks.
+    if (++mark_ == 0) std::fill(seen_.begin(), seen_.end(), 0), mark_ = 1;
+    const std::uint8_t mark = mark_;
     if (bin_.size() != std::size_t(binning.bins)) bin_.assign(std::size_t(binning.bins), Bin{});
     // Locals: the compiler need not reload them after each store.
     std::uint8_t* const seen = seen_.data();
@@ -254,7 +258,7 @@ class WindowWalk {
     float s = 0, q = 0;
     std::size_t missing = 0;
     queue[0] = start;
-    seen[start] = 1;
+    seen[start] = mark;
     std::size_t size = 1;
     // Ring by ring: queue[begin, end) is the ring's faces.  Branch-free: a
     // face met again is written and then overwritten (a branch on it would
@@ -278,11 +282,10 @@ class WindowWalk {
         } else {
           ++missing;
         }
-        if (!outer) expand(f, queue, size, seen);
+        if (!outer) expand(f, queue, size, seen, mark);
       }
       begin = end;
     }
-    for (std::size_t k = 0; k < size; ++k) seen[queue[k]] = 0;
     count_ = size - missing;
     sum_ = double(s) + double(count_) * origin;
     squares_ = double(q) + 2.0 * origin * double(s) + double(count_) * double(origin) * origin;
