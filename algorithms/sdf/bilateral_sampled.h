@@ -17,6 +17,7 @@
 //   weighted least-squares plane through them over the face centres'
 //   offsets, its weights 1 / (d^2 / r^2 + 1/4) (r: the distance to the
 //   face's neighbours, about a ring).
+// - A site takes its own window's value at its own value.
 // - A face where the sites leave that plane by more than `tolerance` of the
 //   smoothed values' range less the plane's change over `slope_rings`
 //   rings takes its own window instead, walked and binned as a site's and
@@ -28,8 +29,8 @@
 //
 // Its difference from the exact filter, as a fraction of the smoothed
 // values' range: at most 0.36% (mean 0.02%) on the 1.42M-face mesh of
-// bench/sdf_smooth_bench.cpp (window 27, 12% of the faces on their own
-// windows), 0.42% on refined_elephant subdivided once with window 20 (31%
+// bench/sdf_smooth_bench.cpp (window 27, 10.5% of the faces on their own
+// windows), 0.42% on refined_elephant subdivided once with window 20 (26%
 // on their own); where the sites fall moves these by a few hundredths of a
 // percent.  On coarser meshes the windows change shape faster than the
 // sites follow (0.5-1% on 90-140k faces with window 20, half of them on
