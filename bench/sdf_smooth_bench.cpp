@@ -114,7 +114,7 @@ int main(int argc, char** argv) {
   std::printf("bilateral filter of the raw SDF (default window), against CGAL 5.5 and the filter as it was\n");
   std::printf("%-17s %8s %6s %9s %9s %9s %8s %8s %8s %11s %11s | %9s %8s %8s %10s %10s\n", "mesh", "faces", "window",
               "CGAL s", "was s", "ours s", "x CGAL", "x was", "x cpu", "max diff", "mean diff", "sampled s", "x was",
-              "exact %", "max vs ours", "mean");
+              "own w %", "max vs ours", "mean");
   for (const auto& [name, mesh] : inputs) {
     const bool big = mesh.faces.size() > 500000;
     const Adjacency graph = face_neighbors(mesh, edge_topology(mesh));
