@@ -35,4 +35,18 @@ CGVIEW_VECTOR_CLONES void weighted_sums(const float* x, const float* ring, std::
   weights = w;
 }
 
+CGVIEW_VECTOR_CLONES void scaled_weighted_sums(const float* x, const float* scale, std::size_t n, float c, float inv,
+                                               float& sum, float& weights) {
+  float s = 0, w = 0;
+#pragma omp simd reduction(+ : s, w)
+  for (std::size_t k = 0; k < n; ++k) {
+    const float d = x[k] - c;
+    const float q = scale[k] * expf(-(inv * d * d));
+    s += q * x[k];
+    w += q;
+  }
+  sum = s;
+  weights = w;
+}
+
 }  // namespace cgview::sdf

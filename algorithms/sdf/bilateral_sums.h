@@ -16,4 +16,9 @@ float squared_deviation(const float* x, std::size_t n, float c);
 // sum_k w_k in `weights`.
 void weighted_sums(const float* x, const float* ring, std::size_t n, float c, float inv, float& sum, float& weights);
 
+// The same with the weights' factors as they are: w_k = scale_k exp(-inv (x_k
+// - c)^2) (no logarithm a term to take beforehand).
+void scaled_weighted_sums(const float* x, const float* scale, std::size_t n, float c, float inv, float& sum,
+                          float& weights);
+
 }  // namespace cgview::sdf
