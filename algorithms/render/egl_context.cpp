@@ -2,6 +2,7 @@
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
+#include <dlfcn.h>
 
 #include <atomic>
 #include <cstdio>
@@ -16,6 +17,53 @@
 namespace cgview::render {
 
 namespace {
+
+// libEGL, opened by the first render rather than bound at every start of
+// each program that can render: a job's worker starts for every job, and
+// most jobs never render (libEGL and libGLdispatch were ~0.2 ms of each
+// start).  Only the functions below are called directly; the rest come
+// from eglGetProcAddress as before.
+#define CGVIEW_EGL_FUNCTIONS(X)                        \
+  X(PFNEGLBINDAPIPROC, eglBindAPI)                     \
+  X(PFNEGLCHOOSECONFIGPROC, eglChooseConfig)           \
+  X(PFNEGLCREATECONTEXTPROC, eglCreateContext)         \
+  X(PFNEGLDESTROYCONTEXTPROC, eglDestroyContext)       \
+  X(PFNEGLGETCURRENTCONTEXTPROC, eglGetCurrentContext) \
+  X(PFNEGLGETERRORPROC, eglGetError)                   \
+  X(PFNEGLGETPROCADDRESSPROC, eglGetProcAddress)       \
+  X(PFNEGLINITIALIZEPROC, eglInitialize)               \
+  X(PFNEGLMAKECURRENTPROC, eglMakeCurrent)             \
+  X(PFNEGLQUERYSTRINGPROC, eglQueryString)             \
+  X(PFNEGLTERMINATEPROC, eglTerminate)
+
+struct Egl {
+#define CGVIEW_EGL_MEMBER(type, name) type name = nullptr;
+  CGVIEW_EGL_FUNCTIONS(CGVIEW_EGL_MEMBER)
+#undef CGVIEW_EGL_MEMBER
+  std::string why_not;  // "" once every function was found
+};
+
+// The library's functions, looked up once (never closed: contexts outlive
+// any one caller).  Throws Error where libEGL cannot be opened.
+const Egl& egl() {
+  static const Egl loaded = [] {
+    Egl e;
+    void* lib = ::dlopen("libEGL.so.1", RTLD_NOW | RTLD_LOCAL);
+    if (!lib) {
+      const char* why = ::dlerror();
+      e.why_not = "render: cannot open libEGL.so.1 (" + std::string(why ? why : "not found") + ")";
+      return e;
+    }
+#define CGVIEW_EGL_FIND(type, name)                     \
+  e.name = reinterpret_cast<type>(::dlsym(lib, #name)); \
+  if (!e.name && e.why_not.empty()) e.why_not = "render: libEGL.so.1 has no " #name;
+    CGVIEW_EGL_FUNCTIONS(CGVIEW_EGL_FIND)
+#undef CGVIEW_EGL_FIND
+    return e;
+  }();
+  if (!loaded.why_not.empty()) throw Error(loaded.why_not);
+  return loaded;
+}
 
 std::mutex g_mutex;  // guards the log and the display reference counts
 RenderLog g_log;
@@ -34,7 +82,7 @@ void log_message(const std::string& m) {
 
 std::string egl_error() {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "EGL error 0x%04X", unsigned(eglGetError()));
+  std::snprintf(buf, sizeof buf, "EGL error 0x%04X", unsigned(egl().eglGetError()));
   return buf;
 }
 
@@ -62,8 +110,9 @@ struct Candidate {
 std::vector<Candidate> device_candidates(const char* client) {
   std::vector<Candidate> out;
   if (!has_extension(client, "EGL_EXT_platform_device")) return out;
-  auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-  auto query_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+  auto query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(egl().eglGetProcAddress("eglQueryDevicesEXT"));
+  auto query_string =
+      reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(egl().eglGetProcAddress("eglQueryDeviceStringEXT"));
   EGLint n = 0;
   if (!query_devices || !query_devices(0, nullptr, &n) || n <= 0) return out;
   std::vector<EGLDeviceEXT> devices(n);
@@ -88,7 +137,12 @@ GlPlatform setting(GlPlatform platform) {
 
 bool hardware_device_listed(GlPlatform platform) {
   if (setting(platform) == GlPlatform::surfaceless) return false;
-  for (const Candidate& c : device_candidates(eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS)))
+  try {
+    egl();
+  } catch (const Error&) {
+    return false;  // no libEGL: no device either
+  }
+  for (const Candidate& c : device_candidates(egl().eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS)))
     if (!c.software) return true;
   return false;
 }
@@ -134,7 +188,7 @@ struct EglContext::Impl {
     EGLDisplay d = get_display(c.platform, c.native, nullptr);
     if (d == EGL_NO_DISPLAY) return "no display (" + egl_error() + ")";
     EGLint major = 0, minor = 0;
-    if (!eglInitialize(d, &major, &minor)) return "eglInitialize failed (" + egl_error() + ")";
+    if (!egl().eglInitialize(d, &major, &minor)) return "eglInitialize failed (" + egl_error() + ")";
     {
       std::lock_guard lock(g_mutex);
       ++g_display_users[d];
@@ -142,21 +196,21 @@ struct EglContext::Impl {
     display = d;
     auto fail = [&](std::string why) {
       if (context != EGL_NO_CONTEXT) {
-        eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-        eglDestroyContext(display, context);
+        egl().eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        egl().eglDestroyContext(display, context);
       }
       context = EGL_NO_CONTEXT;
       drop_display();
       return why;
     };
-    if (!has_extension(eglQueryString(d, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context"))
+    if (!has_extension(egl().eglQueryString(d, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context"))
       return fail("no EGL_KHR_surfaceless_context");
-    if (!eglBindAPI(EGL_OPENGL_API)) return fail("eglBindAPI(OpenGL) failed (" + egl_error() + ")");
+    if (!egl().eglBindAPI(EGL_OPENGL_API)) return fail("egl().eglBindAPI(OpenGL) failed (" + egl_error() + ")");
     EGLConfig config = nullptr;
     EGLint count = 0;
     for (EGLint surface : {EGLint(EGL_PBUFFER_BIT), EGLint(0)}) {
       const EGLint attrs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, surface, EGL_NONE};
-      if (eglChooseConfig(d, attrs, &config, 1, &count) && count > 0) break;
+      if (egl().eglChooseConfig(d, attrs, &config, 1, &count) && count > 0) break;
     }
     if (count <= 0) return fail("no OpenGL config");
     const EGLint ctx_attrs[] = {EGL_CONTEXT_MAJOR_VERSION,
@@ -166,13 +220,13 @@ struct EglContext::Impl {
                                 EGL_CONTEXT_OPENGL_PROFILE_MASK,
                                 EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                 EGL_NONE};
-    context = eglCreateContext(d, config, EGL_NO_CONTEXT, ctx_attrs);
+    context = egl().eglCreateContext(d, config, EGL_NO_CONTEXT, ctx_attrs);
     if (context == EGL_NO_CONTEXT)
       return fail("no OpenGL " + std::to_string(version.major) + "." + std::to_string(version.minor) +
                   " core context (" + egl_error() + ")");
-    if (!eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
+    if (!egl().eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
       return fail("eglMakeCurrent failed (" + egl_error() + ")");
-#define CGVIEW_GL_LOAD(type, name) gl.name = reinterpret_cast<type>(eglGetProcAddress(#name));
+#define CGVIEW_GL_LOAD(type, name) gl.name = reinterpret_cast<type>(egl().eglGetProcAddress(#name));
     CGVIEW_GL_FUNCTIONS(CGVIEW_GL_LOAD)
 #undef CGVIEW_GL_LOAD
 #define CGVIEW_GL_CHECK(type, name) \
@@ -202,14 +256,14 @@ struct EglContext::Impl {
     GLint gl_major = 0, gl_minor = 0;
     gl.glGetIntegerv(GL_MAJOR_VERSION, &gl_major);
     gl.glGetIntegerv(GL_MINOR_VERSION, &gl_minor);
-#define CGVIEW_GL_LOAD(type, name) compute.name = reinterpret_cast<type>(eglGetProcAddress(#name));
+#define CGVIEW_GL_LOAD(type, name) compute.name = reinterpret_cast<type>(egl().eglGetProcAddress(#name));
     CGVIEW_GL_COMPUTE_FUNCTIONS(CGVIEW_GL_LOAD)
 #undef CGVIEW_GL_LOAD
     info.compute = gl_major * 10 + gl_minor >= 43;
 #define CGVIEW_GL_CHECK(type, name) info.compute = info.compute && compute.name;
     CGVIEW_GL_COMPUTE_FUNCTIONS(CGVIEW_GL_CHECK)
 #undef CGVIEW_GL_CHECK
-    eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    egl().eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     return {};
   }
 
@@ -223,15 +277,16 @@ struct EglContext::Impl {
     }
     // Displays are shared by every context on the same device: terminate
     // only when the last one goes.
-    if (last) eglTerminate(display);
+    if (last) egl().eglTerminate(display);
     display = EGL_NO_DISPLAY;
   }
 };
 
 EglContext::EglContext(GlPlatform platform, GlVersion version) : impl_(std::make_unique<Impl>()) {
   platform = setting(platform);
-  const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  auto get_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  const char* client = egl().eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+  auto get_display =
+      reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(egl().eglGetProcAddress("eglGetPlatformDisplayEXT"));
   if (!client || !get_display)
     throw Error("render: EGL has no client extensions or no eglGetPlatformDisplayEXT: cannot render without a window");
 
@@ -266,24 +321,24 @@ EglContext::EglContext(GlPlatform platform, GlVersion version) : impl_(std::make
 
 EglContext::~EglContext() {
   if (impl_->context != EGL_NO_CONTEXT) {
-    if (eglGetCurrentContext() == impl_->context)
-      eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-    eglDestroyContext(impl_->display, impl_->context);
+    if (egl().eglGetCurrentContext() == impl_->context)
+      egl().eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    egl().eglDestroyContext(impl_->display, impl_->context);
   }
   impl_->drop_display();
 }
 
 void EglContext::make_current() {
-  if (eglGetCurrentContext() == impl_->context) return;
+  if (egl().eglGetCurrentContext() == impl_->context) return;
   // The bound API is per thread, and eglMakeCurrent uses it.
-  eglBindAPI(EGL_OPENGL_API);
-  if (!eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, impl_->context))
+  egl().eglBindAPI(EGL_OPENGL_API);
+  if (!egl().eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, impl_->context))
     throw Error("render: eglMakeCurrent failed (" + egl_error() + "): is the context current on another thread?");
 }
 
 void EglContext::release() {
-  if (eglGetCurrentContext() == impl_->context)
-    eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  if (egl().eglGetCurrentContext() == impl_->context)
+    egl().eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
 }
 
 const EglInfo& EglContext::info() const { return impl_->info; }
