@@ -159,6 +159,10 @@ class Sandbox {
   // and those reads were 40% of its CPU.  Its descriptor, which keeps it;
   // -1: none (the server's namespace).
   int mount_ns_ = -1;
+  // Whether that namespace's /dev is the jobs' own, made once (read-only,
+  // the devices bubblewrap's --dev gives), which each run binds whole
+  // rather than have bubblewrap make one (sandbox.cpp, jobs_dev_nodes).
+  bool jobs_dev_ = false;
   // Of shows_at_own_path: for each path asked, its real path's place
   // (under what the sandbox replaces) and whether all may walk to it.
   struct Place {
