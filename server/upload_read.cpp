@@ -29,6 +29,13 @@ namespace cgview::server {
 namespace fs = std::filesystem;
 
 namespace {
+
+// A file's or an entry's name quoted in a warning or a material is the
+// upload's bytes: invalid UTF-8 in it is replaced, not a reason to refuse
+// the upload (or to write nothing).
+std::string dump_replacing_invalid(const nlohmann::json& j) {
+  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
 // The uploaded file that a mesh or MTL names, matched by base name without
 // case (files written on Windows name ".\\Tex.JPG" for "tex.jpg").
 const BundleFile* find_file(const std::vector<BundleFile>& files, const std::string& referenced) {
@@ -298,8 +305,8 @@ UploadRead read_upload(const std::string& name, const std::string& format, std::
                          ": the mesh is closed but its faces all face inward (a negative volume): shading looks "
                          "inside out; the SDF turns it outward for its run; Repair or Orient outward turns it");
   out.report_json = protocol::to_json(report).dump();
-  out.warnings_json = nlohmann::json(r.warnings).dump();
-  out.material_json = textures.material.dump();
+  out.warnings_json = dump_replacing_invalid(r.warnings);
+  out.material_json = dump_replacing_invalid(textures.material);
   out.textures = std::move(textures.blobs);
   out.mesh = std::make_shared<const Mesh>(std::move(r.mesh));
   return out;
@@ -403,9 +410,7 @@ void run_reader_child(const UploadReader& reader, const char* mode, const std::s
 int reader_main(const fs::path& dir, const std::function<void()>& read) {
   auto refuse = [&](const char* kind, const std::string& detail) {
     try {
-      // The detail may quote the upload's bytes: invalid UTF-8 is replaced, not a reason to write nothing.
-      write_file_bytes(dir / "error.json", nlohmann::json{{"error", kind}, {"detail", detail}}.dump(
-                                               -1, ' ', false, nlohmann::json::error_handler_t::replace));
+      write_file_bytes(dir / "error.json", dump_replacing_invalid({{"error", kind}, {"detail", detail}}));
     } catch (const std::exception&) {
     }
     return 2;

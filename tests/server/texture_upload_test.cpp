@@ -394,6 +394,11 @@ TEST_F(TextureUploadTest, MissingImageIsAWarning) {
   ASSERT_EQ(mesh["warnings"].size(), 1u);
   EXPECT_NE(mesh["warnings"][0].get<std::string>().find("'.\\Maps\\WOOD.JPG' is not in the upload"), std::string::npos)
       << mesh["warnings"];
+  // A name that is not UTF-8 (an MTL saved in Latin-1): the upload is kept, the name quoted with U+FFFD for the byte.
+  const json latin1 = upload(
+      "quad.zip", make_zip({{"quad.obj", kQuad}, {"quad.mtl", "newmtl skin\nKd 0.5 0.25 1\nmap_Kd bois\xe9.jpg\n"}}));
+  EXPECT_NE(latin1["warnings"].dump().find("'bois\xef\xbf\xbd.jpg' is not in the upload"), std::string::npos)
+      << latin1["warnings"];
   // Not a PNG or JPEG: also a warning.
   const json gif = upload("quad.zip", make_zip({{"quad.obj", kQuad}, {"quad.mtl", kMtl}, {"wood.jpg", "GIF89a...."}}));
   EXPECT_EQ(gif["textures"], json::array());
