@@ -232,6 +232,16 @@ JobDir::Usage JobDir::usage(std::uint64_t max_names) const {
 
 std::uint64_t dir_bytes(const fs::path& dir) { return JobDir(dir).usage().bytes; }
 
+int write_all(int fd, std::string_view bytes) {
+  for (std::size_t done = 0; done < bytes.size();) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return n < 0 ? errno : EIO;
+    done += std::size_t(n);
+  }
+  return 0;
+}
+
 bool spread_subdirectories(const fs::path& dir) {
   const Fd fd(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
   int flags = 0;

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace cgview::server {
 
@@ -78,6 +79,10 @@ class JobDir {
 // more CPU than a job's sandbox.  False where the file system has no such
 // flag (nothing changes).
 bool spread_subdirectories(const std::filesystem::path& dir);
+
+// `bytes` written whole to `fd` (again after a signal): 0, or the errno
+// that stopped it (EIO where the file took no more).
+int write_all(int fd, std::string_view bytes);
 
 // The bytes of the files under a directory, no link followed (0 when there is none).
 std::uint64_t dir_bytes(const std::filesystem::path& dir);

@@ -46,15 +46,8 @@ namespace {
 int spec_in_memory_fd(const std::string& spec) {
   const int fd = ::memfd_create("job.json", MFD_CLOEXEC | MFD_ALLOW_SEALING);
   if (fd < 0) return -1;
-  std::size_t done = 0;
-  while (done < spec.size()) {
-    const ssize_t n = ::write(fd, spec.data() + done, spec.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    done += std::size_t(n);
-  }
   // Sealed: whoever else holds it can neither change nor grow it.
-  if (done != spec.size() || ::lseek(fd, 0, SEEK_SET) != 0 ||
+  if (write_all(fd, spec) != 0 || ::lseek(fd, 0, SEEK_SET) != 0 ||
       ::fcntl(fd, F_ADD_SEALS, F_SEAL_SHRINK | F_SEAL_GROW | F_SEAL_WRITE | F_SEAL_SEAL) != 0) {
     ::close(fd);
     return -1;
@@ -190,7 +183,7 @@ bool LocalExecutor::hand_over(Warm& w, const LaunchSpec& job) {
     const std::string& spec = job.spec;
     const int fd = ::open((w.dir / "job.json").c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
     if (fd < 0) return unlink_all();
-    const bool whole = ::write(fd, spec.data(), spec.size()) == ssize_t(spec.size());
+    const bool whole = write_all(fd, spec) == 0;
     ::close(fd);
     if (!whole) return unlink_all();
   } catch (const std::exception&) {

@@ -27,13 +27,7 @@ namespace {
 // writes), in place: no new file.
 void rewrite(const fs::path& path, const std::string& text) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_TRUNC | O_NOFOLLOW | O_CLOEXEC);
-  int err = fd < 0 ? errno : 0;
-  for (std::size_t done = 0; fd >= 0 && !err && done < text.size();) {
-    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) err = n < 0 ? errno : EIO;
-    else done += std::size_t(n);
-  }
+  int err = fd < 0 ? errno : write_all(fd, text);
   if (fd >= 0 && ::close(fd) != 0 && !err) err = errno;
   if (err == ENOSPC || err == EDQUOT) throw DiskFull(path.string() + ": " + std::strerror(err));
   if (err) throw IoError(path.string() + ": cannot write: " + std::strerror(err));
