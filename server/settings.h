@@ -124,6 +124,11 @@ struct Settings {
                .max = 1 << 24,
                .help = "address-space limit of a job's process in MB, also of the process that reads each upload "
                        "(over it: 413); 0: none"});
+    v.integer("job_files", j.max_files,
+              {.min = 1,
+               .max = 1LL << 40,
+               .help = "files, directories and links a running job may have in its directory, counted every 2 s; "
+                       "over it the job is stopped"});
     v.text("reader", c.reader,
            {.arg = "PATH", .help = "the upload reader executable", .default_text = "cgview-read beside this program"});
     v.integer("upload_timeout_s", c.upload_timeout_s,

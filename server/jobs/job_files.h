@@ -23,7 +23,6 @@ inline constexpr std::uint64_t kMaxReportBytes = 64 << 10;     // error.txt, std
 inline constexpr std::uint64_t kMaxResultJsonBytes = 4 << 20;  // result.json: 4 MiB, else the job fails
 inline constexpr std::size_t kMaxArtifacts = 256;              // entries of result.json's list
 inline constexpr std::uint64_t kMaxSideFileBytes = 1 << 20;    // an artifact's side file (a field's .field.json)
-inline constexpr std::uint64_t kMaxJobNames = 100000;  // names (files, directories, links) in a running job's directory
 
 // A directory a job could write, opened once (no link followed on the way
 // down from its last component).

@@ -59,12 +59,12 @@ void JobScheduler::check_disk() {
   // has written, the next may not.
   std::map<std::string, std::uint64_t> room;
   for (const auto& [id, owner] : running) {
-    const JobDir::Usage u = JobDir(run_dir(id) / "work").usage(kMaxJobNames + 1);
+    const JobDir::Usage u = JobDir(run_dir(id) / "work").usage(config_.max_files + 1);
     const auto [left, first] = room.try_emplace(owner, 0);
     if (first) left->second = room_of(owner);
     std::string why;
-    if (u.names > kMaxJobNames)
-      why = "wrote more than " + std::to_string(kMaxJobNames) + " files, the most a job may have";
+    if (u.names > config_.max_files)
+      why = "wrote more than " + std::to_string(config_.max_files) + " files, the most a job may have";
     else if (u.bytes > left->second)
       why = "wrote " + std::to_string(u.bytes) + " bytes, more than the " + std::to_string(left->second) +
             " bytes its owner has left under their storage quota";

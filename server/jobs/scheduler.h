@@ -42,15 +42,16 @@ namespace cgview::server {
 class Sandbox;
 
 struct JobConfig {
-  std::filesystem::path worker;    // the cgview-worker executable
-  int max_workers = 0;             // local: jobs at once (0: the number of cores)
-  double timeout_s = 3600;         // per job; 0: none
-  std::size_t memory_mb = 8192;    // address-space limit per job; 0: none
-  int cpus = 1;                    // per job (Slurm's --cpus-per-task)
-  bool requeue_on_restart = true;  // else: jobs of a previous run that cannot be followed are marked interrupted
-  QuotaConfig quotas;              // per-user storage and concurrent-job limits
-  std::string executor = "local";  // a name in executor_registry.h
-  SlurmConfig slurm;               // the slurm executor's settings
+  std::filesystem::path worker;      // the cgview-worker executable
+  int max_workers = 0;               // local: jobs at once (0: the number of cores)
+  double timeout_s = 3600;           // per job; 0: none
+  std::size_t memory_mb = 8192;      // address-space limit per job; 0: none
+  std::uint64_t max_files = 100000;  // names (files, directories, links) in a running job's directory
+  int cpus = 1;                      // per job (Slurm's --cpus-per-task)
+  bool requeue_on_restart = true;    // else: jobs of a previous run that cannot be followed are marked interrupted
+  QuotaConfig quotas;                // per-user storage and concurrent-job limits
+  std::string executor = "local";    // a name in executor_registry.h
+  SlurmConfig slurm;                 // the slurm executor's settings
   // Where local workers start (sandbox.h); nullptr: plain child processes.
   std::shared_ptr<const Sandbox> sandbox;
 };
@@ -245,7 +246,7 @@ class JobScheduler : private JobLookup {
   // directories go outside mutex_; a run that ended goes in collect().
   std::vector<std::filesystem::path> leftovers_;  // run and results directories to remove outside the lock
   // A running job's directory, walked every few seconds outside mutex_:
-  // one over its owner's room (their storage quota) or over kMaxJobNames
+  // one over its owner's room (their storage quota) or over max_files
   // names is stopped, and fails with why (by job id, under mutex_).
   void check_disk();
   std::map<std::string, std::string> over_disk_;

@@ -69,7 +69,7 @@ class Plugins : public ServerFixture {
   bool start(const fs::path& data) {
     return server_.start(data,
                          {"--auth", "required", "--config", (dir_ / "config.json").string(), "--job-timeout-s", "15",
-                          "--job-memory-mb", "2048", "--plugin-dir", (dir_ / "lab").string()},
+                          "--job-memory-mb", "2048", "--job-files", "3000", "--plugin-dir", (dir_ / "lab").string()},
                          dir_);
   }
   HttpResult as(const std::string& token, const std::string& method, const std::string& target,
@@ -334,7 +334,7 @@ TEST_F(Plugins, NothingAJobLeavesInItsDirectoryIsFollowedOrReadWithoutABound) {
       {"link_artifact", sized(db), "stolen.txt is a link"},
       {"huge_result", "", "result.json has"},
       {"many_artifacts", "", "1000 artifacts, over the limit of 256"},
-      {"many_files", "120000", "wrote more than 100000 files, the most a job may have"},
+      {"many_files", "4000", "wrote more than 3000 files, the most a job may have"},
       {"fill_disk", "", "bytes its owner has left under their storage quota"},
       {"read_env", "CGVIEW_TEST_SECRET", "no variable names CGVIEW_TEST_SECRET"},
   };
