@@ -56,6 +56,13 @@ inline Vec3 face_cross(const Mesh& mesh, std::size_t f) {
   return cross(P[t[1]] - P[t[0]], P[t[2]] - P[t[0]]);
 }
 
+// The centroid of face f: the mean of its three corners.
+inline Vec3 face_centroid(const Mesh& mesh, std::size_t f) {
+  const Tri& t = mesh.faces[f];
+  const auto& P = mesh.positions;
+  return (P[t[0]] + P[t[1]] + P[t[2]]) / 3.0;
+}
+
 // Unit normal of each face (zero for a degenerate face).  One per face.
 std::vector<Vec3> face_normals(const Mesh& mesh);
 // The area of each face.  One per face.

@@ -185,8 +185,7 @@ class BvhBuilder {
  public:
   BvhBuilder(const Mesh& mesh) : mesh_(mesh), centroid_(mesh.faces.size()), order_(mesh.faces.size()) {
     for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-      const Tri& t = mesh.faces[f];
-      centroid_[f] = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+      centroid_[f] = face_centroid(mesh, f);
       order_[f] = std::uint32_t(f);
     }
     const BBox box = bounding_box(mesh);

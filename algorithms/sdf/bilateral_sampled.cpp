@@ -462,11 +462,6 @@ bool sampled_pass(const std::vector<Vec3>& centre, const Graph& g, const std::ve
 // Faces sorted by the Morton code of their centres (10 bits an axis: a
 // cell holds a face or two on the 1.42M-face mesh), the code and the face
 // in one integer.
-Vec3 centre_of(const Mesh& mesh, std::size_t f) {
-  const Tri& t = mesh.faces[f];
-  return (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
-}
-
 std::vector<std::uint32_t> curve_order(const std::vector<Vec3>& centre) {
   const std::size_t n = centre.size();
   Vec3 lo = n == 0 ? Vec3{} : centre[0], hi = lo;
@@ -512,7 +507,7 @@ void bilateral_smooth_sampled(const Mesh& mesh, const Adjacency& g, std::vector<
   if (window <= 0) window = default_window(n);
   std::vector<Vec3> centre(n);
   parallel_blocks(n, kSetUpBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
-    for (std::size_t f = b; f < e; ++f) centre[f] = centre_of(mesh, f);
+    for (std::size_t f = b; f < e; ++f) centre[f] = face_centroid(mesh, f);
   });
   const std::vector<std::uint32_t> order = curve_order(centre);
   // The faces renumbered along the curve: their values, centres and graph,

@@ -156,7 +156,7 @@ RawSdf SdfRayCaster::cast(std::span<const std::uint32_t> faces, const Context* c
     const Vec3 n = normals[f];
     if (dot(n, n) == 0) return false;
     const Tri& t = mesh.faces[f];
-    c = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+    c = face_centroid(mesh, f);
     u = normalized(mesh.positions[t[1]] - mesh.positions[t[0]]);
     v = cross(n, u);
     return true;

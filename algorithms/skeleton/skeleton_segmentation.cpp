@@ -27,8 +27,7 @@ SkeletonSegmentationResult skeleton_segmentation(const Mesh& mesh, const Skeleto
       ctx.check_cancelled();
       ctx.progress(double(f) / double(mesh.faces.size()), "assigning faces");
     }
-    const Tri& t = mesh.faces[f];
-    const Vec3 c = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+    const Vec3 c = face_centroid(mesh, f);
     for (std::size_t b = 0; b < branches.size(); ++b) {
       best[b] = {HUGE_VAL, {}};
       for (std::size_t k = 1; k < branches[b].size(); ++k) {

@@ -34,10 +34,6 @@ Mesh cylinder(double r, double length, int segments, int rings) {
   return test::revolve(profile, segments);
 }
 
-Vec3 face_centroid(const Mesh& m, std::size_t f) {
-  return (m.positions[m.faces[f][0]] + m.positions[m.faces[f][1]] + m.positions[m.faces[f][2]]) / 3.0;
-}
-
 // CGAL's raw SDF (no post-processing), -1 where it found none.
 std::vector<double> cgal_raw_sdf(const Mesh& mesh, double cone_degrees, int rays) {
   SurfaceMesh sm = manifold_surface_mesh(mesh, "the CGAL reference");
