@@ -8,7 +8,7 @@
 //   mean and 95th-percentile error relative to the full SDF's range, and
 //   the full SDF's own roughness: the mean distance of a face's value from
 //   its edge neighbours' mean, in the same units.  sdf_fast's error at 10%
-//   is 2.4-2.9 times it on every sample mesh of 20k faces or more: what a
+//   is 2.3-2.9 times it on every sample mesh of 20k faces or more: what a
 //   field sampled on a tenth of the faces cannot follow is this face-to-face
 //   detail (docs/BENCHMARKS.md).
 // On the 1M-triangle mesh CGAL runs without post-processing (its bilateral
