@@ -6,9 +6,9 @@
 #
 # Here, after building (sdf_gpu_bench, rays_test, sdf_test):
 #   bench/gpu_sdf.sh pack
-# packs build/gpu_sdf.tar.xz (about 15 MB): the three binaries, the Debian
-# libraries they link (glvnd's libEGL among them; not glibc, which the
-# machine has), and the sample meshes.
+# packs build/gpu_sdf.tar.xz: the three binaries, the Debian libraries
+# they link or open when first needed (Embree and glvnd's libEGL among them;
+# not glibc, which the machine has), and the sample meshes.
 # There, from the repository root with build/gpu_sdf.tar.xz carried:
 #   bench/gpu_sdf.sh run [sdf_gpu_bench options for the big mesh]
 # runs the GPU caster's tests, the bench on three sample meshes (CGAL
@@ -29,7 +29,13 @@ case "${1:-}" in
       cp "$b" "$out/bin/"
       strip "$out/bin/$(basename "$b")"
     done
-    for lib in $(ldd $bins | awk '/=> \//{print $3}' | sort -u); do
+    # The libraries the binaries open when first needed (Embree, libEGL),
+    # named in them as sonames, which ldd does not list, with their own.
+    opened=""
+    for soname in $(strings $bins | grep -E '^lib(embree|EGL)[^ /]*\.so(\.[0-9]+)*$' | sort -u); do
+      opened="$opened $(ldconfig -p | awk -v s="$soname" '$1 == s && /x86-64/ {print $NF; exit}')"
+    done
+    for lib in $( (ldd $bins $opened | awk '/=> \//{print $3}'; printf '%s\n' $opened) | sort -u); do
       case "$(basename "$lib")" in
         libc.so* | libm.so* | libdl.so* | libpthread.so* | librt.so* | ld-linux*) continue ;;
       esac
