@@ -232,3 +232,31 @@ test('the same mesh, algorithm and parameters again give the cached result at on
   await page.waitForFunction((jobId) => window.__cgview.lastField?.jobId === jobId, id, { timeout: 30000 });
   assert.deepEqual(pageProblems, [], describeProblems());
 });
+
+// A small job can end before the answer to its submission comes back (its
+// job_done event first, on a loaded machine): what a run shows when done is
+// still shown. The answer is held here until the page lists the job as done.
+test('a job whose end arrives before the answer to its submission still shows its field', async (t) => {
+  if (skipWithoutApi(t)) return;
+  let held = null;
+  const hold = async (route) => {
+    if (route.request().method() !== 'POST') return route.continue();
+    const response = await route.fetch();
+    held = (await response.json()).id;
+    await page.locator(`#jobs li.job[data-job-id="${held}"][data-state="done"]`).waitFor({ timeout: 30000 });
+    await route.fulfill({ response });
+  };
+  await page.route('**/api/v1/jobs', hold);
+  t.after(() => page.unroute('**/api/v1/jobs', hold));
+  const form = page.locator('form.algorithm-form[data-algorithm="centroid_distance"]');
+  await form.locator('input[data-param="exponent"]').fill('2.5');
+  await form.locator('button.run').click();
+  for (const until = Date.now() + 30000; !held && Date.now() < until;) await new Promise((r) => setTimeout(r, 20));
+  assert.ok(held, 'the submission was answered');
+  await page
+    .waitForFunction((jobId) => window.__cgview.lastField?.jobId === jobId, held, { timeout: 30000 })
+    .catch(async (e) => {
+      throw new Error(`the field of ${held} was not drawn: ${e.message}${describeProblems()}`);
+    });
+  assert.deepEqual(pageProblems, [], describeProblems());
+});

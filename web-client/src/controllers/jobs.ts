@@ -378,33 +378,40 @@ export class JobsController {
     const { store } = this.ctx;
     const next = new Map(store.get().jobs);
     const merged: Job[] = [];
+    const ended: Job[] = [];
     for (const job of jobs) {
       const old = next.get(job.id);
-      if (old && FINAL.has(old.state) && !FINAL.has(job.state)) continue;
+      if (old && FINAL.has(old.state) && !FINAL.has(job.state)) {
+        // Its end came first (a small job's job_done event before the answer to its submission): what a run of this page shows when it ends is due now.
+        ended.push(old);
+        continue;
+      }
       const m = { ...old, ...job };
       next.set(job.id, m);
       merged.push(m);
     }
-    if (!merged.length) return;
-    store.update({ jobs: next });
+    if (merged.length) store.update({ jobs: next });
     for (const m of merged) this.settled(m);
+    for (const m of ended) this.ranHere(m);
   }
 
-  /** What a job's new state brings: a done job's artifacts to their kinds, and what a job submitted here shows when done (its kinds' autoShow: a scalar field, else a vector field). */
+  /** What a job's new state brings: a done job's artifacts to their kinds, and what a run of this page shows when it ends. */
   private settled(job: Job): void {
     if (HIDDEN.has(job.algorithm)) return;
+    if (job.state === 'done') this.deps.kinds.load(job);
+    this.ranHere(job);
+  }
+
+  /** What a job submitted here shows once it has ended: done, its kinds' autoShow (a scalar field, else a vector field); failed, its error. */
+  private ranHere(job: Job): void {
+    if (HIDDEN.has(job.algorithm) || !FINAL.has(job.state) || !this.autoShow.delete(job.id)) return;
     if (job.state === 'done') {
-      this.deps.kinds.load(job);
-      if (this.autoShow.delete(job.id)) {
-        // A run of this page that succeeds: the failure of an earlier one of the same algorithm on the same mesh no longer holds.
-        this.ctx.dismiss(failureTopic(job));
-        const field = this.deps.kinds.autoShown(job);
-        if (field) void this.deps.kinds.show(job.id, field.name, field.kind);
-      }
-    } else if (job.state === 'failed' && this.autoShow.delete(job.id)) {
+      // A run of this page that succeeds: the failure of an earlier one of the same algorithm on the same mesh no longer holds.
+      this.ctx.dismiss(failureTopic(job));
+      const field = this.deps.kinds.autoShown(job);
+      if (field) void this.deps.kinds.show(job.id, field.name, field.kind);
+    } else if (job.state === 'failed') {
       this.ctx.error(`${job.algorithm} failed: ${job.error ?? 'no reason given'}`, failureTopic(job));
-    } else if (FINAL.has(job.state)) {
-      this.autoShow.delete(job.id);
     }
   }
 
