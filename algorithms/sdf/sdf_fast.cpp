@@ -23,8 +23,8 @@ SdfFastResult sdf_fast(const Mesh& mesh, const SdfFastParams& p, Context* contex
   const Adjacency& graph = approx.graph;
   SdfFastResult result;
   warn_missing(approx.raw, result.warnings,
-               "with the faces nearest them, what the full SDF gives such a region (their neighbours' mean, "
-               "else the smallest value, then smoothed)");
+               "what the full SDF gives such a region (their neighbours' mean, else the smallest value, then "
+               "smoothed), as do the faces nearest them");
   const double fast_seconds = seconds_since(t0);
   Metrics& m = result.metrics;
   m = {{"faces", double(mesh.faces.size())},
