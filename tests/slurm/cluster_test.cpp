@@ -156,13 +156,12 @@ TEST_F(SlurmClusterTest, ScancelEndsCancelled) {
   int rc = -1;
   const std::string out = cluster_.run("scancel " + id, &rc);
   ASSERT_EQ(rc, 0) << out;
-  // scontrol: CANCELLED, Reason=None; sacct -c: CANCELLED 0:0.  ExitCode is
-  // 0:15 when SIGTERM kills the batch shell, 143:0 when the shell outlives
-  // its `sleep` long enough to exit with 128+15 itself (seen on a loaded CI
-  // machine), so CGView reads neither: it knows it cancelled.
+  // scontrol: CANCELLED, Reason=None; sacct -c: CANCELLED 0:0.  ExitCode
+  // depends on who dies first: 0:15 when SIGTERM kills the batch shell,
+  // 143:0 when the shell outlives its `sleep` long enough to exit with
+  // 128+15 itself, 1:0 seen too (both on a loaded machine).  So CGView reads
+  // none of them (it knows it cancelled), and neither does this test.
   EXPECT_EQ(cluster_.wait_ended(id, 10), "CANCELLED");
-  const std::string exit_code = cluster_.job_field(id, "ExitCode");
-  EXPECT_TRUE(exit_code == "0:15" || exit_code == "143:0") << exit_code;
   const std::string line = wait_sacct_line(cluster_, id);
   EXPECT_EQ(line.substr(0, line.rfind('|')), "CANCELLED|0:0");
 }
