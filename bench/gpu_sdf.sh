@@ -4,27 +4,32 @@
 # project's build (the device machines lent to some sessions: Ubuntu, an
 # NVIDIA driver reached through glvnd's libEGL, no network).
 #
-# Here, after building (sdf_gpu_bench, rays_test, sdf_test):
+# Here, after building (sdf_gpu_bench, sdf_bench, rays_test, sdf_test):
 #   bench/gpu_sdf.sh pack
-# packs build/gpu_sdf.tar.xz: the three binaries, the Debian libraries
+# packs build/gpu_sdf.tar.xz: the four binaries, the Debian libraries
 # they link or open when first needed (Embree and glvnd's libEGL among them;
 # not glibc, which the machine has), and the sample meshes.
 # There, from the repository root with build/gpu_sdf.tar.xz carried:
 #   bench/gpu_sdf.sh run [sdf_gpu_bench options for the big mesh]
 # runs the GPU caster's tests, the bench on three sample meshes (CGAL
-# measured beside), then on the 1.42M-triangle mesh with CGAL's time given
+# measured beside), sdf_fast at 10% against the full sdf on the ten sample
+# meshes of 20k faces or more (on the machine's cores, the rays where the
+# automatic choice puts them), then on the 1.42M-triangle mesh with CGAL's
+# time given
 # (--cgal-seconds big=461.0 by default: measured on this project's 2-core
 # build machine, docs/BENCHMARKS.md; CGAL alone would take most of a short
 # lease).  NVIDIA's EGL vendor file is the device machines'; set
 # __EGL_VENDOR_LIBRARY_FILENAMES to another where it lives elsewhere.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# The sample meshes of 20k faces or more, where sdf_fast is measured.
+fast_meshes="polygon_mesh mannequin-devil bear bear_bis fandisk_large man diplodocus armadillo bunny00 refined_elephant"
 case "${1:-}" in
   pack)
     out=build/gpu_sdf
     rm -rf "$out"
     mkdir -p "$out/bin" "$out/lib" "$out/samples"
-    bins="build/bin/sdf_gpu_bench build/bin/rays_test build/bin/sdf_test"
+    bins="build/bin/sdf_gpu_bench build/bin/sdf_bench build/bin/rays_test build/bin/sdf_test"
     for b in $bins; do
       cp "$b" "$out/bin/"
       strip "$out/bin/$(basename "$b")"
@@ -41,7 +46,7 @@ case "${1:-}" in
       esac
       cp -L "$lib" "$out/lib/"
     done
-    for m in elephant armadillo refined_elephant; do cp "build/samples/$m.off" "$out/samples/"; done
+    for m in elephant $fast_meshes; do cp "build/samples/$m.off" "$out/samples/"; done
     tar -C build -cJf build/gpu_sdf.tar.xz gpu_sdf
     rm -rf "$out"
     ls -l build/gpu_sdf.tar.xz
@@ -61,6 +66,7 @@ case "${1:-}" in
     "$g/bin/rays_test"
     "$g/bin/sdf_test" --gtest_filter='SdfRaysGpu.*'
     "$g/bin/sdf_gpu_bench" --repeat 3 --only elephant,armadillo,refined_elephant
+    "$g/bin/sdf_bench" --fast-only --repeat 3 --only "$(echo $fast_meshes | tr ' ' ,)"
     "$g/bin/sdf_gpu_bench" --repeat 1 --only big "${big_options[@]}"
     ;;
   *)

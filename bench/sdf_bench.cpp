@@ -14,7 +14,7 @@
 // On the 1M-triangle mesh CGAL runs without post-processing (its bilateral
 // filter walks std::maps over ~2000 faces per face: hours), said in the row.
 //
-//   build/bin/sdf_bench [--repeat N] [--quick] [--only elephant,...,big,diplodocus,...]
+//   build/bin/sdf_bench [--repeat N] [--quick] [--fast-only] [--only elephant,...,big,diplodocus,...]
 #include <CGAL/mesh_segmentation.h>
 
 #include <algorithm>
@@ -57,16 +57,34 @@ sdf::FastSdf our_fast(const Mesh& mesh, const sdf::SdfParams& p, double fraction
   return sdf::poisson_sdf(mesh, {.fraction = fraction, .solver = solver, .sdf = p});
 }
 
+// --fast-only: taken out of argv before the common options.
+bool take_flag(int& argc, char** argv, const std::string& flag) {
+  bool found = false;
+  int kept = 1;
+  for (int i = 1; i < argc; ++i)
+    if (argv[i] == flag) found = true;
+    else argv[kept++] = argv[i];
+  argc = kept;
+  return found;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Without CGAL's table (one core, minutes): sdf_fast against our sdf alone,
+  // as on a lent GPU machine, where the time is short.
+  const bool fast_only = take_flag(argc, argv, "--fast-only");
   const bench::Options opt = bench::parse_options(argc, argv, "sdf_bench");
   const std::vector<bench::SdfInput> inputs = bench::sdf_inputs(opt, "sdf_bench");
-  std::printf(
-      "sdf against CGAL 5.5 sdf_values (25 rays, 120 degrees, Vogel's spiral, uniform weights, MAD outliers)\n");
-  std::printf("%-18s %9s %10s %10s %8s %9s\n", "mesh", "faces", "CGAL s", "ours s", "ratio", "Pearson");
+  const sdf::SdfParams defaults;
+  std::printf("rays on: %s\n",
+              sdf::ray_device(defaults) == sdf::RayDevice::gpu ? "the GPU (a compute shader)" : "Embree");
+  if (!fast_only)
+    std::printf(
+        "sdf against CGAL 5.5 sdf_values (25 rays, 120 degrees, Vogel's spiral, uniform weights, MAD outliers)\n");
+  if (!fast_only) std::printf("%-18s %9s %10s %10s %8s %9s\n", "mesh", "faces", "CGAL s", "ours s", "ratio", "Pearson");
   const sdf::SdfParams cgal_like{.weights = sdf::Weights::uniform, .outliers = sdf::Outliers::mad};
-  for (const bench::SdfInput& in : inputs) {
+  for (const bench::SdfInput& in : fast_only ? std::vector<bench::SdfInput>{} : inputs) {
     const bool big = in.mesh.faces.size() > 500000;
     SurfaceMesh sm = manifold_surface_mesh(in.mesh, "sdf_bench");
     auto map = sm.add_property_map<SurfaceMesh::Face_index, double>("f:sdf", 0.0).first;
@@ -84,7 +102,6 @@ int main(int argc, char** argv) {
   std::printf("\nsdf_fast against our sdf (defaults: inverse-angle weights, std-dev outliers, bilateral filter)\n");
   std::printf("%-18s %9s %9s %7s %10s %10s %8s %10s %10s %10s\n", "mesh", "fraction", "solver", "rays", "sdf s",
               "fast s", "ratio", "mean err", "p95 err", "sdf rough");
-  const sdf::SdfParams defaults;
   const char* const solver_names[] = {"diffusion", "cg", "cholesky"};  // in sdf::Solver's order
   for (const bench::SdfInput& in : inputs) {
     std::vector<double> full;
