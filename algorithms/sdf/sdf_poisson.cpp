@@ -56,14 +56,11 @@ ArcWeights arc_weights(const Mesh& mesh, const Adjacency& g) {
     Vec3 normal, centre;
     double height;
   };
+  const std::vector<Vec3> normals = face_normals(mesh);
   std::vector<Plane> plane(g.size());
   for (std::size_t f = 0; f < g.size(); ++f) {
-    const Tri& t = mesh.faces[f];
-    const Vec3 a = mesh.positions[t[0]], b = mesh.positions[t[1]], c = mesh.positions[t[2]];
-    const Vec3 n = cross(b - a, c - a);
-    const double len = norm(n);
-    plane[f].normal = len > 0 ? n / len : Vec3{0, 0, 0};
-    plane[f].centre = (a + b + c) / 3.0;
+    plane[f].normal = normals[f];
+    plane[f].centre = face_centroid(mesh, f);
     plane[f].height = dot(plane[f].normal, plane[f].centre);
   }
   ArcWeights w{std::vector<float>(g.items.size()), std::vector<std::uint8_t>(g.items.size())};

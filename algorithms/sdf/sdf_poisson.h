@@ -38,8 +38,9 @@
 // where the full SDF has moved on: stopped early, the field is a local
 // average of the nearby samples, closer to the full SDF on every mesh
 // measured (docs/BENCHMARKS.md) and about ten times cheaper.  Last, with
-// smoothing, each sample takes its neighbours' weighted mean, as the faces between samples
-// rest on several samples and a sample on its own rays alone.
+// smoothing, each sample takes its neighbours' weighted mean, as the faces
+// between samples rest on several samples and a sample on its own rays
+// alone.
 //
 // A sample whose rays all escaped (an open mesh) is no boundary value: the
 // faces nearer to such a sample than to any other are taken as the region
