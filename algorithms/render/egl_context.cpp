@@ -205,7 +205,7 @@ struct EglContext::Impl {
     };
     if (!has_extension(egl().eglQueryString(d, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context"))
       return fail("no EGL_KHR_surfaceless_context");
-    if (!egl().eglBindAPI(EGL_OPENGL_API)) return fail("egl().eglBindAPI(OpenGL) failed (" + egl_error() + ")");
+    if (!egl().eglBindAPI(EGL_OPENGL_API)) return fail("eglBindAPI(OpenGL) failed (" + egl_error() + ")");
     EGLConfig config = nullptr;
     EGLint count = 0;
     for (EGLint surface : {EGLint(EGL_PBUFFER_BIT), EGLint(0)}) {
