@@ -14,7 +14,8 @@
 # runs the GPU caster's tests, the bench on three sample meshes (CGAL
 # measured beside), sdf_fast at 10% against the full sdf on the ten sample
 # meshes of 20k faces or more (on the machine's cores, the rays where the
-# automatic choice puts them), then on the 1.42M-triangle mesh with CGAL's
+# automatic choice puts them, then on Embree alone: a lab server of as many
+# cores without a GPU), then on the 1.42M-triangle mesh with CGAL's
 # time given
 # (--cgal-seconds big=461.0 by default: measured on this project's 2-core
 # build machine, docs/BENCHMARKS.md; CGAL alone would take most of a short
@@ -67,6 +68,7 @@ case "${1:-}" in
     "$g/bin/sdf_test" --gtest_filter='SdfRaysGpu.*'
     "$g/bin/sdf_gpu_bench" --repeat 3 --only elephant,armadillo,refined_elephant
     "$g/bin/sdf_bench" --fast-only --repeat 3 --only "$(echo $fast_meshes | tr ' ' ,)"
+    CGVIEW_SDF_RAYS=cpu "$g/bin/sdf_bench" --fast-only --repeat 3 --only "$(echo $fast_meshes | tr ' ' ,)"
     "$g/bin/sdf_gpu_bench" --repeat 1 --only big "${big_options[@]}"
     ;;
   *)
