@@ -317,7 +317,7 @@ struct GpuRayCaster::Impl {
       gc.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(rays * sizeof(GpuHit)), out.data());
       current.check("casting rays");
       for (std::size_t i = 0; i < rays; ++i)
-        if (out[i].face != kNoFace) hits[b * rays_per + i] = {double(out[i].distance), out[i].face};
+        if (out[i].face != kNoFace) hits[b * rays_per + i] = {double(out[i].distance), out[i].face, {}};
     }
     gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     gl.glUseProgram(0);

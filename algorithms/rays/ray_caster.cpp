@@ -105,8 +105,7 @@ RayCaster::RayCaster(const Mesh& mesh) : impl_(std::make_unique<Impl>()), normal
   const BBox box = bounding_box(mesh);
   int out = 0, in = 0;
   for (const Vec3& d : kInsideDirections)
-    if (const Hit h = first_hit(box.center() - d * (box.diagonal() + 1), d))
-      ++(dot(d, normals_[h.face]) < 0 ? out : in);
+    if (const Hit h = first_hit(box.center() - d * (box.diagonal() + 1), d)) ++(dot(d, h.normal) < 0 ? out : in);
   faces_out_ = out >= in;
 }
 
@@ -130,7 +129,7 @@ RayCaster::Hit RayCaster::first_hit(const Vec3& origin, const Vec3& direction, s
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   impl_->rtc.rtcIntersect1(impl_->scene, &sc.context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
-  return {double(rh.ray.tfar), rh.hit.primID};
+  return {double(rh.ray.tfar), rh.hit.primID, {double(rh.hit.Ng_x), double(rh.hit.Ng_y), double(rh.hit.Ng_z)}};
 }
 
 bool RayCaster::inside(const Vec3& p) const {
@@ -138,7 +137,7 @@ bool RayCaster::inside(const Vec3& p) const {
   int votes = 0;
   for (int k = 0; k < 3; ++k) {
     const Hit h = first_hit(p, kInsideDirections[k]);
-    if (h && (dot(kInsideDirections[k], normals_[h.face]) > 0) == faces_out_) ++votes;
+    if (h && (dot(kInsideDirections[k], h.normal) > 0) == faces_out_) ++votes;
     if (k == 1 && votes != 1) break;  // the first two agree
   }
   return votes >= 2;

@@ -19,6 +19,12 @@ class RayCaster {
   struct Hit {
     double distance = 0;           // along the unit direction
     std::uint32_t face = kNoFace;  // kNoFace: the ray met nothing
+    // The face's normal as the intersection computed it (Embree's geometric
+    // normal, (b - a) x (c - a), not of unit length; zero where the caster
+    // gives none): which side the ray met the face from, without reading the
+    // face's normal from memory, a cache miss on a large mesh (9% of
+    // sdf_fast's time on a 75k-face mesh).
+    Vec3 normal;
     explicit operator bool() const { return face != kNoFace; }
   };
 

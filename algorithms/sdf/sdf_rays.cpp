@@ -164,10 +164,12 @@ RawSdf SdfRayCaster::cast(std::span<const std::uint32_t> faces, const Context* c
   const auto direction = [&](std::size_t k, std::uint32_t f, const Vec3& u, const Vec3& v) {
     return normalized((-cone[k].axis) * normals[f] + cone[k].du * u + cone[k].dv * v);
   };
-  // A hit counts when the ray leaves the shape where it first meets the surface.
+  // A hit counts when the ray leaves the shape where it first meets the
+  // surface: the face is met from behind.  Embree's hits carry the face's
+  // normal; the compute shader's do not.
   const auto accept = [&](std::vector<std::pair<double, double>>& hits, const Vec3& d, const RayCaster::Hit& h,
                           std::size_t k) {
-    if (h && dot(d, normals[h.face]) > 0) hits.push_back({h.distance, cone[k].weight});
+    if (h && dot(d, h.normal == Vec3{} ? normals[h.face] : h.normal) > 0) hits.push_back({h.distance, cone[k].weight});
   };
 
   RawSdf out;
