@@ -271,6 +271,78 @@ void fill_escaped(const Mesh& mesh, const Adjacency& g, const SdfFastParams& p, 
   if (p.sdf.smooth) jacobi(g, region.near, {}, std::max(1, int(std::lround(window * window / 6.0))), values);
 }
 
+// The samples as a graph of their own: each face belongs to its nearest
+// sample (breadth-first from all of them, the first to reach it), and two
+// samples are neighbours where their regions touch.  `hop`: the mean rings
+// between neighbours, each pair by the shortest way through its two
+// regions' touching faces.
+struct SampleGraph {
+  Adjacency graph;  // over the samples' indices
+  double hop = 1;
+};
+
+SampleGraph sample_graph(const Adjacency& g, const std::vector<std::uint32_t>& samples) {
+  const std::size_t n = g.size(), m = samples.size();
+  constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> site(n, none), ring(n, 0), queue;
+  queue.reserve(n);
+  for (std::size_t k = 0; k < m; ++k) site[samples[k]] = std::uint32_t(k), queue.push_back(samples[k]);
+  for (std::size_t q = 0; q < queue.size(); ++q) {
+    const std::uint32_t f = queue[q];
+    for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h)
+      if (site[*h] == none) site[*h] = site[f], ring[*h] = ring[f] + 1, queue.push_back(*h);
+  }
+  // Each touching arc as (neighbour, rings) under its sample, counted first
+  // and then placed; each sample's list then sorted, its repeats dropped
+  // (the first of each neighbour is its shortest).
+  std::vector<std::uint32_t> at(m + 1, 0);
+  for (std::size_t f = 0; f < n; ++f)
+    for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h)
+      if (site[f] != site[*h] && site[f] != none && site[*h] != none) ++at[site[f] + 1];
+  for (std::size_t k = 0; k < m; ++k) at[k + 1] += at[k];
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> touch(at[m]);
+  {
+    std::vector<std::uint32_t> next(at.begin(), at.end() - 1);
+    for (std::size_t f = 0; f < n; ++f)
+      for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h)
+        if (site[f] != site[*h] && site[f] != none && site[*h] != none)
+          touch[next[site[f]]++] = {site[*h], ring[f] + 1 + ring[*h]};
+  }
+  SampleGraph out;
+  out.graph.offsets.assign(m + 1, 0);
+  out.graph.items.reserve(touch.size() / 2);
+  double rings = 0;
+  for (std::size_t k = 0; k < m; ++k) {
+    const auto b = touch.begin() + at[k], e = touch.begin() + at[k + 1];
+    std::sort(b, e);
+    for (auto i = b; i != e; ++i)
+      if (i == b || i->first != (i - 1)->first) out.graph.items.push_back(i->first), rings += i->second;
+    out.graph.offsets[k + 1] = std::uint32_t(out.graph.items.size());
+  }
+  if (!out.graph.items.empty()) out.hop = rings / double(out.graph.items.size());
+  return out;
+}
+
+// The samples' values smoothed among themselves (those without a value
+// walked through, as the full SDF's filter does): the full SDF's bilateral
+// filter on their own graph, its window the full SDF's less a ring (the
+// second round's samples lie closer together where the SDF varies, and a
+// window of rings holds more of them there), in hops of the mean rings
+// between neighbours.  The filter on the faces' rings visited every face of
+// a window, ten for each sample in it: 0.81 s of sdf_fast's 3.1 s at 10% on
+// the 1.42M-face mesh (window 26 rings), 0.20 s here (5 hops); and the
+// samples' graph came closer to the full SDF on eight of the ten meshes of
+// 20k faces or more, and on that one (docs/BENCHMARKS.md).
+void smooth_samples(const Adjacency& g, const SdfFastParams& p, const std::vector<std::uint32_t>& samples,
+                    std::vector<double>& values) {
+  const int window = std::max(1, (p.sdf.window > 0 ? p.sdf.window : default_window(g.size())) - 1);
+  const SampleGraph sg = sample_graph(g, samples);
+  std::vector<double> v(samples.size());
+  for (std::size_t k = 0; k < samples.size(); ++k) v[k] = values[samples[k]];
+  bilateral_smooth(sg.graph, v, std::max(1, int(std::lround(window / sg.hop))));
+  for (std::size_t k = 0; k < samples.size(); ++k) values[samples[k]] = v[k];
+}
+
 // Lowers `ring` (each face's rings from the samples so far) by a
 // breadth-first walk from the faces in `queue`, new samples at ring 0, that
 // stops where the rings are no lower.
@@ -481,13 +553,7 @@ FastSdf poisson_sdf_on(const Mesh& mesh, const Adjacency* given, const SdfFastPa
     std::fill(out.values.begin(), out.values.end(), 0.0);
     return out;
   }
-  // A ring narrower than the full SDF's window: the second round's samples
-  // lie closer together where the SDF varies, and a window of rings holds
-  // more of them there (one ring less was closer to the full SDF on nine of
-  // ten meshes, docs/BENCHMARKS.md).
-  if (p.sdf.smooth)
-    bilateral_smooth(g, out.values, std::max(1, (p.sdf.window > 0 ? p.sdf.window : default_window(n)) - 1), nullptr,
-                     kept);
+  if (p.sdf.smooth) smooth_samples(g, p, out.samples, out.values);
   if (ctx) ctx->progress(0.8, "solving the Poisson equation");
 
   // The unknowns: the faces of the parts that have a kept sample (those of a
