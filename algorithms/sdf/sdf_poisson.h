@@ -20,8 +20,10 @@
 // neighbouring faces differ by 3% of its range): there even its own values
 // at evenly spread samples, interpolated, are 3.5% off, and samples where
 // it varies help more than samples where it does not.  The samples' values
-// are then smoothed with a window one ring narrower than the full SDF's,
-// since the second round's samples lie closer together.
+// are then smoothed by the full SDF's filter on a graph of the samples
+// (neighbours where their nearest faces touch), its window one ring
+// narrower than the full SDF's (the second round's samples lie closer
+// together), in hops of the mean rings between neighbours.
 //
 // The matrix (the graph Laplacian restricted to the unknown faces) is
 // symmetric positive definite when every connected part of the mesh has a
