@@ -272,6 +272,7 @@ struct GpuRayCaster::Impl {
   GLuint buffers[kBuffers] = {};  // nodes, triangles, rays, hits, frames, cone
   std::size_t bytes[kBuffers] = {};
   std::size_t max_batch = 0;  // rays a dispatch casts at most
+  std::vector<Vec3> normals;  // each face's, for its hits (the shader returns the face alone)
 
   // Buffer k holding at least `size` bytes (grown, contents dropped).
   void reserve(const GlFunctions& gl, int k, std::size_t size) {
@@ -317,7 +318,8 @@ struct GpuRayCaster::Impl {
       gc.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(rays * sizeof(GpuHit)), out.data());
       current.check("casting rays");
       for (std::size_t i = 0; i < rays; ++i)
-        if (out[i].face != kNoFace) hits[b * rays_per + i] = {double(out[i].distance), out[i].face, {}};
+        if (out[i].face != kNoFace)
+          hits[b * rays_per + i] = {double(out[i].distance), out[i].face, normals[out[i].face]};
     }
     gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     gl.glUseProgram(0);
@@ -336,6 +338,7 @@ GpuRayCaster::GpuRayCaster(const Mesh& mesh, GlPlatform platform) : impl_(std::m
     throw Error("GPU rays: the OpenGL context (" + s.context->info().gl_renderer + ", " + s.context->info().gl_version +
                 ") has no compute shaders (OpenGL 4.3)");
   impl_->shared = &s;
+  impl_->normals = face_normals(mesh);
 
   BvhBuilder bvh(mesh);
   const std::vector<GpuTri> tris = bvh.tris();
@@ -377,6 +380,8 @@ GpuRayCaster::~GpuRayCaster() {
   } catch (...) {  // the context is gone: so are its buffers
   }
 }
+
+const std::vector<Vec3>& GpuRayCaster::normals() const { return impl_->normals; }
 
 const render::EglInfo& GpuRayCaster::info() const { return impl_->shared->context->info(); }
 

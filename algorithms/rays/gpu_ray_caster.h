@@ -71,6 +71,9 @@ class GpuRayCaster {
   // face to the GPU instead of 32 a ray.
   void cone_hits(std::span<const Frame> frames, std::span<const ConeRay> cone, std::vector<Hit>& hits) const;
 
+  // Unit normal of each face (zero for a degenerate one), as face_normals():
+  // its hits carry them.
+  const std::vector<Vec3>& normals() const;
   // The context's renderer (info().software: llvmpipe and its kin).
   const render::EglInfo& info() const;
   std::size_t bvh_nodes() const { return nodes_; }

@@ -19,11 +19,11 @@ class RayCaster {
   struct Hit {
     double distance = 0;           // along the unit direction
     std::uint32_t face = kNoFace;  // kNoFace: the ray met nothing
-    // The face's normal as the intersection computed it (Embree's geometric
-    // normal, (b - a) x (c - a), not of unit length; zero where the caster
-    // gives none): which side the ray met the face from, without reading the
-    // face's normal from memory, a cache miss on a large mesh (9% of
-    // sdf_fast's time on a 75k-face mesh).
+    // The face's normal, not necessarily of unit length: which side the
+    // ray met the face from.  Embree's geometric normal, (b - a) x (c - a),
+    // computed by the intersection: reading the face's normal from memory
+    // instead was a cache miss on a large mesh (9% of sdf_fast's time on a
+    // 75k-face mesh).  GpuRayCaster's hits carry the face's unit normal.
     Vec3 normal;
     explicit operator bool() const { return face != kNoFace; }
   };

@@ -132,7 +132,7 @@ SdfRayCaster::SdfRayCaster(const Mesh& mesh, const SdfParams& o) {
     }
   }
   if (!gpu) s_->caster = std::make_unique<RayCaster>(mesh);
-  s_->normals = s_->caster ? s_->caster->normals() : face_normals(mesh);
+  s_->normals = s_->caster ? s_->caster->normals() : gpu->normals();
 }
 
 SdfRayCaster::~SdfRayCaster() = default;
@@ -180,11 +180,10 @@ RawSdf SdfRayCaster::cast(std::span<const std::uint32_t> faces, const Context* c
     return normalized((-cone[k].axis) * normals[f] + cone[k].du * u + cone[k].dv * v);
   };
   // A hit counts when the ray leaves the shape where it first meets the
-  // surface: the face is met from behind.  Embree's hits carry the face's
-  // normal; the compute shader's do not.
+  // surface: the face is met from behind.
   const auto accept = [&](std::vector<std::pair<double, double>>& hits, const Vec3& d, const RayCaster::Hit& h,
                           std::size_t k) {
-    if (h && dot(d, h.normal == Vec3{} ? normals[h.face] : h.normal) > 0) hits.push_back({h.distance, cone[k].weight});
+    if (h && dot(d, h.normal) > 0) hits.push_back({h.distance, cone[k].weight});
   };
 
   RawSdf out;

@@ -66,6 +66,7 @@ void expect_embree_hits(const Mesh& mesh, const std::vector<Ray>& rays, const st
       ++same;
       if (e) {
         EXPECT_NEAR(g.distance, e.distance, 1e-5 * scale) << "ray " << i;
+        EXPECT_GT(dot(normalized(g.normal), normalized(e.normal)), 1 - 1e-5) << "ray " << i;
       }
     } else if (e && g && std::abs(e.distance - g.distance) < 1e-5 * scale) {
       ++near_edge;
