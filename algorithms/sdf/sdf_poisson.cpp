@@ -4,14 +4,17 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <algorithm>
+#include <atomic>
+#include <barrier>
 #include <cmath>
+#include <latch>
 #include <limits>
 #include <numeric>
 #include <optional>
-#include <thread>
 
 #include "core/threads.h"
 #include "filters/vertex_curvatures.h"
+#include "sdf/parallel_blocks.h"
 
 namespace cgview::sdf {
 namespace {
@@ -138,24 +141,43 @@ int sweeps_for(const SdfFastParams& p) { return int(std::clamp(std::lround(0.6 /
 // `sweeps` Jacobi sweeps of the equation over the `unknown` faces of x:
 // each takes its neighbours' mean, less its guidance term (none if empty);
 // with arc weights `w` (arc_weights's; none if empty), their weighted mean.
+// The unknown faces split over the cores, one share each (a sweep reads
+// only the last one's values), the shares meeting after each sweep: a
+// thread for each 8k faces at most, as one costs about as much to start
+// (35 us on the 2-core build machine) as a sweep over 16k faces, and the
+// sweeps are several (6 at 10%); `cores` threads at most.
 void jacobi(const Adjacency& g, const std::vector<std::uint32_t>& unknown, const std::vector<double>& guide, int sweeps,
-            std::vector<double>& x, const std::vector<float>& w = {}) {
+            std::vector<double>& x, const std::vector<float>& w = {}, int cores = thread_count()) {
   std::vector<double> next = x;
-  for (int s = 0; s < sweeps; ++s) {
-    for (std::uint32_t f : unknown) {
+  std::vector<double>* from = &x;
+  std::vector<double>* to = &next;
+  const auto sweep = [&](std::size_t begin, std::size_t end) {
+    const std::vector<double>& in = *from;
+    std::vector<double>& out = *to;
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::uint32_t f = unknown[i];
       double sum = guide.empty() ? 0.0 : -guide[f];
       if (w.empty()) {
-        for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) sum += x[*h];
-        next[f] = sum / double(g.degree(f));
+        for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h) sum += in[*h];
+        out[f] = sum / double(g.degree(f));
       } else {
         double weights = 0;
         for (std::uint32_t k = g.offsets[f]; k < g.offsets[f + 1]; ++k)
-          sum += double(w[k]) * x[g.items[k]], weights += double(w[k]);
-        next[f] = weights > 0 ? sum / weights : x[f];
+          sum += double(w[k]) * in[g.items[k]], weights += double(w[k]);
+        out[f] = weights > 0 ? sum / weights : in[f];
       }
     }
-    x.swap(next);
-  }
+  };
+  const std::size_t n = unknown.size();
+  const int threads = int(std::clamp<std::size_t>(n / 8192, 1, std::size_t(std::max(1, cores))));
+  std::barrier swept(threads, [&]() noexcept { std::swap(from, to); });
+  on_threads(threads, [&](int t) {
+    for (int s = 0; s < sweeps; ++s) {
+      sweep(n * std::size_t(t) / std::size_t(threads), n * std::size_t(t + 1) / std::size_t(threads));
+      swept.arrive_and_wait();
+    }
+  });
+  if (from != &x) x.swap(next);
 }
 
 // The unknown faces' values (`row` numbers them, -1 for the others) from the
@@ -163,14 +185,14 @@ void jacobi(const Adjacency& g, const std::vector<std::uint32_t>& unknown, const
 // face's nearest kept sample's value).
 void solve(const Mesh& mesh, const Adjacency& g, const SdfFastParams& p, const std::vector<double>& start,
            const std::vector<std::uint32_t>& unknown, const std::vector<std::int64_t>& row, const ArcWeights& weights,
-           FastSdf& out) {
+           int cores, FastSdf& out) {
   if (unknown.empty()) return;
   const std::vector<double> rhs_guide = guidance(mesh, g, p.curvature_weight);
 
   if (p.solver == Solver::diffusion) {
     out.values = start;
     out.iterations = sweeps_for(p);
-    jacobi(g, unknown, rhs_guide, out.iterations, out.values, weights.weight);
+    jacobi(g, unknown, rhs_guide, out.iterations, out.values, weights.weight, cores);
     return;
   }
 
@@ -426,10 +448,9 @@ std::vector<double> uncertainty(const Adjacency& g, const SdfFastParams& p, cons
   mean = nearest_known(g, mean);
   std::vector<double> square(n);
   for (std::size_t f = 0; f < n; ++f) square[f] = mean[f] * mean[f];
-  // The two spreads side by side on two cores: this step is serial else.
-  std::thread other([&] { jacobi(g, unknown, {}, sweeps_for(p), square); });
-  jacobi(g, unknown, {}, sweeps_for(p), mean);
-  other.join();
+  // The two spreads side by side, each on half the cores.
+  const int half = std::max(1, thread_count() / 2);
+  on_threads(2, [&](int t) { jacobi(g, unknown, {}, sweeps_for(p), t == 0 ? mean : square, {}, half); });
   std::vector<double> out(n);
   for (std::size_t f = 0; f < n; ++f)
     out[f] = std::sqrt(std::max(0.0, square[f] - mean[f] * mean[f])) + 1e-3 * (largest - smallest);
@@ -509,17 +530,30 @@ FastSdf poisson_sdf_on(const Mesh& mesh, const Adjacency* given, const SdfFastPa
   // The face graph and the first round's samples, which need no BVH, are
   // made on a second thread while the BVH is built: Embree's build keeps
   // both cores busy only in part (on polygon_mesh, 32k faces, it takes 3.5
-  // ms on two threads, 7 on one).
+  // ms on two threads, 7 on one).  The arcs' weights, needed from the solve
+  // on, are weighed by whichever thread is free first once the graph is
+  // made: the BVH's on large meshes (its 0.4 s against the graph and the
+  // sampling's 0.6 s on 1.42M faces, on 2 cores; with more cores the BVH
+  // the sooner), the sampling's on small ones.
   const std::size_t total = std::size_t(std::ceil(p.fraction * double(n)));
   std::vector<std::uint32_t> ring, first;
   ArcWeights weights;
   std::optional<SdfRayCaster> caster;
+  std::latch graph_made(1);
+  std::atomic_flag weighed;
+  const auto weigh_arcs = [&] {
+    if (!weighed.test_and_set()) weights = arc_weights(mesh, g);
+  };
   on_threads(2, [&](int t) {
     if (t == 1) {
       if (!given) out.graph = face_neighbors(mesh, edge_topology(mesh));
+      graph_made.count_down();
       first = spread_rings(g, std::size_t(std::ceil(kFirstRound * double(total))), ring);
+      weigh_arcs();
     } else {
       caster.emplace(mesh, p.sdf);
+      graph_made.wait();
+      weigh_arcs();
     }
   });
   const SdfRayCaster& rays = *caster;
@@ -527,16 +561,10 @@ FastSdf poisson_sdf_on(const Mesh& mesh, const Adjacency* given, const SdfFastPa
   std::vector<std::uint32_t> second;
   RawSdf raw2;
   if (first.size() < total) {
-    // The arcs' weights, needed from the solve on, beside the choice of the
-    // second round's faces (serial).
     const std::vector<double> spread = uncertainty(g, p, first, raw1.values);
-    on_threads(2, [&](int t) {
-      if (t == 1) weights = arc_weights(mesh, g);
-      else second = more_samples(g, std::move(ring), spread, total - first.size());
-    });
+    second = more_samples(g, std::move(ring), spread, total - first.size());
     raw2 = rays.cast(second, ctx, 0.5, 0.8);
   }
-  if (weights.weight.empty()) weights = arc_weights(mesh, g);  // one round only
   merge_rounds(first, raw1, second, raw2, out);
 
   // Only the samples whose rays found the inside are boundary values: one
@@ -571,7 +599,7 @@ FastSdf poisson_sdf_on(const Mesh& mesh, const Adjacency* given, const SdfFastPa
       if (std::isnan(out.values[f]) && !std::isnan(start[f]))
         row[f] = std::int64_t(unknown.size()), unknown.push_back(std::uint32_t(f));
     out.unknowns = unknown.size();
-    solve(mesh, g, p, start, unknown, row, weights, out);
+    solve(mesh, g, p, start, unknown, row, weights, thread_count() - (escaped.empty() ? 0 : 1), out);
     // Last, with smoothing, each sample takes its neighbours' weighted mean:
     // its own value rests on its own cone of rays, theirs on the several
     // samples the solve reached them from (mannequin-devil 3.32% to 3.21% off
