@@ -10,10 +10,10 @@ namespace cgview::sdf {
 SdfResult sdf(const Mesh& mesh, const SdfParams& p, Context* context) {
   check_params(p);
   const Context& ctx = context_or_none(context);
-  RawSdf raw = raw_sdf(mesh, p, {}, &ctx, 0.0, p.smooth ? 0.8 : 0.95);
+  Adjacency graph;
+  RawSdf raw = raw_sdf(mesh, p, graph, &ctx, 0.0, p.smooth ? 0.8 : 0.95);
   SdfResult result;
   warn_missing(raw, result.warnings);
-  const Adjacency graph = face_neighbors(mesh, edge_topology(mesh));
   std::vector<double> values = raw.values;
   postprocess(mesh, graph, values, p, ctx);
   result.sdf = ScalarField{"sdf", Location::face, ColorHint::standard, {values.begin(), values.end()}};

@@ -266,6 +266,16 @@ RawSdf raw_sdf(const Mesh& mesh, const SdfParams& o, std::span<const std::uint32
   return SdfRayCaster(mesh, o).cast(faces, ctx, from, to);
 }
 
+RawSdf raw_sdf(const Mesh& mesh, const SdfParams& o, Adjacency& face_graph, const Context* ctx, double from,
+               double to) {
+  RawSdf raw;
+  on_threads(2, [&](int t) {
+    if (t == 1) face_graph = face_neighbors(mesh, edge_topology(mesh));
+    else raw = raw_sdf(mesh, o, {}, ctx, from, to);
+  });
+  return raw;
+}
+
 void fill_missing(const Mesh& mesh, const Adjacency& graph, std::vector<double>& values) {
   double smallest = HUGE_VAL;
   for (double v : values)

@@ -28,9 +28,9 @@ SdfSegmentationResult sdf_segmentation(const Mesh& mesh, const SdfSegmentationPa
   std::vector<std::int64_t> face_of(mesh.faces.size());
   if (repaired) face_of = faces_after_repair(mesh, sm);
   else std::iota(face_of.begin(), face_of.end(), std::int64_t(0));
-  RawSdf raw = raw_sdf(mesh, p.sdf, {}, &ctx, 0.0, 0.7);
+  Adjacency graph;
+  RawSdf raw = raw_sdf(mesh, p.sdf, graph, &ctx, 0.0, 0.7);
   warn_missing(raw, result.warnings);
-  const Adjacency graph = face_neighbors(mesh, edge_topology(mesh));
   std::vector<double> values = raw.values;
   postprocess(mesh, graph, values, p.sdf, ctx);
   values = normalize_linear(values);  // CGAL wants them in [0, 1]
