@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,31 @@ struct Options {
   }
 };
 
+// The items of a comma-separated list, empty ones dropped.
+inline std::vector<std::string> comma_list(const std::string& list) {
+  std::vector<std::string> out;
+  for (std::size_t start = 0; start <= list.size();) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    if (comma > start) out.push_back(list.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return out;
+}
+
+// A benchmark's own option, taken out of argv before parse_options reads
+// the common ones: "--name VALUE" its value (with_value), "--name" alone
+// an empty string (a flag); nullopt where it is not given.
+inline std::optional<std::string> take_option(int& argc, char** argv, const std::string& name, bool with_value) {
+  std::optional<std::string> out;
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    if (argv[i] == name && (!with_value || i + 1 < argc)) out = with_value ? std::string(argv[++i]) : std::string();
+    else argv[kept++] = argv[i];
+  }
+  argc = kept;
+  return out;
+}
+
 // Exits with status 2 and a usage line on anything it does not know
 // (--only too, for a benchmark whose rows cannot be chosen: takes_only false).
 inline Options parse_options(int argc, char** argv, const char* program, bool takes_only = true) {
@@ -37,12 +63,7 @@ inline Options parse_options(int argc, char** argv, const char* program, bool ta
     } else if (a == "--quick") {
       o.quick = true;
     } else if (takes_only && a == "--only" && i + 1 < argc) {
-      std::string list = argv[++i];
-      for (std::size_t start = 0; start <= list.size();) {
-        const std::size_t comma = std::min(list.find(',', start), list.size());
-        if (comma > start) o.only.push_back(list.substr(start, comma - start));
-        start = comma + 1;
-      }
+      for (std::string& name : comma_list(argv[++i])) o.only.push_back(std::move(name));
     } else {
       std::fprintf(stderr, "usage: %s [--repeat N] [--quick]%s\n", program,
                    takes_only ? " [--only NAME[,NAME...]]" : "");

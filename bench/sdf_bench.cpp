@@ -68,23 +68,12 @@ std::vector<double> turned_sdf(const Mesh& mesh, const sdf::SdfParams& p) {
   return our_sdf(turned, p, true);
 }
 
-// --fast-only: taken out of argv before the common options.
-bool take_flag(int& argc, char** argv, const std::string& flag) {
-  bool found = false;
-  int kept = 1;
-  for (int i = 1; i < argc; ++i)
-    if (argv[i] == flag) found = true;
-    else argv[kept++] = argv[i];
-  argc = kept;
-  return found;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   // Without CGAL's table (one core, minutes): sdf_fast against our sdf alone,
   // as on a lent GPU machine, where the time is short.
-  const bool fast_only = take_flag(argc, argv, "--fast-only");
+  const bool fast_only = bench::take_option(argc, argv, "--fast-only", false).has_value();
   const bench::Options opt = bench::parse_options(argc, argv, "sdf_bench");
   const std::vector<bench::SdfInput> inputs = bench::sdf_inputs(opt, "sdf_bench");
   const sdf::SdfParams defaults;

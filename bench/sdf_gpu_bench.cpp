@@ -36,26 +36,15 @@ namespace {
 // --cgal-seconds NAME=S,...: taken out of argv before the common options.
 std::map<std::string, double> given_cgal_seconds(int& argc, char** argv) {
   std::map<std::string, double> out;
-  int kept = 1;
-  for (int i = 1; i < argc; ++i) {
-    if (std::string(argv[i]) == "--cgal-seconds" && i + 1 < argc) {
-      const std::string list = argv[++i];
-      for (std::size_t start = 0; start < list.size();) {
-        const std::size_t comma = std::min(list.find(',', start), list.size());
-        const std::string item = list.substr(start, comma - start);
-        const std::size_t eq = item.find('=');
-        if (eq == std::string::npos) {
-          std::fprintf(stderr, "sdf_gpu_bench: --cgal-seconds wants NAME=SECONDS, got '%s'\n", item.c_str());
-          std::exit(2);
-        }
-        out[item.substr(0, eq)] = std::atof(item.c_str() + eq + 1);
-        start = comma + 1;
-      }
-    } else {
-      argv[kept++] = argv[i];
+  for (const std::string& item :
+       bench::comma_list(bench::take_option(argc, argv, "--cgal-seconds", true).value_or(""))) {
+    const std::size_t eq = item.find('=');
+    if (eq == std::string::npos) {
+      std::fprintf(stderr, "sdf_gpu_bench: --cgal-seconds wants NAME=SECONDS, got '%s'\n", item.c_str());
+      std::exit(2);
     }
+    out[item.substr(0, eq)] = std::atof(item.c_str() + eq + 1);
   }
-  argc = kept;
   return out;
 }
 
