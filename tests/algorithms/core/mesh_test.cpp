@@ -300,6 +300,51 @@ TEST(MeshTest, EdgeTopologySkipsCollapsedSides) {
   EXPECT_EQ(topo.face_edges[1][1], topo.face_edges[0][1]);
 }
 
+// Above 64k faces a thread a share of them builds the topology and the
+// face graph: the same as a map from each side's two ends to its faces in
+// their order, on a grid of 180k faces with its vertices numbered out of
+// order, three faces on one edge and a face with a collapsed side.
+TEST(MeshTest, EdgeTopologyAndFaceNeighborsOfALargeMeshMatchAMapOfItsSides) {
+  Mesh m = grid(300);
+  const std::size_t nv = m.positions.size();
+  std::vector<Index> rename(nv);
+  for (std::size_t v = 0; v < nv; ++v) rename[v] = Index((v * 7919) % nv);  // 7919 is prime to 301^2
+  for (Tri& t : m.faces)
+    for (Index& i : t) i = rename[i];
+  m.faces.push_back({m.faces[5][0], m.faces[5][1], m.faces[9][2]});  // a third face on face 5's first side
+  m.faces.push_back({m.faces[7][0], m.faces[7][0], m.faces[7][1]});  // a collapsed side
+  ASSERT_GT(m.faces.size(), 2u * 65536u);
+  std::map<std::array<Index, 2>, std::vector<std::uint32_t>> sides;  // (low, high) -> face * 3 + k
+  for (std::uint32_t f = 0; f < m.faces.size(); ++f)
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const Index a = m.faces[f][k], b = m.faces[f][(k + 1) % 3];
+      if (a != b) sides[{std::min(a, b), std::max(a, b)}].push_back(3 * f + k);
+    }
+  const EdgeTopology topo = edge_topology(m);
+  ASSERT_EQ(topo.edges.size(), sides.size());
+  ASSERT_EQ(topo.edge_faces.size(), sides.size());
+  std::vector<std::array<Index, 3>> face_edges(m.faces.size(), {kNone, kNone, kNone});
+  std::size_t e = 0;
+  for (const auto& [ends, corners] : sides) {
+    ASSERT_EQ(topo.edges[e], ends) << "edge " << e;
+    std::vector<std::uint32_t> faces;
+    for (std::uint32_t c : corners) faces.push_back(c / 3), face_edges[c / 3][c % 3] = Index(e);
+    ASSERT_EQ(std::vector<std::uint32_t>(topo.edge_faces.begin(e), topo.edge_faces.end(e)), faces) << "edge " << e;
+    ++e;
+  }
+  ASSERT_EQ(topo.face_edges, face_edges);
+  const Adjacency fn = face_neighbors(m, topo);
+  ASSERT_EQ(fn.size(), m.faces.size());
+  for (std::uint32_t f = 0; f < m.faces.size(); ++f) {
+    std::vector<std::uint32_t> expected;
+    for (Index edge : face_edges[f])
+      if (edge != kNone)
+        for (auto g = topo.edge_faces.begin(edge); g != topo.edge_faces.end(edge); ++g)
+          if (*g != f) expected.push_back(*g);
+    ASSERT_EQ(std::vector<std::uint32_t>(fn.begin(f), fn.end(f)), expected) << "face " << f;
+  }
+}
+
 TEST(MeshTest, FaceNeighborsOfClosedMeshAreThree) {
   for (const Mesh& m : {box(), torus(), uv_sphere(1.0, 8, 12)}) {
     const EdgeTopology topo = edge_topology(m);
