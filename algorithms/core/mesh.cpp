@@ -4,7 +4,6 @@
 #include <limits>
 #include <numeric>
 #include <string>
-#include <thread>
 #include <unordered_map>
 
 #include "core/errors.h"
@@ -15,6 +14,8 @@ namespace cgview {
 
 namespace {
 constexpr Index kNone = std::numeric_limits<Index>::max();
+// The face graph's passes: a thread for each 64k faces at most.
+constexpr std::size_t kFacesPerThread = 65536;
 
 void check_index_triangles(const std::vector<Tri>& tris, std::size_t count, const char* what) {
   for (std::size_t f = 0; f < tris.size(); ++f)
@@ -168,16 +169,10 @@ EdgeTopology edge_topology(const Mesh& mesh) {
   // Each vertex's sides sorted and its edges counted, then the edges
   // numbered in the vertices' order and written: both with the vertices
   // split over the cores (each writes its own sides, edges and face
-  // corners), a thread for each 64k faces at most.
-  const int threads =
-      int(std::clamp<std::size_t>(F.size() / 65536, 1, std::max(1u, std::thread::hardware_concurrency())));
-  const auto split = [&](const auto& pass) {
-    on_threads(threads, [&](int t) {
-      pass(nv * std::size_t(t) / std::size_t(threads), nv * std::size_t(t + 1) / std::size_t(threads));
-    });
-  };
+  // corners).
+  const int threads = threads_for(F.size(), kFacesPerThread);
   std::vector<std::uint32_t> first_edge(nv + 1, 0);
-  split([&](std::size_t begin, std::size_t end) {
+  on_shares(nv, threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
       const auto first = sides.begin() + offsets[v], last = sides.begin() + offsets[v + 1];
       std::sort(first, last, [](const Side& x, const Side& y) {
@@ -197,7 +192,7 @@ EdgeTopology edge_topology(const Mesh& mesh) {
   topo.edge_faces.offsets.resize(first_edge[nv] + 1);
   topo.edge_faces.offsets[first_edge[nv]] = std::uint32_t(sides.size());
   topo.edge_faces.items.resize(sides.size());
-  split([&](std::size_t begin, std::size_t end) {
+  on_shares(nv, threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
       Index e = first_edge[v];
       for (std::uint32_t k = offsets[v]; k < offsets[v + 1]; ++k) {
@@ -221,15 +216,9 @@ Adjacency face_neighbors(const Mesh& mesh, const EdgeTopology& topo) {
   a.offsets.assign(n + 1, 0);
   // Both passes with the faces split over the cores (each face writes its
   // own count, then its own list): they read the edges' lists in no order,
-  // a cache miss or two a side, 0.1 s on one core for 1.42M faces.  A
-  // thread for each 64k faces at most.
-  const int threads = int(std::clamp<std::size_t>(n / 65536, 1, std::max(1u, std::thread::hardware_concurrency())));
-  const auto split = [&](const auto& pass) {
-    on_threads(threads, [&](int t) {
-      pass(n * std::size_t(t) / std::size_t(threads), n * std::size_t(t + 1) / std::size_t(threads));
-    });
-  };
-  split([&](std::size_t begin, std::size_t end) {
+  // a cache miss or two a side, 0.1 s on one core for 1.42M faces.
+  const int threads = threads_for(n, kFacesPerThread);
+  on_shares(n, threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t f = begin; f < end; ++f) {
       std::uint32_t count = 0;
       // Count the entries written below (a face listed twice on one edge,
@@ -242,7 +231,7 @@ Adjacency face_neighbors(const Mesh& mesh, const EdgeTopology& topo) {
   });
   std::partial_sum(a.offsets.begin(), a.offsets.end(), a.offsets.begin());
   a.items.resize(a.offsets.back());
-  split([&](std::size_t begin, std::size_t end) {
+  on_shares(n, threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t f = begin; f < end; ++f) {
       std::uint32_t o = a.offsets[f];
       for (Index e : topo.face_edges[f]) {

@@ -4,16 +4,36 @@
 // through shared state, as the callers' cancellation flags do).
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <thread>
 #include <vector>
 
 namespace cgview {
+
+// The machine's cores, at least one.
+inline int thread_count() { return std::max(1, int(std::thread::hardware_concurrency())); }
 
 template <class F>
 void on_threads(int threads, const F& f) {
   std::vector<std::jthread> pool;  // joined when this returns, or unwinds
   for (int t = 1; t < threads; ++t) pool.emplace_back(f, t);
   f(0);
+}
+
+// The threads to split `items` over: one for each `per_thread` of
+// them at most (a thread costs tens of microseconds to start), `most` at
+// most, at least one.
+inline int threads_for(std::size_t items, std::size_t per_thread, int most = thread_count()) {
+  return int(std::clamp<std::size_t>(items / per_thread, 1, std::size_t(std::max(1, most))));
+}
+
+// f(begin, end) over [0, n) in `threads` equal shares, share t on thread t
+// (on_threads: share 0 on the calling thread).
+template <class F>
+void on_shares(std::size_t n, int threads, const F& f) {
+  const std::size_t parts = std::size_t(std::max(1, threads));
+  on_threads(int(parts), [&](int t) { f(n * std::size_t(t) / parts, n * std::size_t(t + 1) / parts); });
 }
 
 }  // namespace cgview

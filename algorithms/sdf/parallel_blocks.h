@@ -12,8 +12,6 @@
 
 namespace cgview::sdf {
 
-inline int thread_count() { return std::max(1, int(std::thread::hardware_concurrency())); }
-
 // Runs fn(begin, end) over [0, n) in blocks on `threads` threads.  Only the
 // calling thread touches ctx (progress, cancellation: a Context need not be
 // thread-safe); the others stop at the next block once it is cancelled.

@@ -14,7 +14,6 @@
 
 #include "core/threads.h"
 #include "filters/vertex_curvatures.h"
-#include "sdf/parallel_blocks.h"
 
 namespace cgview::sdf {
 namespace {
@@ -168,12 +167,11 @@ void jacobi(const Adjacency& g, const std::vector<std::uint32_t>& unknown, const
       }
     }
   };
-  const std::size_t n = unknown.size();
-  const int threads = int(std::clamp<std::size_t>(n / 8192, 1, std::size_t(std::max(1, cores))));
+  const int threads = threads_for(unknown.size(), 8192, cores);
   std::barrier swept(threads, [&]() noexcept { std::swap(from, to); });
-  on_threads(threads, [&](int t) {
+  on_shares(unknown.size(), threads, [&](std::size_t begin, std::size_t end) {
     for (int s = 0; s < sweeps; ++s) {
-      sweep(n * std::size_t(t) / std::size_t(threads), n * std::size_t(t + 1) / std::size_t(threads));
+      sweep(begin, end);
       swept.arrive_and_wait();
     }
   });
