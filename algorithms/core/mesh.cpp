@@ -14,7 +14,8 @@ namespace cgview {
 
 namespace {
 constexpr Index kNone = std::numeric_limits<Index>::max();
-// The face graph's passes: a thread for each 64k faces at most.
+// The passes over the faces (their normals, the face graph): a thread for
+// each 64k faces at most.
 constexpr std::size_t kFacesPerThread = 65536;
 
 void check_index_triangles(const std::vector<Tri>& tris, std::size_t count, const char* what) {
@@ -80,7 +81,9 @@ std::vector<double> face_areas(const Mesh& mesh) {
 
 std::vector<Vec3> face_normals(const Mesh& mesh) {
   std::vector<Vec3> out(mesh.faces.size());
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) out[f] = normalized(face_cross(mesh, f));
+  on_shares(out.size(), threads_for(out.size(), kFacesPerThread), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t f = begin; f < end; ++f) out[f] = normalized(face_cross(mesh, f));
+  });
   return out;
 }
 

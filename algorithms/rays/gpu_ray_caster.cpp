@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "core/errors.h"
+#include "core/threads.h"
 #include "render/gl_functions.h"
 
 namespace cgview {
@@ -181,34 +182,59 @@ class Current {
 };
 
 // The flattened BVH: nodes depth-first, triangles in leaf order.
+// Median splits along the centroids' longest extent, into leaves of at most
+// kLeafSize triangles, laid out depth first (a node's left child follows it).
+// The faces' centroids travel with their numbers, 16 bytes an item, so that
+// each level's splits stream through memory; a node's box is its children's,
+// made on the way back up, and the faces' own boxes are read once, at the
+// leaves.  (Items by number into the mesh's centroids and a box from every
+// triangle at every level took 0.29 s on the 1.42M-face mesh, 2 cores; this
+// 0.16 s.)
 class BvhBuilder {
  public:
-  BvhBuilder(const Mesh& mesh) : mesh_(mesh), centroid_(mesh.faces.size()), order_(mesh.faces.size()) {
-    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-      centroid_[f] = face_centroid(mesh, f);
-      order_[f] = std::uint32_t(f);
-    }
-    const BBox box = bounding_box(mesh);
+  explicit BvhBuilder(const Mesh& mesh) : mesh_(mesh), items_(mesh.faces.size()), boxes_(mesh.faces.size()) {
+    const std::size_t n = mesh.faces.size();
     // Boxes a little larger than their triangles, so that float rounding in
     // the slab test never loses a hit on a box's face.
-    pad_ = 1e-6 * box.diagonal() + 1e-30;
-    nodes_.resize(node_count(mesh.faces.size()));
-    build(0, 0, mesh.faces.size(), 0);
+    const double pad = 1e-6 * bounding_box(mesh).diagonal() + 1e-30;
+    on_shares(n, threads_for(n, kFacesPerThread), [&](std::size_t b, std::size_t e) {
+      for (std::size_t f = b; f < e; ++f) {
+        const Tri& t = mesh.faces[f];
+        const Vec3 p = mesh.positions[t[0]], q = mesh.positions[t[1]], r = mesh.positions[t[2]];
+        const Vec3 c = (p + q + r) / 3.0;
+        items_[f] = {{float(c.x), float(c.y), float(c.z)}, std::uint32_t(f)};
+        for (int j = 0; j < 3; ++j) {
+          boxes_[f].lo[j] = float(std::min({p[j], q[j], r[j]}) - pad);
+          boxes_[f].hi[j] = float(std::max({p[j], q[j], r[j]}) + pad);
+        }
+      }
+    });
+    nodes_.resize(node_count(n));
+    for (int t = 1; t < thread_count(); t *= 2) ++split_depth_;
+    build(0, 0, n, 0);
   }
   std::vector<GpuNode>& nodes() { return nodes_; }
   std::vector<GpuTri> tris() const {
-    std::vector<GpuTri> out(order_.size());
-    for (std::size_t k = 0; k < order_.size(); ++k) {
-      const Tri& t = mesh_.faces[order_[k]];
-      const Vec3 a = mesh_.positions[t[0]], b = mesh_.positions[t[1]], c = mesh_.positions[t[2]];
-      const Vec3 e1 = b - a, e2 = c - a;
-      out[k] = {{float(a.x), float(a.y), float(a.z)},    order_[k], {float(e1.x), float(e1.y), float(e1.z)}, 0,
-                {float(e2.x), float(e2.y), float(e2.z)}, 0};
-    }
+    std::vector<GpuTri> out(items_.size());
+    on_shares(out.size(), threads_for(out.size(), kFacesPerThread), [&](std::size_t b, std::size_t e) {
+      for (std::size_t k = b; k < e; ++k) {
+        const std::uint32_t f = items_[k].face;
+        const Tri& t = mesh_.faces[f];
+        const Vec3 a = mesh_.positions[t[0]], e1 = mesh_.positions[t[1]] - a, e2 = mesh_.positions[t[2]] - a;
+        out[k] = {{float(a.x), float(a.y), float(a.z)},    f, {float(e1.x), float(e1.y), float(e1.z)}, 0,
+                  {float(e2.x), float(e2.y), float(e2.z)}, 0};
+      }
+    });
     return out;
   }
 
  private:
+  struct Item {
+    float centroid[3];
+    std::uint32_t face;
+  };
+  static constexpr std::size_t kFacesPerThread = 65536;
+
   // Nodes of a subtree of n triangles: the split depends on n alone, so
   // that both halves can be built at once, each at its known place.
   std::size_t node_count(std::size_t n) {
@@ -219,49 +245,57 @@ class BvhBuilder {
     return c;
   }
 
+  static void unite(GpuNode& box, const GpuNode& other) {
+    for (int j = 0; j < 3; ++j) {
+      box.lo[j] = std::min(box.lo[j], other.lo[j]);
+      box.hi[j] = std::max(box.hi[j], other.hi[j]);
+    }
+  }
+
   void build(std::size_t node, std::size_t b, std::size_t e, int depth) {
     GpuNode& out = nodes_[node];
-    BBox box, centroids;
-    for (std::size_t k = b; k < e; ++k) {
-      const Tri& t = mesh_.faces[order_[k]];
-      for (int j = 0; j < 3; ++j) box.add(mesh_.positions[t[j]]);
-      centroids.add(centroid_[order_[k]]);
-    }
-    for (int j = 0; j < 3; ++j) {
-      out.lo[j] = float(box.min[j] - pad_);
-      out.hi[j] = float(box.max[j] + pad_);
-    }
     const std::size_t n = e - b;
     if (n <= kLeafSize) {
+      out = boxes_[items_[b].face];
+      for (std::size_t k = b + 1; k < e; ++k) unite(out, boxes_[items_[k].face]);
       out.a = std::uint32_t(b);
       out.count = std::uint32_t(n);
       return;
     }
-    const Vec3 ext = centroids.size();
-    const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
+    float lo[3] = {HUGE_VALF, HUGE_VALF, HUGE_VALF}, hi[3] = {-HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
+    for (std::size_t k = b; k < e; ++k)
+      for (int j = 0; j < 3; ++j) {
+        lo[j] = std::min(lo[j], items_[k].centroid[j]);
+        hi[j] = std::max(hi[j], items_[k].centroid[j]);
+      }
+    const float x = hi[0] - lo[0], y = hi[1] - lo[1], z = hi[2] - lo[2];
+    const int axis = x >= y && x >= z ? 0 : y >= z ? 1 : 2;
     const std::size_t mid = b + n / 2;
-    std::nth_element(order_.begin() + std::ptrdiff_t(b), order_.begin() + std::ptrdiff_t(mid),
-                     order_.begin() + std::ptrdiff_t(e),
-                     [&](std::uint32_t x, std::uint32_t y) { return centroid_[x][axis] < centroid_[y][axis]; });
-    const std::size_t right = node + 1 + node_count(n / 2);
-    out.a = std::uint32_t(right);
-    out.count = 0;
-    // The top levels' halves on threads of their own (disjoint ranges and nodes).
-    if (depth < 3 && n > 100000) {
-      std::jthread left([&] { build(node + 1, b, mid, depth + 1); });
+    std::nth_element(items_.begin() + std::ptrdiff_t(b), items_.begin() + std::ptrdiff_t(mid),
+                     items_.begin() + std::ptrdiff_t(e),
+                     [axis](const Item& i, const Item& j) { return i.centroid[axis] < j.centroid[axis]; });
+    const std::size_t left = node + 1, right = node + 1 + node_count(n / 2);
+    // The top levels' halves on threads of their own (disjoint ranges and
+    // nodes), a thread for each core.
+    if (depth < split_depth_ && n > kFacesPerThread) {
+      std::jthread other([&] { build(left, b, mid, depth + 1); });
       build(right, mid, e, depth + 1);
     } else {
-      build(node + 1, b, mid, depth + 1);
+      build(left, b, mid, depth + 1);
       build(right, mid, e, depth + 1);
     }
+    out = nodes_[left];
+    unite(out, nodes_[right]);
+    out.a = std::uint32_t(right);
+    out.count = 0;
   }
 
   const Mesh& mesh_;
-  std::vector<Vec3> centroid_;
-  std::vector<std::uint32_t> order_;
+  std::vector<Item> items_;
+  std::vector<GpuNode> boxes_;  // each face's, padded
   std::vector<GpuNode> nodes_;
   std::map<std::size_t, std::size_t> counts_;
-  double pad_ = 0;
+  int split_depth_ = 0;
 };
 
 }  // namespace

@@ -87,6 +87,16 @@ TEST(GpuRayCaster, SameHitsAsEmbreeOnASampleMesh) {
   RecordProperty("renderer", gpu.info().gl_renderer);
 }
 
+// Above 64k faces the BVH's top levels are built on threads of their own
+// (on a machine of two cores or more): the same hits.
+TEST(GpuRayCaster, SameHitsAsEmbreeOnAMeshLargeEnoughToBuildOnThreads) {
+  const Mesh mesh = read_mesh(test::sample("refined_elephant.off"));
+  ASSERT_GT(mesh.faces.size(), 65536u);
+  const GpuRayCaster gpu(mesh);
+  const std::vector<Ray> rays = sample_rays(mesh, 2000);
+  expect_embree_hits(mesh, rays, gpu.first_hits(rays));
+}
+
 TEST(GpuRayCaster, ConesMadeInTheShaderHitAsTheSameRaysFromTheCpu) {
   const Mesh mesh = read_mesh(test::sample("elephant.off"));
   const GpuRayCaster gpu(mesh);
