@@ -36,10 +36,7 @@ struct GpuTri {  // v0, and the edges v1 - v0, v2 - v0
   float e2[3];
   float pad2;
 };
-struct GpuHit {
-  float distance;
-  std::uint32_t face;
-};
+using GpuHit = GpuRayCaster::FaceHit;
 static_assert(sizeof(GpuNode) == 32 && sizeof(GpuTri) == 48 && sizeof(GpuHit) == 8);
 static_assert(sizeof(GpuRayCaster::Ray) == 32 && sizeof(GpuRayCaster::Frame) == 64 &&
               sizeof(GpuRayCaster::ConeRay) == 16);
@@ -316,12 +313,12 @@ struct GpuRayCaster::Impl {
     bytes[k] = size;
   }
   // The rays of `count` items (rays, or frames of `per_item` rays each
-  // with `cone` beside them) into hits, item by item in buffer `buffer`,
-  // in batches of at most max_batch rays.
+  // with `cone` beside them) into hits as the shader writes them, item by
+  // item in buffer `buffer`, in batches of at most max_batch rays.
   void cast(const void* items, std::size_t count, std::size_t item_bytes, int buffer, std::size_t per_item,
-            std::span<const std::byte> cone, std::vector<Hit>& hits) {
+            std::span<const std::byte> cone, std::vector<GpuHit>& hits) {
     const std::size_t rays_per = std::max<std::size_t>(1, per_item);
-    hits.assign(count * rays_per, Hit{});
+    hits.resize(count * rays_per);
     if (hits.empty()) return;
     const Current current(*shared);
     const GlFunctions& gl = current.gl();
@@ -338,7 +335,6 @@ struct GpuRayCaster::Impl {
     gl.glUseProgram(shared->program);
     for (int k = 0; k < kBuffers; ++k) gc.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(k), buffers[k]);
     gl.glUniform1ui(shared->cone_rays, GLuint(per_item));
-    std::vector<GpuHit> out;
     for (std::size_t b = 0; b < count; b += batch) {
       const std::size_t n = std::min(batch, count - b), rays = n * rays_per;
       gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[buffer]);
@@ -347,13 +343,9 @@ struct GpuRayCaster::Impl {
       gl.glUniform1ui(shared->ray_count, GLuint(rays));
       gc.glDispatchCompute(GLuint((rays + kGroupSize - 1) / kGroupSize), 1, 1);
       gc.glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-      out.resize(rays);
       gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[3]);
-      gc.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(rays * sizeof(GpuHit)), out.data());
+      gc.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(rays * sizeof(GpuHit)), hits.data() + b * rays_per);
       current.check("casting rays");
-      for (std::size_t i = 0; i < rays; ++i)
-        if (out[i].face != kNoFace)
-          hits[b * rays_per + i] = {double(out[i].distance), out[i].face, normals[out[i].face]};
     }
     gl.glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     gl.glUseProgram(0);
@@ -420,13 +412,20 @@ const std::vector<Vec3>& GpuRayCaster::normals() const { return impl_->normals; 
 const render::EglInfo& GpuRayCaster::info() const { return impl_->shared->context->info(); }
 
 void GpuRayCaster::first_hits(std::span<const Ray> rays, std::vector<Hit>& hits) const {
-  impl_->cast(rays.data(), rays.size(), sizeof(Ray), 2, 0, {}, hits);
+  std::vector<FaceHit> found;
+  impl_->cast(rays.data(), rays.size(), sizeof(Ray), 2, 0, {}, found);
+  hits.resize(found.size());
+  for (std::size_t i = 0; i < found.size(); ++i) hits[i] = hit(found[i]);
 }
 
 void GpuRayCaster::cone_hits(std::span<const Frame> frames, std::span<const ConeRay> cone,
-                             std::vector<Hit>& hits) const {
+                             std::vector<FaceHit>& hits) const {
   impl_->cast(frames.data(), frames.size(), sizeof(Frame), 4, cone.size(),
               {reinterpret_cast<const std::byte*>(cone.data()), cone.size_bytes()}, hits);
+}
+
+GpuRayCaster::Hit GpuRayCaster::hit(const FaceHit& h) const {
+  return h.face == kNoFace ? Hit{} : Hit{double(h.distance), h.face, impl_->normals[h.face]};
 }
 
 std::vector<GpuRayCaster::Hit> GpuRayCaster::first_hits(std::span<const Ray> rays) const {

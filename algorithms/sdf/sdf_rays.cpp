@@ -180,10 +180,10 @@ RawSdf SdfRayCaster::cast(std::span<const std::uint32_t> faces, const Context* c
     return normalized((-cone[k].axis) * normals[f] + cone[k].du * u + cone[k].dv * v);
   };
   // A hit counts when the ray leaves the shape where it first meets the
-  // surface: the face is met from behind.
-  const auto accept = [&](std::vector<std::pair<double, double>>& hits, const Vec3& d, const RayCaster::Hit& h,
-                          std::size_t k) {
-    if (h && dot(d, h.normal) > 0) hits.push_back({h.distance, cone[k].weight});
+  // surface: the face is met from behind (`normal`: the face's).
+  const auto accept = [&](std::vector<std::pair<double, double>>& hits, const Vec3& d, double distance,
+                          const Vec3& normal, std::size_t k) {
+    if (dot(d, normal) > 0) hits.push_back({distance, cone[k].weight});
   };
 
   RawSdf out;
@@ -201,7 +201,7 @@ RawSdf SdfRayCaster::cast(std::span<const std::uint32_t> faces, const Context* c
         if (frame_of(f, c, u, v))
           for (std::size_t k = 0; k < m; ++k) {
             const Vec3 d = direction(k, f, u, v);
-            accept(hits, d, caster->first_hit(c, d, f), k);
+            if (const RayCaster::Hit h = caster->first_hit(c, d, f)) accept(hits, d, h.distance, h.normal, k);
           }
         local_accepted += hits.size();
         if (!hits.empty()) out.values[at[i]] = combine(hits, o.outliers, scratch);
@@ -218,7 +218,7 @@ RawSdf SdfRayCaster::cast(std::span<const std::uint32_t> faces, const Context* c
     const auto f3 = [](const Vec3& a, float* out) { out[0] = float(a.x), out[1] = float(a.y), out[2] = float(a.z); };
     const std::size_t chunk = std::max<std::size_t>(1, (std::size_t(4) << 20) / m);
     std::vector<GpuRayCaster::Frame> frames;
-    std::vector<RayCaster::Hit> found;
+    std::vector<GpuRayCaster::FaceHit> found;
     for (std::size_t cb = 0; cb < n; cb += chunk) {
       if (ctx) {
         ctx->check_cancelled();
@@ -246,7 +246,10 @@ RawSdf SdfRayCaster::cast(std::span<const std::uint32_t> faces, const Context* c
           Vec3 c, u, v;
           hits.clear();
           if (frame_of(f, c, u, v))
-            for (std::size_t k = 0; k < m; ++k) accept(hits, direction(k, f, u, v), found[i * m + k], k);
+            for (std::size_t k = 0; k < m; ++k) {
+              const GpuRayCaster::FaceHit& h = found[i * m + k];
+              if (h.face != GpuRayCaster::kNoFace) accept(hits, direction(k, f, u, v), h.distance, normals[h.face], k);
+            }
           local_accepted += hits.size();
           if (!hits.empty()) out.values[at[cb + i]] = combine(hits, o.outliers, scratch);
         }

@@ -120,9 +120,11 @@ TEST(GpuRayCaster, ConesMadeInTheShaderHitAsTheSameRaysFromTheCpu) {
                               -double(k.axis) * normals[f] + double(k.du) * u + double(k.dv) * v, f));
   }
   frames.push_back({});  // a degenerate face's: no rays
+  std::vector<GpuRayCaster::FaceHit> found;
+  gpu.cone_hits(frames, cone, found);
+  ASSERT_EQ(found.size(), frames.size() * cone.size());
   std::vector<GpuRayCaster::Hit> hits;
-  gpu.cone_hits(frames, cone, hits);
-  ASSERT_EQ(hits.size(), frames.size() * cone.size());
+  for (const GpuRayCaster::FaceHit& h : found) hits.push_back(gpu.hit(h));
   for (std::size_t k = 0; k < cone.size(); ++k) EXPECT_FALSE(hits[hits.size() - 1 - k]);
   hits.resize(rays.size());
   expect_embree_hits(mesh, rays, hits);
@@ -161,7 +163,7 @@ TEST(GpuRayCaster, SkipsTheOriginFaceAndHonoursTheMaximumDistance) {
   down.n[2] = 1, down.u[0] = 1, down.v[1] = 1;   // the axis is -n
   down.face = std::uint32_t(cube.faces.size());  // no face of the cube's to skip
   const GpuRayCaster::ConeRay cone[] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}};
-  std::vector<GpuRayCaster::Hit> hits;
+  std::vector<GpuRayCaster::FaceHit> hits;
   gpu.cone_hits(std::vector<GpuRayCaster::Frame>(700000, down), cone, hits);
   ASSERT_EQ(hits.size(), 2100000u);
   for (std::size_t i = 0; i < hits.size(); i += 3001) {
