@@ -209,35 +209,40 @@ RawSdf SdfRayCaster::cast(std::span<const std::uint32_t> faces, const Context* c
       accepted += local_accepted;
     });
   } else {
-    // Batches of faces: their frames made on every core, their cones cast
-    // in the shader, the hits accepted and combined on every core.
+    // Batches of faces: their frames made on the cores, their cones cast in
+    // the shader, the hits accepted and combined on the cores.
     out.gpu = true;
     out.gpu_renderer = gpu->info().gl_renderer;
     std::vector<GpuRayCaster::ConeRay> dirs;
     for (const ConeRay& r : cone) dirs.push_back({float(r.axis), float(r.du), float(r.dv)});
     const auto f3 = [](const Vec3& a, float* out) { out[0] = float(a.x), out[1] = float(a.y), out[2] = float(a.z); };
-    const std::size_t chunk = std::max<std::size_t>(1, (std::size_t(4) << 20) / m);
-    std::vector<GpuRayCaster::Frame> frames;
-    std::vector<GpuRayCaster::FaceHit> found;
-    for (std::size_t cb = 0; cb < n; cb += chunk) {
-      if (ctx) {
-        ctx->check_cancelled();
-        ctx->progress(from + (to - from) * double(cb) / double(n), "casting rays on the GPU");
-      }
-      const std::size_t ce = std::min(n, cb + chunk);
-      frames.assign(ce - cb, GpuRayCaster::Frame{});
-      parallel_blocks(ce - cb, 4096, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+    // Chunks of about 1M rays (the caster's batch), in a pipeline: while
+    // the calling thread (the GL context's) has the shader cast chunk j, the
+    // other cores accept and combine chunk j - 1's hits and make chunk
+    // j + 1's frames.
+    const std::size_t chunk = std::max<std::size_t>(1, (std::size_t(1) << 20) / m);
+    const std::size_t chunks = (n + chunk - 1) / chunk;
+    std::vector<GpuRayCaster::Frame> frames[2];
+    std::vector<GpuRayCaster::FaceHit> found[2];
+    const auto make_frames = [&](std::size_t j, int threads) {
+      const std::size_t cb = j * chunk, ce = std::min(n, cb + chunk);
+      std::vector<GpuRayCaster::Frame>& out_frames = frames[j % 2];
+      out_frames.assign(ce - cb, GpuRayCaster::Frame{});
+      parallel_blocks(ce - cb, 4096, threads, nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
         for (std::size_t i = b; i < e; ++i) {
           const std::uint32_t f = face_at(cb + i);
           Vec3 c, u, v;
           if (!frame_of(f, c, u, v)) continue;
-          GpuRayCaster::Frame& fr = frames[i];
+          GpuRayCaster::Frame& fr = out_frames[i];
           fr.face = f;
           f3(c, fr.origin), f3(normals[f], fr.n), f3(u, fr.u), f3(v, fr.v);
         }
       });
-      gpu->cone_hits(frames, dirs, found);
-      parallel_blocks(ce - cb, 512, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+    };
+    const auto take_hits = [&](std::size_t j, int threads) {
+      const std::size_t cb = j * chunk, ce = std::min(n, cb + chunk);
+      const std::vector<GpuRayCaster::FaceHit>& hit = found[j % 2];
+      parallel_blocks(ce - cb, 512, threads, nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
         std::vector<std::pair<double, double>> hits;
         std::vector<double> scratch;
         std::size_t local_accepted = 0;
@@ -247,7 +252,7 @@ RawSdf SdfRayCaster::cast(std::span<const std::uint32_t> faces, const Context* c
           hits.clear();
           if (frame_of(f, c, u, v))
             for (std::size_t k = 0; k < m; ++k) {
-              const GpuRayCaster::FaceHit& h = found[i * m + k];
+              const GpuRayCaster::FaceHit& h = hit[i * m + k];
               if (h.face != GpuRayCaster::kNoFace) accept(hits, direction(k, f, u, v), h.distance, normals[h.face], k);
             }
           local_accepted += hits.size();
@@ -255,7 +260,24 @@ RawSdf SdfRayCaster::cast(std::span<const std::uint32_t> faces, const Context* c
         }
         accepted += local_accepted;
       });
+    };
+    const int helpers = std::max(1, thread_count() - 1);
+    make_frames(0, thread_count());
+    for (std::size_t j = 0; j < chunks; ++j) {
+      if (ctx) {
+        ctx->check_cancelled();
+        ctx->progress(from + (to - from) * double(j * chunk) / double(n), "casting rays on the GPU");
+      }
+      on_threads(j > 0 || j + 1 < chunks ? 2 : 1, [&](int t) {
+        if (t == 0) {
+          gpu->cone_hits(frames[j % 2], dirs, found[j % 2]);
+          return;
+        }
+        if (j > 0) take_hits(j - 1, helpers);
+        if (j + 1 < chunks) make_frames(j + 1, helpers);
+      });
     }
+    if (chunks > 0) take_hits(chunks - 1, thread_count());
   }
   out.rays_cast = n * m;
   out.rays_accepted = accepted;
