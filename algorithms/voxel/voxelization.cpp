@@ -10,7 +10,6 @@
 #include <cmath>
 #include <cstring>
 #include <numeric>
-#include <thread>
 
 #include "core/union_find.h"
 #include "core/errors.h"
@@ -280,7 +279,7 @@ VoxelizeResult voxelize_unchecked(const Mesh& mesh, const VoxelizeParams& p, con
     return result;
   }
 
-  int nt = p.threads > 0 ? p.threads : int(std::thread::hardware_concurrency());
+  int nt = p.threads > 0 ? p.threads : thread_count();
   nt = std::max(1, std::min(nt, 64));
   std::uint8_t* bytes = result.grid.bytes().data();
   const std::size_t nx = std::size_t(dims[0]), nxy = nx * std::size_t(dims[1]);

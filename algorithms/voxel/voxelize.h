@@ -84,7 +84,7 @@ struct VoxelizeParams {
   double max_memory_mb = 2048;  // refuse grids that would need more
   // Not parameters of a job (describe leaves them out): what a caller in
   // C++ may set besides.
-  int threads = 0;  // 0: std::thread::hardware_concurrency()
+  int threads = 0;  // 0: every core (thread_count())
   // The box the grid covers (with the padding around it), when it must match
   // another grid's; it must hold the faces.  Default: the faces' own box.
   std::optional<BBox> box{};

@@ -10,10 +10,10 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
-#include <thread>
 
 #include "child_process.h"
 #include "core/errors.h"
+#include "core/threads.h"
 #include "io/mesh_io.h"
 #include "jobs/job_files.h"
 
@@ -34,7 +34,7 @@ bool exited(pid_t pid) {
 
 LocalExecutor::LocalExecutor(fs::path worker, int max_workers, std::shared_ptr<const Sandbox> sandbox)
     : worker_(std::move(worker)),
-      max_workers_(max_workers > 0 ? max_workers : int(std::max(1u, std::thread::hardware_concurrency()))),
+      max_workers_(max_workers > 0 ? max_workers : thread_count()),
       sandbox_(std::move(sandbox)) {}
 
 LocalExecutor::~LocalExecutor() { shutdown(); }

@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <thread>
 
 #include "core/threads.h"
 #include "registry/registry.h"
@@ -29,7 +28,7 @@ Votes vote(const std::vector<render::ViewCapture>& views, const BBox& box, const
                                 int(std::ceil(size.z / vs)) + 2};
   const Vec3 origin = box.min - Vec3{vs, vs, vs};
   VoxelGrid grid(dims, origin, vs, VoxelType::float32);
-  const int threads = std::max(1, std::min<int>(int(std::thread::hardware_concurrency()), int(views.size())));
+  const int threads = std::max(1, std::min(thread_count(), int(views.size())));
   // Each thread votes into a grid of its own, a voxel's votes beside the
   // sum of their radii (a ray's samples are far apart in memory: one cache
   // line for both), added after.
