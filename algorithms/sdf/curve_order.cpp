@@ -8,6 +8,14 @@
 namespace cgview::sdf {
 namespace {
 constexpr std::size_t kBlock = 1 << 16;  // points a block in the parallel passes
+
+// The bits of a 10-bit number two apart: bit i to bit 3i ("magic bits").
+std::uint64_t spread_bits(std::uint64_t x) {
+  x = (x | x << 16) & 0x30000ff;
+  x = (x | x << 8) & 0x300f00f;
+  x = (x | x << 4) & 0x30c30c3;
+  return (x | x << 2) & 0x9249249;
+}
 }  // namespace
 
 std::vector<std::uint32_t> curve_order(std::span<const Vec3> centre) {
@@ -19,24 +27,38 @@ std::vector<std::uint32_t> curve_order(std::span<const Vec3> centre) {
   parallel_blocks(n, kBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
     for (std::size_t f = b; f < e; ++f) {
       const Vec3& c = centre[f];
-      std::uint64_t code = 0;
-      std::uint32_t q[3];
-      for (int a = 0; a < 3; ++a) q[a] = hi[a] > lo[a] ? std::uint32_t((c[a] - lo[a]) / (hi[a] - lo[a]) * 1023.0) : 0;
-      for (int bit = 9; bit >= 0; --bit)
-        for (int a = 0; a < 3; ++a) code = (code << 1) | ((q[a] >> bit) & 1);
+      std::uint64_t q[3];
+      for (int a = 0; a < 3; ++a) q[a] = hi[a] > lo[a] ? std::uint64_t((c[a] - lo[a]) / (hi[a] - lo[a]) * 1023.0) : 0;
+      // Each bit's triple x, y, z from the highest bit down.
+      const std::uint64_t code = spread_bits(q[0]) << 2 | spread_bits(q[1]) << 1 | spread_bits(q[2]);
       key[f] = code << 32 | f;
     }
   });
   // Sorted by code, ten bits a pass from the lowest, each pass stable (so
-  // faces of one code keep their order, as a sort of the whole keys).
-  std::vector<std::uint64_t> other(key.size());
-  std::vector<std::size_t> count(3 << 10, 0);
-  for (std::uint64_t k : key)
-    for (int pass = 0; pass < 3; ++pass) ++count[std::size_t(pass << 10) + ((k >> (32 + 10 * pass)) & 1023)];
-  for (int pass = 0; pass < 3; ++pass) {
-    std::size_t* at = count.data() + (pass << 10);
-    for (std::size_t d = 0, sum = 0; d < 1024; ++d) sum += std::exchange(at[d], sum);
-    for (std::uint64_t k : key) other[at[(k >> (32 + 10 * pass)) & 1023]++] = k;
+  // faces of one code keep their order, as a sort of the whole keys): each
+  // thread counts the digits of its share of the keys, then writes its keys
+  // after those of lower digits and, of its digit, after the threads'
+  // before it.  (On one thread, the 1.42M-face mesh's sort took 30 ms.)
+  const int threads = threads_for(n, kBlock);
+  const auto share = [&](int t) {
+    return std::pair(n * std::size_t(t) / std::size_t(threads), n * std::size_t(t + 1) / std::size_t(threads));
+  };
+  std::vector<std::uint64_t> other(n);
+  std::vector<std::size_t> count(std::size_t(threads) << 10);
+  for (int shift = 32; shift < 62; shift += 10) {
+    std::fill(count.begin(), count.end(), 0);
+    on_threads(threads, [&](int t) {
+      std::size_t* of_t = count.data() + (std::size_t(t) << 10);
+      const auto [b, e] = share(t);
+      for (std::size_t i = b; i < e; ++i) ++of_t[(key[i] >> shift) & 1023];
+    });
+    for (std::size_t d = 0, sum = 0; d < 1024; ++d)
+      for (std::size_t t = 0; t < std::size_t(threads); ++t) sum += std::exchange(count[(t << 10) + d], sum);
+    on_threads(threads, [&](int t) {
+      std::size_t* at = count.data() + (std::size_t(t) << 10);
+      const auto [b, e] = share(t);
+      for (std::size_t i = b; i < e; ++i) other[at[(key[i] >> shift) & 1023]++] = key[i];
+    });
     key.swap(other);
   }
   std::vector<std::uint32_t> order(n);
