@@ -178,15 +178,15 @@ class Current {
   SharedContext& s_;
 };
 
-// The flattened BVH: nodes depth-first, triangles in leaf order.
-// Median splits along the centroids' longest extent, into leaves of at most
-// kLeafSize triangles, laid out depth first (a node's left child follows it).
-// The faces' centroids travel with their numbers, 16 bytes an item, so that
-// each level's splits stream through memory; a node's box is its children's,
+// The flattened BVH: nodes depth-first, triangles in leaf order.  Median
+// splits along the centroids' longest extent, into leaves of at most
+// kLeafSize triangles (a node's left child follows it).  The faces'
+// centroids travel with their numbers, 16 bytes an item, so that each
+// level's splits stream through memory; a node's box is its children's,
 // made on the way back up, and the faces' own boxes are read once, at the
 // leaves.  (Items by number into the mesh's centroids and a box from every
-// triangle at every level took 0.29 s on the 1.42M-face mesh, 2 cores; this
-// 0.16 s.)
+// triangle at every level took 0.29 s on the 1.42M-face mesh, 2 cores;
+// this 0.16 s.)
 class BvhBuilder {
  public:
   explicit BvhBuilder(const Mesh& mesh) : mesh_(mesh), items_(mesh.faces.size()), boxes_(mesh.faces.size()) {
