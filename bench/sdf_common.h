@@ -17,11 +17,12 @@
 
 namespace cgview::bench {
 
-// Our whole sdf: face graph, rays, post-processing (as the algorithm runs it).
+// Our whole sdf: rays with the face graph built beside them, post-processing
+// (as the algorithm runs it).
 inline std::vector<double> our_sdf(const Mesh& mesh, const sdf::SdfParams& p, bool smooth) {
   Context ctx;
-  const Adjacency graph = face_neighbors(mesh, edge_topology(mesh));
-  std::vector<double> v = sdf::raw_sdf(mesh, p).values;
+  Adjacency graph;
+  std::vector<double> v = sdf::raw_sdf(mesh, p, graph, &ctx, 0, 1).values;
   sdf::SdfParams q = p;
   q.smooth = smooth;
   sdf::postprocess(mesh, graph, v, q, ctx);
