@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -270,7 +271,9 @@ RawSdf SdfRayCaster::cast(std::span<const std::uint32_t> faces, const Context* c
       }
       on_threads(j > 0 || j + 1 < chunks ? 2 : 1, [&](int t) {
         if (t == 0) {
+          const auto start = std::chrono::steady_clock::now();
           gpu->cone_hits(frames[j % 2], dirs, found[j % 2]);
+          out.gpu_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
           return;
         }
         if (j > 0) take_hits(j - 1, helpers);

@@ -49,6 +49,10 @@ struct RawSdf {
   std::size_t rays_cast = 0, rays_accepted = 0, missing = 0;
   bool gpu = false;          // the rays ran in the compute shader
   std::string gpu_renderer;  // its GL renderer, when they did
+  // When they did: how long the calling thread waited on the shader (the
+  // frames' upload, the casts, the hits' download), beside the cores'
+  // work on the hits; what is left of the cast's time is the CPU's.
+  double gpu_seconds = 0;
 };
 RawSdf raw_sdf(const Mesh& mesh, const SdfParams& p, std::span<const std::uint32_t> faces = {},
                const Context* ctx = nullptr, double progress_from = 0, double progress_to = 1);

@@ -49,6 +49,8 @@ TEST(SdfRaysGpu, RaysInSeveralChunksGiveEmbreesValues) {
   const RawSdf gpu = raw_sdf(mesh, {.rays = kMaxRays, .device = RayDevice::gpu}, faces);
   ASSERT_TRUE(gpu.gpu);
   ASSERT_GT(gpu.rays_cast, std::size_t(2) << 20);
+  EXPECT_GT(gpu.gpu_seconds, 0.0);  // the wait on the shader, measured
+  EXPECT_EQ(cpu.gpu_seconds, 0.0);
   EXPECT_NEAR(double(gpu.rays_accepted), double(cpu.rays_accepted), 1e-4 * double(cpu.rays_accepted));
   ASSERT_EQ(gpu.values.size(), faces.size());
   const auto [lo, hi] = std::minmax_element(cpu.values.begin(), cpu.values.end());
