@@ -12,8 +12,9 @@
 # There, from the repository root with build/gpu_sdf.tar.xz carried:
 #   bench/gpu_sdf.sh run [sdf_gpu_bench options for the big mesh]
 # runs the GPU caster's tests, the bench on three sample meshes (CGAL
-# measured beside), sdf_fast at 10% against the full sdf on the ten sample
-# meshes of 20k faces or more (on the machine's cores, the rays where the
+# measured beside), sdf_fast at 10% against the full sdf, with its steps'
+# times, on the ten sample meshes of 20k faces or more (on the machine's
+# cores, the rays where the
 # automatic choice puts them, then on Embree alone: a lab server of as many
 # cores without a GPU), then on the 1.42M-triangle mesh with CGAL's
 # time given, and last sdf_fast against the full sdf on it, both ways
@@ -67,13 +68,13 @@ case "${1:-}" in
     "$g/bin/rays_test"
     "$g/bin/sdf_test" --gtest_filter='SdfRaysGpu.*'
     "$g/bin/sdf_gpu_bench" --repeat 3 --only elephant,armadillo,refined_elephant
-    "$g/bin/sdf_bench" --fast-only --repeat 3 --only "$(echo $fast_meshes | tr ' ' ,)"
-    CGVIEW_SDF_RAYS=cpu "$g/bin/sdf_bench" --fast-only --repeat 3 --only "$(echo $fast_meshes | tr ' ' ,)"
+    "$g/bin/sdf_bench" --fast-only --steps --repeat 3 --only "$(echo $fast_meshes | tr ' ' ,)"
+    CGVIEW_SDF_RAYS=cpu "$g/bin/sdf_bench" --fast-only --steps --repeat 3 --only "$(echo $fast_meshes | tr ' ' ,)"
     "$g/bin/sdf_gpu_bench" --repeat 1 --only big "${big_options[@]}"
     # The 1.42M-face mesh is one of 20k faces or more too: sdf_fast on it,
     # both ways, last (the measurements above matter more if time runs out).
-    "$g/bin/sdf_bench" --fast-only --repeat 1 --only big
-    CGVIEW_SDF_RAYS=cpu "$g/bin/sdf_bench" --fast-only --repeat 1 --only big
+    "$g/bin/sdf_bench" --fast-only --steps --repeat 1 --only big
+    CGVIEW_SDF_RAYS=cpu "$g/bin/sdf_bench" --fast-only --steps --repeat 1 --only big
     ;;
   *)
     echo "usage: $0 pack | run [sdf_gpu_bench options for the big mesh]" >&2

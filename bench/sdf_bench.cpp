@@ -17,7 +17,9 @@
 // On the 1M-triangle mesh CGAL runs without post-processing (its bilateral
 // filter walks std::maps over ~2000 faces per face: hours), said in the row.
 //
-//   build/bin/sdf_bench [--repeat N] [--quick] [--fast-only] [--only elephant,...,big,diplodocus,...]
+// With --steps, sdf_fast's steps at 10% (sdf::FastSdf::steps) under its row.
+//
+//   build/bin/sdf_bench [--repeat N] [--quick] [--fast-only] [--steps] [--only elephant,...,big,diplodocus,...]
 #include <CGAL/mesh_segmentation.h>
 
 #include <algorithm>
@@ -74,6 +76,7 @@ int main(int argc, char** argv) {
   // Without CGAL's table (one core, minutes): sdf_fast against our sdf alone,
   // as on a lent GPU machine, where the time is short.
   const bool fast_only = bench::take_option(argc, argv, "--fast-only", false).has_value();
+  const bool steps = bench::take_option(argc, argv, "--steps", false).has_value();
   const bench::Options opt = bench::parse_options(argc, argv, "sdf_bench");
   const std::vector<bench::SdfInput> inputs = bench::sdf_inputs(opt, "sdf_bench");
   const sdf::SdfParams defaults;
@@ -129,6 +132,11 @@ int main(int argc, char** argv) {
         std::printf("%-18s %8.0f%% %9s %6.2f%% %10.3f %10.3f %7.1fx %9.2f%% %9.2f%% %9.2f%% %9.2f%%\n", in.name.c_str(),
                     100 * fraction, solver_names[int(solver)], 100 * rays, full_s, fast_s, full_s / fast_s,
                     100 * mean / range, 100 * p95 / range, 100 * rough / range, 100 * moved / range);
+        if (steps && fraction == 0.1 && solver == sdf::Solver::diffusion) {
+          std::printf("%-18s   its steps (the last run), ms:", "");
+          for (const auto& [name, seconds] : fast.steps) std::printf(" %s %.1f;", name.c_str(), 1e3 * seconds);
+          std::printf("\n");
+        }
         std::fflush(stdout);
       }
   }

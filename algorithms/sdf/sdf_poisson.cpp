@@ -5,6 +5,7 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <barrier>
 #include <cmath>
 #include <latch>
@@ -523,6 +524,12 @@ FastSdf poisson_sdf_on(const Mesh& mesh, const Adjacency* given, const SdfFastPa
   const std::size_t n = mesh.faces.size();
   FastSdf out;
   const Adjacency& g = given ? *given : out.graph;
+  auto last = std::chrono::steady_clock::now();
+  const auto step_done = [&](const char* name) {
+    const auto now = std::chrono::steady_clock::now();
+    out.steps.push_back({name, std::chrono::duration<double>(now - last).count()});
+    last = now;
+  };
   // Two rounds of rays on one BVH: 60% of the samples spread evenly, the
   // rest where those leave the SDF least certain (more_samples).
   // The face graph and the first round's samples, which need no BVH, are
@@ -554,14 +561,18 @@ FastSdf poisson_sdf_on(const Mesh& mesh, const Adjacency* given, const SdfFastPa
       weigh_arcs();
     }
   });
+  step_done("graph, BVH, first samples");
   const SdfRayCaster& rays = *caster;
   const RawSdf raw1 = rays.cast(first, ctx, 0.0, 0.5);
+  step_done("first rays");
   std::vector<std::uint32_t> second;
   RawSdf raw2;
   if (first.size() < total) {
     const std::vector<double> spread = uncertainty(g, p, first, raw1.values);
     second = more_samples(g, std::move(ring), spread, total - first.size());
+    step_done("second samples");
     raw2 = rays.cast(second, ctx, 0.5, 0.8);
+    step_done("second rays");
   }
   merge_rounds(first, raw1, second, raw2, out);
 
@@ -580,6 +591,7 @@ FastSdf poisson_sdf_on(const Mesh& mesh, const Adjacency* given, const SdfFastPa
     return out;
   }
   if (p.sdf.smooth) smooth_samples(g, p, out.samples, out.values);
+  step_done("samples smoothed");
   if (ctx) ctx->progress(0.8, "solving the Poisson equation");
 
   // The unknowns: the faces of the parts that have a kept sample (those of a
@@ -606,7 +618,9 @@ FastSdf poisson_sdf_on(const Mesh& mesh, const Adjacency* given, const SdfFastPa
     // docs/BENCHMARKS.md).
     if (p.sdf.smooth) jacobi(g, kept, {}, 1, out.values, weights.weight);
   });
+  step_done("solve");
   fill_escaped(mesh, g, p, region, out.values);
+  step_done("escaped regions");
   return out;
 }
 

@@ -58,6 +58,8 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "core/mesh.h"
@@ -73,6 +75,9 @@ struct FastSdf {
   std::size_t unknowns = 0;            // faces solved for
   int iterations = 0;                  // diffusion's sweeps, conjugate gradients' iterations (0 for Cholesky)
   Adjacency graph;                     // the face graph, when poisson_sdf built it
+  // Each step's wall time in seconds, in order (for the benchmark: which
+  // steps a machine's cores or GPU leave to wait on).
+  std::vector<std::pair<std::string, double>> steps;
 };
 
 // `count` faces spread evenly over the surface by farthest-point sampling in

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -73,6 +74,25 @@ TEST(SdfPoisson, BuildingTheFaceGraphItselfGivesTheSameValuesAndHandsTheGraphBac
   EXPECT_TRUE(given.graph.offsets.empty());
   EXPECT_EQ(built.samples, given.samples);
   EXPECT_EQ(built.values, given.values);
+}
+
+// The steps' times, for the benchmark: each step once, in order, within the
+// call's own time.
+TEST(SdfPoisson, ItsStepsAreTimedInOrder) {
+  const Mesh mesh = read_mesh(test::sample("elephant.off"));
+  const auto start = std::chrono::steady_clock::now();
+  const sdf::FastSdf fast = sdf::poisson_sdf(mesh, {});
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::vector<std::string> names;
+  double sum = 0;
+  for (const auto& [name, seconds] : fast.steps) {
+    names.push_back(name);
+    EXPECT_GE(seconds, 0.0) << name;
+    sum += seconds;
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"graph, BVH, first samples", "first rays", "second samples", "second rays",
+                                             "samples smoothed", "solve", "escaped regions"}));
+  EXPECT_LE(sum, total);
 }
 
 TEST(SdfPoisson, AFractionOfZeroIsRefused) {
