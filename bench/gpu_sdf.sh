@@ -14,9 +14,9 @@
 # runs the GPU caster's tests, the bench on three sample meshes (CGAL
 # measured beside), sdf_fast at 10% against the full sdf, with its steps'
 # times, on the ten sample meshes of 20k faces or more (on the machine's
-# cores, the rays where the
-# automatic choice puts them, then on Embree alone: a lab server of as many
-# cores without a GPU), then on the 1.42M-triangle mesh with CGAL's
+# cores, the rays where the automatic choice puts them, then on Embree
+# alone: a lab server of as many cores without a GPU), then on the
+# 1.42M-triangle mesh with CGAL's
 # time given, and last sdf_fast against the full sdf on it, both ways
 # (--cgal-seconds big=461.0 by default: measured on this project's 2-core
 # build machine, docs/BENCHMARKS.md; CGAL alone would take most of a short
