@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 namespace cgview {
@@ -29,11 +30,16 @@ inline int threads_for(std::size_t items, std::size_t per_thread, int most = thr
 }
 
 // f(begin, end) over [0, n) in `threads` equal shares, share t on thread t
-// (on_threads: share 0 on the calling thread).
+// (on_threads: share 0 on the calling thread); f(t, begin, end) where f
+// wants to know which share it has.
 template <class F>
 void on_shares(std::size_t n, int threads, const F& f) {
   const std::size_t parts = std::size_t(std::max(1, threads));
-  on_threads(int(parts), [&](int t) { f(n * std::size_t(t) / parts, n * std::size_t(t + 1) / parts); });
+  on_threads(int(parts), [&](int t) {
+    const std::size_t begin = n * std::size_t(t) / parts, end = n * std::size_t(t + 1) / parts;
+    if constexpr (std::is_invocable_v<const F&, int, std::size_t, std::size_t>) f(t, begin, end);
+    else f(begin, end);
+  });
 }
 
 }  // namespace cgview

@@ -40,23 +40,18 @@ std::vector<std::uint32_t> curve_order(std::span<const Vec3> centre) {
   // after those of lower digits and, of its digit, after the threads'
   // before it.  (On one thread, the 1.42M-face mesh's sort took 30 ms.)
   const int threads = threads_for(n, kBlock);
-  const auto share = [&](int t) {
-    return std::pair(n * std::size_t(t) / std::size_t(threads), n * std::size_t(t + 1) / std::size_t(threads));
-  };
   std::vector<std::uint64_t> other(n);
   std::vector<std::size_t> count(std::size_t(threads) << 10);
   for (int shift = 32; shift < 62; shift += 10) {
     std::fill(count.begin(), count.end(), 0);
-    on_threads(threads, [&](int t) {
+    on_shares(n, threads, [&](int t, std::size_t b, std::size_t e) {
       std::size_t* of_t = count.data() + (std::size_t(t) << 10);
-      const auto [b, e] = share(t);
       for (std::size_t i = b; i < e; ++i) ++of_t[(key[i] >> shift) & 1023];
     });
     for (std::size_t d = 0, sum = 0; d < 1024; ++d)
       for (std::size_t t = 0; t < std::size_t(threads); ++t) sum += std::exchange(count[(t << 10) + d], sum);
-    on_threads(threads, [&](int t) {
+    on_shares(n, threads, [&](int t, std::size_t b, std::size_t e) {
       std::size_t* at = count.data() + (std::size_t(t) << 10);
-      const auto [b, e] = share(t);
       for (std::size_t i = b; i < e; ++i) other[at[(key[i] >> shift) & 1023]++] = key[i];
     });
     key.swap(other);
