@@ -14,9 +14,6 @@ namespace cgview {
 
 namespace {
 constexpr Index kNone = std::numeric_limits<Index>::max();
-// The passes over the faces (their normals, the face graph): a thread for
-// each 64k faces at most.
-constexpr std::size_t kFacesPerThread = 65536;
 
 void check_index_triangles(const std::vector<Tri>& tris, std::size_t count, const char* what) {
   for (std::size_t f = 0; f < tris.size(); ++f)
@@ -81,7 +78,7 @@ std::vector<double> face_areas(const Mesh& mesh) {
 
 std::vector<Vec3> face_normals(const Mesh& mesh) {
   std::vector<Vec3> out(mesh.faces.size());
-  on_shares(out.size(), threads_for(out.size(), kFacesPerThread), [&](std::size_t begin, std::size_t end) {
+  on_shares(out.size(), threads_for(out.size(), kItemsPerThread), [&](std::size_t begin, std::size_t end) {
     for (std::size_t f = begin; f < end; ++f) out[f] = normalized(face_cross(mesh, f));
   });
   return out;
@@ -173,7 +170,7 @@ EdgeTopology edge_topology(const Mesh& mesh) {
   // numbered in the vertices' order and written: both with the vertices
   // split over the cores (each writes its own sides, edges and face
   // corners).
-  const int threads = threads_for(F.size(), kFacesPerThread);
+  const int threads = threads_for(F.size(), kItemsPerThread);
   std::vector<std::uint32_t> first_edge(nv + 1, 0);
   on_shares(nv, threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
@@ -220,7 +217,7 @@ Adjacency face_neighbors(const Mesh& mesh, const EdgeTopology& topo) {
   // Both passes with the faces split over the cores (each face writes its
   // own count, then its own list): they read the edges' lists in no order,
   // a cache miss or two a side, 0.1 s on one core for 1.42M faces.
-  const int threads = threads_for(n, kFacesPerThread);
+  const int threads = threads_for(n, kItemsPerThread);
   on_shares(n, threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t f = begin; f < end; ++f) {
       std::uint32_t count = 0;

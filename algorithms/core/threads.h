@@ -22,6 +22,11 @@ void on_threads(int threads, const F& f) {
   f(0);
 }
 
+// A pass that reads each of its items once: a thread for each 64k items at
+// most (below that a thread's start, tens of microseconds, costs more than
+// its share of the pass saves).
+inline constexpr std::size_t kItemsPerThread = 65536;
+
 // The threads to split `items` over: one for each `per_thread` of
 // them at most (a thread costs tens of microseconds to start), `most` at
 // most, at least one.

@@ -194,11 +194,11 @@ class BvhBuilder {
     // Boxes a little larger than their triangles, so that float rounding in
     // the slab test never loses a hit on a box's face.
     const double pad = 1e-6 * bounding_box(mesh).diagonal() + 1e-30;
-    on_shares(n, threads_for(n, kFacesPerThread), [&](std::size_t b, std::size_t e) {
+    on_shares(n, threads_for(n, kItemsPerThread), [&](std::size_t b, std::size_t e) {
       for (std::size_t f = b; f < e; ++f) {
         const Tri& t = mesh.faces[f];
         const Vec3 p = mesh.positions[t[0]], q = mesh.positions[t[1]], r = mesh.positions[t[2]];
-        const Vec3 c = (p + q + r) / 3.0;
+        const Vec3 c = face_centroid(mesh, f);
         items_[f] = {{float(c.x), float(c.y), float(c.z)}, std::uint32_t(f)};
         for (int j = 0; j < 3; ++j) {
           boxes_[f].lo[j] = float(std::min({p[j], q[j], r[j]}) - pad);
@@ -213,7 +213,7 @@ class BvhBuilder {
   std::vector<GpuNode>& nodes() { return nodes_; }
   std::vector<GpuTri> tris() const {
     std::vector<GpuTri> out(items_.size());
-    on_shares(out.size(), threads_for(out.size(), kFacesPerThread), [&](std::size_t b, std::size_t e) {
+    on_shares(out.size(), threads_for(out.size(), kItemsPerThread), [&](std::size_t b, std::size_t e) {
       for (std::size_t k = b; k < e; ++k) {
         const std::uint32_t f = items_[k].face;
         const Tri& t = mesh_.faces[f];
@@ -230,7 +230,6 @@ class BvhBuilder {
     float centroid[3];
     std::uint32_t face;
   };
-  static constexpr std::size_t kFacesPerThread = 65536;
 
   // Nodes of a subtree of n triangles: the split depends on n alone, so
   // that both halves can be built at once, each at its known place.
@@ -274,7 +273,7 @@ class BvhBuilder {
     const std::size_t left = node + 1, right = node + 1 + node_count(n / 2);
     // The top levels' halves on threads of their own (disjoint ranges and
     // nodes), a thread for each core.
-    if (depth < split_depth_ && n > kFacesPerThread) {
+    if (depth < split_depth_ && n > kItemsPerThread) {
       std::jthread other([&] { build(left, b, mid, depth + 1); });
       build(right, mid, e, depth + 1);
     } else {
