@@ -13,6 +13,7 @@
 
 #include "core/errors.h"
 #include "core/mesh_report.h"
+#include "core/threads.h"
 #include "test_support.h"
 
 namespace cgview {
@@ -313,7 +314,7 @@ TEST(MeshTest, EdgeTopologyAndFaceNeighborsOfALargeMeshMatchAMapOfItsSides) {
     for (Index& i : t) i = rename[i];
   m.faces.push_back({m.faces[5][0], m.faces[5][1], m.faces[9][2]});  // a third face on face 5's first side
   m.faces.push_back({m.faces[7][0], m.faces[7][0], m.faces[7][1]});  // a collapsed side
-  ASSERT_GT(m.faces.size(), 2u * 65536u);
+  ASSERT_GT(m.faces.size(), 2 * kItemsPerThread);
   std::map<std::array<Index, 2>, std::vector<std::uint32_t>> sides;  // (low, high) -> face * 3 + k
   for (std::uint32_t f = 0; f < m.faces.size(); ++f)
     for (std::uint32_t k = 0; k < 3; ++k) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/threads.h"
 #include "io/mesh_io.h"
 #include "test_support.h"
 
@@ -91,7 +92,7 @@ TEST(GpuRayCaster, SameHitsAsEmbreeOnASampleMesh) {
 // (on a machine of two cores or more): the same hits.
 TEST(GpuRayCaster, SameHitsAsEmbreeOnAMeshLargeEnoughToBuildOnThreads) {
   const Mesh mesh = read_mesh(test::sample("refined_elephant.off"));
-  ASSERT_GT(mesh.faces.size(), 65536u);
+  ASSERT_GT(mesh.faces.size(), kItemsPerThread);
   const GpuRayCaster gpu(mesh);
   const std::vector<Ray> rays = sample_rays(mesh, 2000);
   expect_embree_hits(mesh, rays, gpu.first_hits(rays));
