@@ -14,6 +14,8 @@
 #include <optional>
 
 #include "core/threads.h"
+#include "sdf/curve_blocks.h"
+#include "sdf/parallel_blocks.h"
 #include "filters/vertex_curvatures.h"
 
 namespace cgview::sdf {
@@ -517,6 +519,61 @@ std::vector<std::uint32_t> spread_samples(const Adjacency& g, std::size_t count)
 
 namespace {
 
+// pick(k, count) for each block k on every core, count its share of `total`
+// (by its faces); the faces it picks (the block's local numbers) mapped to
+// the mesh's, block after block.
+template <class Pick>
+std::vector<std::uint32_t> pick_in_blocks(const CurveBlocks& blocks, std::size_t total, const Pick& pick) {
+  const std::size_t m = blocks.size();
+  std::vector<std::size_t> before(m + 1, 0);
+  for (std::size_t k = 0; k < m; ++k) before[k + 1] = before[k] + blocks.faces[k].size();
+  const auto upto = [&](std::size_t k) {
+    return std::size_t(std::llround(double(total) * double(before[k]) / double(before[m])));
+  };
+  std::vector<std::vector<std::uint32_t>> picked(m);
+  parallel_blocks(m, 1, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+    for (std::size_t k = b; k < e; ++k) {
+      picked[k] = pick(k, upto(k + 1) - upto(k));
+      for (std::uint32_t& f : picked[k]) f = blocks.faces[k][f];
+    }
+  });
+  std::vector<std::uint32_t> out;
+  out.reserve(total);
+  for (const std::vector<std::uint32_t>& p : picked) out.insert(out.end(), p.begin(), p.end());
+  return out;
+}
+
+// The first round's samples (spread_rings) and each face's rings from them,
+// block by block where the mesh is cut.
+std::vector<std::uint32_t> first_samples(const Adjacency& g, const CurveBlocks& blocks, std::size_t count,
+                                         std::vector<std::uint32_t>& ring) {
+  if (blocks.size() == 0) return spread_rings(g, count, ring);
+  ring.assign(g.size(), 0);
+  std::vector<std::uint32_t> out = pick_in_blocks(blocks, count, [&](std::size_t k, std::size_t share) {
+    std::vector<std::uint32_t> local;
+    std::vector<std::uint32_t> picked = spread_rings(blocks.graphs[k], share, local);
+    const std::vector<std::uint32_t>& faces = blocks.faces[k];
+    for (std::size_t i = 0; i < faces.size(); ++i) ring[faces[i]] = local[i];
+    return picked;
+  });
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// The second round's (more_samples), block by block where the mesh is cut.
+std::vector<std::uint32_t> second_samples(const Adjacency& g, const CurveBlocks& blocks,
+                                          std::vector<std::uint32_t> ring, const std::vector<double>& spread,
+                                          std::size_t count) {
+  if (blocks.size() == 0) return more_samples(g, std::move(ring), spread, count);
+  return pick_in_blocks(blocks, count, [&](std::size_t k, std::size_t share) {
+    const std::vector<std::uint32_t>& faces = blocks.faces[k];
+    std::vector<std::uint32_t> local_ring(faces.size());
+    std::vector<double> local_spread(faces.size());
+    for (std::size_t i = 0; i < faces.size(); ++i) local_ring[i] = ring[faces[i]], local_spread[i] = spread[faces[i]];
+    return more_samples(blocks.graphs[k], std::move(local_ring), local_spread, share);
+  });
+}
+
 // poisson_sdf on `given`, else on the face graph it builds into out.graph.
 FastSdf poisson_sdf_on(const Mesh& mesh, const Adjacency* given, const SdfFastParams& p, const Context* ctx) {
   check_params(p);
@@ -542,6 +599,7 @@ FastSdf poisson_sdf_on(const Mesh& mesh, const Adjacency* given, const SdfFastPa
   // the sooner), the sampling's on small ones.
   const std::size_t total = std::size_t(std::ceil(p.fraction * double(n)));
   std::vector<std::uint32_t> ring, first;
+  CurveBlocks blocks;
   ArcWeights weights;
   std::optional<SdfRayCaster> caster;
   std::latch graph_made(1);
@@ -553,7 +611,8 @@ FastSdf poisson_sdf_on(const Mesh& mesh, const Adjacency* given, const SdfFastPa
     if (t == 1) {
       if (!given) out.graph = face_neighbors(mesh, edge_topology(mesh));
       graph_made.count_down();
-      first = spread_rings(g, std::size_t(std::ceil(kFirstRound * double(total))), ring);
+      blocks = curve_blocks(mesh, g, kSampleBlockFaces);
+      first = first_samples(g, blocks, std::size_t(std::ceil(kFirstRound * double(total))), ring);
       weigh_arcs();
     } else {
       caster.emplace(mesh, p.sdf);
@@ -569,7 +628,7 @@ FastSdf poisson_sdf_on(const Mesh& mesh, const Adjacency* given, const SdfFastPa
   RawSdf raw2;
   if (first.size() < total) {
     const std::vector<double> spread = uncertainty(g, p, first, raw1.values);
-    second = more_samples(g, std::move(ring), spread, total - first.size());
+    second = second_samples(g, blocks, std::move(ring), spread, total - first.size());
     step_done("second samples");
     raw2 = rays.cast(second, ctx, 0.5, 0.8);
     step_done("second rays");

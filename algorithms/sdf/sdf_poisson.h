@@ -25,6 +25,15 @@
 // narrower than the full SDF's (the second round's samples lie closer
 // together), in hops of the mean rings between neighbours.
 //
+// Both rounds choose one face after another, each choice walking the rings
+// around it: on one core, 0.43 s and 0.09 s of the 1.42M-face mesh's 2.1 s
+// on two, and on more cores a larger share.  From 2 kSampleBlockFaces faces
+// the mesh is cut into blocks along a Morton curve (sdf/curve_blocks.h),
+// each block chooses its share of the samples (by its faces) within itself,
+// and the blocks go to every core.  A block's rings stop at its border, so
+// both sides of a border choose faces beside it: near borders the samples
+// lie closer together (on that mesh, 1.1% of the faces are beside one).
+//
 // The matrix (the graph Laplacian restricted to the unknown faces) is
 // symmetric positive definite when every connected part of the mesh has a
 // sampled face, which the sampling guarantees.  Solved exactly with Eigen: a
@@ -87,6 +96,11 @@ struct FastSdf {
 // many faces of a coarse torso.  max(count, parts) faces (all when count is
 // larger), sorted.
 std::vector<std::uint32_t> spread_samples(const Adjacency& face_graph, std::size_t count);
+
+// The faces of a block the samples are chosen in, at least: 2^17, so that
+// on the 1.42M-face mesh ten blocks keep ten cores busy, and meshes under
+// 262k faces are one block, their samples as chosen on the whole mesh.
+inline constexpr std::size_t kSampleBlockFaces = std::size_t(1) << 17;
 
 // The accelerated SDF of every face: `p.fraction` of them cast (with
 // `p.sdf`'s rays, their values smoothed among themselves when

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "io/mesh_io.h"
+#include "sdf/curve_blocks.h"
 #include "sdf/sdf.h"
 #include "test_support.h"
 
@@ -93,6 +94,43 @@ TEST(SdfPoisson, ItsStepsAreTimedInOrder) {
   EXPECT_EQ(names, (std::vector<std::string>{"graph, BVH, first samples", "first rays", "second samples", "second rays",
                                              "samples smoothed", "solve", "escaped regions"}));
   EXPECT_LE(sum, total);
+}
+
+// From 2 kSampleBlockFaces faces the samples are chosen block by block along
+// the curve: each block holds its share of them, and each face gets its own
+// part's value (a sphere in a torus of half its thickness), as the rays of
+// every 97th face say.
+TEST(SdfPoisson, AMeshOfSeveralBlocksHasItsSamplesInEachAndItsValuesRight) {
+  const Mesh sphere = test::uv_sphere(1, 256, 256), two = test::merged(sphere, test::torus(4, 0.5, 640, 256));
+  const Adjacency graph = face_neighbors(two, edge_topology(two));
+  const std::size_t n = graph.size(), split = sphere.faces.size();
+  const sdf::CurveBlocks blocks = sdf::curve_blocks(two, graph, sdf::kSampleBlockFaces);
+  ASSERT_EQ(blocks.size(), 3u);
+  const sdf::FastSdf fast = sdf::poisson_sdf(two, graph, {});
+  ASSERT_EQ(fast.samples.size(), std::size_t(std::ceil(0.1 * double(n))));
+  EXPECT_TRUE(std::adjacent_find(fast.samples.begin(), fast.samples.end()) == fast.samples.end());
+  std::vector<std::size_t> block(n);
+  for (std::size_t k = 0; k < blocks.size(); ++k)
+    for (std::uint32_t f : blocks.faces[k]) block[f] = k;
+  std::vector<double> held(blocks.size(), 0);
+  for (std::uint32_t f : fast.samples) ++held[block[f]];
+  for (std::size_t k = 0; k < blocks.size(); ++k)  // each round's share rounded
+    EXPECT_NEAR(held[k], double(fast.samples.size()) * double(blocks.faces[k].size()) / double(n), 2.0) << k;
+
+  std::vector<std::uint32_t> probes;
+  for (std::uint32_t f = 0; f < n; f += 97) probes.push_back(f);
+  const sdf::RawSdf rays = sdf::SdfRayCaster(two, {}).cast(probes);
+  std::vector<double> ball, tube;
+  for (std::size_t i = 0; i < probes.size(); ++i) (probes[i] < split ? ball : tube).push_back(rays.values[i]);
+  const auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  const double b = median(ball), t = median(tube);
+  EXPECT_GT(b, 1.4 * t);
+  double worst = 0;
+  for (std::size_t f = 0; f < n; ++f) worst = std::max(worst, std::abs(fast.values[f] - (f < split ? b : t)) / t);
+  EXPECT_LT(worst, 0.04);  // 0.017 here
 }
 
 TEST(SdfPoisson, AFractionOfZeroIsRefused) {

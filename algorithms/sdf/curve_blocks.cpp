@@ -1,0 +1,41 @@
+#include "sdf/curve_blocks.h"
+
+#include "sdf/curve_order.h"
+#include "sdf/parallel_blocks.h"
+
+namespace cgview::sdf {
+
+CurveBlocks curve_blocks(const Mesh& mesh, const Adjacency& g, std::size_t size) {
+  const std::size_t n = g.size(), count = size > 0 ? n / size : 0;
+  CurveBlocks out;
+  if (count < 2) return out;
+  std::vector<Vec3> centre(n);
+  parallel_blocks(n, kItemsPerThread, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+    for (std::size_t f = b; f < e; ++f) centre[f] = face_centroid(mesh, f);
+  });
+  const std::vector<std::uint32_t> order = curve_order(centre);
+  std::vector<std::uint32_t> block(n), local(n);
+  for (std::size_t i = 0; i < n; ++i) block[order[i]] = std::uint32_t(i * count / n);
+  out.faces.resize(count);
+  for (std::size_t f = 0; f < n; ++f) {
+    std::vector<std::uint32_t>& faces = out.faces[block[f]];
+    local[f] = std::uint32_t(faces.size());
+    faces.push_back(std::uint32_t(f));
+  }
+  out.graphs.resize(count);
+  parallel_blocks(count, 1, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+    for (std::size_t k = b; k < e; ++k) {
+      Adjacency& a = out.graphs[k];
+      a.offsets.reserve(out.faces[k].size() + 1);
+      a.offsets.push_back(0);
+      for (std::uint32_t f : out.faces[k]) {
+        for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h)
+          if (block[*h] == k) a.items.push_back(local[*h]);
+        a.offsets.push_back(std::uint32_t(a.items.size()));
+      }
+    }
+  });
+  return out;
+}
+
+}  // namespace cgview::sdf

@@ -1,0 +1,29 @@
+// A face graph cut into blocks of consecutive faces along a Morton curve
+// through their centroids (sdf/curve_order.h), each with the arcs between
+// its own faces: work that walks the graph one face after another (the
+// accelerated SDF's choice of samples) then runs a block on each core.  The
+// cut depends on the mesh alone, never on the machine's cores, so that a
+// result is the same on any machine.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/mesh.h"
+
+namespace cgview::sdf {
+
+struct CurveBlocks {
+  std::vector<std::vector<std::uint32_t>> faces;  // each block's faces, ascending
+  std::vector<Adjacency> graphs;                  // each block's arcs, both ends its own, in its local numbers
+  std::size_t size() const { return faces.size(); }
+};
+
+// floor(faces / size) blocks of as near equal sizes as can be (each at
+// least `size` faces), the k-th of the faces whose places i along the curve
+// have floor(i * blocks / faces) == k.  Under 2 * size faces the whole
+// graph is the one block, and nothing is listed: `faces` and `graphs` are
+// empty.
+CurveBlocks curve_blocks(const Mesh& mesh, const Adjacency& face_graph, std::size_t size);
+
+}  // namespace cgview::sdf
