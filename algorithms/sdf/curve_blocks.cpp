@@ -23,14 +23,15 @@ CurveBlocks curve_blocks(const Mesh& mesh, const Adjacency& g, std::size_t size)
     faces.push_back(std::uint32_t(f));
   }
   out.graphs.resize(count);
+  out.arcs.resize(count);
   parallel_blocks(count, 1, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
     for (std::size_t k = b; k < e; ++k) {
       Adjacency& a = out.graphs[k];
       a.offsets.reserve(out.faces[k].size() + 1);
       a.offsets.push_back(0);
       for (std::uint32_t f : out.faces[k]) {
-        for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h)
-          if (block[*h] == k) a.items.push_back(local[*h]);
+        for (std::uint32_t j = g.offsets[f]; j < g.offsets[f + 1]; ++j)
+          if (block[g.items[j]] == k) a.items.push_back(local[g.items[j]]), out.arcs[k].push_back(j);
         a.offsets.push_back(std::uint32_t(a.items.size()));
       }
     }

@@ -16,14 +16,15 @@ namespace cgview::sdf {
 struct CurveBlocks {
   std::vector<std::vector<std::uint32_t>> faces;  // each block's faces, ascending
   std::vector<Adjacency> graphs;                  // each block's arcs, both ends its own, in its local numbers
+  std::vector<std::vector<std::uint32_t>> arcs;   // each of those arcs' place in the whole graph's items
   std::size_t size() const { return faces.size(); }
 };
 
 // floor(faces / size) blocks of as near equal sizes as can be (each at
 // least `size` faces), the k-th of the faces whose places i along the curve
 // have floor(i * blocks / faces) == k.  Under 2 * size faces the whole
-// graph is the one block, and nothing is listed: `faces` and `graphs` are
-// empty.
+// graph is the one block, and nothing is listed: `faces`, `graphs` and
+// `arcs` are empty.
 CurveBlocks curve_blocks(const Mesh& mesh, const Adjacency& face_graph, std::size_t size);
 
 }  // namespace cgview::sdf

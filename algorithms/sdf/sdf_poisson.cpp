@@ -61,24 +61,30 @@ ArcWeights arc_weights(const Mesh& mesh, const Adjacency& g) {
     Vec3 normal, centre;
     double height;
   };
+  // Both passes on every core: 70 ms on one for the 1.42M-face mesh.
   const std::vector<Vec3> normals = face_normals(mesh);
-  std::vector<Plane> plane(g.size());
-  for (std::size_t f = 0; f < g.size(); ++f) {
-    plane[f].normal = normals[f];
-    plane[f].centre = face_centroid(mesh, f);
-    plane[f].height = dot(plane[f].normal, plane[f].centre);
-  }
-  ArcWeights w{std::vector<float>(g.items.size()), std::vector<std::uint8_t>(g.items.size())};
-  for (std::size_t f = 0; f < g.size(); ++f) {
-    const Plane& pf = plane[f];
-    for (std::uint32_t k = g.offsets[f]; k < g.offsets[f + 1]; ++k) {
-      const Plane& ph = plane[g.items[k]];
-      const double x = (1 + std::clamp(dot(pf.normal, ph.normal), -1.0, 1.0)) / 2, x4 = (x * x) * (x * x);
-      const double weight = dot(pf.normal, ph.centre) > pf.height ? x4 * x4 : x4;  // concave: above f's plane
-      w.weight[k] = float(weight);
-      w.cost[k] = std::uint8_t(1 + int(kCostScale * (1 - weight) + 0.5));
+  const std::size_t n = g.size();
+  std::vector<Plane> plane(n);
+  parallel_blocks(n, kItemsPerThread, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+    for (std::size_t f = b; f < e; ++f) {
+      plane[f].normal = normals[f];
+      plane[f].centre = face_centroid(mesh, f);
+      plane[f].height = dot(plane[f].normal, plane[f].centre);
     }
-  }
+  });
+  ArcWeights w{std::vector<float>(g.items.size()), std::vector<std::uint8_t>(g.items.size())};
+  parallel_blocks(n, kItemsPerThread, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+    for (std::size_t f = b; f < e; ++f) {
+      const Plane& pf = plane[f];
+      for (std::uint32_t k = g.offsets[f]; k < g.offsets[f + 1]; ++k) {
+        const Plane& ph = plane[g.items[k]];
+        const double x = (1 + std::clamp(dot(pf.normal, ph.normal), -1.0, 1.0)) / 2, x4 = (x * x) * (x * x);
+        const double weight = dot(pf.normal, ph.centre) > pf.height ? x4 * x4 : x4;  // concave: above f's plane
+        w.weight[k] = float(weight);
+        w.cost[k] = std::uint8_t(1 + int(kCostScale * (1 - weight) + 0.5));
+      }
+    }
+  });
   return w;
 }
 
@@ -111,6 +117,46 @@ std::vector<double> nearest_known(const Adjacency& g, const ArcWeights& a, const
     queued -= now.size();
     now.clear();
   }
+  return out;
+}
+
+// f(k) for each block k of `blocks`, on every core.
+template <class F>
+void each_block(const CurveBlocks& blocks, const F& f) {
+  parallel_blocks(blocks.size(), 1, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+    for (std::size_t k = b; k < e; ++k) f(k);
+  });
+}
+
+// all[at[i]] for each i, and back.
+template <class T>
+std::vector<T> gather(const std::vector<T>& all, const std::vector<std::uint32_t>& at) {
+  std::vector<T> out(at.size());
+  for (std::size_t i = 0; i < at.size(); ++i) out[i] = all[at[i]];
+  return out;
+}
+template <class T>
+void scatter(const std::vector<T>& part, const std::vector<std::uint32_t>& at, std::vector<T>& all) {
+  for (std::size_t i = 0; i < at.size(); ++i) all[at[i]] = part[i];
+}
+
+// nearest_known within each block where the mesh is cut (sdf/curve_blocks.h),
+// on every core: a face beside a border may take its own block's sample
+// where the other block's is nearer.  A face of a block whose part of the
+// mesh there has no known face is reached across the border afterwards.
+// With `a`, by the arcs' costs.
+std::vector<double> nearest_known(const Adjacency& g, const CurveBlocks& blocks, const ArcWeights* a,
+                                  const std::vector<double>& values) {
+  if (blocks.size() == 0) return a ? nearest_known(g, *a, values) : nearest_known(g, values);
+  std::vector<double> out(values.size());
+  each_block(blocks, [&](std::size_t k) {
+    const std::vector<double> own = gather(values, blocks.faces[k]);
+    if (!a) return scatter(nearest_known(blocks.graphs[k], own), blocks.faces[k], out);
+    const ArcWeights costs{{}, gather(a->cost, blocks.arcs[k])};
+    scatter(nearest_known(blocks.graphs[k], costs, own), blocks.faces[k], out);
+  });
+  if (std::any_of(out.begin(), out.end(), [](double v) { return std::isnan(v); }))
+    out = a ? nearest_known(g, *a, out) : nearest_known(g, out);
   return out;
 }
 
@@ -304,44 +350,77 @@ struct SampleGraph {
   double hop = 1;
 };
 
-SampleGraph sample_graph(const Adjacency& g, const std::vector<std::uint32_t>& samples) {
+// Where the mesh is cut (sdf/curve_blocks.h), a face's nearest sample is
+// sought within its block, each block on a core: samples of two blocks
+// still touch across their border.
+SampleGraph sample_graph(const Adjacency& g, const CurveBlocks& blocks, const std::vector<std::uint32_t>& samples) {
   const std::size_t n = g.size(), m = samples.size();
   constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> site(n, none), ring(n, 0), queue;
-  queue.reserve(n);
-  for (std::size_t k = 0; k < m; ++k) site[samples[k]] = std::uint32_t(k), queue.push_back(samples[k]);
-  for (std::size_t q = 0; q < queue.size(); ++q) {
-    const std::uint32_t f = queue[q];
-    for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h)
-      if (site[*h] == none) site[*h] = site[f], ring[*h] = ring[f] + 1, queue.push_back(*h);
-  }
+  std::vector<std::uint32_t> site(n, none), ring(n, 0);
+  for (std::size_t k = 0; k < m; ++k) site[samples[k]] = std::uint32_t(k);
+  // f(face) for every face, a block's faces on the block's core (writing
+  // only what its own samples own), or all on this one.
+  const auto each_face = [&](const auto& f) {
+    if (blocks.size() == 0)
+      for (std::size_t i = 0; i < n; ++i) f(std::uint32_t(i));
+    else
+      each_block(blocks, [&](std::size_t k) {
+        for (std::uint32_t i : blocks.faces[k]) f(i);
+      });
+  };
+  // Breadth-first from the samples, in their order, over a's faces (the
+  // mesh's `face[i]`, or i itself).
+  const auto walk = [&](const Adjacency& a, const std::uint32_t* face) {
+    const auto id = [&](std::uint32_t i) { return face ? face[i] : i; };
+    std::vector<std::uint32_t> queue;
+    queue.reserve(a.size());
+    for (std::uint32_t i = 0; i < a.size(); ++i)
+      if (site[id(i)] != none) queue.push_back(i);
+    for (std::size_t q = 0; q < queue.size(); ++q) {
+      const std::uint32_t f = id(queue[q]);
+      for (const std::uint32_t* h = a.begin(queue[q]); h != a.end(queue[q]); ++h)
+        if (const std::uint32_t to = id(*h); site[to] == none)
+          site[to] = site[f], ring[to] = ring[f] + 1, queue.push_back(*h);
+    }
+  };
+  if (blocks.size() == 0) walk(g, nullptr);
+  else each_block(blocks, [&](std::size_t k) { walk(blocks.graphs[k], blocks.faces[k].data()); });
   // Each touching arc as (neighbour, rings) under its sample, counted first
   // and then placed; each sample's list then sorted, its repeats dropped
   // (the first of each neighbour is its shortest).
-  std::vector<std::uint32_t> at(m + 1, 0);
-  for (std::size_t f = 0; f < n; ++f)
+  const auto touches = [&](std::uint32_t f, const auto& take) {
     for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h)
-      if (site[f] != site[*h] && site[f] != none && site[*h] != none) ++at[site[f] + 1];
+      if (site[f] != site[*h] && site[f] != none && site[*h] != none) take(site[*h], ring[f] + 1 + ring[*h]);
+  };
+  std::vector<std::uint32_t> at(m + 1, 0);
+  each_face([&](std::uint32_t f) { touches(f, [&](std::uint32_t, std::uint32_t) { ++at[site[f] + 1]; }); });
   for (std::size_t k = 0; k < m; ++k) at[k + 1] += at[k];
   std::vector<std::pair<std::uint32_t, std::uint32_t>> touch(at[m]);
   {
     std::vector<std::uint32_t> next(at.begin(), at.end() - 1);
-    for (std::size_t f = 0; f < n; ++f)
-      for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h)
-        if (site[f] != site[*h] && site[f] != none && site[*h] != none)
-          touch[next[site[f]]++] = {site[*h], ring[f] + 1 + ring[*h]};
+    each_face([&](std::uint32_t f) {
+      touches(f, [&](std::uint32_t to, std::uint32_t rings) { touch[next[site[f]]++] = {to, rings}; });
+    });
   }
+  // Each sample's list sorted and its repeats dropped in place, counted,
+  // then moved together.
+  std::vector<std::uint32_t> kept(m + 1, 0);
+  parallel_blocks(m, kItemsPerThread / 8, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+    for (std::size_t k = b; k < e; ++k) {
+      const auto first = touch.begin() + at[k], last = touch.begin() + at[k + 1];
+      std::sort(first, last);
+      kept[k + 1] = std::uint32_t(
+          std::unique(first, last, [](const auto& x, const auto& y) { return x.first == y.first; }) - first);
+    }
+  });
+  for (std::size_t k = 0; k < m; ++k) kept[k + 1] += kept[k];
   SampleGraph out;
-  out.graph.offsets.assign(m + 1, 0);
-  out.graph.items.reserve(touch.size() / 2);
+  out.graph.offsets = kept;
+  out.graph.items.resize(kept[m]);
   double rings = 0;
-  for (std::size_t k = 0; k < m; ++k) {
-    const auto b = touch.begin() + at[k], e = touch.begin() + at[k + 1];
-    std::sort(b, e);
-    for (auto i = b; i != e; ++i)
-      if (i == b || i->first != (i - 1)->first) out.graph.items.push_back(i->first), rings += i->second;
-    out.graph.offsets[k + 1] = std::uint32_t(out.graph.items.size());
-  }
+  for (std::size_t k = 0; k < m; ++k)
+    for (std::uint32_t i = 0; i < kept[k + 1] - kept[k]; ++i)
+      out.graph.items[kept[k] + i] = touch[at[k] + i].first, rings += touch[at[k] + i].second;
   if (!out.graph.items.empty()) out.hop = rings / double(out.graph.items.size());
   return out;
 }
@@ -356,10 +435,10 @@ SampleGraph sample_graph(const Adjacency& g, const std::vector<std::uint32_t>& s
 // the 1.42M-face mesh (window 26 rings), 0.20 s here (5 hops); and the
 // samples' graph came closer to the full SDF on eight of the ten meshes of
 // 20k faces or more, and on that one (docs/BENCHMARKS.md).
-void smooth_samples(const Adjacency& g, const SdfFastParams& p, const std::vector<std::uint32_t>& samples,
-                    std::vector<double>& values) {
+void smooth_samples(const Adjacency& g, const CurveBlocks& blocks, const SdfFastParams& p,
+                    const std::vector<std::uint32_t>& samples, std::vector<double>& values) {
   const int window = std::max(1, (p.sdf.window > 0 ? p.sdf.window : default_window(g.size())) - 1);
-  const SampleGraph sg = sample_graph(g, samples);
+  const SampleGraph sg = sample_graph(g, blocks, samples);
   std::vector<double> v(samples.size());
   for (std::size_t k = 0; k < samples.size(); ++k) v[k] = values[samples[k]];
   bilateral_smooth(sg.graph, v, std::max(1, int(std::lround(window / sg.hop))));
@@ -434,8 +513,8 @@ constexpr double kFirstRound = 0.6;
 // first chose samples no better, for a third of this step's time), plus a
 // thousandth of their range, so that where they agree the rings alone
 // decide.  A sample whose rays escaped counts as the smallest value.
-std::vector<double> uncertainty(const Adjacency& g, const SdfFastParams& p, const std::vector<std::uint32_t>& samples,
-                                const std::vector<double>& raw) {
+std::vector<double> uncertainty(const Adjacency& g, const CurveBlocks& blocks, const SdfFastParams& p,
+                                const std::vector<std::uint32_t>& samples, const std::vector<double>& raw) {
   const std::size_t n = g.size();
   double smallest = HUGE_VAL, largest = -HUGE_VAL;
   for (double v : raw)
@@ -446,7 +525,7 @@ std::vector<double> uncertainty(const Adjacency& g, const SdfFastParams& p, cons
   std::vector<std::uint32_t> unknown;
   for (std::size_t f = 0; f < n; ++f)
     if (std::isnan(mean[f])) unknown.push_back(std::uint32_t(f));
-  mean = nearest_known(g, mean);
+  mean = nearest_known(g, blocks, nullptr, mean);
   std::vector<double> square(n);
   for (std::size_t f = 0; f < n; ++f) square[f] = mean[f] * mean[f];
   // The two spreads side by side, each on half the cores.
@@ -627,7 +706,7 @@ FastSdf poisson_sdf_on(const Mesh& mesh, const Adjacency* given, const SdfFastPa
   std::vector<std::uint32_t> second;
   RawSdf raw2;
   if (first.size() < total) {
-    const std::vector<double> spread = uncertainty(g, p, first, raw1.values);
+    const std::vector<double> spread = uncertainty(g, blocks, p, first, raw1.values);
     second = second_samples(g, blocks, std::move(ring), spread, total - first.size());
     step_done("second samples");
     raw2 = rays.cast(second, ctx, 0.5, 0.8);
@@ -649,7 +728,7 @@ FastSdf poisson_sdf_on(const Mesh& mesh, const Adjacency* given, const SdfFastPa
     std::fill(out.values.begin(), out.values.end(), 0.0);
     return out;
   }
-  if (p.sdf.smooth) smooth_samples(g, p, out.samples, out.values);
+  if (p.sdf.smooth) smooth_samples(g, blocks, p, out.samples, out.values);
   step_done("samples smoothed");
   if (ctx) ctx->progress(0.8, "solving the Poisson equation");
 
@@ -661,7 +740,7 @@ FastSdf poisson_sdf_on(const Mesh& mesh, const Adjacency* given, const SdfFastPa
       region = escaped_region(g, weights, p, out.samples, escaped);
       return;
     }
-    const std::vector<double> start = nearest_known(g, weights, out.values);
+    const std::vector<double> start = nearest_known(g, blocks, &weights, out.values);
     std::vector<std::int64_t> row(n, -1);
     std::vector<std::uint32_t> unknown;
     for (std::size_t f = 0; f < n; ++f)

@@ -1,5 +1,5 @@
 // A face graph cut along the Morton curve (sdf/curve_blocks.h), against the
-// curve order itself and the whole graph's arcs.
+// curve order itself and the whole graph's arcs and their places.
 #include "sdf/curve_blocks.h"
 
 #include <gtest/gtest.h>
@@ -20,6 +20,7 @@ TEST(CurveBlocks, ConsecutiveFacesAlongTheCurveWithTheArcsBetweenThem) {
   const CurveBlocks blocks = curve_blocks(mesh, g, 500);
   ASSERT_EQ(blocks.size(), n / 500);
   ASSERT_EQ(blocks.graphs.size(), blocks.size());
+  ASSERT_EQ(blocks.arcs.size(), blocks.size());
 
   std::vector<Vec3> centre(n);
   for (std::size_t f = 0; f < n; ++f) centre[f] = face_centroid(mesh, f);
@@ -39,11 +40,15 @@ TEST(CurveBlocks, ConsecutiveFacesAlongTheCurveWithTheArcsBetweenThem) {
     ASSERT_EQ(a.size(), blocks.faces[k].size());
     for (std::size_t i = 0; i < a.size(); ++i) {
       const std::uint32_t f = blocks.faces[k][i];
-      std::vector<std::uint32_t> own;
-      for (const std::uint32_t* h = g.begin(f); h != g.end(f); ++h)
-        if (block[*h] == k) own.push_back(std::uint32_t(local[*h]));
+      std::vector<std::uint32_t> own, places;
+      for (std::uint32_t j = g.offsets[f]; j < g.offsets[f + 1]; ++j)
+        if (block[g.items[j]] == k) own.push_back(std::uint32_t(local[g.items[j]])), places.push_back(j);
         else ++cut;
       EXPECT_EQ(std::vector<std::uint32_t>(a.begin(i), a.end(i)), own) << "face " << f;
+      EXPECT_EQ(
+          std::vector<std::uint32_t>(blocks.arcs[k].begin() + a.offsets[i], blocks.arcs[k].begin() + a.offsets[i + 1]),
+          places)
+          << "face " << f;
     }
   }
   EXPECT_GT(cut, 0u);  // the blocks meet
@@ -55,6 +60,7 @@ TEST(CurveBlocks, UnderTwoBlocksOfFacesTheGraphIsWhole) {
   const CurveBlocks blocks = curve_blocks(mesh, g, g.size() / 2 + 1);
   EXPECT_EQ(blocks.size(), 0u);
   EXPECT_TRUE(blocks.graphs.empty());
+  EXPECT_TRUE(blocks.arcs.empty());
 }
 
 }  // namespace
