@@ -4,7 +4,7 @@
 # instrumented) both take them from these lists.
 set(CGVIEW_CORE_SOURCES
   core/errors.cpp core/mesh.cpp core/point_cloud.cpp core/mesh_report.cpp core/orient.cpp core/scalar_field.cpp core/vector_field.cpp
-  core/voxel_grid.cpp core/skeleton.cpp core/animation.cpp core/cluster_decimate.cpp)
+  core/voxel_grid.cpp core/skeleton.cpp core/animation.cpp core/cluster_decimate.cpp core/shared_library.cpp)
 set(CGVIEW_IO_SOURCES
   io/mesh_io.cpp io/mesh_formats.cpp io/read_off.cpp io/read_obj.cpp io/read_ply.cpp io/read_stl.cpp io/read_xyz.cpp
   io/write_text.cpp io/draco_io.cpp io/gltf_io.cpp io/samples.cpp io/skeleton_io.cpp io/materials.cpp

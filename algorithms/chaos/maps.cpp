@@ -1,6 +1,5 @@
 #include "chaos/maps.h"
 
-#include <dlfcn.h>
 #include <openssl/sha.h>
 
 #include <algorithm>
@@ -8,8 +7,10 @@
 #include <cstring>
 #include <numeric>
 #include <string>
+#include <utility>
 
 #include "core/errors.h"
+#include "core/shared_library.h"
 
 namespace cgview::chaos {
 
@@ -153,12 +154,13 @@ namespace {
 // job's worker ~0.9 ms of CPU, for the few jobs that take a key.
 using Sha256Fn = decltype(&::SHA256);
 Sha256Fn sha256_function() {
-  static const Sha256Fn f = [] {
-    void* lib = ::dlopen(CGVIEW_LIBCRYPTO, RTLD_NOW | RTLD_LOCAL);
-    return lib ? reinterpret_cast<Sha256Fn>(::dlsym(lib, "SHA256")) : nullptr;
+  static const std::pair<Sha256Fn, std::string> loaded = [] {
+    SharedLibrary lib(CGVIEW_LIBCRYPTO);
+    const Sha256Fn f = lib.function<Sha256Fn>("SHA256");
+    return std::pair(f, lib.why());
   }();
-  if (!f) throw IoError(std::string("SHA-256: cannot load OpenSSL's ") + CGVIEW_LIBCRYPTO);
-  return f;
+  if (!loaded.first) throw IoError("SHA-256: cannot load OpenSSL: " + loaded.second);
+  return loaded.first;
 }
 
 }  // namespace

@@ -1,6 +1,5 @@
 #include "plugins/plugin.h"
 
-#include <dlfcn.h>
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
@@ -16,6 +15,7 @@
 #include <set>
 
 #include "core/errors.h"
+#include "core/shared_library.h"
 #include "registry/registry.h"
 
 extern char** environ;
@@ -174,14 +174,9 @@ std::vector<std::string> load_plugin(const fs::path& library) {
   for (const auto& [name, a] : algorithms()) before.insert(name);
   std::vector<std::string> clashes;
   detail::set_registration_clashes(&clashes);
-  // RTLD_LOCAL: two plugins' own symbols never meet; RTLD_NOW: a missing
-  // symbol is said here, not when the algorithm first calls it.
-  void* handle = ::dlopen(fs::absolute(library).c_str(), RTLD_NOW | RTLD_LOCAL);
+  const SharedLibrary lib(fs::absolute(library).string());  // its algorithms registered as it opens
   detail::set_registration_clashes(nullptr);
-  if (!handle) {
-    const char* e = ::dlerror();
-    throw InvalidInput("cannot load the plugin " + library.filename().string() + ": " + (e ? e : "unknown error"));
-  }
+  if (!lib.opened()) throw InvalidInput("cannot load the plugin " + library.filename().string() + ": " + lib.why());
   if (!clashes.empty())
     throw InvalidInput("the plugin's algorithm '" + clashes.front() +
                        "' has the name of an algorithm CGView has: rename it in CGVIEW_REGISTER_FUNCTION");

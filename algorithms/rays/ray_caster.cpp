@@ -1,12 +1,12 @@
 #include "rays/ray_caster.h"
 
-#include <dlfcn.h>
 #include <embree3/rtcore.h>
 
-#include <optional>
+#include <utility>
 #include <string>
 
 #include "core/errors.h"
+#include "core/shared_library.h"
 
 namespace cgview {
 namespace {
@@ -45,18 +45,16 @@ struct Embree {
 };
 
 const Embree& embree() {
-  static const std::optional<Embree> e = []() -> std::optional<Embree> {
-    void* lib = ::dlopen(CGVIEW_LIBEMBREE, RTLD_NOW | RTLD_LOCAL);
-    if (!lib) return std::nullopt;
+  static const std::pair<Embree, std::string> loaded = [] {
+    SharedLibrary lib(CGVIEW_LIBEMBREE);
     Embree e;
-    bool all = true;
-#define CGVIEW_EMBREE_FIND(f) all = (e.f = reinterpret_cast<decltype(&::f)>(::dlsym(lib, #f))) && all;
+#define CGVIEW_EMBREE_FIND(f) e.f = lib.function<decltype(&::f)>(#f);
     CGVIEW_EMBREE_FUNCTIONS(CGVIEW_EMBREE_FIND)
 #undef CGVIEW_EMBREE_FIND
-    return all ? std::optional(e) : std::nullopt;
+    return std::pair(e, lib.why());
   }();
-  if (!e) throw Error(std::string("cannot load Embree (") + CGVIEW_LIBEMBREE + ")");
-  return *e;
+  if (!loaded.second.empty()) throw Error("cannot load Embree: " + loaded.second);
+  return loaded.first;
 }
 
 }  // namespace

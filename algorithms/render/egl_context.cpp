@@ -2,7 +2,6 @@
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
-#include <dlfcn.h>
 
 #include <atomic>
 #include <cstdio>
@@ -12,6 +11,7 @@
 #include <mutex>
 
 #include "core/errors.h"
+#include "core/shared_library.h"
 #include "render/gl_functions.h"
 
 namespace cgview::render {
@@ -48,17 +48,11 @@ struct Egl {
 const Egl& egl() {
   static const Egl loaded = [] {
     Egl e;
-    void* lib = ::dlopen("libEGL.so.1", RTLD_NOW | RTLD_LOCAL);
-    if (!lib) {
-      const char* why = ::dlerror();
-      e.why_not = "render: cannot open libEGL.so.1 (" + std::string(why ? why : "not found") + ")";
-      return e;
-    }
-#define CGVIEW_EGL_FIND(type, name)                     \
-  e.name = reinterpret_cast<type>(::dlsym(lib, #name)); \
-  if (!e.name && e.why_not.empty()) e.why_not = "render: libEGL.so.1 has no " #name;
+    SharedLibrary lib("libEGL.so.1");
+#define CGVIEW_EGL_FIND(type, name) e.name = lib.function<type>(#name);
     CGVIEW_EGL_FUNCTIONS(CGVIEW_EGL_FIND)
 #undef CGVIEW_EGL_FIND
+    if (!lib.why().empty()) e.why_not = "render: " + lib.why();
     return e;
   }();
   if (!loaded.why_not.empty()) throw Error(loaded.why_not);

@@ -1,10 +1,9 @@
 // write_vdb and read_vdb (voxel_io.h): they load the OpenVDB module on
 // their first call (vdb_module.h says why it is a module).
-#include <dlfcn.h>
-
 #include <vector>
 
 #include "core/errors.h"
+#include "core/shared_library.h"
 #include "voxel/vdb_module.h"
 #include "voxel/voxel_io.h"
 
@@ -41,14 +40,13 @@ Module load() {
   places.push_back(fs::path(CGVIEW_VDB_MODULE_DIR) / vdb_module::kFile);
   for (const fs::path& p : places) {
     if (!fs::exists(p, ec)) continue;
-    void* h = ::dlopen(p.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!h) {
-      const char* e = ::dlerror();
-      m.why_not = "cannot load " + p.string() + ": " + (e ? e : "dlopen failed");
+    SharedLibrary lib(p.string());
+    if (!lib.opened()) {
+      m.why_not = lib.why();
       return m;
     }
-    m.write = reinterpret_cast<vdb_module::WriteFn>(::dlsym(h, vdb_module::kWrite));
-    m.read = reinterpret_cast<vdb_module::ReadFn>(::dlsym(h, vdb_module::kRead));
+    m.write = lib.function<vdb_module::WriteFn>(vdb_module::kWrite);
+    m.read = lib.function<vdb_module::ReadFn>(vdb_module::kRead);
     if (!m.write || !m.read) m.why_not = p.string() + " is not CGView's OpenVDB module";
     return m;
   }
