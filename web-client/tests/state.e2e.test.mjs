@@ -241,6 +241,9 @@ test('"Play" plays an animation: the frames advance with no further input, and i
 
   await row.getByRole('button', { name: 'Pause', exact: true }).click();
   await row.getByRole('button', { name: 'Play', exact: true }).waitFor({ timeout: 5000 });
+  // The hook is set once a frame is drawn: the frame the player last went to
+  // may be drawn just after the pause.
+  await page.waitForFunction(() => window.__cgview.lastAnimation.frame === Number(document.querySelector('#animation-player .player-slider').value), null, { timeout: 5000 });
   const paused = await page.evaluate(() => window.__cgview.lastAnimation.frame);
   await sleep(600);
   assert.equal(await page.evaluate(() => window.__cgview.lastAnimation.frame), paused, 'paused, it stays on its frame');
