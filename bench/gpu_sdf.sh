@@ -42,6 +42,14 @@ case "${1:-}" in
     for soname in $(strings $bins | grep -E '^lib(embree|EGL)[^ /]*\.so(\.[0-9]+)*$' | sort -u); do
       opened="$opened $(ldconfig -p | awk -v s="$soname" '$1 == s && /x86-64/ {print $NF; exit}')"
     done
+    # Without them the run on the device machine fails after its start:
+    # said here instead, where it costs nothing.
+    for want in libembree libEGL; do
+      case "$opened" in
+        *"/$want"*) ;;
+        *) echo "gpu_sdf.sh: no $want soname found in $bins (core/shared_library.h)" >&2; exit 1 ;;
+      esac
+    done
     for lib in $( (ldd $bins $opened | awk '/=> \//{print $3}'; printf '%s\n' $opened) | sort -u); do
       case "$(basename "$lib")" in
         libc.so* | libm.so* | libdl.so* | libpthread.so* | librt.so* | ld-linux*) continue ;;

@@ -13,8 +13,8 @@ std::string said_by_loader(const std::string& otherwise) {
 
 }  // namespace
 
-SharedLibrary::SharedLibrary(const std::string& path) : path_(path) {
-  handle_ = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+SharedLibrary::SharedLibrary(const char* path) : path_(path) {
+  handle_ = ::dlopen(path, RTLD_NOW | RTLD_LOCAL);
   if (!handle_) why_ = said_by_loader(path);
 }
 

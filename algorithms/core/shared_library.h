@@ -14,7 +14,9 @@ namespace cgview {
 
 class SharedLibrary {
  public:
-  explicit SharedLibrary(const std::string& path);
+  // A name (a C string: a soname stays whole in the binary, where
+  // bench/gpu_sdf.sh finds the libraries to carry) or a path.
+  explicit SharedLibrary(const char* path);
   // Whether it opened; where not, why() says so, in the loader's words
   // (which name the library).
   bool opened() const { return handle_ != nullptr; }

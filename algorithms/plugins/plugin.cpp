@@ -174,7 +174,7 @@ std::vector<std::string> load_plugin(const fs::path& library) {
   for (const auto& [name, a] : algorithms()) before.insert(name);
   std::vector<std::string> clashes;
   detail::set_registration_clashes(&clashes);
-  const SharedLibrary lib(fs::absolute(library).string());  // its algorithms registered as it opens
+  const SharedLibrary lib(fs::absolute(library).c_str());  // its algorithms registered as it opens
   detail::set_registration_clashes(nullptr);
   if (!lib.opened()) throw InvalidInput("cannot load the plugin " + library.filename().string() + ": " + lib.why());
   if (!clashes.empty())

@@ -40,7 +40,7 @@ Module load() {
   places.push_back(fs::path(CGVIEW_VDB_MODULE_DIR) / vdb_module::kFile);
   for (const fs::path& p : places) {
     if (!fs::exists(p, ec)) continue;
-    SharedLibrary lib(p.string());
+    SharedLibrary lib(p.c_str());
     if (!lib.opened()) {
       m.why_not = lib.why();
       return m;
