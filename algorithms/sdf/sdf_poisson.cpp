@@ -403,7 +403,8 @@ SampleGraph sample_graph(const Adjacency& g, const CurveBlocks& blocks, const st
     });
   }
   // Each sample's list sorted and its repeats dropped in place, counted,
-  // then moved together.
+  // then moved together.  A list is about six touches: a share of 8k
+  // samples is about the work of a pass over 64k items.
   std::vector<std::uint32_t> kept(m + 1, 0);
   parallel_blocks(m, kItemsPerThread / 8, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
     for (std::size_t k = b; k < e; ++k) {
@@ -610,11 +611,9 @@ std::vector<std::uint32_t> pick_in_blocks(const CurveBlocks& blocks, std::size_t
     return std::size_t(std::llround(double(total) * double(before[k]) / double(before[m])));
   };
   std::vector<std::vector<std::uint32_t>> picked(m);
-  parallel_blocks(m, 1, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
-    for (std::size_t k = b; k < e; ++k) {
-      picked[k] = pick(k, upto(k + 1) - upto(k));
-      for (std::uint32_t& f : picked[k]) f = blocks.faces[k][f];
-    }
+  each_block(blocks, [&](std::size_t k) {
+    picked[k] = pick(k, upto(k + 1) - upto(k));
+    for (std::uint32_t& f : picked[k]) f = blocks.faces[k][f];
   });
   std::vector<std::uint32_t> out;
   out.reserve(total);
@@ -631,8 +630,7 @@ std::vector<std::uint32_t> first_samples(const Adjacency& g, const CurveBlocks& 
   std::vector<std::uint32_t> out = pick_in_blocks(blocks, count, [&](std::size_t k, std::size_t share) {
     std::vector<std::uint32_t> local;
     std::vector<std::uint32_t> picked = spread_rings(blocks.graphs[k], share, local);
-    const std::vector<std::uint32_t>& faces = blocks.faces[k];
-    for (std::size_t i = 0; i < faces.size(); ++i) ring[faces[i]] = local[i];
+    scatter(local, blocks.faces[k], ring);
     return picked;
   });
   std::sort(out.begin(), out.end());
@@ -646,10 +644,7 @@ std::vector<std::uint32_t> second_samples(const Adjacency& g, const CurveBlocks&
   if (blocks.size() == 0) return more_samples(g, std::move(ring), spread, count);
   return pick_in_blocks(blocks, count, [&](std::size_t k, std::size_t share) {
     const std::vector<std::uint32_t>& faces = blocks.faces[k];
-    std::vector<std::uint32_t> local_ring(faces.size());
-    std::vector<double> local_spread(faces.size());
-    for (std::size_t i = 0; i < faces.size(); ++i) local_ring[i] = ring[faces[i]], local_spread[i] = spread[faces[i]];
-    return more_samples(blocks.graphs[k], std::move(local_ring), local_spread, share);
+    return more_samples(blocks.graphs[k], gather(ring, faces), gather(spread, faces), share);
   });
 }
 
