@@ -433,7 +433,9 @@ TEST_F(JobsTest, APointCloudInputFromACloudAMeshOrAnEarlierJob) {
   EXPECT_NE(metrics.body.find("is a metrics"), std::string::npos) << metrics.body;
   // voxelize takes a cloud as its mesh (surface mode: the voxels holding the points), and says so.
   for (const json& a : http_get(server_.port(), "/api/v1/algorithms").body_json()["algorithms"])
-    if (a["name"] == "voxelize") EXPECT_EQ(a["inputs"][0].value("faceless", false), true) << a.dump();
+    if (a["name"] == "voxelize") {
+      EXPECT_EQ(a["inputs"][0].value("faceless", false), true) << a.dump();
+    }
   const auto voxels = http_call(server_.port(), Method::post, "/api/v1/jobs",
                                 json{{"algorithm", "voxelize"},
                                      {"inputs", {{"mesh", cloud}}},

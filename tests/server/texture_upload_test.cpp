@@ -197,8 +197,9 @@ TEST_F(TextureUploadTest, SpiderKeepsEveryMaterialsTexture) {
   for (const auto& t : mesh["textures"]) shown.insert(t["name"]);
   const std::string warnings = mesh["warnings"].dump();
   for (const auto& [name, bytes] : files)
-    if (name.ends_with(".jpg"))
+    if (name.ends_with(".jpg")) {
       EXPECT_EQ(warnings.find(name) != std::string::npos, !shown.count(name)) << name << " " << warnings;
+    }
   const std::vector<Material> mtl = parse_mtl(files[1].second);
   const ObjMaterialUse use = obj_material_use(files[0].second);
   ASSERT_EQ(mesh["materials"].size(), 4u) << mesh;

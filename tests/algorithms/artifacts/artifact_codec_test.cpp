@@ -215,7 +215,9 @@ TEST(ArtifactCodec, EveryServedFormatIsReadBackByItsOwnReader) {
       });
       EXPECT_EQ(e.content_type, f.content_type);
       EXPECT_EQ(e.file_name, a.name + f.extension);
-      if (&f == &c.formats().front()) EXPECT_EQ(e.bytes, stored) << "the stored file, as it is";
+      if (&f == &c.formats().front()) {
+        EXPECT_EQ(e.bytes, stored) << "the stored file, as it is";
+      }
       EXPECT_EQ(asked_for_mesh, c.needs_mesh(f) ? 1 : 0);
       switch (c.kind()) {
         case OutputKind::mesh:
@@ -224,12 +226,21 @@ TEST(ArtifactCodec, EveryServedFormatIsReadBackByItsOwnReader) {
           break;
         case OutputKind::scalar_field: {
           const std::size_t n = sphere.num_vertices();
-          if (f.name == "f32") EXPECT_EQ(e.bytes.size(), n * 4);
-          if (f.name == "json") EXPECT_EQ(json::parse(e.bytes)["values"].size(), n);
-          if (f.name == "txt") EXPECT_EQ(std::count(e.bytes.begin(), e.bytes.end(), '\n'), long(n));
-          if (f.name == "csv") EXPECT_EQ(std::count(e.bytes.begin(), e.bytes.end(), '\n'), long(n + 1));
-          if (f.name == "ply")
+          if (f.name == "f32") {
+            EXPECT_EQ(e.bytes.size(), n * 4);
+          }
+          if (f.name == "json") {
+            EXPECT_EQ(json::parse(e.bytes)["values"].size(), n);
+          }
+          if (f.name == "txt") {
+            EXPECT_EQ(std::count(e.bytes.begin(), e.bytes.end(), '\n'), long(n));
+          }
+          if (f.name == "csv") {
+            EXPECT_EQ(std::count(e.bytes.begin(), e.bytes.end(), '\n'), long(n + 1));
+          }
+          if (f.name == "ply") {
             EXPECT_EQ(read_mesh_bytes(e.bytes, MeshFormat::ply, "f.ply").mesh.num_faces(), sphere.num_faces());
+          }
           break;
         }
         case OutputKind::voxel_grid: {
@@ -258,14 +269,18 @@ TEST(ArtifactCodec, EveryServedFormatIsReadBackByItsOwnReader) {
           break;
         case OutputKind::vector_field: {
           const std::size_t n = sphere.num_vertices();
-          if (f.name == "f32") EXPECT_EQ(e.bytes.size(), n * 12);
+          if (f.name == "f32") {
+            EXPECT_EQ(e.bytes.size(), n * 12);
+          }
           if (f.name == "json") {
             const json j = json::parse(e.bytes);
             EXPECT_EQ(j["values"].size(), n);
             EXPECT_EQ(j["hint"], "arrow");
             EXPECT_EQ(j["values"][3][2].get<float>(), float(sphere.positions[3].z));
           }
-          if (f.name == "csv") EXPECT_EQ(std::count(e.bytes.begin(), e.bytes.end(), '\n'), long(n + 1));
+          if (f.name == "csv") {
+            EXPECT_EQ(std::count(e.bytes.begin(), e.bytes.end(), '\n'), long(n + 1));
+          }
           if (f.name == "ply") {
             // A point cloud at the vertices, the vectors its normals.
             const Mesh cloud = read_mesh_bytes(e.bytes, MeshFormat::ply, "v.ply").mesh;

@@ -38,7 +38,9 @@ TEST(PrincipalDirectionsTest, TorusAgainstItsAnalyticCurvatures) {
     EXPECT_NEAR(dot(d1, d2), 0.0, 1e-4);
     if (std::abs(p.z) < 1e-9) (rho > R ? outer : inner)++;
     // On the equators the tube's direction is vertical.
-    if (std::abs(p.z) < 1e-9) EXPECT_NEAR(std::abs(d1.z), 1.0, 0.01) << v;
+    if (std::abs(p.z) < 1e-9) {
+      EXPECT_NEAR(std::abs(d1.z), 1.0, 0.01) << v;
+    }
   }
   EXPECT_GT(outer, 0);
   EXPECT_GT(inner, 0);

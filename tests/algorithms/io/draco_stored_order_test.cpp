@@ -82,7 +82,9 @@ void expect_stored_order(const Mesh& mesh, std::span<const std::uint32_t> materi
   const protocol::StoredOrder back = protocol::unpack_stored_order(packed);
   EXPECT_EQ(back.points, order.points);
   EXPECT_EQ(back.faces, order.faces);
-  if (mesh.num_faces() > 1000) EXPECT_LT(packed.size(), (order.points.size() + order.faces.size()) * 4 / 2);
+  if (mesh.num_faces() > 1000) {
+    EXPECT_LT(packed.size(), (order.points.size() + order.faces.size()) * 4 / 2);
+  }
 }
 
 TEST(DracoStoredOrder, EveryDecodedPointAndFaceIsItsStoredOne) {

@@ -99,7 +99,9 @@ TEST(SkeletonMcf, NonManifoldMeshIsRepairedFirstByDefault) {
   ASSERT_EQ(s.vertex_to_node.size(), broken.num_vertices());
   for (std::size_t v = 0; v < broken.num_vertices(); ++v) {
     const double z = broken.positions[v].z;
-    if (z != top) EXPECT_EQ(s.nodes[s.vertex_to_node[v]].z > top, z > top) << "vertex " << v;
+    if (z != top) {
+      EXPECT_EQ(s.nodes[s.vertex_to_node[v]].z > top, z > top) << "vertex " << v;
+    }
   }
   // CGAL's skeleton of the repair filter's mesh, with repair off: the same
   // shape (not node for node: the flow's remeshing differs from run to run

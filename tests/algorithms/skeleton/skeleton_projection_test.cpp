@@ -302,7 +302,9 @@ TEST(SkeletonProjection, StagesReportProgressAsTheyGo) {
   for (std::size_t i = 0; i < reports.size(); ++i) {
     const auto& [f, stage] = reports[i];
     EXPECT_FALSE(stage.empty()) << "report " << i;
-    if (i > 0) EXPECT_GE(f, reports[i - 1].first) << "report " << i << " (" << stage << ") goes back";
+    if (i > 0) {
+      EXPECT_GE(f, reports[i - 1].first) << "report " << i << " (" << stage << ") goes back";
+    }
     if (!by_stage.count(stage)) order.push_back(stage);
     by_stage[stage].push_back(f);
   }
