@@ -10,9 +10,10 @@ CurveBlocks curve_blocks(const Mesh& mesh, const Adjacency& g, std::size_t size)
   CurveBlocks out;
   if (count < 2) return out;
   std::vector<Vec3> centre(n);
-  parallel_blocks(n, kItemsPerThread, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
-    for (std::size_t f = b; f < e; ++f) centre[f] = face_centroid(mesh, f);
-  });
+  parallel_blocks(n, kItemsPerThread, threads_for(n, kItemsPerThread), nullptr, 0, 0, "",
+                  [&](std::size_t b, std::size_t e) {
+                    for (std::size_t f = b; f < e; ++f) centre[f] = face_centroid(mesh, f);
+                  });
   const std::vector<std::uint32_t> order = curve_order(centre);
   std::vector<std::uint32_t> block(n), local(n);
   for (std::size_t i = 0; i < n; ++i) block[order[i]] = std::uint32_t(i * count / n);
@@ -24,7 +25,7 @@ CurveBlocks curve_blocks(const Mesh& mesh, const Adjacency& g, std::size_t size)
   }
   out.graphs.resize(count);
   out.arcs.resize(count);
-  parallel_blocks(count, 1, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+  parallel_blocks(count, 1, threads_for(count, 1), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
     for (std::size_t k = b; k < e; ++k) {
       Adjacency& a = out.graphs[k];
       a.offsets.reserve(out.faces[k].size() + 1);

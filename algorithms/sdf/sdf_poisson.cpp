@@ -65,26 +65,28 @@ ArcWeights arc_weights(const Mesh& mesh, const Adjacency& g) {
   const std::vector<Vec3> normals = face_normals(mesh);
   const std::size_t n = g.size();
   std::vector<Plane> plane(n);
-  parallel_blocks(n, kItemsPerThread, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
-    for (std::size_t f = b; f < e; ++f) {
-      plane[f].normal = normals[f];
-      plane[f].centre = face_centroid(mesh, f);
-      plane[f].height = dot(plane[f].normal, plane[f].centre);
-    }
-  });
+  parallel_blocks(n, kItemsPerThread, threads_for(n, kItemsPerThread), nullptr, 0, 0, "",
+                  [&](std::size_t b, std::size_t e) {
+                    for (std::size_t f = b; f < e; ++f) {
+                      plane[f].normal = normals[f];
+                      plane[f].centre = face_centroid(mesh, f);
+                      plane[f].height = dot(plane[f].normal, plane[f].centre);
+                    }
+                  });
   ArcWeights w{std::vector<float>(g.items.size()), std::vector<std::uint8_t>(g.items.size())};
-  parallel_blocks(n, kItemsPerThread, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
-    for (std::size_t f = b; f < e; ++f) {
-      const Plane& pf = plane[f];
-      for (std::uint32_t k = g.offsets[f]; k < g.offsets[f + 1]; ++k) {
-        const Plane& ph = plane[g.items[k]];
-        const double x = (1 + std::clamp(dot(pf.normal, ph.normal), -1.0, 1.0)) / 2, x4 = (x * x) * (x * x);
-        const double weight = dot(pf.normal, ph.centre) > pf.height ? x4 * x4 : x4;  // concave: above f's plane
-        w.weight[k] = float(weight);
-        w.cost[k] = std::uint8_t(1 + int(kCostScale * (1 - weight) + 0.5));
-      }
-    }
-  });
+  parallel_blocks(
+      n, kItemsPerThread, threads_for(n, kItemsPerThread), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+        for (std::size_t f = b; f < e; ++f) {
+          const Plane& pf = plane[f];
+          for (std::uint32_t k = g.offsets[f]; k < g.offsets[f + 1]; ++k) {
+            const Plane& ph = plane[g.items[k]];
+            const double x = (1 + std::clamp(dot(pf.normal, ph.normal), -1.0, 1.0)) / 2, x4 = (x * x) * (x * x);
+            const double weight = dot(pf.normal, ph.centre) > pf.height ? x4 * x4 : x4;  // concave: above f's plane
+            w.weight[k] = float(weight);
+            w.cost[k] = std::uint8_t(1 + int(kCostScale * (1 - weight) + 0.5));
+          }
+        }
+      });
   return w;
 }
 
@@ -123,9 +125,10 @@ std::vector<double> nearest_known(const Adjacency& g, const ArcWeights& a, const
 // f(k) for each block k of `blocks`, on every core.
 template <class F>
 void each_block(const CurveBlocks& blocks, const F& f) {
-  parallel_blocks(blocks.size(), 1, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
-    for (std::size_t k = b; k < e; ++k) f(k);
-  });
+  parallel_blocks(blocks.size(), 1, threads_for(blocks.size(), 1), nullptr, 0, 0, "",
+                  [&](std::size_t b, std::size_t e) {
+                    for (std::size_t k = b; k < e; ++k) f(k);
+                  });
 }
 
 // all[at[i]] for each i, and back.
@@ -406,14 +409,16 @@ SampleGraph sample_graph(const Adjacency& g, const CurveBlocks& blocks, const st
   // then moved together.  A list is about six touches: a share of 8k
   // samples is about the work of a pass over 64k items.
   std::vector<std::uint32_t> kept(m + 1, 0);
-  parallel_blocks(m, kItemsPerThread / 8, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
-    for (std::size_t k = b; k < e; ++k) {
-      const auto first = touch.begin() + at[k], last = touch.begin() + at[k + 1];
-      std::sort(first, last);
-      kept[k + 1] = std::uint32_t(
-          std::unique(first, last, [](const auto& x, const auto& y) { return x.first == y.first; }) - first);
-    }
-  });
+  parallel_blocks(
+      m, kItemsPerThread / 8, threads_for(m, kItemsPerThread / 8), nullptr, 0, 0, "",
+      [&](std::size_t b, std::size_t e) {
+        for (std::size_t k = b; k < e; ++k) {
+          const auto first = touch.begin() + at[k], last = touch.begin() + at[k + 1];
+          std::sort(first, last);
+          kept[k + 1] = std::uint32_t(
+              std::unique(first, last, [](const auto& x, const auto& y) { return x.first == y.first; }) - first);
+        }
+      });
   for (std::size_t k = 0; k < m; ++k) kept[k + 1] += kept[k];
   SampleGraph out;
   out.graph.offsets = kept;
