@@ -673,9 +673,10 @@ FastSdf poisson_sdf_on(const Mesh& mesh, const Adjacency* given, const SdfFastPa
   // both cores busy only in part (on polygon_mesh, 32k faces, it takes 3.5
   // ms on two threads, 7 on one).  The arcs' weights, needed from the solve
   // on, are weighed by whichever thread is free first once the graph is
-  // made: the BVH's on large meshes (its 0.4 s against the graph and the
-  // sampling's 0.6 s on 1.42M faces, on 2 cores; with more cores the BVH
-  // the sooner), the sampling's on small ones.
+  // made.  On 2 cores: on polygon_mesh the BVH's (free at 5.7 ms, the
+  // sampling's at 7-9 ms); on the 1.42M-face mesh, whose blocks sample on
+  // every core, the sampling's (free at 0.48-0.66 s, the BVH's at
+  // 0.58-0.79 s).
   const std::size_t total = std::size_t(std::ceil(p.fraction * double(n)));
   std::vector<std::uint32_t> ring, first;
   CurveBlocks blocks;
