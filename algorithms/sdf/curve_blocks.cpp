@@ -9,12 +9,7 @@ CurveBlocks curve_blocks(const Mesh& mesh, const Adjacency& g, std::size_t size)
   const std::size_t n = g.size(), count = size > 0 ? n / size : 0;
   CurveBlocks out;
   if (count < 2) return out;
-  std::vector<Vec3> centre(n);
-  parallel_blocks(n, kItemsPerThread, threads_for(n, kItemsPerThread), nullptr, 0, 0, "",
-                  [&](std::size_t b, std::size_t e) {
-                    for (std::size_t f = b; f < e; ++f) centre[f] = face_centroid(mesh, f);
-                  });
-  const std::vector<std::uint32_t> order = curve_order(centre);
+  const std::vector<std::uint32_t> order = face_curve_order(mesh);
   std::vector<std::uint32_t> block(n), local(n);
   for (std::size_t i = 0; i < n; ++i) block[order[i]] = std::uint32_t(i * count / n);
   out.faces.resize(count);

@@ -63,4 +63,13 @@ std::vector<std::uint32_t> curve_order(std::span<const Vec3> centre) {
   return order;
 }
 
+std::vector<std::uint32_t> face_curve_order(const Mesh& mesh, std::span<const std::uint32_t> faces) {
+  const std::size_t n = faces.empty() ? mesh.faces.size() : faces.size();
+  std::vector<Vec3> centre(n);
+  parallel_blocks(n, kBlock, threads_for(n, kBlock), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) centre[i] = face_centroid(mesh, faces.empty() ? i : faces[i]);
+  });
+  return curve_order(centre);
+}
+
 }  // namespace cgview::sdf
