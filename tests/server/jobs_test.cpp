@@ -650,8 +650,11 @@ TEST_F(JobsTest, GarbageOnTheProgressPipeFailsTheJobQuotingIt) {
 
 TEST_F(JobsTest, OutputWithoutALineEndFailsTheJobSayingSo) {
   server_.kill_now();
+  // The worker never starts after it (its first progress line would end the
+  // line, and the server, reading both at once, saw a line of 70024 bytes).
   ASSERT_TRUE(
-      start({"--worker", wrapped_worker(dir_, "endless-worker", "head -c 70000 /dev/zero | tr '\\0' x").string()}));
+      start({"--worker",
+             wrapped_worker(dir_, "endless-worker", "head -c 70000 /dev/zero | tr '\\0' x; exec sleep 30").string()}));
   const json j = wait_end(submit("test_sleep", {{"seconds", 30}})["id"]);
   EXPECT_EQ(j["state"], "failed") << j.dump();
   const std::string error = j.value("error", "");
