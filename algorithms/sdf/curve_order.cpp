@@ -7,7 +7,6 @@
 
 namespace cgview::sdf {
 namespace {
-constexpr std::size_t kBlock = 1 << 16;  // points a block in the parallel passes
 
 // The bits of a 10-bit number two apart: bit i to bit 3i ("magic bits").
 std::uint64_t spread_bits(std::uint64_t x) {
@@ -24,7 +23,7 @@ std::vector<std::uint32_t> curve_order(std::span<const Vec3> centre) {
   for (const Vec3& c : centre)
     for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
   std::vector<std::uint64_t> key(n);
-  parallel_blocks(n, kBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+  parallel_blocks(n, kItemsPerThread, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
     for (std::size_t f = b; f < e; ++f) {
       const Vec3& c = centre[f];
       std::uint64_t q[3];
@@ -57,7 +56,7 @@ std::vector<std::uint32_t> curve_order(std::span<const Vec3> centre) {
     key.swap(other);
   }
   std::vector<std::uint32_t> order(n);
-  parallel_blocks(key.size(), kBlock, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+  parallel_blocks(key.size(), kItemsPerThread, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) order[i] = std::uint32_t(key[i]);
   });
   return order;
@@ -66,7 +65,7 @@ std::vector<std::uint32_t> curve_order(std::span<const Vec3> centre) {
 std::vector<std::uint32_t> face_curve_order(const Mesh& mesh, std::span<const std::uint32_t> faces) {
   const std::size_t n = faces.empty() ? mesh.faces.size() : faces.size();
   std::vector<Vec3> centre(n);
-  parallel_blocks(n, kBlock, threads_for(n, kBlock), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+  on_shares(n, threads_for(n, kItemsPerThread), [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) centre[i] = face_centroid(mesh, faces.empty() ? i : faces[i]);
   });
   return curve_order(centre);

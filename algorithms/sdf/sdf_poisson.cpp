@@ -65,28 +65,27 @@ ArcWeights arc_weights(const Mesh& mesh, const Adjacency& g) {
   // normals as face_normals makes them, in the planes' pass.
   const std::size_t n = g.size();
   std::vector<Plane> plane(n);
-  parallel_blocks(n, kItemsPerThread, threads_for(n, kItemsPerThread), nullptr, 0, 0, "",
-                  [&](std::size_t b, std::size_t e) {
-                    for (std::size_t f = b; f < e; ++f) {
-                      plane[f].normal = normalized(face_cross(mesh, f));
-                      plane[f].centre = face_centroid(mesh, f);
-                      plane[f].height = dot(plane[f].normal, plane[f].centre);
-                    }
-                  });
+  const int threads = threads_for(n, kItemsPerThread);
+  on_shares(n, threads, [&](std::size_t b, std::size_t e) {
+    for (std::size_t f = b; f < e; ++f) {
+      plane[f].normal = normalized(face_cross(mesh, f));
+      plane[f].centre = face_centroid(mesh, f);
+      plane[f].height = dot(plane[f].normal, plane[f].centre);
+    }
+  });
   ArcWeights w{std::vector<float>(g.items.size()), std::vector<std::uint8_t>(g.items.size())};
-  parallel_blocks(
-      n, kItemsPerThread, threads_for(n, kItemsPerThread), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
-        for (std::size_t f = b; f < e; ++f) {
-          const Plane& pf = plane[f];
-          for (std::uint32_t k = g.offsets[f]; k < g.offsets[f + 1]; ++k) {
-            const Plane& ph = plane[g.items[k]];
-            const double x = (1 + std::clamp(dot(pf.normal, ph.normal), -1.0, 1.0)) / 2, x4 = (x * x) * (x * x);
-            const double weight = dot(pf.normal, ph.centre) > pf.height ? x4 * x4 : x4;  // concave: above f's plane
-            w.weight[k] = float(weight);
-            w.cost[k] = std::uint8_t(1 + int(kCostScale * (1 - weight) + 0.5));
-          }
-        }
-      });
+  on_shares(n, threads, [&](std::size_t b, std::size_t e) {
+    for (std::size_t f = b; f < e; ++f) {
+      const Plane& pf = plane[f];
+      for (std::uint32_t k = g.offsets[f]; k < g.offsets[f + 1]; ++k) {
+        const Plane& ph = plane[g.items[k]];
+        const double x = (1 + std::clamp(dot(pf.normal, ph.normal), -1.0, 1.0)) / 2, x4 = (x * x) * (x * x);
+        const double weight = dot(pf.normal, ph.centre) > pf.height ? x4 * x4 : x4;  // concave: above f's plane
+        w.weight[k] = float(weight);
+        w.cost[k] = std::uint8_t(1 + int(kCostScale * (1 - weight) + 0.5));
+      }
+    }
+  });
   return w;
 }
 
@@ -150,7 +149,8 @@ void scatter(const std::vector<T>& part, const std::vector<std::uint32_t>& at, s
 // With `a`, by the arcs' costs.
 std::vector<double> nearest_known(const Adjacency& g, const CurveBlocks& blocks, const ArcWeights* a,
                                   const std::vector<double>& values) {
-  if (blocks.size() == 0) return a ? nearest_known(g, *a, values) : nearest_known(g, values);
+  const auto whole = [&](const std::vector<double>& v) { return a ? nearest_known(g, *a, v) : nearest_known(g, v); };
+  if (blocks.size() == 0) return whole(values);
   std::vector<double> out(values.size());
   each_block(blocks, [&](std::size_t k) {
     const std::vector<double> own = gather(values, blocks.faces[k]);
@@ -158,8 +158,7 @@ std::vector<double> nearest_known(const Adjacency& g, const CurveBlocks& blocks,
     const ArcWeights costs{{}, gather(a->cost, blocks.arcs[k])};
     scatter(nearest_known(blocks.graphs[k], costs, own), blocks.faces[k], out);
   });
-  if (std::any_of(out.begin(), out.end(), [](double v) { return std::isnan(v); }))
-    out = a ? nearest_known(g, *a, out) : nearest_known(g, out);
+  if (std::any_of(out.begin(), out.end(), [](double v) { return std::isnan(v); })) out = whole(out);
   return out;
 }
 
@@ -409,16 +408,14 @@ SampleGraph sample_graph(const Adjacency& g, const CurveBlocks& blocks, const st
   // then moved together.  A list is about six touches: a share of 8k
   // samples is about the work of a pass over 64k items.
   std::vector<std::uint32_t> kept(m + 1, 0);
-  parallel_blocks(
-      m, kItemsPerThread / 8, threads_for(m, kItemsPerThread / 8), nullptr, 0, 0, "",
-      [&](std::size_t b, std::size_t e) {
-        for (std::size_t k = b; k < e; ++k) {
-          const auto first = touch.begin() + at[k], last = touch.begin() + at[k + 1];
-          std::sort(first, last);
-          kept[k + 1] = std::uint32_t(
-              std::unique(first, last, [](const auto& x, const auto& y) { return x.first == y.first; }) - first);
-        }
-      });
+  on_shares(m, threads_for(m, kItemsPerThread / 8), [&](std::size_t b, std::size_t e) {
+    for (std::size_t k = b; k < e; ++k) {
+      const auto first = touch.begin() + at[k], last = touch.begin() + at[k + 1];
+      std::sort(first, last);
+      kept[k + 1] = std::uint32_t(
+          std::unique(first, last, [](const auto& x, const auto& y) { return x.first == y.first; }) - first);
+    }
+  });
   for (std::size_t k = 0; k < m; ++k) kept[k + 1] += kept[k];
   SampleGraph out;
   out.graph.offsets = kept;
