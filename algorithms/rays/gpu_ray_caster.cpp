@@ -116,7 +116,9 @@ void main() {
             float d = f * dot(t.e2, q);
             if (d > 0.0 && d < best) {
               best = d;
-              face = t.face;
+              // det = -dot(direction, e1 x e2): negative where the ray
+              // goes along the face's normal (from behind).
+              face = det < 0.0 ? t.face | 0x80000000u : t.face;
             }
           }
         } else {
@@ -353,7 +355,7 @@ struct GpuRayCaster::Impl {
 
 GpuRayCaster::GpuRayCaster(const Mesh& mesh, GlPlatform platform) : impl_(std::make_unique<Impl>()) {
   if (mesh.faces.empty()) throw InvalidInput("GPU rays: the mesh has no faces");
-  if (mesh.faces.size() >= std::size_t(kNoFace)) throw InvalidInput("GPU rays: too many faces");
+  if (mesh.faces.size() >= std::size_t(kBehind)) throw InvalidInput("GPU rays: too many faces");
   SharedContext& s = shared_context(platform);
   {
     std::lock_guard lock(s.mutex);
@@ -424,7 +426,7 @@ void GpuRayCaster::cone_hits(std::span<const Frame> frames, std::span<const Cone
 }
 
 GpuRayCaster::Hit GpuRayCaster::hit(const FaceHit& h) const {
-  return h.face == kNoFace ? Hit{} : Hit{double(h.distance), h.face, impl_->normals[h.face]};
+  return h.met() ? Hit{double(h.distance), h.face_met(), impl_->normals[h.face_met()]} : Hit{};
 }
 
 std::vector<GpuRayCaster::Hit> GpuRayCaster::first_hits(std::span<const Ray> rays) const {

@@ -66,11 +66,19 @@ class GpuRayCaster {
   struct ConeRay {
     float axis = 1, du = 0, dv = 0, pad = 0;
   };
-  // A hit as the shader writes it (8 bytes): the face met (kNoFace: none)
-  // and the distance along the ray.
+  // A hit as the shader writes it (8 bytes): the face met (kNoFace: none),
+  // with the bit kBehind where the ray meets it from behind (along its
+  // normal, as a ray from inside a closed mesh leaves it: the SDF's test,
+  // which the shader makes from its intersection's determinant, so that
+  // the CPU need not remake each ray's direction to make it), and the
+  // distance along the ray.
+  static constexpr std::uint32_t kBehind = std::uint32_t(1) << 31;
   struct FaceHit {
     float distance;
     std::uint32_t face;
+    bool met() const { return face != kNoFace; }
+    bool behind() const { return met() && (face & kBehind) != 0; }
+    std::uint32_t face_met() const { return met() ? face & ~kBehind : kNoFace; }
   };
   // hits[i * cone.size() + k]: the first face frame i's ray k meets (hits is
   // resized).  The rays are made in the shader, so that an SDF's cones send

@@ -42,21 +42,50 @@ std::vector<ConeRay> cone_rays(const SdfParams& o) {
   return rays;
 }
 
-double median_of(std::vector<double>& v) {  // as CGAL: the mean of the two middle values when even
-  const std::size_t half = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + half, v.end());
-  double m = v[half];
-  if (v.size() % 2 == 0) m = (m + *std::max_element(v.begin(), v.begin() + half)) / 2.0;
-  return m;
+// The median of sorted values, as CGAL's: the mean of the two middle ones
+// when even.
+double sorted_median(const std::vector<double>& x) {
+  const std::size_t half = x.size() / 2;
+  return x.size() % 2 ? x[half] : (x[half] + x[half - 1]) / 2.0;
 }
 
-// The weighted mean of the (length, weight) pairs that are not outliers.
-double combine(std::vector<std::pair<double, double>>& hits, Outliers rule, std::vector<double>& scratch) {
+// The median of |x - median| over sorted x, as CGAL's (the same values):
+// the deviations rise outwards on each side of the median, so the two
+// sides merged from it give them in order.  (On the 1.42M-face mesh the
+// hits' combining took 0.67 s on one thread with two nth_elements, 0.48 s
+// so.)
+double sorted_median_deviation(const std::vector<double>& x, double median) {
+  const std::size_t n = x.size(), half = n / 2;
+  std::size_t r = std::size_t(std::lower_bound(x.begin(), x.end(), median) - x.begin());
+  std::ptrdiff_t l = std::ptrdiff_t(r) - 1;
+  double kth = 0, before = 0;
+  for (std::size_t c = 0; c <= half; ++c) {
+    before = kth;
+    if (l >= 0 && (r >= n || median - x[std::size_t(l)] < x[r] - median)) kth = median - x[std::size_t(l--)];
+    else kth = x[r++] - median;
+  }
+  return n % 2 ? kth : (kth + before) / 2.0;
+}
+
+}  // namespace
+
+double combine_rays(std::span<const std::pair<double, double>> hits, Outliers rule, std::vector<double>& sorted) {
   double lo = -HUGE_VAL, hi = HUGE_VAL;
   if (rule != Outliers::none && hits.size() > 1) {
-    scratch.clear();
-    for (auto& h : hits) scratch.push_back(h.first);
-    const double median = median_of(scratch);
+    // A cone's few lengths sorted by insertion, more by std::sort.
+    sorted.clear();
+    for (auto& h : hits) sorted.push_back(h.first);
+    if (sorted.size() <= 32) {
+      for (std::size_t i = 1; i < sorted.size(); ++i) {
+        const double v = sorted[i];
+        std::size_t j = i;
+        for (; j > 0 && sorted[j - 1] > v; --j) sorted[j] = sorted[j - 1];
+        sorted[j] = v;
+      }
+    } else {
+      std::sort(sorted.begin(), sorted.end());
+    }
+    const double median = sorted_median(sorted);
     double spread;
     if (rule == Outliers::std_dev) {
       double mean = 0, var = 0;
@@ -65,8 +94,7 @@ double combine(std::vector<std::pair<double, double>>& hits, Outliers rule, std:
       for (auto& h : hits) var += (h.first - mean) * (h.first - mean);
       spread = std::sqrt(var / double(hits.size()));
     } else {
-      for (double& d : scratch) d = std::abs(d - median);
-      spread = 1.5 * median_of(scratch);
+      spread = 1.5 * sorted_median_deviation(sorted, median);
     }
     lo = median - spread;
     hi = median + spread;
@@ -79,8 +107,6 @@ double combine(std::vector<std::pair<double, double>>& hits, Outliers rule, std:
     }
   return weights > 0 ? sum / weights : hits[hits.size() / 2].first;
 }
-
-}  // namespace
 
 namespace {
 
@@ -198,13 +224,14 @@ RawSdf SdfRayCaster::cast(std::span<const std::uint32_t> faces, const Context* c
             if (const RayCaster::Hit h = caster->first_hit(c, d, f)) accept(hits, d, h.distance, h.normal, k);
           }
         local_accepted += hits.size();
-        if (!hits.empty()) out.values[at[i]] = combine(hits, o.outliers, scratch);
+        if (!hits.empty()) out.values[at[i]] = combine_rays(hits, o.outliers, scratch);
       }
       accepted += local_accepted;
     });
   } else {
     // Batches of faces: their frames made on the cores, their cones cast in
-    // the shader, the hits accepted and combined on the cores.
+    // the shader (which tells the hits met from behind), the hits combined
+    // on the cores.
     out.gpu = true;
     out.gpu_renderer = gpu->info().gl_renderer;
     std::vector<GpuRayCaster::ConeRay> dirs;
@@ -241,16 +268,14 @@ RawSdf SdfRayCaster::cast(std::span<const std::uint32_t> faces, const Context* c
         std::vector<double> scratch;
         std::size_t local_accepted = 0;
         for (std::size_t i = b; i < e; ++i) {
-          const std::uint32_t f = face_at(cb + i);
-          Vec3 c, u, v;
+          // The shader has made accept's test (a degenerate face's frame
+          // met nothing).
           hits.clear();
-          if (frame_of(f, c, u, v))
-            for (std::size_t k = 0; k < m; ++k) {
-              const GpuRayCaster::FaceHit& h = hit[i * m + k];
-              if (h.face != GpuRayCaster::kNoFace) accept(hits, direction(k, f, u, v), h.distance, normals[h.face], k);
-            }
+          for (std::size_t k = 0; k < m; ++k)
+            if (const GpuRayCaster::FaceHit& h = hit[i * m + k]; h.behind())
+              hits.push_back({h.distance, cone[k].weight});
           local_accepted += hits.size();
-          if (!hits.empty()) out.values[at[cb + i]] = combine(hits, o.outliers, scratch);
+          if (!hits.empty()) out.values[at[cb + i]] = combine_rays(hits, o.outliers, scratch);
         }
         accepted += local_accepted;
       });

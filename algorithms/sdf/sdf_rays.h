@@ -18,8 +18,9 @@
 // Ray casting uses Embree (Intel's ray tracing kernels, Debian's libembree):
 // a BVH built for the whole mesh once, rays traced on every core; or, where
 // the EGL renderer finds a hardware device (SdfParams::device), an OpenGL
-// compute shader over a BVH in GPU buffers (rays/gpu_ray_caster.h), the
-// acceptance rule and the outliers then applied on the CPU alike.
+// compute shader over a BVH in GPU buffers (rays/gpu_ray_caster.h), which
+// tells the faces met from behind as it meets them; the outliers are then
+// dropped on the CPU alike (combine_rays).
 #pragma once
 
 #include <cstdint>
@@ -27,6 +28,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/mesh.h"
@@ -82,6 +84,14 @@ class SdfRayCaster {
   struct State;
   std::unique_ptr<State> s_;
 };
+
+// One face's SDF from its accepted rays' hits, (length, weight) each, at least
+// one: the weighted mean of those within the outlier rule's band about
+// their median (Outliers::mad: 1.5 median absolute deviations; std_dev:
+// one standard deviation; none: all), the median of an even count the mean
+// of the two middle lengths as CGAL's; the middle ray's length where the
+// band keeps none.  `scratch` is working space.
+double combine_rays(std::span<const std::pair<double, double>> hits, Outliers rule, std::vector<double>& scratch);
 
 // CGAL's post-processing of SDF values (Surface_mesh_segmentation's
 // Postprocess_sdf_values), with the same rules:

@@ -102,9 +102,12 @@ TEST(GpuRayCaster, ConesMadeInTheShaderHitAsTheSameRaysFromTheCpu) {
   const Mesh mesh = read_mesh(test::sample("elephant.off"));
   const GpuRayCaster gpu(mesh);
   const std::vector<Vec3> normals = face_normals(mesh);
-  // A cone of 9 rays around the inward normal, every 7th face.
+  // A cone of 9 rays around the inward normal, and 3 around the outward
+  // one (which meet other parts of the shape from their front), every 7th
+  // face.
   std::vector<GpuRayCaster::ConeRay> cone;
-  for (int k = 0; k < 9; ++k) cone.push_back({0.8f, 0.6f * float(std::cos(k)), 0.6f * float(std::sin(k)) * k / 9});
+  for (int k = 0; k < 12; ++k)
+    cone.push_back({k < 9 ? 0.8f : -0.8f, 0.6f * float(std::cos(k)), 0.6f * float(std::sin(k)) * k / 12});
   std::vector<GpuRayCaster::Frame> frames;
   std::vector<Ray> rays;
   const auto f3 = [](const Vec3& a, float* out) { out[0] = float(a.x), out[1] = float(a.y), out[2] = float(a.z); };
@@ -129,6 +132,19 @@ TEST(GpuRayCaster, ConesMadeInTheShaderHitAsTheSameRaysFromTheCpu) {
   for (std::size_t k = 0; k < cone.size(); ++k) EXPECT_FALSE(hits[hits.size() - 1 - k]);
   hits.resize(rays.size());
   expect_embree_hits(mesh, rays, hits);
+  // The side each face is met from, against its normal on the CPU (a
+  // grazing ray's is float's call).
+  std::size_t behind = 0, front = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    if (!found[i].met()) continue;
+    const Vec3 d{rays[i].direction[0], rays[i].direction[1], rays[i].direction[2]};
+    const double side = dot(d, normals[found[i].face_met()]);
+    if (std::abs(side) < 1e-4) continue;
+    EXPECT_EQ(found[i].behind(), side > 0) << i;
+    ++(side > 0 ? behind : front);
+  }
+  EXPECT_GT(behind, 1000u);
+  EXPECT_GT(front, 10u);
 }
 
 TEST(GpuRayCaster, SkipsTheOriginFaceAndHonoursTheMaximumDistance) {
@@ -170,7 +186,19 @@ TEST(GpuRayCaster, SkipsTheOriginFaceAndHonoursTheMaximumDistance) {
   for (std::size_t i = 0; i < hits.size(); i += 3001) {
     const double expected[] = {0.7, 0.3, 0.5};
     ASSERT_NEAR(hits[i].distance, expected[i % 3], 1e-6) << i;
+    // From inside, each face is met from behind (the box's normals face out).
+    ASSERT_TRUE(hits[i].behind()) << i;
   }
+  // From above the box, down meets the top from its front; up and +x, nothing.
+  GpuRayCaster::Frame above = down;
+  above.origin[2] = 2;
+  gpu.cone_hits({&above, 1}, cone, hits);
+  ASSERT_EQ(hits.size(), 3u);
+  EXPECT_TRUE(hits[0].met());
+  EXPECT_FALSE(hits[0].behind());
+  EXPECT_NEAR(hits[0].distance, 1.0, 1e-6);
+  EXPECT_NEAR(cube.positions[cube.faces[hits[0].face_met()][0]].z, 1.0, 1e-12);
+  EXPECT_FALSE(hits[1].met() || hits[2].met());
 }
 
 TEST(GpuRayCaster, EmptyMeshIsInvalidInput) { EXPECT_THROW(GpuRayCaster(Mesh{}), InvalidInput); }

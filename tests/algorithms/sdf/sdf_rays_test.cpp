@@ -8,6 +8,7 @@
 #include <CGAL/version.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -15,6 +16,7 @@
 #include <stdexcept>
 #include <string>
 #include <numbers>
+#include <random>
 #include <utility>
 #include <vector>
 
@@ -164,6 +166,54 @@ TEST(SdfRays, RawValuesCorrelateWithCgalsSdfValuesOnSampleMeshes) {
                   int(outliers), a.size());
     }
   }
+}
+
+// combine_rays against the rules written out the plain way: every
+// deviation from the median listed and its median picked by nth_element,
+// on cones of 1 to 40 hits (the few sorted by insertion, the many by
+// std::sort), lengths with ties, and weights, to the last bit.
+TEST(SdfRays, CombinedHitsAreTheMeanWithinTheOutlierRulesBand) {
+  const auto median = [](std::vector<double> v) {
+    const std::size_t half = v.size() / 2;
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(half), v.end());
+    const double m = v[half];
+    return v.size() % 2 ? m : (m + *std::max_element(v.begin(), v.begin() + std::ptrdiff_t(half))) / 2.0;
+  };
+  std::mt19937 random(7);
+  std::vector<double> scratch;
+  std::size_t dropped = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const std::size_t n = 1 + std::size_t(trial) % 40;
+    std::vector<std::pair<double, double>> hits;
+    for (std::size_t i = 0; i < n; ++i) {
+      // A few outliers far out; lengths of a tenth's steps, so that some tie.
+      const double length = random() % 9 == 0 ? 5.0 + double(random() % 100) : 1.0 + double(random() % 20) / 10.0;
+      hits.push_back({length, 1.0 + double(random() % 4)});
+    }
+    std::vector<double> lengths;
+    for (const auto& h : hits) lengths.push_back(h.first);
+    const double m = median(lengths);
+    std::vector<double> deviation;
+    for (double x : lengths) deviation.push_back(std::abs(x - m));
+    double mean = 0, var = 0;
+    for (double x : lengths) mean += x;
+    mean /= double(n);
+    for (double x : lengths) var += (x - mean) * (x - mean);
+    const double bands[][2] = {{m - 1.5 * median(deviation), m + 1.5 * median(deviation)},
+                               {m - std::sqrt(var / double(n)), m + std::sqrt(var / double(n))},
+                               {-HUGE_VAL, HUGE_VAL}};
+    const sdf::Outliers rules[] = {sdf::Outliers::mad, sdf::Outliers::std_dev, sdf::Outliers::none};
+    for (int r = 0; r < 3; ++r) {
+      const double lo = n > 1 ? bands[r][0] : -HUGE_VAL, hi = n > 1 ? bands[r][1] : HUGE_VAL;
+      double sum = 0, weights = 0;
+      for (const auto& h : hits)
+        if (h.first >= lo && h.first <= hi) sum += h.first * h.second, weights += h.second;
+        else ++dropped;
+      const double expected = weights > 0 ? sum / weights : hits[n / 2].first;
+      ASSERT_EQ(sdf::combine_rays(hits, rules[r], scratch), expected) << "trial " << trial << ", rule " << r;
+    }
+  }
+  EXPECT_GT(dropped, 4000u);  // the bands dropped outliers
 }
 
 // The rays' parameters are held to SdfParams' ranges when raw_sdf is called
