@@ -41,6 +41,9 @@ static_assert(sizeof(GpuNode) == 32 && sizeof(GpuTri) == 48 && sizeof(GpuHit) ==
 static_assert(sizeof(GpuRayCaster::Ray) == 32 && sizeof(GpuRayCaster::Frame) == 64 &&
               sizeof(GpuRayCaster::ConeRay) == 16);
 
+// The shader writes these as literals.
+static_assert(GpuRayCaster::kNoFace == 0xFFFFFFFFu && GpuRayCaster::kBehind == 0x80000000u);
+
 constexpr int kLeafSize = 4;
 constexpr std::size_t kBatch = std::size_t(1) << 20;
 constexpr int kGroupSize = 64;

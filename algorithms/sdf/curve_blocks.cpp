@@ -1,7 +1,6 @@
 #include "sdf/curve_blocks.h"
 
 #include "sdf/curve_order.h"
-#include "sdf/parallel_blocks.h"
 
 namespace cgview::sdf {
 
@@ -20,16 +19,14 @@ CurveBlocks curve_blocks(const Mesh& mesh, const Adjacency& g, std::size_t size)
   }
   out.graphs.resize(count);
   out.arcs.resize(count);
-  parallel_blocks(count, 1, threads_for(count, 1), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
-    for (std::size_t k = b; k < e; ++k) {
-      Adjacency& a = out.graphs[k];
-      a.offsets.reserve(out.faces[k].size() + 1);
-      a.offsets.push_back(0);
-      for (std::uint32_t f : out.faces[k]) {
-        for (std::uint32_t j = g.offsets[f]; j < g.offsets[f + 1]; ++j)
-          if (block[g.items[j]] == k) a.items.push_back(local[g.items[j]]), out.arcs[k].push_back(j);
-        a.offsets.push_back(std::uint32_t(a.items.size()));
-      }
+  each_block(out, [&](std::size_t k) {
+    Adjacency& a = out.graphs[k];
+    a.offsets.reserve(out.faces[k].size() + 1);
+    a.offsets.push_back(0);
+    for (std::uint32_t f : out.faces[k]) {
+      for (std::uint32_t j = g.offsets[f]; j < g.offsets[f + 1]; ++j)
+        if (block[g.items[j]] == k) a.items.push_back(local[g.items[j]]), out.arcs[k].push_back(j);
+      a.offsets.push_back(std::uint32_t(a.items.size()));
     }
   });
   return out;

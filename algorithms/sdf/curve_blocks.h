@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/mesh.h"
+#include "sdf/parallel_blocks.h"
 
 namespace cgview::sdf {
 
@@ -26,5 +27,15 @@ struct CurveBlocks {
 // graph is the one block, and nothing is listed: `faces`, `graphs` and
 // `arcs` are empty.
 CurveBlocks curve_blocks(const Mesh& mesh, const Adjacency& face_graph, std::size_t size);
+
+// f(k) for each block k of `blocks`, on every core, a block at a time (the
+// blocks' work differs).
+template <class F>
+void each_block(const CurveBlocks& blocks, const F& f) {
+  parallel_blocks(blocks.size(), 1, threads_for(blocks.size(), 1), nullptr, 0, 0, "",
+                  [&](std::size_t b, std::size_t e) {
+                    for (std::size_t k = b; k < e; ++k) f(k);
+                  });
+}
 
 }  // namespace cgview::sdf

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <utility>
 
-#include "sdf/parallel_blocks.h"
+#include "core/threads.h"
 
 namespace cgview::sdf {
 namespace {
@@ -22,8 +22,9 @@ std::vector<std::uint32_t> curve_order(std::span<const Vec3> centre) {
   Vec3 lo = n == 0 ? Vec3{} : centre[0], hi = lo;
   for (const Vec3& c : centre)
     for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+  const int threads = threads_for(n, kItemsPerThread);
   std::vector<std::uint64_t> key(n);
-  parallel_blocks(n, kItemsPerThread, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+  on_shares(n, threads, [&](std::size_t b, std::size_t e) {
     for (std::size_t f = b; f < e; ++f) {
       const Vec3& c = centre[f];
       std::uint64_t q[3];
@@ -38,7 +39,6 @@ std::vector<std::uint32_t> curve_order(std::span<const Vec3> centre) {
   // thread counts the digits of its share of the keys, then writes its keys
   // after those of lower digits and, of its digit, after the threads'
   // before it.  (On one thread, the 1.42M-face mesh's sort took 30 ms.)
-  const int threads = threads_for(n, kItemsPerThread);
   std::vector<std::uint64_t> other(n);
   std::vector<std::size_t> count(std::size_t(threads) << 10);
   for (int shift = 32; shift < 62; shift += 10) {
@@ -56,7 +56,7 @@ std::vector<std::uint32_t> curve_order(std::span<const Vec3> centre) {
     key.swap(other);
   }
   std::vector<std::uint32_t> order(n);
-  parallel_blocks(key.size(), kItemsPerThread, thread_count(), nullptr, 0, 0, "", [&](std::size_t b, std::size_t e) {
+  on_shares(n, threads, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) order[i] = std::uint32_t(key[i]);
   });
   return order;

@@ -15,7 +15,6 @@
 
 #include "core/threads.h"
 #include "sdf/curve_blocks.h"
-#include "sdf/parallel_blocks.h"
 #include "filters/vertex_curvatures.h"
 
 namespace cgview::sdf {
@@ -119,15 +118,6 @@ std::vector<double> nearest_known(const Adjacency& g, const ArcWeights& a, const
     now.clear();
   }
   return out;
-}
-
-// f(k) for each block k of `blocks`, on every core.
-template <class F>
-void each_block(const CurveBlocks& blocks, const F& f) {
-  parallel_blocks(blocks.size(), 1, threads_for(blocks.size(), 1), nullptr, 0, 0, "",
-                  [&](std::size_t b, std::size_t e) {
-                    for (std::size_t k = b; k < e; ++k) f(k);
-                  });
 }
 
 // all[at[i]] for each i, and back.
