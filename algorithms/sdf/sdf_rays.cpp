@@ -42,6 +42,23 @@ std::vector<ConeRay> cone_rays(const SdfParams& o) {
   return rays;
 }
 
+// A basis (u, v) of the plane of normal `in` (the face's inward normal),
+// as CGAL's sdf_values takes it: Plane_3's base1 (perpendicular to `in` in
+// the plane of its two largest coordinates) and base2 = in x base1.  It
+// depends on the normal alone, so the cone does not turn with the corner a
+// triangle is listed from, and the rays are CGAL's very rays.
+void plane_basis(const Vec3& in, Vec3& u, Vec3& v) {
+  const double ax = std::abs(in.x), ay = std::abs(in.y), az = std::abs(in.z);
+  if (in.x == 0) u = {1, 0, 0};
+  else if (in.y == 0) u = {0, 1, 0};
+  else if (in.z == 0) u = {0, 0, 1};
+  else if (ax <= ay && ax <= az) u = {0, -in.z, in.y};
+  else if (ay <= ax && ay <= az) u = {-in.z, 0, in.x};
+  else u = {-in.y, in.x, 0};
+  u = normalized(u);
+  v = normalized(cross(in, u));
+}
+
 // The median of sorted values, as CGAL's: the mean of the two middle ones
 // when even.
 double sorted_median(const std::vector<double>& x) {
@@ -192,10 +209,8 @@ RawSdf SdfRayCaster::cast(std::span<const std::uint32_t> faces, const Context* c
   const auto frame_of = [&](std::uint32_t f, Vec3& c, Vec3& u, Vec3& v) {
     const Vec3 n = normals[f];
     if (dot(n, n) == 0) return false;
-    const Tri& t = mesh.faces[f];
     c = face_centroid(mesh, f);
-    u = normalized(mesh.positions[t[1]] - mesh.positions[t[0]]);
-    v = cross(n, u);
+    plane_basis((-1.0) * n, u, v);
     return true;
   };
   const auto direction = [&](std::size_t k, std::uint32_t f, const Vec3& u, const Vec3& v) {

@@ -144,11 +144,15 @@ TEST(SdfRays, LongCylinderGivesItsDiameterAwayFromTheCaps) {
   EXPECT_GT(checked, 5000);
 }
 
-// Same rays and cone as CGAL's sdf_values (Vogel's spiral, uniform weights,
-// CGAL's outlier rule), no post-processing: the raw per-face values agree at
-// Pearson r >= 0.98.  With Shapira et al.'s weights and outlier rule (our
-// defaults) they still agree at r >= 0.95 (0.978 to 0.995 measured).
-TEST(SdfRays, RawValuesCorrelateWithCgalsSdfValuesOnSampleMeshes) {
+// Same rays as CGAL's sdf_values (Vogel's spiral in the frame of CGAL's
+// Plane_3::base1 and base2, uniform weights, CGAL's outlier rule), no
+// post-processing: the raw per-face values are CGAL's, to the 4 digits
+// stored, on all but a few faces in ten thousand (ties in the outlier rule
+// and hits on an edge may fall otherwise; 99.98% to 100% measured, where a
+// frame that turned with each face's first edge gave 2%).  With Shapira et
+// al.'s weights and outlier rule (our defaults) they are another estimator
+// and still agree at r >= 0.98 (0.989 to 0.994 measured).
+TEST(SdfRays, RawValuesAreCgalsSdfValuesOnSampleMeshes) {
   for (const char* name : {"elephant.off", "camel.off", "man.off", "bunny00.off"}) {
     const Mesh mesh = read_mesh(test::sample(name));
     const std::vector<double> cgal = stored_cgal_raw_sdf(mesh, name);
@@ -161,11 +165,34 @@ TEST(SdfRays, RawValuesCorrelateWithCgalsSdfValuesOnSampleMeshes) {
         if (cgal[f] >= 0 && !std::isnan(ours.values[f])) a.push_back(ours.values[f]), b.push_back(cgal[f]);
       EXPECT_GT(a.size(), 0.99 * double(cgal.size())) << name;
       const double r = sdf::pearson(a, b);
-      EXPECT_GE(r, weights == sdf::Weights::uniform ? 0.98 : 0.95) << name << " weights " << int(weights);
-      std::printf("%s: Pearson r = %.4f (weights %d, outliers %d) over %zu faces\n", name, r, int(weights),
-                  int(outliers), a.size());
+      std::size_t equal = 0;
+      for (std::size_t i = 0; i < a.size(); ++i) equal += std::abs(a[i] - b[i]) <= 1e-3 * std::abs(b[i]);
+      const double share = double(equal) / double(a.size());
+      if (weights == sdf::Weights::uniform) EXPECT_GE(share, 0.999) << name;
+      else EXPECT_GE(r, 0.98) << name;
+      std::printf("%s: Pearson r = %.4f (weights %d, outliers %d) over %zu faces, %.2f%% of them equal\n", name, r,
+                  int(weights), int(outliers), a.size(), 100.0 * share);
     }
   }
+}
+
+// A triangle listed from another of its corners (as another exporter may
+// write it) is the same face: its cone, and so its SDF, are the same.
+TEST(SdfRays, ValuesDoNotDependOnWhichCornerATriangleIsListedFrom) {
+  const Mesh mesh = read_mesh(test::sample("elephant.off"));
+  Mesh turned = mesh;
+  for (Tri& t : turned.faces) t = {t[1], t[2], t[0]};
+  const sdf::RawSdf a = sdf::raw_sdf(mesh, {}), b = sdf::raw_sdf(turned, {});
+  ASSERT_EQ(a.values.size(), b.values.size());
+  std::size_t same = 0, valued = 0;
+  for (std::size_t f = 0; f < a.values.size(); ++f) {
+    if (std::isnan(a.values[f])) continue;
+    ++valued;
+    // Embree casts in single precision: the same to its float's digits.
+    same += std::abs(a.values[f] - b.values[f]) <= 1e-5 * std::abs(a.values[f]);
+  }
+  EXPECT_GT(valued, 0.99 * double(a.values.size()));
+  EXPECT_GE(double(same), 0.999 * double(valued));
 }
 
 // combine_rays against the rules written out the plain way: every
