@@ -38,7 +38,9 @@ CGVIEW_REGISTER_FUNCTION(sdf, sdf,
                          {.title = "Shape Diameter Function",
                           .description = "The local diameter of the shape at each face, from a cone of rays cast "
                                          "inwards (Shapira, Shamir and Cohen-Or 2008); ray casting on Embree, on "
-                                         "every core. Rays escaping through holes of an open mesh are dropped.",
+                                         "every core, or on the GPU where there is one. Rays escaping through "
+                                         "holes of an open mesh are dropped. With uniform weights and the MAD "
+                                         "outlier rule, the values are CGAL's sdf_values.",
                           .area = "sdf",
                           .inputs = {kSdfInput}})
 
