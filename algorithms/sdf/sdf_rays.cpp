@@ -345,14 +345,15 @@ void fill_missing(const Mesh& mesh, const Adjacency& graph, std::vector<double>&
     if (!std::isnan(v)) smallest = std::min(smallest, v);
   if (smallest == HUGE_VAL) smallest = 0;  // no face has a value
   std::vector<std::size_t> still;
-  // As CGAL: neighbours' values as they were, then the smallest value.
-  const std::vector<double> before = values;
+  // As CGAL's check_missing_sdf_values: the faces in order, each without a
+  // value given its neighbours' mean as they are then (one filled before it
+  // counts), then those still without one the smallest value.
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    if (!std::isnan(before[f])) continue;
+    if (!std::isnan(values[f])) continue;
     double sum = 0;
     int count = 0;
     for (const std::uint32_t* g = graph.begin(f); g != graph.end(f); ++g)
-      if (!std::isnan(before[*g])) sum += before[*g], ++count;
+      if (!std::isnan(values[*g])) sum += values[*g], ++count;
     if (count) values[f] = sum / count;
     else still.push_back(f);
   }

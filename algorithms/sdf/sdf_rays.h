@@ -95,8 +95,9 @@ double combine_rays(std::span<const std::pair<double, double>> hits, Outliers ru
 
 // CGAL's post-processing of SDF values (Surface_mesh_segmentation's
 // Postprocess_sdf_values), with the same rules:
-// - fill_missing: a NaN face takes the mean of its edge neighbours' values,
-//   else the smallest value of the mesh;
+// - fill_missing: the faces in order, a NaN face takes the mean of its edge
+//   neighbours' values as they are at its turn (one filled before it
+//   counts), else (after all) the smallest value the rays gave;
 // - bilateral_smooth (sdf/bilateral_filter.h);
 // - normalize: linear to [0, 1] over min..max (all 0.5 when constant).
 void fill_missing(const Mesh& mesh, const Adjacency& face_graph, std::vector<double>& values);

@@ -118,13 +118,14 @@ TEST(SdfFast, TenPercentOnMannequinDevilStaysWithinTheBenchmarksErrorBounds) {
 // value, the ramp was missed and the thick faces beside it pulled down:
 // 5.30% mean error; filled as the full SDF fills them, 4.51% (4.17% with the
 // second round of samples, 3.80% with the diffusion weighted by the dihedral
-// angles, 3.73% with the samples settled last).
+// angles, 3.73% with the samples settled last, 3.15% with CGAL's rays and
+// CGAL's filling of the faces without a value, in the faces' order).
 TEST(SdfFast, TenPercentOnAnOpenMeshFillsTheRegionsWithoutRaysAsTheFullSdfDoes) {
   const Mesh mesh = read_mesh(test::sample("polygon_mesh.off"));
   ASSERT_GE(mesh.faces.size(), 20000u);
   const sdf::SdfFastResult res = sdf::sdf_fast(mesh, {.fraction = 0.1, .compare = true});
   ASSERT_TRUE(res.sdf);
-  EXPECT_LE(res.metrics.at("mean_error"), 0.041);
+  EXPECT_LE(res.metrics.at("mean_error"), 0.035);
   // Not biased low where rays escape: the full SDF's smallest values are
   // not spread over the regions' borders.
   const auto [lo, hi] = std::minmax_element(res.sdf->values.begin(), res.sdf->values.end());
