@@ -179,7 +179,7 @@ class Walk {
 int default_window(std::size_t faces) { return int(std::sqrt(double(faces) / 2000.0)) + 1; }
 
 void bilateral_smooth(const Adjacency& graph, std::vector<double>& values, int window, const Context* ctx,
-                      std::span<const std::uint32_t> only) {
+                      std::span<const std::uint32_t> only, double range) {
   const std::size_t n = values.size();
   if (window <= 0) window = default_window(n);
   std::vector<char> wanted(n, only.empty() ? 1 : 0);
@@ -207,7 +207,8 @@ void bilateral_smooth(const Adjacency& graph, std::vector<double>& values, int w
         const double dev = std::sqrt(double(squared_deviation(x.data(), x.size(), c)) / double(x.size()));
         if (dev == 0) continue;  // out keeps c
         float sum = 0, weights = 0;
-        weighted_sums(x.data(), walk.exponents(i).data(), x.size(), c, float(0.5 / (2.25 * dev * dev)), sum, weights);
+        weighted_sums(x.data(), walk.exponents(i).data(), x.size(), c, float(0.5 / (range * range * dev * dev)), sum,
+                      weights);
         out[block[i]] = double(sum) / double(weights);
       }
     }

@@ -28,9 +28,10 @@ namespace cgview::sdf {
 // listed in `only` when it is not empty.  NaN values are neither smoothed
 // nor averaged, but the walk goes through them (the accelerated SDF smooths
 // its samples).  `ctx` (may be null) gets progress and is checked for
-// cancellation.
+// cancellation.  `range`: the range Gaussian's deviation, in RMS deviations
+// of the window's values (CGAL's 1.5).
 void bilateral_smooth(const Adjacency& face_graph, std::vector<double>& values, int window = 0,
-                      const Context* ctx = nullptr, std::span<const std::uint32_t> only = {});
+                      const Context* ctx = nullptr, std::span<const std::uint32_t> only = {}, double range = 1.5);
 int default_window(std::size_t faces);
 
 // The filter of every face, as above, where the window is small or the mesh
