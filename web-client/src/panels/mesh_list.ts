@@ -61,7 +61,11 @@ export class MeshListPanel {
   }
 
   render(meshes: readonly Mesh[], selectedId: string | null, inScene: ReadonlySet<string> = new Set()): void {
-    for (const id of this.thumbs.keys()) if (!meshes.some((m) => m.id === id)) this.thumbs.delete(id);
+    // A mesh gone from the list drops its thumbnail, unless the thumbnail is
+    // still on its way: were the mesh listed again meanwhile, a second
+    // request would be sent that no delete waits for (imageSettled), and
+    // answer 404 after it.
+    for (const [id, img] of this.thumbs) if (!meshes.some((m) => m.id === id) && !(img && (!img.complete || img.dataset.fetching !== undefined))) this.thumbs.delete(id);
     if (meshes.length === 0) {
       this.root.replaceChildren(el('p', { class: 'empty' }, 'No meshes yet. Upload one, or drop a file on the page.'));
       return;
