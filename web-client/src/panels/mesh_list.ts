@@ -19,6 +19,11 @@ const THUMBNAIL_PX = 96;
 /** How long a delete waits at most for the mesh's thumbnail (its render may queue behind others on a busy server). */
 const THUMBNAIL_WAIT_MS = 20000;
 
+/** Whether a thumbnail's request is still on its way (with a token, it has no src until its blob arrives). */
+function onItsWay(img: HTMLImageElement): boolean {
+  return !img.complete || img.dataset.fetching !== undefined;
+}
+
 /**
  * Resolves once the thumbnail has arrived or failed, or after `ms`. The
  * server renders it from the stored mesh, so a render still on its way
@@ -28,7 +33,7 @@ const THUMBNAIL_WAIT_MS = 20000;
  * view cannot be told from one whose request is queued.
  */
 function imageSettled(img: HTMLImageElement | null, ms: number): Promise<void> {
-  if (!img || !img.isConnected || (img.complete && img.dataset.fetching === undefined)) return Promise.resolve();
+  if (!img || !img.isConnected || !onItsWay(img)) return Promise.resolve();
   return new Promise((resolve) => {
     const done = (): void => resolve();
     img.addEventListener('load', done, { once: true });
@@ -65,7 +70,7 @@ export class MeshListPanel {
     // still on its way: were the mesh listed again meanwhile, a second
     // request would be sent that no delete waits for (imageSettled), and
     // answer 404 after it.
-    for (const [id, img] of this.thumbs) if (!meshes.some((m) => m.id === id) && !(img && (!img.complete || img.dataset.fetching !== undefined))) this.thumbs.delete(id);
+    for (const [id, img] of this.thumbs) if (!meshes.some((m) => m.id === id) && !(img && onItsWay(img))) this.thumbs.delete(id);
     if (meshes.length === 0) {
       this.root.replaceChildren(el('p', { class: 'empty' }, 'No meshes yet. Upload one, or drop a file on the page.'));
       return;
