@@ -4,7 +4,6 @@
 
 #include <gtest/gtest.h>
 
-#include <CGAL/mesh_segmentation.h>
 #include <CGAL/version.h>
 #include <zlib.h>
 
@@ -20,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/surface_mesh.h"
+#include "cgal_sdf.h"
 #include "io/mesh_io.h"
 #include "test_support.h"
 
@@ -36,16 +35,6 @@ Mesh cylinder(double r, double length, int segments, int rings) {
   return test::revolve(profile, segments);
 }
 
-// CGAL's raw SDF (no post-processing), -1 where it found none.
-std::vector<double> cgal_raw_sdf(const Mesh& mesh, double cone_degrees, int rays) {
-  SurfaceMesh sm = manifold_surface_mesh(mesh, "the CGAL reference");
-  auto map = sm.add_property_map<SurfaceMesh::Face_index, double>("f:sdf", 0.0).first;
-  CGAL::sdf_values(sm, map, cone_degrees * std::numbers::pi / 180.0, std::size_t(rays), false);
-  std::vector<double> out;
-  for (SurfaceMesh::Face_index f : sm.faces()) out.push_back(map[f]);
-  return out;
-}
-
 // CGAL's raw SDF of a sample mesh (120-degree cone, 25 rays), as stored in
 // tests/data/sdf/NAME.cgal-sdf.txt.gz: a header naming the CGAL version that
 // computed it, then one value per face (4 digits; -1: none).  It takes CGAL
@@ -57,7 +46,7 @@ std::vector<double> stored_cgal_raw_sdf(const Mesh& mesh, const std::string& nam
   const std::string header = "# CGAL " CGAL_VERSION_STR
                              " sdf_values, cone 120 degrees, 25 rays, no post-processing: a value per face, -1 none";
   if (const char* update = std::getenv("CGVIEW_UPDATE_REFERENCE"); update && std::string(update) == "1") {
-    const std::vector<double> values = cgal_raw_sdf(mesh, 120, 25);
+    const std::vector<double> values = test::cgal_sdf_values(mesh, 120, 25, false);
     gzFile out = gzopen(file.c_str(), "wb9");
     if (!out) throw std::runtime_error("cannot write " + file);
     gzprintf(out, "%s\n", header.c_str());
